@@ -1,0 +1,35 @@
+#pragma once
+/// A DAE F(t, y, y') = 0 as the integrator sees it. Implementations: the reduced ODE of the
+/// elimination path (dae/elimination.hpp) and, later, the multiplier formulations.
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <vector>
+
+namespace condyn {
+
+class DaeProblem {
+ public:
+  using ConstRef = Eigen::Ref<const Eigen::VectorXd>;
+  using Ref = Eigen::Ref<Eigen::VectorXd>;
+
+  virtual ~DaeProblem() = default;
+
+  /// Number of unknowns in y.
+  [[nodiscard]] virtual int size() const = 0;
+  /// r = F(t, y, y'). `step_reference` is the start of the current integration segment: load steps
+  /// with start <= step_reference are on, so no step switches on inside a segment.
+  virtual void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const = 0;
+  /// Sparsity pattern of dF/dy + cj dF/dy' (column-major, compressed), fixed for the whole run.
+  [[nodiscard]] virtual const Eigen::SparseMatrix<double>& jacobian_pattern() const = 0;
+  /// Fills the values of J = dF/dy + cj dF/dy' in the pattern (J has exactly that pattern).
+  virtual void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+                        Eigen::SparseMatrix<double>& J) const = 0;
+  /// 1 for differential components, 0 for algebraic ones (IDASetId).
+  [[nodiscard]] virtual Eigen::VectorXd differential_id() const = 0;
+  /// Given y at time t, returns y' consistent with F(t, y, y') = 0 for the segment starting at t
+  /// (used at t = 0 and after every load step).
+  [[nodiscard]] virtual Eigen::VectorXd consistent_yp(double t, ConstRef y) const = 0;
+};
+
+}  // namespace condyn

@@ -1,0 +1,260 @@
+#include "dae/elimination.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "dae/affine_jacobian.hpp"
+#include "dae/dae_problem.hpp"
+#include "dae/ida_integrator.hpp"
+
+namespace condyn {
+
+namespace {
+
+// A named slave block whose condition number exceeds this is refused: the slave displacements
+// would carry cond * eps relative error from roundoff alone.
+constexpr double kMaxSlaveCondition = 1e12;
+// Column-pivoting rank threshold on the row-normalised A (same meaning as in build_model).
+constexpr double kRankTolerance = 1e-10;
+
+Eigen::SparseMatrix<double> sparse_from_dense(const Eigen::MatrixXd& d) {
+  return d.sparseView(0.0, 0.0);  // keeps every entry that is not exactly zero
+}
+
+}  // namespace
+
+MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
+                                   const std::vector<int>& preferred_slaves) {
+  const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols());
+  Eigen::MatrixXd a(A);
+  MasterSlave out;
+  if (m == 0) {
+    out.T.resize(n, n);
+    out.T.setIdentity();
+    out.G.resize(n, 0);
+    for (int i = 0; i < n; ++i) out.masters.push_back(i);
+    return out;
+  }
+  if (preferred_slaves.empty()) {
+    // Pivot on the row-normalised matrix so that a constraint's scale does not bias the choice.
+    Eigen::MatrixXd scaled = a;
+    for (int i = 0; i < m; ++i) scaled.row(i) /= scaled.row(i).norm();
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled.rows(), scaled.cols());
+    qr.setThreshold(kRankTolerance);
+    qr.compute(scaled);
+    if (qr.rank() < m) {
+      throw std::invalid_argument("constraint matrix is rank deficient (rank " +
+                                  std::to_string(qr.rank()) + " < " + std::to_string(m) + ")");
+    }
+    for (int k = 0; k < m; ++k) out.slaves.push_back(qr.colsPermutation().indices()[k]);
+  } else {
+    out.slaves = preferred_slaves;
+  }
+  std::sort(out.slaves.begin(), out.slaves.end());
+  if (static_cast<int>(out.slaves.size()) != m ||
+      std::adjacent_find(out.slaves.begin(), out.slaves.end()) != out.slaves.end()) {
+    throw std::invalid_argument("need " + std::to_string(m) + " distinct slave DOFs, one per constraint");
+  }
+  std::vector<bool> is_slave(static_cast<std::size_t>(n), false);
+  for (int s : out.slaves) is_slave[static_cast<std::size_t>(s)] = true;
+  for (int i = 0; i < n; ++i) {
+    if (!is_slave[static_cast<std::size_t>(i)]) out.masters.push_back(i);
+  }
+  const int nm = n - m;
+  Eigen::MatrixXd a_s(m, m), a_r(m, nm);
+  for (int k = 0; k < m; ++k) a_s.col(k) = a.col(out.slaves[static_cast<std::size_t>(k)]);
+  for (int k = 0; k < nm; ++k) a_r.col(k) = a.col(out.masters[static_cast<std::size_t>(k)]);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(a_s);
+  const double smax = svd.singularValues()(0), smin = svd.singularValues()(m - 1);
+  if (!(smin > smax / kMaxSlaveCondition)) {
+    std::ostringstream s;
+    s << "the slave DOFs do not determine the constraints (slave block condition number "
+      << (smin > 0 ? smax / smin : INFINITY) << "): choose other slaves";
+    throw std::invalid_argument(s.str());
+  }
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(a_s);
+  const Eigen::MatrixXd s_r = lu.solve(a_r);                          // A_S⁻¹ A_R
+  const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd::Identity(m, m));  // A_S⁻¹
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(n, nm), g = Eigen::MatrixXd::Zero(n, m);
+  for (int k = 0; k < nm; ++k) t(out.masters[static_cast<std::size_t>(k)], k) = 1.0;
+  for (int k = 0; k < m; ++k) {
+    t.row(out.slaves[static_cast<std::size_t>(k)]) = -s_r.row(k);
+    g.row(out.slaves[static_cast<std::size_t>(k)]) = s_g.row(k);
+  }
+  out.T = sparse_from_dense(t);
+  out.G = sparse_from_dense(g);
+  return out;
+}
+
+ReducedSystem reduce(const Model& model) {
+  std::vector<int> preferred;
+  for (const auto& name : model.solve.slaves) preferred.push_back(model.dof_index.at(name));
+  ReducedSystem r;
+  r.transform = master_slave_transform(model.A, preferred);
+  const auto& T = r.transform.T;
+  const auto& G = r.transform.G;
+  const Eigen::SparseMatrix<double> Tt = T.transpose();
+  r.M = Tt * model.M * T;
+  r.K = Tt * model.K * T;
+  const int nm = static_cast<int>(T.cols());
+  if (model.has_damping()) {
+    r.C = Tt * model.C * T;
+  } else {
+    r.C.resize(nm, nm);
+  }
+  r.FK = -Eigen::MatrixXd(Tt * model.K * G);
+  r.FM = -Eigen::MatrixXd(Tt * model.M * G);
+  r.FC = model.has_damping() ? Eigen::MatrixXd(-(Tt * model.C * G))
+                             : Eigen::MatrixXd::Zero(nm, model.constraint_count());
+  r.loads.resize(nm, static_cast<Eigen::Index>(model.loads.size()));
+  for (std::size_t k = 0; k < model.loads.size(); ++k) {
+    r.loads.col(static_cast<Eigen::Index>(k)) = Tt.col(model.loads[k].dof);
+  }
+  for (const auto& c : model.constraints) r.rheonomic = r.rheonomic || !c.position_value.is_zero();
+  return r;
+}
+
+Eigen::VectorXd ReducedSystem::forces(const Model& model, double t, double step_reference) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(M.rows());
+  for (std::size_t k = 0; k < model.loads.size(); ++k) {
+    f += loads.col(static_cast<Eigen::Index>(k)) *
+         model.loads[k].value.derivative(0, t, step_reference);
+  }
+  // Homogeneous scleronomic constraints have no transfer forces: skip the time functions.
+  if (rheonomic) {
+    f += FK * model.position_rhs(0, t) + FM * model.position_rhs(2, t);
+    if (model.has_damping()) f += FC * model.position_rhs(1, t);
+  }
+  return f;
+}
+
+namespace {
+
+/// y = [û; û'],  F = [ û' − w ;  M̂ w' + Ĉ w + K̂ û − f̂(t) ]  with w the second half of y.
+class ReducedOde final : public DaeProblem {
+ public:
+  ReducedOde(const Model& model, const ReducedSystem& reduced)
+      : model_(model), reduced_(reduced), nm_(static_cast<int>(reduced.M.rows())) {
+    mass_.compute(reduced.M);
+    bool ok = mass_.info() == Eigen::Success;
+    if (ok) {
+      const Eigen::VectorXd d = mass_.vectorD();
+      // Positive definite to roundoff of the largest pivot.
+      ok = d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff();
+    }
+    if (!ok) {
+      std::string massless;
+      for (int k = 0; k < nm_; ++k) {
+        if (reduced.M.coeff(k, k) == 0.0) {
+          massless += (massless.empty() ? "" : ", ") +
+                      model.dof_names[static_cast<std::size_t>(reduced.transform.masters[static_cast<std::size_t>(k)])];
+        }
+      }
+      throw std::invalid_argument(
+          "the reduced mass matrix is singular" +
+          (massless.empty() ? std::string() : " (master DOFs without mass: " + massless + ")") +
+          ": the elimination path integrates an ODE and needs mass on every master DOF");
+    }
+    std::vector<Eigen::Triplet<double>> j0, j1;
+    for (int k = 0; k < nm_; ++k) {
+      j1.emplace_back(k, k, 1.0);        // dF1/dû'
+      j0.emplace_back(k, nm_ + k, -1.0);  // dF1/dw
+    }
+    auto add = [](std::vector<Eigen::Triplet<double>>& out, const Eigen::SparseMatrix<double>& s,
+                  int row0, int col0) {
+      for (int k = 0; k < s.outerSize(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(s, k); it; ++it) {
+          out.emplace_back(row0 + it.row(), col0 + it.col(), it.value());
+        }
+      }
+    };
+    add(j0, reduced.K, nm_, 0);
+    add(j0, reduced.C, nm_, nm_);
+    add(j1, reduced.M, nm_, nm_);
+    Eigen::SparseMatrix<double> J0(2 * nm_, 2 * nm_), J1(2 * nm_, 2 * nm_);
+    J0.setFromTriplets(j0.begin(), j0.end());
+    J1.setFromTriplets(j1.begin(), j1.end());
+    jacobian_ = AffineJacobian(J0, J1);
+  }
+
+  [[nodiscard]] int size() const override { return 2 * nm_; }
+
+  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override {
+    const auto x = y.head(nm_), w = y.tail(nm_);
+    r.head(nm_) = yp.head(nm_) - w;
+    r.tail(nm_) = reduced_.M * yp.tail(nm_) + reduced_.K * x - reduced_.forces(model_, t, step_reference);
+    if (model_.has_damping()) r.tail(nm_) += reduced_.C * w;
+  }
+
+  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
+    return jacobian_.pattern();
+  }
+  void jacobian(double /*t*/, double /*step_reference*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
+                Eigen::SparseMatrix<double>& J) const override {
+    jacobian_.fill(cj, J);
+  }
+  [[nodiscard]] Eigen::VectorXd differential_id() const override {
+    return Eigen::VectorXd::Ones(2 * nm_);
+  }
+  [[nodiscard]] Eigen::VectorXd consistent_yp(double t, ConstRef y) const override {
+    Eigen::VectorXd yp(2 * nm_);
+    yp.head(nm_) = y.tail(nm_);
+    yp.tail(nm_) = acceleration(t, y.head(nm_), y.tail(nm_));
+    return yp;
+  }
+
+  /// û'' = M̂⁻¹ (f̂(t) − Ĉ w − K̂ û), steps on at t (right limit).
+  [[nodiscard]] Eigen::VectorXd acceleration(double t, const Eigen::VectorXd& x,
+                                             const Eigen::VectorXd& w) const {
+    Eigen::VectorXd rhs = reduced_.forces(model_, t, t) - reduced_.K * x;
+    if (model_.has_damping()) rhs -= reduced_.C * w;
+    return mass_.solve(rhs);
+  }
+
+ private:
+  const Model& model_;
+  const ReducedSystem& reduced_;
+  int nm_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass_;
+  AffineJacobian jacobian_;
+};
+
+}  // namespace
+
+Trajectory solve_elimination(const Model& model, const IntegratorOptions& options,
+                             SolveSummary& summary) {
+  const ReducedSystem reduced = reduce(model);
+  const ReducedOde ode(model, reduced);
+  const auto& masters = reduced.transform.masters;
+  const int nm = static_cast<int>(masters.size());
+  Eigen::VectorXd y0(2 * nm);
+  for (int k = 0; k < nm; ++k) {
+    y0[k] = model.u0[masters[static_cast<std::size_t>(k)]];
+    y0[nm + k] = model.v0[masters[static_cast<std::size_t>(k)]];
+  }
+  summary.scheme = "elimination";
+  const RawTrajectory raw = integrate(ode, y0, options, summary);
+  std::vector<Eigen::VectorXd> u, v, a;
+  const auto& T = reduced.transform.T;
+  const auto& G = reduced.transform.G;
+  for (std::size_t k = 0; k < raw.t.size(); ++k) {
+    const double t = raw.t[k];
+    const Eigen::VectorXd x = raw.y[k].head(nm), w = raw.y[k].tail(nm);
+    u.emplace_back(T * x);
+    v.emplace_back(T * w);
+    a.emplace_back(T * ode.acceleration(t, x, w));
+    if (reduced.rheonomic) {
+      u.back() += G * model.position_rhs(0, t);
+      v.back() += G * model.position_rhs(1, t);
+      a.back() += G * model.position_rhs(2, t);
+    }
+  }
+  Trajectory traj = assemble_trajectory(model, raw.t, u, v, a);
+  summary.max_drift_position = traj.drift_position.size() ? traj.drift_position.maxCoeff() : 0.0;
+  summary.max_drift_velocity = traj.drift_velocity.size() ? traj.drift_velocity.maxCoeff() : 0.0;
+  return traj;
+}
+
+}  // namespace condyn

@@ -1,0 +1,56 @@
+#include "dae/exact_solution.hpp"
+
+namespace condyn {
+
+Trajectory exact_trajectory(const Model& model, const std::vector<double>& times) {
+  const int n = model.dofs(), m = model.constraint_count();
+  Eigen::MatrixXd N, P(n, m);
+  if (m == 0) {
+    N = Eigen::MatrixXd::Identity(n, n);
+  } else {
+    const Eigen::MatrixXd a(model.A);
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(a.transpose());
+    const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
+    N = q.rightCols(n - m);  // A has full row rank (build_model checked): null(A) = span of these
+    P = a.transpose() * (a * a.transpose()).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  }
+  const Eigen::MatrixXd M(model.M), K(model.K), C(model.C);
+  LtiSystem sys;
+  sys.M = N.transpose() * M * N;
+  sys.K = N.transpose() * K * N;
+  if (model.has_damping()) sys.C = N.transpose() * C * N;
+  for (const auto& load : model.loads) {
+    for (const auto& term : load.value.terms()) {
+      sys.forcing.push_back({N.transpose().col(load.dof), term});
+    }
+  }
+  for (int j = 0; j < m; ++j) {
+    const Eigen::VectorXd p = P.col(j);
+    for (const auto& term : model.constraints[static_cast<std::size_t>(j)].position_value.terms()) {
+      if (term.is_zero()) continue;
+      const TimeTerm d1 = term.derivative_term(), d2 = d1.derivative_term();
+      sys.forcing.push_back({-(N.transpose() * (K * p)), term});
+      sys.forcing.push_back({-(N.transpose() * (M * p)), d2});
+      if (model.has_damping()) sys.forcing.push_back({-(N.transpose() * (C * p)), d1});
+    }
+  }
+  sys.q0 = N.transpose() * (model.u0 - P * model.position_rhs(0, 0.0));
+  sys.v0 = N.transpose() * (model.v0 - P * model.position_rhs(1, 0.0));
+  const ModalSolution solution(sys);
+
+  std::vector<Eigen::VectorXd> u, v, a;
+  for (double t : times) {
+    const LtiState s = solution.at(t);
+    u.emplace_back(N * s.q);
+    v.emplace_back(N * s.v);
+    a.emplace_back(N * s.a);
+    if (m > 0) {
+      u.back() += P * model.position_rhs(0, t);
+      v.back() += P * model.position_rhs(1, t);
+      a.back() += P * model.position_rhs(2, t);
+    }
+  }
+  return assemble_trajectory(model, times, u, v, a);
+}
+
+}  // namespace condyn

@@ -1,0 +1,316 @@
+#include "dae/ida_integrator.hpp"
+
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <sstream>
+
+namespace condyn {
+
+void IntegratorOptions::validate() const {
+  auto bad = [](const std::string& what) { throw std::invalid_argument("integrator: " + what); };
+  if (!(rtol > 0.0) || !std::isfinite(rtol)) bad("rtol must be > 0");
+  if (!(atol > 0.0) || !std::isfinite(atol)) bad("atol must be > 0");
+  if (output_times.empty()) bad("no output times");
+  if (!std::is_sorted(output_times.begin(), output_times.end())) bad("output times not ascending");
+  if (!std::is_sorted(breakpoints.begin(), breakpoints.end())) bad("breakpoints not ascending");
+  if (max_steps_per_output <= 0) bad("max_steps_per_output must be > 0");
+}
+
+std::string SolveSummary::brief() const {
+  std::ostringstream s;
+  s.precision(3);
+  s << scheme << ": " << termination << ", " << steps << " steps, " << residual_evals
+    << " residual and " << jacobian_evals << " Jacobian evaluations, " << newton_failures
+    << " Newton and " << error_test_failures << " error-test failures, " << unknowns
+    << " unknowns, wall " << wall_seconds * 1e3 << " ms, max drift position "
+    << max_drift_position << " velocity " << max_drift_velocity;
+  return s.str();
+}
+
+namespace {
+
+// --- RAII owners: one per SUNDIALS object, destroyed in reverse creation order. ---
+struct ContextDeleter {
+  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
+};
+struct VectorDeleter {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
+};
+struct SolverDeleter {
+  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
+};
+struct IdaDeleter {
+  void operator()(void* mem) const { IDAFree(&mem); }
+};
+using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
+using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
+using SolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, SolverDeleter>;
+using IdaPtr = std::unique_ptr<void, IdaDeleter>;
+
+Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
+  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
+}
+
+/// What the C callbacks need; exceptions thrown by the problem are parked here, never propagated
+/// through IDA's C frames.
+struct CallbackData {
+  const DaeProblem* problem = nullptr;
+  double step_reference = 0.0;
+  Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
+  std::exception_ptr error;
+  std::string ida_message;
+};
+
+int residual_trampoline(double t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
+  auto* data = static_cast<CallbackData*>(user);
+  try {
+    auto rv = view(r);
+    data->problem->residual(t, data->step_reference, view(y), view(yp), rv);
+    // A non-finite residual is recoverable: IDA retries with a smaller step.
+    return rv.allFinite() ? 0 : 1;
+  } catch (...) {
+    data->error = std::current_exception();
+    return -1;
+  }
+}
+
+int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /*r*/, SUNMatrix J,
+                        void* user, N_Vector /*t1*/, N_Vector /*t2*/, N_Vector /*t3*/) {
+  auto* data = static_cast<CallbackData*>(user);
+  try {
+    data->problem->jacobian(t, data->step_reference, view(y), view(yp), cj, data->jac);
+    const auto& jac = data->jac;
+    if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
+      // IDA zeroes the whole sparse matrix (values and index arrays) before each call, so the
+      // fixed pattern is copied back with the values.
+      const auto nnz = static_cast<std::size_t>(jac.nonZeros());
+      std::copy_n(jac.outerIndexPtr(), jac.cols() + 1, SUNSparseMatrix_IndexPointers(J));
+      std::copy_n(jac.innerIndexPtr(), nnz, SUNSparseMatrix_IndexValues(J));
+      std::copy_n(jac.valuePtr(), nnz, SUNSparseMatrix_Data(J));
+    } else {
+      for (int k = 0; k < jac.outerSize(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(jac, k); it; ++it) {
+          SM_ELEMENT_D(J, it.row(), it.col()) = it.value();
+        }
+      }
+    }
+    return 0;
+  } catch (...) {
+    data->error = std::current_exception();
+    return -1;
+  }
+}
+
+void error_handler(int /*code*/, const char* /*module*/, const char* function, char* msg,
+                   void* user) {
+  auto* data = static_cast<CallbackData*>(user);
+  data->ida_message = std::string(function) + ": " + msg;
+}
+
+class Ida {
+ public:
+  Ida(const DaeProblem& problem, const IntegratorOptions& options) : n_(problem.size()) {
+    data_.problem = &problem;
+    data_.jac = problem.jacobian_pattern();
+    data_.jac.makeCompressed();
+    SUNContext raw_ctx = nullptr;
+    check_raw(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");
+    ctx_.reset(raw_ctx);
+    y_.reset(N_VNew_Serial(n_, ctx_.get()));
+    yp_.reset(N_VNew_Serial(n_, ctx_.get()));
+    id_.reset(N_VNew_Serial(n_, ctx_.get()));
+    if (!y_ || !yp_ || !id_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
+    if (options.dense_linear_solver) {
+      matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
+      if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
+    } else {
+      matrix_.reset(SUNSparseMatrix(n_, n_, std::max<sunindextype>(data_.jac.nonZeros(), 1),
+                                    CSC_MAT, ctx_.get()));
+      if (matrix_) solver_.reset(SUNLinSol_KLU(y_.get(), matrix_.get(), ctx_.get()));
+    }
+    if (!matrix_ || !solver_) throw IntegrationError("could not create the linear solver");
+    mem_.reset(IDACreate(ctx_.get()));
+    if (!mem_) throw IntegrationError("IDACreate failed");
+    check(IDASetErrHandlerFn(mem_.get(), error_handler, &data_), "IDASetErrHandlerFn");
+  }
+
+  void init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0,
+            const IntegratorOptions& options) {
+    view(y_.get()) = y0;
+    view(yp_.get()) = yp0;
+    view(id_.get()) = data_.problem->differential_id();
+    check(IDAInit(mem_.get(), residual_trampoline, t0, y_.get(), yp_.get()), "IDAInit");
+    check(IDASetUserData(mem_.get(), &data_), "IDASetUserData");
+    check(IDASStolerances(mem_.get(), options.rtol, options.atol), "IDASStolerances");
+    check(IDASetId(mem_.get(), id_.get()), "IDASetId");
+    check(IDASetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "IDASetLinearSolver");
+    check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
+    check(IDASetMaxNumSteps(mem_.get(), options.max_steps_per_output), "IDASetMaxNumSteps");
+  }
+
+  void reinit(double t0, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0) {
+    collect();  // IDAReInit resets IDA's counters: keep what this segment did
+    view(y_.get()) = y0;
+    view(yp_.get()) = yp0;
+    check(IDAReInit(mem_.get(), t0, y_.get(), yp_.get()), "IDAReInit");
+    baseline_ = read_counters();
+  }
+
+  void set_stop_time(double t) { check(IDASetStopTime(mem_.get(), t), "IDASetStopTime"); }
+  void set_segment(double t0) { data_.step_reference = t0; }
+
+  /// Advances to tout (exactly: IDA interpolates), returns the time reached.
+  double solve(double tout) {
+    double tret = 0.0;
+    const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_NORMAL);
+    if (data_.error) std::rethrow_exception(data_.error);
+    if (flag < 0) {
+      double tcur = 0.0, hlast = 0.0;
+      IDAGetCurrentTime(mem_.get(), &tcur);
+      IDAGetLastStep(mem_.get(), &hlast);
+      std::ostringstream s;
+      s << "IDASolve failed with " << IDAGetReturnFlagName(flag) << " at t = " << tcur
+        << " (last step " << hlast << ")";
+      if (!data_.ida_message.empty()) s << ": " << data_.ida_message;
+      throw IntegrationError(s.str());
+    }
+    return tret;
+  }
+
+  [[nodiscard]] Eigen::VectorXd y() { return view(y_.get()); }
+  [[nodiscard]] Eigen::VectorXd yp() { return view(yp_.get()); }
+
+  /// Adds what IDA counted since the last collect() to the totals. Differencing against a
+  /// baseline keeps the totals right whether or not IDAReInit resets IDA's own counters.
+  void collect() {
+    const Counters now = read_counters();
+    totals_.steps += now.steps - baseline_.steps;
+    totals_.residual_evals += now.residual_evals - baseline_.residual_evals;
+    totals_.jacobian_evals += now.jacobian_evals - baseline_.jacobian_evals;
+    totals_.newton_iterations += now.newton_iterations - baseline_.newton_iterations;
+    totals_.newton_failures += now.newton_failures - baseline_.newton_failures;
+    totals_.error_test_failures += now.error_test_failures - baseline_.error_test_failures;
+    baseline_ = now;
+    double h = 0.0;
+    check(IDAGetLastStep(mem_.get(), &h), "IDAGetLastStep");
+    if (h != 0.0) totals_.last_step = h;
+  }
+
+  [[nodiscard]] const SolveSummary& totals() const { return totals_; }
+
+ private:
+  void check(int flag, const char* call) const {
+    if (flag < 0) {
+      throw IntegrationError(std::string(call) + " failed with " + IDAGetReturnFlagName(flag) +
+                             (data_.ida_message.empty() ? "" : ": " + data_.ida_message));
+    }
+  }
+  struct Counters {
+    long steps = 0, residual_evals = 0, jacobian_evals = 0, newton_iterations = 0,
+         newton_failures = 0, error_test_failures = 0;
+  };
+  [[nodiscard]] Counters read_counters() const {
+    Counters c;
+    check(IDAGetNumSteps(mem_.get(), &c.steps), "IDAGetNumSteps");
+    check(IDAGetNumResEvals(mem_.get(), &c.residual_evals), "IDAGetNumResEvals");
+    check(IDAGetNumJacEvals(mem_.get(), &c.jacobian_evals), "IDAGetNumJacEvals");
+    check(IDAGetNumNonlinSolvIters(mem_.get(), &c.newton_iterations), "IDAGetNumNonlinSolvIters");
+    check(IDAGetNumNonlinSolvConvFails(mem_.get(), &c.newton_failures),
+          "IDAGetNumNonlinSolvConvFails");
+    check(IDAGetNumErrTestFails(mem_.get(), &c.error_test_failures), "IDAGetNumErrTestFails");
+    return c;
+  }
+  static void check_raw(int flag, const char* call) {
+    if (flag != 0) throw IntegrationError(std::string(call) + " failed (" + std::to_string(flag) + ")");
+  }
+
+  sunindextype n_;
+  CallbackData data_;
+  SolveSummary totals_;
+  Counters baseline_;
+  // Declared in creation order: destroyed in reverse (IDA memory first, context last).
+  ContextPtr ctx_;
+  VectorPtr y_, yp_, id_;
+  MatrixPtr matrix_;
+  SolverPtr solver_;
+  IdaPtr mem_;
+};
+
+}  // namespace
+
+RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
+                        const IntegratorOptions& options, SolveSummary& summary) {
+  options.validate();
+  if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
+  const auto start = std::chrono::steady_clock::now();
+  const auto& times = options.output_times;
+  const double t0 = times.front();
+
+  RawTrajectory out;
+  auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
+    out.t.push_back(t);
+    out.y.push_back(y);
+    out.yp.push_back(yp);
+  };
+
+  Ida ida(problem, options);
+  ida.set_segment(t0);
+  Eigen::VectorXd yp0 = problem.consistent_yp(t0, y0);
+  ida.init(t0, y0, yp0, options);
+  record(t0, y0, yp0);
+
+  // Breakpoints strictly inside (t0, t_end); each ends a segment.
+  std::vector<double> stops;
+  for (double b : options.breakpoints) {
+    if (b > t0 && b < times.back()) stops.push_back(b);
+  }
+  std::size_t next_stop = 0;
+  double reached = t0;
+  for (std::size_t k = 1; k < times.size(); ++k) {
+    const double tout = times[k];
+    // Cross every load step that lies at or before this output time.
+    while (next_stop < stops.size() && stops[next_stop] <= tout) {
+      const double b = stops[next_stop++];
+      ida.set_stop_time(b);
+      reached = ida.solve(b);
+      ida.set_segment(b);
+      const Eigen::VectorXd yb = ida.y();
+      ida.reinit(b, yb, problem.consistent_yp(b, yb));
+      ++summary.restarts;
+    }
+    if (reached < tout) reached = ida.solve(tout);
+    record(tout, ida.y(), ida.yp());
+  }
+  ida.collect();
+  const auto& tot = ida.totals();
+  summary.steps = tot.steps;
+  summary.residual_evals = tot.residual_evals;
+  summary.jacobian_evals = tot.jacobian_evals;
+  summary.newton_iterations = tot.newton_iterations;
+  summary.newton_failures = tot.newton_failures;
+  summary.error_test_failures = tot.error_test_failures;
+  summary.last_step = tot.last_step;
+  summary.unknowns = problem.size();
+  summary.jacobian_nonzeros = static_cast<int>(problem.jacobian_pattern().nonZeros());
+  summary.termination = "reached t = " + std::to_string(times.back());
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace condyn

@@ -1,0 +1,31 @@
+#pragma once
+/// The only place that talks to SUNDIALS IDA. Integrates a DaeProblem from consistent initial
+/// values to every output time, stopping and re-initialising at load steps.
+
+#include <stdexcept>
+
+#include "dae/dae_problem.hpp"
+#include "dae/solve_summary.hpp"
+
+namespace condyn {
+
+/// IDA failed (or refused an input). The message names the SUNDIALS call, its flag name, the time
+/// reached and IDA's own explanation.
+class IntegrationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// y and y' at the output times.
+struct RawTrajectory {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> y, yp;
+};
+
+/// Integrates F(t, y, y') = 0 from (options.output_times.front(), y0) to the last output time.
+/// y0 must be consistent; y'(0) comes from problem.consistent_yp. Fills the counters and the wall
+/// time of `summary`. Throws IntegrationError on solver failure, std::invalid_argument on bad options.
+[[nodiscard]] RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
+                                      const IntegratorOptions& options, SolveSummary& summary);
+
+}  // namespace condyn

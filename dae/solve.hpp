@@ -1,0 +1,28 @@
+#pragma once
+/// Scheme choice and dispatch: the one entry point the CLI and the validation suite use.
+
+#include <string>
+
+#include "dae/solve_summary.hpp"
+#include "dae/trajectory.hpp"
+#include "models/model.hpp"
+
+namespace condyn {
+
+struct SchemeChoice {
+  Scheme scheme = Scheme::elimination;
+  std::string reason;  ///< why this scheme (printed by `condyn info`)
+};
+
+/// Resolves `requested` (auto picks the lightest formulation that serves the model).
+[[nodiscard]] SchemeChoice choose_scheme(const Model& model, Scheme requested);
+
+/// Integrator options from the model's [solve] section, possibly overridden by the caller.
+[[nodiscard]] IntegratorOptions integrator_options(const Model& model);
+
+/// Solves the model under `scheme` (not `automatic`). Throws std::invalid_argument for a scheme
+/// this build cannot run yet, IntegrationError on solver failure.
+[[nodiscard]] Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
+                               SolveSummary& summary);
+
+}  // namespace condyn

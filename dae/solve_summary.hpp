@@ -1,0 +1,40 @@
+#pragma once
+/// Options in, summary out: what the integrator is asked to do and what it did.
+
+#include <string>
+#include <vector>
+
+namespace condyn {
+
+struct IntegratorOptions {
+  double rtol = 1e-8;
+  double atol = 1e-10;
+  bool dense_linear_solver = false;  ///< SUNDIALS dense LU instead of KLU (tiny systems only)
+  std::vector<double> output_times;  ///< ascending, first one is the initial time
+  std::vector<double> breakpoints;   ///< load steps inside (t0, t_end): stop and restart there
+  long max_steps_per_output = 100000;
+  /// Throws std::invalid_argument naming the bad field.
+  void validate() const;
+};
+
+struct SolveSummary {
+  std::string scheme;
+  long steps = 0;
+  long residual_evals = 0;
+  long jacobian_evals = 0;
+  long newton_iterations = 0;
+  long newton_failures = 0;
+  long error_test_failures = 0;
+  long restarts = 0;  ///< re-initialisations at load steps
+  double last_step = 0.0;
+  double wall_seconds = 0.0;
+  double max_drift_position = 0.0;
+  double max_drift_velocity = 0.0;
+  int unknowns = 0;
+  int jacobian_nonzeros = 0;
+  std::string termination = "not run";
+  /// One line for the terminal.
+  [[nodiscard]] std::string brief() const;
+};
+
+}  // namespace condyn

@@ -1,0 +1,28 @@
+#pragma once
+/// Constraint classification in the chapter's terms (Tables 5.1 and 5.2).
+
+#include <string>
+#include <vector>
+
+#include "models/model.hpp"
+
+namespace condyn {
+
+struct ConstraintClass {
+  std::string name;
+  bool single_freedom = true;   ///< SFC (one DOF) or MFC
+  bool velocity_level = false;  ///< written on velocities (form 5.2)
+  bool integrable = true;       ///< velocity-level and reducible to (5.1): pseudo-nonholonomic
+  bool rheonomic = false;       ///< explicit time dependence (of the integrated form)
+  bool homogeneous = true;      ///< no right-hand side (of the integrated form)
+  bool linear = true;
+  std::vector<std::string> dofs;
+
+  /// "holonomic" or "pseudo-nonholonomic (integrable)".
+  [[nodiscard]] std::string holonomy() const;
+};
+
+/// Classifies every constraint of the model, in scene order.
+[[nodiscard]] std::vector<ConstraintClass> classify_constraints(const Model& model);
+
+}  // namespace condyn

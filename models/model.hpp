@@ -1,0 +1,71 @@
+#pragma once
+/// The constant model built from a validated scene:
+///
+///   M u'' + C u' + K u = f(t),   A u = g(t)  (position level),   A_v u' = h(t)  (velocity level)
+///
+/// with sparse M, C, K (n x n), loads f(t) = sum_k e_dof(k) load_k(t), and the constraint matrix A
+/// (m x n) holding every constraint row in scene order. Nothing in a Model changes after
+/// build_model(): state and scratch space live in the formulations and solvers.
+
+#include <Eigen/Sparse>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "models/scene_spec.hpp"
+
+namespace condyn {
+
+struct Load {
+  int dof = 0;
+  TimeFunction value;
+};
+
+struct Constraint {
+  std::string name;
+  ConstraintSpec::Level level = ConstraintSpec::Level::position;
+  std::vector<std::pair<int, double>> coefficients;  ///< (dof index, a_i), dof ascending
+  TimeFunction value;         ///< right-hand side as written: g(t) or h(t)
+  /// Position-level right-hand side. For a position constraint, `value`. For a velocity
+  /// constraint (linear, constant coefficients, hence integrable: §5.5.3, eq. 5.14) it is
+  /// a·u(0) + integral_0^t h: the chapter's integration with the constants fixed by u(0).
+  TimeFunction position_value;
+  SourcePoint where;
+};
+
+struct Model {
+  std::string file, name;
+  std::vector<std::string> dof_names;
+  std::map<std::string, int> dof_index;
+  Eigen::SparseMatrix<double> M, C, K;  ///< C has no nonzeros when the scene has no damping
+  std::vector<Load> loads;
+  std::vector<Constraint> constraints;
+  Eigen::SparseMatrix<double> A;  ///< m x n, row i = constraints[i].coefficients
+  Eigen::VectorXd u0, v0;
+  SolveSpec solve;
+  OutputSpec output;
+
+  [[nodiscard]] int dofs() const { return static_cast<int>(dof_names.size()); }
+  [[nodiscard]] int constraint_count() const { return static_cast<int>(constraints.size()); }
+  [[nodiscard]] bool has_damping() const { return C.nonZeros() > 0; }
+
+  /// Applied loads f(t) (n). Steps are on when start <= step_reference.
+  [[nodiscard]] Eigen::VectorXd applied_forces(double t, double step_reference) const;
+  [[nodiscard]] Eigen::VectorXd applied_forces(double t) const { return applied_forces(t, t); }
+  /// d^order/dt^order of the position-level right-hand sides (m), order in {0, 1, 2}.
+  [[nodiscard]] Eigen::VectorXd position_rhs(int order, double t) const;
+  /// Max-norm drifts: position over position-level constraints |a·u - g|, velocity over all
+  /// constraints (|a·v - g'| for position-level, |a·v - h| for velocity-level). 0 without constraints.
+  [[nodiscard]] std::pair<double, double> drift(double t, const Eigen::VectorXd& u,
+                                                const Eigen::VectorXd& v) const;
+  /// Times in (0, t_end) where a load step switches on, sorted, unique.
+  [[nodiscard]] std::vector<double> breakpoints() const;
+  /// Output times 0, h, 2h, ..., t_end (the last one is t_end even when h does not divide it).
+  [[nodiscard]] std::vector<double> output_times() const;
+};
+
+/// Builds and checks the model: DOF names, geometry, matrix properties, constraint rank and
+/// compatibility, initial consistency. Throws SceneError naming file, line and key.
+[[nodiscard]] Model build_model(const SceneSpec& spec);
+
+}  // namespace condyn

@@ -1,0 +1,491 @@
+#include "models/scene_parser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace condyn {
+
+std::string scene_message(const std::string& file, const SourcePoint& where,
+                          const std::string& problem) {
+  std::string msg = file;
+  if (where.line > 0) msg += ":" + std::to_string(where.line);
+  msg += ": ";
+  if (!where.path.empty()) msg += where.path + ": ";
+  return msg + problem;
+}
+
+const char* to_string(Scheme s) {
+  switch (s) {
+    case Scheme::automatic:
+      return "auto";
+    case Scheme::elimination:
+      return "elimination";
+    case Scheme::index1:
+      return "index1";
+    case Scheme::baumgarte:
+      return "baumgarte";
+    case Scheme::ggl:
+      return "ggl";
+  }
+  return "?";
+}
+
+const char* to_string(Quantity q) {
+  switch (q) {
+    case Quantity::displacement:
+      return "displacement";
+    case Quantity::velocity:
+      return "velocity";
+    case Quantity::reaction:
+      return "reaction";
+    case Quantity::multiplier:
+      return "multiplier";
+    case Quantity::drift:
+      return "drift";
+  }
+  return "?";
+}
+
+namespace {
+
+/// Walks the TOML tree; knows the file name so every error can say where it is.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[nodiscard]] SourcePoint at(const toml::node& node, const std::string& path) const {
+    return SourcePoint{path, static_cast<int>(node.source().begin.line)};
+  }
+
+  [[noreturn]] void fail(const toml::node& node, const std::string& path,
+                         const std::string& problem) const {
+    throw SceneError(scene_message(file_, at(node, path), problem));
+  }
+
+  void check_keys(const toml::table& table, const std::string& path,
+                  std::initializer_list<std::string_view> allowed) const {
+    for (const auto& [key, node] : table) {
+      bool known = false;
+      for (auto a : allowed) known = known || key.str() == a;
+      if (!known) {
+        std::string list;
+        for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        fail(node, join(path, std::string(key.str())),
+             "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+  static std::string index(const std::string& path, std::size_t i) {
+    return path + "[" + std::to_string(i + 1) + "]";
+  }
+
+  [[nodiscard]] const toml::table& table(const toml::node& node, const std::string& path) const {
+    if (const auto* t = node.as_table()) return *t;
+    fail(node, path, "expected a table");
+  }
+  [[nodiscard]] const toml::array& array(const toml::node& node, const std::string& path) const {
+    if (const auto* a = node.as_array()) return *a;
+    fail(node, path, "expected an array");
+  }
+  [[nodiscard]] double number(const toml::node& node, const std::string& path) const {
+    double v = 0.0;
+    if (const auto* f = node.as_floating_point()) {
+      v = f->get();
+    } else if (const auto* i = node.as_integer()) {
+      v = static_cast<double>(i->get());
+    } else {
+      fail(node, path, "expected a number");
+    }
+    if (!std::isfinite(v)) fail(node, path, "must be finite");
+    return v;
+  }
+  [[nodiscard]] double positive(const toml::node& node, const std::string& path) const {
+    const double v = number(node, path);
+    if (v <= 0.0) fail(node, path, "must be > 0 (got " + fmt(v) + ")");
+    return v;
+  }
+  [[nodiscard]] std::string string(const toml::node& node, const std::string& path) const {
+    if (const auto* s = node.as_string()) return s->get();
+    fail(node, path, "expected a string");
+  }
+  [[nodiscard]] long integer(const toml::node& node, const std::string& path) const {
+    if (const auto* i = node.as_integer()) return static_cast<long>(i->get());
+    fail(node, path, "expected an integer");
+  }
+  [[nodiscard]] const toml::node& required(const toml::table& t, const std::string& path,
+                                           std::string_view key) const {
+    if (const auto* n = t.get(key)) return *n;
+    fail(t, join(path, std::string(key)), "missing required key");
+  }
+  [[nodiscard]] std::vector<double> numbers(const toml::node& node, const std::string& path) const {
+    std::vector<double> out;
+    const auto& arr = array(node, path);
+    for (std::size_t i = 0; i < arr.size(); ++i) out.push_back(number(*arr.get(i), index(path, i)));
+    return out;
+  }
+  [[nodiscard]] std::vector<std::vector<double>> dense_matrix(const toml::node& node,
+                                                              const std::string& path) const {
+    std::vector<std::vector<double>> rows;
+    const auto& arr = array(node, path);
+    for (std::size_t i = 0; i < arr.size(); ++i) rows.push_back(numbers(*arr.get(i), index(path, i)));
+    return rows;
+  }
+
+  static std::string fmt(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
+  }
+
+  [[nodiscard]] TimeTerm term(const toml::node& node, const std::string& path) const {
+    const auto& t = table(node, path);
+    const std::string type = string(required(t, path, "type"), join(path, "type"));
+    TimeTerm term;
+    auto opt = [&](std::string_view key, double dflt) {
+      const auto* n = t.get(key);
+      return n ? number(*n, join(path, std::string(key))) : dflt;
+    };
+    if (type == "step") {
+      check_keys(t, path, {"type", "amplitude", "start"});
+      term.kind = TimeTerm::Kind::step;
+      term.amplitude = opt("amplitude", 1.0);
+      term.start = opt("start", 0.0);
+    } else if (type == "polynomial") {
+      check_keys(t, path, {"type", "coefficients"});
+      term.kind = TimeTerm::Kind::polynomial;
+      term.coefficients =
+          numbers(required(t, path, "coefficients"), join(path, "coefficients"));
+      if (term.coefficients.empty()) fail(node, join(path, "coefficients"), "must not be empty");
+    } else if (type == "harmonic") {
+      check_keys(t, path, {"type", "amplitude", "omega", "phase"});
+      term.kind = TimeTerm::Kind::harmonic;
+      term.amplitude = opt("amplitude", 1.0);
+      term.omega = number(required(t, path, "omega"), join(path, "omega"));
+      term.phase = opt("phase", 0.0);
+    } else if (type == "exponential") {
+      check_keys(t, path, {"type", "amplitude", "rate"});
+      term.kind = TimeTerm::Kind::exponential;
+      term.amplitude = opt("amplitude", 1.0);
+      term.rate = number(required(t, path, "rate"), join(path, "rate"));
+    } else {
+      fail(*t.get("type"), join(path, "type"),
+           "unknown time function '" + type +
+               "' (expected step, polynomial, harmonic or exponential)");
+    }
+    return term;
+  }
+
+  [[nodiscard]] TimeFunction time_function(const toml::node& node, const std::string& path) const {
+    if (node.is_number()) return TimeFunction::constant(number(node, path));
+    if (node.is_table()) return TimeFunction({term(node, path)});
+    if (const auto* arr = node.as_array()) {
+      std::vector<TimeTerm> terms;
+      for (std::size_t i = 0; i < arr->size(); ++i) terms.push_back(term(*arr->get(i), index(path, i)));
+      if (terms.empty()) fail(node, path, "an empty list is not a time function (write 0)");
+      return TimeFunction(std::move(terms));
+    }
+    fail(node, path, "expected a number, a time-function table or a list of them");
+  }
+
+  [[nodiscard]] std::vector<std::pair<std::string, double>> dof_values(
+      const toml::node& node, const std::string& path) const {
+    std::vector<std::pair<std::string, double>> out;
+    const auto& t = table(node, path);
+    for (const auto& [key, value] : t) {
+      out.emplace_back(std::string(key.str()), number(value, join(path, std::string(key.str()))));
+    }
+    return out;
+  }
+
+  void read_model(const toml::node& node, ModelSpec& model) const {
+    const std::string path = "model";
+    const auto& t = table(node, path);
+    model.where = at(node, path);
+    const std::string type = string(required(t, path, "type"), "model.type");
+    if (type == "truss2d") {
+      check_keys(t, path, {"type", "nodes", "masses", "members"});
+      model.type = ModelSpec::Type::truss2d;
+      const auto& nodes = array(required(t, path, "nodes"), "model.nodes");
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const std::string p = index("model.nodes", i);
+        const auto xy = numbers(*nodes.get(i), p);
+        if (xy.size() != 2) fail(*nodes.get(i), p, "a node is [x, y]");
+        model.nodes.push_back({xy[0], xy[1]});
+      }
+      if (model.nodes.empty()) fail(nodes, "model.nodes", "at least one node is needed");
+      const auto& masses_node = required(t, path, "masses");
+      model.masses = numbers(masses_node, "model.masses");
+      if (model.masses.size() != model.nodes.size()) {
+        fail(masses_node, "model.masses",
+             "has " + std::to_string(model.masses.size()) + " entries for " +
+                 std::to_string(model.nodes.size()) + " nodes");
+      }
+      const auto& masses_arr = array(masses_node, "model.masses");
+      for (std::size_t i = 0; i < model.masses.size(); ++i) {
+        if (model.masses[i] < 0.0) {
+          fail(*masses_arr.get(i), index("model.masses", i), "a mass must be >= 0");
+        }
+      }
+      const auto& members = array(required(t, path, "members"), "model.members");
+      for (std::size_t i = 0; i < members.size(); ++i) {
+        const std::string p = index("model.members", i);
+        const auto& m = table(*members.get(i), p);
+        check_keys(m, p, {"nodes", "EA"});
+        MemberSpec member;
+        member.where = at(*members.get(i), p);
+        const auto& ends_node = required(m, p, "nodes");
+        const auto& ends = array(ends_node, join(p, "nodes"));
+        if (ends.size() != 2) fail(ends_node, join(p, "nodes"), "a member joins two nodes [i, j]");
+        const long ni = integer(*ends.get(0), index(join(p, "nodes"), 0));
+        const long nj = integer(*ends.get(1), index(join(p, "nodes"), 1));
+        for (long n : {ni, nj}) {
+          if (n < 1 || n > static_cast<long>(model.nodes.size())) {
+            fail(ends_node, join(p, "nodes"),
+                 "node " + std::to_string(n) + " does not exist (nodes are 1.." +
+                     std::to_string(model.nodes.size()) + ")");
+          }
+        }
+        if (ni == nj) fail(ends_node, join(p, "nodes"), "a member must join two different nodes");
+        member.node_i = static_cast<int>(ni);
+        member.node_j = static_cast<int>(nj);
+        member.EA = positive(required(m, p, "EA"), join(p, "EA"));
+        model.members.push_back(member);
+      }
+    } else if (type == "matrix") {
+      check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
+      model.type = ModelSpec::Type::matrix;
+      const auto& dofs = array(required(t, path, "dofs"), "model.dofs");
+      std::set<std::string> seen;
+      for (std::size_t i = 0; i < dofs.size(); ++i) {
+        const std::string name = string(*dofs.get(i), index("model.dofs", i));
+        if (name.empty()) fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
+        if (!seen.insert(name).second) {
+          fail(*dofs.get(i), index("model.dofs", i), "duplicate DOF name '" + name + "'");
+        }
+        model.dofs.push_back(name);
+      }
+      if (model.dofs.empty()) fail(dofs, "model.dofs", "at least one DOF is needed");
+      auto square = [&](std::string_view key, std::vector<std::vector<double>>& out) {
+        const std::string p = join(path, std::string(key));
+        const auto& mat = required(t, path, key);
+        out = dense_matrix(mat, p);
+        const std::size_t n = model.dofs.size();
+        if (out.size() != n) {
+          fail(mat, p,
+               "has " + std::to_string(out.size()) + " rows for " + std::to_string(n) + " DOFs");
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+          if (out[i].size() != n) {
+            fail(*array(mat, p).get(i), index(p, i),
+                 "has " + std::to_string(out[i].size()) + " entries for " + std::to_string(n) +
+                     " DOFs");
+          }
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+          for (std::size_t j = 0; j < i; ++j) {
+            const double a = out[i][j], b = out[j][i];
+            // Symmetry to a few ulps of the entries' size: a scene writes these by hand.
+            if (std::abs(a - b) > 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) {
+              fail(mat, p,
+                   "is not symmetric: entry (" + std::to_string(i + 1) + "," +
+                       std::to_string(j + 1) + ") = " + fmt(a) + " but (" + std::to_string(j + 1) +
+                       "," + std::to_string(i + 1) + ") = " + fmt(b));
+            }
+          }
+        }
+      };
+      square("mass", model.mass);
+      square("stiffness", model.stiffness);
+      if (t.contains("damping")) square("damping", model.damping);
+    } else {
+      fail(*t.get("type"), "model.type",
+           "unknown model type '" + type + "' (expected truss2d or matrix)");
+    }
+  }
+
+  void read_solve(const toml::node& node, SolveSpec& solve) const {
+    const std::string path = "solve";
+    const auto& t = table(node, path);
+    solve.where = at(node, path);
+    check_keys(t, path,
+               {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "slaves",
+                "linear_solver"});
+    solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
+    solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
+    if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
+    if (const auto* n = t.get("rtol")) solve.rtol = positive(*n, "solve.rtol");
+    if (const auto* n = t.get("atol")) solve.atol = positive(*n, "solve.atol");
+    if (const auto* n = t.get("baumgarte")) {
+      const auto& b = table(*n, "solve.baumgarte");
+      check_keys(b, "solve.baumgarte", {"alpha", "beta"});
+      if (const auto* a = b.get("alpha")) solve.baumgarte_alpha = positive(*a, "solve.baumgarte.alpha");
+      if (const auto* be = b.get("beta")) solve.baumgarte_beta = positive(*be, "solve.baumgarte.beta");
+    }
+    if (const auto* n = t.get("slaves")) {
+      const auto& arr = array(*n, "solve.slaves");
+      for (std::size_t i = 0; i < arr.size(); ++i) {
+        solve.slaves.push_back(string(*arr.get(i), index("solve.slaves", i)));
+      }
+    }
+    if (const auto* n = t.get("linear_solver")) {
+      const std::string s = string(*n, "solve.linear_solver");
+      if (s != "klu" && s != "dense") fail(*n, "solve.linear_solver", "expected 'klu' or 'dense'");
+      solve.dense_linear_solver = s == "dense";
+    }
+  }
+
+  [[nodiscard]] Scheme parse_scheme(const toml::node& node, const std::string& path) const {
+    const std::string s = string(node, path);
+    for (Scheme scheme : {Scheme::automatic, Scheme::elimination, Scheme::index1,
+                          Scheme::baumgarte, Scheme::ggl}) {
+      if (s == to_string(scheme)) return scheme;
+    }
+    fail(node, path,
+         "unknown scheme '" + s + "' (expected auto, elimination, index1, baumgarte or ggl)");
+  }
+
+  void read_output(const toml::node& node, OutputSpec& output) const {
+    const std::string path = "output";
+    const auto& t = table(node, path);
+    output.where = at(node, path);
+    check_keys(t, path, {"quantities", "file"});
+    if (const auto* n = t.get("quantities")) {
+      output.quantities.clear();
+      const auto& arr = array(*n, "output.quantities");
+      for (std::size_t i = 0; i < arr.size(); ++i) {
+        const std::string p = index("output.quantities", i);
+        const std::string s = string(*arr.get(i), p);
+        bool found = false;
+        for (Quantity q : {Quantity::displacement, Quantity::velocity, Quantity::reaction,
+                           Quantity::multiplier, Quantity::drift}) {
+          if (s == to_string(q)) {
+            for (Quantity seen : output.quantities) {
+              if (seen == q) fail(*arr.get(i), p, "'" + s + "' is listed twice");
+            }
+            output.quantities.push_back(q);
+            found = true;
+          }
+        }
+        if (!found) {
+          fail(*arr.get(i), p,
+               "unknown quantity '" + s +
+                   "' (expected displacement, velocity, reaction, multiplier or drift)");
+        }
+      }
+    }
+    if (const auto* n = t.get("file")) {
+      output.file = string(*n, "output.file");
+      if (output.file.empty()) fail(*n, "output.file", "must not be empty");
+    }
+  }
+
+  [[nodiscard]] SceneSpec read(const toml::table& root) const {
+    SceneSpec spec;
+    spec.file = file_;
+    check_keys(root, "", {"name", "model", "load", "constraint", "initial", "solve", "output"});
+    if (const auto* n = root.get("name")) spec.name = string(*n, "name");
+    read_model(required(root, "", "model"), spec.model);
+
+    if (const auto* n = root.get("load")) {
+      const auto& loads = array(*n, "load");
+      for (std::size_t i = 0; i < loads.size(); ++i) {
+        const std::string p = index("load", i);
+        const auto& t = table(*loads.get(i), p);
+        check_keys(t, p, {"dof", "value"});
+        LoadSpec load;
+        load.where = at(*loads.get(i), p);
+        load.dof = string(required(t, p, "dof"), join(p, "dof"));
+        load.value = time_function(required(t, p, "value"), join(p, "value"));
+        spec.loads.push_back(std::move(load));
+      }
+    }
+    if (const auto* n = root.get("constraint")) {
+      const auto& cons = array(*n, "constraint");
+      std::set<std::string> names;
+      for (std::size_t i = 0; i < cons.size(); ++i) {
+        const std::string p = index("constraint", i);
+        const auto& t = table(*cons.get(i), p);
+        check_keys(t, p, {"name", "terms", "level", "value"});
+        ConstraintSpec c;
+        c.where = at(*cons.get(i), p);
+        c.name = "c" + std::to_string(i + 1);
+        if (const auto* nm = t.get("name")) {
+          c.name = string(*nm, join(p, "name"));
+          if (c.name.empty()) fail(*nm, join(p, "name"), "must not be empty");
+        }
+        if (!names.insert(c.name).second) {
+          fail(*cons.get(i), p, "duplicate constraint name '" + c.name + "'");
+        }
+        const auto& terms_node = required(t, p, "terms");
+        c.terms = dof_values(terms_node, join(p, "terms"));
+        if (c.terms.empty()) fail(terms_node, join(p, "terms"), "a constraint needs at least one term");
+        if (const auto* lv = t.get("level")) {
+          const std::string s = string(*lv, join(p, "level"));
+          if (s == "position") {
+            c.level = ConstraintSpec::Level::position;
+          } else if (s == "velocity") {
+            c.level = ConstraintSpec::Level::velocity;
+          } else {
+            fail(*lv, join(p, "level"), "expected 'position' or 'velocity'");
+          }
+        }
+        if (const auto* v = t.get("value")) c.value = time_function(*v, join(p, "value"));
+        spec.constraints.push_back(std::move(c));
+      }
+    }
+    if (const auto* n = root.get("initial")) {
+      const auto& t = table(*n, "initial");
+      spec.initial.where = at(*n, "initial");
+      check_keys(t, "initial", {"displacement", "velocity"});
+      if (const auto* d = t.get("displacement")) {
+        spec.initial.displacement = dof_values(*d, "initial.displacement");
+      }
+      if (const auto* v = t.get("velocity")) spec.initial.velocity = dof_values(*v, "initial.velocity");
+    }
+    read_solve(required(root, "", "solve"), spec.solve);
+    if (spec.solve.output_step > spec.solve.t_end) {
+      fail(*root.get("solve"), "solve.output_step",
+           "is larger than t_end (" + fmt(spec.solve.output_step) + " > " + fmt(spec.solve.t_end) +
+               ")");
+    }
+    if (const auto* n = root.get("output")) read_output(*n, spec.output);
+    return spec;
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(scene_message(
+        file, SourcePoint{"", static_cast<int>(e.source().begin.line)},
+        "TOML syntax error: " + std::string(e.description())));
+  }
+  return Reader(file).read(root);
+}
+
+SceneSpec parse_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path + ": cannot read the scene file");
+  return parse_scene_text(text.str(), path);
+}
+
+}  // namespace condyn

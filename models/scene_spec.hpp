@@ -1,0 +1,100 @@
+#pragma once
+/// The parsed, validated scene (scene-format.md): plain data, no behaviour. Produced by
+/// parse_scene(); consumed by build_model(). Every field has been checked for type and range;
+/// cross-field checks that need the assembled model (ranks, consistency) happen in build_model().
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/time_function.hpp"
+
+namespace condyn {
+
+/// Where a value came from, for error messages: "constraint[3].terms.ux9" and line 41.
+struct SourcePoint {
+  std::string path;
+  int line = 0;  ///< 1-based; 0 when unknown
+};
+
+struct MemberSpec {
+  int node_i = 0, node_j = 0;  ///< 1-based node numbers as written in the scene
+  double EA = 0.0;
+  SourcePoint where;
+};
+
+struct ModelSpec {
+  enum class Type { truss2d, matrix };
+  Type type = Type::truss2d;
+  // truss2d
+  std::vector<std::array<double, 2>> nodes;
+  std::vector<double> masses;
+  std::vector<MemberSpec> members;
+  // matrix
+  std::vector<std::string> dofs;
+  std::vector<std::vector<double>> mass, stiffness, damping;  ///< damping may be empty
+  SourcePoint where;
+};
+
+struct LoadSpec {
+  std::string dof;
+  TimeFunction value;
+  SourcePoint where;
+};
+
+struct ConstraintSpec {
+  enum class Level { position, velocity };
+  std::string name;
+  std::vector<std::pair<std::string, double>> terms;  ///< in the order written
+  Level level = Level::position;
+  TimeFunction value;
+  SourcePoint where;
+};
+
+struct InitialSpec {
+  std::vector<std::pair<std::string, double>> displacement, velocity;
+  SourcePoint where;
+};
+
+/// The formulation used to solve the scene.
+enum class Scheme { automatic, elimination, index1, baumgarte, ggl };
+
+struct SolveSpec {
+  double t_end = 0.0;
+  double output_step = 0.0;
+  Scheme scheme = Scheme::automatic;
+  double rtol = 1e-8;
+  double atol = 1e-10;
+  std::optional<double> baumgarte_alpha, baumgarte_beta;
+  /// Optional slave DOFs for the master-slave transformation (default: chosen by pivoting).
+  std::vector<std::string> slaves;
+  /// Dense linear solver instead of KLU (only sensible for tiny systems).
+  bool dense_linear_solver = false;
+  SourcePoint where;
+};
+
+enum class Quantity { displacement, velocity, reaction, multiplier, drift };
+
+struct OutputSpec {
+  std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};
+  std::string file;  ///< empty: decided by the CLI
+  SourcePoint where;
+};
+
+struct SceneSpec {
+  std::string file;  ///< path the scene was read from (or "<embedded:NAME>")
+  std::string name;
+  ModelSpec model;
+  std::vector<LoadSpec> loads;
+  std::vector<ConstraintSpec> constraints;
+  InitialSpec initial;
+  SolveSpec solve;
+  OutputSpec output;
+};
+
+[[nodiscard]] const char* to_string(Scheme s);
+[[nodiscard]] const char* to_string(Quantity q);
+
+}  // namespace condyn

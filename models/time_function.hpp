@@ -1,0 +1,70 @@
+#pragma once
+/// Scalar functions of time used for loads and constraint right-hand sides (scene-format.md,
+/// "Time functions"): sums of step, polynomial, harmonic and exponential terms, each with exact
+/// first and second derivatives.
+
+#include <string>
+#include <vector>
+
+namespace condyn {
+
+/// One term of a time function.
+struct TimeTerm {
+  enum class Kind { step, polynomial, harmonic, exponential };
+  Kind kind = Kind::polynomial;
+  double amplitude = 1.0;            ///< step, harmonic, exponential
+  double start = 0.0;                ///< step: amplitude * H(t - start), H(0) = 1
+  std::vector<double> coefficients;  ///< polynomial: sum_k c_k t^k
+  double omega = 0.0;                ///< harmonic: amplitude * sin(omega t + phase)
+  double phase = 0.0;
+  double rate = 0.0;  ///< exponential: amplitude * exp(rate t)
+
+  /// d^order/dt^order of the term at t, order in {0, 1, 2}. A step contributes to order 0 only
+  /// (its derivative is an impulse at `start`, which callers handle as a discontinuity).
+  /// `step_reference` decides which steps are on: a step is on when start <= step_reference.
+  /// Callers integrating across a step pass the start of the current segment so that the
+  /// residual never sees a step switch on inside the segment; plain evaluation passes t.
+  [[nodiscard]] double derivative(int order, double t, double step_reference) const;
+  [[nodiscard]] double derivative(int order, double t) const { return derivative(order, t, t); }
+  [[nodiscard]] double value(double t) const { return derivative(0, t, t); }
+
+  /// The term whose value is this term's first derivative (smooth kinds only; a step gives an
+  /// all-zero polynomial).
+  [[nodiscard]] TimeTerm derivative_term() const;
+  /// True when the term is identically zero for t >= 0.
+  [[nodiscard]] bool is_zero() const;
+  /// Human-readable form, e.g. "2*H(t-1)" or "3*sin(2*t+0.5)".
+  [[nodiscard]] std::string describe() const;
+};
+
+/// A sum of terms; the empty sum is the zero function.
+class TimeFunction {
+ public:
+  TimeFunction() = default;
+  explicit TimeFunction(std::vector<TimeTerm> terms) : terms_(std::move(terms)) {}
+  static TimeFunction constant(double c);
+
+  [[nodiscard]] const std::vector<TimeTerm>& terms() const { return terms_; }
+  [[nodiscard]] double derivative(int order, double t, double step_reference) const;
+  [[nodiscard]] double derivative(int order, double t) const { return derivative(order, t, t); }
+  [[nodiscard]] double value(double t) const { return derivative(0, t, t); }
+
+  /// True when every term is zero for t >= 0 (a homogeneous right-hand side).
+  [[nodiscard]] bool is_zero() const;
+  /// True when the function is constant for t >= 0: no time dependence (scleronomic).
+  [[nodiscard]] bool is_constant() const;
+  /// Times t > 0 where a step switches on: the integrator stops and restarts there.
+  [[nodiscard]] std::vector<double> breakpoints() const;
+  /// The antiderivative F(t) = integral_0^t f, itself a sum of supported terms.
+  /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,
+  /// whose derivative jumps: the caller must refuse the constraint).
+  [[nodiscard]] TimeFunction antiderivative() const;
+  /// The function scaled by s.
+  [[nodiscard]] TimeFunction scaled(double s) const;
+  [[nodiscard]] std::string describe() const;
+
+ private:
+  std::vector<TimeTerm> terms_;
+};
+
+}  // namespace condyn

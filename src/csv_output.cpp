@@ -1,0 +1,97 @@
+#include "src/csv_output.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace condyn {
+
+namespace {
+
+void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
+  out.precision(17);
+  out << "t";
+  const auto& q = model.output.quantities;
+  for (Quantity quantity : q) {
+    switch (quantity) {
+      case Quantity::displacement:
+        for (const auto& d : model.dof_names) out << "," << d;
+        break;
+      case Quantity::velocity:
+        for (const auto& d : model.dof_names) out << ",vel_" << d;
+        break;
+      case Quantity::reaction:
+        for (const auto& d : model.dof_names) out << ",reaction_" << d;
+        break;
+      case Quantity::multiplier:
+        for (const auto& c : model.constraints) out << ",lambda_" << c.name;
+        break;
+      case Quantity::drift:
+        out << ",drift_position,drift_velocity";
+        break;
+    }
+  }
+  out << "\n";
+  for (std::size_t k = 0; k < traj.t.size(); ++k) {
+    const auto col = static_cast<Eigen::Index>(k);
+    out << traj.t[k];
+    auto column = [&](const Eigen::MatrixXd& m) {
+      for (Eigen::Index i = 0; i < m.rows(); ++i) out << "," << m(i, col);
+    };
+    for (Quantity quantity : q) {
+      switch (quantity) {
+        case Quantity::displacement:
+          column(traj.u);
+          break;
+        case Quantity::velocity:
+          column(traj.v);
+          break;
+        case Quantity::reaction:
+          column(traj.reaction);
+          break;
+        case Quantity::multiplier:
+          column(traj.multiplier);
+          break;
+        case Quantity::drift:
+          out << "," << traj.drift_position[col] << "," << traj.drift_velocity[col];
+          break;
+      }
+    }
+    out << "\n";
+  }
+}
+
+}  // namespace
+
+void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  if (fs::is_directory(target)) throw std::runtime_error(path + ": is a directory");
+  const fs::path tmp =
+      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw std::runtime_error(path + ": cannot write output (" + std::strerror(errno) + ")");
+    }
+    write_rows(out, model, traj);
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+      throw std::runtime_error(path + ": writing the output failed");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw std::runtime_error(path + ": cannot move the output into place (" + ec.message() + ")");
+  }
+}
+
+}  // namespace condyn

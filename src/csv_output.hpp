@@ -1,0 +1,16 @@
+#pragma once
+/// The CSV of the contract (scene-format.md, "Output"): first column t, then the requested
+/// quantities in the order the scene lists them.
+
+#include <string>
+
+#include "dae/trajectory.hpp"
+#include "models/model.hpp"
+
+namespace condyn {
+
+/// Writes the CSV to a temporary file beside `path` and renames it into place, so a failed run
+/// never leaves a half-written or clobbered file. Throws std::runtime_error naming the path.
+void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj);
+
+}  // namespace condyn

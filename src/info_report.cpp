@@ -1,0 +1,59 @@
+#include "src/info_report.hpp"
+
+#include <iomanip>
+
+#include "dae/elimination.hpp"
+#include "dae/solve.hpp"
+#include "models/classification.hpp"
+
+namespace condyn {
+
+namespace {
+
+std::string join_dofs(const Model& model, const std::vector<int>& dofs) {
+  std::string s;
+  for (int d : dofs) s += (s.empty() ? "" : ", ") + model.dof_names[static_cast<std::size_t>(d)];
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace
+
+void print_info(std::ostream& out, const Model& model, Scheme requested) {
+  out << "scene: " << model.file << (model.name.empty() ? "" : "  (" + model.name + ")") << "\n\n";
+  const auto classes = classify_constraints(model);
+  if (classes.empty()) {
+    out << "constraints: none (the model is unconstrained)\n";
+  } else {
+    out << "constraints (classes of the chapter's Tables 5.1-5.2):\n";
+    out << "  " << std::left << std::setw(12) << "name" << std::setw(5) << "" << std::setw(34)
+        << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs" << std::setw(8) << "form"
+        << "DOFs\n";
+    for (const auto& c : classes) {
+      out << "  " << std::left << std::setw(12) << c.name << std::setw(5)
+          << (c.single_freedom ? "SFC" : "MFC") << std::setw(34) << c.holonomy() << std::setw(12)
+          << (c.rheonomic ? "rheonomic" : "scleronomic") << std::setw(16)
+          << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(8)
+          << (c.linear ? "linear" : "nonlinear");
+      for (std::size_t k = 0; k < c.dofs.size(); ++k) out << (k ? ", " : "") << c.dofs[k];
+      out << "\n";
+    }
+    out << "  (velocity-level constraints are classed by their integrated form a·u = a·u(0) + ∫h)\n";
+  }
+  const int n = model.dofs(), m = model.constraint_count();
+  out << "\nmodel: " << n << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros()
+      << ", C " << model.C.nonZeros() << ", K " << model.K.nonZeros() << ", A "
+      << model.A.nonZeros() << "\n";
+  const SchemeChoice choice = choose_scheme(model, requested);
+  out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason << ")\n";
+  if (choice.scheme == Scheme::elimination) {
+    const ReducedSystem reduced = reduce(model);
+    const auto& ms = reduced.transform;
+    out << "elimination: slaves " << join_dofs(model, ms.slaves) << "; masters "
+        << join_dofs(model, ms.masters) << "\n"
+        << "  slaves " << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
+                                                      : "named in [solve] slaves")
+        << "; integrates " << 2 * ms.masters.size() << " unknowns (û, û')\n";
+  }
+}
+
+}  // namespace condyn

@@ -1,0 +1,106 @@
+// condyn: constrained dynamic systems with constraints as algebraic equations.
+// Commands: run, info, validate. See README.md.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+
+#include "dae/ida_integrator.hpp"
+#include "dae/solve.hpp"
+#include "models/scene_parser.hpp"
+#include "src/csv_output.hpp"
+#include "src/info_report.hpp"
+#include "validation/suite.hpp"
+
+namespace {
+
+using namespace condyn;
+
+Scheme parse_scheme_flag(const std::string& s) {
+  for (Scheme scheme :
+       {Scheme::automatic, Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
+    if (s == to_string(scheme)) return scheme;
+  }
+  throw CLI::ValidationError("--scheme", "unknown scheme '" + s +
+                                             "' (expected auto, elimination, index1, baumgarte or ggl)");
+}
+
+struct RunArgs {
+  std::string scene, scheme, out;
+  std::optional<double> rtol, atol;
+};
+
+int run(const RunArgs& args) {
+  SceneSpec spec = parse_scene_file(args.scene);
+  if (!args.scheme.empty()) spec.solve.scheme = parse_scheme_flag(args.scheme);
+  if (args.rtol) spec.solve.rtol = *args.rtol;
+  if (args.atol) spec.solve.atol = *args.atol;
+  const Model model = build_model(spec);
+  std::string out = args.out.empty() ? model.output.file : args.out;
+  if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".csv";
+
+  const SchemeChoice choice = choose_scheme(model, spec.solve.scheme);
+  SolveSummary summary;
+  const Trajectory traj = solve(model, choice.scheme, integrator_options(model), summary);
+  write_csv_atomically(out, model, traj);
+  std::cout << summary.brief() << "\n" << "wrote " << traj.t.size() << " rows to " << out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"condyn: constrained dynamic systems, constraints as algebraic equations"};
+  app.require_subcommand(1);
+
+  RunArgs run_args;
+  auto* run_cmd = app.add_subcommand("run", "solve a scene and write its CSV");
+  run_cmd->add_option("scene", run_args.scene, "scene file (TOML)")->required();
+  run_cmd->add_option("--scheme", run_args.scheme,
+                      "auto, elimination, index1, baumgarte or ggl (overrides [solve] scheme)");
+  run_cmd->add_option("--rtol", run_args.rtol, "relative tolerance (overrides [solve] rtol)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--out", run_args.out,
+                      "CSV file (default: [output] file, else SCENE-STEM.csv here)");
+
+  std::string info_scene, info_scheme;
+  auto* info_cmd = app.add_subcommand("info", "classify the constraints and size the model");
+  info_cmd->add_option("scene", info_scene, "scene file (TOML)")->required();
+  info_cmd->add_option("--scheme", info_scheme, "scheme to report on (default: the scene's)");
+
+  ValidationOptions validate_options;
+  auto* validate_cmd = app.add_subcommand("validate", "run the built-in validation suite");
+  validate_cmd->add_flag("--quiet", validate_options.quiet, "print only the summary tables");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    if (*run_cmd) return run(run_args);
+    if (*info_cmd) {
+      SceneSpec spec = parse_scene_file(info_scene);
+      if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag(info_scheme);
+      print_info(std::cout, build_model(spec), spec.solve.scheme);
+      return 0;
+    }
+    if (*validate_cmd) return run_validation(std::cout, validate_options) ? 0 : 1;
+  } catch (const SceneError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const CLI::ValidationError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const IntegrationError& e) {
+    std::cerr << "error: integration failed: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,47 @@
+// The elimination path converges to the exact solution as rtol shrinks, at the rate IDA's
+// tolerance proportionality promises (global error ∝ rtol to first order).
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "dae/exact_solution.hpp"
+#include "dae/solve.hpp"
+#include "models/scene_parser.hpp"
+#include "validation/accuracy.hpp"
+#include "validation/embedded_scenes.hpp"
+
+using namespace condyn;
+
+TEST_CASE("elimination error shrinks in proportion to rtol") {
+  for (const char* scene : {"chapter_5_5_1", "chapter_5_6_2"}) {
+    CAPTURE(scene);
+    SceneSpec spec = parse_scene_text(embedded_scene(scene).text, scene);
+    std::vector<double> log_rtol, log_err;
+    for (double rtol : {1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
+      spec.solve.rtol = rtol;
+      spec.solve.atol = rtol * 1e-2;
+      const Model model = build_model(spec);
+      SolveSummary summary;
+      const Trajectory run = solve(model, Scheme::elimination, integrator_options(model), summary);
+      const double err = relative_error(run, exact_trajectory(model, model.output_times())).displacement;
+      MESSAGE("rtol " << rtol << ": error " << err << ", " << summary.steps << " steps");
+      log_rtol.push_back(std::log10(rtol));
+      log_err.push_back(std::log10(err));
+    }
+    // Least-squares slope of log(error) against log(rtol).
+    const auto n = static_cast<double>(log_rtol.size());
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t k = 0; k < log_rtol.size(); ++k) {
+      sx += log_rtol[k];
+      sy += log_err[k];
+      sxx += log_rtol[k] * log_rtol[k];
+      sxy += log_rtol[k] * log_err[k];
+    }
+    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    MESSAGE("observed order in rtol: " << slope);
+    // Tolerance proportionality of a variable-order BDF is approximate; 0.7-1.3 rejects both a
+    // stalled error (slope ~0) and an error that does not respond to rtol.
+    CHECK(slope >= 0.7);
+    CHECK(slope <= 1.3);
+  }
+}

@@ -1,0 +1,98 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "models/time_function.hpp"
+
+using condyn::TimeFunction;
+using condyn::TimeTerm;
+
+namespace {
+// Central differences with h = 1e-5 on O(1) functions: truncation ~h² f''' ≈ 1e-10, roundoff
+// ~eps/h ≈ 1e-11; 1e-7 leaves room for second derivatives (roundoff eps/h²).
+constexpr double kFiniteDifferenceTolerance = 1e-5;
+constexpr double kH = 1e-4;
+
+TimeTerm harmonic(double a, double w, double p) {
+  TimeTerm t;
+  t.kind = TimeTerm::Kind::harmonic;
+  t.amplitude = a;
+  t.omega = w;
+  t.phase = p;
+  return t;
+}
+TimeTerm exponential(double a, double r) {
+  TimeTerm t;
+  t.kind = TimeTerm::Kind::exponential;
+  t.amplitude = a;
+  t.rate = r;
+  return t;
+}
+TimeTerm polynomial(std::vector<double> c) {
+  TimeTerm t;
+  t.coefficients = std::move(c);
+  return t;
+}
+TimeTerm step(double a, double s) {
+  TimeTerm t;
+  t.kind = TimeTerm::Kind::step;
+  t.amplitude = a;
+  t.start = s;
+  return t;
+}
+}  // namespace
+
+TEST_CASE("time functions: derivatives agree with central differences") {
+  const TimeFunction f({harmonic(1.5, 2.0, 0.3), exponential(0.7, -0.4), polynomial({1, -2, 0.5, 0.25})});
+  for (double t : {0.0, 0.7, 2.5}) {
+    const double d1 = (f.value(t + kH) - f.value(t - kH)) / (2 * kH);
+    const double d2 = (f.value(t + kH) - 2 * f.value(t) + f.value(t - kH)) / (kH * kH);
+    CHECK(f.derivative(1, t) == doctest::Approx(d1).epsilon(kFiniteDifferenceTolerance));
+    CHECK(f.derivative(2, t) == doctest::Approx(d2).epsilon(kFiniteDifferenceTolerance));
+  }
+}
+
+TEST_CASE("time functions: closed forms") {
+  CHECK(TimeFunction({polynomial({0, 1, 0.5})}).value(2.0) == doctest::Approx(4.0));
+  CHECK(TimeFunction({harmonic(2, 3, 0)}).derivative(2, 0.4) ==
+        doctest::Approx(-18 * std::sin(1.2)));
+  CHECK(TimeFunction({exponential(2, 0.5)}).derivative(1, 1.0) ==
+        doctest::Approx(std::exp(0.5)));
+}
+
+TEST_CASE("time functions: steps switch on at start, H(0) = 1, and by segment") {
+  const TimeFunction f({step(2.0, 1.0)});
+  CHECK(f.value(0.999) == 0.0);
+  CHECK(f.value(1.0) == 2.0);
+  CHECK(f.derivative(0, 1.0, 0.5) == 0.0);  // segment that started before the step: still off
+  CHECK(f.derivative(1, 1.5) == 0.0);
+  REQUIRE(f.breakpoints().size() == 1);
+  CHECK(f.breakpoints()[0] == 1.0);
+  CHECK(TimeFunction({step(2.0, 0.0)}).breakpoints().empty());
+  CHECK(!f.is_constant());
+  CHECK(TimeFunction({step(2.0, 0.0)}).is_constant());
+}
+
+TEST_CASE("time functions: antiderivative is zero at 0 and differentiates back") {
+  const TimeFunction f({harmonic(1.5, 2.0, 0.3), exponential(0.7, -0.4), polynomial({1, -2, 3}),
+                        step(0.5, 0.0)});
+  const TimeFunction F = f.antiderivative();
+  CHECK(std::abs(F.value(0.0)) < 1e-15);
+  for (double t : {0.3, 1.1, 4.0}) {
+    CHECK(F.derivative(1, t) == doctest::Approx(f.value(t)).epsilon(1e-13));
+  }
+  // Eq. 5.14: u'x1 = 1 + t integrates to t + t²/2.
+  const TimeFunction g = TimeFunction({polynomial({1, 1})}).antiderivative();
+  CHECK(g.value(2.0) == doctest::Approx(4.0));
+  CHECK_THROWS_AS((void)TimeFunction({step(1.0, 2.0)}).antiderivative(), std::invalid_argument);
+}
+
+TEST_CASE("time functions: zero and constant detection") {
+  CHECK(TimeFunction().is_zero());
+  CHECK(TimeFunction::constant(0.0).is_zero());
+  CHECK(!TimeFunction::constant(1.0).is_zero());
+  CHECK(TimeFunction::constant(1.0).is_constant());
+  CHECK(!TimeFunction({polynomial({0, 1})}).is_constant());
+  CHECK(!TimeFunction({harmonic(1, 2, 0)}).is_constant());
+}

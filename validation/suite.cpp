@@ -1,0 +1,66 @@
+#include "validation/suite.hpp"
+
+#include <iomanip>
+#include <sstream>
+
+#include "dae/exact_solution.hpp"
+#include "dae/solve.hpp"
+#include "models/scene_parser.hpp"
+#include "validation/accuracy.hpp"
+#include "validation/chapter_report.hpp"
+#include "validation/embedded_scenes.hpp"
+
+namespace condyn {
+
+const EmbeddedScene& embedded_scene(const std::string& name) {
+  for (const auto& s : embedded_scenes()) {
+    if (s.name == name) return s;
+  }
+  throw std::out_of_range("no embedded scene named '" + name + "'");
+}
+
+namespace {
+
+std::string sci(double v) {
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(2) << v;
+  return s.str();
+}
+
+}  // namespace
+
+bool run_validation(std::ostream& out, const ValidationOptions& options) {
+  const ChapterReport chapter = chapter_report();
+  bool all_pass = true;
+  out << "condyn validate: the chapter's example truss, five cases (§5.5.1-§5.6.2)\n"
+      << "errors are relative max-norms over all DOFs and output times against the exact modal\n"
+      << "solution; tolerance = " << kGlobalErrorFactor << " x rtol\n\n";
+  for (const auto& cr : chapter.cases) {
+    const std::string file = "<embedded:" + cr.scene + ">";
+    const Model model = build_model(parse_scene_text(embedded_scene(cr.scene).text, file));
+    out << "== " << cr.section << ": " << model.name << "\n";
+    if (!options.quiet) print_case_matrices(out, cr);
+    const Trajectory exact = exact_trajectory(model, model.output_times());
+    SolveSummary summary;
+    const Trajectory run = solve(model, Scheme::elimination, integrator_options(model), summary);
+    const TrajectoryError err = relative_error(run, exact);
+    const double tol = kGlobalErrorFactor * model.solve.rtol;
+    const bool pass = err.worst() <= tol;
+    all_pass = all_pass && pass;
+    out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "rtol"
+        << std::setw(11) << "err u" << std::setw(11) << "err v" << std::setw(11) << "err f_con"
+        << std::setw(11) << "max drift" << std::setw(8) << "steps" << std::setw(10) << "time ms"
+        << "verdict\n";
+    out << "  " << std::setw(13) << "elimination" << std::setw(10) << sci(model.solve.rtol)
+        << std::setw(11) << sci(err.displacement) << std::setw(11) << sci(err.velocity)
+        << std::setw(11) << sci(err.reaction) << std::setw(11)
+        << sci(std::max(summary.max_drift_position, summary.max_drift_velocity)) << std::setw(8)
+        << summary.steps << std::setw(10) << std::fixed << std::setprecision(2)
+        << summary.wall_seconds * 1e3 << std::defaultfloat << (pass ? "pass" : "FAIL") << "\n\n";
+  }
+  print_errata(out, chapter.errata);
+  out << "\n" << (all_pass ? "validation passed" : "validation FAILED") << "\n";
+  return all_pass;
+}
+
+}  // namespace condyn
