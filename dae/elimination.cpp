@@ -1,13 +1,11 @@
 #include "dae/elimination.hpp"
 
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
-#include "dae/affine_jacobian.hpp"
-#include "dae/dae_problem.hpp"
 #include "dae/ida_integrator.hpp"
+#include "dae/reduced_ode.hpp"
 
 namespace condyn {
 
@@ -129,99 +127,6 @@ Eigen::VectorXd ReducedSystem::forces(const Model& model, double t, double step_
   }
   return f;
 }
-
-namespace {
-
-/// y = [û; û'],  F = [ û' − w ;  M̂ w' + Ĉ w + K̂ û − f̂(t) ]  with w the second half of y.
-class ReducedOde final : public DaeProblem {
- public:
-  ReducedOde(const Model& model, const ReducedSystem& reduced)
-      : model_(model), reduced_(reduced), nm_(static_cast<int>(reduced.M.rows())) {
-    mass_.compute(reduced.M);
-    bool ok = mass_.info() == Eigen::Success;
-    if (ok) {
-      const Eigen::VectorXd d = mass_.vectorD();
-      // Positive definite to roundoff of the largest pivot.
-      ok = d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff();
-    }
-    if (!ok) {
-      std::string massless;
-      for (int k = 0; k < nm_; ++k) {
-        if (reduced.M.coeff(k, k) == 0.0) {
-          massless += (massless.empty() ? "" : ", ") +
-                      model.dof_names[static_cast<std::size_t>(reduced.transform.masters[static_cast<std::size_t>(k)])];
-        }
-      }
-      throw std::invalid_argument(
-          "the reduced mass matrix is singular" +
-          (massless.empty() ? std::string() : " (master DOFs without mass: " + massless + ")") +
-          ": the elimination path integrates an ODE and needs mass on every master DOF");
-    }
-    std::vector<Eigen::Triplet<double>> j0, j1;
-    for (int k = 0; k < nm_; ++k) {
-      j1.emplace_back(k, k, 1.0);        // dF1/dû'
-      j0.emplace_back(k, nm_ + k, -1.0);  // dF1/dw
-    }
-    auto add = [](std::vector<Eigen::Triplet<double>>& out, const Eigen::SparseMatrix<double>& s,
-                  int row0, int col0) {
-      for (int k = 0; k < s.outerSize(); ++k) {
-        for (Eigen::SparseMatrix<double>::InnerIterator it(s, k); it; ++it) {
-          out.emplace_back(row0 + it.row(), col0 + it.col(), it.value());
-        }
-      }
-    };
-    add(j0, reduced.K, nm_, 0);
-    add(j0, reduced.C, nm_, nm_);
-    add(j1, reduced.M, nm_, nm_);
-    Eigen::SparseMatrix<double> J0(2 * nm_, 2 * nm_), J1(2 * nm_, 2 * nm_);
-    J0.setFromTriplets(j0.begin(), j0.end());
-    J1.setFromTriplets(j1.begin(), j1.end());
-    jacobian_ = AffineJacobian(J0, J1);
-  }
-
-  [[nodiscard]] int size() const override { return 2 * nm_; }
-
-  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override {
-    const auto x = y.head(nm_), w = y.tail(nm_);
-    r.head(nm_) = yp.head(nm_) - w;
-    r.tail(nm_) = reduced_.M * yp.tail(nm_) + reduced_.K * x - reduced_.forces(model_, t, step_reference);
-    if (model_.has_damping()) r.tail(nm_) += reduced_.C * w;
-  }
-
-  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
-    return jacobian_.pattern();
-  }
-  void jacobian(double /*t*/, double /*step_reference*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
-                Eigen::SparseMatrix<double>& J) const override {
-    jacobian_.fill(cj, J);
-  }
-  [[nodiscard]] Eigen::VectorXd differential_id() const override {
-    return Eigen::VectorXd::Ones(2 * nm_);
-  }
-  [[nodiscard]] Eigen::VectorXd consistent_yp(double t, ConstRef y) const override {
-    Eigen::VectorXd yp(2 * nm_);
-    yp.head(nm_) = y.tail(nm_);
-    yp.tail(nm_) = acceleration(t, y.head(nm_), y.tail(nm_));
-    return yp;
-  }
-
-  /// û'' = M̂⁻¹ (f̂(t) − Ĉ w − K̂ û), steps on at t (right limit).
-  [[nodiscard]] Eigen::VectorXd acceleration(double t, const Eigen::VectorXd& x,
-                                             const Eigen::VectorXd& w) const {
-    Eigen::VectorXd rhs = reduced_.forces(model_, t, t) - reduced_.K * x;
-    if (model_.has_damping()) rhs -= reduced_.C * w;
-    return mass_.solve(rhs);
-  }
-
- private:
-  const Model& model_;
-  const ReducedSystem& reduced_;
-  int nm_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass_;
-  AffineJacobian jacobian_;
-};
-
-}  // namespace
 
 Trajectory solve_elimination(const Model& model, const IntegratorOptions& options,
                              SolveSummary& summary) {

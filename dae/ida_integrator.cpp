@@ -279,18 +279,23 @@ RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
   for (double b : options.breakpoints) {
     if (b > t0 && b < times.back()) stops.push_back(b);
   }
+  // SUNDIALS 6.4 cannot clear a stop time and keeps it across IDAReInit, so one is always set
+  // ahead of the solver: the next load step, else the end of the run (which also keeps IDA from
+  // stepping past the horizon).
   std::size_t next_stop = 0;
+  auto stop_ahead = [&] { return next_stop < stops.size() ? stops[next_stop] : times.back(); };
+  ida.set_stop_time(stop_ahead());
   double reached = t0;
   for (std::size_t k = 1; k < times.size(); ++k) {
     const double tout = times[k];
     // Cross every load step that lies at or before this output time.
     while (next_stop < stops.size() && stops[next_stop] <= tout) {
       const double b = stops[next_stop++];
-      ida.set_stop_time(b);
       reached = ida.solve(b);
       ida.set_segment(b);
       const Eigen::VectorXd yb = ida.y();
       ida.reinit(b, yb, problem.consistent_yp(b, yb));
+      ida.set_stop_time(stop_ahead());
       ++summary.restarts;
     }
     if (reached < tout) reached = ida.solve(tout);

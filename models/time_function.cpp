@@ -23,6 +23,7 @@ double polynomial_derivative(const std::vector<double>& c, int order, double t) 
 }  // namespace
 
 double TimeTerm::derivative(int order, double t, double step_reference) const {
+  if (order < 0 || order > 2) throw std::invalid_argument("time derivative order must be 0, 1 or 2");
   switch (kind) {
     case Kind::step:
       return (order == 0 && start <= step_reference) ? amplitude : 0.0;
@@ -87,7 +88,7 @@ std::string TimeTerm::describe() const {
   s.precision(6);
   switch (kind) {
     case Kind::step:
-      s << amplitude << "*H(t-" << start << ")";
+      s << amplitude << "*H(t" << (start < 0 ? "+" : "-") << std::abs(start) << ")";
       break;
     case Kind::polynomial: {
       bool first = true;
@@ -104,7 +105,8 @@ std::string TimeTerm::describe() const {
       break;
     }
     case Kind::harmonic:
-      s << amplitude << "*sin(" << omega << "*t+" << phase << ")";
+      s << amplitude << "*sin(" << omega << "*t" << (phase < 0 ? "-" : "+") << std::abs(phase)
+        << ")";
       break;
     case Kind::exponential:
       s << amplitude << "*exp(" << rate << "*t)";

@@ -1,5 +1,6 @@
 #include "src/info_report.hpp"
 
+#include <algorithm>
 #include <iomanip>
 
 #include "dae/elimination.hpp"
@@ -25,11 +26,13 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
     out << "constraints: none (the model is unconstrained)\n";
   } else {
     out << "constraints (classes of the chapter's Tables 5.1-5.2):\n";
-    out << "  " << std::left << std::setw(12) << "name" << std::setw(5) << "" << std::setw(34)
+    int width = 6;
+    for (const auto& c : classes) width = std::max(width, static_cast<int>(c.name.size()) + 2);
+    out << "  " << std::left << std::setw(width) << "name" << std::setw(5) << "" << std::setw(34)
         << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs" << std::setw(8) << "form"
         << "DOFs\n";
     for (const auto& c : classes) {
-      out << "  " << std::left << std::setw(12) << c.name << std::setw(5)
+      out << "  " << std::left << std::setw(width) << c.name << std::setw(5)
           << (c.single_freedom ? "SFC" : "MFC") << std::setw(34) << c.holonomy() << std::setw(12)
           << (c.rheonomic ? "rheonomic" : "scleronomic") << std::setw(16)
           << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(8)

@@ -11,11 +11,14 @@ struct ValidationOptions {
 };
 
 /// Integrated results must agree with the exact solution to this multiple of rtol (relative
-/// max-norm over output times). IDA controls the local error per step; the global error after
-/// hundreds of steps of an undamped oscillator is larger by the error growth over the horizon.
-/// Observed on the five cases at rtol = 1e-10: ratios up to ~30 (velocities of case D); 100 leaves
-/// a margin for compilers and machines without hiding an O(1) mistake.
-inline constexpr double kGlobalErrorFactor = 100.0;
+/// max-norm over output times). IDA controls the local error of each step; the global error is
+/// that accumulated over ~10³ steps of undamped oscillation, and the relative measure is further
+/// inflated where a rigid-body mode makes the displacements large next to the elastic part that
+/// drives the reactions (case D). Observed at rtol = 1e-10: error/rtol from 7 (case A, u) to 78
+/// (case D, reactions); `condyn validate` prints the figures every run. 1000 keeps a 10x margin
+/// for other compilers and machines and is still 10x inside the acceptance level (1e-6
+/// at rtol = 1e-10); an O(1) error in any term misses it by orders of magnitude.
+inline constexpr double kGlobalErrorFactor = 1000.0;
 
 /// Runs the suite, prints the report; true when every comparison is within its tolerance.
 bool run_validation(std::ostream& out, const ValidationOptions& options);

@@ -96,3 +96,9 @@ TEST_CASE("time functions: zero and constant detection") {
   CHECK(!TimeFunction({polynomial({0, 1})}).is_constant());
   CHECK(!TimeFunction({harmonic(1, 2, 0)}).is_constant());
 }
+
+TEST_CASE("time functions: describe signs, refuse derivative orders above 2") {
+  CHECK(TimeFunction({step(2.0, -1.0)}).describe() == "2*H(t+1)");
+  CHECK(TimeFunction({harmonic(1.0, 2.0, -0.5)}).describe() == "1*sin(2*t-0.5)");
+  CHECK_THROWS_AS((void)TimeFunction({harmonic(1.0, 2.0, 0.0)}).derivative(3, 0.0), std::invalid_argument);
+}

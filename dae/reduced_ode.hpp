@@ -1,0 +1,47 @@
+#pragma once
+/// The elimination path's reduced system as a first-order ODE for IDA, all components
+/// differential:
+///
+///   y = [û; w],   F(t, y, y') = [ û' − w ;  M̂ w' + Ĉ w + K̂ û − f̂(t) ] = 0.
+///
+/// Its Jacobian dF/dy + cj dF/dy' = [[cj I, −I], [K̂, Ĉ + cj M̂]] is affine in cj and constant.
+
+#include <Eigen/SparseCholesky>
+
+#include "dae/affine_jacobian.hpp"
+#include "dae/dae_problem.hpp"
+#include "dae/elimination.hpp"
+
+namespace condyn {
+
+class ReducedOde final : public DaeProblem {
+ public:
+  /// Keeps references to both arguments. Throws std::invalid_argument when M̂ is singular, naming
+  /// the master DOFs without mass.
+  ReducedOde(const Model& model, const ReducedSystem& reduced);
+
+  [[nodiscard]] int size() const override { return 2 * nm_; }
+  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override;
+  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
+    return jacobian_.pattern();
+  }
+  void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+                Eigen::SparseMatrix<double>& J) const override;
+  [[nodiscard]] Eigen::VectorXd differential_id() const override {
+    return Eigen::VectorXd::Ones(2 * nm_);
+  }
+  [[nodiscard]] Eigen::VectorXd consistent_yp(double t, ConstRef y) const override;
+
+  /// û'' = M̂⁻¹ (f̂(t) − Ĉ w − K̂ û), steps on at t (right limit).
+  [[nodiscard]] Eigen::VectorXd acceleration(double t, const Eigen::VectorXd& x,
+                                             const Eigen::VectorXd& w) const;
+
+ private:
+  const Model& model_;
+  const ReducedSystem& reduced_;
+  int nm_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass_;
+  AffineJacobian jacobian_;
+};
+
+}  // namespace condyn

@@ -1,0 +1,173 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "dae/elimination.hpp"
+#include "dae/reduced_ode.hpp"
+#include "dae/solve.hpp"
+#include "models/scene_parser.hpp"
+#include "tests/compare.hpp"
+#include "validation/embedded_scenes.hpp"
+
+using namespace condyn;
+
+namespace {
+
+// Assembly of integer-valued matrices from EA = 200√2 written to 15 digits: 1e-12 relative.
+constexpr double kAssemblyTolerance = 1e-12;
+// Algebraic identities of the transform (A T = 0, A G = I): a few ulps of O(1) entries.
+constexpr double kIdentityTolerance = 1e-13;
+
+Model scene_model(const std::string& text) { return build_model(parse_scene_text(text, "test")); }
+Model chapter_model(const std::string& name) {
+  return build_model(parse_scene_text(embedded_scene(name).text, name));
+}
+
+}  // namespace
+
+TEST_CASE("truss2d assembles the chapter's master stiffness") {
+  // reference/chapter-truss.md, "Master stiffness" (derived there by hand).
+  Eigen::MatrixXd K(6, 6);
+  K << 20, 10, -10, 0, -10, -10,  //
+      10, 10, 0, 0, -10, -10,     //
+      -10, 0, 10, 0, 0, 0,        //
+      0, 0, 0, 5, 0, -5,          //
+      -10, -10, 0, 0, 10, 10,     //
+      -10, -10, 0, -5, 10, 15;
+  const Model model = chapter_model("chapter_5_5_1");
+  CONDYN_CHECK_CLOSE(Eigen::MatrixXd(model.K), K, kAssemblyTolerance);
+  Eigen::VectorXd m(6);
+  m << 5, 5, 3, 3, 4, 4;
+  CONDYN_CHECK_CLOSE(Eigen::MatrixXd(model.M), Eigen::MatrixXd(m.asDiagonal()), 0.0);
+}
+
+TEST_CASE("master-slave transform: A T = 0, A G = I, pivoted slave choice") {
+  Eigen::MatrixXd a(3, 6);
+  a << 1, 2, 0, 0, -1, 0,  //
+      0, 0, 3, 1, 0, 0,    //
+      0.5, 0, 0, 0, 1, 1;
+  const Eigen::SparseMatrix<double> A = a.sparseView();
+  const MasterSlave ms = master_slave_transform(A);
+  CHECK(ms.slaves.size() == 3);
+  CHECK(ms.masters.size() == 3);
+  CONDYN_CHECK_CLOSE(Eigen::MatrixXd(A * ms.T), Eigen::MatrixXd::Zero(3, 3), kIdentityTolerance);
+  CONDYN_CHECK_CLOSE(Eigen::MatrixXd(A * ms.G), Eigen::MatrixXd::Identity(3, 3), kIdentityTolerance);
+
+  // Single-freedom constraints: the slaves are exactly the constrained DOFs (direct elimination).
+  const Model model = chapter_model("chapter_5_5_1");
+  const MasterSlave sfc = master_slave_transform(model.A);
+  CHECK(sfc.slaves == std::vector<int>{0, 1, 3});
+  CHECK(sfc.masters == std::vector<int>{2, 4, 5});
+}
+
+TEST_CASE("master-slave transform refuses slaves that cannot carry the constraints") {
+  Eigen::MatrixXd a(2, 4);
+  a << 1, 1, 0, 0,  //
+      0, 0, 1, 1;
+  const Eigen::SparseMatrix<double> A = a.sparseView();
+  CHECK_THROWS_WITH_AS((void)master_slave_transform(A, {0, 1}),
+                       doctest::Contains("slave block condition number"), std::invalid_argument);
+  CHECK_NOTHROW((void)master_slave_transform(A, {1, 2}));
+  CHECK_THROWS_AS((void)master_slave_transform(A, {1, 1}), std::invalid_argument);
+}
+
+TEST_CASE("reduced ODE Jacobian agrees with central differences of the residual") {
+  // A damped, rheonomic case so that every block (K̂, Ĉ, M̂) is present.
+  const std::string text = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c"]
+mass = [[2.0, 0.1, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 3.0]]
+stiffness = [[5.0, -2.0, 0.0], [-2.0, 4.0, -1.0], [0.0, -1.0, 2.0]]
+damping = [[0.3, 0.0, 0.0], [0.0, 0.2, 0.1], [0.0, 0.1, 0.4]]
+[[constraint]]
+terms = { a = 1.0, c = -2.0 }
+value = { type = "harmonic", amplitude = 0.1, omega = 1.5 }
+[initial]
+velocity = { a = 0.15 }
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  const Model model = scene_model(text);
+  const ReducedSystem reduced = reduce(model);
+  const ReducedOde ode(model, reduced);
+  const int n = ode.size();
+  Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.3, -0.7);
+  Eigen::VectorXd yp = Eigen::VectorXd::LinSpaced(n, -0.2, 0.9);
+  const double t = 0.37, cj = 12.5, h = 1e-6;
+  Eigen::SparseMatrix<double> J = ode.jacobian_pattern();
+  ode.jacobian(t, t, y, yp, cj, J);
+  Eigen::MatrixXd fd(n, n);
+  Eigen::VectorXd rp(n), rm(n);
+  for (int j = 0; j < n; ++j) {
+    // F(y + h e_j, y' + cj h e_j) differenced: dF/dy + cj dF/dy' in one pass.
+    Eigen::VectorXd y1 = y, y2 = y, yp1 = yp, yp2 = yp;
+    y1[j] += h;
+    y2[j] -= h;
+    yp1[j] += cj * h;
+    yp2[j] -= cj * h;
+    ode.residual(t, t, y1, yp1, rp);
+    ode.residual(t, t, y2, yp2, rm);
+    fd.col(j) = (rp - rm) / (2 * h);
+  }
+  // The residual is linear: central differences are exact up to roundoff eps*|F|/h ≈ 1e-10.
+  CONDYN_CHECK_CLOSE(Eigen::MatrixXd(J), fd, 1e-8);
+}
+
+TEST_CASE("a load step after t = 0 is crossed with a stop and restart") {
+  // m x'' + k x = F H(t − 1): x = F/k (1 − cos(ω (t − 1))) for t ≥ 1, ω = 2.
+  const std::string text = R"([model]
+type = "matrix"
+dofs = ["x"]
+mass = [[1.0]]
+stiffness = [[4.0]]
+[[load]]
+dof = "x"
+value = { type = "step", amplitude = 3.0, start = 1.0 }
+[solve]
+t_end = 4.0
+output_step = 0.5
+rtol = 1e-10
+atol = 1e-12
+)";
+  const Model model = scene_model(text);
+  SolveSummary summary;
+  const Trajectory run = solve(model, Scheme::elimination, integrator_options(model), summary);
+  CHECK(summary.restarts == 1);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < run.t.size(); ++k) {
+    const double t = run.t[k];
+    const double exact = t < 1.0 ? 0.0 : 0.75 * (1.0 - std::cos(2.0 * (t - 1.0)));
+    worst = std::max(worst, std::abs(run.u(0, static_cast<Eigen::Index>(k)) - exact));
+  }
+  // Global error of a 3-period run at rtol 1e-10 on O(1) values (see validation/suite.hpp).
+  CHECK(worst <= 1e-7);
+  CHECK(run.u(0, 2) == 0.0);  // t = 1.0: the step has not moved anything yet
+}
+
+TEST_CASE("the elimination path refuses massless master DOFs by name") {
+  const std::string text = R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 0.0]]
+stiffness = [[2.0, -1.0], [-1.0, 1.0]]
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  const Model model = scene_model(text);
+  SolveSummary summary;
+  CHECK_THROWS_WITH_AS((void)solve(model, Scheme::elimination, integrator_options(model), summary),
+                       doctest::Contains("master DOFs without mass: b"), std::invalid_argument);
+}
+
+TEST_CASE("the dense linear solver gives the KLU answer") {
+  Model model = chapter_model("chapter_5_6_2");
+  SolveSummary s1, s2;
+  IntegratorOptions o = integrator_options(model);
+  const Trajectory klu = solve(model, Scheme::elimination, o, s1);
+  o.dense_linear_solver = true;
+  const Trajectory dense = solve(model, Scheme::elimination, o, s2);
+  // Same Newton iterations with a different LU: identical to a few ulps per step.
+  CONDYN_CHECK_CLOSE(dense.u, klu.u, 1e-10);
+}
