@@ -77,9 +77,14 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help prints and succeeds; every other command-line error is a usage error: exit 2, as the
+    // contract says (CLI11's own codes are 100+).
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
   }
 
+  // The scene being processed, to name it in errors that arise after parsing.
+  const std::string scene = *run_cmd ? run_args.scene : info_scene;
   try {
     if (*run_cmd) return run(run_args);
     if (*info_cmd) {
@@ -96,10 +101,10 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const IntegrationError& e) {
-    std::cerr << "error: integration failed: " << e.what() << "\n";
+    std::cerr << "error: " << scene << ": integration failed: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << (scene.empty() ? "" : scene + ": ") << e.what() << "\n";
     return 1;
   }
   return 0;

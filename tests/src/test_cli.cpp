@@ -1,0 +1,159 @@
+// The command line as users and outside checks see it (scene-format.md, "Command line"): exit
+// codes, messages that name the file, the CSV columns and rows, and no lost data on failure.
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Sandbox {
+ public:
+  Sandbox() : dir_(fs::temp_directory_path() / ("condyn_cli_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  ~Sandbox() { fs::remove_all(dir_); }
+  Sandbox(const Sandbox&) = delete;
+  Sandbox& operator=(const Sandbox&) = delete;
+
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  [[nodiscard]] fs::path path(const std::string& name) const { return dir_ / name; }
+
+  Result run(const std::string& args) const {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(CONDYN_BINARY) + "' " +
+                            args + " > out.txt 2> err.txt";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / "out.txt");
+    r.err = slurp(dir_ / "err.txt");
+    return r;
+  }
+
+ private:
+  fs::path dir_;
+};
+
+const std::string kScene = R"(name = "two masses"
+[model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 1.0]]
+[[load]]
+dof = "b"
+value = { type = "step", amplitude = 1.0, start = 0.25 }
+[[constraint]]
+name = "tie"
+terms = { a = 1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.25
+)";
+
+}  // namespace
+
+TEST_CASE("run writes the contract's CSV and a one-line summary") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  const Result r = box.run("run s.toml --out r.csv");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("elimination: reached") != std::string::npos);
+  CHECK(r.out.find("steps") != std::string::npos);
+  CHECK(r.out.find("max drift position") != std::string::npos);
+  const std::string csv = slurp(box.path("r.csv"));
+  std::istringstream lines(csv);
+  std::string header;
+  std::getline(lines, header);
+  CHECK(header == "t,a,b,drift_position,drift_velocity");  // default quantities
+  std::vector<double> times;
+  for (std::string line; std::getline(lines, line);) times.push_back(std::stod(line));
+  CHECK(times == std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0});
+}
+
+TEST_CASE("run: default output name, tolerance flags, all quantities") {
+  const Sandbox box;
+  box.write("scene.toml", kScene + "[output]\nquantities = [\"velocity\", \"multiplier\", \"reaction\"]\n");
+  const Result r = box.run("run scene.toml --rtol 1e-9 --atol 1e-11");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  const std::string csv = slurp(box.path("scene.csv"));
+  CHECK(csv.rfind("t,vel_a,vel_b,lambda_tie,reaction_a,reaction_b\n", 0) == 0);
+}
+
+TEST_CASE("bad input: exit 2, the file and key named, existing output untouched") {
+  const Sandbox box;
+  box.write("bad.toml", kScene + "[initial]\ndisplacement = { zz = 1.0 }\n");
+  box.write("keep.csv", "precious\n");
+  const Result r = box.run("run bad.toml --out keep.csv");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("bad.toml") != std::string::npos);
+  CHECK(r.err.find("initial.displacement.zz: no such DOF") != std::string::npos);
+  CHECK(slurp(box.path("keep.csv")) == "precious\n");
+
+  const Result missing = box.run("run nowhere.toml --out keep.csv");
+  CHECK(missing.code == 2);
+  CHECK(missing.err.find("nowhere.toml: cannot open") != std::string::npos);
+  CHECK(slurp(box.path("keep.csv")) == "precious\n");
+}
+
+TEST_CASE("failures after parsing leave the output untouched too") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  box.write("keep.csv", "precious\n");
+  const Result r = box.run("run s.toml --scheme ggl --out keep.csv");
+  CHECK(r.code == 1);
+  CHECK(r.err.find("s.toml") != std::string::npos);
+  CHECK(r.err.find("not available") != std::string::npos);
+  CHECK(slurp(box.path("keep.csv")) == "precious\n");
+}
+
+TEST_CASE("command-line errors exit 2") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  CHECK(box.run("run s.toml --rtol -1").code == 2);
+  CHECK(box.run("run s.toml --scheme rk4").code == 2);
+  CHECK(box.run("frobnicate").code == 2);
+  CHECK(box.run("").code == 2);
+  CHECK(box.run("--help").code == 0);
+}
+
+TEST_CASE("info classifies constraints and sizes the model") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  const Result r = box.run("info s.toml");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("tie") != std::string::npos);
+  CHECK(r.out.find("SFC") != std::string::npos);
+  CHECK(r.out.find("holonomic") != std::string::npos);
+  CHECK(r.out.find("scleronomic") != std::string::npos);
+  CHECK(r.out.find("2 DOFs, 1 constraints") != std::string::npos);
+  CHECK(r.out.find("slaves a; masters b") != std::string::npos);
+}
