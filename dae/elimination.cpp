@@ -53,7 +53,8 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
   std::sort(out.slaves.begin(), out.slaves.end());
   if (static_cast<int>(out.slaves.size()) != m ||
       std::adjacent_find(out.slaves.begin(), out.slaves.end()) != out.slaves.end()) {
-    throw std::invalid_argument("need " + std::to_string(m) + " distinct slave DOFs, one per constraint");
+    throw std::invalid_argument("need " + std::to_string(m) +
+                                " distinct slave DOFs, one per constraint");
   }
   std::vector<bool> is_slave(static_cast<std::size_t>(n), false);
   for (int s : out.slaves) is_slave[static_cast<std::size_t>(s)] = true;
@@ -73,7 +74,7 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
     throw std::invalid_argument(s.str());
   }
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(a_s);
-  const Eigen::MatrixXd s_r = lu.solve(a_r);                          // A_S⁻¹ A_R
+  const Eigen::MatrixXd s_r = lu.solve(a_r);                              // A_S⁻¹ A_R
   const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd::Identity(m, m));  // A_S⁻¹
   Eigen::MatrixXd t = Eigen::MatrixXd::Zero(n, nm), g = Eigen::MatrixXd::Zero(n, m);
   for (int k = 0; k < nm; ++k) t(out.masters[static_cast<std::size_t>(k)], k) = 1.0;

@@ -47,7 +47,7 @@ struct ReducedSystem {
   /// Reduced transfer-force coefficients: f̂_tra(t) = FK g + FC g' + FM g'' (nm x m each):
   /// FK = −TᵀKG, FC = −TᵀCG, FM = −TᵀMG.
   Eigen::MatrixXd FK, FC, FM;
-  Eigen::MatrixXd loads;  ///< nm x (number of loads): Tᵀ e_dof(k)
+  Eigen::MatrixXd loads;   ///< nm x (number of loads): Tᵀ e_dof(k)
   bool rheonomic = false;  ///< some constraint right-hand side is nonzero: transfer forces exist
 
   /// f̂(t) for the current segment (steps on when start <= step_reference).

@@ -33,8 +33,8 @@ std::string SolveSummary::brief() const {
   s << scheme << ": " << termination << ", " << steps << " steps, " << residual_evals
     << " residual and " << jacobian_evals << " Jacobian evaluations, " << newton_failures
     << " Newton and " << error_test_failures << " error-test failures, " << unknowns
-    << " unknowns, wall " << wall_seconds * 1e3 << " ms, max drift position "
-    << max_drift_position << " velocity " << max_drift_velocity;
+    << " unknowns, wall " << wall_seconds * 1e3 << " ms, max drift position " << max_drift_position
+    << " velocity " << max_drift_velocity;
   return s.str();
 }
 
@@ -236,7 +236,8 @@ class Ida {
     return c;
   }
   static void check_raw(int flag, const char* call) {
-    if (flag != 0) throw IntegrationError(std::string(call) + " failed (" + std::to_string(flag) + ")");
+    if (flag != 0)
+      throw IntegrationError(std::string(call) + " failed (" + std::to_string(flag) + ")");
   }
 
   sunindextype n_;

@@ -62,12 +62,12 @@ class ModalSolution {
   [[nodiscard]] const Eigen::VectorXd& natural_frequencies() const { return omega_; }
 
  private:
-  Eigen::MatrixXd phi_;      ///< M-orthonormal modes, columns
-  Eigen::VectorXd omega_;    ///< sqrt of modal stiffness (clamped at 0)
-  Eigen::VectorXd k_, c_;    ///< modal stiffness and damping
-  Eigen::VectorXd x0_, xd0_; ///< modal initial conditions
+  Eigen::MatrixXd phi_;       ///< M-orthonormal modes, columns
+  Eigen::VectorXd omega_;     ///< sqrt of modal stiffness (clamped at 0)
+  Eigen::VectorXd k_, c_;     ///< modal stiffness and damping
+  Eigen::VectorXd x0_, xd0_;  ///< modal initial conditions
   std::vector<TimeTerm> terms_;
-  Eigen::MatrixXd p_;        ///< modal load amplitudes: p_(i, j) = phi_i^T b_j
+  Eigen::MatrixXd p_;  ///< modal load amplitudes: p_(i, j) = phi_i^T b_j
 };
 
 /// Divided difference exp(z t)[z_0, ..., z_n] and its first two time derivatives

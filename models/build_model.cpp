@@ -55,8 +55,8 @@ class Builder {
     for (const auto& term : f.terms()) {
       if (term.kind == TimeTerm::Kind::exponential &&
           std::abs(term.rate) * spec_.solve.t_end > kMaxExponent && term.rate > 0) {
-        fail(where, "exp(" + fmt(term.rate) + "*t) overflows before t_end = " +
-                        fmt(spec_.solve.t_end));
+        fail(where,
+             "exp(" + fmt(term.rate) + "*t) overflows before t_end = " + fmt(spec_.solve.t_end));
       }
     }
   }
@@ -100,7 +100,8 @@ class Builder {
     for (std::size_t k = 0; k < m.nodes.size(); ++k) {
       for (int d = 0; d < 2; ++d) {
         if (m.masses[k] != 0.0) {
-          m_trip.emplace_back(static_cast<int>(2 * k) + d, static_cast<int>(2 * k) + d, m.masses[k]);
+          m_trip.emplace_back(static_cast<int>(2 * k) + d, static_cast<int>(2 * k) + d,
+                              m.masses[k]);
         }
       }
     }
@@ -116,7 +117,8 @@ class Builder {
     const int n = static_cast<int>(rows.size());
     Eigen::MatrixXd dense(n, n);
     for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) dense(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      for (int j = 0; j < n; ++j)
+        dense(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
     }
     // Positive semi-definite up to roundoff of the largest eigenvalue.
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense, Eigen::EigenvaluesOnly);
@@ -177,11 +179,12 @@ class Builder {
       std::sort(c.coefficients.begin(), c.coefficients.end());
       check_time_function(c.value, value_at);
       for (double b : c.value.breakpoints()) {
-        fail(value_at, std::string("a step at t = ") + fmt(b) + " > 0 would make the prescribed " +
-                           (c.level == ConstraintSpec::Level::position ? "displacement" : "velocity") +
-                           " jump (an infinite " +
-                           (c.level == ConstraintSpec::Level::position ? "velocity" : "acceleration") +
-                           "); use a smooth function or a step at t = 0");
+        fail(value_at,
+             std::string("a step at t = ") + fmt(b) + " > 0 would make the prescribed " +
+                 (c.level == ConstraintSpec::Level::position ? "displacement" : "velocity") +
+                 " jump (an infinite " +
+                 (c.level == ConstraintSpec::Level::position ? "velocity" : "acceleration") +
+                 "); use a smooth function or a step at t = 0");
       }
       if (c.level == ConstraintSpec::Level::position) {
         c.position_value = c.value;
@@ -236,7 +239,8 @@ class Builder {
     }
     std::string names;
     for (const auto& [j, w] : combo) {
-      names += (names.empty() ? "'" : ", '") + model_.constraints[static_cast<std::size_t>(j)].name + "'";
+      names += (names.empty() ? "'" : ", '") +
+               model_.constraints[static_cast<std::size_t>(j)].name + "'";
     }
     // Compatible when the same combination of the right-hand sides vanishes over [0, t_end].
     double worst = 0.0, scale = 0.0;

@@ -22,7 +22,8 @@ std::vector<ConstraintClass> classify_constraints(const Model& model) {
     k.rheonomic = !c.position_value.is_constant();
     k.homogeneous = !k.rheonomic && c.position_value.is_zero();
     k.linear = true;
-    for (const auto& [d, a] : c.coefficients) k.dofs.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+    for (const auto& [d, a] : c.coefficients)
+      k.dofs.push_back(model.dof_names[static_cast<std::size_t>(d)]);
     out.push_back(std::move(k));
   }
   return out;

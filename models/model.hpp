@@ -25,7 +25,7 @@ struct Constraint {
   std::string name;
   ConstraintSpec::Level level = ConstraintSpec::Level::position;
   std::vector<std::pair<int, double>> coefficients;  ///< (dof index, a_i), dof ascending
-  TimeFunction value;         ///< right-hand side as written: g(t) or h(t)
+  TimeFunction value;                                ///< right-hand side as written: g(t) or h(t)
   /// Position-level right-hand side. For a position constraint, `value`. For a velocity
   /// constraint (linear, constant coefficients, hence integrable: §5.5.3, eq. 5.14) it is
   /// a·u(0) + integral_0^t h: the chapter's integration with the constants fixed by u(0).
@@ -55,7 +55,8 @@ struct Model {
   /// d^order/dt^order of the position-level right-hand sides (m), order in {0, 1, 2}.
   [[nodiscard]] Eigen::VectorXd position_rhs(int order, double t) const;
   /// Max-norm drifts: position over position-level constraints |a·u - g|, velocity over all
-  /// constraints (|a·v - g'| for position-level, |a·v - h| for velocity-level). 0 without constraints.
+  /// constraints (|a·v - g'| for position-level, |a·v - h| for velocity-level). 0 without
+  /// constraints.
   [[nodiscard]] std::pair<double, double> drift(double t, const Eigen::VectorXd& u,
                                                 const Eigen::VectorXd& v) const;
   /// Times in (0, t_end) where a load step switches on, sorted, unique.

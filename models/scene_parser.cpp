@@ -1,11 +1,11 @@
 #include "models/scene_parser.hpp"
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace condyn {
 
@@ -135,7 +135,8 @@ class Reader {
                                                               const std::string& path) const {
     std::vector<std::vector<double>> rows;
     const auto& arr = array(node, path);
-    for (std::size_t i = 0; i < arr.size(); ++i) rows.push_back(numbers(*arr.get(i), index(path, i)));
+    for (std::size_t i = 0; i < arr.size(); ++i)
+      rows.push_back(numbers(*arr.get(i), index(path, i)));
     return rows;
   }
 
@@ -162,8 +163,7 @@ class Reader {
     } else if (type == "polynomial") {
       check_keys(t, path, {"type", "coefficients"});
       term.kind = TimeTerm::Kind::polynomial;
-      term.coefficients =
-          numbers(required(t, path, "coefficients"), join(path, "coefficients"));
+      term.coefficients = numbers(required(t, path, "coefficients"), join(path, "coefficients"));
       if (term.coefficients.empty()) fail(node, join(path, "coefficients"), "must not be empty");
     } else if (type == "harmonic") {
       check_keys(t, path, {"type", "amplitude", "omega", "phase"});
@@ -189,7 +189,8 @@ class Reader {
     if (node.is_table()) return TimeFunction({term(node, path)});
     if (const auto* arr = node.as_array()) {
       std::vector<TimeTerm> terms;
-      for (std::size_t i = 0; i < arr->size(); ++i) terms.push_back(term(*arr->get(i), index(path, i)));
+      for (std::size_t i = 0; i < arr->size(); ++i)
+        terms.push_back(term(*arr->get(i), index(path, i)));
       if (terms.empty()) fail(node, path, "an empty list is not a time function (write 0)");
       return TimeFunction(std::move(terms));
     }
@@ -267,7 +268,8 @@ class Reader {
       std::set<std::string> seen;
       for (std::size_t i = 0; i < dofs.size(); ++i) {
         const std::string name = string(*dofs.get(i), index("model.dofs", i));
-        if (name.empty()) fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
+        if (name.empty())
+          fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
         if (!seen.insert(name).second) {
           fail(*dofs.get(i), index("model.dofs", i), "duplicate DOF name '" + name + "'");
         }
@@ -316,9 +318,9 @@ class Reader {
     const std::string path = "solve";
     const auto& t = table(node, path);
     solve.where = at(node, path);
-    check_keys(t, path,
-               {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "slaves",
-                "linear_solver"});
+    check_keys(
+        t, path,
+        {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "slaves", "linear_solver"});
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
     if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
@@ -327,8 +329,10 @@ class Reader {
     if (const auto* n = t.get("baumgarte")) {
       const auto& b = table(*n, "solve.baumgarte");
       check_keys(b, "solve.baumgarte", {"alpha", "beta"});
-      if (const auto* a = b.get("alpha")) solve.baumgarte_alpha = positive(*a, "solve.baumgarte.alpha");
-      if (const auto* be = b.get("beta")) solve.baumgarte_beta = positive(*be, "solve.baumgarte.beta");
+      if (const auto* a = b.get("alpha"))
+        solve.baumgarte_alpha = positive(*a, "solve.baumgarte.alpha");
+      if (const auto* be = b.get("beta"))
+        solve.baumgarte_beta = positive(*be, "solve.baumgarte.beta");
     }
     if (const auto* n = t.get("slaves")) {
       const auto& arr = array(*n, "solve.slaves");
@@ -345,8 +349,8 @@ class Reader {
 
   [[nodiscard]] Scheme parse_scheme(const toml::node& node, const std::string& path) const {
     const std::string s = string(node, path);
-    for (Scheme scheme : {Scheme::automatic, Scheme::elimination, Scheme::index1,
-                          Scheme::baumgarte, Scheme::ggl}) {
+    for (Scheme scheme :
+         {Scheme::automatic, Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
       if (s == to_string(scheme)) return scheme;
     }
     fail(node, path,
@@ -427,7 +431,8 @@ class Reader {
         }
         const auto& terms_node = required(t, p, "terms");
         c.terms = dof_values(terms_node, join(p, "terms"));
-        if (c.terms.empty()) fail(terms_node, join(p, "terms"), "a constraint needs at least one term");
+        if (c.terms.empty())
+          fail(terms_node, join(p, "terms"), "a constraint needs at least one term");
         if (const auto* lv = t.get("level")) {
           const std::string s = string(*lv, join(p, "level"));
           if (s == "position") {
@@ -449,7 +454,8 @@ class Reader {
       if (const auto* d = t.get("displacement")) {
         spec.initial.displacement = dof_values(*d, "initial.displacement");
       }
-      if (const auto* v = t.get("velocity")) spec.initial.velocity = dof_values(*v, "initial.velocity");
+      if (const auto* v = t.get("velocity"))
+        spec.initial.velocity = dof_values(*v, "initial.velocity");
     }
     read_solve(required(root, "", "solve"), spec.solve);
     if (spec.solve.output_step > spec.solve.t_end) {
@@ -472,9 +478,8 @@ SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
   try {
     root = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    throw SceneError(scene_message(
-        file, SourcePoint{"", static_cast<int>(e.source().begin.line)},
-        "TOML syntax error: " + std::string(e.description())));
+    throw SceneError(scene_message(file, SourcePoint{"", static_cast<int>(e.source().begin.line)},
+                                   "TOML syntax error: " + std::string(e.description())));
   }
   return Reader(file).read(root);
 }

@@ -23,7 +23,8 @@ double polynomial_derivative(const std::vector<double>& c, int order, double t) 
 }  // namespace
 
 double TimeTerm::derivative(int order, double t, double step_reference) const {
-  if (order < 0 || order > 2) throw std::invalid_argument("time derivative order must be 0, 1 or 2");
+  if (order < 0 || order > 2)
+    throw std::invalid_argument("time derivative order must be 0, 1 or 2");
   switch (kind) {
     case Kind::step:
       return (order == 0 && start <= step_reference) ? amplitude : 0.0;
@@ -196,7 +197,8 @@ TimeFunction TimeFunction::antiderivative() const {
         if (term.omega == 0.0) {
           add_poly(1, term.amplitude * std::sin(term.phase));
         } else {
-          // integral of A sin(w t + p) = -A/w cos(w t + p) + A/w cos p = A/w sin(w t + p - pi/2) + ...
+          // integral of A sin(w t + p) = -A/w cos(w t + p) + A/w cos p = A/w sin(w t + p - pi/2) +
+          // ...
           TimeTerm h = term;
           h.amplitude = term.amplitude / term.omega;
           h.phase = term.phase - std::numbers::pi / 2;

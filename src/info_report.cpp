@@ -40,7 +40,8 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
       for (std::size_t k = 0; k < c.dofs.size(); ++k) out << (k ? ", " : "") << c.dofs[k];
       out << "\n";
     }
-    out << "  (velocity-level constraints are classed by their integrated form a·u = a·u(0) + ∫h)\n";
+    out << "  (velocity-level constraints are classed by their integrated form a·u = a·u(0) + "
+           "∫h)\n";
   }
   const int n = model.dofs(), m = model.constraint_count();
   out << "\nmodel: " << n << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros()
@@ -53,8 +54,9 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
     const auto& ms = reduced.transform;
     out << "elimination: slaves " << join_dofs(model, ms.slaves) << "; masters "
         << join_dofs(model, ms.masters) << "\n"
-        << "  slaves " << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
-                                                      : "named in [solve] slaves")
+        << "  slaves "
+        << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
+                                       : "named in [solve] slaves")
         << "; integrates " << 2 * ms.masters.size() << " unknowns (û, û')\n";
   }
 }

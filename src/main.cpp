@@ -21,8 +21,9 @@ Scheme parse_scheme_flag(const std::string& s) {
        {Scheme::automatic, Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
     if (s == to_string(scheme)) return scheme;
   }
-  throw CLI::ValidationError("--scheme", "unknown scheme '" + s +
-                                             "' (expected auto, elimination, index1, baumgarte or ggl)");
+  throw CLI::ValidationError(
+      "--scheme",
+      "unknown scheme '" + s + "' (expected auto, elimination, index1, baumgarte or ggl)");
 }
 
 struct RunArgs {
@@ -43,7 +44,8 @@ int run(const RunArgs& args) {
   SolveSummary summary;
   const Trajectory traj = solve(model, choice.scheme, integrator_options(model), summary);
   write_csv_atomically(out, model, traj);
-  std::cout << summary.brief() << "\n" << "wrote " << traj.t.size() << " rows to " << out << "\n";
+  std::cout << summary.brief() << "\n"
+            << "wrote " << traj.t.size() << " rows to " << out << "\n";
   return 0;
 }
 

@@ -19,8 +19,8 @@ struct Mismatch {
 }  // namespace condyn::test
 
 /// CHECK that two matrices agree; prints the worst entry when they do not.
-#define CONDYN_CHECK_CLOSE(got, expected, rel_tol)                                        \
-  do {                                                                                    \
-    const auto condyn_m = condyn::test::compare_matrices((got), (expected), (rel_tol));   \
-    CHECK_MESSAGE(condyn_m.ok, condyn_m.message);                                         \
+#define CONDYN_CHECK_CLOSE(got, expected, rel_tol)                                      \
+  do {                                                                                  \
+    const auto condyn_m = condyn::test::compare_matrices((got), (expected), (rel_tol)); \
+    CHECK_MESSAGE(condyn_m.ok, condyn_m.message);                                       \
   } while (0)

@@ -45,8 +45,8 @@ struct PrintedCase {
 
 /// Eq. 5.14 as printed: the integrated support motions, with the DOF each is written for.
 struct PrintedIntegral {
-  std::string dof;                  ///< label as printed
-  std::vector<double> coefficients; ///< polynomial in t, constants of integration zero
+  std::string dof;                   ///< label as printed
+  std::vector<double> coefficients;  ///< polynomial in t, constants of integration zero
 };
 [[nodiscard]] const std::vector<PrintedIntegral>& chapter_eq_5_14();
 

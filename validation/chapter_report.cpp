@@ -24,7 +24,8 @@ Model case_model(const std::string& scene, const std::vector<double>* masses = n
 
 Eigen::MatrixXd rows_of(const Eigen::MatrixXd& m, const std::vector<int>& rows) {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), m.cols());
-  for (std::size_t k = 0; k < rows.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = m.row(rows[k]);
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    out.row(static_cast<Eigen::Index>(k)) = m.row(rows[k]);
   return out;
 }
 
@@ -131,21 +132,23 @@ ChapterReport chapter_report() {
       const auto& eq = chapter_eq_5_14();
       for (std::size_t k = 0; k < eq.size() && k < model.constraints.size(); ++k) {
         const auto& c = model.constraints[k];
-        const std::string dof = model.dof_names[static_cast<std::size_t>(c.coefficients.front().first)];
+        const std::string dof =
+            model.dof_names[static_cast<std::size_t>(c.coefficients.front().first)];
         TimeTerm poly;
         poly.coefficients = eq[k].coefficients;
         double worst = 0.0;
         for (double t : {0.5, 1.0, 2.0, 3.0}) {
           worst = std::max(worst, std::abs(poly.value(t) - c.position_value.value(t)));
         }
-        std::string note = "5.14: " + dof + "(t) = " + c.position_value.describe() +
-                           "; printed '" + eq[k].dof + " = " + poly.describe() + "'";
+        std::string note = "5.14: " + dof + "(t) = " + c.position_value.describe() + "; printed '" +
+                           eq[k].dof + " = " + poly.describe() + "'";
         if (worst > kPrintedTolerance) note += " [function differs by " + num(worst) + "]";
         if (eq[k].dof != dof) {
           note += " [label differs]";
           report.errata.push_back({"5.14", "printed '" + eq[k].dof + " = " + poly.describe() +
                                                "', but integrating the constraint on " + dof +
-                                               " gives " + dof + " = " + c.position_value.describe()});
+                                               " gives " + dof + " = " +
+                                               c.position_value.describe()});
         }
         cr.notes.push_back(note);
       }
@@ -162,9 +165,10 @@ ChapterReport chapter_report() {
       cr.notes.push_back("§5.6.1 text: rank M̂ = " + std::to_string(rm) + ", rank K̂ = " +
                          std::to_string(rk) + " (printed: \"M̂ has rank 2 and nullity 1\")");
       if (rm != 2 && rk == 2) {
-        report.errata.push_back({"§5.6.1 text", "says M̂ has rank 2 and nullity 1; assembled rank M̂ = " +
-                                                    std::to_string(rm) + ", rank K̂ = " +
-                                                    std::to_string(rk) + ": the claim holds for K̂"});
+        report.errata.push_back(
+            {"§5.6.1 text",
+             "says M̂ has rank 2 and nullity 1; assembled rank M̂ = " + std::to_string(rm) +
+                 ", rank K̂ = " + std::to_string(rk) + ": the claim holds for K̂"});
       }
     }
     if (pc.scene == "chapter_5_6_2") {
@@ -175,15 +179,15 @@ ChapterReport chapter_report() {
         const Eigen::MatrixXd formula_5_26 = Eigen::MatrixXd::Zero(r.FM.rows(), r.FM.cols());
         const bool printed_matches_5_26 = compare(p, formula_5_26).differing.empty();
         const bool printed_matches_full = compare(p, r.FM).differing.empty();
-        cr.notes.push_back(std::string("5.26 vs 5.28: printed 5.28 g'' coefficients ") +
-                           (printed_matches_full ? "match" : "do not match") +
-                           " Tᵀ(f − Kg − M g''), and " +
-                           (printed_matches_5_26 ? "match" : "do not match") +
-                           " 5.26's Tᵀ(f − Kg)");
+        cr.notes.push_back(
+            std::string("5.26 vs 5.28: printed 5.28 g'' coefficients ") +
+            (printed_matches_full ? "match" : "do not match") + " Tᵀ(f − Kg − M g''), and " +
+            (printed_matches_5_26 ? "match" : "do not match") + " 5.26's Tᵀ(f − Kg)");
         if (printed_matches_full && !printed_matches_5_26) {
           report.errata.push_back(
-              {"5.26", "prints Tᵀ(f − Kg); the reduced force is Tᵀ(f − Kg − M g''), as 5.28's own "
-                       "g'' terms show"});
+              {"5.26",
+               "prints Tᵀ(f − Kg); the reduced force is Tᵀ(f − Kg − M g''), as 5.28's own "
+               "g'' terms show"});
         }
       }
     }
@@ -210,10 +214,11 @@ ChapterReport chapter_report() {
       for (double v : m) s += (s.empty() ? "" : ", ") + num(v);
       return "(" + s + ")";
     };
-    report.errata.push_back({"masses", "the §5.5 equations (5.6-5.12) imply m = " + list(own55) +
-                                           ", the §5.6 equations (5.21, 5.28) imply m = " +
-                                           list(own56) + "; neither set reproduces the other "
-                                                         "section's printed mass terms"});
+    report.errata.push_back(
+        {"masses", "the §5.5 equations (5.6-5.12) imply m = " + list(own55) +
+                       ", the §5.6 equations (5.21, 5.28) imply m = " + list(own56) +
+                       "; neither set reproduces the other "
+                       "section's printed mass terms"});
   }
   return report;
 }
@@ -227,7 +232,8 @@ void print_case_matrices(std::ostream& out, const ChapterCaseReport& report) {
       for (int j = 0; j < c.printed.cols; ++j) {
         bool bad = false;
         for (const auto& d : c.differing) bad = bad || (d.first == i && d.second == j);
-        out << std::right << std::setw(7) << num(c.printed.values[static_cast<std::size_t>(i * c.printed.cols + j)])
+        out << std::right << std::setw(7)
+            << num(c.printed.values[static_cast<std::size_t>(i * c.printed.cols + j)])
             << (bad ? "*" : " ");
       }
       out << "]   [";

@@ -51,7 +51,8 @@ TEST_CASE("master-slave transform: A T = 0, A G = I, pivoted slave choice") {
   CHECK(ms.slaves.size() == 3);
   CHECK(ms.masters.size() == 3);
   CONDYN_CHECK_CLOSE(Eigen::MatrixXd(A * ms.T), Eigen::MatrixXd::Zero(3, 3), kIdentityTolerance);
-  CONDYN_CHECK_CLOSE(Eigen::MatrixXd(A * ms.G), Eigen::MatrixXd::Identity(3, 3), kIdentityTolerance);
+  CONDYN_CHECK_CLOSE(Eigen::MatrixXd(A * ms.G), Eigen::MatrixXd::Identity(3, 3),
+                     kIdentityTolerance);
 
   // Single-freedom constraints: the slaves are exactly the constrained DOFs (direct elimination).
   const Model model = chapter_model("chapter_5_5_1");

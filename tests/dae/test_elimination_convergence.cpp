@@ -23,7 +23,8 @@ TEST_CASE("elimination error shrinks in proportion to rtol") {
       const Model model = build_model(spec);
       SolveSummary summary;
       const Trajectory run = solve(model, Scheme::elimination, integrator_options(model), summary);
-      const double err = relative_error(run, exact_trajectory(model, model.output_times())).displacement;
+      const double err =
+          relative_error(run, exact_trajectory(model, model.output_times())).displacement;
       MESSAGE("rtol " << rtol << ": error " << err << ", " << summary.steps << " steps");
       log_rtol.push_back(std::log10(rtol));
       log_err.push_back(std::log10(err));

@@ -44,7 +44,8 @@ TimeTerm step(double a, double s) {
 }  // namespace
 
 TEST_CASE("time functions: derivatives agree with central differences") {
-  const TimeFunction f({harmonic(1.5, 2.0, 0.3), exponential(0.7, -0.4), polynomial({1, -2, 0.5, 0.25})});
+  const TimeFunction f(
+      {harmonic(1.5, 2.0, 0.3), exponential(0.7, -0.4), polynomial({1, -2, 0.5, 0.25})});
   for (double t : {0.0, 0.7, 2.5}) {
     const double d1 = (f.value(t + kH) - f.value(t - kH)) / (2 * kH);
     const double d2 = (f.value(t + kH) - 2 * f.value(t) + f.value(t - kH)) / (kH * kH);
@@ -57,8 +58,7 @@ TEST_CASE("time functions: closed forms") {
   CHECK(TimeFunction({polynomial({0, 1, 0.5})}).value(2.0) == doctest::Approx(4.0));
   CHECK(TimeFunction({harmonic(2, 3, 0)}).derivative(2, 0.4) ==
         doctest::Approx(-18 * std::sin(1.2)));
-  CHECK(TimeFunction({exponential(2, 0.5)}).derivative(1, 1.0) ==
-        doctest::Approx(std::exp(0.5)));
+  CHECK(TimeFunction({exponential(2, 0.5)}).derivative(1, 1.0) == doctest::Approx(std::exp(0.5)));
 }
 
 TEST_CASE("time functions: steps switch on at start, H(0) = 1, and by segment") {
@@ -75,8 +75,8 @@ TEST_CASE("time functions: steps switch on at start, H(0) = 1, and by segment") 
 }
 
 TEST_CASE("time functions: antiderivative is zero at 0 and differentiates back") {
-  const TimeFunction f({harmonic(1.5, 2.0, 0.3), exponential(0.7, -0.4), polynomial({1, -2, 3}),
-                        step(0.5, 0.0)});
+  const TimeFunction f(
+      {harmonic(1.5, 2.0, 0.3), exponential(0.7, -0.4), polynomial({1, -2, 3}), step(0.5, 0.0)});
   const TimeFunction F = f.antiderivative();
   CHECK(std::abs(F.value(0.0)) < 1e-15);
   for (double t : {0.3, 1.1, 4.0}) {
@@ -100,5 +100,6 @@ TEST_CASE("time functions: zero and constant detection") {
 TEST_CASE("time functions: describe signs, refuse derivative orders above 2") {
   CHECK(TimeFunction({step(2.0, -1.0)}).describe() == "2*H(t+1)");
   CHECK(TimeFunction({harmonic(1.0, 2.0, -0.5)}).describe() == "1*sin(2*t-0.5)");
-  CHECK_THROWS_AS((void)TimeFunction({harmonic(1.0, 2.0, 0.0)}).derivative(3, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS((void)TimeFunction({harmonic(1.0, 2.0, 0.0)}).derivative(3, 0.0),
+                  std::invalid_argument);
 }

@@ -99,7 +99,8 @@ TEST_CASE("run writes the contract's CSV and a one-line summary") {
 
 TEST_CASE("run: default output name, tolerance flags, all quantities") {
   const Sandbox box;
-  box.write("scene.toml", kScene + "[output]\nquantities = [\"velocity\", \"multiplier\", \"reaction\"]\n");
+  box.write("scene.toml",
+            kScene + "[output]\nquantities = [\"velocity\", \"multiplier\", \"reaction\"]\n");
   const Result r = box.run("run scene.toml --rtol 1e-9 --atol 1e-11");
   CAPTURE(r.err);
   REQUIRE(r.code == 0);

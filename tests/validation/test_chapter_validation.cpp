@@ -28,8 +28,8 @@ Model chapter_model(const std::string& scene) {
 TEST_CASE("chapter errata: the code flags exactly the documented ones") {
   // Source: reference/chapter-truss.md, "Errata" (each re-derived there by hand). The equation
   // cross-reference errata are text and are not machine-checkable.
-  const std::multiset<std::string> expected = {"5.6",  "5.7",  "5.10", "5.11", "5.21", "5.21",
-                                               "5.26", "5.14", "§5.6.1 text", "masses"};
+  const std::multiset<std::string> expected = {"5.6",  "5.7",  "5.10", "5.11",        "5.21",
+                                               "5.21", "5.26", "5.14", "§5.6.1 text", "masses"};
   std::multiset<std::string> found;
   const ChapterReport report = chapter_report();
   for (const auto& e : report.errata) found.insert(e.where);
@@ -48,8 +48,8 @@ TEST_CASE("chapter errata: the code flags exactly the documented ones") {
 }
 
 TEST_CASE("chapter cases: elimination agrees with the exact modal solution") {
-  for (const char* scene : {"chapter_5_5_1", "chapter_5_5_2", "chapter_5_5_3", "chapter_5_6_1",
-                            "chapter_5_6_2"}) {
+  for (const char* scene :
+       {"chapter_5_5_1", "chapter_5_5_2", "chapter_5_5_3", "chapter_5_6_1", "chapter_5_6_2"}) {
     CAPTURE(scene);
     const Model model = chapter_model(scene);
     const Trajectory exact = exact_trajectory(model, model.output_times());
@@ -113,8 +113,8 @@ TEST_CASE("condyn validate passes and prints the five cases") {
   std::ostringstream out;
   CHECK(run_validation(out, ValidationOptions{}));
   const std::string text = out.str();
-  for (const char* s : {"§5.5.1", "§5.5.2", "§5.5.3", "§5.6.1", "§5.6.2", "Errata found by the code",
-                        "validation passed"}) {
+  for (const char* s : {"§5.5.1", "§5.5.2", "§5.5.3", "§5.6.1", "§5.6.2",
+                        "Errata found by the code", "validation passed"}) {
     CHECK_MESSAGE(text.find(s) != std::string::npos, s);
   }
 }

@@ -34,8 +34,8 @@ TEST_CASE("hand-written scenes: elimination agrees with the exact solution, reac
     const Trajectory run = solve(model, Scheme::elimination, integrator_options(model), summary);
     const Trajectory exact = exact_trajectory(model, model.output_times());
     const TrajectoryError err = relative_error(run, exact);
-    MESSAGE(std::string(name) << ": err u " << err.displacement << ", v " << err.velocity << ", f_con "
-                 << err.reaction << ", " << summary.steps << " steps");
+    MESSAGE(std::string(name) << ": err u " << err.displacement << ", v " << err.velocity
+                              << ", f_con " << err.reaction << ", " << summary.steps << " steps");
     CHECK(err.worst() <= kAcceptance);
     CHECK(err.worst() <= kGlobalErrorFactor * model.solve.rtol);
   }
@@ -50,7 +50,8 @@ TEST_CASE("inclined roller: the reaction is normal to the incline and balances m
     const Eigen::VectorXd f_con = exact.reaction.col(k);
     // Ideal roller: its force lies along the incline's normal (−sin 30°, cos 30°).
     const double rx = f_con[model.dof_index.at("ux2")], ry = f_con[model.dof_index.at("uy2")];
-    CHECK(std::abs(rx * 0.8660254037844386 + ry * 0.5) <= 1e-12 * std::max(1.0, std::hypot(rx, ry)));
+    CHECK(std::abs(rx * 0.8660254037844386 + ry * 0.5) <=
+          1e-12 * std::max(1.0, std::hypot(rx, ry)));
     // Linear momentum: K has zero net force in x and y, so Σ m ü = Σ f + Σ f_con per direction.
     // ü from the exact solution's equations: M ü = f + f_con − K u.
     const Eigen::VectorXd f = model.applied_forces(t);
@@ -103,7 +104,8 @@ quantities = ["displacement", "reaction"]
     const double r0 = m0 * x0dd + k * (x0 - x1);
     const auto c = static_cast<Eigen::Index>(i);
     worst_x = std::max({worst_x, std::abs(run.u(1, c) - x1), std::abs(exact.u(1, c) - x1)});
-    worst_r = std::max({worst_r, std::abs(run.reaction(0, c) - r0), std::abs(exact.reaction(0, c) - r0)});
+    worst_r =
+        std::max({worst_r, std::abs(run.reaction(0, c) - r0), std::abs(exact.reaction(0, c) - r0)});
   }
   // |x1| ≲ 0.3 and |r0| ≲ 20 over the run: 1e-6 relative of those scales.
   CHECK(worst_x <= 0.3 * kAcceptance);

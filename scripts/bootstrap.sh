@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Set-up for condyn on Debian 12, run as root from a clean clone. Installs whatever is missing
+# (apt-get), configures and builds into build/, then:
+#   bash scripts/bootstrap.sh main   runs the main job (condyn validate: the chapter's five cases)
+#   bash scripts/bootstrap.sh test   builds with warnings as errors and runs every test tier (ctest)
+set -euo pipefail
+
+mode="${1:-}"
+case "$mode" in
+  main | test) ;;
+  *)
+    echo "usage: bash scripts/bootstrap.sh main|test" >&2
+    exit 2
+    ;;
+esac
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$here"
+
+# Debian 12 packages condyn builds with (see README "Dependencies").
+packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev doctest-dev
+  libtomlplusplus-dev libcli11-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "bootstrap: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+jobs="$(nproc 2>/dev/null || echo 2)"
+werror=OFF
+[ "$mode" = test ] && werror=ON
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR="$werror" >/dev/null
+cmake --build build -j "$jobs"
+
+if [ "$mode" = main ]; then
+  exec build/condyn validate
+else
+  cd build
+  exec ctest --output-on-failure -j "$jobs"
+fi
