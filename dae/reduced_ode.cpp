@@ -43,7 +43,8 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
   add(j0, reduced.K, nm_, 0);
   add(j0, reduced.C, nm_, nm_);
   add(j1, reduced.M, nm_, nm_);
-  Eigen::SparseMatrix<double> J0(2 * nm_, 2 * nm_), J1(2 * nm_, 2 * nm_);
+  const int n = size();
+  Eigen::SparseMatrix<double> J0(n, n), J1(n, n);
   J0.setFromTriplets(j0.begin(), j0.end());
   J1.setFromTriplets(j1.begin(), j1.end());
   jacobian_ = AffineJacobian(J0, J1);
@@ -63,7 +64,7 @@ void ReducedOde::jacobian(double /*t*/, double /*step_reference*/, ConstRef /*y*
 }
 
 Eigen::VectorXd ReducedOde::consistent_yp(double t, ConstRef y) const {
-  Eigen::VectorXd yp(2 * nm_);
+  Eigen::VectorXd yp(size());
   yp.head(nm_) = y.tail(nm_);
   yp.tail(nm_) = acceleration(t, y.head(nm_), y.tail(nm_));
   return yp;

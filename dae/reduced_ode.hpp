@@ -28,7 +28,7 @@ class ReducedOde final : public DaeProblem {
   void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   [[nodiscard]] Eigen::VectorXd differential_id() const override {
-    return Eigen::VectorXd::Ones(2 * nm_);
+    return Eigen::VectorXd::Ones(size());
   }
   [[nodiscard]] Eigen::VectorXd consistent_yp(double t, ConstRef y) const override;
 

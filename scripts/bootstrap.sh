@@ -20,6 +20,8 @@ cd "$here"
 # Debian 12 packages condyn builds with (see README "Dependencies").
 packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev doctest-dev
   libtomlplusplus-dev libcli11-dev)
+# The test command also checks formatting and runs clang-tidy (warnings are errors in CI).
+[ "$mode" = test ] && packages+=(clang-format clang-tidy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -39,7 +41,18 @@ cmake --build build -j "$jobs"
 
 if [ "$mode" = main ]; then
   exec build/condyn validate
-else
-  cd build
-  exec ctest --output-on-failure -j "$jobs"
 fi
+
+# Lint: .clang-format and .clang-tidy are the project's rules, enforced here.
+sources=$(find src dae models validation tests -name '*.cpp' -o -name '*.hpp' | sort)
+clang-format --dry-run -Werror $sources
+lint_sources=$(find src dae models validation -name '*.cpp' | sort)
+run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option $lint_sources \
+  >build/clang-tidy.log 2>&1 || {
+  grep -E "(warning|error):" build/clang-tidy.log | sort -u >&2
+  echo "bootstrap: clang-tidy found problems (full log: build/clang-tidy.log)" >&2
+  exit 1
+}
+echo "bootstrap: clang-format and clang-tidy clean"
+cd build
+exec ctest --output-on-failure -j "$jobs"

@@ -12,6 +12,12 @@ namespace condyn {
 
 namespace {
 
+/// Entry (i, j) of a printed row-major matrix.
+double printed_at(const PrintedMatrix& p, int i, int j) {
+  return p.values[static_cast<std::size_t>(i) * static_cast<std::size_t>(p.cols) +
+                  static_cast<std::size_t>(j)];
+}
+
 // The chapter prints integers (EA = 200√2 enters only through 200√2/(10√2) = 20); 1e-9 relative
 // absorbs the 15-digit √2 in the scene and nothing else.
 constexpr double kPrintedTolerance = 1e-9;
@@ -30,7 +36,8 @@ Eigen::MatrixXd rows_of(const Eigen::MatrixXd& m, const std::vector<int>& rows) 
 }
 
 Eigen::MatrixXd computed(ChapterQuantity q, const Model& model, const ReducedSystem& r) {
-  const Eigen::MatrixXd T(r.transform.T), G(r.transform.G), M(model.M), K(model.K);
+  Eigen::MatrixXd T(r.transform.T);  // not const: returned by value below
+  const Eigen::MatrixXd G(r.transform.G), M(model.M), K(model.K);
   const auto& S = r.transform.slaves;
   switch (q) {
     case ChapterQuantity::struck_mass:
@@ -72,7 +79,7 @@ MatrixComparison compare(const PrintedMatrix& p, const Eigen::MatrixXd& c) {
   const double scale = std::max(c.cwiseAbs().maxCoeff(), 1.0);
   for (int i = 0; i < p.rows; ++i) {
     for (int j = 0; j < p.cols; ++j) {
-      const double printed = p.values[static_cast<std::size_t>(i * p.cols + j)];
+      const double printed = printed_at(p, i, j);
       if (std::abs(printed - c(i, j)) > kPrintedTolerance * scale) out.differing.emplace_back(i, j);
     }
   }
@@ -121,8 +128,7 @@ ChapterReport chapter_report() {
           continue;
         }
         d += " entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") printed " +
-             num(c.printed.values[static_cast<std::size_t>(i * c.printed.cols + j)]) +
-             ", assembled " + num(c.computed(i, j)) + ";";
+             num(printed_at(c.printed, i, j)) + ", assembled " + num(c.computed(i, j)) + ";";
       }
       report.errata.push_back({c.printed.equation, d});
     }
@@ -145,10 +151,10 @@ ChapterReport chapter_report() {
         if (worst > kPrintedTolerance) note += " [function differs by " + num(worst) + "]";
         if (eq[k].dof != dof) {
           note += " [label differs]";
-          report.errata.push_back({"5.14", "printed '" + eq[k].dof + " = " + poly.describe() +
-                                               "', but integrating the constraint on " + dof +
-                                               " gives " + dof + " = " +
-                                               c.position_value.describe()});
+          std::string d = "printed '" + eq[k].dof + " = " + poly.describe();
+          d += "', but integrating the constraint on " + dof + " gives " + dof + " = ";
+          d += c.position_value.describe();
+          report.errata.push_back({"5.14", d});
         }
         cr.notes.push_back(note);
       }
@@ -232,9 +238,7 @@ void print_case_matrices(std::ostream& out, const ChapterCaseReport& report) {
       for (int j = 0; j < c.printed.cols; ++j) {
         bool bad = false;
         for (const auto& d : c.differing) bad = bad || (d.first == i && d.second == j);
-        out << std::right << std::setw(7)
-            << num(c.printed.values[static_cast<std::size_t>(i * c.printed.cols + j)])
-            << (bad ? "*" : " ");
+        out << std::right << std::setw(7) << num(printed_at(c.printed, i, j)) << (bad ? "*" : " ");
       }
       out << "]   [";
       for (int j = 0; j < c.computed.cols() && i < c.computed.rows(); ++j) {
