@@ -14,7 +14,7 @@ struct ValidationOptions {
 /// max-norm over output times). IDA controls the local error of each step; the global error is
 /// that accumulated over ~10³ steps of undamped oscillation, and the relative measure is further
 /// inflated where a rigid-body mode makes the displacements large next to the elastic part that
-/// drives the reactions (case D). Observed at rtol = 1e-10: error/rtol from 7 (case A, u) to 78
+/// drives the reactions (case D). Observed at rtol = 1e-10: error/rtol from 1 (case B, u) to 78
 /// (case D, reactions); `condyn validate` prints the figures every run. 1000 keeps a 10x margin
 /// for other compilers and machines and is still 10x inside the acceptance level (1e-6
 /// at rtol = 1e-10); an O(1) error in any term misses it by orders of magnitude.
