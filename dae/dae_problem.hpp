@@ -27,9 +27,11 @@ class DaeProblem {
                         Eigen::SparseMatrix<double>& J) const = 0;
   /// 1 for differential components, 0 for algebraic ones (IDASetId).
   [[nodiscard]] virtual Eigen::VectorXd differential_id() const = 0;
-  /// Given y at time t, returns y' consistent with F(t, y, y') = 0 for the segment starting at t
-  /// (used at t = 0 and after every load step).
-  [[nodiscard]] virtual Eigen::VectorXd consistent_yp(double t, ConstRef y) const = 0;
+  /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
+  /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
+  /// step, where accelerations and multipliers jump). Throws std::runtime_error when the
+  /// consistency system is singular.
+  virtual void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const = 0;
 };
 
 }  // namespace condyn

@@ -142,7 +142,8 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
   }
   summary.scheme = "elimination";
   const RawTrajectory raw = integrate(ode, y0, options, summary);
-  std::vector<Eigen::VectorXd> u, v, a;
+  std::vector<Eigen::VectorXd> u, v, lambda;
+  const MultiplierRecovery recover(model);
   const auto& T = reduced.transform.T;
   const auto& G = reduced.transform.G;
   for (std::size_t k = 0; k < raw.t.size(); ++k) {
@@ -150,14 +151,15 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
     const Eigen::VectorXd x = raw.y[k].head(nm), w = raw.y[k].tail(nm);
     u.emplace_back(T * x);
     v.emplace_back(T * w);
-    a.emplace_back(T * ode.acceleration(t, x, w));
+    Eigen::VectorXd a = T * ode.acceleration(t, x, w);
     if (reduced.rheonomic) {
       u.back() += G * model.position_rhs(0, t);
       v.back() += G * model.position_rhs(1, t);
-      a.back() += G * model.position_rhs(2, t);
+      a += G * model.position_rhs(2, t);
     }
+    lambda.push_back(recover(t, u.back(), v.back(), a));
   }
-  Trajectory traj = assemble_trajectory(model, raw.t, u, v, a);
+  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
   summary.max_drift_position = traj.drift_position.size() ? traj.drift_position.maxCoeff() : 0.0;
   summary.max_drift_velocity = traj.drift_velocity.size() ? traj.drift_velocity.maxCoeff() : 0.0;
   return traj;

@@ -38,19 +38,21 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
   sys.v0 = N.transpose() * (model.v0 - P * model.position_rhs(1, 0.0));
   const ModalSolution solution(sys);
 
-  std::vector<Eigen::VectorXd> u, v, a;
+  std::vector<Eigen::VectorXd> u, v, lambda;
+  const MultiplierRecovery recover(model);
   for (double t : times) {
     const LtiState s = solution.at(t);
     u.emplace_back(N * s.q);
     v.emplace_back(N * s.v);
-    a.emplace_back(N * s.a);
+    Eigen::VectorXd a = N * s.a;
     if (m > 0) {
       u.back() += P * model.position_rhs(0, t);
       v.back() += P * model.position_rhs(1, t);
-      a.back() += P * model.position_rhs(2, t);
+      a += P * model.position_rhs(2, t);
     }
+    lambda.push_back(recover(t, u.back(), v.back(), a));
   }
-  return assemble_trajectory(model, times, u, v, a);
+  return assemble_trajectory(model, times, u, v, lambda);
 }
 
 }  // namespace condyn

@@ -271,9 +271,10 @@ RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
 
   Ida ida(problem, options);
   ida.set_segment(t0);
-  Eigen::VectorXd yp0 = problem.consistent_yp(t0, y0);
-  ida.init(t0, y0, yp0, options);
-  record(t0, y0, yp0);
+  Eigen::VectorXd y_init = y0, yp0;
+  problem.make_consistent(t0, y_init, yp0);
+  ida.init(t0, y_init, yp0, options);
+  record(t0, y_init, yp0);
 
   // Breakpoints strictly inside (t0, t_end); each ends a segment.
   std::vector<double> stops;
@@ -294,8 +295,9 @@ RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
       const double b = stops[next_stop++];
       reached = ida.solve(b);
       ida.set_segment(b);
-      const Eigen::VectorXd yb = ida.y();
-      ida.reinit(b, yb, problem.consistent_yp(b, yb));
+      Eigen::VectorXd yb = ida.y(), ypb;
+      problem.make_consistent(b, yb, ypb);
+      ida.reinit(b, yb, ypb);
       ida.set_stop_time(stop_ahead());
       ++summary.restarts;
     }

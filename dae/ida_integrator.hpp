@@ -23,7 +23,8 @@ struct RawTrajectory {
 };
 
 /// Integrates F(t, y, y') = 0 from (options.output_times.front(), y0) to the last output time.
-/// y0 must be consistent; y'(0) comes from problem.consistent_yp. Fills the counters and the wall
+/// The differential part of y0 must be consistent; algebraic components and y'(0) come from
+/// problem.make_consistent. Fills the counters and the wall
 /// time of `summary`. Throws IntegrationError on solver failure, std::invalid_argument on bad
 /// options.
 [[nodiscard]] RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,

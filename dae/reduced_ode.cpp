@@ -63,11 +63,10 @@ void ReducedOde::jacobian(double /*t*/, double /*step_reference*/, ConstRef /*y*
   jacobian_.fill(cj, J);
 }
 
-Eigen::VectorXd ReducedOde::consistent_yp(double t, ConstRef y) const {
-  Eigen::VectorXd yp(size());
+void ReducedOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
+  yp.resize(size());
   yp.head(nm_) = y.tail(nm_);
   yp.tail(nm_) = acceleration(t, y.head(nm_), y.tail(nm_));
-  return yp;
 }
 
 Eigen::VectorXd ReducedOde::acceleration(double t, const Eigen::VectorXd& x,

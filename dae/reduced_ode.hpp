@@ -30,7 +30,7 @@ class ReducedOde final : public DaeProblem {
   [[nodiscard]] Eigen::VectorXd differential_id() const override {
     return Eigen::VectorXd::Ones(size());
   }
-  [[nodiscard]] Eigen::VectorXd consistent_yp(double t, ConstRef y) const override;
+  void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
 
   /// û'' = M̂⁻¹ (f̂(t) − Ĉ w − K̂ û), steps on at t (right limit).
   [[nodiscard]] Eigen::VectorXd acceleration(double t, const Eigen::VectorXd& x,

@@ -2,10 +2,26 @@
 
 namespace condyn {
 
+MultiplierRecovery::MultiplierRecovery(const Model& model) : model_(model) {
+  if (model.constraint_count() > 0) {
+    const Eigen::MatrixXd a(model.A);
+    aat_.compute(a * a.transpose());
+  }
+}
+
+Eigen::VectorXd MultiplierRecovery::operator()(double t, const Eigen::VectorXd& u,
+                                               const Eigen::VectorXd& v,
+                                               const Eigen::VectorXd& a) const {
+  if (model_.constraint_count() == 0) return {};
+  Eigen::VectorXd rho = model_.M * a + model_.K * u - model_.applied_forces(t);
+  if (model_.has_damping()) rho += model_.C * v;
+  return -aat_.solve(model_.A * rho);
+}
+
 Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                const std::vector<Eigen::VectorXd>& u,
                                const std::vector<Eigen::VectorXd>& v,
-                               const std::vector<Eigen::VectorXd>& a) {
+                               const std::vector<Eigen::VectorXd>& lambda) {
   const int n = model.dofs(), m = model.constraint_count();
   const auto nt = static_cast<Eigen::Index>(times.size());
   Trajectory out;
@@ -16,22 +32,14 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
   out.multiplier.resize(m, nt);
   out.drift_position.resize(nt);
   out.drift_velocity.resize(nt);
-  Eigen::LDLT<Eigen::MatrixXd> aat;
-  if (m > 0) {
-    const Eigen::MatrixXd dense_a(model.A);
-    aat.compute(dense_a * dense_a.transpose());
-  }
   for (Eigen::Index k = 0; k < nt; ++k) {
     const auto i = static_cast<std::size_t>(k);
     out.u.col(k) = u[i];
     out.v.col(k) = v[i];
-    Eigen::VectorXd rho = model.M * a[i] + model.K * u[i] - model.applied_forces(times[i]);
-    if (model.has_damping()) rho += model.C * v[i];
-    // Report −Aᵀλ rather than rho itself: equal up to roundoff, but exactly zero on DOFs that no
-    // constraint touches, and the same definition the multiplier schemes use.
     if (m > 0) {
-      out.multiplier.col(k) = -aat.solve(model.A * rho);
-      out.reaction.col(k) = -(model.A.transpose() * out.multiplier.col(k));
+      out.multiplier.col(k) = lambda[i];
+      // Exactly zero on DOFs that no constraint touches.
+      out.reaction.col(k) = -(model.A.transpose() * lambda[i]);
     } else {
       out.reaction.col(k).setZero();
     }

@@ -10,19 +10,32 @@ namespace condyn {
 
 struct Trajectory {
   std::vector<double> t;
-  Eigen::MatrixXd u, v;        ///< n x nt displacements and velocities
-  Eigen::MatrixXd reaction;    ///< n x nt: f_con, so M u'' + C u' + K u = f + f_con
-  Eigen::MatrixXd multiplier;  ///< m x nt: lambda with f_con = -Aᵀ lambda
+  Eigen::MatrixXd u, v;          ///< n x nt displacements and velocities
+  Eigen::MatrixXd reaction;      ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
+  Eigen::MatrixXd multiplier;    ///< m x nt: λ
   Eigen::VectorXd drift_position, drift_velocity;  ///< nt, max-norm constraint residuals
 };
 
-/// Builds a trajectory from full-space u, u', u'' at the output times. Reactions are recovered
-/// from the full equations: rho = M u'' + C u' + K u − f(t) (the chapter's reaction recovery,
-/// eqs. 5.8 and 5.12, for every DOF at once), lambda = −(A Aᵀ)⁻¹ A rho (exact when rho lies in
-/// range(Aᵀ), as it does for a solution of the constrained equations), f_con = −Aᵀ lambda.
+/// Multipliers recovered from the full equations at one time: ρ = M u'' + C u' + K u − f(t)
+/// (the chapter's reaction recovery, eqs. 5.8 and 5.12, for every DOF at once) and
+/// λ = −(A Aᵀ)⁻¹ A ρ, exact when ρ lies in range(Aᵀ), as it does for a solution of the
+/// constrained equations. Used by the paths that do not carry λ (elimination, exact solution).
+class MultiplierRecovery {
+ public:
+  explicit MultiplierRecovery(const Model& model);
+  [[nodiscard]] Eigen::VectorXd operator()(double t, const Eigen::VectorXd& u,
+                                           const Eigen::VectorXd& v,
+                                           const Eigen::VectorXd& a) const;
+
+ private:
+  const Model& model_;
+  Eigen::LDLT<Eigen::MatrixXd> aat_;
+};
+
+/// Builds a trajectory from u, u' and λ at the output times: f_con = −Aᵀλ, drifts from the model.
 [[nodiscard]] Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                              const std::vector<Eigen::VectorXd>& u,
                                              const std::vector<Eigen::VectorXd>& v,
-                                             const std::vector<Eigen::VectorXd>& a);
+                                             const std::vector<Eigen::VectorXd>& lambda);
 
 }  // namespace condyn
