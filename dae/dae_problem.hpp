@@ -27,6 +27,13 @@ class DaeProblem {
                         Eigen::SparseMatrix<double>& J) const = 0;
   /// 1 for differential components, 0 for algebraic ones (IDASetId).
   [[nodiscard]] virtual Eigen::VectorXd differential_id() const = 0;
+  /// True when IDA must not control the algebraic components: they are left out of the local
+  /// error test (IDASetSuppressAlg) and get zero weight in the Newton convergence test. This is
+  /// for the multipliers of an index-2 formulation: the BDF error estimate does not apply to
+  /// them, and the Newton matrix's condition grows like 1/h², so at small steps their roundoff
+  /// alone exceeds any tolerance on them and the step size collapses. They are fixed by u and v
+  /// through the constraint equations, which Newton does control.
+  [[nodiscard]] virtual bool uncontrolled_algebraic() const { return false; }
   /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
   /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
   /// step, where accelerations and multipliers jump). Throws std::runtime_error when the

@@ -35,6 +35,8 @@ std::string SolveSummary::brief() const {
     << " Newton and " << error_test_failures << " error-test failures, " << unknowns
     << " unknowns, wall " << wall_seconds * 1e3 << " ms, max drift position " << max_drift_position
     << " velocity " << max_drift_velocity;
+  if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
+  if (!notes.empty()) s << "; " << notes;
   return s.str();
 }
 
@@ -70,6 +72,8 @@ Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
 /// through IDA's C frames.
 struct CallbackData {
   const DaeProblem* problem = nullptr;
+  double rtol = 0.0, atol = 0.0;
+  Eigen::VectorXd controlled;  ///< 1 where IDA controls the component, 0 where it must not
   double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
   std::exception_ptr error;
@@ -116,6 +120,14 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
   }
 }
 
+/// Error weights 1/(rtol |y_i| + atol), zero on components IDA must not control.
+int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
+  auto* data = static_cast<CallbackData*>(user);
+  auto w = view(ewt);
+  w = data->controlled.array() / (data->rtol * view(y).array().abs() + data->atol);
+  return 0;
+}
+
 void error_handler(int /*code*/, const char* /*module*/, const char* function, char* msg,
                    void* user) {
   auto* data = static_cast<CallbackData*>(user);
@@ -156,8 +168,16 @@ class Ida {
     view(id_.get()) = data_.problem->differential_id();
     check(IDAInit(mem_.get(), residual_trampoline, t0, y_.get(), yp_.get()), "IDAInit");
     check(IDASetUserData(mem_.get(), &data_), "IDASetUserData");
-    check(IDASStolerances(mem_.get(), options.rtol, options.atol), "IDASStolerances");
     check(IDASetId(mem_.get(), id_.get()), "IDASetId");
+    if (data_.problem->uncontrolled_algebraic()) {
+      data_.rtol = options.rtol;
+      data_.atol = options.atol;
+      data_.controlled = view(id_.get());
+      check(IDAWFtolerances(mem_.get(), weight_trampoline), "IDAWFtolerances");
+      check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
+    } else {
+      check(IDASStolerances(mem_.get(), options.rtol, options.atol), "IDASStolerances");
+    }
     check(IDASetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "IDASetLinearSolver");
     check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
     check(IDASetMaxNumSteps(mem_.get(), options.max_steps_per_output), "IDASetMaxNumSteps");

@@ -1,5 +1,6 @@
 #include "dae/reduced_ode.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace condyn {
@@ -26,28 +27,13 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
         (massless.empty() ? std::string() : " (master DOFs without mass: " + massless + ")") +
         ": the elimination path integrates an ODE and needs mass on every master DOF");
   }
-  std::vector<Eigen::Triplet<double>> j0, j1;
-  for (int k = 0; k < nm_; ++k) {
-    j1.emplace_back(k, k, 1.0);         // dF1/dû'
-    j0.emplace_back(k, nm_ + k, -1.0);  // dF1/dw
-  }
-  auto add = [](std::vector<Eigen::Triplet<double>>& out, const Eigen::SparseMatrix<double>& s,
-                int row0, int col0) {
-    for (int k = 0; k < s.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(s, k); it; ++it) {
-        out.emplace_back(row0 + static_cast<int>(it.row()), col0 + static_cast<int>(it.col()),
-                         it.value());
-      }
-    }
-  };
-  add(j0, reduced.K, nm_, 0);
-  add(j0, reduced.C, nm_, nm_);
-  add(j1, reduced.M, nm_, nm_);
-  const int n = size();
-  Eigen::SparseMatrix<double> J0(n, n), J1(n, n);
-  J0.setFromTriplets(j0.begin(), j0.end());
-  J1.setFromTriplets(j1.begin(), j1.end());
-  jacobian_ = AffineJacobian(J0, J1);
+  jacobian_ = BlockJacobian(size());
+  jacobian_.declare_identity(0, 0, nm_);
+  jacobian_.declare_identity(0, nm_, nm_);
+  jacobian_.declare(nm_, 0, reduced.K);
+  jacobian_.declare(nm_, nm_, reduced.C);
+  jacobian_.declare(nm_, nm_, reduced.M);
+  jacobian_.finish();
 }
 
 void ReducedOde::residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const {
@@ -60,7 +46,12 @@ void ReducedOde::residual(double t, double step_reference, ConstRef y, ConstRef 
 
 void ReducedOde::jacobian(double /*t*/, double /*step_reference*/, ConstRef /*y*/, ConstRef /*yp*/,
                           double cj, Eigen::SparseMatrix<double>& J) const {
-  jacobian_.fill(cj, J);
+  std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
+  BlockJacobian::add_identity(J, 0, 0, nm_, cj);
+  BlockJacobian::add_identity(J, 0, nm_, nm_, -1.0);
+  BlockJacobian::add(J, nm_, 0, reduced_.K);
+  BlockJacobian::add(J, nm_, nm_, reduced_.C);
+  BlockJacobian::add(J, nm_, nm_, reduced_.M, cj);
 }
 
 void ReducedOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {

@@ -4,11 +4,11 @@
 ///
 ///   y = [û; w],   F(t, y, y') = [ û' − w ;  M̂ w' + Ĉ w + K̂ û − f̂(t) ] = 0.
 ///
-/// Its Jacobian dF/dy + cj dF/dy' = [[cj I, −I], [K̂, Ĉ + cj M̂]] is affine in cj and constant.
+/// Its Jacobian is dF/dy + cj dF/dy' = [[cj I, −I], [K̂, Ĉ + cj M̂]].
 
 #include <Eigen/SparseCholesky>
 
-#include "dae/affine_jacobian.hpp"
+#include "dae/block_jacobian.hpp"
 #include "dae/dae_problem.hpp"
 #include "dae/elimination.hpp"
 
@@ -41,7 +41,7 @@ class ReducedOde final : public DaeProblem {
   const ReducedSystem& reduced_;
   int nm_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass_;
-  AffineJacobian jacobian_;
+  BlockJacobian jacobian_;
 };
 
 }  // namespace condyn

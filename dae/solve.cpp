@@ -1,8 +1,13 @@
 #include "dae/solve.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
+#include "dae/baumgarte_gains.hpp"
 #include "dae/elimination.hpp"
+#include "dae/ida_integrator.hpp"
+#include "dae/linear_system.hpp"
+#include "dae/multiplier_dae.hpp"
 
 namespace condyn {
 
@@ -27,6 +32,58 @@ IntegratorOptions integrator_options(const Model& model) {
   return o;
 }
 
+namespace {
+
+MultiplierScheme multiplier_scheme(Scheme s) {
+  switch (s) {
+    case Scheme::index1:
+      return MultiplierScheme::index1;
+    case Scheme::baumgarte:
+      return MultiplierScheme::baumgarte;
+    default:
+      return MultiplierScheme::ggl;
+  }
+}
+
+Trajectory solve_multipliers(const Model& model, Scheme scheme, const IntegratorOptions& options,
+                             SolveSummary& summary) {
+  const LinearSystem system(model);
+  BaumgarteGains gains;
+  if (scheme == Scheme::baumgarte) {
+    gains = baumgarte_gains(model);
+    summary.notes = gains.rule;
+  }
+  const MultiplierDae dae(system, multiplier_scheme(scheme), gains.alpha, gains.beta);
+  summary.scheme = to_string(scheme);
+  const RawTrajectory raw = integrate(dae, dae.pack(model.u0, model.v0), options, summary);
+  std::vector<Eigen::VectorXd> u, v, lambda;
+  double max_mu = 0.0;
+  for (std::size_t k = 0; k < raw.t.size(); ++k) {
+    const Eigen::VectorXd& y = raw.y[k];
+    u.emplace_back(dae.u(y));
+    v.emplace_back(dae.v(y));
+    if (scheme == Scheme::ggl) {
+      if (dae.mu(y).size() > 0) max_mu = std::max(max_mu, dae.mu(y).cwiseAbs().maxCoeff());
+      // IDA does not control GGL's index-2 multipliers, and their interpolated values at output
+      // times can be far off (observed: 50x the reaction in a chapter case). λ is recomputed from
+      // the integrated u, v through the acceleration-level equations, as at t = 0, so reactions
+      // are exactly as accurate as the state.
+      Eigen::VectorXd consistent = y, yp;
+      dae.make_consistent(raw.t[k], consistent, yp);
+      lambda.emplace_back(dae.lambda(consistent));
+    } else {
+      lambda.emplace_back(dae.lambda(y));
+    }
+  }
+  if (scheme == Scheme::ggl) summary.max_abs_mu = max_mu;
+  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+  summary.max_drift_position = traj.drift_position.maxCoeff();
+  summary.max_drift_velocity = traj.drift_velocity.maxCoeff();
+  return traj;
+}
+
+}  // namespace
+
 Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
                  SolveSummary& summary) {
   switch (scheme) {
@@ -34,11 +91,12 @@ Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& opt
       return solve_elimination(model, options, summary);
     case Scheme::automatic:
       return solve(model, choose_scheme(model, scheme).scheme, options, summary);
-    default:
-      throw std::invalid_argument(std::string("scheme '") + to_string(scheme) +
-                                  "' is not available in this build yet (the multiplier "
-                                  "formulations are being written); use 'elimination' or 'auto'");
+    case Scheme::index1:
+    case Scheme::baumgarte:
+    case Scheme::ggl:
+      return solve_multipliers(model, scheme, options, summary);
   }
+  throw std::logic_error("unknown scheme");
 }
 
 }  // namespace condyn

@@ -30,6 +30,9 @@ struct SolveSummary {
   double wall_seconds = 0.0;
   double max_drift_position = 0.0;
   double max_drift_velocity = 0.0;
+  /// GGL only: max |μ| over the output times (μ vanishes on exact solutions); −1 otherwise.
+  double max_abs_mu = -1.0;
+  std::string notes;  ///< scheme settings worth printing (Baumgarte gains)
   int unknowns = 0;
   int jacobian_nonzeros = 0;
   std::string termination = "not run";

@@ -10,9 +10,9 @@ namespace condyn {
 
 struct Trajectory {
   std::vector<double> t;
-  Eigen::MatrixXd u, v;          ///< n x nt displacements and velocities
-  Eigen::MatrixXd reaction;      ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
-  Eigen::MatrixXd multiplier;    ///< m x nt: λ
+  Eigen::MatrixXd u, v;        ///< n x nt displacements and velocities
+  Eigen::MatrixXd reaction;    ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
+  Eigen::MatrixXd multiplier;  ///< m x nt: λ
   Eigen::VectorXd drift_position, drift_velocity;  ///< nt, max-norm constraint residuals
 };
 

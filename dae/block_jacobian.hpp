@@ -1,0 +1,37 @@
+#pragma once
+/// A sparse Jacobian assembled from blocks, J = Σ scale_k · S_k placed at (row_k, col_k), with a
+/// pattern fixed once: the formulations declare their blocks' patterns at construction and only
+/// accumulate values in the Jacobian callback (no allocation, no pattern change, as KLU wants).
+
+#include <Eigen/Sparse>
+#include <vector>
+
+namespace condyn {
+
+class BlockJacobian {
+ public:
+  using Sparse = Eigen::SparseMatrix<double>;
+
+  explicit BlockJacobian(int size = 0) : size_(size) {}
+
+  /// Build phase: the entries of S, placed at (row0, col0), are part of the pattern.
+  void declare(int row0, int col0, const Sparse& S);
+  /// Build phase: the diagonal entries (row0 + k, col0 + k), k < count, are part of the pattern.
+  void declare_identity(int row0, int col0, int count);
+  /// Ends the build phase; the full diagonal is always included (structural nonsingularity).
+  void finish();
+
+  [[nodiscard]] const Sparse& pattern() const { return pattern_; }
+
+  /// Fill phase, on a matrix with pattern(): J(row0 + i, col0 + j) += scale · S(i, j). Throws
+  /// std::logic_error when S has an entry outside the declared pattern.
+  static void add(Sparse& J, int row0, int col0, const Sparse& S, double scale = 1.0);
+  static void add_identity(Sparse& J, int row0, int col0, int count, double scale);
+
+ private:
+  int size_;
+  std::vector<Eigen::Triplet<double>> marks_;
+  Sparse pattern_;
+};
+
+}  // namespace condyn

@@ -1,0 +1,38 @@
+#pragma once
+/// A Model (constant M, C, K, linear constraints with constant coefficients) as a
+/// MechanicalSystem: f = loads − K u − C u', A constant, φ = A_p u − g(t),
+/// ψ = A u' − g'(t) (position rows) or A u' − h(t) (velocity rows), γ = g'' or h'.
+/// Rows whose right-hand side is identically zero never evaluate a time function.
+
+#include "dae/mechanical_system.hpp"
+#include "models/model.hpp"
+
+namespace condyn {
+
+class LinearSystem final : public MechanicalSystem {
+ public:
+  explicit LinearSystem(const Model& model);  ///< keeps a reference
+
+  [[nodiscard]] int dofs() const override { return model_.dofs(); }
+  [[nodiscard]] int constraints() const override { return model_.constraint_count(); }
+  [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
+  void mass(double t, ConstRef u, Sparse& M) const override;
+  void force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const override;
+  void force_jacobian(double t, ConstRef u, ConstRef v, Sparse& f_u, Sparse& f_v) const override;
+  void constraint_jacobian(double t, ConstRef u, Sparse& A) const override;
+  void position_residual(double t, ConstRef u, Ref phi) const override;
+  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override;
+  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override;
+
+ private:
+  /// d^order/dt^order of row i's right-hand side at its own level (g for position rows, h for
+  /// velocity rows); 0 without evaluation for homogeneous scleronomic rows.
+  [[nodiscard]] double rhs(std::size_t i, int order, double t) const;
+
+  const Model& model_;
+  std::vector<bool> position_;
+  std::vector<bool> has_rhs_;
+  Sparse minus_K_, minus_C_;
+};
+
+}  // namespace condyn

@@ -1,0 +1,201 @@
+#include "dae/multiplier_dae.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+namespace condyn {
+
+MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme scheme, double alpha,
+                             double beta)
+    : system_(system),
+      scheme_(scheme),
+      alpha_(alpha),
+      beta_(beta),
+      n_(system.dofs()),
+      m_(system.constraints()),
+      p_(0) {
+  if (system.has_curvature()) {
+    throw std::invalid_argument("multiplier formulations do not yet support nonlinear constraints");
+  }
+  if (scheme == MultiplierScheme::ggl) {
+    for (int i = 0; i < m_; ++i) {
+      if (system.position_rows()[static_cast<std::size_t>(i)]) position_row_.push_back(i);
+    }
+    p_ = static_cast<int>(position_row_.size());
+  }
+  select_p_.resize(p_, m_);
+  for (int k = 0; k < p_; ++k)
+    select_p_.insert(k, position_row_[static_cast<std::size_t>(k)]) = 1.0;
+  position_mask_.resize(m_, m_);
+  for (int i = 0; i < m_; ++i) {
+    if (system.position_rows()[static_cast<std::size_t>(i)]) position_mask_.insert(i, i) = 1.0;
+  }
+
+  // Patterns at the initial state: fixed for the run (constant for linear systems).
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
+  system.mass(0.0, zero, M_);
+  system.constraint_jacobian(0.0, zero, A_);
+  system.force_jacobian(0.0, zero, zero, f_u_, f_v_);
+  Ap_ = select_p_ * A_;
+  const int iu = 0, iv = n_, il = 2 * n_, im = 2 * n_ + m_;
+  jacobian_ = BlockJacobian(size());
+  jacobian_.declare_identity(iu, iu, n_);  // d(u')
+  jacobian_.declare_identity(iu, iv, n_);  // −I
+  jacobian_.declare(iu, im, Eigen::SparseMatrix<double>(Ap_.transpose()));
+  jacobian_.declare(iv, iu, f_u_);
+  jacobian_.declare(iv, iv, f_v_);
+  jacobian_.declare(iv, iv, M_);
+  jacobian_.declare(iv, il, Eigen::SparseMatrix<double>(A_.transpose()));
+  jacobian_.declare(il, iv, A_);  // cj A (index1, baumgarte) or A (ggl, and 2α A)
+  if (scheme == MultiplierScheme::baumgarte) {
+    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_));  // β² φ_u
+  }
+  jacobian_.declare(im, iu, Ap_);
+  jacobian_.finish();
+}
+
+Eigen::VectorXd MultiplierDae::differential_id() const {
+  Eigen::VectorXd id = Eigen::VectorXd::Zero(size());
+  id.head(2 * n_).setOnes();
+  return id;
+}
+
+Eigen::VectorXd MultiplierDae::pack(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0) const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(size());
+  y.segment(0, n_) = u0;
+  y.segment(n_, n_) = v0;
+  return y;
+}
+
+void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstRef yp,
+                             Ref r) const {
+  const auto uu = y.segment(0, n_), vv = y.segment(n_, n_), lam = y.segment(2 * n_, m_);
+  const auto up = yp.segment(0, n_), vp = yp.segment(n_, n_);
+  Eigen::VectorXd f(n_);
+  system_.force(t, step_reference, uu, vv, f);
+  system_.mass(t, uu, M_);
+  r.segment(0, n_) = up - vv;
+  r.segment(n_, n_) = M_ * vp - f;
+  if (m_ == 0) return;  // unconstrained: a plain second-order ODE
+  system_.constraint_jacobian(t, uu, A_);
+  r.segment(n_, n_) += A_.transpose() * lam;
+  auto rl = r.segment(2 * n_, m_);
+  Eigen::VectorXd work(m_);
+  switch (scheme_) {
+    case MultiplierScheme::index1:
+      system_.acceleration_bias(t, uu, vv, work);
+      rl = A_ * vp - work;
+      break;
+    case MultiplierScheme::baumgarte: {
+      system_.acceleration_bias(t, uu, vv, work);
+      rl = A_ * vp - work;
+      system_.velocity_residual(t, uu, vv, work);
+      rl += 2.0 * alpha_ * work;
+      system_.position_residual(t, uu, work);
+      rl += beta_ * beta_ * work;
+      break;
+    }
+    case MultiplierScheme::ggl: {
+      system_.velocity_residual(t, uu, vv, rl);
+      const auto mu = y.segment(2 * n_ + m_, p_);
+      r.segment(0, n_) += A_.transpose() * (select_p_.transpose() * mu);
+      system_.position_residual(t, uu, work);
+      r.segment(2 * n_ + m_, p_) = select_p_ * work;
+      break;
+    }
+  }
+}
+
+void MultiplierDae::jacobian(double t, double /*step_reference*/, ConstRef y, ConstRef yp,
+                             double cj, Eigen::SparseMatrix<double>& J) const {
+  (void)yp;
+  const auto uu = y.segment(0, n_), vv = y.segment(n_, n_);
+  system_.mass(t, uu, M_);
+  system_.constraint_jacobian(t, uu, A_);
+  system_.force_jacobian(t, uu, vv, f_u_, f_v_);
+  Ap_ = select_p_ * A_;
+  const int iu = 0, iv = n_, il = 2 * n_, im = 2 * n_ + m_;
+  std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
+  BlockJacobian::add_identity(J, iu, iu, n_, cj);
+  BlockJacobian::add_identity(J, iu, iv, n_, -1.0);
+  BlockJacobian::add(J, iv, iu, f_u_, -1.0);
+  BlockJacobian::add(J, iv, iv, f_v_, -1.0);
+  BlockJacobian::add(J, iv, iv, M_, cj);
+  if (m_ == 0) return;
+  BlockJacobian::add(J, iv, il, Eigen::SparseMatrix<double>(A_.transpose()));
+  switch (scheme_) {
+    case MultiplierScheme::index1:
+      BlockJacobian::add(J, il, iv, A_, cj);
+      break;
+    case MultiplierScheme::baumgarte: {
+      BlockJacobian::add(J, il, iv, A_, cj + 2.0 * alpha_);
+      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_),
+                         beta_ * beta_);
+      break;
+    }
+    case MultiplierScheme::ggl:
+      BlockJacobian::add(J, il, iv, A_);
+      BlockJacobian::add(J, iu, im, Eigen::SparseMatrix<double>(Ap_.transpose()));
+      BlockJacobian::add(J, im, iu, Ap_);
+      break;
+  }
+}
+
+void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
+  const Eigen::VectorXd uu = y.segment(0, n_), vv = y.segment(n_, n_);
+  Eigen::VectorXd f(n_);
+  system_.force(t, t, uu, vv, f);
+  system_.mass(t, uu, M_);
+  yp = Eigen::VectorXd::Zero(size());
+  yp.segment(0, n_) = vv;
+  if (m_ == 0) {
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M_);
+    if (lu.info() != Eigen::Success) {
+      throw std::runtime_error("the mass matrix is singular: accelerations are undefined");
+    }
+    yp.segment(n_, n_) = lu.solve(f);
+    return;
+  }
+  system_.constraint_jacobian(t, uu, A_);
+  Eigen::VectorXd rhs_l(m_), work(m_);
+  system_.acceleration_bias(t, uu, vv, rhs_l);
+  if (scheme_ == MultiplierScheme::baumgarte) {
+    system_.velocity_residual(t, uu, vv, work);
+    rhs_l -= 2.0 * alpha_ * work;
+    system_.position_residual(t, uu, work);
+    rhs_l -= beta_ * beta_ * work;
+  }
+  // [M Aᵀ; A 0] [v'; λ] = [f; γ]
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int k = 0; k < M_.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M_, k); it; ++it) {
+      trip.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+    }
+  }
+  for (int k = 0; k < A_.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A_, k); it; ++it) {
+      trip.emplace_back(n_ + static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+      trip.emplace_back(static_cast<int>(it.col()), n_ + static_cast<int>(it.row()), it.value());
+    }
+  }
+  Eigen::SparseMatrix<double> kkt(n_ + m_, n_ + m_);
+  kkt.setFromTriplets(trip.begin(), trip.end());
+  kkt.makeCompressed();
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(kkt);
+  if (lu.info() != Eigen::Success) {
+    std::ostringstream s;
+    s << "the consistency system [M Aᵀ; A 0] is singular at t = " << t
+      << ": some DOF has neither mass nor a constraint that fixes its acceleration";
+    throw std::runtime_error(s.str());
+  }
+  Eigen::VectorXd rhs(n_ + m_);
+  rhs << f, rhs_l;
+  const Eigen::VectorXd sol = lu.solve(rhs);
+  yp.segment(n_, n_) = sol.head(n_);
+  y.segment(2 * n_, m_) = sol.tail(m_);
+  y.segment(2 * n_ + m_, p_).setZero();
+}
+
+}  // namespace condyn

@@ -1,0 +1,70 @@
+#pragma once
+/// The multiplier formulations, first-order form y = [u; v; λ; μ] (μ only under GGL, and only for
+/// position-level rows):
+///
+///   u' − v (+ A_pᵀ μ)          = 0
+///   M v' − f(t, u, v) + Aᵀ λ   = 0                      (f_con = −Aᵀλ, the chapter's sign)
+///   index1:     A v' − γ                        = 0     (acceleration level, no stabilization)
+///   baumgarte:  A v' − γ + 2α ψ + β² φ          = 0     (φ only on position rows)
+///   ggl:        ψ = 0 and φ_p = 0                       (stabilized index 2,
+///   Gear-Gupta-Leimkuhler)
+///
+/// Velocity-level rows enter at their own level: ψ (index 2) under GGL, differentiated once
+/// (A v' = h') under index1 and Baumgarte. μ vanishes on exact solutions; it is reported.
+/// u and v are differential; λ and μ algebraic. Under GGL they are index-2 variables that IDA does
+/// not control (DaeProblem::uncontrolled_algebraic: no error test, no weight in Newton's
+/// convergence test); under index1 and Baumgarte λ is an index-1 variable that IDA controls like
+/// any other.
+
+#include <Eigen/SparseLU>
+
+#include "dae/block_jacobian.hpp"
+#include "dae/dae_problem.hpp"
+#include "dae/mechanical_system.hpp"
+
+namespace condyn {
+
+enum class MultiplierScheme { index1, baumgarte, ggl };
+
+class MultiplierDae final : public DaeProblem {
+ public:
+  /// Keeps a reference to `system`. alpha and beta are used by Baumgarte only. Throws
+  /// std::invalid_argument for a system with curvature terms (nonlinear constraints come later).
+  MultiplierDae(const MechanicalSystem& system, MultiplierScheme scheme, double alpha = 0.0,
+                double beta = 0.0);
+
+  [[nodiscard]] int size() const override { return 2 * n_ + m_ + p_; }
+  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override;
+  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
+    return jacobian_.pattern();
+  }
+  void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+                Eigen::SparseMatrix<double>& J) const override;
+  [[nodiscard]] Eigen::VectorXd differential_id() const override;
+  [[nodiscard]] bool uncontrolled_algebraic() const override {
+    return scheme_ == MultiplierScheme::ggl;
+  }
+  /// Keeps u and v; λ and v' from [M Aᵀ; A 0][v'; λ] = [f; γ − stabilization]; μ = 0, u' = v.
+  void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
+
+  /// y with the given u, v and zero multipliers.
+  [[nodiscard]] Eigen::VectorXd pack(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;
+  [[nodiscard]] auto u(const Eigen::VectorXd& y) const { return y.segment(0, n_); }
+  [[nodiscard]] auto v(const Eigen::VectorXd& y) const { return y.segment(n_, n_); }
+  [[nodiscard]] auto lambda(const Eigen::VectorXd& y) const { return y.segment(2 * n_, m_); }
+  [[nodiscard]] auto mu(const Eigen::VectorXd& y) const { return y.segment(2 * n_ + m_, p_); }
+
+ private:
+  const MechanicalSystem& system_;
+  MultiplierScheme scheme_;
+  double alpha_, beta_;
+  int n_, m_, p_;
+  std::vector<int> position_row_;              ///< μ index k -> constraint row
+  Eigen::SparseMatrix<double> select_p_;       ///< p x m: picks the position rows (GGL's μ)
+  Eigen::SparseMatrix<double> position_mask_;  ///< m x m diagonal: 1 on position rows
+  BlockJacobian jacobian_;
+  // Scratch for the Jacobian callback (patterns fixed; values refreshed per call).
+  mutable Eigen::SparseMatrix<double> M_, A_, Ap_, f_u_, f_v_;
+};
+
+}  // namespace condyn
