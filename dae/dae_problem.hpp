@@ -27,13 +27,14 @@ class DaeProblem {
                         Eigen::SparseMatrix<double>& J) const = 0;
   /// 1 for differential components, 0 for algebraic ones (IDASetId).
   [[nodiscard]] virtual Eigen::VectorXd differential_id() const = 0;
-  /// True when IDA must not control the algebraic components: they are left out of the local
-  /// error test (IDASetSuppressAlg) and get zero weight in the Newton convergence test. This is
-  /// for the multipliers of an index-2 formulation: the BDF error estimate does not apply to
-  /// them, and the Newton matrix's condition grows like 1/h², so at small steps their roundoff
-  /// alone exceeds any tolerance on them and the step size collapses. They are fixed by u and v
-  /// through the constraint equations, which Newton does control.
-  [[nodiscard]] virtual bool uncontrolled_algebraic() const { return false; }
+  /// True when the algebraic components are index-2 variables (GGL's λ and μ). They are left out
+  /// of the local error test (IDASetSuppressAlg: the BDF error estimate does not apply to them)
+  /// and their error weights in the Newton convergence test are scaled by the step size h, as
+  /// RADAU5 scales index-2 components. Unscaled, the Newton matrix's 1/h² conditioning makes
+  /// their roundoff exceed any tolerance at small steps and the step size collapses (seen on
+  /// chapter case E at rtol <= 1e-9); with zero weight instead, IDA's modified Newton never
+  /// converges them (μ grew 2x per step between Jacobian updates, to 4e4 where it is 0).
+  [[nodiscard]] virtual bool index2_algebraic() const { return false; }
   /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
   /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
   /// step, where accelerations and multipliers jump). Throws std::runtime_error when the

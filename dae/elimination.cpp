@@ -141,25 +141,39 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
     y0[nm + k] = model.v0[masters[static_cast<std::size_t>(k)]];
   }
   summary.scheme = "elimination";
-  const RawTrajectory raw = integrate(ode, y0, options, summary);
-  std::vector<Eigen::VectorXd> u, v, lambda;
-  const MultiplierRecovery recover(model);
   const auto& T = reduced.transform.T;
   const auto& G = reduced.transform.G;
+  auto full_state = [&](double t, const Eigen::VectorXd& y) {
+    Eigen::VectorXd u = T * y.head(nm), v = T * y.tail(nm);
+    if (reduced.rheonomic) {
+      u += G * model.position_rhs(0, t);
+      v += G * model.position_rhs(1, t);
+    }
+    return std::make_pair(u, v);
+  };
+  std::vector<StepRecord> steps;
+  IntegratorOptions observed = options;
+  if (options.record_steps) {
+    observed.on_step = [&](double t, const Eigen::VectorXd& y) {
+      const auto [u, v] = full_state(t, y);
+      const auto [dp, dv] = model.drift(t, u, v);
+      steps.push_back({t, dp, dv});
+    };
+  }
+  const RawTrajectory raw = integrate(ode, y0, observed, summary);
+  std::vector<Eigen::VectorXd> u, v, lambda;
+  const MultiplierRecovery recover(model);
   for (std::size_t k = 0; k < raw.t.size(); ++k) {
     const double t = raw.t[k];
-    const Eigen::VectorXd x = raw.y[k].head(nm), w = raw.y[k].tail(nm);
-    u.emplace_back(T * x);
-    v.emplace_back(T * w);
-    Eigen::VectorXd a = T * ode.acceleration(t, x, w);
-    if (reduced.rheonomic) {
-      u.back() += G * model.position_rhs(0, t);
-      v.back() += G * model.position_rhs(1, t);
-      a += G * model.position_rhs(2, t);
-    }
-    lambda.push_back(recover(t, u.back(), v.back(), a));
+    const auto [uk, vk] = full_state(t, raw.y[k]);
+    Eigen::VectorXd a = T * ode.acceleration(t, raw.y[k].head(nm), raw.y[k].tail(nm));
+    if (reduced.rheonomic) a += G * model.position_rhs(2, t);
+    u.push_back(uk);
+    v.push_back(vk);
+    lambda.push_back(recover(t, uk, vk, a));
   }
   Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+  traj.steps = std::move(steps);
   summary.max_drift_position = traj.drift_position.size() ? traj.drift_position.maxCoeff() : 0.0;
   summary.max_drift_velocity = traj.drift_velocity.size() ? traj.drift_velocity.maxCoeff() : 0.0;
   return traj;

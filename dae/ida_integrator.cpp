@@ -73,7 +73,8 @@ Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
 struct CallbackData {
   const DaeProblem* problem = nullptr;
   double rtol = 0.0, atol = 0.0;
-  Eigen::VectorXd controlled;  ///< 1 where IDA controls the component, 0 where it must not
+  void* mem = nullptr;  ///< IDA memory, for the step size in the weight function
+  Eigen::VectorXd controlled;  ///< 1 on differential components, 0 on index-2 algebraic ones
   double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
   std::exception_ptr error;
@@ -120,11 +121,16 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
   }
 }
 
-/// Error weights 1/(rtol |y_i| + atol), zero on components IDA must not control.
+/// Error weights 1/(rtol |y_i| + atol), scaled by the step size h on index-2 components.
 int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   auto* data = static_cast<CallbackData*>(user);
+  double h = 0.0;
+  if (data->mem != nullptr) IDAGetCurrentStep(data->mem, &h);
+  h = std::abs(h);
+  if (!(h > 0.0)) h = 1.0;  // before the first step: no scaling yet
   auto w = view(ewt);
-  w = data->controlled.array() / (data->rtol * view(y).array().abs() + data->atol);
+  w = (data->controlled.array() + (1.0 - data->controlled.array()) * h) /
+      (data->rtol * view(y).array().abs() + data->atol);
   return 0;
 }
 
@@ -146,7 +152,8 @@ class Ida {
     y_.reset(N_VNew_Serial(n_, ctx_.get()));
     yp_.reset(N_VNew_Serial(n_, ctx_.get()));
     id_.reset(N_VNew_Serial(n_, ctx_.get()));
-    if (!y_ || !yp_ || !id_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
+    work_.reset(N_VNew_Serial(n_, ctx_.get()));
+    if (!y_ || !yp_ || !id_ || !work_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
     if (options.dense_linear_solver) {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
@@ -169,10 +176,11 @@ class Ida {
     check(IDAInit(mem_.get(), residual_trampoline, t0, y_.get(), yp_.get()), "IDAInit");
     check(IDASetUserData(mem_.get(), &data_), "IDASetUserData");
     check(IDASetId(mem_.get(), id_.get()), "IDASetId");
-    if (data_.problem->uncontrolled_algebraic()) {
+    if (data_.problem->index2_algebraic()) {
       data_.rtol = options.rtol;
       data_.atol = options.atol;
       data_.controlled = view(id_.get());
+      data_.mem = mem_.get();
       check(IDAWFtolerances(mem_.get(), weight_trampoline), "IDAWFtolerances");
       check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
     } else {
@@ -180,7 +188,6 @@ class Ida {
     }
     check(IDASetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "IDASetLinearSolver");
     check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
-    check(IDASetMaxNumSteps(mem_.get(), options.max_steps_per_output), "IDASetMaxNumSteps");
   }
 
   void reinit(double t0, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0) {
@@ -194,10 +201,12 @@ class Ida {
   void set_stop_time(double t) { check(IDASetStopTime(mem_.get(), t), "IDASetStopTime"); }
   void set_segment(double t0) { data_.step_reference = t0; }
 
-  /// Advances to tout (exactly: IDA interpolates), returns the time reached.
-  double solve(double tout) {
+  /// Takes one internal step (bounded by the stop time that is set); returns the time reached,
+  /// the stop time exactly when the step lands on it. IDA sizes its first step after a
+  /// (re)initialisation from the distance to `tout`, so callers pass the next output time.
+  double step(double tout) {
     double tret = 0.0;
-    const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_NORMAL);
+    const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
     if (data_.error) std::rethrow_exception(data_.error);
     if (flag < 0) {
       double tcur = 0.0, hlast = 0.0;
@@ -210,6 +219,14 @@ class Ida {
       throw IntegrationError(s.str());
     }
     return tret;
+  }
+
+  /// y and y' at t inside the last step, from IDA's interpolating polynomial.
+  void interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) {
+    check(IDAGetDky(mem_.get(), t, 0, work_.get()), "IDAGetDky");
+    y = view(work_.get());
+    check(IDAGetDky(mem_.get(), t, 1, work_.get()), "IDAGetDky");
+    yp = view(work_.get());
   }
 
   [[nodiscard]] Eigen::VectorXd y() { return view(y_.get()); }
@@ -266,7 +283,7 @@ class Ida {
   Counters baseline_;
   // Declared in creation order: destroyed in reverse (IDA memory first, context last).
   ContextPtr ctx_;
-  VectorPtr y_, yp_, id_;
+  VectorPtr y_, yp_, id_, work_;
   MatrixPtr matrix_;
   SolverPtr solver_;
   IdaPtr mem_;
@@ -307,22 +324,45 @@ RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
   std::size_t next_stop = 0;
   auto stop_ahead = [&] { return next_stop < stops.size() ? stops[next_stop] : times.back(); };
   ida.set_stop_time(stop_ahead());
-  double reached = t0;
-  for (std::size_t k = 1; k < times.size(); ++k) {
-    const double tout = times[k];
-    // Cross every load step that lies at or before this output time.
-    while (next_stop < stops.size() && stops[next_stop] <= tout) {
+
+  // One internal step at a time: every step is seen exactly (drift, μ), outputs are interpolated.
+  std::size_t k = 1;  // next output
+  long steps_since_output = 0;
+  Eigen::VectorXd yo, ypo;
+  while (k < times.size()) {
+    const double t = ida.step(times[k]);
+    if (++steps_since_output > options.max_steps_per_output) {
+      std::ostringstream s;
+      s << "took " << options.max_steps_per_output << " steps without reaching the output time "
+        << times[k] << " (at t = " << t << ")";
+      throw IntegrationError(s.str());
+    }
+    if (options.on_step) options.on_step(t, ida.y());
+    const bool at_stop = next_stop < stops.size() && t >= stops[next_stop];
+    // Outputs inside the step; one at a load step's time waits for the state after the step.
+    while (k < times.size() && (times[k] < t || (times[k] == t && !at_stop))) {
+      if (times[k] == t) {
+        record(t, ida.y(), ida.yp());
+      } else {
+        ida.interpolate(times[k], yo, ypo);
+        record(times[k], yo, ypo);
+      }
+      ++k;
+      steps_since_output = 0;
+    }
+    if (at_stop) {
       const double b = stops[next_stop++];
-      reached = ida.solve(b);
       ida.set_segment(b);
       Eigen::VectorXd yb = ida.y(), ypb;
       problem.make_consistent(b, yb, ypb);
       ida.reinit(b, yb, ypb);
       ida.set_stop_time(stop_ahead());
       ++summary.restarts;
+      while (k < times.size() && times[k] <= b) {
+        record(times[k], yb, ypb);
+        ++k;
+      }
     }
-    if (reached < tout) reached = ida.solve(tout);
-    record(tout, ida.y(), ida.yp());
   }
   ida.collect();
   const auto& tot = ida.totals();

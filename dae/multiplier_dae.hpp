@@ -11,10 +11,9 @@
 ///
 /// Velocity-level rows enter at their own level: ψ (index 2) under GGL, differentiated once
 /// (A v' = h') under index1 and Baumgarte. μ vanishes on exact solutions; it is reported.
-/// u and v are differential; λ and μ algebraic. Under GGL they are index-2 variables that IDA does
-/// not control (DaeProblem::uncontrolled_algebraic: no error test, no weight in Newton's
-/// convergence test); under index1 and Baumgarte λ is an index-1 variable that IDA controls like
-/// any other.
+/// u and v are differential; λ and μ algebraic. Under GGL they are index-2 variables
+/// (DaeProblem::index2_algebraic: no error test, h-scaled weight in Newton's convergence test);
+/// under index1 and Baumgarte λ is an index-1 variable that IDA controls like any other.
 
 #include <Eigen/SparseLU>
 
@@ -41,7 +40,7 @@ class MultiplierDae final : public DaeProblem {
   void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   [[nodiscard]] Eigen::VectorXd differential_id() const override;
-  [[nodiscard]] bool uncontrolled_algebraic() const override {
+  [[nodiscard]] bool index2_algebraic() const override {
     return scheme_ == MultiplierScheme::ggl;
   }
   /// Keeps u and v; λ and v' from [M Aᵀ; A 0][v'; λ] = [f; γ − stabilization]; μ = 0, u' = v.

@@ -1,6 +1,8 @@
 #pragma once
 /// Options in, summary out: what the integrator is asked to do and what it did.
 
+#include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,7 +14,11 @@ struct IntegratorOptions {
   bool dense_linear_solver = false;  ///< SUNDIALS dense LU instead of KLU (tiny systems only)
   std::vector<double> output_times;  ///< ascending, first one is the initial time
   std::vector<double> breakpoints;   ///< load steps inside (t0, t_end): stop and restart there
-  long max_steps_per_output = 100000;
+  long max_steps_per_output = 100000;  ///< between two output times; more is a failure
+  /// Called after every internal step with the step's exact t and y (not interpolated).
+  std::function<void(double t, const Eigen::VectorXd& y)> on_step;
+  /// Keep a per-step drift log (Trajectory::steps) for drift plots; off by default.
+  bool record_steps = false;
   /// Throws std::invalid_argument naming the bad field.
   void validate() const;
 };

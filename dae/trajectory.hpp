@@ -8,12 +8,18 @@
 
 namespace condyn {
 
+/// Constraint drift at one internal step of the integrator (exact step values, not interpolated).
+struct StepRecord {
+  double t = 0.0, drift_position = 0.0, drift_velocity = 0.0;
+};
+
 struct Trajectory {
   std::vector<double> t;
   Eigen::MatrixXd u, v;        ///< n x nt displacements and velocities
   Eigen::MatrixXd reaction;    ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
   Eigen::MatrixXd multiplier;  ///< m x nt: λ
   Eigen::VectorXd drift_position, drift_velocity;  ///< nt, max-norm constraint residuals
+  std::vector<StepRecord> steps;  ///< every internal step, when IntegratorOptions::record_steps
 };
 
 /// Multipliers recovered from the full equations at one time: ρ = M u'' + C u' + K u − f(t)

@@ -66,7 +66,11 @@ void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
 
 }  // namespace
 
-void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj) {
+namespace {
+
+/// Writes through a temporary file beside `path`, renamed into place only after a complete write.
+template <typename Writer>
+void write_atomically(const std::string& path, Writer&& writer) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   if (fs::is_directory(target)) throw std::runtime_error(path + ": is a directory");
@@ -77,7 +81,7 @@ void write_csv_atomically(const std::string& path, const Model& model, const Tra
     if (!out) {
       throw std::runtime_error(path + ": cannot write output (" + std::strerror(errno) + ")");
     }
-    write_rows(out, model, traj);
+    writer(out);
     out.flush();
     if (!out) {
       std::error_code ignored;
@@ -92,6 +96,22 @@ void write_csv_atomically(const std::string& path, const Model& model, const Tra
     fs::remove(tmp, ignored);
     throw std::runtime_error(path + ": cannot move the output into place (" + ec.message() + ")");
   }
+}
+
+}  // namespace
+
+void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj) {
+  write_atomically(path, [&](std::ostream& out) { write_rows(out, model, traj); });
+}
+
+void write_steps_csv_atomically(const std::string& path, const Trajectory& traj) {
+  write_atomically(path, [&](std::ostream& out) {
+    out.precision(17);
+    out << "t,drift_position,drift_velocity\n";
+    for (const auto& s : traj.steps) {
+      out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
+    }
+  });
 }
 
 }  // namespace condyn

@@ -13,4 +13,8 @@ namespace condyn {
 /// never leaves a half-written or clobbered file. Throws std::runtime_error naming the path.
 void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj);
 
+/// The per-step drift log (run --steps-out): columns t, drift_position, drift_velocity, one row per
+/// internal step of the integrator. Written atomically like the main CSV.
+void write_steps_csv_atomically(const std::string& path, const Trajectory& traj);
+
 }  // namespace condyn

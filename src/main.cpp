@@ -27,7 +27,7 @@ Scheme parse_scheme_flag(const std::string& s) {
 }
 
 struct RunArgs {
-  std::string scene, scheme, out;
+  std::string scene, scheme, out, steps_out;
   std::optional<double> rtol, atol;
 };
 
@@ -42,10 +42,16 @@ int run(const RunArgs& args) {
 
   const SchemeChoice choice = choose_scheme(model, spec.solve.scheme);
   SolveSummary summary;
-  const Trajectory traj = solve(model, choice.scheme, integrator_options(model), summary);
+  IntegratorOptions options = integrator_options(model);
+  options.record_steps = !args.steps_out.empty();
+  const Trajectory traj = solve(model, choice.scheme, options, summary);
   write_csv_atomically(out, model, traj);
-  std::cout << summary.brief() << "\n"
-            << "wrote " << traj.t.size() << " rows to " << out << "\n";
+  std::cout << summary.brief() << "\n" << "wrote " << traj.t.size() << " rows to " << out << "\n";
+  if (!args.steps_out.empty()) {
+    write_steps_csv_atomically(args.steps_out, traj);
+    std::cout << "wrote the drift at " << traj.steps.size() << " internal steps to "
+              << args.steps_out << "\n";
+  }
   return 0;
 }
 
@@ -66,6 +72,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--out", run_args.out,
                       "CSV file (default: [output] file, else SCENE-STEM.csv here)");
+  run_cmd->add_option("--steps-out", run_args.steps_out,
+                      "also write the constraint drift at every internal step to this CSV");
 
   std::string info_scene, info_scheme;
   auto* info_cmd = app.add_subcommand("info", "classify the constraints and size the model");
