@@ -72,17 +72,7 @@ Trajectory solve_multipliers(const Model& model, Scheme scheme, const Integrator
     const Eigen::VectorXd& y = raw.y[k];
     u.emplace_back(dae.u(y));
     v.emplace_back(dae.v(y));
-    if (scheme == Scheme::ggl) {
-      // IDA does not control GGL's index-2 multipliers, and their interpolated values at output
-      // times can be far off (observed: 50x the reaction in a chapter case). λ is recomputed from
-      // the integrated u, v through the acceleration-level equations, as at t = 0, so reactions
-      // are exactly as accurate as the state.
-      Eigen::VectorXd consistent = y, yp;
-      dae.make_consistent(raw.t[k], consistent, yp);
-      lambda.emplace_back(dae.lambda(consistent));
-    } else {
-      lambda.emplace_back(dae.lambda(y));
-    }
+    lambda.emplace_back(dae.lambda(y));
   }
   if (scheme == Scheme::ggl) summary.max_abs_mu = max_mu;
   Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
