@@ -4,6 +4,8 @@
 /// ψ = A u' − g'(t) (position rows) or A u' − h(t) (velocity rows), γ = g'' or h'.
 /// Rows whose right-hand side is identically zero never evaluate a time function.
 
+#include <algorithm>
+
 #include "dae/mechanical_system.hpp"
 #include "models/model.hpp"
 
@@ -23,6 +25,11 @@ class LinearSystem final : public MechanicalSystem {
   void position_residual(double t, ConstRef u, Ref phi) const override;
   void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override;
   void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override;
+
+  /// Rows whose right-hand side is evaluated at all (the others are homogeneous and scleronomic).
+  [[nodiscard]] int rows_with_time_functions() const {
+    return static_cast<int>(std::count(has_rhs_.begin(), has_rhs_.end(), true));
+  }
 
  private:
   /// d^order/dt^order of row i's right-hand side at its own level (g for position rows, h for

@@ -8,6 +8,7 @@
 #include "dae/ida_integrator.hpp"
 #include "dae/linear_system.hpp"
 #include "dae/multiplier_dae.hpp"
+#include "dae/reduced_ode.hpp"
 
 namespace condyn {
 
@@ -84,6 +85,20 @@ Trajectory solve_multipliers(const Model& model, Scheme scheme, const Integrator
 }
 
 }  // namespace
+
+SystemSize system_size(const Model& model, Scheme scheme) {
+  if (scheme == Scheme::automatic) scheme = choose_scheme(model, scheme).scheme;
+  if (scheme == Scheme::elimination) {
+    const ReducedSystem reduced = reduce(model);
+    const ReducedOde ode(model, reduced);
+    return {ode.size(), ode.jacobian_pattern().nonZeros()};
+  }
+  const LinearSystem system(model);
+  const BaumgarteGains gains =
+      scheme == Scheme::baumgarte ? baumgarte_gains(model) : BaumgarteGains{};
+  const MultiplierDae dae(system, multiplier_scheme(scheme), gains.alpha, gains.beta);
+  return {dae.size(), dae.jacobian_pattern().nonZeros()};
+}
 
 Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
                  SolveSummary& summary) {

@@ -17,6 +17,15 @@ struct SchemeChoice {
 /// Resolves `requested` (auto picks the lightest formulation that serves the model).
 [[nodiscard]] SchemeChoice choose_scheme(const Model& model, Scheme requested);
 
+/// What a scheme makes the integrator solve for this model.
+struct SystemSize {
+  int unknowns = 0;
+  long jacobian_nonzeros = 0;
+};
+
+/// Builds the scheme's DAE (without integrating) and sizes it. Throws like solve() would.
+[[nodiscard]] SystemSize system_size(const Model& model, Scheme scheme);
+
 /// Integrator options from the model's [solve] section, possibly overridden by the caller.
 [[nodiscard]] IntegratorOptions integrator_options(const Model& model);
 

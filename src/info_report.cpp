@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iomanip>
 
+#include "dae/baumgarte_gains.hpp"
 #include "dae/elimination.hpp"
 #include "dae/solve.hpp"
 #include "models/classification.hpp"
@@ -53,11 +54,24 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
     const ReducedSystem reduced = reduce(model);
     const auto& ms = reduced.transform;
     out << "elimination: slaves " << join_dofs(model, ms.slaves) << "; masters "
-        << join_dofs(model, ms.masters) << "\n"
-        << "  slaves "
+        << join_dofs(model, ms.masters) << " (slaves "
         << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
                                        : "named in [solve] slaves")
-        << "; integrates " << 2 * ms.masters.size() << " unknowns (û, û')\n";
+        << ")\n";
+  }
+  if (choice.scheme == Scheme::baumgarte) out << "baumgarte: " << baumgarte_gains(model).rule << "\n";
+  out << "\nsystem each scheme integrates:\n";
+  out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "unknowns"
+      << "Jacobian nonzeros\n";
+  for (Scheme s : {Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
+    out << "  " << std::left << std::setw(13) << to_string(s);
+    try {
+      const SystemSize size = system_size(model, s);
+      out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
+    } catch (const std::exception& e) {
+      out << "not applicable: " << e.what();
+    }
+    out << (s == choice.scheme ? "   <- selected" : "") << "\n";
   }
 }
 

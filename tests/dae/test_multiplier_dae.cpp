@@ -1,9 +1,12 @@
 #include <doctest/doctest.h>
 
+#include "dae/baumgarte_gains.hpp"
 #include "dae/linear_system.hpp"
 #include "dae/multiplier_dae.hpp"
+#include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "validation/embedded_scenes.hpp"
 
 using namespace condyn;
 
@@ -114,4 +117,73 @@ TEST_CASE("multiplier formulations: consistent initial values") {
     // Consistent: F(0, y0, y'0) = 0 to roundoff of the O(1) terms.
     CHECK(r.cwiseAbs().maxCoeff() <= 1e-13);
   }
+}
+
+TEST_CASE("system_size reports what the solver integrates, for every scheme") {
+  const Model model = build_model(parse_scene_text(kScene, "sizes"));
+  for (Scheme scheme : {Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
+    CAPTURE(std::string(to_string(scheme)));
+    const SystemSize size = system_size(model, scheme);
+    SolveSummary summary;
+    (void)solve(model, scheme, integrator_options(model), summary);
+    CHECK(size.unknowns == summary.unknowns);
+    CHECK(size.jacobian_nonzeros == summary.jacobian_nonzeros);
+  }
+  // auto picks elimination here: n − m = 2 masters, (û, û').
+  CHECK(system_size(model, Scheme::automatic).unknowns == 4);
+}
+
+TEST_CASE("Baumgarte gains: default rule and scene values") {
+  // Chapter §5.5.1: constrained frequencies 0.740310, 1.825742, 2.387874 rad/s
+  // (reference/chapter-truss.md, "Useful facts"). Default: β = ω_max, α = β.
+  const Model a = build_model(parse_scene_text(embedded_scene("chapter_5_5_1").text, "A"));
+  const BaumgarteGains g = baumgarte_gains(a);
+  CHECK(g.beta == doctest::Approx(2.387874).epsilon(1e-6));
+  CHECK(g.alpha == g.beta);
+  CHECK(g.rule.find("critical damping") != std::string::npos);
+
+  SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_5_1").text, "A");
+  spec.solve.baumgarte_alpha = 3.0;
+  spec.solve.baumgarte_beta = 5.0;
+  const BaumgarteGains both = baumgarte_gains(build_model(spec));
+  CHECK(both.alpha == 3.0);
+  CHECK(both.beta == 5.0);
+  spec.solve.baumgarte_beta.reset();
+  const BaumgarteGains alpha_only = baumgarte_gains(build_model(spec));
+  CHECK(alpha_only.alpha == 3.0);
+  CHECK(alpha_only.beta == doctest::Approx(2.387874).epsilon(1e-6));
+
+  // No stiffness at all: no constrained frequency, so β = 2π / output_step.
+  const char* free_mass = R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[0.0, 0.0], [0.0, 0.0]]
+[[constraint]]
+terms = { a = 1.0, b = -1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.25
+)";
+  const BaumgarteGains fallback = baumgarte_gains(build_model(parse_scene_text(free_mass, "free")));
+  CHECK(fallback.beta == doctest::Approx(2 * 3.141592653589793 / 0.25));
+}
+
+TEST_CASE("Baumgarte gains from the scene reach the summary") {
+  SceneSpec spec = parse_scene_text(kScene, "gains");
+  spec.solve.baumgarte_alpha = 2.0;
+  spec.solve.baumgarte_beta = 4.0;
+  const Model model = build_model(spec);
+  SolveSummary summary;
+  (void)solve(model, Scheme::baumgarte, integrator_options(model), summary);
+  CHECK(summary.brief().find("alpha = 2, beta = 4 from the scene") != std::string::npos);
+}
+
+TEST_CASE("homogeneous scleronomic constraints evaluate no time function") {
+  const Model a = build_model(parse_scene_text(embedded_scene("chapter_5_5_1").text, "A"));
+  CHECK(LinearSystem(a).rows_with_time_functions() == 0);
+  const Model e = build_model(parse_scene_text(embedded_scene("chapter_5_6_2").text, "E"));
+  CHECK(LinearSystem(e).rows_with_time_functions() == 3);
+  const Model mixed = build_model(parse_scene_text(kScene, "mixed"));
+  CHECK(LinearSystem(mixed).rows_with_time_functions() == 2);
 }

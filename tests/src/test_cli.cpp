@@ -178,4 +178,7 @@ TEST_CASE("info classifies constraints and sizes the model") {
   CHECK(r.out.find("scleronomic") != std::string::npos);
   CHECK(r.out.find("2 DOFs, 1 constraints") != std::string::npos);
   CHECK(r.out.find("slaves a; masters b") != std::string::npos);
+  CHECK(r.out.find("system each scheme integrates") != std::string::npos);
+  CHECK(r.out.find("ggl") != std::string::npos);
+  CHECK(r.out.find("<- selected") != std::string::npos);
 }
