@@ -38,8 +38,8 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
     out.v.col(k) = v[i];
     if (m > 0) {
       out.multiplier.col(k) = lambda[i];
-      // Exactly zero on DOFs that no constraint touches.
-      out.reaction.col(k) = -(model.A.transpose() * lambda[i]);
+      // Aᵀ(−λ) rather than −(Aᵀλ): exactly +0 on DOFs that no constraint touches (no "-0").
+      out.reaction.col(k) = model.A.transpose() * (-lambda[i]);
     } else {
       out.reaction.col(k).setZero();
     }

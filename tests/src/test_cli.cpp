@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -147,12 +148,23 @@ scheme = "elimination"
 
 TEST_CASE("every scheme runs from the command line") {
   const Sandbox box;
-  box.write("s.toml", kScene);
+  box.write("s.toml", kScene + "[output]\nquantities = [\"reaction\", \"multiplier\"]\n");
   for (const char* scheme : {"auto", "elimination", "index1", "baumgarte", "ggl"}) {
     CAPTURE(scheme);
     const Result r = box.run(std::string("run s.toml --scheme ") + scheme + " --out r.csv");
     CHECK(r.code == 0);
     CHECK(r.out.find("reached t = 1") != std::string::npos);
+    const std::string csv = slurp(box.path("r.csv"));
+    CHECK(csv.rfind("t,reaction_a,reaction_b,lambda_tie\n", 0) == 0);
+    // The tie holds a = 0; b is free: its reaction column is exactly 0 under every scheme.
+    std::istringstream lines(csv);
+    std::string line;
+    std::getline(lines, line);
+    while (std::getline(lines, line)) {
+      const auto last = line.rfind(',');
+      const auto before = line.rfind(',', last - 1);
+      CHECK(line.substr(before + 1, last - before - 1) == "0");
+    }
   }
 }
 
@@ -181,4 +193,66 @@ TEST_CASE("info classifies constraints and sizes the model") {
   CHECK(r.out.find("system each scheme integrates") != std::string::npos);
   CHECK(r.out.find("ggl") != std::string::npos);
   CHECK(r.out.find("<- selected") != std::string::npos);
+}
+
+TEST_CASE("run --steps-out writes the drift at every internal step") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  const Result r = box.run("run s.toml --scheme ggl --out r.csv --steps-out steps.csv");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  const std::string steps = slurp(box.path("steps.csv"));
+  CHECK(steps.rfind("t,drift_position,drift_velocity\n", 0) == 0);
+  const auto rows = std::count(steps.begin(), steps.end(), '\n') - 1;
+  CHECK(rows > 5);  // more internal steps than the 5 output rows
+  CHECK(r.out.find("internal steps to steps.csv") != std::string::npos);
+}
+
+TEST_CASE("the contract's example scene runs as written (scene-format.md, §5.5.1, scheme ggl)") {
+  const Sandbox box;
+  box.write("example.toml", R"(name = "Chapter 5.5.1: scleronomic, homogeneous SFC"
+
+[model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]   # node k (1-based) has DOFs "uxk", "uyk"
+masses = [5.0, 3.0, 4.0]                          # lumped point mass per node, both directions
+members = [
+  { nodes = [1, 2], EA = 100.0 },
+  { nodes = [2, 3], EA = 50.0 },
+  { nodes = [1, 3], EA = 282.842712474619 },
+]
+
+[[load]]
+dof = "ux3"
+value = { type = "step", amplitude = 2.0 }
+
+[[load]]
+dof = "uy3"
+value = { type = "step", amplitude = 1.0 }
+
+[[constraint]]
+name = "pin_x"
+terms = { ux1 = 1.0 }          # 1.0 * ux1 = value (default 0: homogeneous)
+
+[[constraint]]
+terms = { uy1 = 1.0 }
+
+[[constraint]]
+terms = { uy2 = 1.0 }
+
+[solve]
+t_end = 10.0
+output_step = 0.1
+scheme = "ggl"
+rtol = 1e-8
+atol = 1e-10
+)");
+  const Result r = box.run("run example.toml --out e.csv");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.rfind("ggl:", 0) == 0);
+  const std::string csv = slurp(box.path("e.csv"));
+  CHECK(csv.rfind("t,ux1,uy1,ux2,uy2,ux3,uy3,drift_position,drift_velocity\n", 0) == 0);
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 101);  // header + t = 0, 0.1, ..., 10
+  CHECK(csv.find("\n10,") != std::string::npos);               // the last row is t_end
 }
