@@ -73,7 +73,7 @@ Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
 struct CallbackData {
   const DaeProblem* problem = nullptr;
   double rtol = 0.0, atol = 0.0;
-  void* mem = nullptr;  ///< IDA memory, for the step size in the weight function
+  void* mem = nullptr;         ///< IDA memory, for the step size in the weight function
   Eigen::VectorXd controlled;  ///< 1 on differential components, 0 on index-2 algebraic ones
   double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
@@ -153,7 +153,8 @@ class Ida {
     yp_.reset(N_VNew_Serial(n_, ctx_.get()));
     id_.reset(N_VNew_Serial(n_, ctx_.get()));
     work_.reset(N_VNew_Serial(n_, ctx_.get()));
-    if (!y_ || !yp_ || !id_ || !work_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
+    if (!y_ || !yp_ || !id_ || !work_)
+      throw IntegrationError("N_VNew_Serial failed (out of memory?)");
     if (options.dense_linear_solver) {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));

@@ -38,7 +38,7 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
   system.constraint_jacobian(0.0, zero, A_);
   system.force_jacobian(0.0, zero, zero, f_u_, f_v_);
   Ap_ = select_p_ * A_;
-  const int iu = 0, iv = n_, il = 2 * n_, im = 2 * n_ + m_;
+  const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(iu, iu, n_);  // d(u')
   jacobian_.declare_identity(iu, iv, n_);  // −I
@@ -57,7 +57,7 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
 
 Eigen::VectorXd MultiplierDae::differential_id() const {
   Eigen::VectorXd id = Eigen::VectorXd::Zero(size());
-  id.head(2 * n_).setOnes();
+  id.head(lambda_at()).setOnes();
   return id;
 }
 
@@ -70,7 +70,7 @@ Eigen::VectorXd MultiplierDae::pack(const Eigen::VectorXd& u0, const Eigen::Vect
 
 void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstRef yp,
                              Ref r) const {
-  const auto uu = y.segment(0, n_), vv = y.segment(n_, n_), lam = y.segment(2 * n_, m_);
+  const auto uu = y.segment(0, n_), vv = y.segment(n_, n_), lam = y.segment(lambda_at(), m_);
   const auto up = yp.segment(0, n_), vp = yp.segment(n_, n_);
   Eigen::VectorXd f(n_);
   system_.force(t, step_reference, uu, vv, f);
@@ -80,7 +80,7 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
   if (m_ == 0) return;  // unconstrained: a plain second-order ODE
   system_.constraint_jacobian(t, uu, A_);
   r.segment(n_, n_) += A_.transpose() * lam;
-  auto rl = r.segment(2 * n_, m_);
+  auto rl = r.segment(lambda_at(), m_);
   Eigen::VectorXd work(m_);
   switch (scheme_) {
     case MultiplierScheme::index1:
@@ -98,10 +98,10 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
     }
     case MultiplierScheme::ggl: {
       system_.velocity_residual(t, uu, vv, rl);
-      const auto mu = y.segment(2 * n_ + m_, p_);
+      const auto mu = y.segment(mu_at(), p_);
       r.segment(0, n_) += A_.transpose() * (select_p_.transpose() * mu);
       system_.position_residual(t, uu, work);
-      r.segment(2 * n_ + m_, p_) = select_p_ * work;
+      r.segment(mu_at(), p_) = select_p_ * work;
       break;
     }
   }
@@ -115,7 +115,7 @@ void MultiplierDae::jacobian(double t, double /*step_reference*/, ConstRef y, Co
   system_.constraint_jacobian(t, uu, A_);
   system_.force_jacobian(t, uu, vv, f_u_, f_v_);
   Ap_ = select_p_ * A_;
-  const int iu = 0, iv = n_, il = 2 * n_, im = 2 * n_ + m_;
+  const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, iu, iu, n_, cj);
   BlockJacobian::add_identity(J, iu, iv, n_, -1.0);
@@ -194,8 +194,8 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
   rhs << f, rhs_l;
   const Eigen::VectorXd sol = lu.solve(rhs);
   yp.segment(n_, n_) = sol.head(n_);
-  y.segment(2 * n_, m_) = sol.tail(m_);
-  y.segment(2 * n_ + m_, p_).setZero();
+  y.segment(lambda_at(), m_) = sol.tail(m_);
+  y.segment(mu_at(), p_).setZero();
 }
 
 }  // namespace condyn

@@ -32,7 +32,7 @@ class MultiplierDae final : public DaeProblem {
   MultiplierDae(const MechanicalSystem& system, MultiplierScheme scheme, double alpha = 0.0,
                 double beta = 0.0);
 
-  [[nodiscard]] int size() const override { return 2 * n_ + m_ + p_; }
+  [[nodiscard]] int size() const override { return mu_at() + p_; }
   void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override;
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return jacobian_.pattern();
@@ -40,9 +40,7 @@ class MultiplierDae final : public DaeProblem {
   void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   [[nodiscard]] Eigen::VectorXd differential_id() const override;
-  [[nodiscard]] bool index2_algebraic() const override {
-    return scheme_ == MultiplierScheme::ggl;
-  }
+  [[nodiscard]] bool index2_algebraic() const override { return scheme_ == MultiplierScheme::ggl; }
   /// Keeps u and v; λ and v' from [M Aᵀ; A 0][v'; λ] = [f; γ − stabilization]; μ = 0, u' = v.
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
 
@@ -50,10 +48,14 @@ class MultiplierDae final : public DaeProblem {
   [[nodiscard]] Eigen::VectorXd pack(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;
   [[nodiscard]] auto u(const Eigen::VectorXd& y) const { return y.segment(0, n_); }
   [[nodiscard]] auto v(const Eigen::VectorXd& y) const { return y.segment(n_, n_); }
-  [[nodiscard]] auto lambda(const Eigen::VectorXd& y) const { return y.segment(2 * n_, m_); }
-  [[nodiscard]] auto mu(const Eigen::VectorXd& y) const { return y.segment(2 * n_ + m_, p_); }
+  [[nodiscard]] auto lambda(const Eigen::VectorXd& y) const { return y.segment(lambda_at(), m_); }
+  [[nodiscard]] auto mu(const Eigen::VectorXd& y) const { return y.segment(mu_at(), p_); }
 
  private:
+  /// Offsets of λ and μ in y (u at 0, v at n).
+  [[nodiscard]] int lambda_at() const { return 2 * n_; }
+  [[nodiscard]] int mu_at() const { return 2 * n_ + m_; }
+
   const MechanicalSystem& system_;
   MultiplierScheme scheme_;
   double alpha_, beta_;

@@ -11,9 +11,9 @@ namespace condyn {
 struct IntegratorOptions {
   double rtol = 1e-8;
   double atol = 1e-10;
-  bool dense_linear_solver = false;  ///< SUNDIALS dense LU instead of KLU (tiny systems only)
-  std::vector<double> output_times;  ///< ascending, first one is the initial time
-  std::vector<double> breakpoints;   ///< load steps inside (t0, t_end): stop and restart there
+  bool dense_linear_solver = false;    ///< SUNDIALS dense LU instead of KLU (tiny systems only)
+  std::vector<double> output_times;    ///< ascending, first one is the initial time
+  std::vector<double> breakpoints;     ///< load steps inside (t0, t_end): stop and restart there
   long max_steps_per_output = 100000;  ///< between two output times; more is a failure
   /// Called after every internal step with the step's exact t and y (not interpolated).
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;

@@ -59,7 +59,8 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
                                        : "named in [solve] slaves")
         << ")\n";
   }
-  if (choice.scheme == Scheme::baumgarte) out << "baumgarte: " << baumgarte_gains(model).rule << "\n";
+  if (choice.scheme == Scheme::baumgarte)
+    out << "baumgarte: " << baumgarte_gains(model).rule << "\n";
   out << "\nsystem each scheme integrates:\n";
   out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";

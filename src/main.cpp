@@ -46,7 +46,8 @@ int run(const RunArgs& args) {
   options.record_steps = !args.steps_out.empty();
   const Trajectory traj = solve(model, choice.scheme, options, summary);
   write_csv_atomically(out, model, traj);
-  std::cout << summary.brief() << "\n" << "wrote " << traj.t.size() << " rows to " << out << "\n";
+  std::cout << summary.brief() << "\n"
+            << "wrote " << traj.t.size() << " rows to " << out << "\n";
   if (!args.steps_out.empty()) {
     write_steps_csv_atomically(args.steps_out, traj);
     std::cout << "wrote the drift at " << traj.steps.size() << " internal steps to "

@@ -37,8 +37,9 @@ output_step = 0.5
 )";
 
 /// Central differences of F along (y + h e_j, y' + cj h e_j): dF/dy + cj dF/dy', column j.
-Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t, const Eigen::VectorXd& y,
-                                           const Eigen::VectorXd& yp, double cj) {
+Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t,
+                                           const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                           double cj) {
   const int n = dae.size();
   const double h = 1e-6;
   Eigen::MatrixXd fd(n, n);
@@ -61,7 +62,8 @@ Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t, cons
 TEST_CASE("multiplier formulations: Jacobian agrees with central differences") {
   const Model model = build_model(parse_scene_text(kScene, "jacobian test"));
   const LinearSystem system(model);
-  for (auto scheme : {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
+  for (auto scheme :
+       {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
     CAPTURE(static_cast<int>(scheme));
     const MultiplierDae dae(system, scheme, 0.7, 1.3);
     const int n = dae.size();
@@ -95,7 +97,8 @@ output_step = 0.5
 )";
   const Model free_model = build_model(parse_scene_text(free_scene, "free"));
   const LinearSystem free_system(free_model);
-  for (auto scheme : {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
+  for (auto scheme :
+       {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
     const MultiplierDae dae(free_system, scheme, 1, 1);
     CHECK(dae.size() == 4);  // no multiplier, no μ: a plain second-order ODE
     CHECK(dae.differential_id().sum() == 4);
@@ -107,7 +110,8 @@ output_step = 0.5
 TEST_CASE("multiplier formulations: consistent initial values") {
   const Model model = build_model(parse_scene_text(kScene, "consistency"));
   const LinearSystem system(model);
-  for (auto scheme : {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
+  for (auto scheme :
+       {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
     CAPTURE(static_cast<int>(scheme));
     const MultiplierDae dae(system, scheme, 0.7, 1.3);
     Eigen::VectorXd y = dae.pack(model.u0, model.v0), yp;

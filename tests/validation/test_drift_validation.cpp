@@ -24,8 +24,8 @@ double window_max(const std::vector<StepRecord>& steps, double t0, double t1) {
 }  // namespace
 
 TEST_CASE("long runs: GGL drift stays at the Newton tolerance, index1 drift grows") {
-  SceneSpec spec =
-      parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/truss_inclined_roller.toml");
+  SceneSpec spec = parse_scene_file(std::string(CONDYN_SOURCE_DIR) +
+                                    "/models/scenes/truss_inclined_roller.toml");
   spec.solve.t_end = 1000.0;
   spec.solve.output_step = 10.0;
   spec.solve.rtol = 1e-6;

@@ -36,9 +36,9 @@ TEST_CASE("hand-written scenes: every scheme agrees with the exact solution, rea
       const Trajectory run = solve(model, scheme, integrator_options(model), summary);
       const Trajectory exact = exact_trajectory(model, model.output_times());
       const TrajectoryError err = relative_error(run, exact);
-      MESSAGE(std::string(name) << " " << std::string(to_string(scheme)) << ": err u " << err.displacement
-                                << ", v " << err.velocity << ", f_con " << err.reaction << ", "
-                                << summary.steps << " steps");
+      MESSAGE(std::string(name) << " " << std::string(to_string(scheme)) << ": err u "
+                                << err.displacement << ", v " << err.velocity << ", f_con "
+                                << err.reaction << ", " << summary.steps << " steps");
       CHECK(err.worst() <= kAcceptance);
       CHECK(err.worst() <= kGlobalErrorFactor * model.solve.rtol);
     }
