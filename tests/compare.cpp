@@ -26,4 +26,24 @@ Mismatch compare_matrices(const Eigen::MatrixXd& got, const Eigen::MatrixXd& exp
   return m;
 }
 
+Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t,
+                                           const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                           double cj) {
+  const int n = dae.size();
+  const double h = 1e-6;
+  Eigen::MatrixXd fd(n, n);
+  Eigen::VectorXd rp(n), rm(n);
+  for (int j = 0; j < n; ++j) {
+    Eigen::VectorXd y1 = y, y2 = y, yp1 = yp, yp2 = yp;
+    y1[j] += h;
+    y2[j] -= h;
+    yp1[j] += cj * h;
+    yp2[j] -= cj * h;
+    dae.residual(t, t, y1, yp1, rp);
+    dae.residual(t, t, y2, yp2, rm);
+    fd.col(j) = (rp - rm) / (2 * h);
+  }
+  return fd;
+}
+
 }  // namespace condyn::test

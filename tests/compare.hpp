@@ -5,6 +5,8 @@
 #include <Eigen/Dense>
 #include <string>
 
+#include "dae/dae_problem.hpp"
+
 namespace condyn::test {
 
 struct Mismatch {
@@ -15,6 +17,12 @@ struct Mismatch {
 /// Entry-wise |a − b| <= abs_tol + rel_tol * max|b|.
 [[nodiscard]] Mismatch compare_matrices(const Eigen::MatrixXd& got, const Eigen::MatrixXd& expected,
                                         double rel_tol, double abs_tol = 0.0);
+
+/// Central differences of a DAE residual along (y + h e_j, y' + cj h e_j): column j of
+/// dF/dy + cj dF/dy', the matrix IDA asks for. h = 1e-6 suits O(1) states.
+[[nodiscard]] Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t,
+                                                         const Eigen::VectorXd& y,
+                                                         const Eigen::VectorXd& yp, double cj);
 
 }  // namespace condyn::test
 

@@ -36,27 +36,6 @@ t_end = 1.0
 output_step = 0.5
 )";
 
-/// Central differences of F along (y + h e_j, y' + cj h e_j): dF/dy + cj dF/dy', column j.
-Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t,
-                                           const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
-                                           double cj) {
-  const int n = dae.size();
-  const double h = 1e-6;
-  Eigen::MatrixXd fd(n, n);
-  Eigen::VectorXd rp(n), rm(n);
-  for (int j = 0; j < n; ++j) {
-    Eigen::VectorXd y1 = y, y2 = y, yp1 = yp, yp2 = yp;
-    y1[j] += h;
-    y2[j] -= h;
-    yp1[j] += cj * h;
-    yp2[j] -= cj * h;
-    dae.residual(t, t, y1, yp1, rp);
-    dae.residual(t, t, y2, yp2, rm);
-    fd.col(j) = (rp - rm) / (2 * h);
-  }
-  return fd;
-}
-
 }  // namespace
 
 TEST_CASE("multiplier formulations: Jacobian agrees with central differences") {
@@ -74,7 +53,8 @@ TEST_CASE("multiplier formulations: Jacobian agrees with central differences") {
     dae.jacobian(t, t, y, yp, cj, J);
     // The residual is linear in (y, y'): central differences are exact up to roundoff
     // eps·|F|/h ≈ 1e-10.
-    CONDYN_CHECK_CLOSE(Eigen::MatrixXd(J), finite_difference_jacobian(dae, t, y, yp, cj), 1e-8);
+    CONDYN_CHECK_CLOSE(Eigen::MatrixXd(J), test::finite_difference_jacobian(dae, t, y, yp, cj),
+                       1e-8);
   }
 }
 
