@@ -27,14 +27,16 @@ class DaeProblem {
                         Eigen::SparseMatrix<double>& J) const = 0;
   /// 1 for differential components, 0 for algebraic ones (IDASetId).
   [[nodiscard]] virtual Eigen::VectorXd differential_id() const = 0;
-  /// True when the algebraic components are index-2 variables (GGL's λ and μ). They are left out
-  /// of the local error test (IDASetSuppressAlg: the BDF error estimate does not apply to them)
-  /// and their error weights in the Newton convergence test are scaled by the step size h, as
-  /// RADAU5 scales index-2 components. Unscaled, the Newton matrix's 1/h² conditioning makes
-  /// their roundoff exceed any tolerance at small steps and the step size collapses (seen on
-  /// chapter case E at rtol <= 1e-9); with zero weight instead, IDA's modified Newton never
-  /// converges them (μ grew 2x per step between Jacobian updates, to 4e4 where it is 0).
-  [[nodiscard]] virtual bool index2_algebraic() const { return false; }
+  /// The differentiation index of each component: 1 for ordinary differential and index-1
+  /// algebraic components; 2 for GGL's and index2's multipliers and index3's velocities; 3 for
+  /// index3's multipliers. Components of index k >= 2 are left out of the local error test (the
+  /// BDF error estimate does not apply to them) and their error weights in the Newton
+  /// convergence test are scaled by h^(k−1), as RADAU5 scales higher-index components.
+  /// Unscaled, the Newton matrix's conditioning (1/h² for index 2) makes their roundoff exceed any
+  /// tolerance at small steps and the step size collapses (seen under GGL on chapter case E at
+  /// rtol <= 1e-9); with zero weight, IDA's modified Newton never converges them (GGL's μ grew
+  /// 2x per step between Jacobian updates, to 4e4 where it is 0). Empty means all 1.
+  [[nodiscard]] virtual Eigen::VectorXd variable_index() const { return {}; }
   /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
   /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
   /// step, where accelerations and multipliers jump). Throws std::runtime_error when the

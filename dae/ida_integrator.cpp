@@ -73,8 +73,8 @@ Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
 struct CallbackData {
   const DaeProblem* problem = nullptr;
   double rtol = 0.0, atol = 0.0;
-  void* mem = nullptr;         ///< IDA memory, for the step size in the weight function
-  Eigen::VectorXd controlled;  ///< 1 on differential components, 0 on index-2 algebraic ones
+  void* mem = nullptr;    ///< IDA memory, for the step size in the weight function
+  Eigen::VectorXd index;  ///< differentiation index per component (DaeProblem::variable_index)
   double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
   std::exception_ptr error;
@@ -121,7 +121,7 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
   }
 }
 
-/// Error weights 1/(rtol |y_i| + atol), scaled by the step size h on index-2 components.
+/// Error weights h^(k_i − 1) / (rtol |y_i| + atol), k_i the component's index (DaeProblem).
 int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   auto* data = static_cast<CallbackData*>(user);
   double h = 0.0;
@@ -129,8 +129,9 @@ int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   h = std::abs(h);
   if (!(h > 0.0)) h = 1.0;  // before the first step: no scaling yet
   auto w = view(ewt);
-  w = (data->controlled.array() + (1.0 - data->controlled.array()) * h) /
-      (data->rtol * view(y).array().abs() + data->atol);
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    w[i] = std::pow(h, data->index[i] - 1.0) / (data->rtol * std::abs(view(y)[i]) + data->atol);
+  }
   return 0;
 }
 
@@ -173,14 +174,22 @@ class Ida {
             const IntegratorOptions& options) {
     view(y_.get()) = y0;
     view(yp_.get()) = yp0;
+    // IDA reads the id vector for one purpose here: IDASetSuppressAlg leaves out of the error test
+    // the components marked 0. So higher-index components are marked 0 too (index3's velocities
+    // are differential but index 2).
+    const Eigen::VectorXd index = data_.problem->variable_index();
+    const bool higher_index = index.size() > 0 && index.maxCoeff() > 1.0;
     view(id_.get()) = data_.problem->differential_id();
+    if (higher_index) {
+      view(id_.get()) = (index.array() > 1.0).select(0.0, view(id_.get()).array());
+    }
     check(IDAInit(mem_.get(), residual_trampoline, t0, y_.get(), yp_.get()), "IDAInit");
     check(IDASetUserData(mem_.get(), &data_), "IDASetUserData");
     check(IDASetId(mem_.get(), id_.get()), "IDASetId");
-    if (data_.problem->index2_algebraic()) {
+    if (higher_index) {
       data_.rtol = options.rtol;
       data_.atol = options.atol;
-      data_.controlled = view(id_.get());
+      data_.index = index;
       data_.mem = mem_.get();
       check(IDAWFtolerances(mem_.get(), weight_trampoline), "IDAWFtolerances");
       check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");

@@ -28,8 +28,13 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
   for (int k = 0; k < p_; ++k)
     select_p_.insert(k, position_row_[static_cast<std::size_t>(k)]) = 1.0;
   position_mask_.resize(m_, m_);
+  velocity_mask_.resize(m_, m_);
   for (int i = 0; i < m_; ++i) {
-    if (system.position_rows()[static_cast<std::size_t>(i)]) position_mask_.insert(i, i) = 1.0;
+    if (system.position_rows()[static_cast<std::size_t>(i)]) {
+      position_mask_.insert(i, i) = 1.0;
+    } else {
+      velocity_mask_.insert(i, i) = 1.0;
+    }
   }
 
   // Patterns at the initial state: fixed for the run (constant for linear systems).
@@ -47,7 +52,12 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
   jacobian_.declare(iv, iv, f_v_);
   jacobian_.declare(iv, iv, M_);
   jacobian_.declare(iv, il, Eigen::SparseMatrix<double>(A_.transpose()));
-  jacobian_.declare(il, iv, A_);  // cj A (index1, baumgarte) or A (ggl, and 2α A)
+  // λ rows: cj A (index1, baumgarte), A (ggl, index2, and 2α A), or under index3 A on position
+  // rows (d/du) and on velocity rows (d/dv).
+  jacobian_.declare(il, iv, A_);
+  if (scheme == MultiplierScheme::index3) {
+    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_));
+  }
   if (scheme == MultiplierScheme::baumgarte) {
     jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_));  // β² φ_u
   }
@@ -59,6 +69,26 @@ Eigen::VectorXd MultiplierDae::differential_id() const {
   Eigen::VectorXd id = Eigen::VectorXd::Zero(size());
   id.head(lambda_at()).setOnes();
   return id;
+}
+
+Eigen::VectorXd MultiplierDae::variable_index() const {
+  Eigen::VectorXd index = Eigen::VectorXd::Ones(size());
+  switch (scheme_) {
+    case MultiplierScheme::index1:
+    case MultiplierScheme::baumgarte:
+      break;
+    case MultiplierScheme::ggl:
+    case MultiplierScheme::index2:
+      index.tail(size() - lambda_at()).setConstant(2.0);  // λ (and μ)
+      break;
+    case MultiplierScheme::index3:
+      index.segment(n_, n_).setConstant(2.0);  // velocities
+      for (int i = 0; i < m_; ++i) {
+        index[lambda_at() + i] = system_.position_rows()[static_cast<std::size_t>(i)] ? 3.0 : 2.0;
+      }
+      break;
+  }
+  return index;
 }
 
 Eigen::VectorXd MultiplierDae::pack(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0) const {
@@ -94,6 +124,16 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
       rl += 2.0 * alpha_ * work;
       system_.position_residual(t, uu, work);
       rl += beta_ * beta_ * work;
+      break;
+    }
+    case MultiplierScheme::index2:
+      system_.velocity_residual(t, uu, vv, rl);
+      break;
+    case MultiplierScheme::index3: {
+      system_.position_residual(t, uu, work);  // zero on velocity rows
+      rl = work;
+      system_.velocity_residual(t, uu, vv, work);
+      rl += velocity_mask_ * work;
       break;
     }
     case MultiplierScheme::ggl: {
@@ -134,6 +174,13 @@ void MultiplierDae::jacobian(double t, double /*step_reference*/, ConstRef y, Co
                          beta_ * beta_);
       break;
     }
+    case MultiplierScheme::index2:
+      BlockJacobian::add(J, il, iv, A_);
+      break;
+    case MultiplierScheme::index3:
+      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_));
+      BlockJacobian::add(J, il, iv, Eigen::SparseMatrix<double>(velocity_mask_ * A_));
+      break;
     case MultiplierScheme::ggl:
       BlockJacobian::add(J, il, iv, A_);
       BlockJacobian::add(J, iu, im, Eigen::SparseMatrix<double>(Ap_.transpose()));

@@ -6,14 +6,17 @@
 ///   M v' − f(t, u, v) + Aᵀ λ   = 0                      (f_con = −Aᵀλ, the chapter's sign)
 ///   index1:     A v' − γ                        = 0     (acceleration level, no stabilization)
 ///   baumgarte:  A v' − γ + 2α ψ + β² φ          = 0     (φ only on position rows)
-///   ggl:        ψ = 0 and φ_p = 0                       (stabilized index 2,
-///   Gear-Gupta-Leimkuhler)
+///   ggl:        ψ = 0 and φ_p = 0        (stabilized index 2, Gear-Gupta-Leimkuhler)
+///   index2:     ψ = 0                    (velocity level, no stabilization)
+///   index3:     φ = 0 on position rows, ψ = 0 on velocity rows   (the original DAE)
 ///
-/// Velocity-level rows enter at their own level: ψ (index 2) under GGL, differentiated once
-/// (A v' = h') under index1 and Baumgarte. μ vanishes on exact solutions; it is reported.
-/// u and v are differential; λ and μ algebraic. Under GGL they are index-2 variables
-/// (DaeProblem::index2_algebraic: no error test, h-scaled weight in Newton's convergence test);
-/// under index1 and Baumgarte λ is an index-1 variable that IDA controls like any other.
+/// Velocity-level rows enter at their own level: ψ (index 2) under GGL, index2 and index3,
+/// differentiated once (A v' = h') under index1 and Baumgarte. μ vanishes on exact solutions; it
+/// is reported. u and v are differential; λ and μ algebraic. Indices
+/// (DaeProblem::variable_index): under index1 and Baumgarte everything is index 1; under GGL and
+/// index2, λ and μ are index 2; under index3, v is index 2 and λ index 3 on position rows (2 on
+/// velocity rows). Higher-index components are out of the error test and get h^(k−1)-scaled
+/// Newton weights.
 
 #include <Eigen/SparseLU>
 
@@ -23,7 +26,7 @@
 
 namespace condyn {
 
-enum class MultiplierScheme { index1, baumgarte, ggl };
+enum class MultiplierScheme { index1, baumgarte, ggl, index2, index3 };
 
 class MultiplierDae final : public DaeProblem {
  public:
@@ -40,7 +43,7 @@ class MultiplierDae final : public DaeProblem {
   void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   [[nodiscard]] Eigen::VectorXd differential_id() const override;
-  [[nodiscard]] bool index2_algebraic() const override { return scheme_ == MultiplierScheme::ggl; }
+  [[nodiscard]] Eigen::VectorXd variable_index() const override;
   /// Keeps u and v; λ and v' from [M Aᵀ; A 0][v'; λ] = [f; γ − stabilization]; μ = 0, u' = v.
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
 
@@ -63,6 +66,7 @@ class MultiplierDae final : public DaeProblem {
   std::vector<int> position_row_;              ///< μ index k -> constraint row
   Eigen::SparseMatrix<double> select_p_;       ///< p x m: picks the position rows (GGL's μ)
   Eigen::SparseMatrix<double> position_mask_;  ///< m x m diagonal: 1 on position rows
+  Eigen::SparseMatrix<double> velocity_mask_;  ///< m x m diagonal: 1 on velocity rows
   BlockJacobian jacobian_;
   // Scratch for the Jacobian callback (patterns fixed; values refreshed per call).
   mutable Eigen::SparseMatrix<double> M_, A_, Ap_, f_u_, f_v_;

@@ -8,6 +8,7 @@
 #include "dae/ida_integrator.hpp"
 #include "dae/linear_system.hpp"
 #include "dae/multiplier_dae.hpp"
+#include "dae/penalty_ode.hpp"
 #include "dae/reduced_ode.hpp"
 
 namespace condyn {
@@ -41,6 +42,10 @@ MultiplierScheme multiplier_scheme(Scheme s) {
       return MultiplierScheme::index1;
     case Scheme::baumgarte:
       return MultiplierScheme::baumgarte;
+    case Scheme::index2:
+      return MultiplierScheme::index2;
+    case Scheme::index3:
+      return MultiplierScheme::index3;
     default:
       return MultiplierScheme::ggl;
   }
@@ -84,6 +89,38 @@ Trajectory solve_multipliers(const Model& model, Scheme scheme, const Integrator
   return traj;
 }
 
+Trajectory solve_penalty(const Model& model, const IntegratorOptions& options,
+                         SolveSummary& summary) {
+  const LinearSystem system(model);
+  const PenaltyWeights weights = penalty_weights(model);
+  summary.notes = weights.rule;
+  const PenaltyOde ode(system, weights);
+  summary.scheme = to_string(Scheme::penalty);
+  double max_dp = 0.0, max_dv = 0.0;
+  std::vector<StepRecord> steps;
+  IntegratorOptions observed = options;
+  observed.on_step = [&](double t, const Eigen::VectorXd& y) {
+    const auto [dp, dv] = model.drift(t, y.head(model.dofs()), y.tail(model.dofs()));
+    max_dp = std::max(max_dp, dp);
+    max_dv = std::max(max_dv, dv);
+    if (options.record_steps) steps.push_back({t, dp, dv});
+  };
+  Eigen::VectorXd y0(2 * model.dofs());
+  y0 << model.u0, model.v0;
+  const RawTrajectory raw = integrate(ode, y0, observed, summary);
+  std::vector<Eigen::VectorXd> u, v, lambda;
+  for (std::size_t k = 0; k < raw.t.size(); ++k) {
+    u.emplace_back(raw.y[k].head(model.dofs()));
+    v.emplace_back(raw.y[k].tail(model.dofs()));
+    lambda.push_back(ode.multipliers(raw.t[k], raw.y[k]));
+  }
+  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+  traj.steps = std::move(steps);
+  summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
+  summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
+  return traj;
+}
+
 }  // namespace
 
 SystemSize system_size(const Model& model, Scheme scheme) {
@@ -94,6 +131,10 @@ SystemSize system_size(const Model& model, Scheme scheme) {
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
   const LinearSystem system(model);
+  if (scheme == Scheme::penalty) {
+    const PenaltyOde ode(system, penalty_weights(model));
+    return {ode.size(), ode.jacobian_pattern().nonZeros()};
+  }
   const BaumgarteGains gains =
       scheme == Scheme::baumgarte ? baumgarte_gains(model) : BaumgarteGains{};
   const MultiplierDae dae(system, multiplier_scheme(scheme), gains.alpha, gains.beta);
@@ -110,7 +151,11 @@ Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& opt
     case Scheme::index1:
     case Scheme::baumgarte:
     case Scheme::ggl:
+    case Scheme::index2:
+    case Scheme::index3:
       return solve_multipliers(model, scheme, options, summary);
+    case Scheme::penalty:
+      return solve_penalty(model, options, summary);
   }
   throw std::logic_error("unknown scheme");
 }

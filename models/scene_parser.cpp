@@ -30,8 +30,28 @@ const char* to_string(Scheme s) {
       return "baumgarte";
     case Scheme::ggl:
       return "ggl";
+    case Scheme::index2:
+      return "index2";
+    case Scheme::index3:
+      return "index3";
+    case Scheme::penalty:
+      return "penalty";
   }
   return "?";
+}
+
+std::optional<Scheme> scheme_from_string(std::string_view s) {
+  if (s == to_string(Scheme::automatic)) return Scheme::automatic;
+  for (Scheme scheme : kSchemes) {
+    if (s == to_string(scheme)) return scheme;
+  }
+  return std::nullopt;
+}
+
+std::string scheme_names() {
+  std::string names = to_string(Scheme::automatic);
+  for (Scheme scheme : kSchemes) names += std::string(", ") + to_string(scheme);
+  return names;
 }
 
 const char* to_string(Quantity q) {
@@ -318,9 +338,9 @@ class Reader {
     const std::string path = "solve";
     const auto& t = table(node, path);
     solve.where = at(node, path);
-    check_keys(
-        t, path,
-        {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "slaves", "linear_solver"});
+    check_keys(t, path,
+               {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "penalty", "slaves",
+                "linear_solver"});
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
     if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
@@ -333,6 +353,12 @@ class Reader {
         solve.baumgarte_alpha = positive(*a, "solve.baumgarte.alpha");
       if (const auto* be = b.get("beta"))
         solve.baumgarte_beta = positive(*be, "solve.baumgarte.beta");
+    }
+    if (const auto* n = t.get("penalty")) {
+      const auto& pt = table(*n, "solve.penalty");
+      check_keys(pt, "solve.penalty", {"weight"});
+      if (const auto* w = pt.get("weight"))
+        solve.penalty_weight = positive(*w, "solve.penalty.weight");
     }
     if (const auto* n = t.get("slaves")) {
       const auto& arr = array(*n, "solve.slaves");
@@ -349,12 +375,8 @@ class Reader {
 
   [[nodiscard]] Scheme parse_scheme(const toml::node& node, const std::string& path) const {
     const std::string s = string(node, path);
-    for (Scheme scheme :
-         {Scheme::automatic, Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
-      if (s == to_string(scheme)) return scheme;
-    }
-    fail(node, path,
-         "unknown scheme '" + s + "' (expected auto, elimination, index1, baumgarte or ggl)");
+    if (const auto scheme = scheme_from_string(s)) return *scheme;
+    fail(node, path, "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
   }
 
   void read_output(const toml::node& node, OutputSpec& output) const {

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "models/time_function.hpp"
@@ -58,8 +59,14 @@ struct InitialSpec {
   SourcePoint where;
 };
 
-/// The formulation used to solve the scene.
-enum class Scheme { automatic, elimination, index1, baumgarte, ggl };
+/// The formulation used to solve the scene (README "Schemes").
+enum class Scheme { automatic, elimination, index1, baumgarte, ggl, index2, index3, penalty };
+
+/// Every runnable scheme, the chapter's reference path first (automatic is not one: it resolves
+/// to one of these).
+inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1, Scheme::baumgarte,
+                                      Scheme::ggl,         Scheme::index2, Scheme::index3,
+                                      Scheme::penalty};
 
 struct SolveSpec {
   double t_end = 0.0;
@@ -68,6 +75,7 @@ struct SolveSpec {
   double rtol = 1e-8;
   double atol = 1e-10;
   std::optional<double> baumgarte_alpha, baumgarte_beta;
+  std::optional<double> penalty_weight;  ///< [solve] penalty = { weight = w }
   /// Optional slave DOFs for the master-slave transformation (default: chosen by pivoting).
   std::vector<std::string> slaves;
   /// Dense linear solver instead of KLU (only sensible for tiny systems).
@@ -95,6 +103,10 @@ struct SceneSpec {
 };
 
 [[nodiscard]] const char* to_string(Scheme s);
+/// The scheme named s ("auto" included), or nothing.
+[[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view s);
+/// "auto, elimination, index1, ..." for messages.
+[[nodiscard]] std::string scheme_names();
 [[nodiscard]] const char* to_string(Quantity q);
 
 }  // namespace condyn

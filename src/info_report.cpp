@@ -64,7 +64,7 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   out << "\nsystem each scheme integrates:\n";
   out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";
-  for (Scheme s : {Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
+  for (Scheme s : kSchemes) {
     out << "  " << std::left << std::setw(13) << to_string(s);
     try {
       const SystemSize size = system_size(model, s);

@@ -17,13 +17,9 @@ namespace {
 using namespace condyn;
 
 Scheme parse_scheme_flag(const std::string& s) {
-  for (Scheme scheme :
-       {Scheme::automatic, Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
-    if (s == to_string(scheme)) return scheme;
-  }
-  throw CLI::ValidationError(
-      "--scheme",
-      "unknown scheme '" + s + "' (expected auto, elimination, index1, baumgarte or ggl)");
+  if (const auto scheme = scheme_from_string(s)) return *scheme;
+  throw CLI::ValidationError("--scheme",
+                             "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
 }
 
 struct RunArgs {
@@ -66,7 +62,7 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "solve a scene and write its CSV");
   run_cmd->add_option("scene", run_args.scene, "scene file (TOML)")->required();
   run_cmd->add_option("--scheme", run_args.scheme,
-                      "auto, elimination, index1, baumgarte or ggl (overrides [solve] scheme)");
+                      "scheme (overrides [solve] scheme): " + scheme_names());
   run_cmd->add_option("--rtol", run_args.rtol, "relative tolerance (overrides [solve] rtol)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")

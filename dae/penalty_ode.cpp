@@ -1,0 +1,127 @@
+#include "dae/penalty_ode.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace condyn {
+
+PenaltyWeights penalty_weights(const Model& model) {
+  PenaltyWeights p;
+  std::ostringstream rule;
+  rule.precision(6);
+  const double m_max = Eigen::VectorXd(model.M.diagonal()).cwiseAbs().maxCoeff();
+  if (model.solve.penalty_weight) {
+    p.position = *model.solve.penalty_weight;
+    rule << "penalty weight w = " << p.position << " from the scene";
+  } else {
+    const double k_max = Eigen::VectorXd(model.K.diagonal()).cwiseAbs().maxCoeff();
+    if (k_max > 0.0) {
+      p.position = 1e4 * k_max;
+      rule << "penalty weight w = " << p.position << " (1e4 x the largest stiffness diagonal)";
+    } else {
+      const double w = 2.0 * std::numbers::pi / model.solve.output_step;
+      p.position = 1e4 * m_max * w * w;
+      rule << "penalty weight w = " << p.position
+           << " (no stiffness: 1e4 m (2 pi / output_step)^2)";
+    }
+  }
+  p.velocity = std::sqrt(p.position * m_max);
+  rule << ", velocity rows c = " << p.velocity;
+  p.rule = rule.str();
+  return p;
+}
+
+PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& weights)
+    : system_(system), weights_(weights), n_(system.dofs()), m_(system.constraints()) {
+  if (system.has_curvature()) {
+    throw std::invalid_argument(
+        "the penalty formulation does not yet support nonlinear constraints");
+  }
+  row_weight_.resize(m_);
+  position_mask_.resize(m_, m_);
+  velocity_mask_.resize(m_, m_);
+  for (int i = 0; i < m_; ++i) {
+    const bool position = system.position_rows()[static_cast<std::size_t>(i)];
+    row_weight_[i] = position ? weights.position : weights.velocity;
+    (position ? position_mask_ : velocity_mask_).insert(i, i) = 1.0;
+  }
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
+  system.mass(0.0, zero, M_);
+  system.constraint_jacobian(0.0, zero, A_);
+  system.force_jacobian(0.0, zero, zero, f_u_, f_v_);
+  jacobian_ = BlockJacobian(size());
+  jacobian_.declare_identity(0, 0, n_);
+  jacobian_.declare_identity(0, n_, n_);
+  jacobian_.declare(n_, 0, f_u_);
+  jacobian_.declare(n_, n_, f_v_);
+  jacobian_.declare(n_, n_, M_);
+  const Eigen::SparseMatrix<double> At = A_.transpose();
+  jacobian_.declare(n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A_));
+  jacobian_.declare(n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A_));
+  jacobian_.finish();
+}
+
+Eigen::VectorXd PenaltyOde::multipliers(double t, const Eigen::VectorXd& y) const {
+  if (m_ == 0) return {};
+  Eigen::VectorXd phi(m_), psi(m_);
+  system_.position_residual(t, y.head(n_), phi);  // zero on velocity rows
+  system_.velocity_residual(t, y.head(n_), y.tail(n_), psi);
+  return row_weight_.asDiagonal() * (phi + velocity_mask_ * psi);
+}
+
+void PenaltyOde::residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const {
+  const auto u = y.head(n_), v = y.tail(n_);
+  Eigen::VectorXd f(n_);
+  system_.force(t, step_reference, u, v, f);
+  system_.mass(t, u, M_);
+  r.head(n_) = yp.head(n_) - v;
+  r.tail(n_) = M_ * yp.tail(n_) - f;
+  if (m_ > 0) {
+    system_.constraint_jacobian(t, u, A_);
+    r.tail(n_) += A_.transpose() * multipliers(t, y);
+  }
+}
+
+void PenaltyOde::jacobian(double t, double /*step_reference*/, ConstRef y, ConstRef /*yp*/,
+                          double cj, Eigen::SparseMatrix<double>& J) const {
+  const auto u = y.head(n_), v = y.tail(n_);
+  system_.mass(t, u, M_);
+  system_.force_jacobian(t, u, v, f_u_, f_v_);
+  std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
+  BlockJacobian::add_identity(J, 0, 0, n_, cj);
+  BlockJacobian::add_identity(J, 0, n_, n_, -1.0);
+  BlockJacobian::add(J, n_, 0, f_u_, -1.0);
+  BlockJacobian::add(J, n_, n_, f_v_, -1.0);
+  BlockJacobian::add(J, n_, n_, M_, cj);
+  if (m_ == 0) return;
+  system_.constraint_jacobian(t, u, A_);
+  const Eigen::SparseMatrix<double> At = A_.transpose();
+  BlockJacobian::add(J, n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A_),
+                     weights_.position);
+  BlockJacobian::add(J, n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A_),
+                     weights_.velocity);
+}
+
+void PenaltyOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
+  const Eigen::VectorXd u = y.head(n_), v = y.tail(n_);
+  Eigen::VectorXd f(n_);
+  system_.force(t, t, u, v, f);
+  system_.mass(t, u, M_);
+  if (m_ > 0) {
+    system_.constraint_jacobian(t, u, A_);
+    f -= A_.transpose() * multipliers(t, y);
+  }
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M_);
+  if (lu.info() != Eigen::Success) {
+    throw std::runtime_error(
+        "the penalty formulation needs mass on every DOF: the mass matrix is singular");
+  }
+  yp.resize(size());
+  yp.head(n_) = v;
+  yp.tail(n_) = lu.solve(f);
+}
+
+}  // namespace condyn

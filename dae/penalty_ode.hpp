@@ -1,0 +1,66 @@
+#pragma once
+/// The penalty formulation (the chapter's Table 5.3, "standard, one pass"): no multiplier
+/// unknowns. Each constraint becomes a penalty element whose force plays the multiplier:
+///
+///   λ = w φ    on position rows (a spring of stiffness w along the constraint normal)
+///   λ = c ψ    on velocity rows (a dashpot)
+///   y = [u; v],  u' − v = 0,  M v' − f(t, u, v) + Aᵀ λ(t, u, v) = 0   (all differential)
+///
+/// The constraints hold only to about |f_con| / w, and the penalty springs add a frequency
+/// √(w / m) that makes the system stiff: the cost is accuracy (small w) or stiffness (large w).
+/// Reactions are the element forces, f_con = −Aᵀλ, the same meaning as in every other scheme.
+
+#include <Eigen/SparseLU>
+#include <string>
+
+#include "dae/block_jacobian.hpp"
+#include "dae/dae_problem.hpp"
+#include "dae/mechanical_system.hpp"
+#include "models/model.hpp"
+
+namespace condyn {
+
+struct PenaltyWeights {
+  double position = 0.0;  ///< w
+  double velocity = 0.0;  ///< c
+  std::string rule;       ///< how they were chosen, printed in the summary
+};
+
+/// From [solve] penalty = { weight = w } or by default w = 1e4 · max_i K_ii: the penalty springs
+/// are four orders stiffer than the stiffest element, so the constraint error is about 1e-4 of
+/// the elastic deformation. Without stiffness, w = 1e4 · m_max (2π / output_step)². Velocity rows
+/// get c = √(w · m_max), the critical dashpot of the largest mass on a spring w.
+[[nodiscard]] PenaltyWeights penalty_weights(const Model& model);
+
+class PenaltyOde final : public DaeProblem {
+ public:
+  /// Keeps a reference to `system`. Throws std::invalid_argument for curvature terms.
+  PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& weights);
+
+  [[nodiscard]] int size() const override { return 2 * n_; }
+  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override;
+  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
+    return jacobian_.pattern();
+  }
+  void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+                Eigen::SparseMatrix<double>& J) const override;
+  [[nodiscard]] Eigen::VectorXd differential_id() const override {
+    return Eigen::VectorXd::Ones(2 * n_);
+  }
+  /// y' = [v; M⁻¹(f − Aᵀλ)]. Throws std::runtime_error when M is singular.
+  void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
+
+  /// The penalty element forces λ at a state.
+  [[nodiscard]] Eigen::VectorXd multipliers(double t, const Eigen::VectorXd& y) const;
+
+ private:
+  const MechanicalSystem& system_;
+  PenaltyWeights weights_;
+  int n_, m_;
+  Eigen::VectorXd row_weight_;  ///< w on position rows, c on velocity rows
+  Eigen::SparseMatrix<double> position_mask_, velocity_mask_;
+  BlockJacobian jacobian_;
+  mutable Eigen::SparseMatrix<double> M_, A_, f_u_, f_v_;
+};
+
+}  // namespace condyn
