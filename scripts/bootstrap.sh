@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Set-up for condyn on Debian 12, run as root from a clean clone. Installs whatever is missing
 # (apt-get), configures and builds into build/, then:
-#   bash scripts/bootstrap.sh main   runs the main job (condyn validate: the chapter's five cases)
+#   bash scripts/bootstrap.sh main   runs the main job: condyn validate (the chapter's five cases)
+#                                    and condyn compare on the chapter truss (tables, CSV, JSON and
+#                                    plots in condyn-out/compare-chapter_5_5_1/)
 #   bash scripts/bootstrap.sh test   builds with warnings as errors and runs every test tier (ctest)
 set -euo pipefail
 
@@ -22,6 +24,8 @@ packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev
   libtomlplusplus-dev libcli11-dev)
 # The test command also checks formatting and runs clang-tidy (warnings are errors in CI).
 [ "$mode" = test ] && packages+=(clang-format clang-tidy)
+# compare draws its plots with Debian's matplotlib (the main job, and a unit test of the plots).
+packages+=(python3-matplotlib python3-numpy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -40,7 +44,9 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR="$werror
 cmake --build build -j "$jobs"
 
 if [ "$mode" = main ]; then
-  exec build/condyn validate
+  build/condyn validate --quiet
+  echo
+  exec build/condyn compare --out-dir condyn-out/compare-chapter_5_5_1
 fi
 
 # Lint: .clang-format and .clang-tidy are the project's rules, enforced here.

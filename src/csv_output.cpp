@@ -66,11 +66,8 @@ void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
 
 }  // namespace
 
-namespace {
-
-/// Writes through a temporary file beside `path`, renamed into place only after a complete write.
-template <typename Writer>
-void write_atomically(const std::string& path, Writer&& writer) {
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& writer) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   if (fs::is_directory(target)) throw std::runtime_error(path + ": is a directory");
@@ -98,14 +95,12 @@ void write_atomically(const std::string& path, Writer&& writer) {
   }
 }
 
-}  // namespace
-
 void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj) {
-  write_atomically(path, [&](std::ostream& out) { write_rows(out, model, traj); });
+  write_file_atomically(path, [&](std::ostream& out) { write_rows(out, model, traj); });
 }
 
 void write_steps_csv_atomically(const std::string& path, const Trajectory& traj) {
-  write_atomically(path, [&](std::ostream& out) {
+  write_file_atomically(path, [&](std::ostream& out) {
     out.precision(17);
     out << "t,drift_position,drift_velocity\n";
     for (const auto& s : traj.steps) {

@@ -8,8 +8,11 @@
 #include "dae/ida_integrator.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "src/compare_output.hpp"
 #include "src/csv_output.hpp"
 #include "src/info_report.hpp"
+#include "validation/compare.hpp"
+#include "validation/embedded_scenes.hpp"
 #include "validation/suite.hpp"
 
 namespace {
@@ -52,6 +55,65 @@ int run(const RunArgs& args) {
   return 0;
 }
 
+/// Splits "a,b,c" (spaces ignored).
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::string item;
+  for (char c : s + ",") {
+    if (c == ',') {
+      if (!item.empty()) out.push_back(item);
+      item.clear();
+    } else if (c != ' ') {
+      item += c;
+    }
+  }
+  return out;
+}
+
+int compare(const std::string& scene, std::string dir, const std::string& tolerances,
+            const std::string& schemes, bool no_plots, CompareOptions options) {
+  const std::string stem =
+      scene.empty() ? "chapter_5_5_1" : std::filesystem::path(scene).stem().string();
+  const SceneSpec spec =
+      scene.empty() ? parse_scene_text(embedded_scene(stem).text, "<embedded:" + stem + ">")
+                    : parse_scene_file(scene);
+  if (dir.empty()) dir = "condyn-out/compare-" + stem;
+  if (!tolerances.empty()) {
+    options.tolerances.clear();
+    for (const auto& t : split_list(tolerances)) {
+      try {
+        options.tolerances.push_back(std::stod(t));
+      } catch (const std::exception&) {
+        throw CLI::ValidationError("--tolerances", "'" + t + "' is not a number");
+      }
+    }
+  }
+  if (!schemes.empty()) {
+    options.schemes.clear();
+    for (const auto& s : split_list(schemes)) {
+      const Scheme scheme = parse_scheme_flag(s);
+      if (scheme == Scheme::automatic) {
+        throw CLI::ValidationError("--schemes", "name schemes, not 'auto'");
+      }
+      options.schemes.push_back(scheme);
+    }
+  }
+  try {
+    options.validate();
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("compare", e.what());
+  }
+  options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  const CompareResult result = run_compare(spec, options);
+  print_compare_table(std::cout, result);
+  write_compare_files(dir, result);
+  std::cout << "\nwrote runs.csv, runs.json, drift_*.csv, history_*.csv, baumgarte_study.csv and "
+               "summary.txt to "
+            << dir << "\n";
+  if (!no_plots) std::cout << draw_compare_plots(dir) << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,6 +139,27 @@ int main(int argc, char** argv) {
   info_cmd->add_option("scene", info_scene, "scene file (TOML)")->required();
   info_cmd->add_option("--scheme", info_scheme, "scheme to report on (default: the scene's)");
 
+  std::string compare_scene, compare_dir, compare_tolerances, compare_schemes;
+  bool compare_no_plots = false;
+  CompareOptions compare_options;
+  auto* compare_cmd = app.add_subcommand(
+      "compare", "every scheme across a tolerance sweep: errors, drift, cost, plots");
+  compare_cmd->add_option("scene", compare_scene,
+                          "scene file (default: the chapter truss, §5.5.1, built in)");
+  compare_cmd->add_option("--out-dir", compare_dir,
+                          "output folder (default: condyn-out/compare-SCENE-STEM)");
+  compare_cmd->add_option("--tolerances", compare_tolerances,
+                          "comma-separated rtol values (default 1e-3,1e-4,...,1e-10)");
+  compare_cmd->add_option("--schemes", compare_schemes,
+                          "comma-separated schemes (default: all of them)");
+  compare_cmd->add_option("--repeats", compare_options.repeats, "runs per point for the wall time")
+      ->check(CLI::Range(1, 100));
+  compare_cmd
+      ->add_option("--drift-rtol", compare_options.drift_rtol,
+                   "tolerance of the drift, history and Baumgarte-study runs")
+      ->check(CLI::Range(1e-14, 0.5));
+  compare_cmd->add_flag("--no-plots", compare_no_plots, "do not call the plotting script");
+
   ValidationOptions validate_options;
   auto* validate_cmd = app.add_subcommand("validate", "run the built-in validation suite");
   validate_cmd->add_flag("--quiet", validate_options.quiet, "print only the summary tables");
@@ -91,7 +174,7 @@ int main(int argc, char** argv) {
   }
 
   // The scene being processed, to name it in errors that arise after parsing.
-  const std::string scene = *run_cmd ? run_args.scene : info_scene;
+  const std::string scene = *run_cmd ? run_args.scene : *info_cmd ? info_scene : compare_scene;
   try {
     if (*run_cmd) return run(run_args);
     if (*info_cmd) {
@@ -101,6 +184,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*validate_cmd) return run_validation(std::cout, validate_options) ? 0 : 1;
+    if (*compare_cmd) {
+      return compare(compare_scene, compare_dir, compare_tolerances, compare_schemes,
+                     compare_no_plots, compare_options);
+    }
   } catch (const SceneError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

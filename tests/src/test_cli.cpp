@@ -256,3 +256,25 @@ atol = 1e-10
   CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 101);  // header + t = 0, 0.1, ..., 10
   CHECK(csv.find("\n10,") != std::string::npos);               // the last row is t_end
 }
+
+TEST_CASE("compare: default scene, named folder, bad options refused") {
+  const Sandbox box;
+  const Result r = box.run(
+      "compare --tolerances 1e-4,1e-7 --repeats 1 --schemes elimination,ggl --no-plots "
+      "--out-dir out");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("reference: exact modal solution") != std::string::npos);
+  CHECK(r.err.find("[4/4] ggl rtol 1.0e-07") != std::string::npos);  // progress
+  const std::string runs = slurp(box.path("out/runs.csv"));
+  CHECK(std::count(runs.begin(), runs.end(), '\n') == 1 + 4);
+  CHECK(fs::exists(box.path("out/runs.json")));
+  CHECK(fs::exists(box.path("out/drift_ggl.csv")));
+
+  CHECK(box.run("compare --tolerances abc").code == 2);
+  CHECK(box.run("compare --tolerances 2").code == 2);
+  CHECK(box.run("compare --schemes elimination,rk4").code == 2);
+  CHECK(box.run("compare --schemes auto").code == 2);
+  CHECK(box.run("compare --repeats 0").code == 2);
+  CHECK(box.run("compare missing.toml").code == 2);
+}

@@ -1,0 +1,257 @@
+#include "src/compare_output.hpp"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "src/csv_output.hpp"
+
+namespace condyn {
+
+namespace {
+
+std::string sci(double v, int digits = 2) {
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(digits) << v;
+  return s.str();
+}
+
+std::string full(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+/// Fields of a run in the column order of runs.csv; failed runs leave the numbers empty.
+std::vector<std::pair<std::string, std::string>> fields(const RunRecord& r) {
+  auto num = [&](double v) { return r.ok ? full(v) : std::string(); };
+  auto count = [&](long v) { return r.ok ? std::to_string(v) : std::string(); };
+  return {{"scheme", to_string(r.scheme)},
+          {"rtol", full(r.rtol)},
+          {"atol", full(r.atol)},
+          {"status", r.ok ? "ok" : "failed"},
+          {"error_u", num(r.error_u)},
+          {"error_v", num(r.error_v)},
+          {"error_reaction", num(r.error_reaction)},
+          {"max_drift_position", num(r.max_drift_position)},
+          {"max_drift_velocity", num(r.max_drift_velocity)},
+          {"final_drift_position", num(r.final_drift_position)},
+          {"final_drift_velocity", num(r.final_drift_velocity)},
+          {"steps", count(r.steps)},
+          {"residual_evals", count(r.residual_evals)},
+          {"jacobian_evals", count(r.jacobian_evals)},
+          {"newton_failures", count(r.newton_failures)},
+          {"error_test_failures", count(r.error_test_failures)},
+          {"wall_median_s", num(r.wall_median)},
+          {"wall_min_s", num(r.wall_min)},
+          {"wall_max_s", num(r.wall_max)},
+          {"repeats", count(r.repeats)},
+          {"message", r.message}};
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+bool is_numeric_field(const std::string& key) {
+  return key != "scheme" && key != "status" && key != "message";
+}
+
+}  // namespace
+
+void print_compare_table(std::ostream& out, const CompareResult& result) {
+  out << "scene: " << result.scene_name << "\nreference: " << result.reference_description
+      << "\nerrors: relative max-norm over all DOFs and output times; wall: median of "
+      << result.options.repeats << " runs (min-max)\n\n";
+  out << std::left << std::setw(12) << "scheme" << std::setw(9) << "rtol" << std::setw(10)
+      << "err u" << std::setw(10) << "err v" << std::setw(10) << "err f_con" << std::setw(11)
+      << "max drift" << std::setw(11) << "end drift" << std::setw(8) << "steps" << std::setw(8)
+      << "res" << std::setw(6) << "jac"
+      << "wall ms (min-max)\n";
+  for (const auto& r : result.runs) {
+    out << std::left << std::setw(12) << to_string(r.scheme) << std::setw(9) << sci(r.rtol, 0);
+    if (!r.ok) {
+      out << "FAILED: " << r.message << "\n";
+      continue;
+    }
+    out << std::setw(10) << sci(r.error_u, 1) << std::setw(10) << sci(r.error_v, 1) << std::setw(10)
+        << sci(r.error_reaction, 1) << std::setw(11) << sci(r.max_drift_position, 1)
+        << std::setw(11) << sci(r.final_drift_position, 1) << std::setw(8) << r.steps
+        << std::setw(8) << r.residual_evals << std::setw(6) << r.jacobian_evals << std::fixed
+        << std::setprecision(2) << r.wall_median * 1e3 << " (" << r.wall_min * 1e3 << "-"
+        << r.wall_max * 1e3 << ")" << std::defaultfloat << "\n";
+  }
+  if (!result.baumgarte_study.empty()) {
+    out << "\nBaumgarte study at rtol " << sci(result.options.drift_rtol, 0)
+        << " (max position drift, steps; * = default gains):\n";
+    for (const auto& p : result.baumgarte_study) {
+      out << "  alpha " << std::setw(10) << sci(p.alpha, 2) << " beta " << std::setw(10)
+          << sci(p.beta, 2) << (p.is_default ? " * " : "   ");
+      if (p.ok) {
+        out << "drift " << sci(p.max_drift_position, 1) << ", " << p.steps << " steps\n";
+      } else {
+        out << "FAILED: " << p.message << "\n";
+      }
+    }
+  }
+}
+
+void write_compare_files(const std::string& dir, const CompareResult& result) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec)
+    throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
+  const fs::path base(dir);
+
+  write_file_atomically((base / "runs.csv").string(), [&](std::ostream& out) {
+    bool first = true;
+    for (const auto& [key, value] : fields(RunRecord{})) {
+      out << (first ? "" : ",") << key;
+      first = false;
+    }
+    out << "\n";
+    for (const auto& r : result.runs) {
+      first = true;
+      for (const auto& [key, value] : fields(r)) {
+        out << (first ? "" : ",") << csv_field(value);
+        first = false;
+      }
+      out << "\n";
+    }
+  });
+
+  write_file_atomically((base / "runs.json").string(), [&](std::ostream& out) {
+    out << "{\n  \"scene\": " << json_string(result.scene_name)
+        << ",\n  \"reference\": {\"kind\": " << json_string(result.reference_kind)
+        << ", \"description\": " << json_string(result.reference_description)
+        << "},\n  \"tolerances\": [";
+    for (std::size_t k = 0; k < result.options.tolerances.size(); ++k) {
+      out << (k ? ", " : "") << full(result.options.tolerances[k]);
+    }
+    out << "],\n  \"repeats\": " << result.options.repeats
+        << ",\n  \"drift_rtol\": " << full(result.options.drift_rtol) << ",\n  \"runs\": [\n";
+    for (std::size_t k = 0; k < result.runs.size(); ++k) {
+      out << "    {";
+      bool first = true;
+      for (const auto& [key, value] : fields(result.runs[k])) {
+        out << (first ? "" : ", ") << json_string(key) << ": ";
+        if (!is_numeric_field(key)) {
+          out << json_string(value);
+        } else {
+          out << (value.empty() ? "null" : value);
+        }
+        first = false;
+      }
+      out << "}" << (k + 1 < result.runs.size() ? "," : "") << "\n";
+    }
+    out << "  ]\n}\n";
+  });
+
+  for (const auto& h : result.histories) {
+    if (!h.ok) continue;
+    const std::string scheme = to_string(h.scheme);
+    write_file_atomically((base / ("drift_" + scheme + ".csv")).string(), [&](std::ostream& out) {
+      out.precision(17);
+      out << "t,drift_position,drift_velocity\n";
+      for (const auto& s : h.trajectory.steps) {
+        out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
+      }
+    });
+    write_file_atomically((base / ("history_" + scheme + ".csv")).string(), [&](std::ostream& out) {
+      out.precision(17);
+      const auto& tr = h.trajectory;
+      out << "t";
+      for (const auto& name : result.constraint_names) out << ",lambda_" << name;
+      for (const auto& [name, index] : result.constrained_dofs) out << ",reaction_" << name;
+      out << "\n";
+      for (std::size_t k = 0; k < tr.t.size(); ++k) {
+        const auto col = static_cast<Eigen::Index>(k);
+        out << tr.t[k];
+        for (Eigen::Index i = 0; i < tr.multiplier.rows(); ++i) out << "," << tr.multiplier(i, col);
+        for (const auto& [name, index] : result.constrained_dofs) {
+          out << "," << tr.reaction(index, col);
+        }
+        out << "\n";
+      }
+    });
+  }
+
+  write_file_atomically((base / "baumgarte_study.csv").string(), [&](std::ostream& out) {
+    out.precision(17);
+    out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s\n";
+    for (const auto& p : result.baumgarte_study) {
+      out << p.alpha << "," << p.beta << "," << (p.is_default ? 1 : 0) << ","
+          << (p.ok ? "ok" : "failed") << ",";
+      if (p.ok) {
+        out << p.max_drift_position << "," << p.max_drift_velocity << "," << p.steps << ","
+            << p.wall;
+      } else {
+        out << ",,,";
+      }
+      out << "\n";
+    }
+  });
+
+  write_file_atomically((base / "summary.txt").string(),
+                        [&](std::ostream& out) { print_compare_table(out, result); });
+}
+
+std::string draw_compare_plots(const std::string& dir) {
+  namespace fs = std::filesystem;
+  const fs::path script = fs::path(CONDYN_SOURCE_DIR) / "validation" / "plot_compare.py";
+  if (!fs::exists(script)) return "plots skipped: " + script.string() + " not found";
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string cmd =
+      "'" + python + "' '" + script.string() + "' '" + dir + "' > '" + dir + "/plots.log' 2>&1";
+  const int status = std::system(cmd.c_str());
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  switch (code) {
+    case 0:
+      return "plots written to " + dir + " (PNG and SVG)";
+    case 3:
+      return "plots skipped: matplotlib is not installed (apt-get install python3-matplotlib)";
+    case 127:
+      return "plots skipped: python3 is not installed";
+    default:
+      return "plots incomplete: the plotting script exited with " + std::to_string(code) +
+             " (see " + dir + "/plots.log)";
+  }
+}
+
+}  // namespace condyn

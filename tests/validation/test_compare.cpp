@@ -1,0 +1,146 @@
+// condyn compare: the sweep, its reference, failures recorded as data, and the output files.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "models/scene_parser.hpp"
+#include "src/compare_output.hpp"
+#include "validation/compare.hpp"
+#include "validation/embedded_scenes.hpp"
+
+using namespace condyn;
+
+namespace {
+
+CompareOptions small_options() {
+  CompareOptions o;
+  o.tolerances = {1e-4, 1e-8};
+  o.repeats = 2;
+  o.schemes = {Scheme::elimination, Scheme::ggl, Scheme::penalty};
+  o.baumgarte_factors = {1.0, 10.0};
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("compare: every scheme and tolerance, errors against the exact solution") {
+  const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_5_1").text, "A");
+  const CompareResult r = run_compare(spec, small_options());
+  CHECK(r.reference_kind == "exact");
+  REQUIRE(r.runs.size() == 3 * 2);
+  for (const auto& run : r.runs) {
+    CAPTURE(std::string(to_string(run.scheme)));
+    CHECK(run.ok);
+    CHECK(run.repeats == 2);
+    CHECK(run.wall_min <= run.wall_median);
+    CHECK(run.wall_median <= run.wall_max);
+    CHECK(run.steps > 0);
+  }
+  // Tighter tolerance, smaller error (elimination, GGL); penalty saturates at its 1/w error.
+  CHECK(r.runs[1].error_u < r.runs[0].error_u / 100);  // elimination 1e-4 -> 1e-8
+  CHECK(r.runs[3].error_u < r.runs[2].error_u / 100);  // ggl
+  CHECK(r.runs[5].error_u > 1e-6);                     // penalty, default w: ~1e-4
+  REQUIRE(r.histories.size() == 3);
+  CHECK(r.histories[1].ok);
+  CHECK(!r.histories[1].trajectory.steps.empty());
+  CHECK(r.baumgarte_study.empty());  // baumgarte was not among the schemes
+
+  CompareOptions with_baumgarte = small_options();
+  with_baumgarte.schemes = {Scheme::baumgarte};
+  const CompareResult b = run_compare(spec, with_baumgarte);
+  REQUIRE(b.baumgarte_study.size() == 4);
+  CHECK(b.baumgarte_study[0].is_default);  // factors (1, 1) come first
+  for (const auto& p : b.baumgarte_study) CHECK(p.ok);
+}
+
+TEST_CASE("compare: a second run gives the same errors and step counts") {
+  const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
+  CompareOptions o = small_options();
+  o.repeats = 1;
+  const CompareResult a = run_compare(spec, o), b = run_compare(spec, o);
+  REQUIRE(a.runs.size() == b.runs.size());
+  for (std::size_t k = 0; k < a.runs.size(); ++k) {
+    CHECK(a.runs[k].error_u == b.runs[k].error_u);  // bit for bit: no randomness anywhere
+    CHECK(a.runs[k].error_reaction == b.runs[k].error_reaction);
+    CHECK(a.runs[k].steps == b.runs[k].steps);
+  }
+}
+
+TEST_CASE("compare: no exact solution means a tight elimination reference; failures are data") {
+  // Non-classical damping (a single dashpot coupling two modes): no closed form.
+  const char* text = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c"]
+mass = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.0]]
+stiffness = [[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]
+damping = [[0.5, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+[[load]]
+dof = "a"
+value = 1.0
+[[constraint]]
+terms = { c = 1.0 }
+[solve]
+t_end = 2.0
+output_step = 0.5
+)";
+  const SceneSpec spec = parse_scene_text(text, "nonclassical");
+  CompareOptions o = small_options();
+  o.schemes = {Scheme::elimination, Scheme::penalty};
+  const CompareResult r = run_compare(spec, o);
+  CHECK(r.reference_kind == "elimination");
+  CHECK(r.reference_description.find("no exact solution") != std::string::npos);
+  // c has no mass: elimination makes it a slave, so it runs; penalty needs mass on every DOF.
+  CHECK(r.runs[0].ok);
+  CHECK(!r.runs[2].ok);
+  CHECK(r.runs[2].message.find("mass") != std::string::npos);
+}
+
+TEST_CASE("compare: the output files follow validation/compare-output.md") {
+  const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
+  CompareOptions o = small_options();
+  o.schemes = {Scheme::elimination, Scheme::baumgarte};
+  const CompareResult r = run_compare(spec, o);
+  const auto dir = std::filesystem::temp_directory_path() / "condyn_compare_test";
+  std::filesystem::remove_all(dir);
+  write_compare_files(dir.string(), r);
+  auto slurp = [&](const char* name) {
+    std::ifstream in(dir / name);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  const std::string runs = slurp("runs.csv");
+  CHECK(runs.rfind("scheme,rtol,atol,status,error_u,error_v,error_reaction,max_drift_position,"
+                   "max_drift_velocity,final_drift_position,final_drift_velocity,steps,"
+                   "residual_evals,jacobian_evals,newton_failures,error_test_failures,"
+                   "wall_median_s,wall_min_s,wall_max_s,repeats,message\n",
+                   0) == 0);
+  CHECK(std::count(runs.begin(), runs.end(), '\n') == 1 + 4);
+  const std::string json = slurp("runs.json");
+  CHECK(json.find("\"reference\": {\"kind\": \"exact\"") != std::string::npos);
+  CHECK(json.find("\"drift_rtol\": ") != std::string::npos);
+  CHECK(slurp("drift_baumgarte.csv").rfind("t,drift_position,drift_velocity\n", 0) == 0);
+  CHECK(slurp("history_elimination.csv").rfind("t,lambda_mfc1,lambda_mfc2,lambda_mfc3,", 0) == 0);
+  CHECK(slurp("baumgarte_study.csv").rfind("alpha,beta,default,status,", 0) == 0);
+  CHECK(slurp("summary.txt").find("reference: exact modal solution") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("plot_compare.py draws the four plots from a compare folder") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "condyn_plot_test";
+  fs::remove_all(dir);
+  fs::copy(fs::path(CONDYN_SOURCE_DIR) / "validation" / "sample_compare", dir);
+  // Through the same entry point compare uses; the test command installs python3-matplotlib.
+  const std::string note = draw_compare_plots(dir.string());
+  CAPTURE(note);
+  CHECK(note.rfind("plots written", 0) == 0);
+  for (const char* plot : {"work_precision", "drift", "multipliers", "baumgarte_study"}) {
+    CAPTURE(plot);
+    CHECK(fs::file_size(dir / (std::string(plot) + ".png")) > 1000);
+    CHECK(fs::exists(dir / (std::string(plot) + ".svg")));
+  }
+  fs::remove_all(dir);
+}

@@ -1,0 +1,206 @@
+#include "validation/compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "dae/baumgarte_gains.hpp"
+#include "dae/exact_solution.hpp"
+#include "dae/solve.hpp"
+#include "validation/accuracy.hpp"
+
+namespace condyn {
+
+void CompareOptions::validate() const {
+  auto bad = [](const std::string& what) { throw std::invalid_argument("compare: " + what); };
+  if (tolerances.empty()) bad("no tolerances");
+  for (double t : tolerances) {
+    if (!(t > 0.0 && t < 1.0)) bad("tolerances must lie in (0, 1)");
+  }
+  if (repeats < 1) bad("repeats must be >= 1");
+  if (schemes.empty()) bad("no schemes");
+  if (!(drift_rtol > 0.0 && drift_rtol < 1.0)) bad("drift rtol must lie in (0, 1)");
+  if (atol_ratio < 0.0) bad("atol ratio must be >= 0");
+}
+
+namespace {
+
+std::string sci(double v) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::scientific << v;
+  return s.str();
+}
+
+Model with_tolerances(const SceneSpec& spec, double rtol, double atol) {
+  SceneSpec s = spec;
+  s.solve.rtol = rtol;
+  s.solve.atol = atol;
+  return build_model(s);
+}
+
+/// The best reference available: the exact modal solution, else a tight elimination run, else
+/// (elimination not applicable, e.g. massless DOFs) a tight GGL run.
+Trajectory reference(const SceneSpec& spec, const CompareOptions& options, CompareResult& out) {
+  const Model model = build_model(spec);
+  try {
+    Trajectory exact = exact_trajectory(model, model.output_times());
+    out.reference_kind = "exact";
+    out.reference_description = "exact modal solution (closed form)";
+    return exact;
+  } catch (const ExactSolutionUnavailable& e) {
+    const double tight = std::max(
+        1e-13, *std::min_element(options.tolerances.begin(), options.tolerances.end()) / 100.0);
+    const Model tight_model = with_tolerances(spec, tight, tight * 1e-2);
+    for (Scheme scheme : {Scheme::elimination, Scheme::ggl}) {
+      try {
+        SolveSummary summary;
+        Trajectory ref = solve(tight_model, scheme, integrator_options(tight_model), summary);
+        out.reference_kind = to_string(scheme);
+        out.reference_description = std::string(to_string(scheme)) + " at rtol " + sci(tight) +
+                                    " (no exact solution: " + e.what() + ")";
+        return ref;
+      } catch (const std::exception& why) {
+        if (scheme == Scheme::ggl) {
+          throw std::runtime_error(std::string("no reference solution: ") + why.what());
+        }
+      }
+    }
+    throw std::logic_error("unreachable");
+  }
+}
+
+}  // namespace
+
+CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) {
+  options.validate();
+  CompareResult out;
+  out.options = options;
+  out.scene_name = spec.name.empty() ? spec.file : spec.name;
+  const Model base = build_model(spec);
+  for (int d = 0; d < base.dofs(); ++d) {
+    bool touched = false;
+    for (const auto& c : base.constraints) {
+      for (const auto& [dof, a] : c.coefficients) touched = touched || dof == d;
+    }
+    if (touched) out.constrained_dofs.emplace_back(base.dof_names[static_cast<std::size_t>(d)], d);
+  }
+  for (const auto& c : base.constraints) out.constraint_names.push_back(c.name);
+  const double ratio =
+      options.atol_ratio > 0.0 ? options.atol_ratio : spec.solve.atol / spec.solve.rtol;
+  const Trajectory ref = reference(spec, options, out);
+
+  const std::size_t total = options.schemes.size() * options.tolerances.size();
+  std::size_t done = 0;
+  for (Scheme scheme : options.schemes) {
+    for (double rtol : options.tolerances) {
+      RunRecord r;
+      r.scheme = scheme;
+      r.rtol = rtol;
+      r.atol = rtol * ratio;
+      const Model model = with_tolerances(spec, r.rtol, r.atol);
+      std::vector<double> walls;
+      try {
+        for (int k = 0; k < options.repeats; ++k) {
+          SolveSummary summary;
+          const Trajectory run = solve(model, scheme, integrator_options(model), summary);
+          walls.push_back(summary.wall_seconds);
+          if (k > 0) continue;  // repeats only time the run: the numbers are deterministic
+          const TrajectoryError err = relative_error(run, ref);
+          r.error_u = err.displacement;
+          r.error_v = err.velocity;
+          r.error_reaction = err.reaction;
+          r.max_drift_position = summary.max_drift_position;
+          r.max_drift_velocity = summary.max_drift_velocity;
+          r.final_drift_position = run.drift_position[run.drift_position.size() - 1];
+          r.final_drift_velocity = run.drift_velocity[run.drift_velocity.size() - 1];
+          r.steps = summary.steps;
+          r.residual_evals = summary.residual_evals;
+          r.jacobian_evals = summary.jacobian_evals;
+          r.newton_failures = summary.newton_failures;
+          r.error_test_failures = summary.error_test_failures;
+        }
+        std::sort(walls.begin(), walls.end());
+        r.repeats = static_cast<int>(walls.size());
+        r.wall_median = walls[walls.size() / 2];
+        r.wall_min = walls.front();
+        r.wall_max = walls.back();
+        r.ok =
+            std::isfinite(r.error_u) && std::isfinite(r.error_v) && std::isfinite(r.error_reaction);
+        if (!r.ok) r.message = "non-finite error against the reference";
+      } catch (const std::exception& e) {
+        r.ok = false;
+        r.message = e.what();
+      }
+      ++done;
+      if (options.progress) {
+        std::ostringstream s;
+        s << "[" << done << "/" << total << "] " << to_string(scheme) << " rtol " << sci(rtol)
+          << ": "
+          << (r.ok ? "error " + sci(std::max({r.error_u, r.error_v, r.error_reaction})) + ", " +
+                         std::to_string(r.steps) + " steps"
+                   : "FAILED: " + r.message);
+        options.progress(s.str());
+      }
+      out.runs.push_back(std::move(r));
+    }
+  }
+
+  // Drift logs and histories at one tolerance.
+  const Model drift_model = with_tolerances(spec, options.drift_rtol, options.drift_rtol * ratio);
+  for (Scheme scheme : options.schemes) {
+    SchemeHistory h;
+    h.scheme = scheme;
+    try {
+      IntegratorOptions o = integrator_options(drift_model);
+      o.record_steps = true;
+      SolveSummary summary;
+      h.trajectory = solve(drift_model, scheme, o, summary);
+      h.ok = true;
+    } catch (const std::exception& e) {
+      h.message = e.what();
+    }
+    out.histories.push_back(std::move(h));
+  }
+
+  // Baumgarte study: the default gains scaled over a grid.
+  if (std::find(options.schemes.begin(), options.schemes.end(), Scheme::baumgarte) !=
+          options.schemes.end() &&
+      base.constraint_count() > 0) {
+    const BaumgarteGains defaults = baumgarte_gains(drift_model);
+    for (double fa : options.baumgarte_factors) {
+      for (double fb : options.baumgarte_factors) {
+        BaumgarteStudyPoint p;
+        p.alpha = defaults.alpha * fa;
+        p.beta = defaults.beta * fb;
+        p.is_default = fa == 1.0 && fb == 1.0;
+        SceneSpec s = spec;
+        s.solve.rtol = options.drift_rtol;
+        s.solve.atol = options.drift_rtol * ratio;
+        s.solve.baumgarte_alpha = p.alpha;
+        s.solve.baumgarte_beta = p.beta;
+        try {
+          const Model model = build_model(s);
+          SolveSummary summary;
+          (void)solve(model, Scheme::baumgarte, integrator_options(model), summary);
+          p.ok = true;
+          p.max_drift_position = summary.max_drift_position;
+          p.max_drift_velocity = summary.max_drift_velocity;
+          p.steps = summary.steps;
+          p.wall = summary.wall_seconds;
+        } catch (const std::exception& e) {
+          p.message = e.what();
+        }
+        out.baumgarte_study.push_back(std::move(p));
+      }
+    }
+    if (options.progress) {
+      options.progress("Baumgarte study: " + std::to_string(out.baumgarte_study.size()) +
+                       " runs at rtol " + sci(options.drift_rtol));
+    }
+  }
+  return out;
+}
+
+}  // namespace condyn

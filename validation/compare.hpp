@@ -1,0 +1,77 @@
+#pragma once
+/// `condyn compare`: one scene under every scheme across a tolerance sweep, each run repeated for
+/// a stable wall time, errors against the best reference available, drift logs and multiplier
+/// histories at one tolerance, and a Baumgarte gain study. Output files: src/compare_output.hpp
+/// and validation/compare-output.md.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dae/trajectory.hpp"
+#include "models/scene_spec.hpp"
+
+namespace condyn {
+
+struct CompareOptions {
+  std::vector<double> tolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  /// atol = rtol · atol_ratio (the scene's atol/rtol when not set).
+  double atol_ratio = 0.0;
+  int repeats = 3;  ///< runs per (scheme, rtol); wall time median and spread over them
+  std::vector<Scheme> schemes = {std::begin(kSchemes), std::end(kSchemes)};
+  double drift_rtol = 1e-6;  ///< tolerance of the drift, history and Baumgarte-study runs
+  /// Gains of the Baumgarte study: default α and β times each factor (a grid).
+  std::vector<double> baumgarte_factors = {0.1, 1.0, 10.0, 100.0};
+  /// Called after every run with a one-line progress note.
+  std::function<void(const std::string&)> progress;
+  /// Throws std::invalid_argument naming the bad option.
+  void validate() const;
+};
+
+struct RunRecord {
+  Scheme scheme = Scheme::elimination;
+  double rtol = 0.0, atol = 0.0;
+  bool ok = false;
+  std::string message;  ///< failure text
+  double error_u = 0.0, error_v = 0.0, error_reaction = 0.0;
+  double max_drift_position = 0.0, max_drift_velocity = 0.0;
+  double final_drift_position = 0.0, final_drift_velocity = 0.0;
+  long steps = 0, residual_evals = 0, jacobian_evals = 0, newton_failures = 0,
+       error_test_failures = 0;
+  double wall_median = 0.0, wall_min = 0.0, wall_max = 0.0;
+  int repeats = 0;
+};
+
+/// One scheme's run at drift_rtol: its per-step drift log and its output-time trajectory.
+struct SchemeHistory {
+  Scheme scheme = Scheme::elimination;
+  bool ok = false;
+  std::string message;
+  Trajectory trajectory;
+};
+
+struct BaumgarteStudyPoint {
+  double alpha = 0.0, beta = 0.0;
+  bool is_default = false, ok = false;
+  std::string message;
+  double max_drift_position = 0.0, max_drift_velocity = 0.0, wall = 0.0;
+  long steps = 0;
+};
+
+struct CompareResult {
+  std::string scene_name;
+  std::string reference_kind;         ///< "exact", "elimination" or "ggl"
+  std::string reference_description;  ///< how the reference was obtained
+  CompareOptions options;
+  std::vector<RunRecord> runs;
+  std::vector<SchemeHistory> histories;
+  std::vector<BaumgarteStudyPoint> baumgarte_study;
+  std::vector<std::string> constraint_names;
+  /// DOFs some constraint touches (the reaction columns of the histories): name and index.
+  std::vector<std::pair<std::string, int>> constrained_dofs;
+};
+
+/// Runs the comparison. A failed run is recorded, not thrown; input errors throw SceneError.
+[[nodiscard]] CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options);
+
+}  // namespace condyn
