@@ -45,7 +45,7 @@ class PenaltyOde final : public DaeProblem {
   void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   [[nodiscard]] Eigen::VectorXd differential_id() const override {
-    return Eigen::VectorXd::Ones(2 * n_);
+    return Eigen::VectorXd::Ones(size());
   }
   /// y' = [v; M⁻¹(f − Aᵀλ)]. Throws std::runtime_error when M is singular.
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
