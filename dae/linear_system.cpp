@@ -14,21 +14,10 @@ double LinearSystem::rhs(std::size_t i, int order, double t) const {
   return has_rhs_[i] ? model_.constraints[i].value.derivative(order, t) : 0.0;
 }
 
-void LinearSystem::mass(double /*t*/, ConstRef /*u*/, Sparse& M) const { M = model_.M; }
-
 void LinearSystem::force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const {
-  f = model_.applied_forces(t, step_reference) - model_.K * u;
-  if (model_.has_damping()) f.noalias() -= model_.C * v;
-}
-
-void LinearSystem::force_jacobian(double /*t*/, ConstRef /*u*/, ConstRef /*v*/, Sparse& f_u,
-                                  Sparse& f_v) const {
-  f_u = minus_K_;
-  f_v = minus_C_;  // no nonzeros without damping: the block drops out of the pattern
-}
-
-void LinearSystem::constraint_jacobian(double /*t*/, ConstRef /*u*/, Sparse& A) const {
-  A = model_.A;
+  f.noalias() = minus_K_ * u;
+  if (model_.has_damping()) f.noalias() += minus_C_ * v;
+  for (const auto& load : model_.loads) f[load.dof] += load.value.derivative(0, t, step_reference);
 }
 
 void LinearSystem::position_residual(double t, ConstRef u, Ref phi) const {

@@ -18,10 +18,20 @@ class LinearSystem final : public MechanicalSystem {
   [[nodiscard]] int dofs() const override { return model_.dofs(); }
   [[nodiscard]] int constraints() const override { return model_.constraint_count(); }
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
-  void mass(double t, ConstRef u, Sparse& M) const override;
+  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) const override { return model_.M; }
   void force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const override;
-  void force_jacobian(double t, ConstRef u, ConstRef v, Sparse& f_u, Sparse& f_v) const override;
-  void constraint_jacobian(double t, ConstRef u, Sparse& A) const override;
+  [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef /*u*/,
+                                               ConstRef /*v*/) const override {
+    return minus_K_;
+  }
+  /// No nonzeros without damping: the block drops out of the pattern.
+  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
+                                               ConstRef /*v*/) const override {
+    return minus_C_;
+  }
+  [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef /*u*/) const override {
+    return model_.A;
+  }
   void position_residual(double t, ConstRef u, Ref phi) const override;
   void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override;
   void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override;

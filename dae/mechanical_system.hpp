@@ -31,16 +31,18 @@ class MechanicalSystem {
   /// true for rows written at position level (they get φ and, under GGL, a μ).
   [[nodiscard]] virtual const std::vector<bool>& position_rows() const = 0;
 
-  /// M(u), n x n, its pattern fixed.
-  virtual void mass(double t, ConstRef u, Sparse& M) const = 0;
+  /// M(u), n x n, its pattern fixed. The reference stays valid until the next call (a linear
+  /// system returns its constant matrix: no copy on the residual's hot path).
+  [[nodiscard]] virtual const Sparse& mass(double t, ConstRef u) const = 0;
   /// f(t, u, u'): applied loads minus internal forces (K u + C u' for a linear model). Steps are
   /// on when start <= step_reference.
   virtual void force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const = 0;
-  /// df/du and df/du', n x n each, patterns fixed.
-  virtual void force_jacobian(double t, ConstRef u, ConstRef v, Sparse& f_u, Sparse& f_v) const = 0;
+  /// df/du and df/du', n x n each, patterns fixed; references valid until the next call.
+  [[nodiscard]] virtual const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) const = 0;
+  [[nodiscard]] virtual const Sparse& force_jacobian_v(double t, ConstRef u, ConstRef v) const = 0;
 
-  /// A(t, u), m x n, pattern fixed.
-  virtual void constraint_jacobian(double t, ConstRef u, Sparse& A) const = 0;
+  /// A(t, u), m x n, pattern fixed; the reference stays valid until the next call.
+  [[nodiscard]] virtual const Sparse& constraint_jacobian(double t, ConstRef u) const = 0;
   /// φ (m; zero on velocity rows).
   virtual void position_residual(double t, ConstRef u, Ref phi) const = 0;
   /// ψ (m).

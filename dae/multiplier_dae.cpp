@@ -37,31 +37,34 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
     }
   }
 
+  force_.resize(n_);
+  rows_.resize(m_);
   // Patterns at the initial state: fixed for the run (constant for linear systems).
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  system.mass(0.0, zero, M_);
-  system.constraint_jacobian(0.0, zero, A_);
-  system.force_jacobian(0.0, zero, zero, f_u_, f_v_);
-  Ap_ = select_p_ * A_;
+  const auto& M = system.mass(0.0, zero);
+  const auto& A = system.constraint_jacobian(0.0, zero);
+  const auto& f_u = system.force_jacobian_u(0.0, zero, zero);
+  const auto& f_v = system.force_jacobian_v(0.0, zero, zero);
+  const Eigen::SparseMatrix<double> Ap = select_p_ * A;
   const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(iu, iu, n_);  // d(u')
   jacobian_.declare_identity(iu, iv, n_);  // −I
-  jacobian_.declare(iu, im, Eigen::SparseMatrix<double>(Ap_.transpose()));
-  jacobian_.declare(iv, iu, f_u_);
-  jacobian_.declare(iv, iv, f_v_);
-  jacobian_.declare(iv, iv, M_);
-  jacobian_.declare(iv, il, Eigen::SparseMatrix<double>(A_.transpose()));
+  jacobian_.declare(iu, im, Eigen::SparseMatrix<double>(Ap.transpose()));
+  jacobian_.declare(iv, iu, f_u);
+  jacobian_.declare(iv, iv, f_v);
+  jacobian_.declare(iv, iv, M);
+  jacobian_.declare(iv, il, Eigen::SparseMatrix<double>(A.transpose()));
   // λ rows: cj A (index1, baumgarte), A (ggl, index2, and 2α A), or under index3 A on position
   // rows (d/du) and on velocity rows (d/dv).
-  jacobian_.declare(il, iv, A_);
+  jacobian_.declare(il, iv, A);
   if (scheme == MultiplierScheme::index3) {
-    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_));
+    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A));
   }
   if (scheme == MultiplierScheme::baumgarte) {
-    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_));  // β² φ_u
+    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A));  // β² φ_u
   }
-  jacobian_.declare(im, iu, Ap_);
+  jacobian_.declare(im, iu, Ap);
   jacobian_.finish();
 }
 
@@ -102,24 +105,24 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
                              Ref r) const {
   const auto uu = y.segment(0, n_), vv = y.segment(n_, n_), lam = y.segment(lambda_at(), m_);
   const auto up = yp.segment(0, n_), vp = yp.segment(n_, n_);
-  Eigen::VectorXd f(n_);
+  auto& f = force_;
   system_.force(t, step_reference, uu, vv, f);
-  system_.mass(t, uu, M_);
+  const auto& M = system_.mass(t, uu);
   r.segment(0, n_) = up - vv;
-  r.segment(n_, n_) = M_ * vp - f;
+  r.segment(n_, n_) = M * vp - f;
   if (m_ == 0) return;  // unconstrained: a plain second-order ODE
-  system_.constraint_jacobian(t, uu, A_);
-  r.segment(n_, n_) += A_.transpose() * lam;
+  const auto& A = system_.constraint_jacobian(t, uu);
+  r.segment(n_, n_) += A.transpose() * lam;
   auto rl = r.segment(lambda_at(), m_);
-  Eigen::VectorXd work(m_);
+  auto& work = rows_;
   switch (scheme_) {
     case MultiplierScheme::index1:
       system_.acceleration_bias(t, uu, vv, work);
-      rl = A_ * vp - work;
+      rl = A * vp - work;
       break;
     case MultiplierScheme::baumgarte: {
       system_.acceleration_bias(t, uu, vv, work);
-      rl = A_ * vp - work;
+      rl = A * vp - work;
       system_.velocity_residual(t, uu, vv, work);
       rl += 2.0 * alpha_ * work;
       system_.position_residual(t, uu, work);
@@ -139,7 +142,7 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
     case MultiplierScheme::ggl: {
       system_.velocity_residual(t, uu, vv, rl);
       const auto mu = y.segment(mu_at(), p_);
-      r.segment(0, n_) += A_.transpose() * (select_p_.transpose() * mu);
+      r.segment(0, n_) += A.transpose() * (select_p_.transpose() * mu);
       system_.position_residual(t, uu, work);
       r.segment(mu_at(), p_) = select_p_ * work;
       break;
@@ -151,60 +154,60 @@ void MultiplierDae::jacobian(double t, double /*step_reference*/, ConstRef y, Co
                              double cj, Eigen::SparseMatrix<double>& J) const {
   (void)yp;
   const auto uu = y.segment(0, n_), vv = y.segment(n_, n_);
-  system_.mass(t, uu, M_);
-  system_.constraint_jacobian(t, uu, A_);
-  system_.force_jacobian(t, uu, vv, f_u_, f_v_);
-  Ap_ = select_p_ * A_;
+  const auto& M = system_.mass(t, uu);
+  const auto& A = system_.constraint_jacobian(t, uu);
+  const auto& f_u = system_.force_jacobian_u(t, uu, vv);
+  const auto& f_v = system_.force_jacobian_v(t, uu, vv);
+  const Eigen::SparseMatrix<double> Ap = select_p_ * A;
   const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, iu, iu, n_, cj);
   BlockJacobian::add_identity(J, iu, iv, n_, -1.0);
-  BlockJacobian::add(J, iv, iu, f_u_, -1.0);
-  BlockJacobian::add(J, iv, iv, f_v_, -1.0);
-  BlockJacobian::add(J, iv, iv, M_, cj);
+  BlockJacobian::add(J, iv, iu, f_u, -1.0);
+  BlockJacobian::add(J, iv, iv, f_v, -1.0);
+  BlockJacobian::add(J, iv, iv, M, cj);
   if (m_ == 0) return;
-  BlockJacobian::add(J, iv, il, Eigen::SparseMatrix<double>(A_.transpose()));
+  BlockJacobian::add(J, iv, il, Eigen::SparseMatrix<double>(A.transpose()));
   switch (scheme_) {
     case MultiplierScheme::index1:
-      BlockJacobian::add(J, il, iv, A_, cj);
+      BlockJacobian::add(J, il, iv, A, cj);
       break;
     case MultiplierScheme::baumgarte: {
-      BlockJacobian::add(J, il, iv, A_, cj + 2.0 * alpha_);
-      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_),
-                         beta_ * beta_);
+      BlockJacobian::add(J, il, iv, A, cj + 2.0 * alpha_);
+      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A), beta_ * beta_);
       break;
     }
     case MultiplierScheme::index2:
-      BlockJacobian::add(J, il, iv, A_);
+      BlockJacobian::add(J, il, iv, A);
       break;
     case MultiplierScheme::index3:
-      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A_));
-      BlockJacobian::add(J, il, iv, Eigen::SparseMatrix<double>(velocity_mask_ * A_));
+      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A));
+      BlockJacobian::add(J, il, iv, Eigen::SparseMatrix<double>(velocity_mask_ * A));
       break;
     case MultiplierScheme::ggl:
-      BlockJacobian::add(J, il, iv, A_);
-      BlockJacobian::add(J, iu, im, Eigen::SparseMatrix<double>(Ap_.transpose()));
-      BlockJacobian::add(J, im, iu, Ap_);
+      BlockJacobian::add(J, il, iv, A);
+      BlockJacobian::add(J, iu, im, Eigen::SparseMatrix<double>(Ap.transpose()));
+      BlockJacobian::add(J, im, iu, Ap);
       break;
   }
 }
 
 void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
   const Eigen::VectorXd uu = y.segment(0, n_), vv = y.segment(n_, n_);
-  Eigen::VectorXd f(n_);
+  auto& f = force_;
   system_.force(t, t, uu, vv, f);
-  system_.mass(t, uu, M_);
+  const auto& M = system_.mass(t, uu);
   yp = Eigen::VectorXd::Zero(size());
   yp.segment(0, n_) = vv;
   if (m_ == 0) {
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M_);
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M);
     if (lu.info() != Eigen::Success) {
       throw std::runtime_error("the mass matrix is singular: accelerations are undefined");
     }
     yp.segment(n_, n_) = lu.solve(f);
     return;
   }
-  system_.constraint_jacobian(t, uu, A_);
+  const auto& A = system_.constraint_jacobian(t, uu);
   Eigen::VectorXd rhs_l(m_), work(m_);
   system_.acceleration_bias(t, uu, vv, rhs_l);
   if (scheme_ == MultiplierScheme::baumgarte) {
@@ -215,13 +218,13 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
   }
   // [M Aᵀ; A 0] [v'; λ] = [f; γ]
   std::vector<Eigen::Triplet<double>> trip;
-  for (int k = 0; k < M_.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M_, k); it; ++it) {
+  for (int k = 0; k < M.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) {
       trip.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
     }
   }
-  for (int k = 0; k < A_.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A_, k); it; ++it) {
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
       trip.emplace_back(n_ + static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
       trip.emplace_back(static_cast<int>(it.col()), n_ + static_cast<int>(it.row()), it.value());
     }

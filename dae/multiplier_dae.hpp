@@ -68,8 +68,9 @@ class MultiplierDae final : public DaeProblem {
   Eigen::SparseMatrix<double> position_mask_;  ///< m x m diagonal: 1 on position rows
   Eigen::SparseMatrix<double> velocity_mask_;  ///< m x m diagonal: 1 on velocity rows
   BlockJacobian jacobian_;
-  // Scratch for the Jacobian callback (patterns fixed; values refreshed per call).
-  mutable Eigen::SparseMatrix<double> M_, A_, Ap_, f_u_, f_v_;
+  // Scratch of the residual (the hot path): sized once, no allocation per call. Not
+  // thread-safe: one problem object per integration.
+  mutable Eigen::VectorXd force_, rows_;
 };
 
 }  // namespace condyn

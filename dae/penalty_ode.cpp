@@ -40,6 +40,8 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
     throw std::invalid_argument(
         "the penalty formulation does not yet support nonlinear constraints");
   }
+  force_.resize(n_);
+  rows_.resize(m_);
   row_weight_.resize(m_);
   position_mask_.resize(m_, m_);
   velocity_mask_.resize(m_, m_);
@@ -49,18 +51,19 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
     (position ? position_mask_ : velocity_mask_).insert(i, i) = 1.0;
   }
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  system.mass(0.0, zero, M_);
-  system.constraint_jacobian(0.0, zero, A_);
-  system.force_jacobian(0.0, zero, zero, f_u_, f_v_);
+  const auto& M = system.mass(0.0, zero);
+  const auto& A = system.constraint_jacobian(0.0, zero);
+  const auto& f_u = system.force_jacobian_u(0.0, zero, zero);
+  const auto& f_v = system.force_jacobian_v(0.0, zero, zero);
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(0, 0, n_);
   jacobian_.declare_identity(0, n_, n_);
-  jacobian_.declare(n_, 0, f_u_);
-  jacobian_.declare(n_, n_, f_v_);
-  jacobian_.declare(n_, n_, M_);
-  const Eigen::SparseMatrix<double> At = A_.transpose();
-  jacobian_.declare(n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A_));
-  jacobian_.declare(n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A_));
+  jacobian_.declare(n_, 0, f_u);
+  jacobian_.declare(n_, n_, f_v);
+  jacobian_.declare(n_, n_, M);
+  const Eigen::SparseMatrix<double> At = A.transpose();
+  jacobian_.declare(n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A));
+  jacobian_.declare(n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A));
   jacobian_.finish();
 }
 
@@ -74,47 +77,48 @@ Eigen::VectorXd PenaltyOde::multipliers(double t, const Eigen::VectorXd& y) cons
 
 void PenaltyOde::residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const {
   const auto u = y.head(n_), v = y.tail(n_);
-  Eigen::VectorXd f(n_);
+  auto& f = force_;
   system_.force(t, step_reference, u, v, f);
-  system_.mass(t, u, M_);
+  const auto& M = system_.mass(t, u);
   r.head(n_) = yp.head(n_) - v;
-  r.tail(n_) = M_ * yp.tail(n_) - f;
+  r.tail(n_) = M * yp.tail(n_) - f;
   if (m_ > 0) {
-    system_.constraint_jacobian(t, u, A_);
-    r.tail(n_) += A_.transpose() * multipliers(t, y);
+    const auto& A = system_.constraint_jacobian(t, u);
+    r.tail(n_) += A.transpose() * multipliers(t, y);
   }
 }
 
 void PenaltyOde::jacobian(double t, double /*step_reference*/, ConstRef y, ConstRef /*yp*/,
                           double cj, Eigen::SparseMatrix<double>& J) const {
   const auto u = y.head(n_), v = y.tail(n_);
-  system_.mass(t, u, M_);
-  system_.force_jacobian(t, u, v, f_u_, f_v_);
+  const auto& M = system_.mass(t, u);
+  const auto& f_u = system_.force_jacobian_u(t, u, v);
+  const auto& f_v = system_.force_jacobian_v(t, u, v);
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, 0, 0, n_, cj);
   BlockJacobian::add_identity(J, 0, n_, n_, -1.0);
-  BlockJacobian::add(J, n_, 0, f_u_, -1.0);
-  BlockJacobian::add(J, n_, n_, f_v_, -1.0);
-  BlockJacobian::add(J, n_, n_, M_, cj);
+  BlockJacobian::add(J, n_, 0, f_u, -1.0);
+  BlockJacobian::add(J, n_, n_, f_v, -1.0);
+  BlockJacobian::add(J, n_, n_, M, cj);
   if (m_ == 0) return;
-  system_.constraint_jacobian(t, u, A_);
-  const Eigen::SparseMatrix<double> At = A_.transpose();
-  BlockJacobian::add(J, n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A_),
+  const auto& A = system_.constraint_jacobian(t, u);
+  const Eigen::SparseMatrix<double> At = A.transpose();
+  BlockJacobian::add(J, n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A),
                      weights_.position);
-  BlockJacobian::add(J, n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A_),
+  BlockJacobian::add(J, n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A),
                      weights_.velocity);
 }
 
 void PenaltyOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
   const Eigen::VectorXd u = y.head(n_), v = y.tail(n_);
-  Eigen::VectorXd f(n_);
+  auto& f = force_;
   system_.force(t, t, u, v, f);
-  system_.mass(t, u, M_);
+  const auto& M = system_.mass(t, u);
   if (m_ > 0) {
-    system_.constraint_jacobian(t, u, A_);
-    f -= A_.transpose() * multipliers(t, y);
+    const auto& A = system_.constraint_jacobian(t, u);
+    f -= A.transpose() * multipliers(t, y);
   }
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M_);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M);
   if (lu.info() != Eigen::Success) {
     throw std::runtime_error(
         "the penalty formulation needs mass on every DOF: the mass matrix is singular");

@@ -60,7 +60,9 @@ class PenaltyOde final : public DaeProblem {
   Eigen::VectorXd row_weight_;  ///< w on position rows, c on velocity rows
   Eigen::SparseMatrix<double> position_mask_, velocity_mask_;
   BlockJacobian jacobian_;
-  mutable Eigen::SparseMatrix<double> M_, A_, f_u_, f_v_;
+  // Scratch of the residual (the hot path): sized once, no allocation per call. Not
+  // thread-safe: one problem object per integration.
+  mutable Eigen::VectorXd force_, rows_;
 };
 
 }  // namespace condyn
