@@ -1,5 +1,7 @@
 #include "dae/ida_integrator.hpp"
 
+#include "dae/step_driver.hpp"
+
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -141,7 +143,7 @@ void error_handler(int /*code*/, const char* /*module*/, const char* function, c
   data->ida_message = std::string(function) + ": " + msg;
 }
 
-class Ida {
+class Ida final : public Stepper {
  public:
   Ida(const DaeProblem& problem, const IntegratorOptions& options) : n_(problem.size()) {
     data_.problem = &problem;
@@ -208,13 +210,13 @@ class Ida {
     baseline_ = read_counters();
   }
 
-  void set_stop_time(double t) { check(IDASetStopTime(mem_.get(), t), "IDASetStopTime"); }
+  void set_stop_time(double t) override { check(IDASetStopTime(mem_.get(), t), "IDASetStopTime"); }
   void set_segment(double t0) { data_.step_reference = t0; }
 
   /// Takes one internal step (bounded by the stop time that is set); returns the time reached,
   /// the stop time exactly when the step lands on it. IDA sizes its first step after a
   /// (re)initialisation from the distance to `tout`, so callers pass the next output time.
-  double step(double tout) {
+  double step(double tout) override {
     double tret = 0.0;
     const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
     if (data_.error) std::rethrow_exception(data_.error);
@@ -232,15 +234,33 @@ class Ida {
   }
 
   /// y and y' at t inside the last step, from IDA's interpolating polynomial.
-  void interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) {
+  void interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) override {
     check(IDAGetDky(mem_.get(), t, 0, work_.get()), "IDAGetDky");
     y = view(work_.get());
     check(IDAGetDky(mem_.get(), t, 1, work_.get()), "IDAGetDky");
     yp = view(work_.get());
   }
 
-  [[nodiscard]] Eigen::VectorXd y() { return view(y_.get()); }
-  [[nodiscard]] Eigen::VectorXd yp() { return view(yp_.get()); }
+  [[nodiscard]] Eigen::VectorXd y() override { return view(y_.get()); }
+  [[nodiscard]] Eigen::VectorXd yp() override { return view(yp_.get()); }
+
+  void restart(double t) override {
+    set_segment(t);
+    Eigen::VectorXd yb = view(y_.get()), ypb;
+    data_.problem->make_consistent(t, yb, ypb);
+    reinit(t, yb, ypb);
+  }
+
+  void fill_summary(SolveSummary& summary) override {
+    collect();
+    summary.steps = totals_.steps;
+    summary.residual_evals = totals_.residual_evals;
+    summary.jacobian_evals = totals_.jacobian_evals;
+    summary.newton_iterations = totals_.newton_iterations;
+    summary.newton_failures = totals_.newton_failures;
+    summary.error_test_failures = totals_.error_test_failures;
+    summary.last_step = totals_.last_step;
+  }
 
   /// Adds what IDA counted since the last collect() to the totals. Differencing against a
   /// baseline keeps the totals right whether or not IDAReInit resets IDA's own counters.
@@ -258,7 +278,6 @@ class Ida {
     if (h != 0.0) totals_.last_step = h;
   }
 
-  [[nodiscard]] const SolveSummary& totals() const { return totals_; }
 
  private:
   void check(int flag, const char* call) const {
@@ -306,86 +325,16 @@ RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
   options.validate();
   if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
   const auto start = std::chrono::steady_clock::now();
-  const auto& times = options.output_times;
-  const double t0 = times.front();
-
-  RawTrajectory out;
-  auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
-    out.t.push_back(t);
-    out.y.push_back(y);
-    out.yp.push_back(yp);
-  };
-
+  const double t0 = options.output_times.front();
   Ida ida(problem, options);
   ida.set_segment(t0);
   Eigen::VectorXd y_init = y0, yp0;
   problem.make_consistent(t0, y_init, yp0);
   ida.init(t0, y_init, yp0, options);
-  record(t0, y_init, yp0);
-
-  // Breakpoints strictly inside (t0, t_end); each ends a segment.
-  std::vector<double> stops;
-  for (double b : options.breakpoints) {
-    if (b > t0 && b < times.back()) stops.push_back(b);
-  }
-  // SUNDIALS 6.4 cannot clear a stop time and keeps it across IDAReInit, so one is always set
-  // ahead of the solver: the next load step, else the end of the run (which also keeps IDA from
-  // stepping past the horizon).
-  std::size_t next_stop = 0;
-  auto stop_ahead = [&] { return next_stop < stops.size() ? stops[next_stop] : times.back(); };
-  ida.set_stop_time(stop_ahead());
-
-  // One internal step at a time: every step is seen exactly (drift, μ), outputs are interpolated.
-  std::size_t k = 1;  // next output
-  long steps_since_output = 0;
-  Eigen::VectorXd yo, ypo;
-  while (k < times.size()) {
-    const double t = ida.step(times[k]);
-    if (++steps_since_output > options.max_steps_per_output) {
-      std::ostringstream s;
-      s << "took " << options.max_steps_per_output << " steps without reaching the output time "
-        << times[k] << " (at t = " << t << ")";
-      throw IntegrationError(s.str());
-    }
-    if (options.on_step) options.on_step(t, ida.y());
-    const bool at_stop = next_stop < stops.size() && t >= stops[next_stop];
-    // Outputs inside the step; one at a load step's time waits for the state after the step.
-    while (k < times.size() && (times[k] < t || (times[k] == t && !at_stop))) {
-      if (times[k] == t) {
-        record(t, ida.y(), ida.yp());
-      } else {
-        ida.interpolate(times[k], yo, ypo);
-        record(times[k], yo, ypo);
-      }
-      ++k;
-      steps_since_output = 0;
-    }
-    if (at_stop) {
-      const double b = stops[next_stop++];
-      ida.set_segment(b);
-      Eigen::VectorXd yb = ida.y(), ypb;
-      problem.make_consistent(b, yb, ypb);
-      ida.reinit(b, yb, ypb);
-      ida.set_stop_time(stop_ahead());
-      ++summary.restarts;
-      while (k < times.size() && times[k] <= b) {
-        record(times[k], yb, ypb);
-        ++k;
-      }
-    }
-  }
-  ida.collect();
-  const auto& tot = ida.totals();
-  summary.steps = tot.steps;
-  summary.residual_evals = tot.residual_evals;
-  summary.jacobian_evals = tot.jacobian_evals;
-  summary.newton_iterations = tot.newton_iterations;
-  summary.newton_failures = tot.newton_failures;
-  summary.error_test_failures = tot.error_test_failures;
-  summary.last_step = tot.last_step;
+  RawTrajectory out = drive(ida, y_init, yp0, options, summary);
   summary.unknowns = problem.size();
   summary.jacobian_nonzeros = static_cast<int>(problem.jacobian_pattern().nonZeros());
-  summary.termination = "reached t = " + std::to_string(times.back());
+  summary.termination = "reached t = " + std::to_string(options.output_times.back());
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

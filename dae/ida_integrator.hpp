@@ -6,21 +6,9 @@
 
 #include "dae/dae_problem.hpp"
 #include "dae/solve_summary.hpp"
+#include "dae/step_driver.hpp"
 
 namespace condyn {
-
-/// IDA failed (or refused an input). The message names the SUNDIALS call, its flag name, the time
-/// reached and IDA's own explanation.
-class IntegrationError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-/// y and y' at the output times.
-struct RawTrajectory {
-  std::vector<double> t;
-  std::vector<Eigen::VectorXd> y, yp;
-};
 
 /// Integrates F(t, y, y') = 0 from (options.output_times.front(), y0) to the last output time.
 /// The differential part of y0 must be consistent; algebraic components and y'(0) come from
