@@ -278,7 +278,6 @@ class Ida final : public Stepper {
     if (h != 0.0) totals_.last_step = h;
   }
 
-
  private:
   void check(int flag, const char* call) const {
     if (flag < 0) {

@@ -4,11 +4,13 @@
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
+#include "dae/cvode_integrator.hpp"
 #include "dae/elimination.hpp"
 #include "dae/ida_integrator.hpp"
 #include "dae/linear_system.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
+#include "dae/projected_ode.hpp"
 #include "dae/reduced_ode.hpp"
 
 namespace condyn {
@@ -121,6 +123,37 @@ Trajectory solve_penalty(const Model& model, const IntegratorOptions& options,
   return traj;
 }
 
+Trajectory solve_projection(const Model& model, const IntegratorOptions& options,
+                            SolveSummary& summary) {
+  const LinearSystem system(model);
+  const ProjectedOde ode(system);
+  summary.scheme = to_string(Scheme::projection);
+  const int n = model.dofs();
+  double max_dp = 0.0, max_dv = 0.0;
+  std::vector<StepRecord> steps;
+  IntegratorOptions observed = options;
+  observed.on_step = [&](double t, const Eigen::VectorXd& y) {
+    const auto [dp, dv] = model.drift(t, y.head(n), y.tail(n));
+    max_dp = std::max(max_dp, dp);
+    max_dv = std::max(max_dv, dv);
+    if (options.record_steps) steps.push_back({t, dp, dv});
+  };
+  Eigen::VectorXd y0(2 * n);
+  y0 << model.u0, model.v0;
+  const RawTrajectory raw = integrate_ode(ode, y0, observed, summary);
+  std::vector<Eigen::VectorXd> u, v, lambda;
+  for (std::size_t k = 0; k < raw.t.size(); ++k) {
+    u.emplace_back(raw.y[k].head(n));
+    v.emplace_back(raw.y[k].tail(n));
+    lambda.push_back(ode.multipliers(raw.t[k], raw.y[k]));
+  }
+  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+  traj.steps = std::move(steps);
+  summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
+  summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
+  return traj;
+}
+
 }  // namespace
 
 SystemSize system_size(const Model& model, Scheme scheme) {
@@ -134,6 +167,10 @@ SystemSize system_size(const Model& model, Scheme scheme) {
   if (scheme == Scheme::penalty) {
     const PenaltyOde ode(system, penalty_weights(model));
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
+  }
+  if (scheme == Scheme::projection) {
+    const ProjectedOde ode(system);
+    return {ode.size(), static_cast<long>(ode.size()) * ode.size()};  // dense
   }
   const BaumgarteGains gains =
       scheme == Scheme::baumgarte ? baumgarte_gains(model) : BaumgarteGains{};
@@ -156,6 +193,8 @@ Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& opt
       return solve_multipliers(model, scheme, options, summary);
     case Scheme::penalty:
       return solve_penalty(model, options, summary);
+    case Scheme::projection:
+      return solve_projection(model, options, summary);
   }
   throw std::logic_error("unknown scheme");
 }

@@ -36,6 +36,8 @@ const char* to_string(Scheme s) {
       return "index3";
     case Scheme::penalty:
       return "penalty";
+    case Scheme::projection:
+      return "projection";
   }
   return "?";
 }

@@ -60,13 +60,23 @@ struct InitialSpec {
 };
 
 /// The formulation used to solve the scene (README "Schemes").
-enum class Scheme { automatic, elimination, index1, baumgarte, ggl, index2, index3, penalty };
+enum class Scheme {
+  automatic,
+  elimination,
+  index1,
+  baumgarte,
+  ggl,
+  index2,
+  index3,
+  penalty,
+  projection
+};
 
 /// Every runnable scheme, the chapter's reference path first (automatic is not one: it resolves
 /// to one of these).
-inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1, Scheme::baumgarte,
-                                      Scheme::ggl,         Scheme::index2, Scheme::index3,
-                                      Scheme::penalty};
+inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Scheme::baumgarte,
+                                      Scheme::ggl,         Scheme::index2,    Scheme::index3,
+                                      Scheme::penalty,     Scheme::projection};
 
 struct SolveSpec {
   double t_end = 0.0;

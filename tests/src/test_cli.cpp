@@ -149,7 +149,8 @@ scheme = "elimination"
 TEST_CASE("every scheme runs from the command line") {
   const Sandbox box;
   box.write("s.toml", kScene + "[output]\nquantities = [\"reaction\", \"multiplier\"]\n");
-  for (const char* scheme : {"auto", "elimination", "index1", "baumgarte", "ggl"}) {
+  for (const char* scheme : {"auto", "elimination", "index1", "baumgarte", "ggl", "index2",
+                             "index3", "penalty", "projection"}) {
     CAPTURE(scheme);
     const Result r = box.run(std::string("run s.toml --scheme ") + scheme + " --out r.csv");
     CHECK(r.code == 0);

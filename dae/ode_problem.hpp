@@ -1,0 +1,25 @@
+#pragma once
+/// An ODE y' = F(t, y) with an invariant manifold it should stay on, as CVODE sees it.
+
+#include <Eigen/Dense>
+
+namespace condyn {
+
+class OdeProblem {
+ public:
+  using ConstRef = Eigen::Ref<const Eigen::VectorXd>;
+  using Ref = Eigen::Ref<Eigen::VectorXd>;
+
+  virtual ~OdeProblem() = default;
+  [[nodiscard]] virtual int size() const = 0;
+  /// ydot = F(t, y); load steps on when start <= step_reference.
+  virtual void rhs(double t, double step_reference, ConstRef y, Ref ydot) const = 0;
+  /// True when the problem has an invariant to project onto after each step.
+  [[nodiscard]] virtual bool has_projection() const = 0;
+  /// corr such that y + corr lies on the manifold (CVodeSetProjFn).
+  virtual void project(double t, ConstRef y, Ref corr) const = 0;
+  /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
+  virtual void project_error(Ref err) const = 0;
+};
+
+}  // namespace condyn
