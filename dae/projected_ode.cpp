@@ -56,8 +56,8 @@ ProjectedOde::ProjectedOde(const MechanicalSystem& system)
   rows_.resize(m_);
 }
 
-Eigen::VectorXd ProjectedOde::accelerations(double t, double step_reference, ConstRef u,
-                                            ConstRef v) const {
+Eigen::VectorXd ProjectedOde::accelerations(double t, double step_reference, const ConstRef& u,
+                                            const ConstRef& v) const {
   system_.force(t, step_reference, u, v, force_);
   Eigen::VectorXd rhs(n_ + m_);
   rhs.head(n_) = force_;

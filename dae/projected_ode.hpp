@@ -43,8 +43,8 @@ class ProjectedOde final : public OdeProblem {
 
  private:
   /// [a; λ] from the KKT system at (t, u, v).
-  [[nodiscard]] Eigen::VectorXd accelerations(double t, double step_reference, ConstRef u,
-                                              ConstRef v) const;
+  [[nodiscard]] Eigen::VectorXd accelerations(double t, double step_reference, const ConstRef& u,
+                                              const ConstRef& v) const;
 
   const MechanicalSystem& system_;
   int n_, m_;
