@@ -1,5 +1,7 @@
 #include "dae/cvode_integrator.hpp"
 
+#include "dae/sundials_raii.hpp"
+
 #include <cvode/cvode.h>
 #include <cvode/cvode_proj.h>
 #include <nvector/nvector_serial.h>
@@ -16,31 +18,17 @@ namespace condyn {
 
 namespace {
 
-// --- RAII owners, destroyed in reverse creation order. ---
-struct ContextDeleter {
-  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
-};
-struct VectorDeleter {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct MatrixDeleter {
-  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
-};
-struct SolverDeleter {
-  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
-};
+using sundials::ContextPtr;
+using sundials::MatrixPtr;
+using sundials::SolverPtr;
+using sundials::VectorPtr;
+using sundials::view;
+
+// The integrator memory's owner; the others come from dae/sundials_raii.hpp.
 struct CvodeDeleter {
   void operator()(void* mem) const { CVodeFree(&mem); }
 };
-using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
-using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
-using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
-using SolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, SolverDeleter>;
 using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
-
-Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
-}
 
 /// What the C callbacks need; exceptions are parked here, never propagated through CVODE.
 struct CallbackData {

@@ -1,6 +1,7 @@
 #include "dae/ida_integrator.hpp"
 
 #include "dae/step_driver.hpp"
+#include "dae/sundials_raii.hpp"
 
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
@@ -44,31 +45,17 @@ std::string SolveSummary::brief() const {
 
 namespace {
 
-// --- RAII owners: one per SUNDIALS object, destroyed in reverse creation order. ---
-struct ContextDeleter {
-  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
-};
-struct VectorDeleter {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct MatrixDeleter {
-  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
-};
-struct SolverDeleter {
-  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
-};
+using sundials::ContextPtr;
+using sundials::MatrixPtr;
+using sundials::SolverPtr;
+using sundials::VectorPtr;
+using sundials::view;
+
+// The integrator memory's owner; the others come from dae/sundials_raii.hpp.
 struct IdaDeleter {
   void operator()(void* mem) const { IDAFree(&mem); }
 };
-using ContextPtr = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
-using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
-using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
-using SolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, SolverDeleter>;
 using IdaPtr = std::unique_ptr<void, IdaDeleter>;
-
-Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
-}
 
 /// What the C callbacks need; exceptions thrown by the problem are parked here, never propagated
 /// through IDA's C frames.

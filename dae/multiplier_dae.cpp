@@ -1,5 +1,7 @@
 #include "dae/multiplier_dae.hpp"
 
+#include "dae/kkt.hpp"
+
 #include <algorithm>
 #include <sstream>
 #include <stdexcept>
@@ -217,21 +219,7 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
     rhs_l -= beta_ * beta_ * work;
   }
   // [M Aᵀ; A 0] [v'; λ] = [f; γ]
-  std::vector<Eigen::Triplet<double>> trip;
-  for (int k = 0; k < M.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) {
-      trip.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
-    }
-  }
-  for (int k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      trip.emplace_back(n_ + static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
-      trip.emplace_back(static_cast<int>(it.col()), n_ + static_cast<int>(it.row()), it.value());
-    }
-  }
-  Eigen::SparseMatrix<double> kkt(n_ + m_, n_ + m_);
-  kkt.setFromTriplets(trip.begin(), trip.end());
-  kkt.makeCompressed();
+  const Eigen::SparseMatrix<double> kkt = kkt_matrix(M, A);
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   lu.compute(kkt);
   if (lu.info() != Eigen::Success) {

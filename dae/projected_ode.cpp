@@ -1,5 +1,7 @@
 #include "dae/projected_ode.hpp"
 
+#include "dae/kkt.hpp"
+
 #include <stdexcept>
 
 namespace condyn {
@@ -17,22 +19,7 @@ ProjectedOde::ProjectedOde(const MechanicalSystem& system)
     throw std::invalid_argument(
         "projection needs mass on every DOF: the mass matrix is not positive definite");
   }
-  std::vector<Eigen::Triplet<double>> trip;
-  for (int k = 0; k < M.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) {
-      trip.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
-    }
-  }
-  for (int k = 0; k < A_.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A_, k); it; ++it) {
-      trip.emplace_back(n_ + static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
-      trip.emplace_back(static_cast<int>(it.col()), n_ + static_cast<int>(it.row()), it.value());
-    }
-  }
-  Eigen::SparseMatrix<double> kkt(n_ + m_, n_ + m_);
-  kkt.setFromTriplets(trip.begin(), trip.end());
-  kkt.makeCompressed();
-  kkt_.compute(kkt);
+  kkt_.compute(kkt_matrix(M, A_));
   if (kkt_.info() != Eigen::Success)
     throw std::invalid_argument("the KKT system [M Aᵀ; A 0] is singular");
 

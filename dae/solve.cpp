@@ -1,6 +1,7 @@
 #include "dae/solve.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
@@ -53,6 +54,46 @@ MultiplierScheme multiplier_scheme(Scheme s) {
   }
 }
 
+/// Integrates a formulation whose state starts with [u; v] and assembles the trajectory: drift at
+/// every internal step (where the scheme's equations hold exactly) and at the outputs (which are
+/// interpolated), λ at the outputs from `multipliers`, and `on_state` for any further per-step
+/// observation (GGL's μ).
+Trajectory run_observed(
+    const Model& model, const IntegratorOptions& options, SolveSummary& summary,
+    const std::function<RawTrajectory(const IntegratorOptions&)>& run,
+    const std::function<Eigen::VectorXd(double, const Eigen::VectorXd&)>& multipliers,
+    const std::function<void(const Eigen::VectorXd&)>& on_state = {}) {
+  const int n = model.dofs();
+  double max_dp = 0.0, max_dv = 0.0;
+  std::vector<StepRecord> steps;
+  IntegratorOptions observed = options;
+  observed.on_step = [&](double t, const Eigen::VectorXd& y) {
+    const auto [dp, dv] = model.drift(t, y.head(n), y.segment(n, n));
+    max_dp = std::max(max_dp, dp);
+    max_dv = std::max(max_dv, dv);
+    if (on_state) on_state(y);
+    if (options.record_steps) steps.push_back({t, dp, dv});
+  };
+  const RawTrajectory raw = run(observed);
+  std::vector<Eigen::VectorXd> u, v, lambda;
+  for (std::size_t k = 0; k < raw.t.size(); ++k) {
+    u.emplace_back(raw.y[k].head(n));
+    v.emplace_back(raw.y[k].segment(n, n));
+    lambda.push_back(multipliers(raw.t[k], raw.y[k]));
+  }
+  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+  traj.steps = std::move(steps);
+  summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
+  summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
+  return traj;
+}
+
+Eigen::VectorXd initial_state(const Model& model) {
+  Eigen::VectorXd y0(2 * model.dofs());
+  y0 << model.u0, model.v0;
+  return y0;
+}
+
 Trajectory solve_multipliers(const Model& model, Scheme scheme, const IntegratorOptions& options,
                              SolveSummary& summary) {
   const LinearSystem system(model);
@@ -63,31 +104,17 @@ Trajectory solve_multipliers(const Model& model, Scheme scheme, const Integrator
   }
   const MultiplierDae dae(system, multiplier_scheme(scheme), gains.alpha, gains.beta);
   summary.scheme = to_string(scheme);
-  // Drift and μ at every internal step, where the scheme's equations hold exactly.
-  double max_mu = 0.0, max_dp = 0.0, max_dv = 0.0;
-  std::vector<StepRecord> steps;
-  IntegratorOptions observed = options;
-  observed.on_step = [&](double t, const Eigen::VectorXd& y) {
-    const auto [dp, dv] = model.drift(t, dae.u(y), dae.v(y));
-    max_dp = std::max(max_dp, dp);
-    max_dv = std::max(max_dv, dv);
-    if (dae.mu(y).size() > 0) max_mu = std::max(max_mu, dae.mu(y).cwiseAbs().maxCoeff());
-    if (options.record_steps) steps.push_back({t, dp, dv});
-  };
-  const RawTrajectory raw = integrate(dae, dae.pack(model.u0, model.v0), observed, summary);
-  std::vector<Eigen::VectorXd> u, v, lambda;
-  for (std::size_t k = 0; k < raw.t.size(); ++k) {
-    const Eigen::VectorXd& y = raw.y[k];
-    u.emplace_back(dae.u(y));
-    v.emplace_back(dae.v(y));
-    lambda.emplace_back(dae.lambda(y));
-  }
+  double max_mu = 0.0;
+  Trajectory traj = run_observed(
+      model, options, summary,
+      [&](const IntegratorOptions& o) {
+        return integrate(dae, dae.pack(model.u0, model.v0), o, summary);
+      },
+      [&](double, const Eigen::VectorXd& y) { return Eigen::VectorXd(dae.lambda(y)); },
+      [&](const Eigen::VectorXd& y) {
+        if (dae.mu(y).size() > 0) max_mu = std::max(max_mu, dae.mu(y).cwiseAbs().maxCoeff());
+      });
   if (scheme == Scheme::ggl) summary.max_abs_mu = max_mu;
-  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
-  traj.steps = std::move(steps);
-  // Over steps and output times (outputs are interpolated: they can drift where steps do not).
-  summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
-  summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
   return traj;
 }
 
@@ -96,62 +123,25 @@ Trajectory solve_penalty(const Model& model, const IntegratorOptions& options,
   const LinearSystem system(model);
   const PenaltyWeights weights = penalty_weights(model);
   summary.notes = weights.rule;
-  const PenaltyOde ode(system, weights);
   summary.scheme = to_string(Scheme::penalty);
-  double max_dp = 0.0, max_dv = 0.0;
-  std::vector<StepRecord> steps;
-  IntegratorOptions observed = options;
-  observed.on_step = [&](double t, const Eigen::VectorXd& y) {
-    const auto [dp, dv] = model.drift(t, y.head(model.dofs()), y.tail(model.dofs()));
-    max_dp = std::max(max_dp, dp);
-    max_dv = std::max(max_dv, dv);
-    if (options.record_steps) steps.push_back({t, dp, dv});
-  };
-  Eigen::VectorXd y0(2 * model.dofs());
-  y0 << model.u0, model.v0;
-  const RawTrajectory raw = integrate(ode, y0, observed, summary);
-  std::vector<Eigen::VectorXd> u, v, lambda;
-  for (std::size_t k = 0; k < raw.t.size(); ++k) {
-    u.emplace_back(raw.y[k].head(model.dofs()));
-    v.emplace_back(raw.y[k].tail(model.dofs()));
-    lambda.push_back(ode.multipliers(raw.t[k], raw.y[k]));
-  }
-  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
-  traj.steps = std::move(steps);
-  summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
-  summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
-  return traj;
+  const PenaltyOde ode(system, weights);
+  return run_observed(
+      model, options, summary,
+      [&](const IntegratorOptions& o) { return integrate(ode, initial_state(model), o, summary); },
+      [&](double t, const Eigen::VectorXd& y) { return ode.multipliers(t, y); });
 }
 
 Trajectory solve_projection(const Model& model, const IntegratorOptions& options,
                             SolveSummary& summary) {
   const LinearSystem system(model);
-  const ProjectedOde ode(system);
   summary.scheme = to_string(Scheme::projection);
-  const int n = model.dofs();
-  double max_dp = 0.0, max_dv = 0.0;
-  std::vector<StepRecord> steps;
-  IntegratorOptions observed = options;
-  observed.on_step = [&](double t, const Eigen::VectorXd& y) {
-    const auto [dp, dv] = model.drift(t, y.head(n), y.tail(n));
-    max_dp = std::max(max_dp, dp);
-    max_dv = std::max(max_dv, dv);
-    if (options.record_steps) steps.push_back({t, dp, dv});
-  };
-  Eigen::VectorXd y0(2 * n);
-  y0 << model.u0, model.v0;
-  const RawTrajectory raw = integrate_ode(ode, y0, observed, summary);
-  std::vector<Eigen::VectorXd> u, v, lambda;
-  for (std::size_t k = 0; k < raw.t.size(); ++k) {
-    u.emplace_back(raw.y[k].head(n));
-    v.emplace_back(raw.y[k].tail(n));
-    lambda.push_back(ode.multipliers(raw.t[k], raw.y[k]));
-  }
-  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
-  traj.steps = std::move(steps);
-  summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
-  summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
-  return traj;
+  const ProjectedOde ode(system);
+  return run_observed(
+      model, options, summary,
+      [&](const IntegratorOptions& o) {
+        return integrate_ode(ode, initial_state(model), o, summary);
+      },
+      [&](double t, const Eigen::VectorXd& y) { return ode.multipliers(t, y); });
 }
 
 }  // namespace
