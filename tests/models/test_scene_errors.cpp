@@ -213,4 +213,13 @@ TEST_CASE("duplicate names and bad output settings") {
               "unknown scheme 'rk4'");
   check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\nslaves = [\"uq1\"]"),
               "solve.slaves");
+  check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\npenalty = { weight = -5.0 }"),
+              "solve.penalty.weight: must be > 0");
+  check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\npenalty = { wieght = 5.0 }"),
+              "solve.penalty.wieght: unknown key");
+  check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\nbaumgarte = { alpha = 0.0 }"),
+              "solve.baumgarte.alpha: must be > 0");
+  check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\nscheme = \"projektion\""),
+              "unknown scheme 'projektion' (expected auto, elimination, index1, baumgarte, ggl, "
+              "index2, index3, penalty, projection)");
 }
