@@ -222,15 +222,6 @@ TimeFunction TimeFunction::antiderivative() const {
   return TimeFunction(std::move(out));
 }
 
-TimeFunction TimeFunction::scaled(double s) const {
-  std::vector<TimeTerm> out = terms_;
-  for (auto& term : out) {
-    term.amplitude *= s;
-    for (double& c : term.coefficients) c *= s;
-  }
-  return TimeFunction(std::move(out));
-}
-
 std::string TimeFunction::describe() const {
   std::string s;
   for (const auto& term : terms_) {

@@ -59,8 +59,6 @@ class TimeFunction {
   /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,
   /// whose derivative jumps: the caller must refuse the constraint).
   [[nodiscard]] TimeFunction antiderivative() const;
-  /// The function scaled by s.
-  [[nodiscard]] TimeFunction scaled(double s) const;
   [[nodiscard]] std::string describe() const;
 
  private:

@@ -12,13 +12,6 @@
 
 namespace condyn {
 
-const EmbeddedScene& embedded_scene(const std::string& name) {
-  for (const auto& s : embedded_scenes()) {
-    if (s.name == name) return s;
-  }
-  throw std::out_of_range("no embedded scene named '" + name + "'");
-}
-
 namespace {
 
 std::string sci(double v) {
