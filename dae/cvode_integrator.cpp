@@ -55,12 +55,12 @@ int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N
   auto* data = static_cast<CallbackData*>(user);
   try {
     auto c = view(corr);
-    data->problem->project(t, view(y), c);
+    if (!data->problem->project(t, view(y), c)) return 1;  // recoverable: smaller step
     if (err != nullptr) {
       auto e = view(err);
       data->problem->project_error(e);
     }
-    return 0;
+    return c.allFinite() ? 0 : 1;
   } catch (...) {
     data->error = std::current_exception();
     return -1;

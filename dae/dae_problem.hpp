@@ -37,6 +37,10 @@ class DaeProblem {
   /// rtol <= 1e-9); with zero weight, IDA's modified Newton never converges them (GGL's μ grew
   /// 2x per step between Jacobian updates, to 4e4 where it is 0). Empty means all 1.
   [[nodiscard]] virtual Eigen::VectorXd variable_index() const { return {}; }
+  /// true: the algebraic components (differential_id 0) are left out of the local error test
+  /// even when they are of index 1 (IDASetSuppressAlg), for algebraic variables whose error
+  /// estimate amplifies the differential ones' (Baumgarte's λ, see MultiplierDae).
+  [[nodiscard]] virtual bool suppress_algebraic_error() const { return false; }
   /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
   /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
   /// step, where accelerations and multipliers jump). Throws std::runtime_error when the

@@ -3,6 +3,10 @@
 namespace condyn {
 
 Trajectory exact_trajectory(const Model& model, const std::vector<double>& times) {
+  if (model.is_nonlinear()) {
+    throw ExactSolutionUnavailable(
+        "the model is nonlinear (the modal solution needs constant M, C, K, A)");
+  }
   const int n = model.dofs(), m = model.constraint_count();
   Eigen::MatrixXd N, P(n, m);
   if (m == 0) {

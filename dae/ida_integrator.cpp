@@ -62,7 +62,14 @@ using IdaPtr = std::unique_ptr<void, IdaDeleter>;
 struct CallbackData {
   const DaeProblem* problem = nullptr;
   double rtol = 0.0, atol = 0.0;
-  void* mem = nullptr;    ///< IDA memory, for the step size in the weight function
+  void* mem = nullptr;  ///< IDA memory, for the step size in the weight function
+  /// The step the weights assume before IDA has taken one (at t0 and after each restart, where
+  /// IDA computes the weights once for the first step and all its retries). With h = 1 there,
+  /// the higher-index components' weights were 1/h larger than in later steps and the first
+  /// step failed to converge at every size (GGL on Andrews, the four-bar, the hanging chain).
+  /// The multipliers are consistent at t0 (make_consistent), so weights this lax for one step
+  /// cost nothing. Also passed to IDASetInitStep.
+  double first_step = 1.0;
   Eigen::VectorXd index;  ///< differentiation index per component (DaeProblem::variable_index)
   double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
@@ -110,13 +117,17 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
   }
 }
 
+/// Higher-index problems: the first step, as a fraction of the first output interval (the
+/// BDF start at order 1 ramps up from there within a few steps).
+constexpr double kFirstStepFraction = 1e-8;
+
 /// Error weights h^(k_i − 1) / (rtol |y_i| + atol), k_i the component's index (DaeProblem).
 int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   auto* data = static_cast<CallbackData*>(user);
   double h = 0.0;
   if (data->mem != nullptr) IDAGetCurrentStep(data->mem, &h);
   h = std::abs(h);
-  if (!(h > 0.0)) h = 1.0;  // before the first step: no scaling yet
+  if (!(h > 0.0)) h = data->first_step;
   auto w = view(ewt);
   for (Eigen::Index i = 0; i < w.size(); ++i) {
     w[i] = std::pow(h, data->index[i] - 1.0) / (data->rtol * std::abs(view(y)[i]) + data->atol);
@@ -173,6 +184,9 @@ class Ida final : public Stepper {
       view(id_.get()) = (index.array() > 1.0).select(0.0, view(id_.get()).array());
     }
     check(IDAInit(mem_.get(), residual_trampoline, t0, y_.get(), yp_.get()), "IDAInit");
+    if (options.output_times.size() > 1) {
+      data_.first_step = kFirstStepFraction * (options.output_times[1] - options.output_times[0]);
+    }
     check(IDASetUserData(mem_.get(), &data_), "IDASetUserData");
     check(IDASetId(mem_.get(), id_.get()), "IDASetId");
     if (higher_index) {
@@ -181,9 +195,13 @@ class Ida final : public Stepper {
       data_.index = index;
       data_.mem = mem_.get();
       check(IDAWFtolerances(mem_.get(), weight_trampoline), "IDAWFtolerances");
+      check(IDASetInitStep(mem_.get(), data_.first_step), "IDASetInitStep");
       check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
     } else {
       check(IDASStolerances(mem_.get(), options.rtol, options.atol), "IDASStolerances");
+      if (data_.problem->suppress_algebraic_error()) {
+        check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
+      }
     }
     check(IDASetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "IDASetLinearSolver");
     check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
@@ -194,6 +212,8 @@ class Ida final : public Stepper {
     view(y_.get()) = y0;
     view(yp_.get()) = yp0;
     check(IDAReInit(mem_.get(), t0, y_.get(), yp_.get()), "IDAReInit");
+    if (data_.index.size() > 0)
+      check(IDASetInitStep(mem_.get(), data_.first_step), "IDASetInitStep");
     baseline_ = read_counters();
   }
 

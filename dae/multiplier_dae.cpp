@@ -17,9 +17,6 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
       n_(system.dofs()),
       m_(system.constraints()),
       p_(0) {
-  if (system.has_curvature()) {
-    throw std::invalid_argument("multiplier formulations do not yet support nonlinear constraints");
-  }
   if (scheme == MultiplierScheme::ggl) {
     for (int i = 0; i < m_; ++i) {
       if (system.position_rows()[static_cast<std::size_t>(i)]) position_row_.push_back(i);
@@ -41,33 +38,72 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
 
   force_.resize(n_);
   rows_.resize(m_);
-  // Patterns at the initial state: fixed for the run (constant for linear systems).
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  const auto& M = system.mass(0.0, zero);
-  const auto& A = system.constraint_jacobian(0.0, zero);
-  const auto& f_u = system.force_jacobian_u(0.0, zero, zero);
-  const auto& f_v = system.force_jacobian_v(0.0, zero, zero);
-  const Eigen::SparseMatrix<double> Ap = select_p_ * A;
-  const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
+  // Patterns at the initial state: every block's pattern is independent of the state
+  // (MechanicalSystem's contract), so the Jacobian's pattern is fixed for the run.
+  const Eigen::VectorXd zero_n = Eigen::VectorXd::Zero(n_);
+  const Eigen::VectorXd y0 = pack(zero_n, zero_n), yp0 = Eigen::VectorXd::Zero(size());
   jacobian_ = BlockJacobian(size());
-  jacobian_.declare_identity(iu, iu, n_);  // d(u')
-  jacobian_.declare_identity(iu, iv, n_);  // −I
-  jacobian_.declare(iu, im, Eigen::SparseMatrix<double>(Ap.transpose()));
-  jacobian_.declare(iv, iu, f_u);
-  jacobian_.declare(iv, iv, f_v);
-  jacobian_.declare(iv, iv, M);
-  jacobian_.declare(iv, il, Eigen::SparseMatrix<double>(A.transpose()));
-  // λ rows: cj A (index1, baumgarte), A (ggl, index2, and 2α A), or under index3 A on position
-  // rows (d/du) and on velocity rows (d/dv).
-  jacobian_.declare(il, iv, A);
-  if (scheme == MultiplierScheme::index3) {
-    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A));
-  }
-  if (scheme == MultiplierScheme::baumgarte) {
-    jacobian_.declare(il, iu, Eigen::SparseMatrix<double>(position_mask_ * A));  // β² φ_u
-  }
-  jacobian_.declare(im, iu, Ap);
+  for_each_block(0.0, y0, yp0, 1.0,
+                 [&](int r, int c, const Eigen::SparseMatrix<double>& S, double /*scale*/) {
+                   jacobian_.declare(r, c, S);
+                 });
+  jacobian_.declare_identity(0, 0, n_);   // d(u')
+  jacobian_.declare_identity(0, n_, n_);  // −I
   jacobian_.finish();
+}
+
+void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
+                                   const BlockVisitor& visit) const {
+  using Sparse = Eigen::SparseMatrix<double>;
+  const auto uu = y.segment(0, n_), vv = y.segment(n_, n_);
+  const auto vp = yp.segment(n_, n_);
+  const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
+  // Momentum rows: M v' − f + Aᵀλ.
+  visit(iv, iv, system_.mass(t, uu), cj);
+  visit(iv, iu, system_.force_jacobian_u(t, uu, vv), -1.0);
+  visit(iv, iv, system_.force_jacobian_v(t, uu, vv), -1.0);
+  visit(iv, iu, system_.mass_jacobian(t, uu, vp), 1.0);
+  if (m_ == 0) return;
+  const auto& A = system_.constraint_jacobian(t, uu);
+  visit(iv, il, Sparse(A.transpose()), 1.0);
+  visit(iv, iu, system_.constraint_force_jacobian(t, uu, y.segment(il, m_)), 1.0);
+  const auto acceleration_level = [&](double velocity_scale) {  // A v' − γ
+    visit(il, iv, A, cj + velocity_scale);
+    visit(il, iu, system_.constraint_product_jacobian(t, uu, vp), 1.0);
+    visit(il, iu, system_.acceleration_bias_jacobian_u(t, uu, vv), -1.0);
+    visit(il, iv, system_.acceleration_bias_jacobian_v(t, uu, vv), -1.0);
+  };
+  switch (scheme_) {
+    case MultiplierScheme::index1:
+      acceleration_level(0.0);
+      break;
+    case MultiplierScheme::baumgarte:  // + 2α ψ + β² φ
+      acceleration_level(2.0 * alpha_);
+      visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 2.0 * alpha_);
+      visit(il, iu, Sparse(position_mask_ * A), beta_ * beta_);
+      break;
+    case MultiplierScheme::index2:
+      visit(il, iv, A, 1.0);
+      visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 1.0);
+      break;
+    case MultiplierScheme::index3: {  // φ on position rows, ψ on velocity rows
+      visit(il, iu, Sparse(position_mask_ * A), 1.0);
+      visit(il, iv, Sparse(velocity_mask_ * A), 1.0);
+      const auto& psi_u = system_.velocity_residual_jacobian(t, uu, vv);
+      if (psi_u.size() > 0) visit(il, iu, Sparse(velocity_mask_ * psi_u), 1.0);
+      break;
+    }
+    case MultiplierScheme::ggl: {  // ψ = 0, φ_p = 0, and A_pᵀμ in the u rows
+      visit(il, iv, A, 1.0);
+      visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 1.0);
+      const Sparse Ap = select_p_ * A;
+      visit(iu, im, Sparse(Ap.transpose()), 1.0);
+      visit(im, iu, Ap, 1.0);
+      const Eigen::VectorXd w = select_p_.transpose() * y.segment(im, p_);
+      visit(iu, iu, system_.constraint_force_jacobian(t, uu, w), 1.0);
+      break;
+    }
+  }
 }
 
 Eigen::VectorXd MultiplierDae::differential_id() const {
@@ -154,44 +190,13 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
 
 void MultiplierDae::jacobian(double t, double /*step_reference*/, ConstRef y, ConstRef yp,
                              double cj, Eigen::SparseMatrix<double>& J) const {
-  (void)yp;
-  const auto uu = y.segment(0, n_), vv = y.segment(n_, n_);
-  const auto& M = system_.mass(t, uu);
-  const auto& A = system_.constraint_jacobian(t, uu);
-  const auto& f_u = system_.force_jacobian_u(t, uu, vv);
-  const auto& f_v = system_.force_jacobian_v(t, uu, vv);
-  const Eigen::SparseMatrix<double> Ap = select_p_ * A;
-  const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
-  BlockJacobian::add_identity(J, iu, iu, n_, cj);
-  BlockJacobian::add_identity(J, iu, iv, n_, -1.0);
-  BlockJacobian::add(J, iv, iu, f_u, -1.0);
-  BlockJacobian::add(J, iv, iv, f_v, -1.0);
-  BlockJacobian::add(J, iv, iv, M, cj);
-  if (m_ == 0) return;
-  BlockJacobian::add(J, iv, il, Eigen::SparseMatrix<double>(A.transpose()));
-  switch (scheme_) {
-    case MultiplierScheme::index1:
-      BlockJacobian::add(J, il, iv, A, cj);
-      break;
-    case MultiplierScheme::baumgarte: {
-      BlockJacobian::add(J, il, iv, A, cj + 2.0 * alpha_);
-      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A), beta_ * beta_);
-      break;
-    }
-    case MultiplierScheme::index2:
-      BlockJacobian::add(J, il, iv, A);
-      break;
-    case MultiplierScheme::index3:
-      BlockJacobian::add(J, il, iu, Eigen::SparseMatrix<double>(position_mask_ * A));
-      BlockJacobian::add(J, il, iv, Eigen::SparseMatrix<double>(velocity_mask_ * A));
-      break;
-    case MultiplierScheme::ggl:
-      BlockJacobian::add(J, il, iv, A);
-      BlockJacobian::add(J, iu, im, Eigen::SparseMatrix<double>(Ap.transpose()));
-      BlockJacobian::add(J, im, iu, Ap);
-      break;
-  }
+  BlockJacobian::add_identity(J, 0, 0, n_, cj);
+  BlockJacobian::add_identity(J, 0, n_, n_, -1.0);
+  for_each_block(t, y, yp, cj,
+                 [&J](int r, int c, const Eigen::SparseMatrix<double>& S, double scale) {
+                   BlockJacobian::add(J, r, c, S, scale);
+                 });
 }
 
 void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {

@@ -17,7 +17,8 @@ class OdeProblem {
   /// True when the problem has an invariant to project onto after each step.
   [[nodiscard]] virtual bool has_projection() const = 0;
   /// corr such that y + corr lies on the manifold (CVodeSetProjFn).
-  virtual void project(double t, ConstRef y, Ref corr) const = 0;
+  /// Returns false when the projection did not converge (CVODE then retries with a smaller step).
+  virtual bool project(double t, ConstRef y, Ref corr) const = 0;
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
 };

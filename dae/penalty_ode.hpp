@@ -15,7 +15,7 @@
 
 #include "dae/block_jacobian.hpp"
 #include "dae/dae_problem.hpp"
-#include "dae/mechanical_system.hpp"
+#include "models/mechanical_system.hpp"
 #include "models/model.hpp"
 
 namespace condyn {

@@ -2,49 +2,74 @@
 
 #include "dae/kkt.hpp"
 
+#include <sstream>
 #include <stdexcept>
 
 namespace condyn {
 
-ProjectedOde::ProjectedOde(const MechanicalSystem& system)
-    : system_(system), n_(system.dofs()), m_(system.constraints()) {
-  if (system.has_curvature()) {
-    throw std::invalid_argument("projection does not yet support nonlinear constraints");
-  }
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  const auto& M = system.mass(0.0, zero);
-  A_ = system.constraint_jacobian(0.0, zero);
-  mass_.compute(M);
-  if (mass_.info() != Eigen::Success) {
-    throw std::invalid_argument(
-        "projection needs mass on every DOF: the mass matrix is not positive definite");
-  }
-  kkt_.compute(kkt_matrix(M, A_));
-  if (kkt_.info() != Eigen::Success)
-    throw std::invalid_argument("the KKT system [M Aᵀ; A 0] is singular");
+namespace {
 
+// Gauss-Newton iterations of the position projection for nonlinear constraints. Convergence is
+// quadratic from a state one integration step off the manifold; more than a few iterations
+// means the state has left the region where the projection is meaningful.
+constexpr int kMaxProjectionIterations = 10;
+
+}  // namespace
+
+ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0)
+    : system_(system),
+      n_(system.dofs()),
+      m_(system.constraints()),
+      varying_(system.has_curvature()) {
   for (int i = 0; i < m_; ++i) {
     if (system.position_rows()[static_cast<std::size_t>(i)]) position_rows_.push_back(i);
   }
-  Eigen::SparseMatrix<double> select(static_cast<Eigen::Index>(position_rows_.size()), m_);
+  select_p_.resize(static_cast<Eigen::Index>(position_rows_.size()), m_);
   for (std::size_t k = 0; k < position_rows_.size(); ++k) {
-    select.insert(static_cast<Eigen::Index>(k), position_rows_[k]) = 1.0;
-  }
-  Ap_ = select * A_;
-  if (m_ > 0) {
-    minv_at_ = mass_.solve(Eigen::MatrixXd(A_.transpose()));
-    gram_.compute(A_ * minv_at_);
-  }
-  if (!position_rows_.empty()) {
-    minv_apt_ = mass_.solve(Eigen::MatrixXd(Ap_.transpose()));
-    gram_p_.compute(Ap_ * minv_apt_);
+    select_p_.insert(static_cast<Eigen::Index>(k), position_rows_[k]) = 1.0;
   }
   force_.resize(n_);
   rows_.resize(m_);
+  try {
+    factor(0.0, u0, constant_);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+}
+
+void ProjectedOde::factor(double t, const ConstRef& u, Factors& f) const {
+  const auto& M = system_.mass(t, u);
+  f.A = system_.constraint_jacobian(t, u);
+  f.Ap = select_p_ * f.A;
+  for (auto [lu, B] : {std::pair{&f.kkt, &f.A}, std::pair{&f.kkt_p, &f.Ap}}) {
+    if (B == &f.Ap && position_rows_.empty()) break;  // no position projection
+    lu->compute(kkt_matrix(M, *B));
+    if (lu->info() != Eigen::Success) {
+      std::ostringstream s;
+      s << "the KKT system [M Aᵀ; A 0] is singular at t = " << t
+        << " (a DOF without mass that no constraint fixes, dependent constraints, or a singular "
+           "configuration)";
+      throw std::runtime_error(s.str());
+    }
+  }
+}
+
+const ProjectedOde::Factors& ProjectedOde::factors(double t, const ConstRef& u) const {
+  if (!varying_) return constant_;
+  factor(t, u, scratch_);
+  return scratch_;
+}
+
+Eigen::VectorXd ProjectedOde::correction(const Eigen::SparseLU<Eigen::SparseMatrix<double>>& kkt,
+                                         const Eigen::VectorXd& r) const {
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + r.size());
+  rhs.tail(r.size()) = -r;
+  return kkt.solve(rhs).head(n_);
 }
 
 Eigen::VectorXd ProjectedOde::accelerations(double t, double step_reference, const ConstRef& u,
                                             const ConstRef& v) const {
+  const Factors& f = factors(t, u);
   system_.force(t, step_reference, u, v, force_);
   Eigen::VectorXd rhs(n_ + m_);
   rhs.head(n_) = force_;
@@ -52,7 +77,7 @@ Eigen::VectorXd ProjectedOde::accelerations(double t, double step_reference, con
     system_.acceleration_bias(t, u, v, rows_);
     rhs.tail(m_) = rows_;
   }
-  return kkt_.solve(rhs);
+  return f.kkt.solve(rhs);
 }
 
 void ProjectedOde::rhs(double t, double step_reference, ConstRef y, Ref ydot) const {
@@ -64,26 +89,37 @@ Eigen::VectorXd ProjectedOde::multipliers(double t, const Eigen::VectorXd& y) co
   return accelerations(t, t, y.head(n_), y.tail(n_)).tail(m_);
 }
 
-void ProjectedOde::project(double t, ConstRef y, Ref corr) const {
+bool ProjectedOde::project(double t, ConstRef y, Ref corr) const {
   corr.setZero();
+  bool converged = position_rows_.empty() || !varying_;
+  Eigen::VectorXd u = y.head(n_);
+  const Factors* f = &factors(t, u);
   if (!position_rows_.empty()) {
-    system_.position_residual(t, y.head(n_), rows_);
-    Eigen::VectorXd phi_p(static_cast<Eigen::Index>(position_rows_.size()));
-    for (std::size_t k = 0; k < position_rows_.size(); ++k) {
-      phi_p[static_cast<Eigen::Index>(k)] = rows_[position_rows_[k]];
+    for (int it = 0; it < kMaxProjectionIterations; ++it) {
+      system_.position_residual(t, u, rows_);
+      const Eigen::VectorXd du = correction(f->kkt_p, select_p_ * rows_);
+      u += du;
+      if (varying_) f = &factors(t, u);
+      if (!varying_) break;
+      if (du.lpNorm<Eigen::Infinity>() <= 1e-14 * (1.0 + u.lpNorm<Eigen::Infinity>())) {
+        converged = true;
+        break;
+      }
     }
-    corr.head(n_) = -minv_apt_ * gram_p_.solve(phi_p);
+    corr.head(n_) = u - y.head(n_);
   }
-  const Eigen::VectorXd u = y.head(n_) + corr.head(n_);
   system_.velocity_residual(t, u, y.tail(n_), rows_);
-  corr.tail(n_) = -minv_at_ * gram_.solve(rows_);
+  corr.tail(n_) = correction(f->kkt, rows_);
+  last_ = f;
+  return converged;
 }
 
 void ProjectedOde::project_error(Ref err) const {
+  const Factors& f = last_ != nullptr ? *last_ : constant_;
   if (!position_rows_.empty()) {
-    err.head(n_) -= minv_apt_ * gram_p_.solve(Ap_ * err.head(n_));
+    err.head(n_) += correction(f.kkt_p, f.Ap * err.head(n_));
   }
-  err.tail(n_) -= minv_at_ * gram_.solve(A_ * err.tail(n_));
+  err.tail(n_) += correction(f.kkt, f.A * err.tail(n_));
 }
 
 }  // namespace condyn

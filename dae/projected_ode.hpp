@@ -6,36 +6,41 @@
 /// integrated by CVODE, which after every step projects the state back onto the constraint
 /// manifold (CVodeSetProjFn), M-weighted (the closest point in the kinetic-energy metric):
 ///
-///   u ← u − M⁻¹A_pᵀ (A_p M⁻¹ A_pᵀ)⁻¹ φ_p(t, u)    (position rows)
-///   v ← v − M⁻¹Aᵀ (A M⁻¹ Aᵀ)⁻¹ ψ(t, u, v)         (all rows)
+///   u ← u + Δu,  [M A_pᵀ; A_p 0] [Δu; ·] = [0; −φ_p(t, u)]    (position rows)
+///   v ← v + Δv,  [M Aᵀ; A 0] [Δv; ·] = [0; −ψ(t, u, v)]       (all rows)
 ///
+/// (for a positive definite M, Δu = −M⁻¹A_pᵀ (A_p M⁻¹ A_pᵀ)⁻¹ φ_p; the KKT form also serves
+/// massless DOFs that the constraints fix, such as supports).
 /// and projects the local error estimate the same way. Why CVODE and not IDA: IDA 6.4 has no
 /// projection hook, and projecting between IDA steps needs IDAReInit, which restarts the BDF
 /// method at order 1 after every step. CVODE's projection is part of its step, so the method
 /// keeps its order and its history stays consistent with the projected solution.
 ///
-/// Costs: the KKT system is factored once (M and A are constant here), every right-hand side is
-/// one solve; CVODE uses a dense difference-quotient Jacobian, so this scheme suits small and
-/// medium models. Needs a positive definite M (mass on every DOF).
+/// For nonlinear constraints (A = A(t, u)) the position projection is a Gauss-Newton iteration of
+/// the same step, with A and M re-evaluated at each iterate, until the correction is at roundoff.
+///
+/// Costs: for constant M and A the KKT system is factored once and every right-hand side is one
+/// solve; with curvature (M or A varying) it is re-factored at every evaluation. CVODE uses a
+/// dense difference-quotient Jacobian, so this scheme suits small and medium models. Needs M
+/// positive definite on the constraints' null space (the KKT matrices nonsingular).
 
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 
-#include "dae/mechanical_system.hpp"
 #include "dae/ode_problem.hpp"
+#include "models/mechanical_system.hpp"
 
 namespace condyn {
 
 class ProjectedOde final : public OdeProblem {
  public:
-  /// Keeps a reference to `system`. Throws std::invalid_argument when M is not positive definite
-  /// or the system has curvature terms.
-  explicit ProjectedOde(const MechanicalSystem& system);
+  /// Keeps a reference to `system`. Throws std::invalid_argument when a KKT matrix is singular
+  /// at the initial state u0.
+  ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0);
 
   [[nodiscard]] int size() const override { return 2 * n_; }
   void rhs(double t, double step_reference, ConstRef y, Ref ydot) const override;
   [[nodiscard]] bool has_projection() const override { return m_ > 0; }
-  void project(double t, ConstRef y, Ref corr) const override;
+  bool project(double t, ConstRef y, Ref corr) const override;
   void project_error(Ref err) const override;
 
   /// λ at a state, from the same KKT system (f_con = −Aᵀλ).
@@ -46,14 +51,28 @@ class ProjectedOde final : public OdeProblem {
   [[nodiscard]] Eigen::VectorXd accelerations(double t, double step_reference, const ConstRef& u,
                                               const ConstRef& v) const;
 
+  /// Everything the right-hand side and the projections need at one (t, u): the KKT matrices
+  /// with all rows and with the position rows, factored.
+  struct Factors {
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> kkt, kkt_p;
+    Eigen::SparseMatrix<double> A, Ap;  ///< all rows, position rows
+  };
+  /// Factors at (t, u): the constant ones for a system without curvature, else recomputed into
+  /// scratch. Throws std::runtime_error when a KKT matrix is singular there.
+  const Factors& factors(double t, const ConstRef& u) const;
+  void factor(double t, const ConstRef& u, Factors& f) const;
+  /// The M-weighted correction Δ with B Δ = −r, B = A (all rows) or A_p (position rows).
+  [[nodiscard]] Eigen::VectorXd correction(const Eigen::SparseLU<Eigen::SparseMatrix<double>>& kkt,
+                                           const Eigen::VectorXd& r) const;
+
   const MechanicalSystem& system_;
   int n_, m_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> kkt_;
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> mass_;
-  Eigen::SparseMatrix<double> A_, Ap_;          ///< all rows, position rows
-  Eigen::LDLT<Eigen::MatrixXd> gram_, gram_p_;  ///< A M⁻¹ Aᵀ, A_p M⁻¹ A_pᵀ
-  Eigen::MatrixXd minv_at_, minv_apt_;          ///< M⁻¹Aᵀ, M⁻¹A_pᵀ (dense: m columns)
+  bool varying_;
   std::vector<int> position_rows_;
+  Eigen::SparseMatrix<double> select_p_;
+  Factors constant_;
+  mutable Factors scratch_;
+  mutable const Factors* last_ = nullptr;  ///< the factors of the last projection
   mutable Eigen::VectorXd force_, rows_;
 };
 

@@ -2,22 +2,53 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/cvode_integrator.hpp"
 #include "dae/elimination.hpp"
 #include "dae/ida_integrator.hpp"
-#include "dae/linear_system.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/projected_ode.hpp"
 #include "dae/reduced_ode.hpp"
+#include "models/linear_system.hpp"
 
 namespace condyn {
 
+std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
+  if (!model.is_nonlinear()) return std::nullopt;
+  const bool nonholonomic = std::any_of(model.constraints.begin(), model.constraints.end(),
+                                        [](const Constraint& c) { return c.nonholonomic; });
+  if (scheme == Scheme::elimination) {
+    if (nonholonomic) {
+      return "elimination cannot treat a nonholonomic constraint: master-slave elimination "
+             "solves constraints for slave displacements, and a nonintegrable velocity "
+             "constraint has no displacement form to solve. The chapter says so: nonholonomic "
+             "MFCs \"are non treatable by master-slave methods unless they integrate to "
+             "holonomic constraints\" (§5.6), and for them \"only the Lagrange multiplier "
+             "method, used with extreme care, offers hope\" (§5.3.1). Use index1, baumgarte, "
+             "ggl, index2, index3 or projection";
+    }
+    return "elimination is the chapter's linear path (constant coefficients, linear forces); "
+           "this model is nonlinear (state-dependent constraints or forces). Use index1, "
+           "baumgarte, ggl, index2, index3 or projection";
+  }
+  if (scheme == Scheme::penalty) {
+    return "penalty is implemented for linear constraints only; use index1, baumgarte, ggl, "
+           "index2, index3 or projection";
+  }
+  return std::nullopt;
+}
+
 SchemeChoice choose_scheme(const Model& model, Scheme requested) {
   if (requested != Scheme::automatic) return {requested, "requested"};
+  if (model.is_nonlinear()) {
+    return {Scheme::ggl,
+            "nonlinear model: GGL (stabilized index 2) holds position and velocity constraints "
+            "to the Newton tolerance at every step, and treats nonholonomic rows too"};
+  }
   // Every constraint condyn reads today is linear with constant coefficients, hence holonomic or
   // integrable: elimination solves the smallest system (n − m DOFs, no multipliers).
   if (model.constraint_count() == 0) {
@@ -38,6 +69,25 @@ IntegratorOptions integrator_options(const Model& model) {
 }
 
 namespace {
+
+/// The MechanicalSystem a model is integrated as: its own for nonlinear models, else a view of
+/// the linear model.
+class SystemOf {
+ public:
+  explicit SystemOf(const Model& model) {
+    if (!model.is_nonlinear()) linear_.emplace(model);
+    system_ = model.is_nonlinear() ? model.nonlinear.get() : &*linear_;
+  }
+  const MechanicalSystem& operator*() const { return *system_; }
+
+ private:
+  std::optional<LinearSystem> linear_;
+  const MechanicalSystem* system_ = nullptr;
+};
+
+void refuse_inapplicable(const Model& model, Scheme scheme) {
+  if (auto why = scheme_refusal(model, scheme)) throw std::invalid_argument(*why);
+}
 
 MultiplierScheme multiplier_scheme(Scheme s) {
   switch (s) {
@@ -96,7 +146,8 @@ Eigen::VectorXd initial_state(const Model& model) {
 
 Trajectory solve_multipliers(const Model& model, Scheme scheme, const IntegratorOptions& options,
                              SolveSummary& summary) {
-  const LinearSystem system(model);
+  const SystemOf system_of(model);
+  const MechanicalSystem& system = *system_of;
   BaumgarteGains gains;
   if (scheme == Scheme::baumgarte) {
     gains = baumgarte_gains(model);
@@ -120,7 +171,7 @@ Trajectory solve_multipliers(const Model& model, Scheme scheme, const Integrator
 
 Trajectory solve_penalty(const Model& model, const IntegratorOptions& options,
                          SolveSummary& summary) {
-  const LinearSystem system(model);
+  const LinearSystem system(model);  // linear models only (scheme_refusal)
   const PenaltyWeights weights = penalty_weights(model);
   summary.notes = weights.rule;
   summary.scheme = to_string(Scheme::penalty);
@@ -133,9 +184,9 @@ Trajectory solve_penalty(const Model& model, const IntegratorOptions& options,
 
 Trajectory solve_projection(const Model& model, const IntegratorOptions& options,
                             SolveSummary& summary) {
-  const LinearSystem system(model);
+  const SystemOf system(model);
   summary.scheme = to_string(Scheme::projection);
-  const ProjectedOde ode(system);
+  const ProjectedOde ode(*system, model.u0);
   return run_observed(
       model, options, summary,
       [&](const IntegratorOptions& o) {
@@ -148,18 +199,21 @@ Trajectory solve_projection(const Model& model, const IntegratorOptions& options
 
 SystemSize system_size(const Model& model, Scheme scheme) {
   if (scheme == Scheme::automatic) scheme = choose_scheme(model, scheme).scheme;
+  refuse_inapplicable(model, scheme);
   if (scheme == Scheme::elimination) {
     const ReducedSystem reduced = reduce(model);
     const ReducedOde ode(model, reduced);
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
-  const LinearSystem system(model);
   if (scheme == Scheme::penalty) {
+    const LinearSystem system(model);
     const PenaltyOde ode(system, penalty_weights(model));
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
+  const SystemOf system_of(model);
+  const MechanicalSystem& system = *system_of;
   if (scheme == Scheme::projection) {
-    const ProjectedOde ode(system);
+    const ProjectedOde ode(system, model.u0);
     return {ode.size(), static_cast<long>(ode.size()) * ode.size()};  // dense
   }
   const BaumgarteGains gains =
@@ -170,6 +224,7 @@ SystemSize system_size(const Model& model, Scheme scheme) {
 
 Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
                  SolveSummary& summary) {
+  refuse_inapplicable(model, scheme);
   switch (scheme) {
     case Scheme::elimination:
       return solve_elimination(model, options, summary);

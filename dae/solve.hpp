@@ -1,6 +1,7 @@
 #pragma once
 /// Scheme choice and dispatch: the one entry point the CLI and the validation suite use.
 
+#include <optional>
 #include <string>
 
 #include "dae/solve_summary.hpp"
@@ -13,6 +14,10 @@ struct SchemeChoice {
   Scheme scheme = Scheme::elimination;
   std::string reason;  ///< why this scheme (printed by `condyn info`)
 };
+
+/// Why `scheme` cannot treat this model (elimination and penalty on nonlinear models), or
+/// nothing when it can.
+[[nodiscard]] std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme);
 
 /// Resolves `requested` (auto picks the lightest formulation that serves the model).
 [[nodiscard]] SchemeChoice choose_scheme(const Model& model, Scheme requested);

@@ -1,5 +1,9 @@
 #include "dae/trajectory.hpp"
 
+#include <optional>
+
+#include "models/linear_system.hpp"
+
 namespace condyn {
 
 MultiplierRecovery::MultiplierRecovery(const Model& model) : model_(model) {
@@ -32,6 +36,11 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
   out.multiplier.resize(m, nt);
   out.drift_position.resize(nt);
   out.drift_velocity.resize(nt);
+  std::optional<LinearSystem> linear;
+  if (!model.is_nonlinear()) linear.emplace(model);
+  const MechanicalSystem& system = model.is_nonlinear() ? *model.nonlinear : *linear;
+  const bool conservative = nt > 0 && system.energy(times[0], u[0], v[0]).has_value();
+  if (conservative) out.energy.resize(nt);
   for (Eigen::Index k = 0; k < nt; ++k) {
     const auto i = static_cast<std::size_t>(k);
     out.u.col(k) = u[i];
@@ -39,15 +48,31 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
     if (m > 0) {
       out.multiplier.col(k) = lambda[i];
       // Aᵀ(−λ) rather than −(Aᵀλ): exactly +0 on DOFs that no constraint touches (no "-0").
-      out.reaction.col(k) = model.A.transpose() * (-lambda[i]);
+      out.reaction.col(k) = system.constraint_jacobian(times[i], u[i]).transpose() * (-lambda[i]);
     } else {
       out.reaction.col(k).setZero();
     }
     const auto [dp, dv] = model.drift(times[i], u[i], v[i]);
     out.drift_position[k] = dp;
     out.drift_velocity[k] = dv;
+    if (conservative) out.energy[k] = *system.energy(times[i], u[i], v[i]);
   }
   return out;
+}
+
+double relative_energy_error(const Model& model, const Trajectory& traj) {
+  if (traj.energy.size() == 0) return -1.0;
+  std::optional<LinearSystem> linear;
+  if (!model.is_nonlinear()) linear.emplace(model);
+  const MechanicalSystem& system = model.is_nonlinear() ? *model.nonlinear : *linear;
+  double scale = std::abs(traj.energy[0]);
+  for (Eigen::Index k = 0; k < traj.energy.size(); ++k) {
+    const Eigen::VectorXd v = traj.v.col(k);
+    scale = std::max(
+        scale, 0.5 * v.dot(system.mass(traj.t[static_cast<std::size_t>(k)], traj.u.col(k)) * v));
+  }
+  const double worst = (traj.energy.array() - traj.energy[0]).abs().maxCoeff();
+  return scale > 0.0 ? worst / scale : worst;
 }
 
 }  // namespace condyn

@@ -19,6 +19,8 @@ struct Trajectory {
   Eigen::MatrixXd reaction;    ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
   Eigen::MatrixXd multiplier;  ///< m x nt: λ
   Eigen::VectorXd drift_position, drift_velocity;  ///< nt, max-norm constraint residuals
+  /// nt total energies for a conservative model (MechanicalSystem::energy); empty otherwise.
+  Eigen::VectorXd energy;
   std::vector<StepRecord> steps;  ///< every internal step, when IntegratorOptions::record_steps
 };
 
@@ -38,7 +40,12 @@ class MultiplierRecovery {
   Eigen::LDLT<Eigen::MatrixXd> aat_;
 };
 
-/// Builds a trajectory from u, u' and λ at the output times: f_con = −Aᵀλ, drifts from the model.
+/// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
+/// (T the kinetic energy; the scale is never zero for a moving model). −1 without energies.
+[[nodiscard]] double relative_energy_error(const Model& model, const Trajectory& traj);
+
+/// Builds a trajectory from u, u' and λ at the output times: f_con = −A(t, u)ᵀλ, drifts and
+/// energies from the model.
 [[nodiscard]] Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                              const std::vector<Eigen::VectorXd>& u,
                                              const std::vector<Eigen::VectorXd>& v,

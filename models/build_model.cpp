@@ -4,8 +4,13 @@
 #include <set>
 #include <sstream>
 
+#include "models/initial_projection.hpp"
+#include "models/linear_rows.hpp"
+#include "models/linear_system.hpp"
 #include "models/model.hpp"
+#include "models/point_mass_system.hpp"
 #include "models/scene_parser.hpp"
+#include "models/sleigh.hpp"
 
 namespace condyn {
 
@@ -66,41 +71,71 @@ class Builder {
     for (int i = 0; i < model_.dofs(); ++i) model_.dof_index[model_.dof_names[i]] = i;
   }
 
-  void build_truss2d() {
+  void build_truss() {
     const auto& m = spec_.model;
+    const int dim = m.dimension;
+    static constexpr std::array<const char*, 3> kAxes = {"ux", "uy", "uz"};
     std::vector<std::string> names;
     for (std::size_t k = 1; k <= m.nodes.size(); ++k) {
-      names.push_back("ux" + std::to_string(k));
-      names.push_back("uy" + std::to_string(k));
+      for (int d = 0; d < dim; ++d)
+        names.push_back(kAxes[static_cast<std::size_t>(d)] + std::to_string(k));
     }
     set_dofs(names);
     const int n = model_.dofs();
     double extent = 0.0;
-    for (const auto& p : m.nodes) extent = std::max({extent, std::abs(p[0]), std::abs(p[1])});
-    std::vector<Eigen::Triplet<double>> k_trip, m_trip;
+    for (const auto& p : m.nodes) {
+      for (double x : p) extent = std::max(extent, std::abs(x));
+    }
+    nonlinear_truss_ = m.geometry == ModelSpec::Geometry::nonlinear;
     for (std::size_t e = 0; e < m.members.size(); ++e) {
       const auto& mem = m.members[e];
       const auto& pi = m.nodes[static_cast<std::size_t>(mem.node_i - 1)];
       const auto& pj = m.nodes[static_cast<std::size_t>(mem.node_j - 1)];
-      const double dx = pj[0] - pi[0], dy = pj[1] - pi[1];
-      const double length = std::hypot(dx, dy);
+      const double length =
+          std::sqrt((pj[0] - pi[0]) * (pj[0] - pi[0]) + (pj[1] - pi[1]) * (pj[1] - pi[1]) +
+                    (pj[2] - pi[2]) * (pj[2] - pi[2]));
       if (length <= 1e-12 * std::max(extent, 1e-300)) {
         fail(mem.where, "member joins nodes " + std::to_string(mem.node_i) + " and " +
                             std::to_string(mem.node_j) + ", which coincide (zero length)");
       }
-      // Small-displacement bar: k = EA/L along the unit axis (c, s).
-      const double c = dx / length, s = dy / length, k = mem.EA / length;
-      const std::array<int, 4> idx = {2 * (mem.node_i - 1), 2 * (mem.node_i - 1) + 1,
-                                      2 * (mem.node_j - 1), 2 * (mem.node_j - 1) + 1};
-      const std::array<double, 4> dir = {-c, -s, c, s};
-      for (int a = 0; a < 4; ++a) {
-        for (int b = 0; b < 4; ++b) k_trip.emplace_back(idx[a], idx[b], k * dir[a] * dir[b]);
+      const PointMassLayout::Bar bar{mem.node_i - 1, mem.node_j - 1, mem.EA, length};
+      if (mem.rigid) {
+        layout_.rods.push_back(bar);
+        rod_where_.push_back(mem.where);
+        nonlinear_truss_ = true;
+      } else {
+        layout_.bars.push_back(bar);
+      }
+    }
+    layout_.dimension = dim;
+    layout_.nodes = m.nodes;
+    layout_.masses = m.masses;
+    layout_.nonlinear_geometry = m.geometry == ModelSpec::Geometry::nonlinear;
+    // Small-displacement stiffness: k = EA/L along the unit axis (the linear model's K, and the
+    // system's own K for linear geometry).
+    std::vector<Eigen::Triplet<double>> k_trip, m_trip;
+    for (const auto& b : layout_.bars) {
+      const auto& pi = m.nodes[static_cast<std::size_t>(b.i)];
+      const auto& pj = m.nodes[static_cast<std::size_t>(b.j)];
+      std::vector<int> idx;
+      std::vector<double> dir;
+      for (int sign : {-1, 1}) {
+        for (int d = 0; d < dim; ++d) {
+          idx.push_back((sign < 0 ? b.i : b.j) * dim + d);
+          dir.push_back(sign * (pj[static_cast<std::size_t>(d)] - pi[static_cast<std::size_t>(d)]) /
+                        b.length);
+        }
+      }
+      for (std::size_t a = 0; a < idx.size(); ++a) {
+        for (std::size_t c = 0; c < idx.size(); ++c) {
+          k_trip.emplace_back(idx[a], idx[c], b.EA / b.length * dir[a] * dir[c]);
+        }
       }
     }
     for (std::size_t k = 0; k < m.nodes.size(); ++k) {
-      for (int d = 0; d < 2; ++d) {
+      for (int d = 0; d < dim; ++d) {
         if (m.masses[k] != 0.0) {
-          m_trip.emplace_back(static_cast<int>(2 * k) + d, static_cast<int>(2 * k) + d,
+          m_trip.emplace_back(static_cast<int>(k) * dim + d, static_cast<int>(k) * dim + d,
                               m.masses[k]);
         }
       }
@@ -110,6 +145,100 @@ class Builder {
     model_.M.resize(n, n);
     model_.M.setFromTriplets(m_trip.begin(), m_trip.end());
     model_.C.resize(n, n);
+    // Gravity: a constant load m g on every node with mass, before the scene's loads.
+    for (std::size_t k = 0; k < m.nodes.size() && !m.gravity.empty(); ++k) {
+      for (int d = 0; d < dim; ++d) {
+        const double w = m.masses[k] * m.gravity[static_cast<std::size_t>(d)];
+        if (w != 0.0) {
+          model_.loads.push_back(Load{static_cast<int>(k) * dim + d, TimeFunction::constant(w)});
+        }
+      }
+    }
+  }
+
+  /// The built-in benchmark models: every parameter fixed by the published problem.
+  void build_benchmark() {
+    const auto type = spec_.model.type;
+    const std::string name = type == ModelSpec::Type::andrews    ? "andrews"
+                             : type == ModelSpec::Type::car_axis ? "car_axis"
+                                                                 : "pendulum";
+    if (!spec_.loads.empty()) {
+      fail(spec_.loads.front().where,
+           "the built-in model '" + name + "' fixes its own forces: remove the [[load]] entries");
+    }
+    if (!spec_.constraints.empty()) {
+      fail(spec_.constraints.front().where, "the built-in model '" + name +
+                                                "' fixes its own constraints: remove the "
+                                                "[[constraint]] entries");
+    }
+    const BenchmarkModel b = type == ModelSpec::Type::andrews    ? make_andrews()
+                             : type == ModelSpec::Type::car_axis ? make_car_axis()
+                                                                 : make_pendulum();
+    set_dofs(b.dof_names);
+    model_.nonlinear = b.system;
+    model_.reference = b.reference;
+    model_.description = b.description;
+    base_u0_ = b.u0;
+    base_v0_ = b.v0;
+    for (const auto& c : b.constraint_names) {
+      Constraint row;
+      row.name = c;
+      row.nonlinear_kind = "nonlinear holonomic (" + name + ")";
+      row.where = spec_.model.where;
+      model_.constraints.push_back(row);
+    }
+  }
+
+  void build_sleigh() {
+    set_dofs({"x", "y", "theta"});
+    if (!spec_.constraints.empty()) {
+      fail(spec_.constraints.front().where,
+           "the sleigh brings its own knife-edge constraint: remove the [[constraint]] entries");
+    }
+    model_.description =
+        "Chaplygin sleigh: a rigid body on a knife edge at distance contact_offset ahead of its "
+        "centre of mass";
+  }
+
+  void finish_sleigh() {
+    const auto& m = spec_.model;
+    model_.nonlinear = make_sleigh({m.body_mass, m.inertia, m.contact_offset, model_.loads});
+    Constraint row;
+    row.name = "knife_edge";
+    row.level = ConstraintSpec::Level::velocity;
+    row.nonlinear_kind =
+        "no sideways slip at the contact point: -sin(theta) x' + cos(theta) y' + a theta' = 0";
+    row.nonholonomic = true;
+    row.where = spec_.model.where;
+    model_.constraints.push_back(row);
+  }
+
+  /// Truss with rigid members or large-displacement bars: the point-mass system, its rod rows
+  /// after the linear ones.
+  void finish_point_masses() {
+    layout_.loads = model_.loads;
+    layout_.linear_rows = model_.constraints;
+    model_.nonlinear = std::make_shared<PointMassSystem>(layout_);
+    for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+      const auto& b = layout_.rods[r];
+      Constraint row;
+      row.name = "rigid_" + std::to_string(b.i + 1) + "_" + std::to_string(b.j + 1);
+      row.nonlinear_kind = "distance |x" + std::to_string(b.j + 1) + " - x" +
+                           std::to_string(b.i + 1) + "| = " + fmt(b.length);
+      row.where = rod_where_[r];
+      model_.constraints.push_back(row);
+    }
+  }
+
+  /// M, C, K, A of a nonlinear model: its linearization at t = 0, (u0, v0).
+  void linearize() {
+    const auto& s = *model_.nonlinear;
+    model_.M = s.mass(0.0, model_.u0);
+    model_.K = -s.force_jacobian_u(0.0, model_.u0, model_.v0);
+    model_.C = -s.force_jacobian_v(0.0, model_.u0, model_.v0);
+    if (model_.C.rows() != model_.dofs()) model_.C.resize(model_.dofs(), model_.dofs());
+    model_.A = s.constraint_jacobian(0.0, model_.u0);
+    for (auto* mat : {&model_.M, &model_.K, &model_.C, &model_.A}) mat->prune(0.0);
   }
 
   Eigen::SparseMatrix<double> sparse_psd(const std::vector<std::vector<double>>& rows,
@@ -152,8 +281,8 @@ class Builder {
 
   void build_initial() {
     const int n = model_.dofs();
-    model_.u0 = Eigen::VectorXd::Zero(n);
-    model_.v0 = Eigen::VectorXd::Zero(n);
+    model_.u0 = base_u0_.size() == n ? base_u0_ : Eigen::VectorXd::Zero(n);
+    model_.v0 = base_v0_.size() == n ? base_v0_ : Eigen::VectorXd::Zero(n);
     for (const auto& [name, value] : spec_.initial.displacement) {
       model_.u0[dof(name, {"initial.displacement." + name, spec_.initial.where.line})] = value;
     }
@@ -165,6 +294,19 @@ class Builder {
   void build_constraints() {
     const int n = model_.dofs();
     std::vector<Eigen::Triplet<double>> trip;
+    for (int node : spec_.model.supports) {  // a fixed support: every DOF of the node is zero
+      for (int d = 0; d < spec_.model.dimension; ++d) {
+        Constraint c;
+        c.name = "fix_" +
+                 model_.dof_names[static_cast<std::size_t>((node - 1) * spec_.model.dimension + d)];
+        c.coefficients = {{(node - 1) * spec_.model.dimension + d, 1.0}};
+        c.position_value = c.value;
+        c.where = {"model.supports", spec_.model.where.line};
+        const int row = static_cast<int>(model_.constraints.size());
+        trip.emplace_back(row, c.coefficients.front().first, 1.0);
+        model_.constraints.push_back(std::move(c));
+      }
+    }
     for (const auto& cs : spec_.constraints) {
       Constraint c;
       c.name = cs.name;
@@ -284,6 +426,10 @@ class Builder {
   }
 
   void check_initial_consistency() const {
+    if (model_.is_nonlinear()) {
+      check_nonlinear_consistency();
+      return;
+    }
     for (const auto& c : model_.constraints) {
       double au = 0.0, av = 0.0, su = 0.0, sv = 0.0;
       for (const auto& [d, a] : c.coefficients) {
@@ -312,6 +458,62 @@ class Builder {
     }
   }
 
+  /// φ(0, u0) and ψ(0, u0, v0) of a nonlinear model, relative to the size of the state.
+  void check_nonlinear_consistency() const {
+    const auto& s = *model_.nonlinear;
+    const int m = model_.constraint_count();
+    Eigen::VectorXd phi(m), psi(m);
+    s.position_residual(0.0, model_.u0, phi);
+    s.velocity_residual(0.0, model_.u0, model_.v0, psi);
+    const double u_scale = std::max(1.0, model_.u0.lpNorm<Eigen::Infinity>());
+    const double v_scale = std::max(1.0, model_.v0.lpNorm<Eigen::Infinity>());
+    for (int i = 0; i < m; ++i) {
+      const auto& c = model_.constraints[static_cast<std::size_t>(i)];
+      const bool bad_u = std::abs(phi[i]) > kConsistencyTolerance * u_scale;
+      const bool bad_v = std::abs(psi[i]) > kConsistencyTolerance * v_scale * u_scale;
+      if (!bad_u && !bad_v) continue;
+      fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+           std::string("initial ") + (bad_u ? "displacements" : "velocities") +
+               " violate constraint '" + c.name + "'" +
+               (c.nonlinear_kind.empty() ? "" : " (" + c.nonlinear_kind + ")") + ": residual " +
+               fmt(bad_u ? phi[i] : psi[i]) +
+               "; fix [initial], or set [initial] project = true to project the initial state "
+               "onto the constraints");
+    }
+  }
+
+  /// [initial] project = true: the minimum-norm projection of (u0, v0) onto the constraints.
+  void project_initial() {
+    std::unique_ptr<LinearSystem> linear;
+    const MechanicalSystem* s = model_.nonlinear.get();
+    if (s == nullptr) {
+      linear = std::make_unique<LinearSystem>(model_);
+      s = linear.get();
+    }
+    try {
+      model_.initial_projection = project_initial_state(*s, 0.0, model_.u0, model_.v0);
+    } catch (const std::runtime_error& e) {
+      fail(spec_.initial.where, e.what());
+    }
+    if (!model_.is_nonlinear()) {  // velocity rows integrate with the projected u(0)
+      model_.constraints.clear();
+      build_constraints();
+    }
+  }
+
+  /// [output] energy needs a conservative system (else the energy is not a first integral).
+  void check_energy_output() const {
+    const auto& q = model_.output.quantities;
+    if (std::find(q.begin(), q.end(), Quantity::energy) == q.end()) return;
+    const LinearSystem linear(model_);
+    const MechanicalSystem& s = model_.is_nonlinear() ? *model_.nonlinear : linear;
+    if (!s.energy(0.0, model_.u0, model_.v0)) {
+      fail({"output.quantities", model_.output.where.line},
+           "'energy' needs a conservative scene (no damping, time-independent loads and "
+           "constraints): the energy of this one is not conserved, so its error means nothing");
+    }
+  }
+
   void check_output() const {
     const double rows = spec_.solve.t_end / spec_.solve.output_step + 1.0;
     if (rows > kMaxOutputRows) {
@@ -327,17 +529,34 @@ class Builder {
     model_.name = spec_.name;
     model_.solve = spec_.solve;
     model_.output = spec_.output;
-    if (spec_.model.type == ModelSpec::Type::truss2d) {
-      build_truss2d();
-    } else {
-      build_matrix();
+    switch (spec_.model.type) {
+      case ModelSpec::Type::truss2d:
+      case ModelSpec::Type::truss3d:
+        build_truss();
+        break;
+      case ModelSpec::Type::matrix:
+        build_matrix();
+        break;
+      case ModelSpec::Type::sleigh:
+        build_sleigh();
+        break;
+      case ModelSpec::Type::andrews:
+      case ModelSpec::Type::car_axis:
+      case ModelSpec::Type::pendulum:
+        build_benchmark();
+        break;
     }
     build_loads();
     build_initial();
-    build_constraints();
+    if (!model_.is_nonlinear()) build_constraints();
+    if (nonlinear_truss_) finish_point_masses();
+    if (spec_.model.type == ModelSpec::Type::sleigh) finish_sleigh();
+    if (spec_.initial.project) project_initial();
+    if (model_.is_nonlinear()) linearize();
     check_degenerate_dofs();
     check_rank();
     check_initial_consistency();
+    check_energy_output();
     check_output();
     return std::move(model_);
   }
@@ -345,6 +564,10 @@ class Builder {
  private:
   const SceneSpec& spec_;
   Model model_;
+  PointMassLayout layout_;
+  bool nonlinear_truss_ = false;
+  std::vector<SourcePoint> rod_where_;
+  Eigen::VectorXd base_u0_, base_v0_;  ///< built-in models' published initial state
 };
 
 }  // namespace
@@ -365,8 +588,26 @@ Eigen::VectorXd Model::position_rhs(int order, double t) const {
   return g;
 }
 
+bool Model::is_conservative() const {
+  if (has_damping()) return false;
+  for (const auto& l : loads) {
+    if (!l.value.is_constant()) return false;
+  }
+  for (const auto& c : constraints) {
+    if (!c.position_value.is_constant()) return false;
+  }
+  return true;
+}
+
 std::pair<double, double> Model::drift(double t, const Eigen::VectorXd& u,
                                        const Eigen::VectorXd& v) const {
+  if (nonlinear) {
+    Eigen::VectorXd phi(constraint_count()), psi(constraint_count());
+    nonlinear->position_residual(t, u, phi);
+    nonlinear->velocity_residual(t, u, v, psi);
+    return {phi.size() ? phi.lpNorm<Eigen::Infinity>() : 0.0,
+            psi.size() ? psi.lpNorm<Eigen::Infinity>() : 0.0};
+  }
   double pos = 0.0, vel = 0.0;
   for (const auto& c : constraints) {
     double au = 0.0, av = 0.0;

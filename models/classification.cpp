@@ -1,5 +1,8 @@
 #include "models/classification.hpp"
 
+#include <cmath>
+#include <sstream>
+
 namespace condyn {
 
 std::string ConstraintClass::holonomy() const {
@@ -7,9 +10,76 @@ std::string ConstraintClass::holonomy() const {
   return integrable ? "pseudo-nonholonomic (integrable)" : "nonholonomic";
 }
 
+namespace {
+
+/// Frobenius test of one velocity row a(u)·u' = 0 at u: the row is integrable near u only if
+/// the 3-form a ∧ da vanishes, i.e. a_i (∂_j a_k − ∂_k a_j) + cyclic = 0 for all i < j < k
+/// (for n = 3: a · (∇ × a) = 0). Returns the largest |component| (0 when n < 3).
+double frobenius_defect(const MechanicalSystem& s, int row, const Eigen::VectorXd& u) {
+  const int n = s.dofs();
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(s.constraints());
+  w[row] = 1.0;
+  const Eigen::MatrixXd D(s.constraint_force_jacobian(0.0, u, w));  // D(k, l) = ∂a_k/∂u_l
+  if (D.size() == 0) return 0.0;  // constant coefficients: integrable
+  const Eigen::VectorXd a = Eigen::MatrixXd(s.constraint_jacobian(0.0, u)).row(row).transpose();
+  const auto da = [&](int j, int k) { return D(k, j) - D(j, k); };  // ∂_j a_k − ∂_k a_j
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      for (int k = j + 1; k < n; ++k) {
+        worst = std::max(worst, std::abs(a[i] * da(j, k) + a[j] * da(k, i) + a[k] * da(i, j)));
+      }
+    }
+  }
+  return worst;
+}
+
+/// Nonlinear rows: time dependence probed by evaluating the residuals at two times with the same
+/// state; integrability by the Frobenius test.
+ConstraintClass classify_nonlinear(const Model& model, int row) {
+  const auto& c = model.constraints[static_cast<std::size_t>(row)];
+  const auto& s = *model.nonlinear;
+  ConstraintClass k;
+  k.name = c.name;
+  k.linear = false;
+  k.velocity_level = c.level == ConstraintSpec::Level::velocity;
+  const Eigen::MatrixXd A(s.constraint_jacobian(0.0, model.u0));
+  for (int d = 0; d < model.dofs(); ++d) {
+    if (A(row, d) != 0.0) k.dofs.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+  }
+  k.single_freedom = k.dofs.size() == 1;
+  const int m = model.constraint_count();
+  Eigen::VectorXd r0(m), r1(m);
+  const double t1 = 0.5 * model.solve.t_end + 0.1234;
+  s.velocity_residual(0.0, model.u0, model.v0, r0);
+  s.velocity_residual(t1, model.u0, model.v0, r1);
+  k.rheonomic = r0[row] != r1[row];
+  s.position_residual(0.0, model.u0, r0);
+  s.position_residual(t1, model.u0, r1);
+  k.rheonomic = k.rheonomic || r0[row] != r1[row];
+  k.homogeneous = !k.rheonomic;
+  std::ostringstream note;
+  note.precision(3);
+  note << c.nonlinear_kind;
+  if (k.velocity_level) {
+    const double defect = frobenius_defect(s, row, model.u0);
+    k.integrable = !c.nonholonomic && defect == 0.0;
+    note << "; Frobenius a·(curl a) test at u0: " << defect
+         << (defect != 0.0 ? " != 0, not integrable" : " (no obstruction found)");
+  }
+  k.note = note.str();
+  return k;
+}
+
+}  // namespace
+
 std::vector<ConstraintClass> classify_constraints(const Model& model) {
   std::vector<ConstraintClass> out;
   for (const auto& c : model.constraints) {
+    if (!c.nonlinear_kind.empty()) {
+      out.push_back(classify_nonlinear(model, static_cast<int>(out.size())));
+      continue;
+    }
     ConstraintClass k;
     k.name = c.name;
     k.single_freedom = c.coefficients.size() == 1;

@@ -17,8 +17,11 @@ struct ConstraintClass {
   bool homogeneous = true;      ///< no right-hand side (of the integrated form)
   bool linear = true;
   std::vector<std::string> dofs;
+  /// Nonlinear rows: what the row says and, for velocity rows, the integrability evidence
+  /// (Frobenius: a · (∇ × a) at the initial state).
+  std::string note;
 
-  /// "holonomic" or "pseudo-nonholonomic (integrable)".
+  /// "holonomic", "pseudo-nonholonomic (integrable)" or "nonholonomic".
   [[nodiscard]] std::string holonomy() const;
 };
 

@@ -8,10 +8,15 @@
 /// build_model(): state and scratch space live in the formulations and solvers.
 
 #include <Eigen/Sparse>
+#include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "models/benchmarks.hpp"
+#include "models/mechanical_system.hpp"
 #include "models/scene_spec.hpp"
 
 namespace condyn {
@@ -30,6 +35,10 @@ struct Constraint {
   /// constraint (linear, constant coefficients, hence integrable: §5.5.3, eq. 5.14) it is
   /// a·u(0) + integral_0^t h: the chapter's integration with the constants fixed by u(0).
   TimeFunction position_value;
+  /// Rows of nonlinear models that are not linear (coefficients empty): what the row says, e.g.
+  /// "distance |x3 − x2| = 5" or "no sideways slip at the contact point (knife edge)".
+  std::string nonlinear_kind;
+  bool nonholonomic = false;  ///< a velocity row that integrates to no position constraint
   SourcePoint where;
 };
 
@@ -44,18 +53,32 @@ struct Model {
   Eigen::VectorXd u0, v0;
   SolveSpec solve;
   OutputSpec output;
+  /// Set for models whose M, f or constraints depend on the state (large-displacement bars,
+  /// rigid members, generalized coordinates, nonholonomic rows): the system every formulation
+  /// integrates. M, C, K and A above then hold its linearization at t = 0 and (u0, v0), for
+  /// `info`, the rank check and the default gains.
+  std::shared_ptr<const MechanicalSystem> nonlinear;
+  /// Built-in benchmarks: the published reference state at a time, when one is known there.
+  std::function<std::optional<PublishedReference>(double)> reference;
+  /// What [initial] project = true changed (empty when nothing was projected).
+  std::string initial_projection;
+  std::string description;  ///< one line for `condyn info` (built-in models)
 
   [[nodiscard]] int dofs() const { return static_cast<int>(dof_names.size()); }
   [[nodiscard]] int constraint_count() const { return static_cast<int>(constraints.size()); }
   [[nodiscard]] bool has_damping() const { return C.nonZeros() > 0; }
+  [[nodiscard]] bool is_nonlinear() const { return nonlinear != nullptr; }
+  /// No damping, time-independent loads (steps at t = 0 included), scleronomic constraints: the
+  /// total energy is a first integral. (Nonlinear systems answer through their energy().)
+  [[nodiscard]] bool is_conservative() const;
 
   /// Applied loads f(t) (n). Steps are on when start <= step_reference.
   [[nodiscard]] Eigen::VectorXd applied_forces(double t, double step_reference) const;
   [[nodiscard]] Eigen::VectorXd applied_forces(double t) const { return applied_forces(t, t); }
   /// d^order/dt^order of the position-level right-hand sides (m), order in {0, 1, 2}.
   [[nodiscard]] Eigen::VectorXd position_rhs(int order, double t) const;
-  /// Max-norm drifts: position over position-level constraints |a·u - g|, velocity over all
-  /// constraints (|a·v - g'| for position-level, |a·v - h| for velocity-level). 0 without
+  /// Max-norm drifts: position over position-level constraints |φ| (|a·u − g| for linear rows),
+  /// velocity over all constraints |ψ| (|a·v − g'| or |a·v − h| for linear rows). 0 without
   /// constraints.
   [[nodiscard]] std::pair<double, double> drift(double t, const Eigen::VectorXd& u,
                                                 const Eigen::VectorXd& v) const;

@@ -68,6 +68,8 @@ const char* to_string(Quantity q) {
       return "multiplier";
     case Quantity::drift:
       return "drift";
+    case Quantity::energy:
+      return "energy";
   }
   return "?";
 }
@@ -229,60 +231,105 @@ class Reader {
     return out;
   }
 
+  void read_truss(const toml::table& t, int dim, ModelSpec& model) const {
+    const std::string path = "model";
+    check_keys(t, path, {"type", "nodes", "masses", "members", "geometry", "gravity", "supports"});
+    model.type = dim == 3 ? ModelSpec::Type::truss3d : ModelSpec::Type::truss2d;
+    model.dimension = dim;
+    const auto& nodes = array(required(t, path, "nodes"), "model.nodes");
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const std::string p = index("model.nodes", i);
+      const auto xyz = numbers(*nodes.get(i), p);
+      if (static_cast<int>(xyz.size()) != dim) {
+        fail(*nodes.get(i), p, dim == 3 ? "a node is [x, y, z]" : "a node is [x, y]");
+      }
+      model.nodes.push_back({xyz[0], xyz[1], dim == 3 ? xyz[2] : 0.0});
+    }
+    if (model.nodes.empty()) fail(nodes, "model.nodes", "at least one node is needed");
+    const auto& masses_node = required(t, path, "masses");
+    model.masses = numbers(masses_node, "model.masses");
+    if (model.masses.size() != model.nodes.size()) {
+      fail(masses_node, "model.masses",
+           "has " + std::to_string(model.masses.size()) + " entries for " +
+               std::to_string(model.nodes.size()) + " nodes");
+    }
+    const auto& masses_arr = array(masses_node, "model.masses");
+    for (std::size_t i = 0; i < model.masses.size(); ++i) {
+      if (model.masses[i] < 0.0) {
+        fail(*masses_arr.get(i), index("model.masses", i), "a mass must be >= 0");
+      }
+    }
+    const auto node_number = [&](const toml::node& n, const std::string& p) {
+      const long k = integer(n, p);
+      if (k < 1 || k > static_cast<long>(model.nodes.size())) {
+        fail(n, p,
+             "node " + std::to_string(k) + " does not exist (nodes are 1.." +
+                 std::to_string(model.nodes.size()) + ")");
+      }
+      return static_cast<int>(k);
+    };
+    const auto& members = array(required(t, path, "members"), "model.members");
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      const std::string p = index("model.members", i);
+      const auto& m = table(*members.get(i), p);
+      check_keys(m, p, {"nodes", "EA", "rigid"});
+      MemberSpec member;
+      member.where = at(*members.get(i), p);
+      const auto& ends_node = required(m, p, "nodes");
+      const auto& ends = array(ends_node, join(p, "nodes"));
+      if (ends.size() != 2) fail(ends_node, join(p, "nodes"), "a member joins two nodes [i, j]");
+      member.node_i = node_number(*ends.get(0), index(join(p, "nodes"), 0));
+      member.node_j = node_number(*ends.get(1), index(join(p, "nodes"), 1));
+      if (member.node_i == member.node_j)
+        fail(ends_node, join(p, "nodes"), "a member must join two different nodes");
+      if (const auto* r = m.get("rigid")) {
+        const auto* b = r->as_boolean();
+        if (b == nullptr) fail(*r, join(p, "rigid"), "expected true or false");
+        member.rigid = b->get();
+      }
+      if (member.rigid) {
+        if (const auto* ea = m.get("EA")) {
+          fail(*ea, join(p, "EA"), "a rigid member has no stiffness: remove EA or rigid");
+        }
+      } else {
+        member.EA = positive(required(m, p, "EA"), join(p, "EA"));
+      }
+      model.members.push_back(member);
+    }
+    if (const auto* g = t.get("geometry")) {
+      const std::string s = string(*g, "model.geometry");
+      if (s != "linear" && s != "nonlinear") {
+        fail(*g, "model.geometry", "expected 'linear' or 'nonlinear' (got '" + s + "')");
+      }
+      model.geometry = s == "linear" ? ModelSpec::Geometry::linear : ModelSpec::Geometry::nonlinear;
+    }
+    if (const auto* g = t.get("gravity")) {
+      model.gravity = numbers(*g, "model.gravity");
+      if (static_cast<int>(model.gravity.size()) != dim) {
+        fail(*g, "model.gravity",
+             "needs " + std::to_string(dim) + " components (one per direction)");
+      }
+    }
+    if (const auto* sp = t.get("supports")) {
+      const auto& arr = array(*sp, "model.supports");
+      for (std::size_t i = 0; i < arr.size(); ++i) {
+        const int k = node_number(*arr.get(i), index("model.supports", i));
+        if (std::find(model.supports.begin(), model.supports.end(), k) != model.supports.end()) {
+          fail(*arr.get(i), index("model.supports", i),
+               "node " + std::to_string(k) + " is listed twice");
+        }
+        model.supports.push_back(k);
+      }
+    }
+  }
+
   void read_model(const toml::node& node, ModelSpec& model) const {
     const std::string path = "model";
     const auto& t = table(node, path);
     model.where = at(node, path);
     const std::string type = string(required(t, path, "type"), "model.type");
-    if (type == "truss2d") {
-      check_keys(t, path, {"type", "nodes", "masses", "members"});
-      model.type = ModelSpec::Type::truss2d;
-      const auto& nodes = array(required(t, path, "nodes"), "model.nodes");
-      for (std::size_t i = 0; i < nodes.size(); ++i) {
-        const std::string p = index("model.nodes", i);
-        const auto xy = numbers(*nodes.get(i), p);
-        if (xy.size() != 2) fail(*nodes.get(i), p, "a node is [x, y]");
-        model.nodes.push_back({xy[0], xy[1]});
-      }
-      if (model.nodes.empty()) fail(nodes, "model.nodes", "at least one node is needed");
-      const auto& masses_node = required(t, path, "masses");
-      model.masses = numbers(masses_node, "model.masses");
-      if (model.masses.size() != model.nodes.size()) {
-        fail(masses_node, "model.masses",
-             "has " + std::to_string(model.masses.size()) + " entries for " +
-                 std::to_string(model.nodes.size()) + " nodes");
-      }
-      const auto& masses_arr = array(masses_node, "model.masses");
-      for (std::size_t i = 0; i < model.masses.size(); ++i) {
-        if (model.masses[i] < 0.0) {
-          fail(*masses_arr.get(i), index("model.masses", i), "a mass must be >= 0");
-        }
-      }
-      const auto& members = array(required(t, path, "members"), "model.members");
-      for (std::size_t i = 0; i < members.size(); ++i) {
-        const std::string p = index("model.members", i);
-        const auto& m = table(*members.get(i), p);
-        check_keys(m, p, {"nodes", "EA"});
-        MemberSpec member;
-        member.where = at(*members.get(i), p);
-        const auto& ends_node = required(m, p, "nodes");
-        const auto& ends = array(ends_node, join(p, "nodes"));
-        if (ends.size() != 2) fail(ends_node, join(p, "nodes"), "a member joins two nodes [i, j]");
-        const long ni = integer(*ends.get(0), index(join(p, "nodes"), 0));
-        const long nj = integer(*ends.get(1), index(join(p, "nodes"), 1));
-        for (long n : {ni, nj}) {
-          if (n < 1 || n > static_cast<long>(model.nodes.size())) {
-            fail(ends_node, join(p, "nodes"),
-                 "node " + std::to_string(n) + " does not exist (nodes are 1.." +
-                     std::to_string(model.nodes.size()) + ")");
-          }
-        }
-        if (ni == nj) fail(ends_node, join(p, "nodes"), "a member must join two different nodes");
-        member.node_i = static_cast<int>(ni);
-        member.node_j = static_cast<int>(nj);
-        member.EA = positive(required(m, p, "EA"), join(p, "EA"));
-        model.members.push_back(member);
-      }
+    if (type == "truss2d" || type == "truss3d") {
+      read_truss(t, type == "truss3d" ? 3 : 2, model);
     } else if (type == "matrix") {
       check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
       model.type = ModelSpec::Type::matrix;
@@ -330,9 +377,22 @@ class Reader {
       square("mass", model.mass);
       square("stiffness", model.stiffness);
       if (t.contains("damping")) square("damping", model.damping);
+    } else if (type == "sleigh") {
+      check_keys(t, path, {"type", "mass", "inertia", "contact_offset"});
+      model.type = ModelSpec::Type::sleigh;
+      model.body_mass = positive(required(t, path, "mass"), "model.mass");
+      model.inertia = positive(required(t, path, "inertia"), "model.inertia");
+      if (const auto* a = t.get("contact_offset"))
+        model.contact_offset = number(*a, "model.contact_offset");
+    } else if (type == "andrews" || type == "car_axis" || type == "pendulum") {
+      check_keys(t, path, {"type"});  // the published problem fixes every parameter
+      model.type = type == "andrews"    ? ModelSpec::Type::andrews
+                   : type == "car_axis" ? ModelSpec::Type::car_axis
+                                        : ModelSpec::Type::pendulum;
     } else {
       fail(*t.get("type"), "model.type",
-           "unknown model type '" + type + "' (expected truss2d or matrix)");
+           "unknown model type '" + type +
+               "' (expected truss2d, truss3d, matrix, sleigh, andrews, car_axis or pendulum)");
     }
   }
 
@@ -394,7 +454,7 @@ class Reader {
         const std::string s = string(*arr.get(i), p);
         bool found = false;
         for (Quantity q : {Quantity::displacement, Quantity::velocity, Quantity::reaction,
-                           Quantity::multiplier, Quantity::drift}) {
+                           Quantity::multiplier, Quantity::drift, Quantity::energy}) {
           if (s == to_string(q)) {
             for (Quantity seen : output.quantities) {
               if (seen == q) fail(*arr.get(i), p, "'" + s + "' is listed twice");
@@ -406,7 +466,7 @@ class Reader {
         if (!found) {
           fail(*arr.get(i), p,
                "unknown quantity '" + s +
-                   "' (expected displacement, velocity, reaction, multiplier or drift)");
+                   "' (expected displacement, velocity, reaction, multiplier, drift or energy)");
         }
       }
     }
@@ -474,7 +534,12 @@ class Reader {
     if (const auto* n = root.get("initial")) {
       const auto& t = table(*n, "initial");
       spec.initial.where = at(*n, "initial");
-      check_keys(t, "initial", {"displacement", "velocity"});
+      check_keys(t, "initial", {"displacement", "velocity", "project"});
+      if (const auto* pr = t.get("project")) {
+        const auto* b = pr->as_boolean();
+        if (b == nullptr) fail(*pr, "initial.project", "expected true or false");
+        spec.initial.project = b->get();
+      }
       if (const auto* d = t.get("displacement")) {
         spec.initial.displacement = dof_values(*d, "initial.displacement");
       }

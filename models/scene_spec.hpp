@@ -22,17 +22,26 @@ struct SourcePoint {
 
 struct MemberSpec {
   int node_i = 0, node_j = 0;  ///< 1-based node numbers as written in the scene
-  double EA = 0.0;
+  double EA = 0.0;             ///< axial stiffness (0 for a rigid member)
+  bool rigid = false;  ///< a distance constraint |x_j + u_j − x_i − u_i| = L instead of a bar
   SourcePoint where;
 };
 
 struct ModelSpec {
-  enum class Type { truss2d, matrix };
+  enum class Type { truss2d, truss3d, matrix, sleigh, andrews, car_axis, pendulum };
+  /// Bars: small-displacement (linear stiffness) or exact length change (large displacement).
+  enum class Geometry { linear, nonlinear };
   Type type = Type::truss2d;
-  // truss2d
-  std::vector<std::array<double, 2>> nodes;
+  // truss2d, truss3d
+  int dimension = 2;
+  std::vector<std::array<double, 3>> nodes;  ///< z = 0 in 2D
   std::vector<double> masses;
   std::vector<MemberSpec> members;
+  Geometry geometry = Geometry::linear;
+  std::vector<double> gravity;  ///< empty, or one acceleration component per dimension
+  std::vector<int> supports;    ///< 1-based nodes whose every DOF is fixed
+  // sleigh
+  double body_mass = 0.0, inertia = 0.0, contact_offset = 0.0;
   // matrix
   std::vector<std::string> dofs;
   std::vector<std::vector<double>> mass, stiffness, damping;  ///< damping may be empty
@@ -56,6 +65,9 @@ struct ConstraintSpec {
 
 struct InitialSpec {
   std::vector<std::pair<std::string, double>> displacement, velocity;
+  /// Project (u0, v0) onto the constraints (minimum-norm Gauss-Newton) instead of refusing an
+  /// inconsistent start.
+  bool project = false;
   SourcePoint where;
 };
 
@@ -93,7 +105,7 @@ struct SolveSpec {
   SourcePoint where;
 };
 
-enum class Quantity { displacement, velocity, reaction, multiplier, drift };
+enum class Quantity { displacement, velocity, reaction, multiplier, drift, energy };
 
 struct OutputSpec {
   std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};

@@ -16,6 +16,7 @@ namespace condyn {
 namespace {
 
 std::string sci(double v, int digits = 2) {
+  if (std::isnan(v)) return "-";  // not measured (e.g. reactions against a published state)
   std::ostringstream s;
   s << std::scientific << std::setprecision(digits) << v;
   return s.str();
@@ -56,7 +57,7 @@ std::string json_string(const std::string& s) {
 
 /// Fields of a run in the column order of runs.csv; failed runs leave the numbers empty.
 std::vector<std::pair<std::string, std::string>> fields(const RunRecord& r) {
-  auto num = [&](double v) { return r.ok ? full(v) : std::string(); };
+  auto num = [&](double v) { return r.ok && std::isfinite(v) ? full(v) : std::string(); };
   auto count = [&](long v) { return r.ok ? std::to_string(v) : std::string(); };
   return {{"scheme", to_string(r.scheme)},
           {"rtol", full(r.rtol)},
@@ -78,7 +79,10 @@ std::vector<std::pair<std::string, std::string>> fields(const RunRecord& r) {
           {"wall_min_s", num(r.wall_min)},
           {"wall_max_s", num(r.wall_max)},
           {"repeats", count(r.repeats)},
-          {"message", r.message}};
+          {"message", r.message},
+          {"mescd_u", num(r.mescd_u)},
+          {"mescd_v", num(r.mescd_v)},
+          {"energy_error", num(r.energy_error)}};
 }
 
 std::string csv_field(const std::string& s) {
@@ -114,7 +118,31 @@ void print_compare_table(std::ostream& out, const CompareResult& result) {
         << std::setw(11) << sci(r.final_drift_position, 1) << std::setw(8) << r.steps
         << std::setw(8) << r.residual_evals << std::setw(6) << r.jacobian_evals << std::fixed
         << std::setprecision(2) << r.wall_median * 1e3 << " (" << r.wall_min * 1e3 << "-"
-        << r.wall_max * 1e3 << ")" << std::defaultfloat << "\n";
+        << r.wall_max * 1e3 << ")" << std::defaultfloat;
+    if (std::isfinite(r.mescd_u)) {
+      out << "  digits u " << std::fixed << std::setprecision(1) << r.mescd_u << " v " << r.mescd_v
+          << std::defaultfloat;
+    }
+    if (std::isfinite(r.energy_error)) out << "  energy err " << sci(r.energy_error, 1);
+    out << "\n";
+  }
+  if (result.reference_kind == "published") {
+    out << "\ndigits: the test set's mescd at t_end (positions u, velocities v); the reference "
+           "vouches for "
+        << result.trusted_digits_u << " digits in u and " << result.trusted_digits_v
+        << " in v: more is agreement at the reference's limit\n";
+  }
+  bool any_growth = false;
+  for (const auto& h : result.histories) any_growth = any_growth || h.growth.has_value();
+  if (any_growth) {
+    out << "\ndrift growth at rtol " << sci(result.options.drift_rtol, 0)
+        << " (position drift ~ t^p, fitted to the running max over the last 99% of the run):\n";
+    for (const auto& h : result.histories) {
+      if (!h.growth) continue;
+      out << "  " << std::left << std::setw(12) << to_string(h.scheme) << "p = " << std::fixed
+          << std::setprecision(2) << h.growth->exponent << std::defaultfloat
+          << "   theory: " << predicted_drift_growth(h.scheme) << "\n";
+    }
   }
   if (!result.baumgarte_study.empty()) {
     out << "\nBaumgarte study at rtol " << sci(result.options.drift_rtol, 0)
@@ -159,8 +187,21 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
   write_file_atomically((base / "runs.json").string(), [&](std::ostream& out) {
     out << "{\n  \"scene\": " << json_string(result.scene_name)
         << ",\n  \"reference\": {\"kind\": " << json_string(result.reference_kind)
-        << ", \"description\": " << json_string(result.reference_description)
-        << "},\n  \"tolerances\": [";
+        << ", \"description\": " << json_string(result.reference_description);
+    if (result.reference_kind == "published") {
+      out << ", \"trusted_digits_u\": " << result.trusted_digits_u
+          << ", \"trusted_digits_v\": " << result.trusted_digits_v;
+    }
+    out << "},\n  \"drift_growth\": {";
+    bool first_growth = true;
+    for (const auto& h : result.histories) {
+      if (!h.growth) continue;
+      out << (first_growth ? "" : ", ") << json_string(to_string(h.scheme))
+          << ": {\"exponent\": " << full(h.growth->exponent)
+          << ", \"predicted\": " << json_string(predicted_drift_growth(h.scheme)) << "}";
+      first_growth = false;
+    }
+    out << "},\n  \"tolerances\": [";
     for (std::size_t k = 0; k < result.options.tolerances.size(); ++k) {
       out << (k ? ", " : "") << full(result.options.tolerances[k]);
     }

@@ -32,6 +32,9 @@ void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
       case Quantity::drift:
         out << ",drift_position,drift_velocity";
         break;
+      case Quantity::energy:
+        out << ",energy,energy_error";
+        break;
     }
   }
   out << "\n";
@@ -57,6 +60,9 @@ void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
           break;
         case Quantity::drift:
           out << "," << traj.drift_position[col] << "," << traj.drift_velocity[col];
+          break;
+        case Quantity::energy:  // build_model refuses 'energy' for nonconservative scenes
+          out << "," << traj.energy[col] << "," << traj.energy[col] - traj.energy[0];
           break;
       }
     }

@@ -21,7 +21,11 @@ std::string join_dofs(const Model& model, const std::vector<int>& dofs) {
 }  // namespace
 
 void print_info(std::ostream& out, const Model& model, Scheme requested) {
-  out << "scene: " << model.file << (model.name.empty() ? "" : "  (" + model.name + ")") << "\n\n";
+  out << "scene: " << model.file << (model.name.empty() ? "" : "  (" + model.name + ")") << "\n";
+  if (!model.description.empty()) out << "model: " << model.description << "\n";
+  if (!model.initial_projection.empty())
+    out << "initial state: " << model.initial_projection << "\n";
+  out << "\n";
   const auto classes = classify_constraints(model);
   if (classes.empty()) {
     out << "constraints: none (the model is unconstrained)\n";
@@ -40,14 +44,18 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
           << (c.linear ? "linear" : "nonlinear");
       for (std::size_t k = 0; k < c.dofs.size(); ++k) out << (k ? ", " : "") << c.dofs[k];
       out << "\n";
+      if (!c.note.empty())
+        out << "  " << std::setw(width) << ""
+            << "  " << c.note << "\n";
     }
     out << "  (velocity-level constraints are classed by their integrated form a·u = a·u(0) + "
            "∫h)\n";
   }
   const int n = model.dofs(), m = model.constraint_count();
-  out << "\nmodel: " << n << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros()
-      << ", C " << model.C.nonZeros() << ", K " << model.K.nonZeros() << ", A "
-      << model.A.nonZeros() << "\n";
+  out << "\nmodel: "
+      << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
+      << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
+      << model.C.nonZeros() << ", K " << model.K.nonZeros() << ", A " << model.A.nonZeros() << "\n";
   const SchemeChoice choice = choose_scheme(model, requested);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason << ")\n";
   if (choice.scheme == Scheme::elimination) {

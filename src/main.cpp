@@ -11,6 +11,7 @@
 #include "src/compare_output.hpp"
 #include "src/csv_output.hpp"
 #include "src/info_report.hpp"
+#include "validation/accuracy.hpp"
 #include "validation/compare.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/suite.hpp"
@@ -45,8 +46,19 @@ int run(const RunArgs& args) {
   options.record_steps = !args.steps_out.empty();
   const Trajectory traj = solve(model, choice.scheme, options, summary);
   write_csv_atomically(out, model, traj);
-  std::cout << summary.brief() << "\n"
-            << "wrote " << traj.t.size() << " rows to " << out << "\n";
+  if (!model.initial_projection.empty())
+    std::cout << "initial state: " << model.initial_projection << "\n";
+  std::cout << summary.brief() << "\n";
+  if (const double e = relative_energy_error(model, traj); e >= 0.0) {
+    std::cout << "energy: max |E(t) - E(0)| = " << e
+              << " relative to max(|E(0)|, max kinetic energy)\n";
+  }
+  if (const auto score = score_against_reference(model, traj, options.rtol, options.atol)) {
+    std::cout << "published reference at t = " << score->t << " (" << score->source
+              << "): " << score->describe() << " (mescd with rtol " << options.rtol << ", atol "
+              << options.atol << ")\n";
+  }
+  std::cout << "wrote " << traj.t.size() << " rows to " << out << "\n";
   if (!args.steps_out.empty()) {
     write_steps_csv_atomically(args.steps_out, traj);
     std::cout << "wrote the drift at " << traj.steps.size() << " internal steps to "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace condyn {
@@ -30,6 +31,58 @@ TrajectoryError relative_error(const Trajectory& run, const Trajectory& referenc
   }
   return {relative_max(run.u, reference.u), relative_max(run.v, reference.v),
           relative_max(run.reaction, reference.reaction)};
+}
+
+}  // namespace condyn
+
+namespace condyn {
+
+double mescd(const Eigen::VectorXd& y, const Eigen::VectorXd& ref, double rtol, double atol) {
+  constexpr double kExact = 17.0;
+  double digits = kExact;
+  for (Eigen::Index i = 0; i < y.size(); ++i) {
+    const double err = std::abs(y[i] - ref[i]) / (atol / rtol + std::abs(ref[i]));
+    if (err > 0.0) digits = std::min(digits, -std::log10(err));
+  }
+  return digits;
+}
+
+std::string ReferenceScore::describe() const {
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed;
+  const auto part = [&](double d, int trusted) {
+    if (d >= trusted) {
+      s << ">= " << trusted << " (the reference's limit)";
+    } else {
+      s << d;
+    }
+  };
+  part(digits_u, trusted_u);
+  s << " digits in positions";
+  if (digits_v >= 0.0) {
+    s << ", ";
+    part(digits_v, trusted_v);
+    s << " in velocities";
+  }
+  return s.str();
+}
+
+std::optional<ReferenceScore> score_against_reference(const Model& model, const Trajectory& run,
+                                                      double rtol, double atol) {
+  if (!model.reference || run.t.empty()) return std::nullopt;
+  const double t = run.t.back();
+  const auto ref = model.reference(t);
+  if (!ref) return std::nullopt;
+  ReferenceScore score;
+  score.t = t;
+  score.source = ref->source;
+  score.trusted_u = ref->digits_u;
+  score.trusted_v = ref->digits_v;
+  const Eigen::Index last = run.u.cols() - 1;
+  score.digits_u = mescd(run.u.col(last), ref->u, rtol, atol);
+  if (ref->v.size() > 0) score.digits_v = mescd(run.v.col(last), ref->v, rtol, atol);
+  return score;
 }
 
 }  // namespace condyn

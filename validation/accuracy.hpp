@@ -2,6 +2,9 @@
 /// How far a trajectory is from a reference: relative max-norms over every DOF and output time,
 /// ‖x − x_ref‖_max / ‖x_ref‖_max (absolute when the reference is identically zero).
 
+#include <optional>
+#include <string>
+
 #include "dae/trajectory.hpp"
 
 namespace condyn {
@@ -13,5 +16,27 @@ struct TrajectoryError {
 
 /// Both trajectories must share output times; throws std::invalid_argument otherwise.
 [[nodiscard]] TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference);
+
+/// The Test Set for IVP Solvers' "mixed-error significant correct digits" (Mazzia, Magherini,
+/// Iavernaro, release 2.4): min_i −log10(|y_i − ref_i| / (atol/rtol + |ref_i|)), with the run's
+/// own rtol and atol. Exact agreement counts as 17 digits (beyond double precision).
+[[nodiscard]] double mescd(const Eigen::VectorXd& y, const Eigen::VectorXd& ref, double rtol,
+                           double atol);
+
+/// A run scored against a built-in model's published reference at its final time.
+struct ReferenceScore {
+  double t = 0.0;
+  double digits_u = 0.0, digits_v = -1.0;  ///< mescd of positions, velocities (−1: none)
+  int trusted_u = 0, trusted_v = 0;        ///< what the reference vouches for
+  std::string source;
+  /// "8.9 digits in positions, 8.1 in velocities"; digits beyond the reference's trust are
+  /// reported as "≥ trusted (the reference's limit)".
+  [[nodiscard]] std::string describe() const;
+};
+
+/// The score at the trajectory's last time, when the model has a reference there.
+[[nodiscard]] std::optional<ReferenceScore> score_against_reference(const Model& model,
+                                                                    const Trajectory& run,
+                                                                    double rtol, double atol);
 
 }  // namespace condyn

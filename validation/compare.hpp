@@ -8,8 +8,13 @@
 #include <string>
 #include <vector>
 
+#include <cmath>
+#include <limits>
+#include <optional>
+
 #include "dae/trajectory.hpp"
 #include "models/scene_spec.hpp"
+#include "validation/drift_growth.hpp"
 
 namespace condyn {
 
@@ -40,6 +45,12 @@ struct RunRecord {
        error_test_failures = 0;
   double wall_median = 0.0, wall_min = 0.0, wall_max = 0.0;
   int repeats = 0;
+  /// Against a published reference (built-in benchmarks): the test set's significant correct
+  /// digits at the final time, positions and velocities; NaN without one.
+  double mescd_u = std::numeric_limits<double>::quiet_NaN();
+  double mescd_v = std::numeric_limits<double>::quiet_NaN();
+  /// Conservative scenes: max |E(t) − E(0)| relative to the energy scale; NaN otherwise.
+  double energy_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// One scheme's run at drift_rtol: its per-step drift log and its output-time trajectory.
@@ -48,6 +59,7 @@ struct SchemeHistory {
   bool ok = false;
   std::string message;
   Trajectory trajectory;
+  std::optional<DriftGrowth> growth;  ///< drift ∝ t^p fitted to the per-step log
 };
 
 struct BaumgarteStudyPoint {
@@ -60,8 +72,11 @@ struct BaumgarteStudyPoint {
 
 struct CompareResult {
   std::string scene_name;
-  std::string reference_kind;         ///< "exact", "elimination" or "ggl"
-  std::string reference_description;  ///< how the reference was obtained
+  /// "exact", "elimination", "ggl" (trajectories), or "published" (a built-in benchmark's
+  /// reference state at the final time: errors are then at that time only).
+  std::string reference_kind;
+  int trusted_digits_u = 0, trusted_digits_v = 0;  ///< "published" only
+  std::string reference_description;               ///< how the reference was obtained
   CompareOptions options;
   std::vector<RunRecord> runs;
   std::vector<SchemeHistory> histories;

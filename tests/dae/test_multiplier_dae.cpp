@@ -4,7 +4,7 @@
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/exact_solution.hpp"
-#include "dae/linear_system.hpp"
+#include "models/linear_system.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/solve.hpp"

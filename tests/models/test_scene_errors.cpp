@@ -72,7 +72,9 @@ TEST_CASE("syntax and structure") {
   check_error(replace(kBase, "t_end = 1.0", "t_end = 1.0\nrtoll = 1e-6"),
               "solve.rtoll: unknown key");
   check_error(replace(kBase, "[[load]]", "[[load]\n"), "TOML syntax error");
-  check_error(replace(kBase, "type = \"truss2d\"", "type = \"truss3d\""), "unknown model type");
+  check_error(replace(kBase, "type = \"truss2d\"", "type = \"truss4d\""), "unknown model type");
+  check_error(replace(kBase, "type = \"truss2d\"", "type = \"truss3d\""),
+              "model.nodes[1]: a node is [x, y, z]");
   check_error(replace(kBase, "masses = [1.0, 1.0]\n", ""), "model.masses: missing required key");
   check_error(replace(kBase, "value = 1.0", "value = \"one\""), "load[1].value: expected a number");
   check_error(replace(kBase, "value = 1.0", "value = { type = \"ramp\" }"),

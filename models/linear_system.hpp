@@ -4,9 +4,8 @@
 /// ψ = A u' − g'(t) (position rows) or A u' − h(t) (velocity rows), γ = g'' or h'.
 /// Rows whose right-hand side is identically zero never evaluate a time function.
 
-#include <algorithm>
-
-#include "dae/mechanical_system.hpp"
+#include "models/linear_rows.hpp"
+#include "models/mechanical_system.hpp"
 #include "models/model.hpp"
 
 namespace condyn {
@@ -32,24 +31,28 @@ class LinearSystem final : public MechanicalSystem {
   [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef /*u*/) const override {
     return model_.A;
   }
-  void position_residual(double t, ConstRef u, Ref phi) const override;
-  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override;
-  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override;
+  void position_residual(double t, ConstRef u, Ref phi) const override {
+    rows_.position_residual(t, u, phi);
+  }
+  void velocity_residual(double t, ConstRef /*u*/, ConstRef v, Ref psi) const override {
+    rows_.velocity_residual(t, v, psi);
+  }
+  void acceleration_bias(double t, ConstRef /*u*/, ConstRef /*v*/, Ref gamma) const override {
+    rows_.acceleration_bias(t, gamma);
+  }
+  /// ½u'ᵀMu' + ½uᵀKu − f·u when the model is conservative: no damping, constant loads (steps at
+  /// t = 0 included) and scleronomic constraints.
+  [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) const override;
 
   /// Rows whose right-hand side is evaluated at all (the others are homogeneous and scleronomic).
-  [[nodiscard]] int rows_with_time_functions() const {
-    return static_cast<int>(std::count(has_rhs_.begin(), has_rhs_.end(), true));
-  }
+  [[nodiscard]] int rows_with_time_functions() const { return rows_.rows_with_time_functions(); }
 
  private:
-  /// d^order/dt^order of row i's right-hand side at its own level (g for position rows, h for
-  /// velocity rows); 0 without evaluation for homogeneous scleronomic rows.
-  [[nodiscard]] double rhs(std::size_t i, int order, double t) const;
-
   const Model& model_;
+  LinearRows rows_;
   std::vector<bool> position_;
-  std::vector<bool> has_rhs_;
   Sparse minus_K_, minus_C_;
+  bool conservative_ = false;
 };
 
 }  // namespace condyn

@@ -1,0 +1,224 @@
+#include "models/point_mass_system.hpp"
+
+namespace condyn {
+
+PointMassSystem::PointMassSystem(PointMassLayout layout)
+    : layout_(std::move(layout)),
+      n_(static_cast<int>(layout_.nodes.size()) * layout_.dimension),
+      m_(static_cast<int>(layout_.linear_rows.size() + layout_.rods.size())),
+      linear_count_(static_cast<int>(layout_.linear_rows.size())),
+      linear_(layout_.linear_rows) {
+  for (int i = 0; i < linear_count_; ++i) position_.push_back(linear_.is_position(i));
+  position_.insert(position_.end(), layout_.rods.size(), true);
+  const int dim = layout_.dimension;
+  std::vector<Eigen::Triplet<double>> trip;
+  for (std::size_t k = 0; k < layout_.nodes.size(); ++k) {
+    for (int d = 0; d < dim; ++d) {
+      if (layout_.masses[k] != 0.0) {
+        trip.emplace_back(dof(static_cast<int>(k), d), dof(static_cast<int>(k), d),
+                          layout_.masses[k]);
+      }
+    }
+  }
+  M_.resize(n_, n_);
+  M_.setFromTriplets(trip.begin(), trip.end());
+  trip.clear();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
+  for (const auto& b : layout_.bars) {  // small-displacement stiffness (EA/L) e eᵀ
+    const Eigen::VectorXd e = separation(b, zero) / b.length;
+    add_block_pair(trip, b, (b.EA / b.length) * e * e.transpose());
+  }
+  K_linear_.resize(n_, n_);
+  K_linear_.setFromTriplets(trip.begin(), trip.end());
+  no_damping_.resize(n_, n_);
+  conservative_ = true;
+  for (const auto& l : layout_.loads) conservative_ = conservative_ && l.value.is_constant();
+  for (const auto& c : layout_.linear_rows) {
+    conservative_ = conservative_ && c.position_value.is_constant();
+  }
+}
+
+Eigen::VectorXd PointMassSystem::separation(const PointMassLayout::Bar& b,
+                                            const ConstRef& u) const {
+  const int dim = layout_.dimension;
+  Eigen::VectorXd d(dim);
+  for (int k = 0; k < dim; ++k) {
+    d[k] = layout_.nodes[static_cast<std::size_t>(b.j)][static_cast<std::size_t>(k)] -
+           layout_.nodes[static_cast<std::size_t>(b.i)][static_cast<std::size_t>(k)] +
+           u[dof(b.j, k)] - u[dof(b.i, k)];
+  }
+  return d;
+}
+
+Eigen::VectorXd PointMassSystem::relative(const PointMassLayout::Bar& b, const ConstRef& v) const {
+  const int dim = layout_.dimension;
+  Eigen::VectorXd d(dim);
+  for (int k = 0; k < dim; ++k) d[k] = v[dof(b.j, k)] - v[dof(b.i, k)];
+  return d;
+}
+
+void PointMassSystem::add_row_pair(std::vector<Eigen::Triplet<double>>& trip, int row,
+                                   const PointMassLayout::Bar& b, const Eigen::VectorXd& r) const {
+  for (int k = 0; k < layout_.dimension; ++k) {
+    trip.emplace_back(row, dof(b.j, k), r[k]);
+    trip.emplace_back(row, dof(b.i, k), -r[k]);
+  }
+}
+
+void PointMassSystem::add_block_pair(std::vector<Eigen::Triplet<double>>& trip,
+                                     const PointMassLayout::Bar& b,
+                                     const Eigen::MatrixXd& B) const {
+  const int dim = layout_.dimension;
+  for (int r = 0; r < dim; ++r) {
+    for (int c = 0; c < dim; ++c) {
+      trip.emplace_back(dof(b.i, r), dof(b.i, c), B(r, c));
+      trip.emplace_back(dof(b.j, r), dof(b.j, c), B(r, c));
+      trip.emplace_back(dof(b.i, r), dof(b.j, c), -B(r, c));
+      trip.emplace_back(dof(b.j, r), dof(b.i, c), -B(r, c));
+    }
+  }
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::assemble(
+    Sparse& S, int rows, int cols, std::vector<Eigen::Triplet<double>>& trip) {
+  // The same triplet positions on every call, explicit zeros included: a fixed pattern.
+  S.resize(rows, cols);
+  S.setFromTriplets(trip.begin(), trip.end());
+  S.makeCompressed();
+  trip.clear();
+  return S;
+}
+
+void PointMassSystem::force(double t, double step_reference, ConstRef u, ConstRef /*v*/,
+                            Ref f) const {
+  f.setZero();
+  for (const auto& l : layout_.loads) f[l.dof] += l.value.derivative(0, t, step_reference);
+  if (!layout_.nonlinear_geometry) {
+    f.noalias() -= K_linear_ * u;
+    return;
+  }
+  for (const auto& b : layout_.bars) {
+    const Eigen::VectorXd d = separation(b, u);
+    const double l = d.norm();
+    const Eigen::VectorXd pull = (b.EA * (l - b.length) / b.length / l) * d;  // N e
+    for (int k = 0; k < layout_.dimension; ++k) {
+      f[dof(b.i, k)] += pull[k];
+      f[dof(b.j, k)] -= pull[k];
+    }
+  }
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::force_jacobian_u(double /*t*/, ConstRef u,
+                                                                  ConstRef /*v*/) const {
+  if (!layout_.nonlinear_geometry) {
+    f_u_ = -K_linear_;
+    return f_u_;
+  }
+  const int dim = layout_.dimension;
+  for (const auto& b : layout_.bars) {
+    const Eigen::VectorXd d = separation(b, u);
+    const double l = d.norm();
+    const Eigen::VectorXd e = d / l;
+    const double N = b.EA * (l - b.length) / b.length;
+    const Eigen::MatrixXd tangent =
+        (b.EA / b.length) * e * e.transpose() +
+        (N / l) * (Eigen::MatrixXd::Identity(dim, dim) - e * e.transpose());
+    add_block_pair(trip_, b, -tangent);
+  }
+  return assemble(f_u_, n_, n_, trip_);
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::constraint_jacobian(double /*t*/,
+                                                                     ConstRef u) const {
+  linear_.append_triplets(0, trip_);
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    add_row_pair(trip_, linear_count_ + static_cast<int>(r), b, separation(b, u) / b.length);
+  }
+  return assemble(A_, m_, n_, trip_);
+}
+
+void PointMassSystem::position_residual(double t, ConstRef u, Ref phi) const {
+  linear_.position_residual(t, u, phi.head(linear_count_));
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    phi[linear_count_ + static_cast<int>(r)] =
+        (separation(b, u).squaredNorm() - b.length * b.length) / (2.0 * b.length);
+  }
+}
+
+void PointMassSystem::velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const {
+  linear_.velocity_residual(t, v, psi.head(linear_count_));
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    psi[linear_count_ + static_cast<int>(r)] = separation(b, u).dot(relative(b, v)) / b.length;
+  }
+}
+
+void PointMassSystem::acceleration_bias(double t, ConstRef /*u*/, ConstRef v, Ref gamma) const {
+  linear_.acceleration_bias(t, gamma.head(linear_count_));
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    gamma[linear_count_ + static_cast<int>(r)] = -relative(b, v).squaredNorm() / b.length;
+  }
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::constraint_force_jacobian(double /*t*/,
+                                                                           ConstRef /*u*/,
+                                                                           ConstRef w) const {
+  // Aᵀw on the rod rows: ±w_r d/L, so d/du = (w_r/L) [I −I; −I I].
+  const int dim = layout_.dimension;
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    const double s = w[linear_count_ + static_cast<int>(r)] / b.length;
+    add_block_pair(trip_, b, s * Eigen::MatrixXd::Identity(dim, dim));
+  }
+  return assemble(force_jac_, n_, n_, trip_);
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::constraint_product_jacobian(double /*t*/,
+                                                                             ConstRef /*u*/,
+                                                                             ConstRef a) const {
+  // (A a)_r = d·(a_j − a_i)/L.
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    add_row_pair(trip_, linear_count_ + static_cast<int>(r), b, relative(b, a) / b.length);
+  }
+  return assemble(product_jac_, m_, n_, trip_);
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::velocity_residual_jacobian(double /*t*/,
+                                                                            ConstRef /*u*/,
+                                                                            ConstRef v) const {
+  // ψ_r = d·d'/L.
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    add_row_pair(trip_, linear_count_ + static_cast<int>(r), b, relative(b, v) / b.length);
+  }
+  return assemble(psi_jac_, m_, n_, trip_);
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::acceleration_bias_jacobian_v(double /*t*/,
+                                                                              ConstRef /*u*/,
+                                                                              ConstRef v) const {
+  // γ_r = −|d'|²/L.
+  for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
+    const auto& b = layout_.rods[r];
+    add_row_pair(trip_, linear_count_ + static_cast<int>(r), b, -2.0 * relative(b, v) / b.length);
+  }
+  return assemble(gamma_jac_v_, m_, n_, trip_);
+}
+
+std::optional<double> PointMassSystem::energy(double t, ConstRef u, ConstRef v) const {
+  if (!conservative_) return std::nullopt;
+  double e = 0.5 * v.dot(M_ * v);
+  for (const auto& l : layout_.loads) e -= l.value.derivative(0, t) * u[l.dof];
+  if (!layout_.nonlinear_geometry) return e + 0.5 * u.dot(K_linear_ * u);
+  for (const auto& b : layout_.bars) {
+    const double stretch = separation(b, u).norm() - b.length;
+    e += 0.5 * b.EA / b.length * stretch * stretch;
+  }
+  return e;
+}
+
+}  // namespace condyn

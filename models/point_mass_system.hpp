@@ -1,0 +1,96 @@
+#pragma once
+/// Point masses at truss nodes, in 2D or 3D, with large displacements:
+///
+///   bars      (geometry = "nonlinear") axial force N = EA (l − L)/L from the exact current length
+///             l = |x_j + u_j − x_i − u_i|, consistent tangent (EA/L) e eᵀ + (N/l)(I − e eᵀ);
+///             (geometry = "linear") the small-displacement stiffness K u;
+///   rigid     distance constraints φ = (|d|² − L²)/(2L), d = x_j + u_j − x_i − u_i, which equals
+///             |d| − L to second order, so the drift reads as a length error; A = ±dᵀ/L,
+///             γ = −|d'|²/L (the centripetal term);
+///   loads     the scene's [[load]]s and gravity m g on every node (constant loads);
+///   linear    the scene's [[constraint]] rows and supports (constant coefficients), first.
+///
+/// Every derivative is analytic (tests/models/test_point_mass_system.cpp checks them against
+/// finite differences).
+
+#include <array>
+#include <vector>
+
+#include "models/linear_rows.hpp"
+#include "models/mechanical_system.hpp"
+#include "models/model.hpp"
+
+namespace condyn {
+
+struct PointMassLayout {
+  int dimension = 2;
+  std::vector<std::array<double, 3>> nodes;  ///< reference positions
+  std::vector<double> masses;
+  struct Bar {
+    int i = 0, j = 0;  ///< 0-based nodes
+    double EA = 0.0, length = 0.0;
+  };
+  std::vector<Bar> bars;
+  bool nonlinear_geometry = false;
+  std::vector<Bar> rods;  ///< rigid members (EA unused)
+  std::vector<Load> loads;
+  std::vector<Constraint> linear_rows;  ///< scene order, before the rods
+};
+
+class PointMassSystem final : public MechanicalSystem {
+ public:
+  explicit PointMassSystem(PointMassLayout layout);
+
+  [[nodiscard]] int dofs() const override { return n_; }
+  [[nodiscard]] int constraints() const override { return m_; }
+  [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
+  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) const override { return M_; }
+  void force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const override;
+  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) const override;
+  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
+                                               ConstRef /*v*/) const override {
+    return no_damping_;
+  }
+  [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) const override;
+  void position_residual(double t, ConstRef u, Ref phi) const override;
+  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override;
+  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override;
+
+  [[nodiscard]] bool has_curvature() const override { return !layout_.rods.empty(); }
+  [[nodiscard]] const Sparse& constraint_force_jacobian(double t, ConstRef u,
+                                                        ConstRef w) const override;
+  [[nodiscard]] const Sparse& constraint_product_jacobian(double t, ConstRef u,
+                                                          ConstRef a) const override;
+  [[nodiscard]] const Sparse& velocity_residual_jacobian(double t, ConstRef u,
+                                                         ConstRef v) const override;
+  [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double t, ConstRef u,
+                                                           ConstRef v) const override;
+  [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) const override;
+
+ private:
+  /// d = x_j + u_j − x_i − u_i for a member (dimension entries).
+  [[nodiscard]] Eigen::VectorXd separation(const PointMassLayout::Bar& b, const ConstRef& u) const;
+  [[nodiscard]] Eigen::VectorXd relative(const PointMassLayout::Bar& b, const ConstRef& v) const;
+  [[nodiscard]] int dof(int node, int direction) const {
+    return node * layout_.dimension + direction;
+  }
+  /// Adds c · (row vector r) at row `row`, columns of node j (+r) and node i (−r).
+  void add_row_pair(std::vector<Eigen::Triplet<double>>& trip, int row,
+                    const PointMassLayout::Bar& b, const Eigen::VectorXd& r) const;
+  /// Adds the 2x2 block pattern [B −B; −B B] on the DOFs of nodes i and j.
+  void add_block_pair(std::vector<Eigen::Triplet<double>>& trip, const PointMassLayout::Bar& b,
+                      const Eigen::MatrixXd& B) const;
+  [[nodiscard]] static const Sparse& assemble(Sparse& S, int rows, int cols,
+                                              std::vector<Eigen::Triplet<double>>& trip);
+
+  PointMassLayout layout_;
+  int n_, m_, linear_count_;
+  LinearRows linear_;
+  std::vector<bool> position_;
+  Sparse M_, K_linear_, no_damping_;
+  bool conservative_ = false;
+  mutable Sparse f_u_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
+  mutable std::vector<Eigen::Triplet<double>> trip_;
+};
+
+}  // namespace condyn
