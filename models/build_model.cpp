@@ -297,9 +297,9 @@ class Builder {
     for (int node : spec_.model.supports) {  // a fixed support: every DOF of the node is zero
       for (int d = 0; d < spec_.model.dimension; ++d) {
         Constraint c;
-        c.name = "fix_" +
-                 model_.dof_names[static_cast<std::size_t>((node - 1) * spec_.model.dimension + d)];
-        c.coefficients = {{(node - 1) * spec_.model.dimension + d, 1.0}};
+        const int dof = (node - 1) * spec_.model.dimension + d;
+        c.name = "fix_" + model_.dof_names[static_cast<std::size_t>(dof)];
+        c.coefficients = {{dof, 1.0}};
         c.position_value = c.value;
         c.where = {"model.supports", spec_.model.where.line};
         const int row = static_cast<int>(model_.constraints.size());

@@ -19,7 +19,7 @@ double LinearRows::rhs(std::size_t i, int order, double t) const {
   return has_rhs_[i] ? rows_[i].value.derivative(order, t) : 0.0;
 }
 
-void LinearRows::position_residual(double t, ConstRef u, Ref phi) const {
+void LinearRows::position_residual(double t, const ConstRef& u, Ref phi) const {
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     double au = 0.0;
     if (position_[i]) {
@@ -30,7 +30,7 @@ void LinearRows::position_residual(double t, ConstRef u, Ref phi) const {
   }
 }
 
-void LinearRows::velocity_residual(double t, ConstRef v, Ref psi) const {
+void LinearRows::velocity_residual(double t, const ConstRef& v, Ref psi) const {
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     double av = 0.0;
     for (const auto& [d, a] : rows_[i].coefficients) av += a * v[d];

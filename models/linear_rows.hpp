@@ -28,8 +28,8 @@ class LinearRows {
   /// Rows whose right-hand side is evaluated at all.
   [[nodiscard]] int rows_with_time_functions() const;
   /// The first size() entries of phi, psi and gamma.
-  void position_residual(double t, ConstRef u, Ref phi) const;
-  void velocity_residual(double t, ConstRef v, Ref psi) const;
+  void position_residual(double t, const ConstRef& u, Ref phi) const;
+  void velocity_residual(double t, const ConstRef& v, Ref psi) const;
   void acceleration_bias(double t, Ref gamma) const;
   /// Appends the coefficients as triplets, row i at row0 + i.
   void append_triplets(int row0, std::vector<Eigen::Triplet<double>>& out) const;

@@ -63,6 +63,8 @@ class MechanicalSystem {
   /// finite differences). Each returns an empty (0 x 0) matrix when the term vanishes identically
   /// (the default, right for constant M and A); otherwise a matrix of the stated size whose
   /// pattern does not depend on the arguments. References are valid until the next call.
+  // The defaults ignore their arguments; by-value Refs are the signature every override shares.
+  // NOLINTBEGIN(performance-unnecessary-value-param)
   /// d(M(t, u) a)/du, n x n.
   [[nodiscard]] virtual const Sparse& mass_jacobian(double /*t*/, ConstRef /*u*/,
                                                     ConstRef /*a*/) const {
@@ -99,6 +101,7 @@ class MechanicalSystem {
                                                      ConstRef /*v*/) const {
     return std::nullopt;
   }
+  // NOLINTEND(performance-unnecessary-value-param)
 
  protected:
   static const Sparse& empty() {

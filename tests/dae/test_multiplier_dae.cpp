@@ -4,10 +4,10 @@
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/exact_solution.hpp"
-#include "models/linear_system.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/solve.hpp"
+#include "models/linear_system.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "validation/accuracy.hpp"

@@ -112,11 +112,12 @@ TEST_CASE("compare: the output files follow validation/compare-output.md") {
     return s.str();
   };
   const std::string runs = slurp("runs.csv");
-  CHECK(runs.rfind("scheme,rtol,atol,status,error_u,error_v,error_reaction,max_drift_position,"
-                   "max_drift_velocity,final_drift_position,final_drift_velocity,steps,"
-                   "residual_evals,jacobian_evals,newton_failures,error_test_failures,"
-                   "wall_median_s,wall_min_s,wall_max_s,repeats,message\n",
-                   0) == 0);
+  CHECK(runs.rfind(
+            "scheme,rtol,atol,status,error_u,error_v,error_reaction,max_drift_position,"
+            "max_drift_velocity,final_drift_position,final_drift_velocity,steps,"
+            "residual_evals,jacobian_evals,newton_failures,error_test_failures,"
+            "wall_median_s,wall_min_s,wall_max_s,repeats,message,mescd_u,mescd_v,energy_error\n",
+            0) == 0);
   CHECK(std::count(runs.begin(), runs.end(), '\n') == 1 + 4);
   const std::string json = slurp("runs.json");
   CHECK(json.find("\"reference\": {\"kind\": \"exact\"") != std::string::npos);
