@@ -75,15 +75,33 @@ void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& writer) {
   namespace fs = std::filesystem;
-  const fs::path target(path);
-  if (fs::is_directory(target)) throw std::runtime_error(path + ": is a directory");
+  std::error_code ec;
+  fs::path target(path);
+  // A symbolic link keeps pointing where it did: the file it names is replaced, not the link.
+  if (fs::is_symlink(fs::symlink_status(target, ec))) {
+    const fs::path resolved = fs::weakly_canonical(target, ec);
+    if (!ec) target = resolved;
+  }
+  const fs::file_status status = fs::status(target, ec);
+  if (fs::is_directory(status)) throw std::runtime_error(path + ": is a directory");
+  const auto fail = [&](const std::string& what) {
+    throw std::runtime_error(path + ": " + what + " (" + std::strerror(errno) + ")");
+  };
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    // A device, FIFO or socket (/dev/null, /dev/stdout, a pipe): renaming over it would replace
+    // the special file with a regular one, so the output is streamed into it instead.
+    std::ofstream out(target, std::ios::binary);
+    if (!out) fail("cannot write output");
+    writer(out);
+    out.flush();
+    if (!out) fail("writing the output failed");
+    return;
+  }
   const fs::path tmp =
       target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw std::runtime_error(path + ": cannot write output (" + std::strerror(errno) + ")");
-    }
+    if (!out) fail("cannot write output");
     writer(out);
     out.flush();
     if (!out) {
@@ -92,7 +110,6 @@ void write_file_atomically(const std::string& path,
       throw std::runtime_error(path + ": writing the output failed");
     }
   }
-  std::error_code ec;
   fs::rename(tmp, target, ec);
   if (ec) {
     std::error_code ignored;

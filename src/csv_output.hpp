@@ -12,7 +12,9 @@
 namespace condyn {
 
 /// Writes through a temporary file beside `path`, renamed into place only after a complete write:
-/// a failure never leaves a half-written or clobbered file. Throws std::runtime_error naming path.
+/// a failure never leaves a half-written or clobbered file. A symbolic link is followed (the file
+/// it names is replaced, the link stays); a device, FIFO or socket (/dev/null, /dev/stdout) is
+/// written into directly, never replaced. Throws std::runtime_error naming path.
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& writer);
 

@@ -1,6 +1,7 @@
 // The command line as users and outside checks see it (scene-format.md, "Command line"): exit
 // codes, messages that name the file, the CSV columns and rows, and no lost data on failure.
 #include <doctest/doctest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <unistd.h>
@@ -144,6 +145,30 @@ scheme = "elimination"
   CHECK(r.err.find("s.toml") != std::string::npos);
   CHECK(r.err.find("master DOFs without mass: b") != std::string::npos);
   CHECK(slurp(box.path("keep.csv")) == "precious\n");
+}
+
+TEST_CASE("output to a FIFO or through a symbolic link replaces neither") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  // A FIFO stands for /dev/null, /dev/stdout and pipes: renaming a temporary file over it would
+  // replace the special file with a regular one. A reader drains it while condyn writes.
+  const fs::path fifo = box.path("pipe.csv");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const std::string drained = box.path("drained.csv").string();
+  const std::string reader = "timeout 20 cat '" + fifo.string() + "' > '" + drained + "' &";
+  REQUIRE(std::system(reader.c_str()) == 0);
+  const Result r = box.run("run s.toml --out pipe.csv");
+  CHECK(r.code == 0);
+  CHECK(fs::is_fifo(fs::symlink_status(fifo)));
+  for (int k = 0; k < 100 && slurp(drained).find("1,") == std::string::npos; ++k) ::usleep(20000);
+  CHECK(slurp(drained).rfind("t,a,b,drift_position,drift_velocity\n", 0) == 0);
+
+  // A link keeps pointing at its file; the file gets the new rows.
+  box.write("real.csv", "old\n");
+  fs::create_symlink("real.csv", box.path("link.csv"));
+  CHECK(box.run("run s.toml --out link.csv").code == 0);
+  CHECK(fs::is_symlink(fs::symlink_status(box.path("link.csv"))));
+  CHECK(slurp(box.path("real.csv")).rfind("t,a,b", 0) == 0);
 }
 
 TEST_CASE("every scheme runs from the command line") {
