@@ -86,7 +86,7 @@ class SystemOf {
 };
 
 void refuse_inapplicable(const Model& model, Scheme scheme) {
-  if (auto why = scheme_refusal(model, scheme)) throw std::invalid_argument(*why);
+  if (auto why = scheme_refusal(model, scheme)) throw SchemeNotApplicable(*why);
 }
 
 MultiplierScheme multiplier_scheme(Scheme s) {

@@ -2,6 +2,7 @@
 /// Scheme choice and dispatch: the one entry point the CLI and the validation suite use.
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "dae/solve_summary.hpp"
@@ -13,6 +14,13 @@ namespace condyn {
 struct SchemeChoice {
   Scheme scheme = Scheme::elimination;
   std::string reason;  ///< why this scheme (printed by `condyn info`)
+};
+
+/// Thrown when a scheme cannot treat a model (the reason is scheme_refusal's): the request, not the
+/// solver, is at fault, so the CLI answers it as bad input (exit 2).
+class SchemeNotApplicable : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
 };
 
 /// Why `scheme` cannot treat this model (elimination and penalty on nonlinear models), or
@@ -34,8 +42,9 @@ struct SystemSize {
 /// Integrator options from the model's [solve] section, possibly overridden by the caller.
 [[nodiscard]] IntegratorOptions integrator_options(const Model& model);
 
-/// Solves the model under `scheme` (not `automatic`). Throws std::invalid_argument for a scheme
-/// this build cannot run yet, IntegrationError on solver failure.
+/// Solves the model under `scheme` (`automatic` resolves through choose_scheme). Throws
+/// SchemeNotApplicable for a scheme that cannot treat the model, IntegrationError on solver
+/// failure.
 [[nodiscard]] Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
                                SolveSummary& summary);
 

@@ -206,6 +206,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ValidationError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
+  } catch (const SchemeNotApplicable& e) {
+    std::cerr << "error: " << scene << ": " << e.what() << "\n";
+    return 2;
   } catch (const IntegrationError& e) {
     std::cerr << "error: " << scene << ": integration failed: " << e.what() << "\n";
     return 1;

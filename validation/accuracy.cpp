@@ -60,9 +60,9 @@ std::string ReferenceScore::describe() const {
   };
   part(digits_u, trusted_u);
   s << " digits in positions";
-  if (digits_v >= 0.0) {
+  if (digits_v) {
     s << ", ";
-    part(digits_v, trusted_v);
+    part(*digits_v, trusted_v);
     s << " in velocities";
   }
   return s.str();

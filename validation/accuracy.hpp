@@ -26,8 +26,11 @@ struct TrajectoryError {
 /// A run scored against a built-in model's published reference at its final time.
 struct ReferenceScore {
   double t = 0.0;
-  double digits_u = 0.0, digits_v = -1.0;  ///< mescd of positions, velocities (−1: none)
-  int trusted_u = 0, trusted_v = 0;        ///< what the reference vouches for
+  /// mescd of positions, and of velocities when the reference has them (mescd may be negative: an
+  /// error larger than the value itself).
+  double digits_u = 0.0;
+  std::optional<double> digits_v;
+  int trusted_u = 0, trusted_v = 0;  ///< what the reference vouches for
   std::string source;
   /// "8.9 digits in positions, 8.1 in velocities"; digits beyond the reference's trust are
   /// reported as "≥ trusted (the reference's limit)".

@@ -99,13 +99,26 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
     }
   }
   for (const auto& c : base.constraints) out.constraint_names.push_back(c.name);
+  std::vector<Scheme> schemes;
+  std::string refusals;
+  for (Scheme scheme : options.schemes) {
+    if (auto why = scheme_refusal(base, scheme)) {
+      out.skipped.emplace_back(scheme, *why);
+      refusals += std::string("\n  ") + to_string(scheme) + ": " + *why;
+    } else {
+      schemes.push_back(scheme);
+    }
+  }
+  if (schemes.empty()) {
+    throw SchemeNotApplicable("no requested scheme applies to this scene:" + refusals);
+  }
   const double ratio =
       options.atol_ratio > 0.0 ? options.atol_ratio : spec.solve.atol / spec.solve.rtol;
   const Trajectory ref = reference(spec, options, out);
 
-  const std::size_t total = options.schemes.size() * options.tolerances.size();
+  const std::size_t total = schemes.size() * options.tolerances.size();
   std::size_t done = 0;
-  for (Scheme scheme : options.schemes) {
+  for (Scheme scheme : schemes) {
     for (double rtol : options.tolerances) {
       RunRecord r;
       r.scheme = scheme;
@@ -129,7 +142,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
             r.error_reaction = std::numeric_limits<double>::quiet_NaN();  // λ: not scored
             const auto score = score_against_reference(model, run, r.rtol, r.atol);
             r.mescd_u = score->digits_u;
-            r.mescd_v = score->digits_v;
+            if (score->digits_v) r.mescd_v = *score->digits_v;
           } else {
             const TrajectoryError err = relative_error(run, ref);
             r.error_u = err.displacement;
@@ -175,7 +188,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
 
   // Drift logs and histories at one tolerance.
   const Model drift_model = with_tolerances(spec, options.drift_rtol, options.drift_rtol * ratio);
-  for (Scheme scheme : options.schemes) {
+  for (Scheme scheme : schemes) {
     SchemeHistory h;
     h.scheme = scheme;
     try {
@@ -192,8 +205,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   }
 
   // Baumgarte study: the default gains scaled over a grid.
-  if (std::find(options.schemes.begin(), options.schemes.end(), Scheme::baumgarte) !=
-          options.schemes.end() &&
+  if (std::find(schemes.begin(), schemes.end(), Scheme::baumgarte) != schemes.end() &&
       base.constraint_count() > 0) {
     const BaumgarteGains defaults = baumgarte_gains(drift_model);
     for (double fa : options.baumgarte_factors) {

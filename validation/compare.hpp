@@ -78,6 +78,9 @@ struct CompareResult {
   int trusted_digits_u = 0, trusted_digits_v = 0;  ///< "published" only
   std::string reference_description;               ///< how the reference was obtained
   CompareOptions options;
+  /// Requested schemes that cannot treat the scene (elimination and penalty on nonlinear
+  /// models), with the reason: not run, and not counted as failures.
+  std::vector<std::pair<Scheme, std::string>> skipped;
   std::vector<RunRecord> runs;
   std::vector<SchemeHistory> histories;
   std::vector<BaumgarteStudyPoint> baumgarte_study;
@@ -86,7 +89,8 @@ struct CompareResult {
   std::vector<std::pair<std::string, int>> constrained_dofs;
 };
 
-/// Runs the comparison. A failed run is recorded, not thrown; input errors throw SceneError.
+/// Runs the comparison. A failed run is recorded, not thrown; input errors throw SceneError, and
+/// SchemeNotApplicable when no requested scheme can treat the scene.
 [[nodiscard]] CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options);
 
 }  // namespace condyn

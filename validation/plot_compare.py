@@ -2,7 +2,9 @@
 """Plots for the output folder of `condyn compare`.
 
 Draws four figures into DIR, each as PNG and SVG:
-  work_precision   error against median wall time per scheme (log-log), points labelled by rtol
+  work_precision   error against median wall time per scheme (log-log), points labelled by rtol;
+                   against a published reference (runs.json reference.kind "published"): the
+                   significant correct digits of the positions (mescd_u) against wall time
   drift            position-constraint drift against time per scheme (log y)
   multipliers      Lagrange multiplier histories, one panel per scheme
   baumgarte_study  max position drift over the Baumgarte (alpha, beta) grid, and step counts
@@ -111,6 +113,10 @@ def plot_work_precision(plt, np, d, meta, scene):
     runs = read_csv(os.path.join(d, "runs.csv")) or meta.get("runs")
     if not runs:
         return note("work_precision skipped: runs.csv absent or empty")
+    ref = meta.get("reference") or {}
+    # Against a published reference state (a test-set benchmark) the figure of merit is the test
+    # set's own: significant correct digits (mescd) of the positions, higher is better.
+    digits = ref.get("kind") == "published"
     by_scheme = {}
     for r in runs:
         by_scheme.setdefault(str(r.get("scheme") or "?"), []).append(r)
@@ -119,14 +125,18 @@ def plot_work_precision(plt, np, d, meta, scene):
     for scheme in sorted(by_scheme, key=scheme_key):
         points, failed = [], 0
         for r in by_scheme[scheme]:
-            errors = [e for e in (num(r.get(c)) for c in ERROR_COLUMNS) if e is not None]
+            if digits:
+                y = num(r.get("mescd_u"))
+                measures = [] if y is None else [y]
+            else:
+                measures = [e for e in (num(r.get(c)) for c in ERROR_COLUMNS) if e is not None]
             wall, rtol = num(r.get("wall_median_s")), num(r.get("rtol"))
-            if r.get("status") != "ok" or not errors or wall is None or rtol is None:
+            if r.get("status") != "ok" or not measures or wall is None or rtol is None:
                 failed += 1
-            elif max(errors) <= 0 or wall <= 0:
+            elif wall <= 0 or (not digits and max(measures) <= 0):
                 dropped += 1
             else:
-                points.append((rtol, wall, max(errors)))
+                points.append((rtol, wall, max(measures)))
         style = dict(color=colour(scheme), marker=SCHEME_MARKERS.get(scheme, "o"))
         if not points:
             note(f"work_precision: no usable run of {scheme}")
@@ -145,15 +155,27 @@ def plot_work_precision(plt, np, d, meta, scene):
         plt.close(fig)
         return note("work_precision skipped: no successful run")
     ax.set_xscale("log")
-    ax.set_yscale("log")
     ax.set_xlabel("wall time per run, median [s]")
-    ax.set_ylabel("error (relative max-norm) [-]")
-    reference = (meta.get("reference") or {}).get("description") or "unknown reference"
-    ax.set_title(f"Work-precision: {scene}\nerror against {reference}", fontsize=11)
+    reference = ref.get("description") or "unknown reference"
+    if digits:
+        trusted = num(ref.get("trusted_digits_u"))
+        if trusted is not None:
+            # Beyond the reference's own accuracy, more digits only mean agreement with its error.
+            ax.axhspan(trusted, max(trusted + 1, ax.get_ylim()[1]), color="lightgray", alpha=0.5,
+                       label=f"beyond the reference's trust ({trusted:g} digits)")
+        ax.set_ylabel("significant correct digits in positions (mescd) [-]")
+        ax.set_title(f"Work-precision: {scene}\ndigits against {reference}", fontsize=11)
+        footer = ("mescd = min_i -log10(|y_i - ref_i| / (atol/rtol + |ref_i|)) at t_end "
+                  "(Test Set for IVP Solvers); point labels = rtol; failed runs omitted")
+    else:
+        ax.set_yscale("log")
+        ax.set_ylabel("error (relative max-norm) [-]")
+        ax.set_title(f"Work-precision: {scene}\nerror against {reference}", fontsize=11)
+        footer = ("error = max(error_u, error_v, error_reaction); point labels = rtol; "
+                  "failed runs omitted")
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(title="scheme", fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    fig.text(0.01, 0.01, "error = max(error_u, error_v, error_reaction); point labels = rtol; "
-             "failed runs omitted", fontsize=7, color="dimgray")
+    fig.text(0.01, 0.01, footer, fontsize=7, color="dimgray")
     fig.tight_layout(rect=(0, 0.03, 1, 1))
     save(plt, fig, d, "work_precision")
 

@@ -304,3 +304,21 @@ TEST_CASE("compare: default scene, named folder, bad options refused") {
   CHECK(box.run("compare --repeats 0").code == 2);
   CHECK(box.run("compare missing.toml").code == 2);
 }
+
+TEST_CASE("a scheme that cannot treat the scene is bad input: exit 2 with the reason") {
+  const Sandbox box;
+  const std::string sleigh =
+      std::string(CONDYN_SOURCE_DIR) + "/models/scenes/chaplygin_sleigh.toml";
+  box.write("keep.csv", "precious\n");
+  const Result r = box.run("run '" + sleigh + "' --scheme elimination --out keep.csv");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("chaplygin_sleigh.toml: elimination cannot treat a nonholonomic constraint") !=
+        std::string::npos);
+  CHECK(r.err.find("§5.3.1") != std::string::npos);
+  CHECK(slurp(box.path("keep.csv")) == "precious\n");
+  const Result c = box.run("compare '" + sleigh + "' --schemes elimination,penalty --no-plots");
+  CHECK(c.code == 2);
+  CHECK(c.err.find("no requested scheme applies to this scene") != std::string::npos);
+  CHECK(c.err.find("penalty: penalty is implemented for linear constraints only") !=
+        std::string::npos);
+}

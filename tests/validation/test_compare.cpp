@@ -1,10 +1,13 @@
 // condyn compare: the sweep, its reference, failures recorded as data, and the output files.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
+#include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "src/compare_output.hpp"
 #include "validation/compare.hpp"
@@ -144,4 +147,51 @@ TEST_CASE("plot_compare.py draws the four plots from a compare folder") {
     CHECK(fs::exists(dir / (std::string(plot) + ".svg")));
   }
   fs::remove_all(dir);
+}
+
+TEST_CASE("compare on a published benchmark: digits per run, inapplicable schemes not run") {
+  namespace fs = std::filesystem;
+  const SceneSpec spec =
+      parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/car_axis.toml");
+  CompareOptions o;
+  o.tolerances = {1e-4, 1e-8};
+  o.repeats = 1;
+  o.schemes = {Scheme::elimination, Scheme::ggl, Scheme::index2, Scheme::penalty};
+  const CompareResult r = run_compare(spec, o);
+  CHECK(r.reference_kind == "published");
+  CHECK(r.trusted_digits_u == 10);
+  // Elimination and penalty cannot treat a nonlinear model: listed with the reason, not run.
+  REQUIRE(r.skipped.size() == 2);
+  CHECK(r.skipped[0].first == Scheme::elimination);
+  CHECK(r.skipped[0].second.find("nonlinear") != std::string::npos);
+  CHECK(r.skipped[1].first == Scheme::penalty);
+  REQUIRE(r.runs.size() == 2 * 2);
+  for (const auto& run : r.runs) {
+    CAPTURE(std::string(to_string(run.scheme)));
+    CAPTURE(run.rtol);
+    REQUIRE(run.ok);
+    // mescd and the relative error measure the same deviation: digits ~ -log10(error) within the
+    // spread of the components' scales (car axis positions 0.05 to 1).
+    CHECK(run.mescd_u == doctest::Approx(-std::log10(run.error_u)).epsilon(0.5));
+    CHECK(std::isfinite(run.mescd_v));
+  }
+  // Four decades of tolerance buy at least two digits (observed: GGL 3.3 -> 7.0).
+  CHECK(r.runs[1].mescd_u > r.runs[0].mescd_u + 2.0);
+  CHECK(r.runs[3].mescd_u > r.runs[2].mescd_u + 2.0);
+
+  const fs::path dir = fs::temp_directory_path() / "condyn_compare_published";
+  fs::remove_all(dir);
+  write_compare_files(dir.string(), r);
+  std::ifstream json(dir / "runs.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  CHECK(text.find("\"kind\": \"published\"") != std::string::npos);
+  CHECK(text.find("\"skipped\": [{\"scheme\": \"elimination\"") != std::string::npos);
+  const std::string note = draw_compare_plots(dir.string());
+  CAPTURE(note);
+  CHECK(note.rfind("plots written", 0) == 0);
+  CHECK(fs::file_size(dir / "work_precision.png") > 1000);
+  fs::remove_all(dir);
+
+  o.schemes = {Scheme::elimination};
+  CHECK_THROWS_AS((void)run_compare(spec, o), SchemeNotApplicable);
 }
