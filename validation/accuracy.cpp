@@ -68,10 +68,10 @@ std::string ReferenceScore::describe() const {
   return s.str();
 }
 
-std::optional<ReferenceScore> score_against_reference(const Model& model, const Trajectory& run,
-                                                      double rtol, double atol) {
-  if (!model.reference || run.t.empty()) return std::nullopt;
-  const double t = run.t.back();
+std::optional<ReferenceScore> score_at_output(const Model& model, const Trajectory& run,
+                                              std::size_t k, double rtol, double atol) {
+  if (!model.reference || k >= run.t.size()) return std::nullopt;
+  const double t = run.t[k];
   const auto ref = model.reference(t);
   if (!ref) return std::nullopt;
   ReferenceScore score;
@@ -79,10 +79,16 @@ std::optional<ReferenceScore> score_against_reference(const Model& model, const 
   score.source = ref->source;
   score.trusted_u = ref->digits_u;
   score.trusted_v = ref->digits_v;
-  const Eigen::Index last = run.u.cols() - 1;
-  score.digits_u = mescd(run.u.col(last), ref->u, rtol, atol);
-  if (ref->v.size() > 0) score.digits_v = mescd(run.v.col(last), ref->v, rtol, atol);
+  const auto col = static_cast<Eigen::Index>(k);
+  score.digits_u = mescd(run.u.col(col), ref->u, rtol, atol);
+  if (ref->v.size() > 0) score.digits_v = mescd(run.v.col(col), ref->v, rtol, atol);
   return score;
+}
+
+std::optional<ReferenceScore> score_against_reference(const Model& model, const Trajectory& run,
+                                                      double rtol, double atol) {
+  if (run.t.empty()) return std::nullopt;
+  return score_at_output(model, run, run.t.size() - 1, rtol, atol);
 }
 
 }  // namespace condyn

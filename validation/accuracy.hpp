@@ -37,6 +37,11 @@ struct ReferenceScore {
   [[nodiscard]] std::string describe() const;
 };
 
+/// The score at output column k, when the model has a reference at that time.
+[[nodiscard]] std::optional<ReferenceScore> score_at_output(const Model& model,
+                                                            const Trajectory& run, std::size_t k,
+                                                            double rtol, double atol);
+
 /// The score at the trajectory's last time, when the model has a reference there.
 [[nodiscard]] std::optional<ReferenceScore> score_against_reference(const Model& model,
                                                                     const Trajectory& run,

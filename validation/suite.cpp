@@ -7,6 +7,7 @@
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"
+#include "validation/benchmark_suite.hpp"
 #include "validation/chapter_report.hpp"
 #include "validation/embedded_scenes.hpp"
 
@@ -68,7 +69,9 @@ bool run_validation(std::ostream& out, const ValidationOptions& options) {
       << "verdict\n"
       << summary_table.str() << "\n";
   print_errata(out, chapter.errata);
-  out << "\n" << (all_pass ? "validation passed" : "validation FAILED") << "\n";
+  out << "\n";
+  all_pass = run_published_benchmarks(out) && all_pass;
+  out << (all_pass ? "validation passed" : "validation FAILED") << "\n";
   return all_pass;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// `condyn validate`: the chapter's five cases, matrices against the printed ones, the elimination
-/// path against the exact modal solution, and the errata the code finds.
+/// path against the exact modal solution, and the errata the code finds; then the published
+/// benchmarks (validation/benchmark_suite.hpp).
 
 #include <ostream>
 

@@ -11,6 +11,7 @@
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "validation/accuracy.hpp"
+#include "validation/benchmark_suite.hpp"
 #include "validation/chapter_report.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/suite.hpp"
@@ -122,7 +123,29 @@ TEST_CASE("condyn validate passes and prints the five cases") {
   CHECK(run_validation(out, ValidationOptions{}));
   const std::string text = out.str();
   for (const char* s : {"§5.5.1", "§5.5.2", "§5.5.3", "§5.6.1", "§5.6.2",
-                        "Errata found by the code", "validation passed"}) {
+                        "Errata found by the code", "published benchmarks", "validation passed"}) {
     CHECK_MESSAGE(text.find(s) != std::string::npos, s);
   }
+  // One summary row per published case and scored time (Andrews 1, car axis 1, pendulum 4).
+  for (const auto& c : published_cases()) {
+    CAPTURE(c.scene);
+    std::size_t rows = 0;
+    for (auto at = text.find("  " + c.scene + " "); at != std::string::npos;
+         at = text.find("  " + c.scene + " ", at + 1)) {
+      ++rows;
+      CHECK(text.substr(at, text.find('\n', at) - at).find("pass") != std::string::npos);
+    }
+    CHECK(rows == c.times.size());
+  }
+}
+
+TEST_CASE("published benchmarks: a requirement beyond reach is reported as a failure") {
+  // The car axis at rtol 1e-10 reaches 8.5 digits (validate); 12 is out of reach.
+  PublishedCase beyond = published_cases()[1];
+  REQUIRE(beyond.scene == "benchmark_car_axis");
+  beyond.required_digits = 12.0;
+  beyond.report_other_schemes = false;
+  std::ostringstream out;
+  CHECK_FALSE(run_published_benchmarks(out, {beyond}));
+  CHECK(out.str().find("FAIL") != std::string::npos);
 }
