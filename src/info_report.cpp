@@ -34,13 +34,13 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
     int width = 6;
     for (const auto& c : classes) width = std::max(width, static_cast<int>(c.name.size()) + 2);
     out << "  " << std::left << std::setw(width) << "name" << std::setw(5) << "" << std::setw(34)
-        << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs" << std::setw(8) << "form"
+        << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs" << std::setw(11) << "form"
         << "DOFs\n";
     for (const auto& c : classes) {
       out << "  " << std::left << std::setw(width) << c.name << std::setw(5)
           << (c.single_freedom ? "SFC" : "MFC") << std::setw(34) << c.holonomy() << std::setw(12)
           << (c.rheonomic ? "rheonomic" : "scleronomic") << std::setw(16)
-          << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(8)
+          << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
           << (c.linear ? "linear" : "nonlinear");
       for (std::size_t k = 0; k < c.dofs.size(); ++k) out << (k ? ", " : "") << c.dofs[k];
       out << "\n";
@@ -48,8 +48,14 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
         out << "  " << std::setw(width) << ""
             << "  " << c.note << "\n";
     }
-    out << "  (velocity-level constraints are classed by their integrated form a·u = a·u(0) + "
-           "∫h)\n";
+    const bool integrable_velocity_rows =
+        std::any_of(model.constraints.begin(), model.constraints.end(), [](const Constraint& c) {
+          return c.level == ConstraintSpec::Level::velocity && !c.nonholonomic;
+        });
+    if (integrable_velocity_rows) {
+      out << "  (linear velocity-level constraints are classed by their integrated form a·u = "
+             "a·u(0) + ∫h)\n";
+    }
   }
   const int n = model.dofs(), m = model.constraint_count();
   out << "\nmodel: "
@@ -57,8 +63,10 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
       << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
       << model.C.nonZeros() << ", K " << model.K.nonZeros() << ", A " << model.A.nonZeros() << "\n";
   const SchemeChoice choice = choose_scheme(model, requested);
-  out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason << ")\n";
-  if (choice.scheme == Scheme::elimination) {
+  const auto refusal = scheme_refusal(model, choice.scheme);
+  out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
+      << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";
+  if (choice.scheme == Scheme::elimination && !refusal) {
     const ReducedSystem reduced = reduce(model);
     const auto& ms = reduced.transform;
     out << "elimination: slaves " << join_dofs(model, ms.slaves) << "; masters "

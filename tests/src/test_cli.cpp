@@ -322,3 +322,17 @@ TEST_CASE("a scheme that cannot treat the scene is bad input: exit 2 with the re
   CHECK(c.err.find("penalty: penalty is implemented for linear constraints only") !=
         std::string::npos);
 }
+
+TEST_CASE("info on a nonlinear scene: classes, and a requested scheme that does not apply") {
+  const Sandbox box;
+  const std::string sleigh =
+      std::string(CONDYN_SOURCE_DIR) + "/models/scenes/chaplygin_sleigh.toml";
+  const Result r = box.run("info '" + sleigh + "' --scheme elimination");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("nonholonomic") != std::string::npos);
+  CHECK(r.out.find("not integrable") != std::string::npos);
+  CHECK(r.out.find("scheme: elimination (requested; not applicable to this scene") !=
+        std::string::npos);
+  CHECK(r.out.find("elimination: slaves") == std::string::npos);  // no master-slave split to show
+  CHECK(r.out.find("classed by their integrated form") == std::string::npos);
+}
