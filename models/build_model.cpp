@@ -552,6 +552,13 @@ class Builder {
     if (nonlinear_truss_) finish_point_masses();
     if (spec_.model.type == ModelSpec::Type::sleigh) finish_sleigh();
     if (spec_.initial.project) project_initial();
+    // A published reference belongs to the published initial state: a scene that starts the
+    // benchmark elsewhere is still a valid model, but no longer that benchmark.
+    if (model_.reference && (model_.u0 != base_u0_ || model_.v0 != base_v0_)) {
+      model_.reference = nullptr;
+      model_.description += " (started from the scene's [initial], not the published state: "
+                            "no reference)";
+    }
     if (model_.is_nonlinear()) linearize();
     check_degenerate_dofs();
     check_rank();

@@ -10,7 +10,7 @@
 ///   loads     the scene's [[load]]s and gravity m g on every node (constant loads);
 ///   linear    the scene's [[constraint]] rows and supports (constant coefficients), first.
 ///
-/// Every derivative is analytic (tests/models/test_point_mass_system.cpp checks them against
+/// Every derivative is analytic (tests/models/test_nonlinear_models.cpp checks them against
 /// finite differences).
 
 #include <array>

@@ -226,3 +226,20 @@ members = [{ nodes = [1, 2], rigid = true }]
                     tail)
             .find("initial displacements violate constraint 'rigid_1_2'") != std::string::npos);
 }
+
+TEST_CASE("a benchmark started away from its published state has no reference") {
+  const std::string scene = R"([model]
+type = "pendulum"
+[solve]
+t_end = 2.0
+output_step = 1.0
+)";
+  const Model published = build_model(parse_scene_text(scene, "p"));
+  REQUIRE(published.reference);
+  CHECK(published.reference(2.0).has_value());
+  // A tangential push keeps the start consistent, but the period-2 orbit is gone.
+  const Model pushed =
+      build_model(parse_scene_text(scene + "[initial]\nvelocity = { y = 0.5 }\n", "p"));
+  CHECK_FALSE(pushed.reference);
+  CHECK(pushed.description.find("no reference") != std::string::npos);
+}
