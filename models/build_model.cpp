@@ -556,8 +556,9 @@ class Builder {
     // benchmark elsewhere is still a valid model, but no longer that benchmark.
     if (model_.reference && (model_.u0 != base_u0_ || model_.v0 != base_v0_)) {
       model_.reference = nullptr;
-      model_.description += " (started from the scene's [initial], not the published state: "
-                            "no reference)";
+      model_.description +=
+          " (started from the scene's [initial], not the published state: "
+          "no reference)";
     }
     if (model_.is_nonlinear()) linearize();
     check_degenerate_dofs();
