@@ -160,20 +160,30 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
       steps.push_back({t, dp, dv});
     };
   }
-  const RawTrajectory raw = integrate(ode, y0, observed, summary);
-  std::vector<Eigen::VectorXd> u, v, lambda;
   const MultiplierRecovery recover(model);
-  for (std::size_t k = 0; k < raw.t.size(); ++k) {
-    const double t = raw.t[k];
-    const auto [uk, vk] = full_state(t, raw.y[k]);
-    Eigen::VectorXd a = T * ode.acceleration(t, raw.y[k].head(nm), raw.y[k].tail(nm));
-    if (reduced.rheonomic) a += G * model.position_rhs(2, t);
-    u.push_back(uk);
-    v.push_back(vk);
-    lambda.push_back(recover(t, uk, vk, a));
+  const auto assemble = [&](const RawTrajectory& raw) {
+    std::vector<Eigen::VectorXd> u, v, lambda;
+    for (std::size_t k = 0; k < raw.t.size(); ++k) {
+      const double t = raw.t[k];
+      const auto [uk, vk] = full_state(t, raw.y[k]);
+      Eigen::VectorXd a = T * ode.acceleration(t, raw.y[k].head(nm), raw.y[k].tail(nm));
+      if (reduced.rheonomic) a += G * model.position_rhs(2, t);
+      u.push_back(uk);
+      v.push_back(vk);
+      lambda.push_back(recover(t, uk, vk, a));
+    }
+    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+    traj.steps = steps;
+    return traj;
+  };
+  RawTrajectory raw;
+  try {
+    raw = integrate(ode, y0, observed, summary);
+  } catch (IntegrationError& e) {
+    keep_partial(e, assemble);
+    throw;
   }
-  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
-  traj.steps = std::move(steps);
+  Trajectory traj = assemble(raw);
   summary.max_drift_position = traj.drift_position.size() ? traj.drift_position.maxCoeff() : 0.0;
   summary.max_drift_velocity = traj.drift_velocity.size() ? traj.drift_velocity.maxCoeff() : 0.0;
   return traj;

@@ -1,6 +1,7 @@
 #include "dae/solve.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -124,15 +125,25 @@ Trajectory run_observed(
     if (on_state) on_state(y);
     if (options.record_steps) steps.push_back({t, dp, dv});
   };
-  const RawTrajectory raw = run(observed);
-  std::vector<Eigen::VectorXd> u, v, lambda;
-  for (std::size_t k = 0; k < raw.t.size(); ++k) {
-    u.emplace_back(raw.y[k].head(n));
-    v.emplace_back(raw.y[k].segment(n, n));
-    lambda.push_back(multipliers(raw.t[k], raw.y[k]));
+  const auto assemble = [&](const RawTrajectory& raw) {
+    std::vector<Eigen::VectorXd> u, v, lambda;
+    for (std::size_t k = 0; k < raw.t.size(); ++k) {
+      u.emplace_back(raw.y[k].head(n));
+      v.emplace_back(raw.y[k].segment(n, n));
+      lambda.push_back(multipliers(raw.t[k], raw.y[k]));
+    }
+    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+    traj.steps = steps;
+    return traj;
+  };
+  RawTrajectory raw;
+  try {
+    raw = run(observed);
+  } catch (IntegrationError& e) {
+    keep_partial(e, assemble);
+    throw;
   }
-  Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
-  traj.steps = std::move(steps);
+  Trajectory traj = assemble(raw);
   summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
   summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
   return traj;
@@ -222,14 +233,80 @@ SystemSize system_size(const Model& model, Scheme scheme) {
   return {dae.size(), dae.jacobian_pattern().nonZeros()};
 }
 
+namespace {
+Trajectory solve_resolved(const Model& model, Scheme scheme, const IntegratorOptions& options,
+                          SolveSummary& summary);
+}  // namespace
+
+std::string failure_suggestion(Scheme scheme, const IntegrationError& e, double t_end) {
+  const std::string message = e.what();
+  const bool non_finite = message.find("non-finite") != std::string::npos;
+  // A step at roundoff relative to the time reached: no step size helps, the equations are
+  // singular there (or the solution jumps).
+  const bool collapsed =
+      e.in_loop && std::abs(e.last_step) <= 1e-12 * std::max({1.0, std::abs(e.t_reached), t_end});
+  const bool too_many_steps = message.find("steps without reaching") != std::string::npos ||
+                              message.find("TOO_MUCH_WORK") != std::string::npos;
+  std::string s;
+  if (non_finite) {
+    s = "the solution blew up: check loads and time functions for runaway growth, and masses "
+        "and stiffnesses for absurd magnitudes";
+  } else if (collapsed) {
+    s = "the step size collapsed to roundoff: the motion reaches a singular configuration "
+        "(constraints that become dependent, a mechanism at a dead point, a prescribed motion it "
+        "cannot follow) or a jump; check the scene at the time reached";
+  } else if (too_many_steps) {
+    s = "the step size stayed tiny for many steps: the model is very stiff or oscillates far "
+        "faster than the output step; a smaller output_step lets the run go on, a looser rtol "
+        "takes larger steps";
+  } else {
+    s = "repeated convergence or error-test failures: the motion may pass a singular "
+        "configuration or jump near the time reached; a looser rtol or another scheme may pass";
+  }
+  switch (scheme) {
+    case Scheme::baumgarte:
+      s += "; large Baumgarte gains make the system stiff: try smaller [solve] baumgarte gains or "
+           "ggl";
+      break;
+    case Scheme::penalty:
+      s += "; a large penalty weight makes the system stiff: try a smaller [solve] penalty weight "
+           "or ggl";
+      break;
+    case Scheme::index1:
+    case Scheme::index2:
+      s += "; this scheme lets the drift grow: ggl or projection hold the constraints";
+      break;
+    case Scheme::index3:
+      s += "; index3 is the least robust formulation: try ggl";
+      break;
+    default:
+      break;
+  }
+  return s;
+}
+
 Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
                  SolveSummary& summary) {
   refuse_inapplicable(model, scheme);
+  if (scheme == Scheme::automatic) scheme = choose_scheme(model, scheme).scheme;
+  try {
+    return solve_resolved(model, scheme, options, summary);
+  } catch (IntegrationError& e) {
+    e.scheme = to_string(scheme);
+    e.suggestion = failure_suggestion(scheme, e, model.solve.t_end);
+    throw;
+  }
+}
+
+namespace {
+
+Trajectory solve_resolved(const Model& model, Scheme scheme, const IntegratorOptions& options,
+                          SolveSummary& summary) {
   switch (scheme) {
     case Scheme::elimination:
       return solve_elimination(model, options, summary);
     case Scheme::automatic:
-      return solve(model, choose_scheme(model, scheme).scheme, options, summary);
+      break;  // resolved by solve()
     case Scheme::index1:
     case Scheme::baumgarte:
     case Scheme::ggl:
@@ -243,5 +320,7 @@ Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& opt
   }
   throw std::logic_error("unknown scheme");
 }
+
+}  // namespace
 
 }  // namespace condyn

@@ -39,12 +39,17 @@ struct SystemSize {
 /// Builds the scheme's DAE (without integrating) and sizes it. Throws like solve() would.
 [[nodiscard]] SystemSize system_size(const Model& model, Scheme scheme);
 
+/// What to try after `scheme` failed with `e` on a run to t_end, in one line.
+[[nodiscard]] std::string failure_suggestion(Scheme scheme, const IntegrationError& e,
+                                             double t_end);
+
 /// Integrator options from the model's [solve] section, possibly overridden by the caller.
 [[nodiscard]] IntegratorOptions integrator_options(const Model& model);
 
 /// Solves the model under `scheme` (`automatic` resolves through choose_scheme). Throws
 /// SchemeNotApplicable for a scheme that cannot treat the model, IntegrationError on solver
-/// failure.
+/// failure: with the scheme, the time reached, the last step, a suggestion and, when the loop
+/// had produced output rows, the partial trajectory up to the failure.
 [[nodiscard]] Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
                                SolveSummary& summary);
 

@@ -5,24 +5,38 @@
 /// stop time and a restart from a consistent state.
 
 #include <Eigen/Dense>
+#include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "dae/solve_summary.hpp"
 
 namespace condyn {
 
-/// The integrator failed (or refused an input). The message names the SUNDIALS call, its flag
-/// name, the time reached and the integrator's own explanation.
-class IntegrationError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 /// y and y' at the output times.
 struct RawTrajectory {
   std::vector<double> t;
   std::vector<Eigen::VectorXd> y, yp;
+};
+
+struct Trajectory;
+
+/// The integrator failed (or refused an input). The message names the SUNDIALS call, its flag
+/// name, the time reached and the integrator's own explanation. When the failure happens inside
+/// the integration loop, the exception also says how far the run got and carries what it had
+/// computed: the output rows before the failure (t0 included), raw from the loop and, once the
+/// solve layer has assembled them, as a trajectory.
+class IntegrationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+  double t_reached = 0.0;  ///< the last time the integrator reached successfully
+  double last_step = 0.0;  ///< the last step size it took (0: none)
+  bool in_loop = false;    ///< the fields below and above are set
+  std::shared_ptr<const RawTrajectory> raw_partial;
+  std::shared_ptr<const Trajectory> partial;  ///< set by solve(); rows up to t_reached
+  std::string scheme;                         ///< set by solve()
+  std::string suggestion;                     ///< set by solve(): what to try instead
 };
 
 /// One integrator, as the loop sees it.
@@ -48,7 +62,8 @@ class Stepper {
 /// Runs the loop from the stepper's initialised state at output_times.front() (which is recorded
 /// as given: y0, yp0). Fills the summary's counters, restarts, unknowns-independent fields and wall
 /// time is left to the caller. Throws IntegrationError when more than max_steps_per_output steps
-/// pass between two outputs.
+/// pass between two outputs or the solution becomes non-finite; every IntegrationError leaving the
+/// loop carries the time reached, the last step and the rows recorded so far.
 [[nodiscard]] RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0,
                                   const Eigen::VectorXd& yp0, const IntegratorOptions& options,
                                   SolveSummary& summary);

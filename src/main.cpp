@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "dae/ida_integrator.hpp"
 #include "dae/solve.hpp"
@@ -26,6 +27,38 @@ Scheme parse_scheme_flag(const std::string& s) {
                              "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
 }
 
+/// FILE.csv -> FILE.partial.csv (beside it): where a failed run keeps what it computed, so that
+/// the file the user named is never overwritten by an incomplete result.
+std::string partial_path(const std::string& out) {
+  const std::filesystem::path p(out);
+  return (p.parent_path() / (p.stem().string() + ".partial" + p.extension().string())).string();
+}
+
+/// The message for a failed run: what failed where, what to try, and where the rows computed
+/// before the failure went (written here, so nothing computed is lost).
+std::string describe_failure(const IntegrationError& e, const Model& model,
+                             const std::string& out) {
+  std::ostringstream s;
+  s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << ": " << e.what();
+  if (e.in_loop) {
+    s << "\n  reached t = " << e.t_reached << " of t_end = " << model.solve.t_end << ", last step "
+      << e.last_step;
+  }
+  if (!e.suggestion.empty()) s << "\n  suggestion: " << e.suggestion;
+  if (e.partial) {
+    const std::string partial = partial_path(out);
+    try {
+      write_csv_atomically(partial, model, *e.partial);
+      s << "\n  partial result: the " << e.partial->t.size()
+        << " output rows up to t = " << e.partial->t.back() << " are in " << partial
+        << " (the run did not reach t_end; " << out << " was not written)";
+    } catch (const std::exception& write_error) {
+      s << "\n  the partial result could not be written: " << write_error.what();
+    }
+  }
+  return s.str();
+}
+
 struct RunArgs {
   std::string scene, scheme, out, steps_out;
   std::optional<double> rtol, atol;
@@ -44,7 +77,12 @@ int run(const RunArgs& args) {
   SolveSummary summary;
   IntegratorOptions options = integrator_options(model);
   options.record_steps = !args.steps_out.empty();
-  const Trajectory traj = solve(model, choice.scheme, options, summary);
+  Trajectory traj;
+  try {
+    traj = solve(model, choice.scheme, options, summary);
+  } catch (const IntegrationError& e) {
+    throw IntegrationError(describe_failure(e, model, out));
+  }
   write_csv_atomically(out, model, traj);
   if (!model.initial_projection.empty())
     std::cout << "initial state: " << model.initial_projection << "\n";

@@ -336,3 +336,42 @@ TEST_CASE("info on a nonlinear scene: classes, and a requested scheme that does 
   CHECK(r.out.find("elimination: slaves") == std::string::npos);  // no master-slave split to show
   CHECK(r.out.find("classed by their integrated form") == std::string::npos);
 }
+
+TEST_CASE("a run that fails midway keeps its rows in FILE.partial.csv and says what to try") {
+  const Sandbox box;
+  // A rheonomic row pulls the pendulum's mass straight down at unit speed: at t = 1 the rod is
+  // vertical, its row becomes parallel to the pull's, and no motion satisfies both beyond it.
+  box.write("s.toml", R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[[constraint]]
+name = "pull"
+terms = { uy2 = 1.0 }
+value = { type = "polynomial", coefficients = [0.0, -1.0] }
+[initial]
+velocity = { uy2 = -1.0 }
+[solve]
+t_end = 2.0
+output_step = 0.1
+scheme = "ggl"
+)");
+  box.write("out.csv", "precious\n");
+  const Result r = box.run("run s.toml --out out.csv");
+  CAPTURE(r.err);
+  CHECK(r.code == 1);
+  CHECK(r.err.find("s.toml: integration failed: under ggl") != std::string::npos);
+  CHECK(r.err.find("reached t = ") != std::string::npos);
+  CHECK(r.err.find("suggestion: the step size collapsed") != std::string::npos);
+  CHECK(r.err.find("out.partial.csv") != std::string::npos);
+  CHECK(slurp(box.path("out.csv")) == "precious\n");
+  const std::string partial = slurp(box.path("out.partial.csv"));
+  CHECK(partial.rfind("t,ux1,uy1,ux2,uy2,drift_position,drift_velocity\n", 0) == 0);
+  // Rows at t = 0, 0.1, ..., 0.9: up to the singular time, none beyond it, no NaN.
+  CHECK(std::count(partial.begin(), partial.end(), '\n') == 1 + 10);
+  CHECK(partial.find("nan") == std::string::npos);
+  CHECK(partial.find("\n0.90000000000000002,") != std::string::npos);
+}
