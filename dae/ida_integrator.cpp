@@ -28,6 +28,7 @@ void IntegratorOptions::validate() const {
   if (!std::is_sorted(output_times.begin(), output_times.end())) bad("output times not ascending");
   if (!std::is_sorted(breakpoints.begin(), breakpoints.end())) bad("breakpoints not ascending");
   if (max_steps_per_output <= 0) bad("max_steps_per_output must be > 0");
+  if (max_steps < 0) bad("max_steps must be >= 0");
 }
 
 std::string SolveSummary::brief() const {

@@ -246,6 +246,7 @@ std::string failure_suggestion(Scheme scheme, const IntegrationError& e, double 
   const bool collapsed =
       e.in_loop && std::abs(e.last_step) <= 1e-12 * std::max({1.0, std::abs(e.t_reached), t_end});
   const bool too_many_steps = message.find("steps without reaching") != std::string::npos ||
+                              message.find("steps in all") != std::string::npos ||
                               message.find("TOO_MUCH_WORK") != std::string::npos;
   std::string s;
   if (non_finite) {

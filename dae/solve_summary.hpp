@@ -15,6 +15,7 @@ struct IntegratorOptions {
   std::vector<double> output_times;    ///< ascending, first one is the initial time
   std::vector<double> breakpoints;     ///< load steps inside (t0, t_end): stop and restart there
   long max_steps_per_output = 100000;  ///< between two output times; more is a failure
+  long max_steps = 0;  ///< over the whole run (0: no limit); more is a failure (`condyn stress`)
   /// Called after every internal step with the step's exact t and y (not interpolated).
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;
   /// Keep a per-step drift log (Trajectory::steps) for drift plots; off by default.

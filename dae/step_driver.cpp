@@ -32,7 +32,7 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
 
   // One internal step at a time: every step is seen exactly (drift, μ), outputs are interpolated.
   std::size_t k = 1;  // next output
-  long steps_since_output = 0;
+  long steps_since_output = 0, total_steps = 0;
   double reached = t0;
   Eigen::VectorXd yo, ypo;
   try {
@@ -42,6 +42,12 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
         std::ostringstream s;
         s << "took " << options.max_steps_per_output << " steps without reaching the output time "
           << times[k] << " (at t = " << t << ")";
+        throw IntegrationError(s.str());
+      }
+      if (options.max_steps > 0 && ++total_steps > options.max_steps) {
+        std::ostringstream s;
+        s << "took more than " << options.max_steps << " steps in all (at t = " << t
+          << ", the step budget of this run)";
         throw IntegrationError(s.str());
       }
       reached = t;

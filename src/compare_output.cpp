@@ -1,15 +1,13 @@
 #include "src/compare_output.hpp"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 
 #include "src/csv_output.hpp"
+#include "src/report_format.hpp"
 
 namespace condyn {
 
@@ -22,46 +20,13 @@ std::string sci(double v, int digits = 2) {
   return s.str();
 }
 
-std::string full(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 /// Fields of a run in the column order of runs.csv; failed runs leave the numbers empty.
 std::vector<std::pair<std::string, std::string>> fields(const RunRecord& r) {
-  auto num = [&](double v) { return r.ok && std::isfinite(v) ? full(v) : std::string(); };
+  auto num = [&](double v) { return r.ok && std::isfinite(v) ? full_precision(v) : std::string(); };
   auto count = [&](long v) { return r.ok ? std::to_string(v) : std::string(); };
   return {{"scheme", to_string(r.scheme)},
-          {"rtol", full(r.rtol)},
-          {"atol", full(r.atol)},
+          {"rtol", full_precision(r.rtol)},
+          {"atol", full_precision(r.atol)},
           {"status", r.ok ? "ok" : "failed"},
           {"error_u", num(r.error_u)},
           {"error_v", num(r.error_v)},
@@ -83,13 +48,6 @@ std::vector<std::pair<std::string, std::string>> fields(const RunRecord& r) {
           {"mescd_u", num(r.mescd_u)},
           {"mescd_v", num(r.mescd_v)},
           {"energy_error", num(r.energy_error)}};
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
 }
 
 bool is_numeric_field(const std::string& key) {
@@ -209,16 +167,17 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
     for (const auto& h : result.histories) {
       if (!h.growth) continue;
       out << (first_growth ? "" : ", ") << json_string(to_string(h.scheme))
-          << ": {\"exponent\": " << full(h.growth->exponent)
+          << ": {\"exponent\": " << full_precision(h.growth->exponent)
           << ", \"predicted\": " << json_string(predicted_drift_growth(h.scheme)) << "}";
       first_growth = false;
     }
     out << "},\n  \"tolerances\": [";
     for (std::size_t k = 0; k < result.options.tolerances.size(); ++k) {
-      out << (k ? ", " : "") << full(result.options.tolerances[k]);
+      out << (k ? ", " : "") << full_precision(result.options.tolerances[k]);
     }
     out << "],\n  \"repeats\": " << result.options.repeats
-        << ",\n  \"drift_rtol\": " << full(result.options.drift_rtol) << ",\n  \"runs\": [\n";
+        << ",\n  \"drift_rtol\": " << full_precision(result.options.drift_rtol)
+        << ",\n  \"runs\": [\n";
     for (std::size_t k = 0; k < result.runs.size(); ++k) {
       out << "    {";
       bool first = true;
@@ -286,25 +245,7 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
 }
 
 std::string draw_compare_plots(const std::string& dir) {
-  namespace fs = std::filesystem;
-  const fs::path script = fs::path(CONDYN_SOURCE_DIR) / "validation" / "plot_compare.py";
-  if (!fs::exists(script)) return "plots skipped: " + script.string() + " not found";
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string cmd =
-      "'" + python + "' '" + script.string() + "' '" + dir + "' > '" + dir + "/plots.log' 2>&1";
-  const int status = std::system(cmd.c_str());
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  switch (code) {
-    case 0:
-      return "plots written to " + dir + " (PNG and SVG)";
-    case 3:
-      return "plots skipped: matplotlib is not installed (apt-get install python3-matplotlib)";
-    case 127:
-      return "plots skipped: python3 is not installed";
-    default:
-      return "plots incomplete: the plotting script exited with " + std::to_string(code) +
-             " (see " + dir + "/plots.log)";
-  }
+  return run_plot_script("plot_compare.py", dir);
 }
 
 }  // namespace condyn

@@ -1,5 +1,5 @@
 // condyn: constrained dynamic systems with constraints as algebraic equations.
-// Commands: run, info, validate. See README.md.
+// Commands: run, info, validate, compare, stress. See README.md.
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
@@ -12,9 +12,12 @@
 #include "src/compare_output.hpp"
 #include "src/csv_output.hpp"
 #include "src/info_report.hpp"
+#include "src/report_format.hpp"
+#include "src/stress_output.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/compare.hpp"
 #include "validation/embedded_scenes.hpp"
+#include "validation/stress.hpp"
 #include "validation/suite.hpp"
 
 namespace {
@@ -164,6 +167,24 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   return 0;
 }
 
+int stress(std::string dir, const std::string& families, bool no_plots) {
+  StressOptions options;
+  for (const auto& f : split_list(families)) options.families.push_back(f);
+  try {
+    (void)stress_cases(options.families);  // unknown family names are usage errors
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--families", e.what());
+  }
+  if (dir.empty()) dir = "condyn-out/stress";
+  options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  const StressResult result = run_stress(options);
+  print_stress_report(std::cout, result);
+  write_stress_files(dir, result);
+  std::cout << "\nwrote stress.csv, stress.json, summary.txt and scenes/*.toml to " << dir << "\n";
+  if (!no_plots) std::cout << run_plot_script("plot_stress.py", dir) << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -210,6 +231,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-14, 0.5));
   compare_cmd->add_flag("--no-plots", compare_no_plots, "do not call the plotting script");
 
+  std::string stress_dir, stress_families_list;
+  bool stress_no_plots = false;
+  auto* stress_cmd = app.add_subcommand(
+      "stress", "stiff and extreme generated scenes under every scheme: where each holds, breaks");
+  stress_cmd->add_option("--out-dir", stress_dir, "output folder (default: condyn-out/stress)");
+  stress_cmd->add_option("--families", stress_families_list,
+                         "comma-separated families (default: all): stiffness, mass_ratio, "
+                         "penalty_weight, baumgarte_gains, long_horizon, redundancy, dead_point, "
+                         "high_frequency");
+  stress_cmd->add_flag("--no-plots", stress_no_plots, "do not call the plotting script");
+
   ValidationOptions validate_options;
   auto* validate_cmd = app.add_subcommand("validate", "run the built-in validation suite");
   validate_cmd->add_flag("--quiet", validate_options.quiet, "print only the summary tables");
@@ -234,6 +266,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*validate_cmd) return run_validation(std::cout, validate_options) ? 0 : 1;
+    if (*stress_cmd) return stress(stress_dir, stress_families_list, stress_no_plots);
     if (*compare_cmd) {
       return compare(compare_scene, compare_dir, compare_tolerances, compare_schemes,
                      compare_no_plots, compare_options);

@@ -1,0 +1,74 @@
+#include "src/report_format.hpp"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+namespace condyn {
+
+std::string full_precision(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string run_plot_script(const std::string& script, const std::string& dir) {
+  namespace fs = std::filesystem;
+  const fs::path path = fs::path(CONDYN_SOURCE_DIR) / "validation" / script;
+  if (!fs::exists(path)) return "plots skipped: " + path.string() + " not found";
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string cmd =
+      "'" + python + "' '" + path.string() + "' '" + dir + "' > '" + dir + "/plots.log' 2>&1";
+  const int status = std::system(cmd.c_str());
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  switch (code) {
+    case 0:
+      return "plots written to " + dir + " (PNG and SVG)";
+    case 3:
+      return "plots skipped: matplotlib is not installed (apt-get install python3-matplotlib)";
+    case 127:
+      return "plots skipped: python3 is not installed";
+    default:
+      return "plots incomplete: the plotting script exited with " + std::to_string(code) +
+             " (see " + dir + "/plots.log)";
+  }
+}
+
+}  // namespace condyn

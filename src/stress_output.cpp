@@ -1,0 +1,191 @@
+#include "src/stress_output.hpp"
+
+#include <filesystem>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+#include "src/csv_output.hpp"
+#include "src/report_format.hpp"
+
+namespace condyn {
+
+namespace {
+
+std::string sci(const std::optional<double>& v) {
+  if (!v) return "-";
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(1) << *v;
+  return s.str();
+}
+
+/// One letter per verdict for the closing map.
+char verdict_mark(const std::string& status) {
+  if (status == "holds") return '+';
+  if (status == "inaccurate") return '~';
+  if (status == "failed") return 'x';
+  return '.';  // refused
+}
+
+/// Fields of a record in the column order of stress.csv.
+std::vector<std::pair<std::string, std::string>> fields(const StressRecord& r) {
+  const auto opt = [](const std::optional<double>& v) {
+    return v ? full_precision(*v) : std::string();
+  };
+  const bool ran = r.status == "holds" || r.status == "inaccurate";
+  const auto if_ran = [&](double v) { return ran ? full_precision(v) : std::string(); };
+  return {{"family", r.family},
+          {"case", r.case_id},
+          {"label", r.label},
+          {"parameter", full_precision(r.parameter)},
+          {"scheme", to_string(r.scheme)},
+          {"status", r.status},
+          {"rtol", full_precision(r.rtol)},
+          {"reference", r.reference},
+          {"error_u", opt(r.error)},
+          {"max_drift_position", if_ran(r.max_drift_position)},
+          {"max_drift_velocity", if_ran(r.max_drift_velocity)},
+          {"energy_error", opt(r.energy_error)},
+          {"steps", ran ? std::to_string(r.steps) : std::string()},
+          {"wall_s", full_precision(r.wall_seconds)},
+          {"t_reached", r.status == "refused" ? std::string() : full_precision(r.t_reached)},
+          {"reason", r.reason},
+          {"suggestion", r.suggestion}};
+}
+
+bool is_text_field(const std::string& key) {
+  return key == "family" || key == "case" || key == "label" || key == "scheme" || key == "status" ||
+         key == "reference" || key == "reason" || key == "suggestion";
+}
+
+}  // namespace
+
+void print_stress_report(std::ostream& out, const StressResult& result) {
+  out << "condyn stress: " << result.cases.size() << " generated scenes, " << result.records.size()
+      << " runs in " << std::fixed << std::setprecision(1) << result.wall_seconds << " s"
+      << std::defaultfloat << "\n"
+      << "verdicts: holds (error within " << kStressErrorFactor
+      << " x rtol of the reference, or no reference), inaccurate (finished beyond that), failed "
+         "(the integrator gave up), refused (the scene or the scheme said no, with the reason)\n";
+  for (const auto& family : stress_families()) {
+    bool any = false;
+    for (const auto& r : result.records) any = any || r.family == family.name;
+    if (!any) continue;
+    out << "\n== " << family.name << ": " << family.question
+        << "\n   expected: " << family.expectation << "\n";
+    out << "  " << std::left << std::setw(26) << "case" << std::setw(12) << "scheme"
+        << std::setw(12) << "verdict" << std::setw(10) << "error u" << std::setw(10) << "drift"
+        << std::setw(10) << "energy" << std::setw(10) << "steps"
+        << "time s\n";
+    std::ostringstream breaks;
+    for (const auto& r : result.records) {
+      if (r.family != family.name) continue;
+      const bool ran = r.status == "holds" || r.status == "inaccurate";
+      out << "  " << std::left << std::setw(26) << r.label << std::setw(12) << to_string(r.scheme)
+          << std::setw(12) << r.status << std::setw(10) << sci(r.error) << std::setw(10)
+          << (ran ? sci(r.max_drift_position) : "-") << std::setw(10) << sci(r.energy_error)
+          << std::setw(10) << (ran ? std::to_string(r.steps) : "-") << std::fixed
+          << std::setprecision(3) << r.wall_seconds << std::defaultfloat << "\n";
+      if (r.status == "failed" || r.status == "inaccurate") {
+        breaks << "    " << r.label << ", " << to_string(r.scheme) << ": " << r.reason;
+        if (r.status == "failed") breaks << " (reached t = " << r.t_reached << ")";
+        if (!r.suggestion.empty()) breaks << "; suggestion: " << r.suggestion;
+        breaks << "\n";
+      }
+    }
+    if (!breaks.str().empty()) out << "  breaks:\n" << breaks.str();
+    // Refusals repeat one reason per scheme: list each reason once.
+    std::map<std::string, std::string> refusals;
+    for (const auto& r : result.records) {
+      if (r.family == family.name && r.status == "refused") {
+        auto& who = refusals[r.reason];
+        who += (who.empty() ? "" : ", ") + r.label + " " + to_string(r.scheme);
+      }
+    }
+    if (!refusals.empty()) {
+      out << "  refused:\n";
+      for (const auto& [reason, who] : refusals) out << "    " << who << ": " << reason << "\n";
+    }
+  }
+  // The map: one row per case, one column per scheme.
+  out << "\nmap (+ holds, ~ inaccurate, x failed, . refused, blank: not part of the family):\n  "
+      << std::left << std::setw(44) << "";
+  for (Scheme s : kSchemes) out << std::setw(12) << to_string(s);
+  out << "\n";
+  for (std::size_t i = 0; i < result.cases.size(); ++i) {
+    const auto& c = result.cases[i];
+    const std::string& id = c.id;
+    out << "  " << std::setw(44) << (c.family + " " + c.label);
+    for (Scheme s : kSchemes) {
+      char mark = ' ';
+      for (const auto& r : result.records) {
+        if (r.case_id == id && r.scheme == s) mark = verdict_mark(r.status);
+      }
+      out << std::setw(12) << std::string(1, mark);
+    }
+    out << "\n";
+  }
+}
+
+void write_stress_files(const std::string& dir, const StressResult& result) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(fs::path(dir) / "scenes", ec);
+  if (ec)
+    throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
+  const fs::path base(dir);
+  write_file_atomically((base / "stress.csv").string(), [&](std::ostream& out) {
+    bool first = true;
+    for (const auto& [key, value] : fields(StressRecord{})) {
+      out << (first ? "" : ",") << key;
+      first = false;
+    }
+    out << "\n";
+    for (const auto& r : result.records) {
+      first = true;
+      for (const auto& [key, value] : fields(r)) {
+        out << (first ? "" : ",") << csv_field(value);
+        first = false;
+      }
+      out << "\n";
+    }
+  });
+  write_file_atomically((base / "stress.json").string(), [&](std::ostream& out) {
+    out << "{\n  \"wall_s\": " << full_precision(result.wall_seconds)
+        << ",\n  \"error_factor\": " << full_precision(kStressErrorFactor)
+        << ",\n  \"families\": [\n";
+    const auto& families = stress_families();
+    for (std::size_t k = 0; k < families.size(); ++k) {
+      out << "    {\"name\": " << json_string(families[k].name)
+          << ", \"question\": " << json_string(families[k].question)
+          << ", \"expectation\": " << json_string(families[k].expectation) << "}"
+          << (k + 1 < families.size() ? "," : "") << "\n";
+    }
+    out << "  ],\n  \"runs\": [\n";
+    for (std::size_t k = 0; k < result.records.size(); ++k) {
+      out << "    {";
+      bool first = true;
+      for (const auto& [key, value] : fields(result.records[k])) {
+        out << (first ? "" : ", ") << json_string(key) << ": "
+            << (is_text_field(key) ? json_string(value)
+                : value.empty()    ? "null"
+                                   : value);
+        first = false;
+      }
+      out << "}" << (k + 1 < result.records.size() ? "," : "") << "\n";
+    }
+    out << "  ]\n}\n";
+  });
+  for (std::size_t i = 0; i < result.cases.size(); ++i) {
+    const auto& c = result.cases[i];
+    write_file_atomically((base / "scenes" / (c.id + ".toml")).string(), [&](std::ostream& out) {
+      out << "# condyn stress, family " << c.family << ", " << c.label
+          << ": run it with build/condyn run FILE --scheme S\n"
+          << c.scene_text;
+    });
+  }
+  write_file_atomically((base / "summary.txt").string(),
+                        [&](std::ostream& out) { print_stress_report(out, result); });
+}
+
+}  // namespace condyn

@@ -1,0 +1,20 @@
+#pragma once
+/// Writes a StressResult: the terminal report, and the files of validation/stress-output.md.
+
+#include <ostream>
+#include <string>
+
+#include "validation/stress.hpp"
+
+namespace condyn {
+
+/// Per family: what it probes and what to expect, then one row per (case, scheme) with the
+/// verdict; breaks are explained below each table; a closing map of verdicts per family and
+/// scheme.
+void print_stress_report(std::ostream& out, const StressResult& result);
+
+/// Writes stress.csv, stress.json, summary.txt and scenes/<case>.toml (each case's scene, so a
+/// run can be repeated with `condyn run`) into `dir`. Throws std::runtime_error naming the file.
+void write_stress_files(const std::string& dir, const StressResult& result);
+
+}  // namespace condyn

@@ -1,0 +1,139 @@
+// condyn stress as a test tier: the whole suite runs, no run crashes, hangs or reports a
+// non-finite number as a result, every break and refusal carries its reason, and the findings
+// the README reports still hold (each expectation below names the family's observation).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "src/report_format.hpp"
+#include "src/stress_output.hpp"
+#include "validation/stress.hpp"
+
+using namespace condyn;
+
+namespace {
+
+const StressResult& suite() {
+  static const StressResult result = [] {
+    StressOptions o;
+    o.threads = 2;
+    return run_stress(o);
+  }();
+  return result;
+}
+
+const StressRecord& record(const std::string& family, const std::string& label, Scheme scheme) {
+  for (const auto& r : suite().records) {
+    if (r.family == family && r.label == label && r.scheme == scheme) return r;
+  }
+  FAIL("no record " << family << " " << label << " " << to_string(scheme));
+  throw std::logic_error("unreachable");
+}
+
+}  // namespace
+
+TEST_CASE("stress: every run ends in a verdict with its reason, never a non-finite result") {
+  const auto& result = suite();
+  REQUIRE(result.records.size() > 150);
+  for (const auto& r : result.records) {
+    CAPTURE(r.case_id);
+    CAPTURE(std::string(to_string(r.scheme)));
+    CAPTURE(r.reason);
+    const bool ran = r.status == "holds" || r.status == "inaccurate";
+    CHECK((ran || r.status == "failed" || r.status == "refused"));
+    if (r.status != "holds") CHECK_FALSE(r.reason.empty());
+    if (r.status == "failed") CHECK_FALSE(r.suggestion.empty());
+    if (ran) {
+      CHECK(r.steps > 0);
+      CHECK(std::isfinite(r.max_drift_position));
+      CHECK(std::isfinite(r.max_drift_velocity));
+      if (r.error) CHECK(std::isfinite(*r.error));
+      if (r.energy_error) CHECK(std::isfinite(*r.energy_error));
+    }
+  }
+}
+
+TEST_CASE("stress: the findings the README reports") {
+  // Stiffness ratio 1e12: elimination and GGL hold (observed errors 2.4e-7, 1.7e-7).
+  CHECK(record("stiffness", "R = 1e+12", Scheme::elimination).status == "holds");
+  CHECK(record("stiffness", "R = 1e+12", Scheme::ggl).status == "holds");
+  // index1 runs out of steps from R = 1e8 (100000 steps within one output interval).
+  CHECK(record("stiffness", "R = 1e+08", Scheme::index1).status == "failed");
+
+  // Penalty: the error falls like 1/w (9.8e-3, 9.8e-5, 9.8e-7 observed for w = 1e2, 1e4, 1e6).
+  const auto& w2 = record("penalty_weight", "w = 1e+02 max K_ii", Scheme::penalty);
+  const auto& w4 = record("penalty_weight", "w = 1e+04 max K_ii", Scheme::penalty);
+  const auto& w6 = record("penalty_weight", "w = 1e+06 max K_ii", Scheme::penalty);
+  REQUIRE((w2.error && w4.error && w6.error));
+  CHECK(*w2.error / *w4.error == doctest::Approx(100.0).epsilon(0.1));
+  CHECK(*w4.error / *w6.error == doctest::Approx(100.0).epsilon(0.1));
+
+  // Baumgarte on the pendulum: moderate gains hold, 1e4 x the natural frequency and beyond fail.
+  CHECK(record("baumgarte_gains", "gains = 1e+02 omega", Scheme::baumgarte).status == "holds");
+  for (const char* g : {"gains = 1e+04 omega", "gains = 1e+08 omega", "gains = 1e+12 omega"}) {
+    CAPTURE(g);
+    CHECK(record("baumgarte_gains", g, Scheme::baumgarte).status == "failed");
+  }
+
+  // Long horizons: GGL's drift stays bounded over 1e5 periods (observed 9.6e-11).
+  CHECK(record("long_horizon", "1e+05 periods", Scheme::ggl).status == "holds");
+  CHECK(record("long_horizon", "1e+05 periods", Scheme::projection).status == "holds");
+
+  // Exactly redundant constraints: refused, both named; an angle of 1e-8 is accepted and GGL
+  // holds, while penalty cannot enforce the nearly dependent direction.
+  const auto& same = record("redundancy", "theta = 0", Scheme::ggl);
+  CHECK(same.status == "refused");
+  CHECK(same.reason.find("'second', 'first' are linearly dependent") != std::string::npos);
+  CHECK(record("redundancy", "theta = 1e-08", Scheme::ggl).status == "holds");
+  CHECK(record("redundancy", "theta = 1e-08", Scheme::penalty).status == "inaccurate");
+
+  // A massless DOF that no constraint fixes: refused by every scheme, with the reason.
+  for (Scheme s : kSchemes) {
+    const auto& r = record("mass_ratio", "m3 = 0", s);
+    CAPTURE(std::string(to_string(s)));
+    CHECK(r.status == "refused");
+    CHECK(((r.reason.find("singular") != std::string::npos) ||
+           (r.reason.find("mass") != std::string::npos)));
+  }
+
+  // Near the four-bar's change point GGL holds where a reference exists (eps >= 1e-3).
+  for (const char* eps : {"eps = 1e-01", "eps = 1e-02", "eps = 1e-03"}) {
+    CAPTURE(eps);
+    CHECK(record("dead_point", eps, Scheme::ggl).status == "holds");
+  }
+
+  // High-frequency loads: GGL holds at 1000 x the highest natural frequency, at more steps.
+  const auto& slow = record("high_frequency", "omega = 1e+00 omega_max", Scheme::ggl);
+  const auto& fast = record("high_frequency", "omega = 1e+03 omega_max", Scheme::ggl);
+  CHECK(fast.status == "holds");
+  CHECK(fast.steps > 10 * slow.steps);
+}
+
+TEST_CASE("stress: the output folder and the map") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "condyn_stress_test";
+  fs::remove_all(dir);
+  write_stress_files(dir.string(), suite());
+  std::ifstream csv(dir / "stress.csv");
+  std::string header;
+  std::getline(csv, header);
+  CHECK(header ==
+        "family,case,label,parameter,scheme,status,rtol,reference,error_u,max_drift_position,"
+        "max_drift_velocity,energy_error,steps,wall_s,t_reached,reason,suggestion");
+  std::stringstream all;
+  all << csv.rdbuf();
+  CHECK(all.str().find("nan") == std::string::npos);
+  CHECK(all.str().find("inf,") == std::string::npos);
+  CHECK(fs::exists(dir / "stress.json"));
+  CHECK(fs::exists(dir / "summary.txt"));
+  CHECK(fs::exists(dir / "scenes" / "redundancy_1.toml"));
+  const std::string note = run_plot_script("plot_stress.py", dir.string());
+  CAPTURE(note);
+  CHECK(note.rfind("plots written", 0) == 0);
+  CHECK(fs::file_size(dir / "stress_map.png") > 1000);
+  fs::remove_all(dir);
+}
