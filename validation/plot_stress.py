@@ -68,6 +68,8 @@ def main(argv):
                 err = num(r.get("error_u"))
                 if r["status"] in ("holds", "inaccurate") and err is not None:
                     text = f"{err:.0e}" if err > 0 else "0"
+                elif r["status"] == "holds":
+                    text = "no ref"  # finished, but not even a tight run gives a reference
                 else:
                     text = {"failed": "fail", "refused": "n/a"}.get(r["status"], "")
                 ax.text(j, i, text, ha="center", va="center", fontsize=7)
