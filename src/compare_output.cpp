@@ -21,7 +21,7 @@ std::string sci(double v, int digits = 2) {
 }
 
 /// Fields of a run in the column order of runs.csv; failed runs leave the numbers empty.
-std::vector<std::pair<std::string, std::string>> fields(const RunRecord& r) {
+ReportFields fields(const RunRecord& r) {
   auto num = [&](double v) { return r.ok && std::isfinite(v) ? full_precision(v) : std::string(); };
   auto count = [&](long v) { return r.ok ? std::to_string(v) : std::string(); };
   return {{"scheme", to_string(r.scheme)},
@@ -48,10 +48,6 @@ std::vector<std::pair<std::string, std::string>> fields(const RunRecord& r) {
           {"mescd_u", num(r.mescd_u)},
           {"mescd_v", num(r.mescd_v)},
           {"energy_error", num(r.energy_error)}};
-}
-
-bool is_numeric_field(const std::string& key) {
-  return key != "scheme" && key != "status" && key != "message";
 }
 
 }  // namespace
@@ -132,21 +128,10 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
     throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
   const fs::path base(dir);
 
+  std::vector<ReportFields> rows;
+  for (const auto& r : result.runs) rows.push_back(fields(r));
   write_file_atomically((base / "runs.csv").string(), [&](std::ostream& out) {
-    bool first = true;
-    for (const auto& [key, value] : fields(RunRecord{})) {
-      out << (first ? "" : ",") << key;
-      first = false;
-    }
-    out << "\n";
-    for (const auto& r : result.runs) {
-      first = true;
-      for (const auto& [key, value] : fields(r)) {
-        out << (first ? "" : ",") << csv_field(value);
-        first = false;
-      }
-      out << "\n";
-    }
+    write_csv_table(out, fields(RunRecord{}), rows);
   });
 
   write_file_atomically((base / "runs.json").string(), [&](std::ostream& out) {
@@ -178,20 +163,7 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
     out << "],\n  \"repeats\": " << result.options.repeats
         << ",\n  \"drift_rtol\": " << full_precision(result.options.drift_rtol)
         << ",\n  \"runs\": [\n";
-    for (std::size_t k = 0; k < result.runs.size(); ++k) {
-      out << "    {";
-      bool first = true;
-      for (const auto& [key, value] : fields(result.runs[k])) {
-        out << (first ? "" : ", ") << json_string(key) << ": ";
-        if (!is_numeric_field(key)) {
-          out << json_string(value);
-        } else {
-          out << (value.empty() ? "null" : value);
-        }
-        first = false;
-      }
-      out << "}" << (k + 1 < result.runs.size() ? "," : "") << "\n";
-    }
+    write_json_records(out, rows, {"scheme", "status", "message"}, "    ");
     out << "  ]\n}\n";
   });
 

@@ -49,6 +49,38 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
+void write_csv_table(std::ostream& out, const ReportFields& header,
+                     const std::vector<ReportFields>& records) {
+  const auto line = [&](const ReportFields& fields, bool names) {
+    bool first = true;
+    for (const auto& [key, value] : fields) {
+      out << (first ? "" : ",") << (names ? key : csv_field(value));
+      first = false;
+    }
+    out << "\n";
+  };
+  line(header, true);
+  for (const auto& r : records) line(r, false);
+}
+
+void write_json_records(std::ostream& out, const std::vector<ReportFields>& records,
+                        const std::set<std::string>& text_fields, const std::string& indent) {
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    out << indent << "{";
+    bool first = true;
+    for (const auto& [key, value] : records[k]) {
+      out << (first ? "" : ", ") << json_string(key) << ": ";
+      if (text_fields.count(key) > 0) {
+        out << json_string(value);
+      } else {
+        out << (value.empty() ? "null" : value);
+      }
+      first = false;
+    }
+    out << "}" << (k + 1 < records.size() ? "," : "") << "\n";
+  }
+}
+
 std::string run_plot_script(const std::string& script, const std::string& dir) {
   namespace fs = std::filesystem;
   const fs::path path = fs::path(CONDYN_SOURCE_DIR) / "validation" / script;

@@ -2,9 +2,16 @@
 /// Formatting shared by the report writers (compare, stress): numbers at full precision, CSV and
 /// JSON string quoting, and the plotting scripts run with Debian's python3.
 
+#include <ostream>
+#include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace condyn {
+
+/// A record as named text fields, in column order; empty text is a missing value.
+using ReportFields = std::vector<std::pair<std::string, std::string>>;
 
 /// 17 significant digits: a double read back is the double written.
 [[nodiscard]] std::string full_precision(double v);
@@ -12,6 +19,15 @@ namespace condyn {
 [[nodiscard]] std::string csv_field(const std::string& s);
 /// A JSON string literal with control characters escaped.
 [[nodiscard]] std::string json_string(const std::string& s);
+
+/// A CSV table: the header from the field names of `header`, then one line per record.
+void write_csv_table(std::ostream& out, const ReportFields& header,
+                     const std::vector<ReportFields>& records);
+
+/// A JSON array of objects, one per record, each on its own line with `indent`: the fields named
+/// in `text_fields` as strings, the others as numbers (null when empty).
+void write_json_records(std::ostream& out, const std::vector<ReportFields>& records,
+                        const std::set<std::string>& text_fields, const std::string& indent);
 
 /// Runs validation/SCRIPT DIR with Debian's python3 (/usr/bin/python3, else python3 on PATH),
 /// its output in DIR/plots.log. Returns a one-line note: what was drawn, or why plots were skipped

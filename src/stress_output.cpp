@@ -28,7 +28,7 @@ char verdict_mark(const std::string& status) {
 }
 
 /// Fields of a record in the column order of stress.csv.
-std::vector<std::pair<std::string, std::string>> fields(const StressRecord& r) {
+ReportFields fields(const StressRecord& r) {
   const auto opt = [](const std::optional<double>& v) {
     return v ? full_precision(*v) : std::string();
   };
@@ -51,11 +51,6 @@ std::vector<std::pair<std::string, std::string>> fields(const StressRecord& r) {
           {"t_reached", r.status == "refused" ? std::string() : full_precision(r.t_reached)},
           {"reason", r.reason},
           {"suggestion", r.suggestion}};
-}
-
-bool is_text_field(const std::string& key) {
-  return key == "family" || key == "case" || key == "label" || key == "scheme" || key == "status" ||
-         key == "reference" || key == "reason" || key == "suggestion";
 }
 
 }  // namespace
@@ -134,21 +129,10 @@ void write_stress_files(const std::string& dir, const StressResult& result) {
   if (ec)
     throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
   const fs::path base(dir);
+  std::vector<ReportFields> rows;
+  for (const auto& r : result.records) rows.push_back(fields(r));
   write_file_atomically((base / "stress.csv").string(), [&](std::ostream& out) {
-    bool first = true;
-    for (const auto& [key, value] : fields(StressRecord{})) {
-      out << (first ? "" : ",") << key;
-      first = false;
-    }
-    out << "\n";
-    for (const auto& r : result.records) {
-      first = true;
-      for (const auto& [key, value] : fields(r)) {
-        out << (first ? "" : ",") << csv_field(value);
-        first = false;
-      }
-      out << "\n";
-    }
+    write_csv_table(out, fields(StressRecord{}), rows);
   });
   write_file_atomically((base / "stress.json").string(), [&](std::ostream& out) {
     out << "{\n  \"wall_s\": " << full_precision(result.wall_seconds)
@@ -162,18 +146,10 @@ void write_stress_files(const std::string& dir, const StressResult& result) {
           << (k + 1 < families.size() ? "," : "") << "\n";
     }
     out << "  ],\n  \"runs\": [\n";
-    for (std::size_t k = 0; k < result.records.size(); ++k) {
-      out << "    {";
-      bool first = true;
-      for (const auto& [key, value] : fields(result.records[k])) {
-        out << (first ? "" : ", ") << json_string(key) << ": "
-            << (is_text_field(key) ? json_string(value)
-                : value.empty()    ? "null"
-                                   : value);
-        first = false;
-      }
-      out << "}" << (k + 1 < result.records.size() ? "," : "") << "\n";
-    }
+    write_json_records(
+        out, rows,
+        {"family", "case", "label", "scheme", "status", "reference", "reason", "suggestion"},
+        "    ");
     out << "  ]\n}\n";
   });
   for (std::size_t i = 0; i < result.cases.size(); ++i) {
