@@ -234,8 +234,28 @@ SystemSize system_size(const Model& model, Scheme scheme) {
 }
 
 namespace {
+
 Trajectory solve_resolved(const Model& model, Scheme scheme, const IntegratorOptions& options,
-                          SolveSummary& summary);
+                          SolveSummary& summary) {
+  switch (scheme) {
+    case Scheme::elimination:
+      return solve_elimination(model, options, summary);
+    case Scheme::automatic:
+      break;  // resolved by solve()
+    case Scheme::index1:
+    case Scheme::baumgarte:
+    case Scheme::ggl:
+    case Scheme::index2:
+    case Scheme::index3:
+      return solve_multipliers(model, scheme, options, summary);
+    case Scheme::penalty:
+      return solve_penalty(model, options, summary);
+    case Scheme::projection:
+      return solve_projection(model, options, summary);
+  }
+  throw std::logic_error("unknown scheme");
+}
+
 }  // namespace
 
 std::string failure_suggestion(Scheme scheme, const IntegrationError& e, double t_end) {
@@ -298,30 +318,5 @@ Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& opt
     throw;
   }
 }
-
-namespace {
-
-Trajectory solve_resolved(const Model& model, Scheme scheme, const IntegratorOptions& options,
-                          SolveSummary& summary) {
-  switch (scheme) {
-    case Scheme::elimination:
-      return solve_elimination(model, options, summary);
-    case Scheme::automatic:
-      break;  // resolved by solve()
-    case Scheme::index1:
-    case Scheme::baumgarte:
-    case Scheme::ggl:
-    case Scheme::index2:
-    case Scheme::index3:
-      return solve_multipliers(model, scheme, options, summary);
-    case Scheme::penalty:
-      return solve_penalty(model, options, summary);
-    case Scheme::projection:
-      return solve_projection(model, options, summary);
-  }
-  throw std::logic_error("unknown scheme");
-}
-
-}  // namespace
 
 }  // namespace condyn
