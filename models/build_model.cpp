@@ -27,12 +27,64 @@ constexpr double kConsistencyTolerance = 1e-10;
 constexpr double kMaxOutputRows = 1e7;
 // exp(709) is the largest finite double; leave headroom for amplitudes and derivatives.
 constexpr double kMaxExponent = 700.0;
+// The rank check and [initial] project factor dense matrices (constraints x DOFs): refuse sizes
+// whose memory and time would look like a hang (4e6 doubles = 32 MB; a QR of about 10 s).
+constexpr double kMaxDenseEntries = 4e6;
+// The solvers, `info` and the exact and elimination paths use dense DOF x DOF and constraint x DOF
+// matrices: 5000 of either is about 40 s and 600 MB for `run`; 10x more would take hours and GBs.
+constexpr int kMaxDofs = 5000;
+constexpr int kMaxConstraints = 5000;
 
 std::string fmt(double v) {
   std::ostringstream s;
   s.precision(10);
   s << v;
   return s.str();
+}
+
+/// An upper bound of |d^order/dt^order term(t)| over [0, t_end], order in {0, 1, 2}; infinite when
+/// the term leaves the double range there.
+double magnitude_bound(const TimeTerm& term, int order, double t_end) {
+  if (term.is_zero()) return 0.0;
+  switch (term.kind) {
+    case TimeTerm::Kind::step:
+      return order == 0 ? std::abs(term.amplitude) : 0.0;
+    case TimeTerm::Kind::polynomial: {
+      double sum = 0.0;
+      for (std::size_t k = static_cast<std::size_t>(order); k < term.coefficients.size(); ++k) {
+        if (term.coefficients[k] == 0.0) continue;
+        double factor = std::abs(term.coefficients[k]);
+        for (int j = 0; j < order; ++j)
+          factor *= static_cast<double>(k - static_cast<std::size_t>(j));
+        sum += factor * std::pow(t_end, static_cast<double>(k - static_cast<std::size_t>(order)));
+      }
+      return sum;
+    }
+    case TimeTerm::Kind::harmonic:
+      return std::abs(term.amplitude) * std::pow(std::abs(term.omega), order);
+    case TimeTerm::Kind::exponential:
+      return std::abs(term.amplitude) * std::pow(std::abs(term.rate), order) *
+             std::exp(std::max(term.rate * t_end, 0.0));
+  }
+  return 0.0;
+}
+
+/// The largest of the bounds of f, f' and f'' over [0, t_end] (infinite on overflow).
+double magnitude_bound(const TimeFunction& f, double t_end) {
+  double worst = 0.0;
+  for (int order = 0; order <= 2; ++order) {
+    double sum = 0.0;
+    for (const auto& term : f.terms()) sum += magnitude_bound(term, order, t_end);
+    worst = std::max(worst, sum);
+  }
+  return worst;
+}
+
+bool all_finite(const Eigen::SparseMatrix<double>& m) {
+  for (Eigen::Index k = 0; k < m.nonZeros(); ++k) {
+    if (!std::isfinite(m.valuePtr()[k])) return false;
+  }
+  return true;
 }
 
 class Builder {
@@ -56,6 +108,8 @@ class Builder {
     return it->second;
   }
 
+  /// f, f' and f'' must stay finite over [0, t_end]: an overflowing load or right-hand side would
+  /// reach the solver as inf or NaN.
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const {
     for (const auto& term : f.terms()) {
       if (term.kind == TimeTerm::Kind::exponential &&
@@ -63,6 +117,12 @@ class Builder {
         fail(where,
              "exp(" + fmt(term.rate) + "*t) overflows before t_end = " + fmt(spec_.solve.t_end));
       }
+    }
+    if (!std::isfinite(magnitude_bound(f, spec_.solve.t_end))) {
+      fail(where, f.describe() +
+                      " or its first two time derivatives overflow the double range "
+                      "(about 1.8e308) before t_end = " +
+                      fmt(spec_.solve.t_end));
     }
   }
 
@@ -91,12 +151,21 @@ class Builder {
       const auto& mem = m.members[e];
       const auto& pi = m.nodes[static_cast<std::size_t>(mem.node_i - 1)];
       const auto& pj = m.nodes[static_cast<std::size_t>(mem.node_j - 1)];
-      const double length =
-          std::sqrt((pj[0] - pi[0]) * (pj[0] - pi[0]) + (pj[1] - pi[1]) * (pj[1] - pi[1]) +
-                    (pj[2] - pi[2]) * (pj[2] - pi[2]));
+      // hypot: no overflow or underflow of the squares for coordinates near the double range.
+      const double length = std::hypot(pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]);
+      if (!std::isfinite(length)) {
+        fail(mem.where, "member joins nodes " + std::to_string(mem.node_i) + " and " +
+                            std::to_string(mem.node_j) +
+                            ", whose distance overflows the double range (coordinates too large)");
+      }
       if (length <= 1e-12 * std::max(extent, 1e-300)) {
         fail(mem.where, "member joins nodes " + std::to_string(mem.node_i) + " and " +
                             std::to_string(mem.node_j) + ", which coincide (zero length)");
+      }
+      if (!mem.rigid && !std::isfinite(mem.EA / length)) {
+        fail({mem.where.path + ".EA", mem.where.line},
+             "EA / length = " + fmt(mem.EA) + " / " + fmt(length) +
+                 " overflows the double range: the stiffness would be infinite");
       }
       const PointMassLayout::Bar bar{mem.node_i - 1, mem.node_j - 1, mem.EA, length};
       if (mem.rigid) {
@@ -149,6 +218,12 @@ class Builder {
     for (std::size_t k = 0; k < m.nodes.size() && !m.gravity.empty(); ++k) {
       for (int d = 0; d < dim; ++d) {
         const double w = m.masses[k] * m.gravity[static_cast<std::size_t>(d)];
+        if (!std::isfinite(w)) {
+          fail({"model.gravity", m.where.line}, "the weight of node " + std::to_string(k + 1) +
+                                                    " (mass " + fmt(m.masses[k]) + " times " +
+                                                    fmt(m.gravity[static_cast<std::size_t>(d)]) +
+                                                    ") overflows the double range");
+        }
         if (w != 0.0) {
           model_.loads.push_back(Load{static_cast<int>(k) * dim + d, TimeFunction::constant(w)});
         }
@@ -253,6 +328,10 @@ class Builder {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense, Eigen::EigenvaluesOnly);
     const double lo = eig.eigenvalues().minCoeff();
     const double hi = eig.eigenvalues().cwiseAbs().maxCoeff();
+    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+      fail(SourcePoint{"model." + key, spec_.model.where.line},
+           "has eigenvalues beyond the double range: the entries are too large");
+    }
     if (lo < -1e-12 * std::max(hi, 1e-300)) {
       fail(SourcePoint{"model." + key, spec_.model.where.line},
            "is not positive semi-definite (smallest eigenvalue " + fmt(lo) + ")");
@@ -273,9 +352,22 @@ class Builder {
   }
 
   void build_loads() {
+    // Gravity loads come first; several loads on one DOF add up, and so must stay finite.
+    std::vector<double> total(static_cast<std::size_t>(model_.dofs()), 0.0);
+    for (const auto& l : model_.loads) {
+      total[static_cast<std::size_t>(l.dof)] += magnitude_bound(l.value, spec_.solve.t_end);
+    }
     for (const auto& l : spec_.loads) {
-      check_time_function(l.value, {l.where.path + ".value", l.where.line});
-      model_.loads.push_back(Load{dof(l.dof, {l.where.path + ".dof", l.where.line}), l.value});
+      const SourcePoint value_at{l.where.path + ".value", l.where.line};
+      check_time_function(l.value, value_at);
+      const int d = dof(l.dof, {l.where.path + ".dof", l.where.line});
+      auto& sum = total[static_cast<std::size_t>(d)];
+      sum += magnitude_bound(l.value, spec_.solve.t_end);
+      if (!std::isfinite(sum)) {
+        fail(value_at, "the loads on DOF '" + l.dof +
+                           "' add up to more than the double range (about 1.8e308)");
+      }
+      model_.loads.push_back(Load{d, l.value});
     }
   }
 
@@ -331,11 +423,28 @@ class Builder {
       if (c.level == ConstraintSpec::Level::position) {
         c.position_value = c.value;
       } else {
-        double a_u0 = 0.0;
-        for (const auto& [d, a] : c.coefficients) a_u0 += a * model_.u0[d];
+        double a_u0 = 0.0, size = 0.0;
+        for (const auto& [d, a] : c.coefficients) {
+          a_u0 += a * model_.u0[d];
+          size += std::abs(a * model_.u0[d]);
+        }
+        if (!std::isfinite(size)) {
+          fail(spec_.initial.where.line ? spec_.initial.where : cs.where,
+               "a·u(0) of constraint '" + c.name +
+                   "' overflows the double range (coefficients times initial displacements)");
+        }
         std::vector<TimeTerm> terms = c.value.antiderivative().terms();
         terms.push_back(TimeFunction::constant(a_u0).terms().front());
         c.position_value = TimeFunction(std::move(terms));
+        // h(t) = A sin(omega t) integrates to A/omega (1 - cos(omega t)): a tiny omega or rate
+        // overflows there even when h itself is small.
+        if (!std::isfinite(magnitude_bound(c.position_value, spec_.solve.t_end))) {
+          fail(value_at,
+               "integrating this velocity constraint's right-hand side from t = 0 gives " +
+                   c.position_value.describe() +
+                   ", which overflows the double range before t_end = " + fmt(spec_.solve.t_end) +
+                   " (is an omega or rate almost 0?)");
+        }
       }
       const int row = static_cast<int>(model_.constraints.size());
       for (const auto& [d, a] : c.coefficients) trip.emplace_back(row, d, a);
@@ -347,42 +456,113 @@ class Builder {
   }
 
   /// Rank of the row-normalised constraint matrix; a dependent set is named with the
-  /// compatibility of its right-hand sides over the horizon.
+  /// compatibility of its right-hand sides over the horizon. Constraints that share no DOF, even
+  /// through others, are independent of each other: each connected group is factored on its own
+  /// (supports and other single-DOF rows cost nothing), and a group too large for a dense QR is
+  /// refused rather than left to run out of memory or time.
   void check_rank() const {
     const int m = model_.constraint_count();
     if (m == 0) return;
-    Eigen::MatrixXd at = Eigen::MatrixXd(model_.A).transpose();  // n x m, a column per constraint
+    const auto& constraints = model_.constraints;
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
     std::vector<double> row_norm;
+    std::vector<int> parent(static_cast<std::size_t>(m));
+    std::vector<int> owner(static_cast<std::size_t>(model_.dofs()), -1);  // first row on a DOF
+    const auto root = [&parent](int j) {
+      while (parent[static_cast<std::size_t>(j)] != j) {
+        j = parent[static_cast<std::size_t>(j)] =
+            parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(j)])];
+      }
+      return j;
+    };
     for (int j = 0; j < m; ++j) {
-      const double norm = at.col(j).norm();
+      parent[static_cast<std::size_t>(j)] = j;
+      Eigen::VectorXd values(a.row(j).nonZeros());
+      Eigen::Index k = 0;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
+        values[k++] = it.value();
+        int& first = owner[static_cast<std::size_t>(it.col())];
+        if (first < 0) {
+          first = j;
+        } else {  // join the groups; the root stays the group's first row
+          const int r1 = root(first), r2 = root(j);
+          parent[static_cast<std::size_t>(std::max(r1, r2))] = std::min(r1, r2);
+        }
+      }
+      // stableNorm: coefficients near the double range neither overflow nor underflow.
+      const double norm = values.size() ? values.stableNorm() : 0.0;
       row_norm.push_back(norm);
       if (norm == 0.0) {
-        fail(model_.constraints[static_cast<std::size_t>(j)].where,
-             "constraint '" + model_.constraints[static_cast<std::size_t>(j)].name +
+        fail(constraints[static_cast<std::size_t>(j)].where,
+             "constraint '" + constraints[static_cast<std::size_t>(j)].name +
                  "' has no nonzero coefficient");
       }
-      at.col(j) /= norm;
     }
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(at);
-    qr.setThreshold(kRankTolerance);
-    qr.compute(at);
-    const int rank = static_cast<int>(qr.rank());
-    if (rank == m) return;
-    // The first `rank` pivot columns are independent; express the first dependent one in them.
-    const auto& perm = qr.colsPermutation().indices();
-    const int dep = perm[rank];
-    Eigen::MatrixXd basis(at.rows(), rank);
-    for (int k = 0; k < rank; ++k) basis.col(k) = at.col(perm[k]);
-    const Eigen::VectorXd y = basis.colPivHouseholderQr().solve(at.col(dep));
-    // Combination sum_k w_k c_k = 0 over the involved constraints (normalised rows).
-    std::vector<std::pair<int, double>> combo = {{dep, 1.0}};
-    for (int k = 0; k < rank; ++k) {
-      if (std::abs(y[k]) > 1e-12) combo.emplace_back(perm[k], -y[k]);
+    std::vector<std::vector<int>> groups(static_cast<std::size_t>(m));
+    for (int j = 0; j < m; ++j) groups[static_cast<std::size_t>(root(j))].push_back(j);
+    int rank = 0;
+    int dep = -1;  // the first dependent constraint, and the combination that shows it
+    std::vector<std::pair<int, double>> combo;
+    std::vector<int> local(static_cast<std::size_t>(model_.dofs()), -1);
+    for (const auto& rows : groups) {
+      if (rows.empty()) continue;
+      std::vector<int> dofs;
+      for (int j : rows) {
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
+          if (local[static_cast<std::size_t>(it.col())] < 0) {
+            local[static_cast<std::size_t>(it.col())] = 0;
+            dofs.push_back(static_cast<int>(it.col()));
+          }
+        }
+      }
+      std::sort(dofs.begin(), dofs.end());
+      for (std::size_t i = 0; i < dofs.size(); ++i) {
+        local[static_cast<std::size_t>(dofs[i])] = static_cast<int>(i);
+      }
+      const auto mc = static_cast<Eigen::Index>(rows.size());
+      const auto nc = static_cast<Eigen::Index>(dofs.size());
+      if (static_cast<double>(mc) * static_cast<double>(nc) > kMaxDenseEntries) {
+        fail(constraints[static_cast<std::size_t>(rows.front())].where,
+             "constraint '" + constraints[static_cast<std::size_t>(rows.front())].name +
+                 "' is coupled through shared DOFs to " + std::to_string(mc - 1) + " others over " +
+                 std::to_string(nc) + " DOFs: too many for the dense rank check (limit " +
+                 fmt(kMaxDenseEntries) +
+                 " constraint-DOF pairs); condyn treats small and medium models");
+      }
+      // n_c x m_c, a column per constraint, normalised.
+      Eigen::MatrixXd at = Eigen::MatrixXd::Zero(nc, mc);
+      for (Eigen::Index c = 0; c < mc; ++c) {
+        const int j = rows[static_cast<std::size_t>(c)];
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
+          at(local[static_cast<std::size_t>(it.col())], c) =
+              it.value() / row_norm[static_cast<std::size_t>(j)];
+        }
+      }
+      for (int d : dofs) local[static_cast<std::size_t>(d)] = -1;
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(at.rows(), at.cols());
+      qr.setThreshold(kRankTolerance);
+      qr.compute(at);
+      const int group_rank = static_cast<int>(qr.rank());
+      rank += group_rank;
+      if (group_rank == mc || dep >= 0) continue;
+      // The first `group_rank` pivot columns are independent; express the first dependent one in
+      // them.
+      const auto& perm = qr.colsPermutation().indices();
+      dep = rows[static_cast<std::size_t>(perm[group_rank])];
+      Eigen::MatrixXd basis(at.rows(), group_rank);
+      for (int k = 0; k < group_rank; ++k) basis.col(k) = at.col(perm[k]);
+      const Eigen::VectorXd y = basis.colPivHouseholderQr().solve(at.col(perm[group_rank]));
+      // Combination sum_k w_k c_k = 0 over the involved constraints (normalised rows).
+      combo = {{dep, 1.0}};
+      for (int k = 0; k < group_rank; ++k) {
+        if (std::abs(y[k]) > 1e-12)
+          combo.emplace_back(rows[static_cast<std::size_t>(perm[k])], -y[k]);
+      }
     }
+    if (dep < 0) return;
     std::string names;
     for (const auto& [j, w] : combo) {
-      names += (names.empty() ? "'" : ", '") +
-               model_.constraints[static_cast<std::size_t>(j)].name + "'";
+      names += (names.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
     }
     // Compatible when the same combination of the right-hand sides vanishes over [0, t_end].
     double worst = 0.0, scale = 0.0;
@@ -390,7 +570,7 @@ class Builder {
       const double t = spec_.solve.t_end * s / 32.0;
       double r = 0.0;
       for (const auto& [j, w] : combo) {
-        const auto& c = model_.constraints[static_cast<std::size_t>(j)];
+        const auto& c = constraints[static_cast<std::size_t>(j)];
         const double gj = c.position_value.value(t) / row_norm[static_cast<std::size_t>(j)];
         r += w * gj;
         scale = std::max(scale, std::abs(w * gj));
@@ -398,12 +578,56 @@ class Builder {
       worst = std::max(worst, std::abs(r));
     }
     const bool compatible = worst <= 1e-9 * std::max(scale, 1e-300) || worst == 0.0;
-    fail(model_.constraints[static_cast<std::size_t>(dep)].where,
+    fail(constraints[static_cast<std::size_t>(dep)].where,
          "the constraints " + names + " are linearly dependent (constraint matrix rank " +
              std::to_string(rank) + " < " + std::to_string(m) + "); their right-hand sides are " +
              (compatible ? "compatible, so the set is redundant: remove one of them"
                          : "incompatible (residual " + fmt(worst) +
                                "), so the set is conflicting: no motion satisfies it"));
+  }
+
+  /// The last line of defence against a silent inf or NaN: whatever the checks above let through,
+  /// the matrices and the initial state handed to the solvers are finite.
+  void check_finite() const {
+    const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
+        {&model_.M, "mass matrix M"},
+        {&model_.C, "damping matrix C"},
+        {&model_.K, "stiffness matrix K"},
+        {&model_.A, "constraint matrix A"}};
+    // A nonlinear model's matrices are its linearization at (u0, v0): too large an initial state
+    // is the likelier cause there.
+    const bool at_start = model_.is_nonlinear() && spec_.initial.where.line > 0;
+    for (const auto& [mat, name] : matrices) {
+      if (!all_finite(*mat)) {
+        fail(at_start ? spec_.initial.where : spec_.model.where,
+             std::string("the ") + name +
+                 (at_start ? " linearized at the initial state has entries beyond the double "
+                             "range: are the initial values too large?"
+                           : " has entries beyond the double range: the scene's numbers are too "
+                             "large"));
+      }
+    }
+    if (!model_.u0.allFinite() || !model_.v0.allFinite()) {
+      fail(spec_.initial.where.line ? spec_.initial.where : spec_.model.where,
+           "the initial state is not finite (it overflows the double range)");
+    }
+  }
+
+  /// Sizes the dense parts of condyn can treat (README "Known limitations": small and medium
+  /// models), refused before any dense work rather than left to exhaust memory or time.
+  void check_size() const {
+    if (model_.dofs() > kMaxDofs) {
+      fail(spec_.model.where, std::to_string(model_.dofs()) +
+                                  " DOFs: more than condyn's limit of " + std::to_string(kMaxDofs) +
+                                  " (its solvers factor dense DOF x DOF matrices)");
+    }
+    if (model_.constraint_count() > kMaxConstraints) {
+      const auto& last = model_.constraints.back();
+      fail(last.where, std::to_string(model_.constraint_count()) +
+                           " constraints: more than condyn's limit of " +
+                           std::to_string(kMaxConstraints) +
+                           " (its solvers factor dense constraint x constraint matrices)");
+    }
   }
 
   void check_degenerate_dofs() const {
@@ -440,16 +664,22 @@ class Builder {
       }
       const bool position = c.level == ConstraintSpec::Level::position;
       const std::string where = "constraint '" + c.name + "'";
+      if (!std::isfinite(su) || !std::isfinite(sv)) {
+        fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+             "a·u(0) or a·v(0) of " + where +
+                 " overflows the double range (coefficients times initial values)");
+      }
+      // Negated comparisons: a NaN residual is a violation, never a pass.
       if (position) {
         const double g = c.value.value(0.0);
-        if (std::abs(au - g) > kConsistencyTolerance * std::max({su, std::abs(g), 1e-300})) {
+        if (!(std::abs(au - g) <= kConsistencyTolerance * std::max({su, std::abs(g), 1e-300}))) {
           fail(spec_.initial.where.line ? spec_.initial.where : c.where,
                "initial displacements violate " + where + ": a·u(0) = " + fmt(au) +
                    " but the constraint requires " + fmt(g) + " (residual " + fmt(au - g) + ")");
         }
       }
       const double gv = position ? c.value.derivative(1, 0.0) : c.value.value(0.0);
-      if (std::abs(av - gv) > kConsistencyTolerance * std::max({sv, std::abs(gv), 1e-300})) {
+      if (!(std::abs(av - gv) <= kConsistencyTolerance * std::max({sv, std::abs(gv), 1e-300}))) {
         fail(spec_.initial.where.line ? spec_.initial.where : c.where,
              "initial velocities violate " + where + ": a·v(0) = " + fmt(av) +
                  " but the constraint requires " + fmt(gv) + " (residual " + fmt(av - gv) +
@@ -469,8 +699,9 @@ class Builder {
     const double v_scale = std::max(1.0, model_.v0.lpNorm<Eigen::Infinity>());
     for (int i = 0; i < m; ++i) {
       const auto& c = model_.constraints[static_cast<std::size_t>(i)];
-      const bool bad_u = std::abs(phi[i]) > kConsistencyTolerance * u_scale;
-      const bool bad_v = std::abs(psi[i]) > kConsistencyTolerance * v_scale * u_scale;
+      // Negated comparisons: a NaN residual is a violation, never a pass.
+      const bool bad_u = !(std::abs(phi[i]) <= kConsistencyTolerance * u_scale);
+      const bool bad_v = !(std::abs(psi[i]) <= kConsistencyTolerance * v_scale * u_scale);
       if (!bad_u && !bad_v) continue;
       fail(spec_.initial.where.line ? spec_.initial.where : c.where,
            std::string("initial ") + (bad_u ? "displacements" : "velocities") +
@@ -484,6 +715,12 @@ class Builder {
 
   /// [initial] project = true: the minimum-norm projection of (u0, v0) onto the constraints.
   void project_initial() {
+    if (static_cast<double>(model_.constraint_count()) * model_.dofs() > kMaxDenseEntries) {
+      fail(spec_.initial.where, "project = true factors the dense constraint Jacobian: " +
+                                    std::to_string(model_.constraint_count()) + " constraints x " +
+                                    std::to_string(model_.dofs()) + " DOFs is too large (limit " +
+                                    fmt(kMaxDenseEntries) + " entries)");
+    }
     std::unique_ptr<LinearSystem> linear;
     const MechanicalSystem* s = model_.nonlinear.get();
     if (s == nullptr) {
@@ -551,6 +788,7 @@ class Builder {
     if (!model_.is_nonlinear()) build_constraints();
     if (nonlinear_truss_) finish_point_masses();
     if (spec_.model.type == ModelSpec::Type::sleigh) finish_sleigh();
+    check_size();
     if (spec_.initial.project) project_initial();
     // A published reference belongs to the published initial state: a scene that starts the
     // benchmark elsewhere is still a valid model, but no longer that benchmark.
@@ -561,6 +799,7 @@ class Builder {
           "no reference)";
     }
     if (model_.is_nonlinear()) linearize();
+    check_finite();
     check_degenerate_dofs();
     check_rank();
     check_initial_consistency();

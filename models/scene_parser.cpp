@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -312,12 +313,14 @@ class Reader {
     }
     if (const auto* sp = t.get("supports")) {
       const auto& arr = array(*sp, "model.supports");
+      std::vector<bool> supported(model.nodes.size(), false);  // linear in the list's length
       for (std::size_t i = 0; i < arr.size(); ++i) {
         const int k = node_number(*arr.get(i), index("model.supports", i));
-        if (std::find(model.supports.begin(), model.supports.end(), k) != model.supports.end()) {
+        if (supported[static_cast<std::size_t>(k - 1)]) {
           fail(*arr.get(i), index("model.supports", i),
                "node " + std::to_string(k) + " is listed twice");
         }
+        supported[static_cast<std::size_t>(k - 1)] = true;
         model.supports.push_back(k);
       }
     }
@@ -560,9 +563,72 @@ class Reader {
   std::string file_;
 };
 
+// No scene key is more than a few tables deep (solve.baumgarte.alpha); 32 leaves room for anything.
+constexpr int kMaxKeyDots = 32;
+
+/// toml++ 3.3 builds (and tears down) the tables of a dotted key or table header recursively, and
+/// overflows the stack on keys of tens of thousands of components (`a.a.a. ... = 1`, a segfault).
+/// Its own limit (TOML_MAX_NESTED_VALUES, 256) covers nested arrays and inline tables only. So,
+/// before parsing: no run of dot-separated key parts outside strings and comments may have more
+/// than kMaxKeyDots dots. A number has at most one dot, so values never trip this.
+void check_key_depth(const std::string& text, const std::string& file) {
+  const std::size_t n = text.size();
+  int line = 1, dots = 0;
+  std::size_t i = 0;
+  while (i < n) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      dots = 0;
+      ++i;
+    } else if (c == '#') {  // a comment runs to the end of the line
+      while (i < n && text[i] != '\n') ++i;
+    } else if (c == '"' || c == '\'') {  // a string: skipped; a quoted key part continues a run
+      const std::string triple(3, c);
+      const bool multi = text.compare(i, 3, triple) == 0;
+      i += multi ? 3 : 1;
+      while (i < n) {
+        if (text[i] == '\n') {
+          if (!multi) break;  // unterminated: the parser reports it
+          ++line;
+        }
+        if (c == '"' && text[i] == '\\') {  // an escape: skip the escaped character
+          if (i + 1 < n && text[i + 1] == '\n') ++line;
+          i += 2;
+          continue;
+        }
+        if (multi && text.compare(i, 3, triple) == 0) {
+          i += 3;
+          while (i < n && text[i] == c) ++i;  // up to two quotes may end the content
+          break;
+        }
+        if (!multi && text[i] == c) {
+          ++i;
+          break;
+        }
+        ++i;
+      }
+    } else {
+      const auto u = static_cast<unsigned char>(c);
+      if (c == '.') {
+        if (++dots > kMaxKeyDots) {
+          throw SceneError(scene_message(file, SourcePoint{"", line},
+                                         "a dotted key or table header nests more than " +
+                                             std::to_string(kMaxKeyDots) + " tables deep"));
+        }
+      } else if (std::isalnum(u) == 0 && c != '_' && c != '-' && c != '+' && c != ' ' &&
+                 c != '\t') {
+        dots = 0;  // '=', brackets, braces, commas, ... end a key
+      }
+      ++i;
+    }
+  }
+}
+
 }  // namespace
 
 SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
+  check_key_depth(text, file);
   toml::table root;
   try {
     root = toml::parse(text, file);

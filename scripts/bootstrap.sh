@@ -4,7 +4,10 @@
 #   bash scripts/bootstrap.sh main   runs the main job: condyn validate (the chapter's five cases)
 #                                    and condyn compare on the chapter truss (tables, CSV, JSON and
 #                                    plots in condyn-out/compare-chapter_5_5_1/)
-#   bash scripts/bootstrap.sh test   builds with warnings as errors and runs every test tier (ctest)
+#   bash scripts/bootstrap.sh test   builds with warnings as errors, lints, runs the unit tier again
+#                                    under AddressSanitizer and UndefinedBehaviorSanitizer
+#                                    (build-asan/, clang), fuzzes the scene parser and model builder
+#                                    for 60 s, then runs every test tier (ctest)
 set -euo pipefail
 
 mode="${1:-}"
@@ -22,8 +25,10 @@ cd "$here"
 # Debian 12 packages condyn builds with (see README "Dependencies").
 packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev doctest-dev
   libtomlplusplus-dev libcli11-dev)
-# The test command also checks formatting and runs clang-tidy (warnings are errors in CI).
-[ "$mode" = test ] && packages+=(clang-format clang-tidy)
+# The test command also checks formatting and runs clang-tidy (warnings are errors in CI), and
+# builds with clang for the sanitizers and libFuzzer (libclang-rt-14-dev has their runtimes;
+# SUNDIALS' CMake package wants OpenMP, which clang finds in libomp-dev).
+[ "$mode" = test ] && packages+=(clang-format clang-tidy clang libclang-rt-14-dev libomp-dev)
 # compare draws its plots with Debian's matplotlib (the main job, and a unit test of the plots).
 packages+=(python3-matplotlib python3-numpy)
 missing=()
@@ -60,5 +65,33 @@ run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option
   exit 1
 }
 echo "bootstrap: clang-format and clang-tidy clean"
+
+# Sanitizers: the unit tier again, built by clang with ASan and UBSan into build-asan/ (its
+# CONDYN_BINARY is build-asan/condyn, sanitized too, so the CLI tests run under them as well).
+# Any report aborts the test. The same build has the libFuzzer harness (CONDYN_FUZZ).
+sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS="$sanitize" -DCONDYN_TESTS=ON \
+  -DCONDYN_FUZZ=ON >/dev/null
+cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_fuzz_scene
+(cd build-asan && ctest -L unit --output-on-failure)
+
+# Fuzz the scene parser and model builder for 60 s from the seed corpus. A finding (crash,
+# sanitizer report, uncaught exception, refusal without the file name, non-finite model, input over
+# 10 s or 2 GB) fails the command; the input is left in build-asan/fuzz-crash-* or -timeout-*.
+rm -rf build-asan/fuzz-corpus && mkdir -p build-asan/fuzz-corpus
+if build-asan/condyn_fuzz_scene -max_total_time=60 -timeout=10 -rss_limit_mb=2048 \
+  -dict=tests/fuzz/scene.dict -print_final_stats=1 -artifact_prefix=build-asan/fuzz- \
+  build-asan/fuzz-corpus tests/fuzz/corpus models/scenes validation/scenes \
+  >build-asan/fuzz.log 2>&1; then
+  echo "bootstrap: fuzzing found nothing in 60 s ($(grep -o 'number_of_executed_units: *[0-9]*' \
+    build-asan/fuzz.log | grep -o '[0-9]*$') inputs; log build-asan/fuzz.log)"
+else
+  grep -m 1 "INFO: Seed" build-asan/fuzz.log >&2 || true  # -seed=N replays the run
+  grep -v -E "^#[0-9]+|NEW_FUNC|^INFO" build-asan/fuzz.log | tail -n 60 >&2
+  echo "bootstrap: the scene fuzzer found a problem (log build-asan/fuzz.log; input above)" >&2
+  exit 1
+fi
+
 cd build
 exec ctest --output-on-failure -j "$jobs"
