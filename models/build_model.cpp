@@ -460,9 +460,35 @@ class Builder {
   /// through others, are independent of each other: each connected group is factored on its own
   /// (supports and other single-DOF rows cost nothing), and a group too large for a dense QR is
   /// refused rather than left to run out of memory or time.
-  void check_rank() const {
+  /// A redundant constraint (a combination of others, right-hand sides compatible) that the scene
+  /// asks to drop.
+  struct Dependent {
+    int row = 0;
+    std::string others;  ///< the constraints it combines, quoted
+  };
+
+  /// Removes constraint `d.row` from the linear model and reports it.
+  void drop_constraint(const Dependent& d) {
+    const auto row = static_cast<std::size_t>(d.row);
+    model_.dropped_constraints.push_back("'" + model_.constraints[row].name +
+                                         "' (a combination of " + d.others + ")");
+    model_.constraints.erase(model_.constraints.begin() + d.row);
+    std::vector<Eigen::Triplet<double>> kept;
+    for (int k = 0; k < model_.A.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(model_.A, k); it; ++it) {
+        if (it.row() == d.row) continue;
+        kept.emplace_back(it.row() > d.row ? it.row() - 1 : it.row(), it.col(), it.value());
+      }
+    }
+    model_.A.resize(model_.A.rows() - 1, model_.A.cols());
+    model_.A.setFromTriplets(kept.begin(), kept.end());
+  }
+
+  /// Refuses dependent constraints, naming them, unless they are redundant and the scene asks to
+  /// drop them ([solve] redundant = "drop", linear models): then returns the one to drop.
+  [[nodiscard]] std::optional<Dependent> check_rank() const {
     const int m = model_.constraint_count();
-    if (m == 0) return;
+    if (m == 0) return std::nullopt;
     const auto& constraints = model_.constraints;
     const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
     std::vector<double> row_norm;
@@ -559,7 +585,7 @@ class Builder {
           combo.emplace_back(rows[static_cast<std::size_t>(perm[k])], -y[k]);
       }
     }
-    if (dep < 0) return;
+    if (dep < 0) return std::nullopt;
     std::string names;
     for (const auto& [j, w] : combo) {
       names += (names.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
@@ -578,12 +604,24 @@ class Builder {
       worst = std::max(worst, std::abs(r));
     }
     const bool compatible = worst <= 1e-9 * std::max(scale, 1e-300) || worst == 0.0;
+    if (compatible && spec_.solve.drop_redundant && !model_.is_nonlinear()) {
+      std::string others;
+      for (const auto& [j, w] : combo) {
+        if (j == dep) continue;
+        others +=
+            (others.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
+      }
+      return Dependent{dep, others};
+    }
     fail(constraints[static_cast<std::size_t>(dep)].where,
          "the constraints " + names + " are linearly dependent (constraint matrix rank " +
              std::to_string(rank) + " < " + std::to_string(m) + "); their right-hand sides are " +
-             (compatible ? "compatible, so the set is redundant: remove one of them"
-                         : "incompatible (residual " + fmt(worst) +
-                               "), so the set is conflicting: no motion satisfies it"));
+             (compatible
+                  ? std::string("compatible, so the set is redundant: remove one of them") +
+                        (model_.is_nonlinear() ? ""
+                                               : ", or set [solve] redundant = \"drop\" to drop it")
+                  : "incompatible (residual " + fmt(worst) +
+                        "), so the set is conflicting: no motion satisfies it"));
   }
 
   /// The last line of defence against a silent inf or NaN: whatever the checks above let through,
@@ -801,7 +839,7 @@ class Builder {
     if (model_.is_nonlinear()) linearize();
     check_finite();
     check_degenerate_dofs();
-    check_rank();
+    while (const auto dependent = check_rank()) drop_constraint(*dependent);
     check_initial_consistency();
     check_energy_output();
     check_output();

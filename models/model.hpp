@@ -62,6 +62,8 @@ struct Model {
   std::function<std::optional<PublishedReference>(double)> reference;
   /// What [initial] project = true changed (empty when nothing was projected).
   std::string initial_projection;
+  /// What [solve] redundant = "drop" removed, one entry per constraint (empty when nothing).
+  std::vector<std::string> dropped_constraints;
   std::string description;  ///< one line for `condyn info` (built-in models)
 
   [[nodiscard]] int dofs() const { return static_cast<int>(dof_names.size()); }

@@ -405,7 +405,7 @@ class Reader {
     solve.where = at(node, path);
     check_keys(t, path,
                {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "penalty", "slaves",
-                "linear_solver"});
+                "linear_solver", "redundant"});
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
     if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
@@ -435,6 +435,11 @@ class Reader {
       const std::string s = string(*n, "solve.linear_solver");
       if (s != "klu" && s != "dense") fail(*n, "solve.linear_solver", "expected 'klu' or 'dense'");
       solve.dense_linear_solver = s == "dense";
+    }
+    if (const auto* n = t.get("redundant")) {
+      const std::string s = string(*n, "solve.redundant");
+      if (s != "refuse" && s != "drop") fail(*n, "solve.redundant", "expected 'refuse' or 'drop'");
+      solve.drop_redundant = s == "drop";
     }
   }
 

@@ -102,6 +102,9 @@ struct SolveSpec {
   std::vector<std::string> slaves;
   /// Dense linear solver instead of KLU (only sensible for tiny systems).
   bool dense_linear_solver = false;
+  /// [solve] redundant = "drop": remove constraints that are linear combinations of others with
+  /// compatible right-hand sides (reported), instead of refusing the scene. Linear models only.
+  bool drop_redundant = false;
   SourcePoint where;
 };
 

@@ -25,6 +25,8 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   if (!model.description.empty()) out << "model: " << model.description << "\n";
   if (!model.initial_projection.empty())
     out << "initial state: " << model.initial_projection << "\n";
+  for (const auto& d : model.dropped_constraints)
+    out << "dropped redundant constraint " << d << "\n";
   out << "\n";
   const auto classes = classify_constraints(model);
   if (classes.empty()) {

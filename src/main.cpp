@@ -89,6 +89,8 @@ int run(const RunArgs& args) {
   write_csv_atomically(out, model, traj);
   if (!model.initial_projection.empty())
     std::cout << "initial state: " << model.initial_projection << "\n";
+  for (const auto& d : model.dropped_constraints)
+    std::cout << "dropped redundant constraint " << d << "\n";
   std::cout << summary.brief() << "\n";
   if (const double e = relative_energy_error(model, traj); e >= 0.0) {
     std::cout << "energy: max |E(t) - E(0)| = " << e

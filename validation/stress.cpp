@@ -263,6 +263,8 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
     add("redundancy", "theta = " + (theta > 0 ? sci(theta) : std::string("0")), theta,
         redundant_scene(theta));
   }
+  add("redundancy", "theta = 0, dropped", 0.0,
+      redundant_scene(0.0) + "redundant = \"drop\"\n");  // the [solve] table ends the text
   for (double eps : {1e-1, 1e-2, 1e-3, 1e-4}) {
     add("dead_point", "eps = " + sci(eps), eps, four_bar_scene(eps), {}, 400000);
   }

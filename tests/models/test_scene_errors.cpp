@@ -378,3 +378,27 @@ TEST_CASE("models too large for the dense parts are refused, not left to exhaust
               "bad.toml:6: constraint[1]: constraint 'c1' is coupled through shared DOFs to 2000 "
               "others over 2002 DOFs: too many for the dense rank check");
 }
+
+TEST_CASE("redundant constraints are dropped with a report when the scene asks") {
+  // The same row twice: refused by default, with the remedy named.
+  const std::string twice = replace(kBase, "terms = { uy2 = 1.0 }",
+                                    "terms = { uy2 = 1.0 }\n"
+                                    "[[constraint]]\nname = \"again\"\nterms = { uy2 = 2.0 }");
+  const std::string refused = error_of(twice);
+  CHECK(refused.find("linearly dependent") != std::string::npos);
+  CHECK(refused.find("redundant = \"drop\"") != std::string::npos);
+  // Dropped on request: one constraint fewer, and the report names it and its partner.
+  const Model model = build_model(
+      parse_scene_text(replace(twice, "t_end = 1.0", "t_end = 1.0\nredundant = \"drop\""), "s"));
+  CHECK(model.constraint_count() == 3);
+  CHECK(model.A.rows() == 3);
+  REQUIRE(model.dropped_constraints.size() == 1);
+  CHECK(model.dropped_constraints[0].find("(a combination of ") != std::string::npos);
+  // Conflicting right-hand sides are refused even then: no motion satisfies them.
+  const std::string conflicting =
+      replace(twice, "terms = { uy2 = 2.0 }", "terms = { uy2 = 2.0 }\nvalue = 0.5");
+  CHECK(error_of(replace(conflicting, "t_end = 1.0", "t_end = 1.0\nredundant = \"drop\""))
+            .find("incompatible") != std::string::npos);
+  CHECK(error_of(replace(kBase, "t_end = 1.0", "t_end = 1.0\nredundant = \"maybe\""))
+            .find("solve.redundant: expected 'refuse' or 'drop'") != std::string::npos);
+}

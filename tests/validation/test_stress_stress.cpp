@@ -89,6 +89,9 @@ TEST_CASE("stress: the findings the README reports") {
   CHECK(same.status == "refused");
   CHECK(same.reason.find("'second', 'first' are linearly dependent") != std::string::npos);
   CHECK(record("redundancy", "theta = 1e-08", Scheme::ggl).status == "holds");
+  // The same pair with [solve] redundant = "drop": one row goes, and every scheme runs.
+  CHECK(record("redundancy", "theta = 0, dropped", Scheme::ggl).status == "holds");
+  CHECK(record("redundancy", "theta = 0, dropped", Scheme::elimination).status == "holds");
   CHECK(record("redundancy", "theta = 1e-08", Scheme::penalty).status == "inaccurate");
 
   // A massless DOF that no constraint fixes: refused by every scheme, with the reason.
