@@ -1,6 +1,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -626,6 +627,46 @@ class Builder {
 
   /// The last line of defence against a silent inf or NaN: whatever the checks above let through,
   /// the matrices and the initial state handed to the solvers are finite.
+  /// Warns (does not refuse) about magnitudes that double precision cannot carry well: M, C, K or
+  /// A whose largest entry lies beyond 1e±15 (a unit mistake, most likely), and diagonals of M or
+  /// K whose largest and smallest positive entries differ by more than 1/eps ≈ 4.5e15 (the soft
+  /// or light DOFs are then lost in the roundoff of the stiff or heavy ones).
+  void check_magnitudes() {
+    constexpr double kFar = 1e15, kSpread = 4.5e15;
+    const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
+        {&model_.M, "mass matrix M"},
+        {&model_.C, "damping matrix C"},
+        {&model_.K, "stiffness matrix K"},
+        {&model_.A, "constraint matrix A"}};
+    for (const auto& [mat, name] : matrices) {
+      double hi = 0.0;
+      double dlo = std::numeric_limits<double>::infinity(), dhi = 0.0;
+      for (int k = 0; k < mat->outerSize(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(*mat, k); it; ++it) {
+          const double a = std::abs(it.value());
+          if (a == 0.0) continue;
+          hi = std::max(hi, a);
+          if (it.row() == it.col() && it.value() > 0.0) {
+            dlo = std::min(dlo, it.value());
+            dhi = std::max(dhi, it.value());
+          }
+        }
+      }
+      // The largest entry sets the matrix's scale; single tiny entries are roundoff (cos 90°).
+      if (hi > kFar || (hi > 0.0 && hi < 1.0 / kFar)) {
+        model_.warnings.push_back(std::string("the ") + name + " has entries up to magnitude " +
+                                  fmt(hi) + ": beyond 1e-15 ... 1e15, check the units");
+      }
+      const bool diagonal_matters = mat == &model_.M || mat == &model_.K;
+      if (diagonal_matters && dhi > 0.0 && dhi / dlo > kSpread) {
+        model_.warnings.push_back(std::string("the diagonal of the ") + name + " spans " +
+                                  fmt(dlo) + " to " + fmt(dhi) + " (ratio " + fmt(dhi / dlo) +
+                                  "): beyond 1/eps of double precision (4.5e15), the smallest "
+                                  "entries are lost in roundoff");
+      }
+    }
+  }
+
   void check_finite() const {
     const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
         {&model_.M, "mass matrix M"},
@@ -838,6 +879,7 @@ class Builder {
     }
     if (model_.is_nonlinear()) linearize();
     check_finite();
+    check_magnitudes();
     check_degenerate_dofs();
     while (const auto dependent = check_rank()) drop_constraint(*dependent);
     check_initial_consistency();

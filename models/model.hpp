@@ -62,6 +62,9 @@ struct Model {
   std::function<std::optional<PublishedReference>(double)> reference;
   /// What [initial] project = true changed (empty when nothing was projected).
   std::string initial_projection;
+  /// Accepted, but worth a look: magnitudes so far from 1, or so spread, that double precision
+  /// loses the physics (run prints them to stderr, info to its report).
+  std::vector<std::string> warnings;
   /// What [solve] redundant = "drop" removed, one entry per constraint (empty when nothing).
   std::vector<std::string> dropped_constraints;
   std::string description;  ///< one line for `condyn info` (built-in models)

@@ -25,6 +25,7 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   if (!model.description.empty()) out << "model: " << model.description << "\n";
   if (!model.initial_projection.empty())
     out << "initial state: " << model.initial_projection << "\n";
+  for (const auto& w : model.warnings) out << "warning: " << w << "\n";
   for (const auto& d : model.dropped_constraints)
     out << "dropped redundant constraint " << d << "\n";
   out << "\n";

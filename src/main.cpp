@@ -89,6 +89,7 @@ int run(const RunArgs& args) {
   write_csv_atomically(out, model, traj);
   if (!model.initial_projection.empty())
     std::cout << "initial state: " << model.initial_projection << "\n";
+  for (const auto& w : model.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";
   for (const auto& d : model.dropped_constraints)
     std::cout << "dropped redundant constraint " << d << "\n";
   std::cout << summary.brief() << "\n";

@@ -402,3 +402,21 @@ TEST_CASE("redundant constraints are dropped with a report when the scene asks")
   CHECK(error_of(replace(kBase, "t_end = 1.0", "t_end = 1.0\nredundant = \"maybe\""))
             .find("solve.redundant: expected 'refuse' or 'drop'") != std::string::npos);
 }
+
+TEST_CASE("absurd magnitudes are accepted with a warning") {
+  CHECK(build_model(parse_scene_text(kBase, "ok")).warnings.empty());
+  // EA = 1e20 over a unit length: K entries of 1e20.
+  const Model stiff =
+      build_model(parse_scene_text(replace(kBase, "EA = 10.0", "EA = 1e20"), "stiff"));
+  REQUIRE_FALSE(stiff.warnings.empty());
+  CHECK(stiff.warnings[0].find("stiffness matrix K has entries up to magnitude") !=
+        std::string::npos);
+  // Masses 1 and 1e-16: a diagonal spread beyond what double precision resolves.
+  const Model light = build_model(
+      parse_scene_text(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0, 1e-16]"), "light"));
+  bool spread = false;
+  for (const auto& w : light.warnings) {
+    spread = spread || w.find("diagonal of the mass matrix M spans") != std::string::npos;
+  }
+  CHECK(spread);
+}
