@@ -122,10 +122,7 @@ void print_compare_table(std::ostream& out, const CompareResult& result) {
 
 void write_compare_files(const std::string& dir, const CompareResult& result) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec)
-    throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
+  make_output_folder(dir);
   const fs::path base(dir);
 
   std::vector<ReportFields> rows;

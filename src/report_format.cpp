@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
 namespace condyn {
 
@@ -47,6 +48,14 @@ std::string csv_field(const std::string& s) {
   std::string q = "\"";
   for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
+}
+
+void make_output_folder(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
+  }
 }
 
 void write_csv_table(std::ostream& out, const ReportFields& header,

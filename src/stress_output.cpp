@@ -124,10 +124,7 @@ void print_stress_report(std::ostream& out, const StressResult& result) {
 
 void write_stress_files(const std::string& dir, const StressResult& result) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(fs::path(dir) / "scenes", ec);
-  if (ec)
-    throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
+  make_output_folder((fs::path(dir) / "scenes").string());
   const fs::path base(dir);
   std::vector<ReportFields> rows;
   for (const auto& r : result.records) rows.push_back(fields(r));

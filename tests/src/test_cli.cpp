@@ -375,3 +375,11 @@ scheme = "ggl"
   CHECK(partial.find("nan") == std::string::npos);
   CHECK(partial.find("\n0.90000000000000002,") != std::string::npos);
 }
+
+TEST_CASE("stress: unknown families are usage errors, named") {
+  const Sandbox box;
+  const Result r = box.run("stress --families stiffness,bogus --no-plots");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("unknown stress family 'bogus'") != std::string::npos);
+  CHECK(r.err.find("expected stiffness, mass_ratio") != std::string::npos);
+}
