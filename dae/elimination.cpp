@@ -153,11 +153,12 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
   };
   std::vector<StepRecord> steps;
   IntegratorOptions observed = options;
+  VelocityReversals reversals;
   if (options.record_steps) {
     observed.on_step = [&](double t, const Eigen::VectorXd& y) {
       const auto [u, v] = full_state(t, y);
       const auto [dp, dv] = model.drift(t, u, v);
-      steps.push_back({t, dp, dv});
+      steps.push_back({t, dp, dv, reversals(v)});
     };
   }
   const MultiplierRecovery recover(model);

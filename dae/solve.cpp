@@ -117,13 +117,14 @@ Trajectory run_observed(
   const int n = model.dofs();
   double max_dp = 0.0, max_dv = 0.0;
   std::vector<StepRecord> steps;
+  VelocityReversals reversals;
   IntegratorOptions observed = options;
   observed.on_step = [&](double t, const Eigen::VectorXd& y) {
     const auto [dp, dv] = model.drift(t, y.head(n), y.segment(n, n));
     max_dp = std::max(max_dp, dp);
     max_dv = std::max(max_dv, dv);
     if (on_state) on_state(y);
-    if (options.record_steps) steps.push_back({t, dp, dv});
+    if (options.record_steps) steps.push_back({t, dp, dv, reversals(y.segment(n, n))});
   };
   const auto assemble = [&](const RawTrajectory& raw) {
     std::vector<Eigen::VectorXd> u, v, lambda;

@@ -75,4 +75,20 @@ double relative_energy_error(const Model& model, const Trajectory& traj) {
   return scale > 0.0 ? worst / scale : worst;
 }
 
+long VelocityReversals::operator()(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  if (last_.size() != v.size()) {
+    last_ = Eigen::VectorXd::Zero(v.size());
+    peak_ = Eigen::VectorXd::Zero(v.size());
+    count_ = Eigen::Matrix<long, Eigen::Dynamic, 1>::Zero(v.size());
+  }
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    constexpr double kDeadBand = 1e-3;
+    peak_[i] = std::max(peak_[i], std::abs(v[i]));
+    if (std::abs(v[i]) <= kDeadBand * peak_[i]) continue;
+    if (last_[i] != 0.0 && (v[i] > 0.0) != (last_[i] > 0.0)) most_ = std::max(most_, ++count_[i]);
+    last_[i] = v[i];
+  }
+  return most_;
+}
+
 }  // namespace condyn

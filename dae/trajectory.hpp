@@ -13,6 +13,24 @@ namespace condyn {
 /// Constraint drift at one internal step of the integrator (exact step values, not interpolated).
 struct StepRecord {
   double t = 0.0, drift_position = 0.0, drift_velocity = 0.0;
+  /// Sign changes of the fastest-reversing velocity from t0 up to this step (VelocityReversals):
+  /// half of it counts the oscillations of the motion, whatever the output sampling.
+  long velocity_reversals = 0;
+};
+
+/// Counts, per DOF, how often the velocity changes sign from one internal step to the next, and
+/// reports the largest count. Velocities within 1e-3 of the DOF's largest |v| so far keep the
+/// last sign: a velocity that chatters about zero (index3's v is out of the error test) is not
+/// an oscillation.
+class VelocityReversals {
+ public:
+  long operator()(const Eigen::Ref<const Eigen::VectorXd>& v);
+
+ private:
+  Eigen::VectorXd last_;  ///< last velocity per DOF beyond the dead band
+  Eigen::VectorXd peak_;  ///< largest |v| per DOF so far
+  Eigen::Matrix<long, Eigen::Dynamic, 1> count_;
+  long most_ = 0;
 };
 
 struct Trajectory {

@@ -93,16 +93,21 @@ void print_compare_table(std::ostream& out, const CompareResult& result) {
         << result.trusted_digits_u << " digits in u and " << result.trusted_digits_v
         << " in v: more is agreement at the reference's limit\n";
   }
-  bool any_growth = false;
-  for (const auto& h : result.histories) any_growth = any_growth || h.growth.has_value();
-  if (any_growth) {
+  if (!result.histories.empty()) {
     out << "\ndrift growth at rtol " << sci(result.options.drift_rtol, 0)
-        << " (position drift ~ t^p, fitted to the running max over the last 99% of the run):\n";
+        << " (position drift ~ t^p, fitted to its running max where it follows a steady law):\n";
     for (const auto& h : result.histories) {
-      if (!h.growth) continue;
-      out << "  " << std::left << std::setw(12) << to_string(h.scheme) << "p = " << std::fixed
-          << std::setprecision(2) << h.growth->exponent << std::defaultfloat
-          << "   theory: " << predicted_drift_growth(h.scheme) << "\n";
+      out << "  " << std::left << std::setw(12) << to_string(h.scheme) << std::right;
+      if (!h.ok) {
+        out << "not fitted: the run failed\n";
+      } else if (h.growth.fit) {
+        out << "p = " << std::fixed << std::setprecision(2) << h.growth.fit->exponent
+            << std::defaultfloat << " over t in [" << sci(h.growth.fit->t_from, 1) << ", "
+            << sci(h.growth.fit->t_to, 1) << "]   theory: " << predicted_drift_growth(h.scheme)
+            << "\n";
+      } else {
+        out << "not fitted: " << h.growth.reason << "\n";
+      }
     }
   }
   if (!result.baumgarte_study.empty()) {
@@ -147,10 +152,11 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
     out << "],\n  \"drift_growth\": {";
     bool first_growth = true;
     for (const auto& h : result.histories) {
-      if (!h.growth) continue;
+      const std::string reason = h.ok ? h.growth.reason : "the run failed";
       out << (first_growth ? "" : ", ") << json_string(to_string(h.scheme))
-          << ": {\"exponent\": " << full_precision(h.growth->exponent)
-          << ", \"predicted\": " << json_string(predicted_drift_growth(h.scheme)) << "}";
+          << ": {\"exponent\": " << (h.growth.fit ? full_precision(h.growth.fit->exponent) : "null")
+          << ", \"predicted\": " << json_string(predicted_drift_growth(h.scheme))
+          << ", \"not_fitted_because\": " << (h.growth.fit ? "null" : json_string(reason)) << "}";
       first_growth = false;
     }
     out << "},\n  \"tolerances\": [";

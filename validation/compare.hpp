@@ -59,7 +59,7 @@ struct SchemeHistory {
   bool ok = false;
   std::string message;
   Trajectory trajectory;
-  std::optional<DriftGrowth> growth;  ///< drift ∝ t^p fitted to the per-step log
+  DriftGrowthAssessment growth;  ///< drift ∝ t^p from the per-step log, where meaningful
 };
 
 struct BaumgarteStudyPoint {
