@@ -23,12 +23,12 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
 
 # Debian 12 packages condyn builds with (see README "Dependencies").
-packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev doctest-dev
+packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev
   libtomlplusplus-dev libcli11-dev)
 # The test command also checks formatting and runs clang-tidy (warnings are errors in CI), and
 # builds with clang for the sanitizers and libFuzzer (libclang-rt-14-dev has their runtimes;
 # SUNDIALS' CMake package wants OpenMP, which clang finds in libomp-dev).
-[ "$mode" = test ] && packages+=(clang-format clang-tidy clang libclang-rt-14-dev libomp-dev)
+[ "$mode" = test ] && packages+=(doctest-dev clang-format clang-tidy clang libclang-rt-14-dev libomp-dev)
 # compare draws its plots with Debian's matplotlib (the main job, and a unit test of the plots).
 packages+=(python3-matplotlib python3-numpy)
 missing=()
@@ -43,10 +43,17 @@ if ((${#missing[@]})); then
 fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
-werror=OFF
-[ "$mode" = test ] && werror=ON
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR="$werror" >/dev/null
-cmake --build build -j "$jobs"
+# The main job builds the program alone; the test command builds every test executable too, with
+# warnings as errors.
+if [ "$mode" = main ]; then
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=OFF -DCONDYN_TESTS=OFF \
+    >/dev/null
+  cmake --build build -j "$jobs" --target condyn
+else
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
+    >/dev/null
+  cmake --build build -j "$jobs"
+fi
 
 if [ "$mode" = main ]; then
   build/condyn validate --quiet
