@@ -233,13 +233,15 @@ struct OutputPlan::Impl {
     o.temp.clear();
   }
 
-  /// Creates the temporary file of a regular output; `refusal` decides whether failing is a
-  /// usage error (at check) or a write error (after the work).
+  /// Creates the temporary file of a regular output; failing is a usage error (OutputError) at
+  /// check, a write error (std::runtime_error) after the work.
   void create_temp(Output& o, bool at_check) {
     const fs::path folder = o.target.parent_path();
+    // The name's first 200 bytes: the temporary name stays within NAME_MAX (255).
+    const std::string stem = o.target.filename().string().substr(0, 200);
     for (int attempt = 0; attempt < 100; ++attempt) {
-      o.temp = folder / ("." + o.target.filename().string() + ".condyn-tmp-" +
-                         std::to_string(::getpid()) + "-" + std::to_string(temp_counter++));
+      o.temp = folder / ("." + stem + ".condyn-tmp-" + std::to_string(::getpid()) + "-" +
+                         std::to_string(temp_counter++));
       o.node = register_temp(o.temp.string());
       const int fd = ::open(o.temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
       if (fd >= 0) {
