@@ -320,6 +320,12 @@ struct OutputPlan::Impl {
       if ((flags & O_ACCMODE) == O_RDONLY) {
         refuse(o, "descriptor " + std::to_string(o.fd) + " is open for reading only");
       }
+      struct stat st {};
+      if (::fstat(o.fd, &st) == 0 && S_ISREG(st.st_mode)) {  // `> file`: that file is taken
+        o.exists = true;
+        o.dev = st.st_dev;
+        o.ino = st.st_ino;
+      }
       return;
     }
     if (o.path.back() == '/') refuse(o, "names a folder (name a file)");
@@ -369,7 +375,9 @@ struct OutputPlan::Impl {
   static bool same_target(const Output& a, const Output& b) {
     if (a.kind == Kind::folder || b.kind == Kind::folder) return false;
     if (a.kind == Kind::descriptor || b.kind == Kind::descriptor) {
-      return a.kind == b.kind && a.fd == b.fd;
+      if (a.kind == b.kind && a.fd == b.fd) return true;
+      // A descriptor redirected to a file (`--out - > r.csv`) and an output naming that file.
+      return a.exists && b.exists && a.dev == b.dev && a.ino == b.ino;
     }
     if (a.kind == Kind::device && b.kind == Kind::device && a.target == "/dev/null" &&
         b.target == "/dev/null") {
@@ -476,10 +484,14 @@ void OutputPlan::check() {
     impl_->check_not_input(o);
     for (std::size_t j = 0; j < k; ++j) {
       if (Impl::same_target(outputs[j], o)) {
-        const bool console = o.kind == Impl::Kind::descriptor && o.fd == 1;
-        Impl::refuse(o, console ? "standard output already takes " + outputs[j].source
-                                : "is the same file as " + outputs[j].source + " " +
-                                      outputs[j].path + " (each output needs its own file)");
+        const auto& earlier = outputs[j];
+        const bool descriptors =
+            o.kind == Impl::Kind::descriptor && earlier.kind == Impl::Kind::descriptor;
+        const std::string stream =
+            o.fd == 1 ? "standard output" : "descriptor " + std::to_string(o.fd);
+        Impl::refuse(o, descriptors ? stream + " already takes " + earlier.source
+                                    : "is the same file as " + earlier.source + " " + earlier.path +
+                                          " (each output needs its own file)");
       }
     }
   }

@@ -266,6 +266,10 @@ TEST_CASE("CSV on standard output: stdout is the CSV alone, every other line on 
   CHECK(both.code == 2);
   CHECK(contains(both.err, "standard output already takes --out"));
   CHECK(both.out.empty());
+  // Standard output redirected to a file (the sandbox's out.txt) that another output names.
+  const Result redirected = box.run("run s.toml --out - --steps-out out.txt");
+  CHECK(redirected.code == 2);
+  CHECK(contains(redirected.err, "--steps-out out.txt: is the same file as --out -"));
 }
 
 TEST_CASE("SIGTERM while the CSV is written leaves no temporary file") {
