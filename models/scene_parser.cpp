@@ -249,6 +249,27 @@ class Reader {
         }
       }
     }
+    // Rows a truss adds, named like constraints: fix_<dof> per supported DOF, rigid_i_j per
+    // rigid member (build_model names them so).
+    if (spec.model.type == ModelSpec::Type::truss2d ||
+        spec.model.type == ModelSpec::Type::truss3d) {
+      const char* axes = "xyz";
+      for (int node : spec.model.supports) {
+        for (int d = 0; d < spec.model.dimension; ++d) {
+          const std::string row = std::string("fix_u") + axes[d] + std::to_string(node);
+          owner.emplace("lambda_" + row,
+                        "the multiplier column of the row '" + row + "' that model.supports adds");
+        }
+      }
+      for (std::size_t e = 0; e < spec.model.members.size(); ++e) {
+        const auto& m = spec.model.members[e];
+        if (!m.rigid) continue;
+        const std::string row =
+            "rigid_" + std::to_string(m.node_i) + "_" + std::to_string(m.node_j);
+        owner.emplace("lambda_" + row, "the multiplier column of the row '" + row + "' that " +
+                                           index("model.members", e) + " adds");
+      }
+    }
     const auto* cons = root.get_as<toml::array>("constraint");
     for (std::size_t i = 0; i < spec.constraints.size() && cons != nullptr; ++i) {
       const std::string& c = spec.constraints[i].name;

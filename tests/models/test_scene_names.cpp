@@ -93,3 +93,32 @@ TEST_CASE("names that give a CSV column twice are refused, under every quantity"
   // Prefixes alone are not collisions.
   CHECK(error_of(scene(R"(["vel", "x_vel"])", "")) == "");
 }
+
+TEST_CASE("a constraint may not take the name of a row the truss adds") {
+  const std::string truss = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]
+masses = [1.0, 1.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }, { nodes = [2, 3], EA = 10.0 }]
+[[constraint]]
+name = "NAME"
+terms = { ux3 = 1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  const auto named = [&](const std::string& name) {
+    std::string text = truss;
+    text.replace(text.find("NAME"), 4, name);
+    return error_of(text);
+  };
+  CHECK(named("fix_uy1").find("n.toml:8: constraint[1].name: constraint 'fix_uy1' gives the "
+                              "column 'lambda_fix_uy1', which is already the multiplier column "
+                              "of the row 'fix_uy1' that model.supports adds") !=
+        std::string::npos);
+  CHECK(named("rigid_1_2").find("of the row 'rigid_1_2' that model.members[1] adds") !=
+        std::string::npos);
+  CHECK(named("rigid_2_3") == "");  // an elastic member adds no row
+  CHECK(named("fix_ux2") == "");    // node 2 is not supported
+}
