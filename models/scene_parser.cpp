@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -163,6 +165,119 @@ class Reader {
     for (std::size_t i = 0; i < arr.size(); ++i)
       rows.push_back(numbers(*arr.get(i), index(path, i)));
     return rows;
+  }
+
+  /// DOF and constraint names become CSV column names (scene-format.md, "Output"), written as
+  /// they are: a name may hold ASCII letters, digits and these only.
+  static constexpr std::string_view kNameMarks = "_.-:+[]()";
+
+  static std::string describe_char(char c) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == ' ') return "a space";
+    if (c == '\n' || c == '\r') return "a line break";
+    if (c == '\t') return "a tab";
+    if (u >= 0x80) return "a non-ASCII character";
+    if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", u);
+      return std::string("the control character ") + buf;
+    }
+    return std::string("'") + c + "'";
+  }
+
+  /// The name as a message can show it: control characters escaped.
+  static std::string printable(const std::string& name) {
+    std::string out;
+    for (char c : name) {
+      const auto u = static_cast<unsigned char>(c);
+      if (u < 0x20 || u == 0x7f) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\x%02x", u);
+        out += buf;
+      } else {
+        out += c;
+      }
+    }
+    return out;
+  }
+
+  void check_name(const toml::node& node, const std::string& path, const std::string& name,
+                  const char* what) const {
+    for (char c : name) {
+      const auto u = static_cast<unsigned char>(c);
+      if (u < 0x80 && (std::isalnum(u) != 0 || kNameMarks.find(c) != std::string_view::npos)) {
+        continue;
+      }
+      fail(node, path,
+           std::string(what) + " name '" + printable(name) + "' holds " + describe_char(c) +
+               ": names become CSV column names and may hold only ASCII letters, digits and " +
+               "_ . - : + [ ] ( )");
+    }
+  }
+
+  /// Every column a scene can produce (all quantities, whatever [output] asks now) must be
+  /// distinct: the DOFs' columns (u, vel_u, reaction_u), the multipliers' (lambda_c) and the
+  /// fixed ones. Names are checked here, where they have a line; the message names the later one.
+  void check_columns(const toml::table& root, const SceneSpec& spec) const {
+    std::map<std::string, std::string> owner = {{"t", "the time column"},
+                                                {"drift_position", "a drift column"},
+                                                {"drift_velocity", "a drift column"},
+                                                {"energy", "an energy column"},
+                                                {"energy_error", "an energy column"}};
+    const auto claim = [&](const std::string& column, const std::string& who,
+                           const toml::node& node, const std::string& path, const std::string& name,
+                           const char* what) {
+      const auto [it, fresh] = owner.emplace(column, who);
+      if (!fresh) {
+        fail(node, path,
+             std::string(what) + " '" + name + "' gives the column '" + column + "', which is " +
+                 "already " + it->second + " (CSV columns must be distinct under every quantity)");
+      }
+    };
+    const auto* model = root.get_as<toml::table>("model");
+    const auto* dofs = model != nullptr ? model->get_as<toml::array>("dofs") : nullptr;
+    if (spec.model.type == ModelSpec::Type::matrix && dofs != nullptr) {
+      for (std::size_t i = 0; i < spec.model.dofs.size(); ++i) {
+        const std::string& d = spec.model.dofs[i];
+        const std::string p = index("model.dofs", i);
+        for (const auto& [prefix, quantity] :
+             {std::pair<std::string, std::string>{"", "displacement"},
+              {"vel_", "velocity"},
+              {"reaction_", "reaction"}}) {
+          claim(prefix + d, "the " + quantity + " column of DOF '" + d + "'", *dofs->get(i), p, d,
+                "DOF");
+        }
+      }
+    }
+    // Rows a truss adds, named like constraints: fix_<dof> per supported DOF, rigid_i_j per
+    // rigid member (build_model names them so).
+    if (spec.model.type == ModelSpec::Type::truss2d ||
+        spec.model.type == ModelSpec::Type::truss3d) {
+      const char* axes = "xyz";
+      for (int node : spec.model.supports) {
+        for (int d = 0; d < spec.model.dimension; ++d) {
+          const std::string row = std::string("fix_u") + axes[d] + std::to_string(node);
+          owner.emplace("lambda_" + row,
+                        "the multiplier column of the row '" + row + "' that model.supports adds");
+        }
+      }
+      for (std::size_t e = 0; e < spec.model.members.size(); ++e) {
+        const auto& m = spec.model.members[e];
+        if (!m.rigid) continue;
+        const std::string row =
+            "rigid_" + std::to_string(m.node_i) + "_" + std::to_string(m.node_j);
+        owner.emplace("lambda_" + row, "the multiplier column of the row '" + row + "' that " +
+                                           index("model.members", e) + " adds");
+      }
+    }
+    const auto* cons = root.get_as<toml::array>("constraint");
+    for (std::size_t i = 0; i < spec.constraints.size() && cons != nullptr; ++i) {
+      const std::string& c = spec.constraints[i].name;
+      const auto& t = *cons->get(i)->as_table();
+      const toml::node* where = t.get("name") != nullptr ? t.get("name") : cons->get(i);
+      claim("lambda_" + c, "the multiplier column of constraint '" + c + "'", *where,
+            join(index("constraint", i), "name"), c, "constraint");
+    }
   }
 
   static std::string fmt(double v) {
@@ -342,6 +457,7 @@ class Reader {
         const std::string name = string(*dofs.get(i), index("model.dofs", i));
         if (name.empty())
           fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
+        check_name(*dofs.get(i), index("model.dofs", i), name, "DOF");
         if (!seen.insert(name).second) {
           fail(*dofs.get(i), index("model.dofs", i), "duplicate DOF name '" + name + "'");
         }
@@ -409,7 +525,14 @@ class Reader {
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
     if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
-    if (const auto* n = t.get("rtol")) solve.rtol = positive(*n, "solve.rtol");
+    if (const auto* n = t.get("rtol")) {
+      solve.rtol = positive(*n, "solve.rtol");
+      if (solve.rtol < kMinRtol || solve.rtol >= 1.0) {
+        fail(*n, "solve.rtol",
+             "is out of range: a relative tolerance lies in [" + fmt(kMinRtol) + ", 1) (got " +
+                 fmt(solve.rtol) + ")");
+      }
+    }
     if (const auto* n = t.get("atol")) solve.atol = positive(*n, "solve.atol");
     if (const auto* n = t.get("baumgarte")) {
       const auto& b = table(*n, "solve.baumgarte");
@@ -517,6 +640,7 @@ class Reader {
         if (const auto* nm = t.get("name")) {
           c.name = string(*nm, join(p, "name"));
           if (c.name.empty()) fail(*nm, join(p, "name"), "must not be empty");
+          check_name(*nm, join(p, "name"), c.name, "constraint");
         }
         if (!names.insert(c.name).second) {
           fail(*cons.get(i), p, "duplicate constraint name '" + c.name + "'");
@@ -561,6 +685,7 @@ class Reader {
                ")");
     }
     if (const auto* n = root.get("output")) read_output(*n, spec.output);
+    check_columns(root, spec);
     return spec;
   }
 

@@ -90,6 +90,10 @@ inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Sc
                                       Scheme::ggl,         Scheme::index2,    Scheme::index3,
                                       Scheme::penalty,     Scheme::projection};
 
+/// Relative tolerances accepted ([solve] rtol, --rtol, compare --tolerances): [kMinRtol, 1).
+/// Below, a few ulps of 1: no integrator can meet it; 1 and above accept any answer.
+inline constexpr double kMinRtol = 1e-15;
+
 struct SolveSpec {
   double t_end = 0.0;
   double output_step = 0.0;

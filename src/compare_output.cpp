@@ -6,7 +6,6 @@
 #include <iomanip>
 #include <sstream>
 
-#include "src/csv_output.hpp"
 #include "src/report_format.hpp"
 
 namespace condyn {
@@ -125,18 +124,50 @@ void print_compare_table(std::ostream& out, const CompareResult& result) {
   }
 }
 
-void write_compare_files(const std::string& dir, const CompareResult& result) {
+namespace {
+
+const char* const kOutDir = "--out-dir";
+
+std::string drift_file(Scheme s) { return std::string("drift_") + to_string(s) + ".csv"; }
+std::string history_file(Scheme s) { return std::string("history_") + to_string(s) + ".csv"; }
+
+}  // namespace
+
+void plan_compare_files(OutputPlan& plan, const std::string& dir,
+                        const std::vector<Scheme>& schemes) {
   namespace fs = std::filesystem;
-  make_output_folder(dir);
+  plan.add_folder(dir, kOutDir);
   const fs::path base(dir);
+  for (const char* name : {"runs.csv", "runs.json", "baumgarte_study.csv", "summary.txt"}) {
+    (void)plan.add_output((base / name).string(), kOutDir);
+  }
+  for (Scheme s : schemes) {
+    (void)plan.add_output((base / drift_file(s)).string(), kOutDir);
+    (void)plan.add_output((base / history_file(s)).string(), kOutDir);
+  }
+}
+
+void write_compare_files(const std::string& dir, const CompareResult& result) {
+  OutputPlan plan;
+  write_compare_files(plan, dir, result);
+}
+
+void write_compare_files(OutputPlan& plan, const std::string& dir, const CompareResult& result) {
+  namespace fs = std::filesystem;
+  plan_compare_files(plan, dir, result.options.schemes);
+  plan.check();
+  plan.create_folders();
+  const fs::path base(dir);
+  const auto put = [&](const std::string& path, OutputPlan::Writer writer) {
+    plan.write(plan.add_output(path, kOutDir), std::move(writer));
+  };
 
   std::vector<ReportFields> rows;
   for (const auto& r : result.runs) rows.push_back(fields(r));
-  write_file_atomically((base / "runs.csv").string(), [&](std::ostream& out) {
-    write_csv_table(out, fields(RunRecord{}), rows);
-  });
+  put((base / "runs.csv").string(),
+      [&](std::ostream& out) { write_csv_table(out, fields(RunRecord{}), rows); });
 
-  write_file_atomically((base / "runs.json").string(), [&](std::ostream& out) {
+  put((base / "runs.json").string(), [&](std::ostream& out) {
     out << "{\n  \"scene\": " << json_string(result.scene_name)
         << ",\n  \"reference\": {\"kind\": " << json_string(result.reference_kind)
         << ", \"description\": " << json_string(result.reference_description);
@@ -172,15 +203,14 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
 
   for (const auto& h : result.histories) {
     if (!h.ok) continue;
-    const std::string scheme = to_string(h.scheme);
-    write_file_atomically((base / ("drift_" + scheme + ".csv")).string(), [&](std::ostream& out) {
+    put((base / drift_file(h.scheme)).string(), [&](std::ostream& out) {
       out.precision(17);
       out << "t,drift_position,drift_velocity\n";
       for (const auto& s : h.trajectory.steps) {
         out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
       }
     });
-    write_file_atomically((base / ("history_" + scheme + ".csv")).string(), [&](std::ostream& out) {
+    put((base / history_file(h.scheme)).string(), [&](std::ostream& out) {
       out.precision(17);
       const auto& tr = h.trajectory;
       out << "t";
@@ -199,7 +229,7 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
     });
   }
 
-  write_file_atomically((base / "baumgarte_study.csv").string(), [&](std::ostream& out) {
+  put((base / "baumgarte_study.csv").string(), [&](std::ostream& out) {
     out.precision(17);
     out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s\n";
     for (const auto& p : result.baumgarte_study) {
@@ -215,8 +245,9 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
     }
   });
 
-  write_file_atomically((base / "summary.txt").string(),
-                        [&](std::ostream& out) { print_compare_table(out, result); });
+  put((base / "summary.txt").string(),
+      [&](std::ostream& out) { print_compare_table(out, result); });
+  plan.commit_all();
 }
 
 std::string draw_compare_plots(const std::string& dir) {

@@ -4,6 +4,7 @@
 #include <ostream>
 #include <string>
 
+#include "src/output_files.hpp"
 #include "validation/compare.hpp"
 
 namespace condyn {
@@ -11,8 +12,16 @@ namespace condyn {
 /// The work-precision table, one row per run.
 void print_compare_table(std::ostream& out, const CompareResult& result);
 
+/// Adds to `plan` the folder `dir` and the files compare writes there for `schemes`, so that
+/// plan.check() refuses a bad --out-dir before the runs.
+void plan_compare_files(OutputPlan& plan, const std::string& dir,
+                        const std::vector<Scheme>& schemes);
+
 /// Writes runs.csv, runs.json, drift_<scheme>.csv, history_<scheme>.csv, baumgarte_study.csv and
-/// summary.txt into `dir` (created if missing). Throws std::runtime_error naming the file.
+/// summary.txt into `dir` (created if missing), all committed together through `plan`. Throws
+/// OutputError (a path refused) or std::runtime_error naming the file.
+void write_compare_files(OutputPlan& plan, const std::string& dir, const CompareResult& result);
+/// The same with a plan of its own.
 void write_compare_files(const std::string& dir, const CompareResult& result);
 
 /// Runs validation/plot_compare.py on `dir` with Debian's python3. Returns a one-line note: what

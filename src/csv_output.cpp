@@ -1,11 +1,8 @@
 #include "src/csv_output.hpp"
 
-#include <unistd.h>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <iostream>
+#include <sstream>
 
 namespace condyn {
 
@@ -70,66 +67,80 @@ void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
   }
 }
 
+/// FILE.csv -> FILE.partial.csv (beside it): where a failed run keeps what it computed, so that
+/// the file the user named is never overwritten by an incomplete result.
+std::string partial_path(const std::string& out) {
+  const std::filesystem::path p(out);
+  return (p.parent_path() / (p.stem().string() + ".partial" + p.extension().string())).string();
+}
+
 }  // namespace
 
-void write_file_atomically(const std::string& path,
-                           const std::function<void(std::ostream&)>& writer) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::path target(path);
-  // A symbolic link keeps pointing where it did: the file it names is replaced, not the link.
-  if (fs::is_symlink(fs::symlink_status(target, ec))) {
-    const fs::path resolved = fs::weakly_canonical(target, ec);
-    if (!ec) target = resolved;
-  }
-  const fs::file_status status = fs::status(target, ec);
-  if (fs::is_directory(status)) throw std::runtime_error(path + ": is a directory");
-  const auto fail = [&](const std::string& what) {
-    throw std::runtime_error(path + ": " + what + " (" + std::strerror(errno) + ")");
-  };
-  if (fs::exists(status) && !fs::is_regular_file(status)) {
-    // A device, FIFO or socket (/dev/null, /dev/stdout, a pipe): renaming over it would replace
-    // the special file with a regular one, so the output is streamed into it instead.
-    std::ofstream out(target, std::ios::binary);
-    if (!out) fail("cannot write output");
-    writer(out);
-    out.flush();
-    if (!out) fail("writing the output failed");
-    return;
-  }
-  const fs::path tmp =
-      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) fail("cannot write output");
-    writer(out);
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error(path + ": writing the output failed");
-    }
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw std::runtime_error(path + ": cannot move the output into place (" + ec.message() + ")");
+void write_csv(std::ostream& out, const Model& model, const Trajectory& traj) {
+  write_rows(out, model, traj);
+}
+
+void write_steps_csv(std::ostream& out, const Trajectory& traj) {
+  out.precision(17);
+  out << "t,drift_position,drift_velocity\n";
+  for (const auto& s : traj.steps) {
+    out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
   }
 }
 
-void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj) {
-  write_file_atomically(path, [&](std::ostream& out) { write_rows(out, model, traj); });
+RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
+                       const std::string& output_file, const std::string& steps_out) {
+  plan_.add_input(scene);
+  if (!out_flag.empty()) {
+    csv_ = plan_.add_output(out_flag, "--out");
+  } else if (!output_file.empty()) {
+    csv_ = plan_.add_output(output_file, scene + ": [output] file");
+  } else {
+    const std::string name = std::filesystem::path(scene).stem().string() + ".csv";
+    csv_ = plan_.add_output(name, "the default output (SCENE-STEM.csv)");
+  }
+  if (!steps_out.empty()) steps_ = plan_.add_output(steps_out, "--steps-out");
+  plan_.check();  // the stream test below needs the CSV resolved
+  if (!plan_.is_stream(csv_)) {
+    partial_ = plan_.add_output(partial_path(plan_.display_name(csv_)), "the partial-result file");
+    plan_.check();
+  }
 }
 
-void write_steps_csv_atomically(const std::string& path, const Trajectory& traj) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.precision(17);
-    out << "t,drift_position,drift_velocity\n";
-    for (const auto& s : traj.steps) {
-      out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
-    }
-  });
+std::ostream& RunOutputs::messages() const { return plan_.any_to_stdout() ? std::cerr : std::cout; }
+
+std::string RunOutputs::csv_name() const { return plan_.display_name(csv_); }
+
+std::string RunOutputs::steps_name() const { return steps_ ? plan_.display_name(*steps_) : ""; }
+
+void RunOutputs::write(const Model& model, const Trajectory& traj) {
+  plan_.write(csv_, [&](std::ostream& out) { write_rows(out, model, traj); });
+  std::vector<OutputPlan::Id> ids{csv_};
+  if (steps_) {
+    plan_.write(*steps_, [&](std::ostream& out) { write_steps_csv(out, traj); });
+    ids.push_back(*steps_);
+  }
+  plan_.commit(ids);
+}
+
+std::string RunOutputs::write_partial(const Model& model, const Trajectory& partial) {
+  std::ostringstream s;
+  s << "partial result: the " << partial.t.size() << " output rows up to t = " << partial.t.back();
+  if (!partial_) {
+    s << " were not written (" << csv_name()
+      << " is not a file: a stream, such as standard output, a device or a pipe, gets complete "
+         "results only; give --out FILE to keep them)";
+    return s.str();
+  }
+  try {
+    plan_.write(*partial_, [&](std::ostream& out) { write_rows(out, model, partial); });
+    plan_.commit({*partial_});
+    s << " are in " << plan_.display_name(*partial_) << " (the run did not reach t_end; "
+      << csv_name() << " was not written)";
+  } catch (const std::exception& e) {
+    s << " could not be written: " << e.what();
+  }
+  return s.str();
 }
 
 }  // namespace condyn

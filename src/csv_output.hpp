@@ -3,27 +3,50 @@
 /// quantities in the order the scene lists them.
 
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "dae/trajectory.hpp"
 #include "models/model.hpp"
+#include "src/output_files.hpp"
 
 namespace condyn {
 
-/// Writes through a temporary file beside `path`, renamed into place only after a complete write:
-/// a failure never leaves a half-written or clobbered file. A symbolic link is followed (the file
-/// it names is replaced, the link stays); a device, FIFO or socket (/dev/null, /dev/stdout) is
-/// written into directly, never replaced. Throws std::runtime_error naming path.
-void write_file_atomically(const std::string& path,
-                           const std::function<void(std::ostream&)>& writer);
-
-/// Writes the CSV to a temporary file beside `path` and renames it into place, so a failed run
-/// never leaves a half-written or clobbered file. Throws std::runtime_error naming the path.
-void write_csv_atomically(const std::string& path, const Model& model, const Trajectory& traj);
+/// The CSV rows of a trajectory, header first.
+void write_csv(std::ostream& out, const Model& model, const Trajectory& traj);
 
 /// The per-step drift log (run --steps-out): columns t, drift_position, drift_velocity, one row per
-/// internal step of the integrator. Written atomically like the main CSV.
-void write_steps_csv_atomically(const std::string& path, const Trajectory& traj);
+/// internal step of the integrator.
+void write_steps_csv(std::ostream& out, const Trajectory& traj);
+
+/// The files of `condyn run`, checked before the integration (OutputPlan): the CSV (--out, else
+/// [output] file, else SCENE-STEM.csv in the current folder), the drift log (--steps-out) and,
+/// for a failed run, FILE.partial.csv beside the CSV. None may be the scene or another output.
+/// A CSV going to a stream (standard output, a device, a FIFO) gets complete results only: a
+/// failed run writes nothing there and no partial file. Throws OutputError (bad paths).
+class RunOutputs {
+ public:
+  RunOutputs(const std::string& scene, const std::string& out_flag, const std::string& output_file,
+             const std::string& steps_out);
+
+  /// Where every line but the data goes: standard error when an output is standard output.
+  [[nodiscard]] std::ostream& messages() const;
+  /// The CSV's name for messages ("standard output" for `-`).
+  [[nodiscard]] std::string csv_name() const;
+  [[nodiscard]] bool has_steps() const { return steps_.has_value(); }
+  [[nodiscard]] std::string steps_name() const;
+
+  /// A finished run: the CSV and the drift log, committed together.
+  void write(const Model& model, const Trajectory& traj);
+  /// A failed run: its rows into FILE.partial.csv (the CSV and drift log are left as they were);
+  /// returns the sentence saying where they went, or why they were not written.
+  [[nodiscard]] std::string write_partial(const Model& model, const Trajectory& partial);
+
+ private:
+  OutputPlan plan_;
+  OutputPlan::Id csv_ = 0;
+  std::optional<OutputPlan::Id> steps_, partial_;
+};
 
 }  // namespace condyn

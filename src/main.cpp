@@ -9,9 +9,11 @@
 #include "dae/ida_integrator.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "src/cli_flags.hpp"
 #include "src/compare_output.hpp"
 #include "src/csv_output.hpp"
 #include "src/info_report.hpp"
+#include "src/output_files.hpp"
 #include "src/report_format.hpp"
 #include "src/stress_output.hpp"
 #include "validation/accuracy.hpp"
@@ -24,23 +26,9 @@ namespace {
 
 using namespace condyn;
 
-Scheme parse_scheme_flag(const std::string& s) {
-  if (const auto scheme = scheme_from_string(s)) return *scheme;
-  throw CLI::ValidationError("--scheme",
-                             "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
-}
-
-/// FILE.csv -> FILE.partial.csv (beside it): where a failed run keeps what it computed, so that
-/// the file the user named is never overwritten by an incomplete result.
-std::string partial_path(const std::string& out) {
-  const std::filesystem::path p(out);
-  return (p.parent_path() / (p.stem().string() + ".partial" + p.extension().string())).string();
-}
-
 /// The message for a failed run: what failed where, what to try, and where the rows computed
 /// before the failure went (written here, so nothing computed is lost).
-std::string describe_failure(const IntegrationError& e, const Model& model,
-                             const std::string& out) {
+std::string describe_failure(const IntegrationError& e, const Model& model, RunOutputs& outputs) {
   std::ostringstream s;
   s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << ": " << e.what();
   if (e.in_loop) {
@@ -48,17 +36,7 @@ std::string describe_failure(const IntegrationError& e, const Model& model,
       << e.last_step;
   }
   if (!e.suggestion.empty()) s << "\n  suggestion: " << e.suggestion;
-  if (e.partial) {
-    const std::string partial = partial_path(out);
-    try {
-      write_csv_atomically(partial, model, *e.partial);
-      s << "\n  partial result: the " << e.partial->t.size()
-        << " output rows up to t = " << e.partial->t.back() << " are in " << partial
-        << " (the run did not reach t_end; " << out << " was not written)";
-    } catch (const std::exception& write_error) {
-      s << "\n  the partial result could not be written: " << write_error.what();
-    }
-  }
+  if (e.partial) s << "\n  " << outputs.write_partial(model, *e.partial);
   return s.str();
 }
 
@@ -69,12 +47,17 @@ struct RunArgs {
 
 int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
-  if (!args.scheme.empty()) spec.solve.scheme = parse_scheme_flag(args.scheme);
+  if (!args.scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", args.scheme);
   if (args.rtol) spec.solve.rtol = *args.rtol;
+  if (args.rtol && *args.rtol > 1e-2) {
+    std::cerr << "warning: --rtol " << *args.rtol << " asks for fewer than 2 correct digits\n";
+  }
   if (args.atol) spec.solve.atol = *args.atol;
+  // Every output is checked before the work; with data on standard output, the rest goes to
+  // standard error.
+  RunOutputs outputs(args.scene, args.out, spec.output.file, args.steps_out);
+  std::ostream& msg = outputs.messages();
   const Model model = build_model(spec);
-  std::string out = args.out.empty() ? model.output.file : args.out;
-  if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".csv";
 
   const SchemeChoice choice = choose_scheme(model, spec.solve.scheme);
   SolveSummary summary;
@@ -84,46 +67,29 @@ int run(const RunArgs& args) {
   try {
     traj = solve(model, choice.scheme, options, summary);
   } catch (const IntegrationError& e) {
-    throw IntegrationError(describe_failure(e, model, out));
+    throw IntegrationError(describe_failure(e, model, outputs));
   }
-  write_csv_atomically(out, model, traj);
+  outputs.write(model, traj);
   if (!model.initial_projection.empty())
-    std::cout << "initial state: " << model.initial_projection << "\n";
+    msg << "initial state: " << model.initial_projection << "\n";
   for (const auto& w : model.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";
   for (const auto& d : model.dropped_constraints)
-    std::cout << "dropped redundant constraint " << d << "\n";
-  std::cout << summary.brief() << "\n";
+    msg << "dropped redundant constraint " << d << "\n";
+  msg << summary.brief() << "\n";
   if (const double e = relative_energy_error(model, traj); e >= 0.0) {
-    std::cout << "energy: max |E(t) - E(0)| = " << e
-              << " relative to max(|E(0)|, max kinetic energy)\n";
+    msg << "energy: max |E(t) - E(0)| = " << e << " relative to max(|E(0)|, max kinetic energy)\n";
   }
   if (const auto score = score_against_reference(model, traj, options.rtol, options.atol)) {
-    std::cout << "published reference at t = " << score->t << " (" << score->source
-              << "): " << score->describe() << " (mescd with rtol " << options.rtol << ", atol "
-              << options.atol << ")\n";
+    msg << "published reference at t = " << score->t << " (" << score->source
+        << "): " << score->describe() << " (mescd with rtol " << options.rtol << ", atol "
+        << options.atol << ")\n";
   }
-  std::cout << "wrote " << traj.t.size() << " rows to " << out << "\n";
-  if (!args.steps_out.empty()) {
-    write_steps_csv_atomically(args.steps_out, traj);
-    std::cout << "wrote the drift at " << traj.steps.size() << " internal steps to "
-              << args.steps_out << "\n";
+  msg << "wrote " << traj.t.size() << " rows to " << outputs.csv_name() << "\n";
+  if (outputs.has_steps()) {
+    msg << "wrote the drift at " << traj.steps.size() << " internal steps to "
+        << outputs.steps_name() << "\n";
   }
   return 0;
-}
-
-/// Splits "a,b,c" (spaces ignored).
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::string item;
-  for (char c : s + ",") {
-    if (c == ',') {
-      if (!item.empty()) out.push_back(item);
-      item.clear();
-    } else if (c != ' ') {
-      item += c;
-    }
-  }
-  return out;
 }
 
 int compare(const std::string& scene, std::string dir, const std::string& tolerances,
@@ -137,17 +103,13 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   if (!tolerances.empty()) {
     options.tolerances.clear();
     for (const auto& t : split_list(tolerances)) {
-      try {
-        options.tolerances.push_back(std::stod(t));
-      } catch (const std::exception&) {
-        throw CLI::ValidationError("--tolerances", "'" + t + "' is not a number");
-      }
+      options.tolerances.push_back(parse_rtol_flag("--tolerances", t));
     }
   }
   if (!schemes.empty()) {
     options.schemes.clear();
     for (const auto& s : split_list(schemes)) {
-      const Scheme scheme = parse_scheme_flag(s);
+      const Scheme scheme = parse_scheme_flag("--schemes", s);
       if (scheme == Scheme::automatic) {
         throw CLI::ValidationError("--schemes", "name schemes, not 'auto'");
       }
@@ -159,10 +121,14 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   } catch (const std::invalid_argument& e) {
     throw CLI::ValidationError("compare", e.what());
   }
+  OutputPlan plan;  // the folder and its files, checked before the runs
+  if (!scene.empty()) plan.add_input(scene);
+  plan_compare_files(plan, dir, options.schemes);
+  plan.check();
   options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const CompareResult result = run_compare(spec, options);
   print_compare_table(std::cout, result);
-  write_compare_files(dir, result);
+  write_compare_files(plan, dir, result);
   std::cout << "\nwrote runs.csv, runs.json, drift_*.csv, history_*.csv, baumgarte_study.csv and "
                "summary.txt to "
             << dir << "\n";
@@ -179,10 +145,13 @@ int stress(std::string dir, const std::string& families, bool no_plots) {
     throw CLI::ValidationError("--families", e.what());
   }
   if (dir.empty()) dir = "condyn-out/stress";
+  OutputPlan plan;  // the folder and its files, checked before the runs
+  plan_stress_files(plan, dir, stress_cases(options.families));
+  plan.check();
   options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const StressResult result = run_stress(options);
   print_stress_report(std::cout, result);
-  write_stress_files(dir, result);
+  write_stress_files(plan, dir, result);
   std::cout << "\nwrote stress.csv, stress.json, summary.txt and scenes/*.toml to " << dir << "\n";
   if (!no_plots) std::cout << run_plot_script("plot_stress.py", dir) << "\n";
   return 0;
@@ -193,6 +162,7 @@ int stress(std::string dir, const std::string& families, bool no_plots) {
 int main(int argc, char** argv) {
   CLI::App app{"condyn: constrained dynamic systems, constraints as algebraic equations"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("condyn ") + CONDYN_VERSION);
 
   RunArgs run_args;
   auto* run_cmd = app.add_subcommand("run", "solve a scene and write its CSV");
@@ -200,11 +170,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--scheme", run_args.scheme,
                       "scheme (overrides [solve] scheme): " + scheme_names());
   run_cmd->add_option("--rtol", run_args.rtol, "relative tolerance (overrides [solve] rtol)")
-      ->check(CLI::PositiveNumber);
+      ->check(rtol_check());
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_check());
   run_cmd->add_option("--out", run_args.out,
-                      "CSV file (default: [output] file, else SCENE-STEM.csv here)");
+                      "CSV file, or - for standard output (default: [output] file, else "
+                      "SCENE-STEM.csv here)");
   run_cmd->add_option("--steps-out", run_args.steps_out,
                       "also write the constraint drift at every internal step to this CSV");
 
@@ -227,11 +198,11 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--schemes", compare_schemes,
                           "comma-separated schemes (default: all of them)");
   compare_cmd->add_option("--repeats", compare_options.repeats, "runs per point for the wall time")
-      ->check(CLI::Range(1, 100));
+      ->check(whole_check(1, 100));
   compare_cmd
       ->add_option("--drift-rtol", compare_options.drift_rtol,
                    "tolerance of the drift, history and Baumgarte-study runs")
-      ->check(CLI::Range(1e-14, 0.5));
+      ->check(decimal_range_check(1e-14, 0.5));
   compare_cmd->add_flag("--no-plots", compare_no_plots, "do not call the plotting script");
 
   std::string stress_dir, stress_families_list;
@@ -264,7 +235,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run(run_args);
     if (*info_cmd) {
       SceneSpec spec = parse_scene_file(info_scene);
-      if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag(info_scheme);
+      if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", info_scheme);
       print_info(std::cout, build_model(spec), spec.solve.scheme);
       return 0;
     }
@@ -278,6 +249,9 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const CLI::ValidationError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const OutputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const SchemeNotApplicable& e) {

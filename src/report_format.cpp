@@ -50,14 +50,6 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-void make_output_folder(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) {
-    throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
-  }
-}
-
 void write_csv_table(std::ostream& out, const ReportFields& header,
                      const std::vector<ReportFields>& records) {
   const auto line = [&](const ReportFields& fields, bool names) {

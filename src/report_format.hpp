@@ -20,9 +20,6 @@ using ReportFields = std::vector<std::pair<std::string, std::string>>;
 /// A JSON string literal with control characters escaped.
 [[nodiscard]] std::string json_string(const std::string& s);
 
-/// Creates the folder `dir` (and its parents) if missing; throws std::runtime_error naming it.
-void make_output_folder(const std::string& dir);
-
 /// A CSV table: the header from the field names of `header`, then one line per record.
 void write_csv_table(std::ostream& out, const ReportFields& header,
                      const std::vector<ReportFields>& records);

@@ -5,7 +5,6 @@
 #include <map>
 #include <sstream>
 
-#include "src/csv_output.hpp"
 #include "src/report_format.hpp"
 
 namespace condyn {
@@ -122,16 +121,43 @@ void print_stress_report(std::ostream& out, const StressResult& result) {
   }
 }
 
-void write_stress_files(const std::string& dir, const StressResult& result) {
+namespace {
+const char* const kOutDir = "--out-dir";
+}  // namespace
+
+void plan_stress_files(OutputPlan& plan, const std::string& dir,
+                       const std::vector<StressCase>& cases) {
   namespace fs = std::filesystem;
-  make_output_folder((fs::path(dir) / "scenes").string());
   const fs::path base(dir);
+  plan.add_folder(dir, kOutDir);
+  plan.add_folder((base / "scenes").string(), kOutDir);
+  for (const char* name : {"stress.csv", "stress.json", "summary.txt"}) {
+    (void)plan.add_output((base / name).string(), kOutDir);
+  }
+  for (const auto& c : cases) {
+    (void)plan.add_output((base / "scenes" / (c.id + ".toml")).string(), kOutDir);
+  }
+}
+
+void write_stress_files(const std::string& dir, const StressResult& result) {
+  OutputPlan plan;
+  write_stress_files(plan, dir, result);
+}
+
+void write_stress_files(OutputPlan& plan, const std::string& dir, const StressResult& result) {
+  namespace fs = std::filesystem;
+  plan_stress_files(plan, dir, result.cases);
+  plan.check();
+  plan.create_folders();
+  const fs::path base(dir);
+  const auto put = [&](const std::string& path, OutputPlan::Writer writer) {
+    plan.write(plan.add_output(path, kOutDir), std::move(writer));
+  };
   std::vector<ReportFields> rows;
   for (const auto& r : result.records) rows.push_back(fields(r));
-  write_file_atomically((base / "stress.csv").string(), [&](std::ostream& out) {
-    write_csv_table(out, fields(StressRecord{}), rows);
-  });
-  write_file_atomically((base / "stress.json").string(), [&](std::ostream& out) {
+  put((base / "stress.csv").string(),
+      [&](std::ostream& out) { write_csv_table(out, fields(StressRecord{}), rows); });
+  put((base / "stress.json").string(), [&](std::ostream& out) {
     out << "{\n  \"wall_s\": " << full_precision(result.wall_seconds)
         << ",\n  \"error_factor\": " << full_precision(kStressErrorFactor)
         << ",\n  \"families\": [\n";
@@ -151,14 +177,15 @@ void write_stress_files(const std::string& dir, const StressResult& result) {
   });
   for (std::size_t i = 0; i < result.cases.size(); ++i) {
     const auto& c = result.cases[i];
-    write_file_atomically((base / "scenes" / (c.id + ".toml")).string(), [&](std::ostream& out) {
+    put((base / "scenes" / (c.id + ".toml")).string(), [&](std::ostream& out) {
       out << "# condyn stress, family " << c.family << ", " << c.label
           << ": run it with build/condyn run FILE --scheme S\n"
           << c.scene_text;
     });
   }
-  write_file_atomically((base / "summary.txt").string(),
-                        [&](std::ostream& out) { print_stress_report(out, result); });
+  put((base / "summary.txt").string(),
+      [&](std::ostream& out) { print_stress_report(out, result); });
+  plan.commit_all();
 }
 
 }  // namespace condyn

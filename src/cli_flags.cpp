@@ -1,0 +1,133 @@
+#include "src/cli_flags.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "models/scene_parser.hpp"
+
+namespace condyn {
+
+namespace {
+
+std::string shortest(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+/// The message for a value that is not a number: what was given, what is expected.
+std::string not_a_number(const std::string& text) {
+  return "'" + text + "' is not a decimal number (write e.g. 1e-6 or 0.5)";
+}
+
+}  // namespace
+
+std::optional<double> parse_decimal(const std::string& text) {
+  // [+-] digits [. digits] [(e|E) [+-] digits], at least one digit in the mantissa.
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  const auto digits = [&]() {
+    const std::size_t start = i;
+    while (i < n && text[i] >= '0' && text[i] <= '9') ++i;
+    return i - start;
+  };
+  if (i < n && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t mantissa = digits();
+  if (i < n && text[i] == '.') {
+    ++i;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return std::nullopt;
+  if (i < n && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < n && (text[i] == '+' || text[i] == '-')) ++i;
+    if (digits() == 0) return std::nullopt;
+  }
+  if (i != n) return std::nullopt;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), nullptr);
+  if (!std::isfinite(v) || (errno == ERANGE && v != 0.0)) return std::nullopt;
+  return v;
+}
+
+double parse_rtol_flag(const std::string& flag, const std::string& text) {
+  const auto v = parse_decimal(text);
+  if (!v) throw CLI::ValidationError(flag, not_a_number(text));
+  if (!(*v >= kMinRtol && *v < 1.0)) {
+    throw CLI::ValidationError(flag, text + " is out of range: a relative tolerance lies in [" +
+                                         shortest(kMinRtol) + ", 1)");
+  }
+  return *v;
+}
+
+CLI::Validator rtol_check() {
+  return {[](std::string& text) {
+            const auto v = parse_decimal(text);
+            if (!v) return not_a_number(text);
+            if (!(*v >= kMinRtol && *v < 1.0)) {
+              return text + " is out of range: a relative tolerance lies in [" +
+                     shortest(kMinRtol) + ", 1)";
+            }
+            return std::string();
+          },
+          "RTOL in [" + shortest(kMinRtol) + ", 1)"};
+}
+
+CLI::Validator positive_check() {
+  return {[](std::string& text) {
+            const auto v = parse_decimal(text);
+            if (!v) return not_a_number(text);
+            if (!(*v > 0.0)) return text + " must be > 0";
+            return std::string();
+          },
+          "NUMBER > 0"};
+}
+
+CLI::Validator decimal_range_check(double lo, double hi) {
+  return {[lo, hi](std::string& text) {
+            const auto v = parse_decimal(text);
+            if (!v) return not_a_number(text);
+            if (!(*v >= lo && *v <= hi)) {
+              return text + " is out of range [" + shortest(lo) + ", " + shortest(hi) + "]";
+            }
+            return std::string();
+          },
+          "NUMBER in [" + shortest(lo) + ", " + shortest(hi) + "]"};
+}
+
+CLI::Validator whole_check(int lo, int hi) {
+  return {[lo, hi](std::string& text) {
+            const bool whole = !text.empty() && text.size() <= 9 &&
+                               text.find_first_not_of("0123456789") == std::string::npos;
+            const long v = whole ? std::stol(text) : 0;
+            if (!whole || v < lo || v > hi) {
+              return "'" + text + "' is not a whole number in [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]";
+            }
+            return std::string();
+          },
+          "INTEGER in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]"};
+}
+
+Scheme parse_scheme_flag(const std::string& flag, const std::string& s) {
+  if (const auto scheme = scheme_from_string(s)) return *scheme;
+  throw CLI::ValidationError(flag, "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::string item;
+  for (char c : s + ",") {
+    if (c == ',') {
+      if (!item.empty()) out.push_back(item);
+      item.clear();
+    } else if (c != ' ') {
+      item += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace condyn

@@ -1,0 +1,35 @@
+#pragma once
+/// Command-line values read strictly: a number flag takes a whole decimal number, a list flag a
+/// comma-separated list whose every item is checked, and every message names the flag.
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/scene_spec.hpp"
+
+namespace condyn {
+
+/// The whole of `text` as a finite decimal number (`2`, `0.5`, `1e-6`, `-3.`), else nullopt:
+/// `abc`, `0x10`, `1e-3x`, `nan`, `inf`, `1e999` (beyond a double) are not numbers here.
+[[nodiscard]] std::optional<double> parse_decimal(const std::string& text);
+
+/// `text` as a relative tolerance given by `flag`; throws CLI::ValidationError naming the flag.
+[[nodiscard]] double parse_rtol_flag(const std::string& flag, const std::string& text);
+
+/// CLI11 checks for number options, with short messages: a relative tolerance in
+/// [kMinRtol, 1), a number > 0, a whole number in [lo, hi].
+[[nodiscard]] CLI::Validator rtol_check();
+[[nodiscard]] CLI::Validator positive_check();
+[[nodiscard]] CLI::Validator whole_check(int lo, int hi);
+/// A tolerance for a side run (compare --drift-rtol): like rtol_check, bounded by [lo, hi].
+[[nodiscard]] CLI::Validator decimal_range_check(double lo, double hi);
+
+/// A scheme named by `flag`; throws CLI::ValidationError naming the flag and the schemes.
+[[nodiscard]] Scheme parse_scheme_flag(const std::string& flag, const std::string& s);
+
+/// Splits "a,b,c" (spaces ignored, empty items dropped).
+[[nodiscard]] std::vector<std::string> split_list(const std::string& s);
+
+}  // namespace condyn

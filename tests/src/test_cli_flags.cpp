@@ -1,0 +1,97 @@
+// Command-line values are read strictly: a number flag takes a whole decimal number in its range,
+// every message is short and names the flag, and `--version` answers.
+#include <doctest/doctest.h>
+
+#include <regex>
+#include <string>
+
+#include "tests/cli_sandbox.hpp"
+
+using condyn::test::Result;
+using condyn::test::Sandbox;
+
+namespace {
+
+const std::string kScene = R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 1.0]]
+[solve]
+t_end = 1.0
+output_step = 0.25
+)";
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+// A usage message is a line or two, not a 300-digit range: a bound with a reason.
+constexpr std::size_t kShortMessage = 200;
+
+}  // namespace
+
+TEST_CASE("number flags take whole decimal numbers in their range, with a short message") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  struct Case {
+    std::string args, flag, says;
+  };
+  const Case cases[] = {
+      {"run s.toml --rtol abc", "--rtol", "'abc' is not a decimal number"},
+      {"run s.toml --rtol 0x10", "--rtol", "'0x10' is not a decimal number"},
+      {"run s.toml --rtol 1e-6x", "--rtol", "'1e-6x' is not a decimal number"},
+      {"run s.toml --rtol nan", "--rtol", "'nan' is not a decimal number"},
+      {"run s.toml --rtol inf", "--rtol", "'inf' is not a decimal number"},
+      {"run s.toml --rtol 1", "--rtol",
+       "1 is out of range: a relative tolerance lies in [1e-15, 1)"},
+      {"run s.toml --rtol 1e-16", "--rtol", "out of range"},
+      {"run s.toml --rtol -1e-6", "--rtol", "out of range"},
+      {"run s.toml --atol 0x1", "--atol", "'0x1' is not a decimal number"},
+      {"run s.toml --atol 1e999", "--atol", "'1e999' is not a decimal number"},
+      {"run s.toml --atol 0", "--atol", "must be > 0"},
+      {"compare --tolerances 1e-3x", "--tolerances", "'1e-3x' is not a decimal number"},
+      {"compare --tolerances 1e-4,0x10", "--tolerances", "'0x10' is not a decimal number"},
+      {"compare --tolerances 1", "--tolerances", "out of range"},
+      {"compare --drift-rtol abc", "--drift-rtol", "'abc' is not a decimal number"},
+      {"compare --drift-rtol 1", "--drift-rtol", "out of range"},
+      {"compare --repeats 0x10", "--repeats", "not a whole number in [1, 100]"},
+      {"compare --repeats 2.5", "--repeats", "not a whole number in [1, 100]"},
+      {"compare --repeats 0", "--repeats", "not a whole number in [1, 100]"},
+      {"compare --schemes ggl,foo", "--schemes", "unknown scheme 'foo'"},
+      {"info s.toml --scheme foo", "--scheme", "unknown scheme 'foo'"},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.args);
+    const Result r = box.run(c.args);
+    CAPTURE(r.err);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, c.flag + ": "));
+    CHECK(contains(r.err, c.says));
+    CHECK(r.err.size() < kShortMessage + 40);  // + "Run with --help for more information."
+    CHECK(!contains(r.err, "[1/"));            // compare refused before its first run
+  }
+  // What stays accepted.
+  CHECK(box.run("run s.toml --rtol 1e-6 --atol 1E-9 --out r.csv").code == 0);
+  CHECK(box.run("run s.toml --rtol .001 --atol 2 --out r.csv").code == 0);
+  const Result loose = box.run("run s.toml --rtol 0.5 --out r.csv");
+  CHECK(loose.code == 0);
+  CHECK(contains(loose.err, "warning: --rtol 0.5 asks for fewer than 2 correct digits"));
+}
+
+TEST_CASE("[solve] rtol has the command line's range") {
+  const Sandbox box;
+  box.write("one.toml", kScene + "rtol = 1.0\n");
+  const Result r = box.run("run one.toml --out r.csv");
+  CHECK(r.code == 2);
+  CHECK(contains(r.err, "one.toml:9: solve.rtol: is out of range: a relative tolerance lies in"));
+  box.write("tiny.toml", kScene + "rtol = 1e-300\n");
+  CHECK(box.run("run tiny.toml --out r.csv").code == 2);
+}
+
+TEST_CASE("--version prints the program's version") {
+  const Sandbox box;
+  const Result r = box.run("--version");
+  CHECK(r.code == 0);
+  CHECK(std::regex_match(r.out, std::regex("condyn [0-9]+\\.[0-9]+\\.[0-9]+\n")));
+}

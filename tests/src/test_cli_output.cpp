@@ -1,0 +1,374 @@
+// Output safety (README "Outputs"): every output of a command is checked before any work, none
+// may be an input or another output, all are committed together, streams (standard output,
+// devices, FIFOs) are written in place, temporary files never outlive the process.
+#include <doctest/doctest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/cli_sandbox.hpp"
+
+namespace fs = std::filesystem;
+using condyn::test::Result;
+using condyn::test::Sandbox;
+using condyn::test::slurp;
+
+namespace {
+
+const std::string kScene = R"(name = "two masses"
+[model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 1.0]]
+[[load]]
+dof = "b"
+value = { type = "step", amplitude = 1.0, start = 0.25 }
+[[constraint]]
+name = "tie"
+terms = { a = 1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.25
+)";
+const std::string kHeader = "t,a,b,drift_position,drift_velocity\n";
+
+// A run that fails at t = 1 (test_cli.cpp explains why): an output checked only after the
+// integration shows up as exit 1 there, one checked before it as exit 2 with no solver message.
+const std::string kFailing = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[[constraint]]
+name = "pull"
+terms = { uy2 = 1.0 }
+value = { type = "polynomial", coefficients = [0.0, -1.0] }
+[initial]
+velocity = { uy2 = -1.0 }
+[solve]
+t_end = 2.0
+output_step = 0.1
+scheme = "ggl"
+)";
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+/// Files of `dir` whose names start with a dot: the temporary files of an output.
+std::vector<std::string> hidden_files(const fs::path& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind('.', 0) == 0) out.push_back(name);
+  }
+  return out;
+}
+
+/// Every line of `csv` after the header has as many fields as the header and only numbers.
+bool pure_csv(const std::string& csv, const std::string& header) {
+  if (csv.rfind(header, 0) != 0) return false;
+  const auto fields = std::count(header.begin(), header.end(), ',') + 1;
+  std::istringstream lines(csv.substr(header.size()));
+  int rows = 0;
+  for (std::string line; std::getline(lines, line); ++rows) {
+    if (std::count(line.begin(), line.end(), ',') + 1 != fields) return false;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) {
+      std::size_t used = 0;
+      try {
+        (void)std::stod(cell, &used);
+      } catch (const std::exception&) {
+        return false;
+      }
+      if (used != cell.size()) return false;
+    }
+  }
+  return rows > 0;
+}
+
+}  // namespace
+
+TEST_CASE("no output may be an input: the scene is never overwritten") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  const auto unchanged = [&]() { return slurp(box.path("s.toml")) == kScene; };
+
+  const Result flag = box.run("run s.toml --out s.toml");
+  CHECK(flag.code == 2);
+  CHECK(contains(flag.err, "--out s.toml: is s.toml, an input of this command"));
+  CHECK(unchanged());
+
+  // [output] file naming the scene, by the same name or another one (a link, a hard link).
+  box.write("o.toml", kScene + "[output]\nfile = \"o.toml\"\n");
+  const Result key = box.run("run o.toml");
+  CHECK(key.code == 2);
+  CHECK(contains(key.err, "o.toml: [output] file o.toml: is o.toml, an input"));
+  CHECK(slurp(box.path("o.toml")) == kScene + "[output]\nfile = \"o.toml\"\n");
+  fs::create_symlink("s.toml", box.path("link.csv"));
+  CHECK(box.run("run s.toml --out link.csv").code == 2);
+  fs::create_hard_link(box.path("s.toml"), box.path("hard.csv"));
+  CHECK(box.run("run s.toml --out hard.csv").code == 2);
+  CHECK(box.run("run s.toml --steps-out ./s.toml --out r.csv").code == 2);
+  CHECK(unchanged());
+  CHECK(!fs::exists(box.path("r.csv")));
+
+  // The default output (SCENE-STEM.csv) of a scene whose name ends in .csv is the scene.
+  box.write("x.csv", kScene);
+  CHECK(box.run("run x.csv").code == 2);
+  CHECK(slurp(box.path("x.csv")) == kScene);
+
+  // The file a failed run would keep its rows in is an output too.
+  box.write("p.partial.toml", kFailing);
+  const Result partial = box.run("run p.partial.toml --out p.toml");
+  CHECK(partial.code == 2);
+  CHECK(contains(partial.err, "p.partial.toml: is p.partial.toml, an input"));
+  CHECK(slurp(box.path("p.partial.toml")) == kFailing);
+  CHECK(hidden_files(box.path(".")).empty());
+}
+
+TEST_CASE("--out and --steps-out: checked together before the run, committed together") {
+  const Sandbox box;
+  box.write("f.toml", kFailing);
+  box.write("keep.csv", "precious\n");
+
+  // The same file twice: refused, before the integration (exit 2, not the solver's exit 1).
+  const Result same = box.run("run f.toml --steps-out keep.csv --out keep.csv");
+  CHECK(same.code == 2);
+  CHECK(contains(same.err, "--steps-out keep.csv: is the same file as --out keep.csv"));
+  CHECK(!contains(same.err, "integration failed"));
+  CHECK(slurp(box.path("keep.csv")) == "precious\n");
+
+  // A --steps-out that cannot be written: refused before --out is touched.
+  const Result bad = box.run("run f.toml --out keep.csv --steps-out missing/steps.csv");
+  CHECK(bad.code == 2);
+  CHECK(contains(bad.err, "--steps-out missing/steps.csv: the folder"));
+  CHECK(contains(bad.err, "missing does not exist"));
+  CHECK(!contains(bad.err, "integration failed"));
+  CHECK(slurp(box.path("keep.csv")) == "precious\n");
+
+  // --steps-out naming where a failed run keeps --out's rows.
+  CHECK(box.run("run f.toml --out keep.csv --steps-out keep.partial.csv").code == 2);
+  CHECK(!fs::exists(box.path("keep.partial.csv")));
+
+  // A good pair: both written.
+  box.write("s.toml", kScene);
+  const Result ok = box.run("run s.toml --out keep.csv --steps-out steps.csv --scheme ggl");
+  CAPTURE(ok.err);
+  CHECK(ok.code == 0);
+  CHECK(slurp(box.path("keep.csv")).rfind(kHeader, 0) == 0);
+  CHECK(slurp(box.path("steps.csv")).rfind("t,drift_position,drift_velocity\n", 0) == 0);
+  CHECK(hidden_files(box.path(".")).empty());
+}
+
+TEST_CASE("a path that cannot be written is refused before any work") {
+  const Sandbox box;
+  box.write("f.toml", kFailing);
+  box.write("afile", "not a folder\n");
+  const Result missing = box.run("run f.toml --out nowhere/x.csv");
+  CHECK(missing.code == 2);
+  CHECK(contains(missing.err, "--out nowhere/x.csv: the folder"));
+  CHECK(!contains(missing.err, "integration failed"));
+  const Result under_file = box.run("run f.toml --out afile/x.csv");
+  CHECK(under_file.code == 2);
+  CHECK(contains(under_file.err, "afile is not a folder"));
+  const Result folder = box.run("run f.toml --out .");
+  CHECK(folder.code == 2);
+  CHECK(contains(folder.err, "is a folder"));
+
+  // compare and stress: the folder is checked before the first run (no progress line).
+  for (const std::string& cmd :
+       {std::string("compare --no-plots --repeats 1 --tolerances 1e-4 --out-dir afile"),
+        std::string("compare --no-plots --repeats 1 --tolerances 1e-4 --out-dir afile/sub"),
+        std::string("stress --no-plots --families stiffness --out-dir afile"),
+        std::string("compare --no-plots --repeats 1 --tolerances 1e-4 --out-dir /dev/null/x")}) {
+    CAPTURE(cmd);
+    const Result r = box.run(cmd);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "--out-dir"));
+    CHECK(contains(r.err, "not a folder"));
+    CHECK(!contains(r.err, "[1/"));  // progress lines start "[k/n]"
+  }
+  CHECK(slurp(box.path("afile")) == "not a folder\n");
+
+  // A compare scene inside its --out-dir under one of the file names compare writes.
+  fs::create_directory(box.path("out"));
+  const std::string truss =
+      slurp(fs::path(CONDYN_SOURCE_DIR) / "validation/scenes" / "chapter_5_5_1.toml");
+  REQUIRE(!truss.empty());
+  box.write("out/summary.txt", truss);
+  const Result input =
+      box.run("compare out/summary.txt --no-plots --repeats 1 --tolerances 1e-4 --out-dir out");
+  CHECK(input.code == 2);
+  CHECK(contains(input.err, "an input of this command"));
+  CHECK(slurp(box.path("out/summary.txt")) == truss);
+}
+
+TEST_CASE("a failed run writes no .partial beside a device, FIFO or standard output") {
+  const Sandbox box;
+  box.write("f.toml", kFailing);
+  const Result null = box.run("run f.toml --out /dev/null");
+  CHECK(null.code == 1);
+  CHECK(contains(null.err, "partial result: the 10 output rows up to t = 0.9 were not written"));
+  CHECK(contains(null.err, "give --out FILE to keep them"));
+  struct stat st {};
+  REQUIRE(::stat("/dev/null", &st) == 0);
+  CHECK(S_ISCHR(st.st_mode));
+
+  REQUIRE(::mkfifo(box.path("pipe.csv").c_str(), 0600) == 0);
+  const Result fifo = box.run("run f.toml --out pipe.csv");  // nothing opens the FIFO: no reader
+  CHECK(fifo.code == 1);
+  CHECK(contains(fifo.err, "were not written"));
+  CHECK(fs::is_fifo(fs::symlink_status(box.path("pipe.csv"))));
+  CHECK(!fs::exists(box.path("pipe.partial.csv")));
+
+  const Result out = box.run("run f.toml --out -");
+  CHECK(out.code == 1);
+  CHECK(out.out.empty());
+  CHECK(contains(out.err, "were not written (standard output is not a file"));
+  CHECK(!fs::exists(box.path("-")));
+  CHECK(!fs::exists(box.path("-.partial")));
+  CHECK(box.run("run f.toml --out /dev/stdout").out.empty());
+  CHECK(hidden_files(box.path(".")).empty());
+}
+
+TEST_CASE("CSV on standard output: stdout is the CSV alone, every other line on stderr") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  for (const char* target : {"-", "/dev/stdout"}) {
+    CAPTURE(target);
+    const Result r = box.run(std::string("run s.toml --out ") + target);
+    CHECK(r.code == 0);
+    CHECK(pure_csv(r.out, kHeader));
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1 + 5);  // t = 0, 0.25, ..., 1
+    CHECK(contains(r.err, "elimination: reached t = 1"));
+    CHECK(contains(r.err, "wrote 5 rows to "));
+  }
+  CHECK(!fs::exists(box.path("-")));
+  const Result steps = box.run("run s.toml --out r.csv --steps-out - --scheme ggl");
+  CHECK(steps.code == 0);
+  CHECK(pure_csv(steps.out, "t,drift_position,drift_velocity\n"));
+  CHECK(contains(steps.err, "internal steps to standard output"));
+  CHECK(slurp(box.path("r.csv")).rfind(kHeader, 0) == 0);
+  const Result both = box.run("run s.toml --out - --steps-out /dev/stdout");
+  CHECK(both.code == 2);
+  CHECK(contains(both.err, "standard output already takes --out"));
+  CHECK(both.out.empty());
+  // Standard output redirected to a file (the sandbox's out.txt) that another output names.
+  const Result redirected = box.run("run s.toml --out - --steps-out out.txt");
+  CHECK(redirected.code == 2);
+  CHECK(contains(redirected.err, "--steps-out out.txt: is the same file as --out -"));
+}
+
+TEST_CASE("SIGTERM while the CSV is written leaves no temporary file") {
+  const Sandbox box;
+  // 40 oscillators started at 1, 50001 output rows: a CSV of about 40 MB, long enough to write
+  // that the signal lands during the write.
+  const int n = 40;
+  std::ostringstream s;
+  s << "[model]\ntype = \"matrix\"\ndofs = [";
+  for (int i = 0; i < n; ++i) s << (i ? ", " : "") << "\"x" << i << "\"";
+  s << "]\n";
+  for (const char* key : {"mass", "stiffness"}) {
+    s << key << " = [";
+    for (int i = 0; i < n; ++i) {
+      s << (i ? ", " : "") << "[";
+      for (int j = 0; j < n; ++j) s << (j ? ", " : "") << (i == j ? 1.0 + 0.01 * i : 0.0);
+      s << "]";
+    }
+    s << "]\n";
+  }
+  s << "[initial]\ndisplacement = {";
+  for (int i = 0; i < n; ++i) s << (i ? ", " : " ") << "x" << i << " = 1.0";
+  s << " }\n[solve]\nt_end = 1000.0\noutput_step = 0.02\nrtol = 1e-4\natol = 1e-6\n";
+  box.write("big.toml", s.str());
+
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    if (::chdir(box.path(".").c_str()) != 0) ::_exit(126);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execl(CONDYN_BINARY, "condyn", "run", "big.toml", "--out", "big.csv", nullptr);
+    ::_exit(127);
+  }
+  // Wait until a temporary file holds data: the CSV is being written.
+  bool writing = false;
+  int status = 0;
+  bool exited = false;
+  for (int k = 0; k < 120000 && !writing && !exited; ++k) {
+    for (const auto& name : hidden_files(box.path("."))) {
+      std::error_code ec;
+      writing = writing || fs::file_size(box.path(name), ec) > 0;
+    }
+    exited = ::waitpid(pid, &status, WNOHANG) == pid;
+    if (!writing && !exited) ::usleep(500);
+  }
+  if (!exited) {
+    ::kill(pid, SIGTERM);
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+  }
+  REQUIRE(writing);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  CHECK(hidden_files(box.path(".")).empty());
+  CHECK(!fs::exists(box.path("big.csv")));
+}
+
+TEST_CASE("links and permissions: what replacing an output keeps") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+
+  // A dangling link: the file it names is created, the link stays a link.
+  fs::create_symlink("target.csv", box.path("dangling.csv"));
+  const Result dangling = box.run("run s.toml --out dangling.csv");
+  CHECK(dangling.code == 0);
+  CHECK(fs::is_symlink(fs::symlink_status(box.path("dangling.csv"))));
+  CHECK(slurp(box.path("target.csv")).rfind(kHeader, 0) == 0);
+  // A link into a folder that does not exist: refused before the run.
+  fs::create_symlink("nowhere/x.csv", box.path("lost.csv"));
+  const Result lost = box.run("run s.toml --out lost.csv");
+  CHECK(lost.code == 2);
+  CHECK(contains(lost.err, "nowhere does not exist"));
+
+  // An existing file keeps its permission bits.
+  box.write("mode.csv", "old\n");
+  fs::permissions(box.path("mode.csv"),
+                  fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  CHECK(box.run("run s.toml --out mode.csv").code == 0);
+  CHECK(fs::status(box.path("mode.csv")).permissions() ==
+        (fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read));
+  CHECK(slurp(box.path("mode.csv")).rfind(kHeader, 0) == 0);
+
+  // A file without any write permission is protected: refused, untouched.
+  box.write("ro.csv", "protected\n");
+  fs::permissions(box.path("ro.csv"), fs::perms::owner_read | fs::perms::group_read);
+  const Result ro = box.run("run s.toml --out ro.csv");
+  CHECK(ro.code == 2);
+  CHECK(contains(ro.err, "--out ro.csv: is read-only"));
+  CHECK(slurp(box.path("ro.csv")) == "protected\n");
+
+  // A file with other hard links is replaced (atomically); its other names keep the previous
+  // content, and the run says so.
+  box.write("linked.csv", "old\n");
+  fs::create_hard_link(box.path("linked.csv"), box.path("other.csv"));
+  const Result hard = box.run("run s.toml --out linked.csv");
+  CHECK(hard.code == 0);
+  CHECK(contains(hard.err, "linked.csv had 2 hard links"));
+  CHECK(slurp(box.path("linked.csv")).rfind(kHeader, 0) == 0);
+  CHECK(slurp(box.path("other.csv")) == "old\n");
+  CHECK(hidden_files(box.path(".")).empty());
+}
