@@ -1,5 +1,6 @@
 // condyn compare: the sweep, its reference, failures recorded as data, and the output files.
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -105,7 +106,8 @@ TEST_CASE("compare: the output files follow validation/compare-output.md") {
   CompareOptions o = small_options();
   o.schemes = {Scheme::elimination, Scheme::baumgarte};
   const CompareResult r = run_compare(spec, o);
-  const auto dir = std::filesystem::temp_directory_path() / "condyn_compare_test";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("condyn_compare_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   write_compare_files(dir.string(), r);
   auto slurp = [&](const char* name) {
@@ -134,7 +136,8 @@ TEST_CASE("compare: the output files follow validation/compare-output.md") {
 
 TEST_CASE("plot_compare.py draws the four plots from a compare folder") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "condyn_plot_test";
+  const fs::path dir =
+      fs::temp_directory_path() / ("condyn_plot_test_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::copy(fs::path(CONDYN_SOURCE_DIR) / "validation" / "sample_compare", dir);
   // Through the same entry point compare uses; the test command installs python3-matplotlib.
@@ -179,7 +182,8 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
   CHECK(r.runs[1].mescd_u > r.runs[0].mescd_u + 2.0);
   CHECK(r.runs[3].mescd_u > r.runs[2].mescd_u + 2.0);
 
-  const fs::path dir = fs::temp_directory_path() / "condyn_compare_published";
+  const fs::path dir =
+      fs::temp_directory_path() / ("condyn_compare_published_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   write_compare_files(dir.string(), r);
   std::ifstream json(dir / "runs.json");

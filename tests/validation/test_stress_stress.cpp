@@ -2,6 +2,7 @@
 // non-finite number as a result, every break and refusal carries its reason, and the findings
 // the README reports still hold (each expectation below names the family's observation).
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -118,7 +119,8 @@ TEST_CASE("stress: the findings the README reports") {
 
 TEST_CASE("stress: the output folder and the map") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "condyn_stress_test";
+  const fs::path dir =
+      fs::temp_directory_path() / ("condyn_stress_test_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   write_stress_files(dir.string(), suite());
   std::ifstream csv(dir / "stress.csv");
