@@ -42,7 +42,8 @@ std::string partial_path(const std::string& out) {
 std::string describe_failure(const IntegrationError& e, const Model& model,
                              const std::string& out) {
   std::ostringstream s;
-  s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << ": " << e.what();
+  s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << " ("
+    << to_string(e.kind) << "): " << e.what();
   if (e.in_loop) {
     s << "\n  reached t = " << e.t_reached << " of t_end = " << model.solve.t_end << ", last step "
       << e.last_step;
@@ -65,13 +66,30 @@ std::string describe_failure(const IntegrationError& e, const Model& model,
 struct RunArgs {
   std::string scene, scheme, out, steps_out;
   std::optional<double> rtol, atol;
+  std::optional<long> max_steps;
+  std::optional<double> max_wall_time;
 };
+
+/// One progress line on standard error for a long run (the loop calls this only after the first
+/// couple of seconds, so short runs print nothing).
+void print_progress(const Progress& p) {
+  const double span = p.t_end - p.t0;
+  const double percent = span > 0.0 ? 100.0 * (p.t - p.t0) / span : 100.0;
+  std::ostringstream s;
+  s.precision(4);
+  s << "progress: t = " << p.t << " of " << p.t_end << " (";
+  s.precision(3);
+  s << percent << "%), " << p.steps << " steps, " << p.elapsed_seconds << " s";
+  std::cerr << s.str() << std::endl;
+}
 
 int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
   if (!args.scheme.empty()) spec.solve.scheme = parse_scheme_flag(args.scheme);
   if (args.rtol) spec.solve.rtol = *args.rtol;
   if (args.atol) spec.solve.atol = *args.atol;
+  if (args.max_steps) spec.solve.max_steps = *args.max_steps;
+  if (args.max_wall_time) spec.solve.max_wall_time = *args.max_wall_time;
   const Model model = build_model(spec);
   std::string out = args.out.empty() ? model.output.file : args.out;
   if (out.empty()) out = std::filesystem::path(args.scene).stem().string() + ".csv";
@@ -80,11 +98,12 @@ int run(const RunArgs& args) {
   SolveSummary summary;
   IntegratorOptions options = integrator_options(model);
   options.record_steps = !args.steps_out.empty();
+  options.on_progress = print_progress;
   Trajectory traj;
   try {
     traj = solve(model, choice.scheme, options, summary);
   } catch (const IntegrationError& e) {
-    throw IntegrationError(describe_failure(e, model, out));
+    throw IntegrationError(e.kind, describe_failure(e, model, out));
   }
   write_csv_atomically(out, model, traj);
   if (!model.initial_projection.empty())
@@ -203,6 +222,15 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
       ->check(CLI::PositiveNumber);
+  run_cmd
+      ->add_option("--max-steps", run_args.max_steps,
+                   "step budget of the run (overrides [solve] max_steps); more is a failure")
+      ->check(CLI::PositiveNumber);
+  run_cmd
+      ->add_option("--max-wall-time", run_args.max_wall_time,
+                   "wall-time budget in seconds (overrides [solve] max_wall_time); more is a "
+                   "failure")
+      ->check(CLI::Range(1e-9, 1e12));
   run_cmd->add_option("--out", run_args.out,
                       "CSV file (default: [output] file, else SCENE-STEM.csv here)");
   run_cmd->add_option("--steps-out", run_args.steps_out,
