@@ -263,11 +263,16 @@ Trajectory solve_resolved(const Model& model, Scheme scheme, const IntegratorOpt
 
 namespace {
 
-/// "about 3e+07": an order of magnitude for the advice, not a figure to rely on.
+/// "about 140", "about 4e+304": two significant digits, an order of magnitude for the advice.
 std::string about(double x) {
   std::ostringstream s;
-  s.precision(2);
-  s << "about " << x;
+  if (x >= 1.0 && x < 1e6) {
+    const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+    s << "about " << static_cast<long>(std::round(x / unit) * unit);
+  } else {
+    s.precision(2);
+    s << "about " << x;
+  }
   return s.str();
 }
 
