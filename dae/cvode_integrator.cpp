@@ -67,6 +67,39 @@ int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N
   }
 }
 
+/// What a CVODE return flag says happened (by its code, never its text).
+FailureKind failure_kind(int flag) {
+  switch (flag) {
+    case CV_TOO_MUCH_WORK:
+      return FailureKind::steps_per_output;
+    case CV_TOO_MUCH_ACC:
+      return FailureKind::tolerance_too_tight;
+    case CV_ERR_FAILURE:
+      return FailureKind::error_test;
+    case CV_CONV_FAILURE:
+    case CV_NLS_FAIL:
+    case CV_NLS_SETUP_FAIL:
+    case CV_PROJFUNC_FAIL:
+    case CV_REPTD_PROJFUNC_ERR:
+      return FailureKind::convergence;
+    case CV_LINIT_FAIL:
+    case CV_LSETUP_FAIL:
+    case CV_LSOLVE_FAIL:
+      return FailureKind::linear_solver;
+    case CV_FIRST_RHSFUNC_ERR:  // the right-hand side stayed non-finite
+    case CV_REPTD_RHSFUNC_ERR:
+      return FailureKind::non_finite;
+    case CV_ILL_INPUT:
+    case CV_TOO_CLOSE:
+    case CV_BAD_T:
+    case CV_BAD_K:
+    case CV_BAD_DKY:
+      return FailureKind::bad_input;
+    default:
+      return FailureKind::unknown;
+  }
+}
+
 void error_handler(int /*code*/, const char* /*module*/, const char* function, char* msg,
                    void* user) {
   static_cast<CallbackData*>(user)->message = std::string(function) + ": " + msg;
@@ -111,10 +144,10 @@ class Cvode final : public Stepper {
       CVodeGetCurrentTime(mem_.get(), &tcur);
       CVodeGetLastStep(mem_.get(), &hlast);
       std::ostringstream s;
-      s << "CVode failed with " << CVodeGetReturnFlagName(flag) << " at t = " << tcur
-        << " (last step " << hlast << ")";
+      s << "CVode failed with " << sundials::flag_name(CVodeGetReturnFlagName, flag)
+        << " at t = " << tcur << " (last step " << hlast << ")";
       if (!data_.message.empty()) s << ": " << data_.message;
-      throw IntegrationError(s.str());
+      throw IntegrationError(failure_kind(flag), s.str());
     }
     return tret;
   }
@@ -188,8 +221,10 @@ class Cvode final : public Stepper {
   }
   void check(int flag, const char* call) const {
     if (flag < 0) {
-      throw IntegrationError(std::string(call) + " failed with " + CVodeGetReturnFlagName(flag) +
-                             (data_.message.empty() ? "" : ": " + data_.message));
+      throw IntegrationError(failure_kind(flag),
+                             std::string(call) + " failed with " +
+                                 sundials::flag_name(CVodeGetReturnFlagName, flag) +
+                                 (data_.message.empty() ? "" : ": " + data_.message));
     }
   }
 

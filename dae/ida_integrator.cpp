@@ -29,6 +29,10 @@ void IntegratorOptions::validate() const {
   if (!std::is_sorted(breakpoints.begin(), breakpoints.end())) bad("breakpoints not ascending");
   if (max_steps_per_output <= 0) bad("max_steps_per_output must be > 0");
   if (max_steps < 0) bad("max_steps must be >= 0");
+  if (!(max_wall_seconds >= 0.0) || !std::isfinite(max_wall_seconds))
+    bad("max_wall_seconds must be >= 0");
+  if (!(progress_after_seconds >= 0.0) || !(progress_every_seconds >= 0.0))
+    bad("progress intervals must be >= 0");
 }
 
 std::string SolveSummary::brief() const {
@@ -136,6 +140,38 @@ int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   return 0;
 }
 
+/// What an IDA return flag says happened (by its code, never its text).
+FailureKind failure_kind(int flag) {
+  switch (flag) {
+    case IDA_TOO_MUCH_WORK:
+      return FailureKind::steps_per_output;
+    case IDA_TOO_MUCH_ACC:
+      return FailureKind::tolerance_too_tight;
+    case IDA_ERR_FAIL:
+      return FailureKind::error_test;
+    case IDA_CONV_FAIL:
+    case IDA_NLS_FAIL:
+    case IDA_NLS_SETUP_FAIL:
+    case IDA_NO_RECOVERY:
+    case IDA_LINESEARCH_FAIL:
+      return FailureKind::convergence;
+    case IDA_LINIT_FAIL:
+    case IDA_LSETUP_FAIL:
+    case IDA_LSOLVE_FAIL:
+      return FailureKind::linear_solver;
+    case IDA_REP_RES_ERR:  // the residual stayed non-finite however small the step
+      return FailureKind::non_finite;
+    case IDA_ILL_INPUT:
+    case IDA_BAD_EWT:
+    case IDA_BAD_T:
+    case IDA_BAD_K:
+    case IDA_BAD_DKY:
+      return FailureKind::bad_input;
+    default:
+      return FailureKind::unknown;
+  }
+}
+
 void error_handler(int /*code*/, const char* /*module*/, const char* function, char* msg,
                    void* user) {
   auto* data = static_cast<CallbackData*>(user);
@@ -233,10 +269,10 @@ class Ida final : public Stepper {
       IDAGetCurrentTime(mem_.get(), &tcur);
       IDAGetLastStep(mem_.get(), &hlast);
       std::ostringstream s;
-      s << "IDASolve failed with " << IDAGetReturnFlagName(flag) << " at t = " << tcur
-        << " (last step " << hlast << ")";
+      s << "IDASolve failed with " << sundials::flag_name(IDAGetReturnFlagName, flag)
+        << " at t = " << tcur << " (last step " << hlast << ")";
       if (!data_.ida_message.empty()) s << ": " << data_.ida_message;
-      throw IntegrationError(s.str());
+      throw IntegrationError(failure_kind(flag), s.str());
     }
     return tret;
   }
@@ -289,8 +325,10 @@ class Ida final : public Stepper {
  private:
   void check(int flag, const char* call) const {
     if (flag < 0) {
-      throw IntegrationError(std::string(call) + " failed with " + IDAGetReturnFlagName(flag) +
-                             (data_.ida_message.empty() ? "" : ": " + data_.ida_message));
+      throw IntegrationError(failure_kind(flag),
+                             std::string(call) + " failed with " +
+                                 sundials::flag_name(IDAGetReturnFlagName, flag) +
+                                 (data_.ida_message.empty() ? "" : ": " + data_.ida_message));
     }
   }
   struct Counters {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
@@ -66,6 +67,8 @@ IntegratorOptions integrator_options(const Model& model) {
   o.dense_linear_solver = model.solve.dense_linear_solver;
   o.output_times = model.output_times();
   o.breakpoints = model.breakpoints();
+  o.max_steps = model.solve.max_steps;
+  o.max_wall_seconds = model.solve.max_wall_time;
   return o;
 }
 
@@ -259,52 +262,109 @@ Trajectory solve_resolved(const Model& model, Scheme scheme, const IntegratorOpt
 
 }  // namespace
 
-std::string failure_suggestion(Scheme scheme, const IntegrationError& e, double t_end) {
-  const std::string message = e.what();
-  const bool non_finite = message.find("non-finite") != std::string::npos;
-  // A step at roundoff relative to the time reached: no step size helps, the equations are
-  // singular there (or the solution jumps).
-  const bool collapsed =
-      e.in_loop && std::abs(e.last_step) <= 1e-12 * std::max({1.0, std::abs(e.t_reached), t_end});
-  const bool too_many_steps = message.find("steps without reaching") != std::string::npos ||
-                              message.find("steps in all") != std::string::npos ||
-                              message.find("TOO_MUCH_WORK") != std::string::npos;
-  std::string s;
-  if (non_finite) {
-    s = "the solution blew up: check loads and time functions for runaway growth, and masses "
-        "and stiffnesses for absurd magnitudes";
-  } else if (collapsed) {
-    s = "the step size collapsed to roundoff: the motion reaches a singular configuration "
-        "(constraints that become dependent, a mechanism at a dead point, a prescribed motion it "
-        "cannot follow) or a jump; check the scene at the time reached";
-  } else if (too_many_steps) {
-    s = "the step size stayed tiny for many steps: the model is very stiff or oscillates far "
-        "faster than the output step; a smaller output_step lets the run go on, a looser rtol "
-        "takes larger steps";
+namespace {
+
+/// "about 140", "about 4e+304": two significant digits, an order of magnitude for the advice.
+std::string about(double x) {
+  std::ostringstream s;
+  if (x >= 1.0 && x < 1e6) {
+    const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+    s << "about " << static_cast<long>(std::round(x / unit) * unit);
   } else {
-    s = "repeated convergence or error-test failures: the motion may pass a singular "
-        "configuration or jump near the time reached; a looser rtol or another scheme may pass";
+    s.precision(2);
+    s << "about " << x;
   }
+  return s.str();
+}
+
+/// What the scheme itself adds to the advice after a solver failure.
+std::string scheme_advice(Scheme scheme) {
   switch (scheme) {
     case Scheme::baumgarte:
-      s += "; large Baumgarte gains make the system stiff: try smaller [solve] baumgarte gains or "
-           "ggl";
-      break;
+      return "; large Baumgarte gains make the system stiff: try smaller [solve] baumgarte gains "
+             "or ggl";
     case Scheme::penalty:
-      s += "; a large penalty weight makes the system stiff: try a smaller [solve] penalty weight "
-           "or ggl";
-      break;
+      return "; a large penalty weight makes the system stiff: try a smaller [solve] penalty "
+             "weight or ggl";
     case Scheme::index1:
     case Scheme::index2:
-      s += "; this scheme lets the drift grow: ggl or projection hold the constraints";
-      break;
+      return "; this scheme lets the drift grow: ggl or projection hold the constraints";
     case Scheme::index3:
-      s += "; index3 is the least robust formulation: try ggl";
-      break;
+      return "; index3 is the least robust formulation: try ggl";
     default:
+      return "";
+  }
+}
+
+}  // namespace
+
+std::string failure_suggestion(Scheme scheme, const IntegrationError& e) {
+  // What is left of the run, in steps of the last size and in wall time at the pace so far.
+  const double left = e.t_end - e.t_reached;
+  const bool progressed = e.in_loop && e.t_reached > e.t0;
+  const double steps_left = e.last_step != 0.0 ? left / std::abs(e.last_step) : 0.0;
+  const double seconds_left = progressed ? e.elapsed_seconds * left / (e.t_reached - e.t0) : 0.0;
+  switch (e.kind) {
+    case FailureKind::non_finite:
+      return "the solution blew up: check loads and time functions for runaway growth, and masses "
+             "and stiffnesses for absurd magnitudes";
+    case FailureKind::step_budget: {
+      std::string s = "the run used up its step budget ([solve] max_steps or --max-steps)";
+      if (steps_left > 0.0) {
+        s += "; at the last step size the rest of the run needs " + about(steps_left) +
+             " more steps";
+      }
+      return s + ": shorten t_end, raise the budget, or loosen rtol (larger steps)";
+    }
+    case FailureKind::wall_time_budget: {
+      std::string s =
+          "the run used up its wall-time budget ([solve] max_wall_time or "
+          "--max-wall-time)";
+      if (seconds_left > 0.0) {
+        s += "; at the pace so far the rest of the run needs " + about(seconds_left) + " s";
+      }
+      return s + ": shorten t_end, raise the budget, or loosen rtol (larger steps)";
+    }
+    case FailureKind::steps_per_output:
+      return "the step size stayed tiny for many steps: the model is very stiff or oscillates far "
+             "faster than the output step; a smaller output_step lets the run go on, a looser "
+             "rtol takes larger steps" +
+             scheme_advice(scheme);
+    case FailureKind::step_size_collapsed:
+      return "the step size collapsed to roundoff of the time reached: the motion reaches a "
+             "singular configuration (constraints that become dependent, a mechanism at a dead "
+             "point, a prescribed motion it cannot follow) or a jump; check the scene at the time "
+             "reached" +
+             scheme_advice(scheme);
+    case FailureKind::tolerance_too_tight:
+      return "the tolerances ask for more than double precision holds at these magnitudes: "
+             "loosen rtol, or raise atol to the size of the smallest quantity that matters";
+    case FailureKind::linear_solver:
+      return "the iteration matrix could not be factored (singular): a DOF that nothing holds "
+             "(no mass, stiffness or constraint), or constraints that became dependent near the "
+             "time reached; `condyn info` shows the classification, another scheme may pass" +
+             scheme_advice(scheme);
+    case FailureKind::first_step:
+      return "the integrator failed before its first step, so no motion was computed: check the "
+             "initial state (displacements and velocities consistent with the constraints; "
+             "[initial] project = true), the tolerances (atol on the scale of the smallest "
+             "unknown that matters, rtol not tighter than needed), and the time scale (t_end and "
+             "output_step against the model's periods); another scheme may start";
+    case FailureKind::bad_input:
+      return "the integrator refused an input (a time, tolerance or size it cannot use): check "
+             "t_end, output_step, the load step times and the tolerances";
+    case FailureKind::convergence:
+    case FailureKind::error_test:
+    case FailureKind::unknown:
       break;
   }
-  return s;
+  std::string s = progressed ? "repeated convergence or error-test failures near the time "
+                               "reached: the motion may pass a singular configuration or jump "
+                               "there; a looser rtol or another scheme may pass"
+                             : "repeated convergence or error-test failures right after the "
+                               "start or a load step: check the state there and the tolerances; "
+                               "a looser rtol or another scheme may pass";
+  return s + scheme_advice(scheme);
 }
 
 Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
@@ -315,7 +375,7 @@ Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& opt
     return solve_resolved(model, scheme, options, summary);
   } catch (IntegrationError& e) {
     e.scheme = to_string(scheme);
-    e.suggestion = failure_suggestion(scheme, e, model.solve.t_end);
+    e.suggestion = failure_suggestion(scheme, e);
     throw;
   }
 }

@@ -39,9 +39,9 @@ struct SystemSize {
 /// Builds the scheme's DAE (without integrating) and sizes it. Throws like solve() would.
 [[nodiscard]] SystemSize system_size(const Model& model, Scheme scheme);
 
-/// What to try after `scheme` failed with `e` on a run to t_end, in one line.
-[[nodiscard]] std::string failure_suggestion(Scheme scheme, const IntegrationError& e,
-                                             double t_end);
+/// What to try after `scheme` failed with `e`, in one line: chosen by e.kind, worded from the
+/// facts it carries (time reached against t0 and t_end, last step, steps, wall time).
+[[nodiscard]] std::string failure_suggestion(Scheme scheme, const IntegrationError& e);
 
 /// Integrator options from the model's [solve] section, possibly overridden by the caller.
 [[nodiscard]] IntegratorOptions integrator_options(const Model& model);

@@ -8,6 +8,13 @@
 
 namespace condyn {
 
+/// Where a long run stands, for a progress line (IntegratorOptions::on_progress).
+struct Progress {
+  double t0 = 0.0, t = 0.0, t_end = 0.0;  ///< start, time reached, end of the run
+  long steps = 0;                         ///< internal steps so far
+  double elapsed_seconds = 0.0;           ///< wall time since the loop started
+};
+
 struct IntegratorOptions {
   double rtol = 1e-8;
   double atol = 1e-10;
@@ -15,7 +22,13 @@ struct IntegratorOptions {
   std::vector<double> output_times;    ///< ascending, first one is the initial time
   std::vector<double> breakpoints;     ///< load steps inside (t0, t_end): stop and restart there
   long max_steps_per_output = 100000;  ///< between two output times; more is a failure
-  long max_steps = 0;  ///< over the whole run (0: no limit); more is a failure (`condyn stress`)
+  long max_steps = 0;                  ///< over the whole run (0: no limit); more is a failure
+  double max_wall_seconds = 0.0;       ///< wall time of the loop (0: no limit); more is a failure
+  /// Called from the loop once a run has taken progress_after_seconds of wall time, then every
+  /// progress_every_seconds (dae/ never prints: the caller decides what to show).
+  std::function<void(const Progress&)> on_progress;
+  double progress_after_seconds = 2.0;
+  double progress_every_seconds = 2.0;
   /// Called after every internal step with the step's exact t and y (not interpolated).
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;
   /// Keep a per-step drift log (Trajectory::steps) for drift plots; off by default.

@@ -1,54 +1,159 @@
 #include "dae/step_driver.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace condyn {
 
+const char* to_string(FailureKind kind) {
+  switch (kind) {
+    case FailureKind::unknown:
+      return "integrator failure";
+    case FailureKind::non_finite:
+      return "non-finite solution";
+    case FailureKind::step_budget:
+      return "step budget exhausted";
+    case FailureKind::wall_time_budget:
+      return "wall-time budget exhausted";
+    case FailureKind::steps_per_output:
+      return "too many steps between two outputs";
+    case FailureKind::step_size_collapsed:
+      return "step size collapsed";
+    case FailureKind::convergence:
+      return "Newton convergence failures";
+    case FailureKind::error_test:
+      return "error-test failures";
+    case FailureKind::tolerance_too_tight:
+      return "tolerances too tight";
+    case FailureKind::linear_solver:
+      return "linear solver failure";
+    case FailureKind::first_step:
+      return "failure before the first step";
+    case FailureKind::bad_input:
+      return "integrator input refused";
+  }
+  return "integrator failure";
+}
+
+double time_merge_tolerance(double t0, double t_end) {
+  const double scale = std::max({std::abs(t0), std::abs(t_end), t_end - t0});
+  return kTimeMergeUlps * std::numeric_limits<double>::epsilon() * scale;
+}
+
+TimeGrid make_time_grid(const std::vector<double>& output_times,
+                        const std::vector<double>& breakpoints) {
+  TimeGrid grid;
+  const double t0 = output_times.front(), t_end = output_times.back();
+  const double tol = time_merge_tolerance(t0, t_end);
+  grid.tolerance = tol;
+
+  // Load steps: a cluster within tol of the last kept time (t0 or a stop) joins it, and stands
+  // for its last member, so every step of the cluster is on in the segment after it.
+  double last = t0;
+  bool at_t0 = true;
+  for (double b : breakpoints) {
+    if (b <= t0) continue;
+    if (b >= t_end - tol) break;  // switches on within roundoff of the end: changes nothing
+    if (b - last <= tol) {
+      if (at_t0) {
+        grid.initial_stop = b;
+      } else {
+        grid.stops.back() = b;
+      }
+    } else {
+      grid.stops.push_back(b);
+      at_t0 = false;
+    }
+    last = b;
+  }
+
+  // Outputs: each one within tol of a stop is that stop; ones within tol of t0, t_end or the
+  // output kept before them are the same time and dropped.
+  const auto& marks = grid.stops;
+  grid.outputs.push_back(t0);
+  for (std::size_t k = 1; k + 1 < output_times.size(); ++k) {
+    double t = output_times[k];
+    if (t - t0 <= tol || t_end - t <= tol) continue;
+    // The nearest stop: the first one at or after t, or the one before it.
+    const auto after = std::lower_bound(marks.begin(), marks.end(), t);
+    if (after != marks.end() && *after - t <= tol) {
+      t = *after;
+    } else if (after != marks.begin() && t - *(after - 1) <= tol) {
+      t = *(after - 1);
+    }
+    if (t - grid.outputs.back() <= tol) continue;
+    grid.outputs.push_back(t);
+  }
+  grid.outputs.push_back(t_end);
+  return grid;
+}
+
 RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0,
                     const IntegratorOptions& options, SolveSummary& summary) {
-  const auto& times = options.output_times;
-  const double t0 = times.front();
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const TimeGrid grid = make_time_grid(options.output_times, options.breakpoints);
+  const auto& times = grid.outputs;
+  const auto& stops = grid.stops;
+  const double t0 = times.front(), t_end = times.back();
   RawTrajectory out;
   auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
     if (!y.allFinite() || !yp.allFinite()) {
       std::ostringstream s;
       s << "the solution became non-finite (NaN or inf) at t = " << t;
-      throw IntegrationError(s.str());
+      throw IntegrationError(FailureKind::non_finite, s.str());
     }
     out.t.push_back(t);
     out.y.push_back(y);
     out.yp.push_back(yp);
   };
-  record(t0, y0, yp0);
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
-  // Load steps strictly inside (t0, t_end); each ends a segment.
-  std::vector<double> stops;
-  for (double b : options.breakpoints) {
-    if (b > t0 && b < times.back()) stops.push_back(b);
-  }
   std::size_t next_stop = 0;
-  auto stop_ahead = [&] { return next_stop < stops.size() ? stops[next_stop] : times.back(); };
-  stepper.set_stop_time(stop_ahead());
-
-  // One internal step at a time: every step is seen exactly (drift, μ), outputs are interpolated.
+  auto stop_ahead = [&] { return next_stop < stops.size() ? stops[next_stop] : t_end; };
   std::size_t k = 1;  // next output
   long steps_since_output = 0, total_steps = 0;
   double reached = t0;
+  double next_progress = options.progress_after_seconds;
   Eigen::VectorXd yo, ypo;
   try {
+    record(t0, y0, yp0);
+    // Restarts at a load step's time: the state after it, and the outputs merged into it.
+    auto restart_at = [&](double b) {
+      stepper.restart(b);
+      stepper.set_stop_time(stop_ahead());
+      ++summary.restarts;
+      reached = b;
+      while (k < times.size() && times[k] <= b) {
+        record(times[k], stepper.y(), stepper.yp());
+        ++k;
+      }
+    };
+    // A load step within roundoff after t0 switches on before the first step.
+    if (grid.initial_stop) restart_at(*grid.initial_stop);
+    stepper.set_stop_time(stop_ahead());
+
+    // One internal step at a time: every step is seen exactly (drift, μ), outputs are interpolated.
     while (k < times.size()) {
-      const double t = stepper.step(times[k]);
+      // Never a first output within roundoff of where the integrator stands (SUNDIALS refuses
+      // it after a (re)initialisation; the grid keeps outputs and stops apart, this is the guard).
+      const double tout = times[k] - reached > grid.tolerance ? times[k] : stop_ahead();
+      const double t = stepper.step(tout);
+      ++total_steps;
       if (++steps_since_output > options.max_steps_per_output) {
         std::ostringstream s;
         s << "took " << options.max_steps_per_output << " steps without reaching the output time "
           << times[k] << " (at t = " << t << ")";
-        throw IntegrationError(s.str());
+        throw IntegrationError(FailureKind::steps_per_output, s.str());
       }
-      if (options.max_steps > 0 && ++total_steps > options.max_steps) {
+      if (options.max_steps > 0 && total_steps > options.max_steps) {
         std::ostringstream s;
         s << "took more than " << options.max_steps << " steps in all (at t = " << t
           << ", the step budget of this run)";
-        throw IntegrationError(s.str());
+        throw IntegrationError(FailureKind::step_budget, s.str());
       }
       reached = t;
       if (options.on_step) options.on_step(t, stepper.y());
@@ -65,13 +170,21 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
         steps_since_output = 0;
       }
       if (at_stop) {
-        const double b = stops[next_stop++];
-        stepper.restart(b);
-        stepper.set_stop_time(stop_ahead());
-        ++summary.restarts;
-        while (k < times.size() && times[k] <= b) {
-          record(times[k], stepper.y(), stepper.yp());
-          ++k;
+        restart_at(stops[next_stop++]);
+        steps_since_output = 0;
+      }
+      if (options.max_wall_seconds > 0.0 || options.on_progress) {
+        const double seconds = elapsed();
+        if (options.on_progress && seconds >= next_progress && k < times.size()) {
+          options.on_progress({t0, reached, t_end, total_steps, seconds});
+          next_progress = seconds + options.progress_every_seconds;
+        }
+        if (options.max_wall_seconds > 0.0 && seconds > options.max_wall_seconds &&
+            k < times.size()) {
+          std::ostringstream s;
+          s << "ran longer than " << options.max_wall_seconds << " s of wall time (at t = " << t
+            << ", the wall-time budget of this run)";
+          throw IntegrationError(FailureKind::wall_time_budget, s.str());
         }
       }
     }
@@ -79,11 +192,28 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
     // Keep what was computed: the rows so far, where the run stopped and its last step.
     e.in_loop = true;
     e.t_reached = reached;
+    e.t0 = t0;
+    e.t_end = t_end;
+    e.steps = total_steps;
+    e.elapsed_seconds = elapsed();
     try {
       stepper.fill_summary(summary);
       e.last_step = summary.last_step;
     } catch (const IntegrationError&) {
       // The counters are lost with the integrator's state; the failure itself is what matters.
+    }
+    // The facts refine the integrator's word: a failure before any step is a failure to start;
+    // failures (or a stall) with the last step at roundoff of the time reached are a collapse.
+    const bool solver_failure =
+        e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
+        e.kind == FailureKind::linear_solver || e.kind == FailureKind::unknown;
+    constexpr double kCollapsedStep = 1e-12;  // relative to |t_reached|: a few thousand ulps
+    if (solver_failure && total_steps == 0) {
+      e.kind = FailureKind::first_step;
+    } else if ((e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
+                e.kind == FailureKind::steps_per_output) &&
+               std::abs(e.last_step) <= kCollapsedStep * std::abs(e.t_reached)) {
+      e.kind = FailureKind::step_size_collapsed;
     }
     e.raw_partial = std::make_shared<const RawTrajectory>(std::move(out));
     throw;

@@ -7,7 +7,9 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 #include <Eigen/Dense>
+#include <cstdlib>
 #include <memory>
+#include <string>
 #include <type_traits>
 
 namespace condyn::sundials {
@@ -31,6 +33,13 @@ using SolverPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, Solver
 
 inline Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
+}
+
+/// The name of a return flag from IDAGetReturnFlagName / CVodeGetReturnFlagName, which return a
+/// string the caller must free (SUNDIALS allocates it with malloc): copied, then freed.
+inline std::string flag_name(char* (*get_name)(long int), int flag) {
+  const std::unique_ptr<char, decltype(&std::free)> name(get_name(flag), &std::free);
+  return name ? std::string(name.get()) : "flag " + std::to_string(flag);
 }
 
 }  // namespace condyn::sundials

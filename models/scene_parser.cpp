@@ -521,9 +521,19 @@ class Reader {
     solve.where = at(node, path);
     check_keys(t, path,
                {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "penalty", "slaves",
-                "linear_solver", "redundant"});
+                "linear_solver", "redundant", "max_steps", "max_wall_time"});
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
+    if (const auto* n = t.get("max_steps")) {
+      // A whole number >= 1 (1e6 is accepted: a budget is often written so).
+      const double v = number(*n, "solve.max_steps");
+      if (!(v >= 1.0) || v != std::floor(v) || v > 1e18) {
+        fail(*n, "solve.max_steps", "must be a whole number of steps >= 1 (got " + fmt(v) + ")");
+      }
+      solve.max_steps = static_cast<long>(v);
+    }
+    if (const auto* n = t.get("max_wall_time"))
+      solve.max_wall_time = positive(*n, "solve.max_wall_time");
     if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
     if (const auto* n = t.get("rtol")) {
       solve.rtol = positive(*n, "solve.rtol");

@@ -109,6 +109,10 @@ struct SolveSpec {
   /// [solve] redundant = "drop": remove constraints that are linear combinations of others with
   /// compatible right-hand sides (reported), instead of refusing the scene. Linear models only.
   bool drop_redundant = false;
+  /// Budget of the whole run: internal steps (0: none) and wall seconds (0: none); a run that
+  /// exhausts either fails with its partial result.
+  long max_steps = 0;
+  double max_wall_time = 0.0;
   SourcePoint where;
 };
 

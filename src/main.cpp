@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "dae/ida_integrator.hpp"
@@ -30,7 +31,8 @@ using namespace condyn;
 /// before the failure went (written here, so nothing computed is lost).
 std::string describe_failure(const IntegrationError& e, const Model& model, RunOutputs& outputs) {
   std::ostringstream s;
-  s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << ": " << e.what();
+  s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << " ("
+    << to_string(e.kind) << "): " << e.what();
   if (e.in_loop) {
     s << "\n  reached t = " << e.t_reached << " of t_end = " << model.solve.t_end << ", last step "
       << e.last_step;
@@ -43,7 +45,22 @@ std::string describe_failure(const IntegrationError& e, const Model& model, RunO
 struct RunArgs {
   std::string scene, scheme, out, steps_out;
   std::optional<double> rtol, atol;
+  std::optional<long> max_steps;
+  std::optional<double> max_wall_time;
 };
+
+/// One progress line on standard error for a long run (the loop calls this only after the first
+/// couple of seconds, so short runs print nothing).
+void print_progress(const Progress& p) {
+  const double span = p.t_end - p.t0;
+  const double percent = span > 0.0 ? 100.0 * (p.t - p.t0) / span : 100.0;
+  std::ostringstream s;
+  s.precision(4);
+  s << "progress: t = " << p.t << " of " << p.t_end << " (";
+  s.precision(3);
+  s << percent << "%), " << p.steps << " steps, " << p.elapsed_seconds << " s";
+  std::cerr << s.str() << std::endl;
+}
 
 int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
@@ -53,6 +70,8 @@ int run(const RunArgs& args) {
     std::cerr << "warning: --rtol " << *args.rtol << " asks for fewer than 2 correct digits\n";
   }
   if (args.atol) spec.solve.atol = *args.atol;
+  if (args.max_steps) spec.solve.max_steps = *args.max_steps;
+  if (args.max_wall_time) spec.solve.max_wall_time = *args.max_wall_time;
   // Every output is checked before the work; with data on standard output, the rest goes to
   // standard error.
   RunOutputs outputs(args.scene, args.out, spec.output.file, args.steps_out);
@@ -63,11 +82,12 @@ int run(const RunArgs& args) {
   SolveSummary summary;
   IntegratorOptions options = integrator_options(model);
   options.record_steps = !args.steps_out.empty();
+  options.on_progress = print_progress;
   Trajectory traj;
   try {
     traj = solve(model, choice.scheme, options, summary);
   } catch (const IntegrationError& e) {
-    throw IntegrationError(describe_failure(e, model, outputs));
+    throw IntegrationError(e.kind, describe_failure(e, model, outputs));
   }
   outputs.write(model, traj);
   if (!model.initial_projection.empty())
@@ -173,6 +193,15 @@ int main(int argc, char** argv) {
       ->check(rtol_check());
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
       ->check(positive_check());
+  run_cmd
+      ->add_option("--max-steps", run_args.max_steps,
+                   "step budget of the run (overrides [solve] max_steps); more is a failure")
+      ->check(whole_check(1, std::numeric_limits<int>::max()));
+  run_cmd
+      ->add_option("--max-wall-time", run_args.max_wall_time,
+                   "wall-time budget in seconds (overrides [solve] max_wall_time); more is a "
+                   "failure")
+      ->check(decimal_range_check(1e-9, 1e12));
   run_cmd->add_option("--out", run_args.out,
                       "CSV file, or - for standard output (default: [output] file, else "
                       "SCENE-STEM.csv here)");

@@ -77,19 +77,24 @@ TEST_CASE("an integrator failure carries the time reached, the last step and the
 }
 
 TEST_CASE("failure suggestions name what to try") {
-  IntegrationError collapsed("IDASolve failed with IDA_CONV_FAIL at t = 1");
+  IntegrationError collapsed(FailureKind::step_size_collapsed,
+                             "IDASolve failed with IDA_CONV_FAIL at t = 1");
   collapsed.in_loop = true;
   collapsed.t_reached = 1.0;
+  collapsed.t_end = 2.0;
   collapsed.last_step = 1e-200;
-  CHECK(failure_suggestion(Scheme::ggl, collapsed, 2.0).find("singular configuration") !=
+  CHECK(failure_suggestion(Scheme::ggl, collapsed).find("singular configuration") !=
         std::string::npos);
-  IntegrationError slow("took 100000 steps without reaching the output time 0.01 (at t = 1e-4)");
+  IntegrationError slow(FailureKind::steps_per_output,
+                        "took 100000 steps without reaching the output time 0.01 (at t = 1e-4)");
   slow.in_loop = true;
   slow.t_reached = 1e-4;
+  slow.t_end = 20.0;
   slow.last_step = 1e-9;
-  const std::string s = failure_suggestion(Scheme::baumgarte, slow, 20.0);
+  const std::string s = failure_suggestion(Scheme::baumgarte, slow);
   CHECK(s.find("very stiff") != std::string::npos);
   CHECK(s.find("smaller [solve] baumgarte gains") != std::string::npos);
-  const IntegrationError blown("the solution became non-finite (NaN or inf) at t = 3");
-  CHECK(failure_suggestion(Scheme::index1, blown, 5.0).find("blew up") != std::string::npos);
+  const IntegrationError blown(FailureKind::non_finite,
+                               "the solution became non-finite (NaN or inf) at t = 3");
+  CHECK(failure_suggestion(Scheme::index1, blown).find("blew up") != std::string::npos);
 }

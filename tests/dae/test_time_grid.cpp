@@ -1,0 +1,198 @@
+// Load steps at ordinary times: output times, load steps and t_end merged with a tolerance relative
+// to the time scale, so that the integrator is never asked for a time within its roundoff of where
+// it stands (3 × 0.1 lies one ulp above 0.3: a step at 0.3 with output_step 0.1 used to stop with
+// IDA_ILL_INPUT "tout too close to t0"). Every scheme, and the rows at exactly the expected times.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dae/solve.hpp"
+#include "dae/step_driver.hpp"
+#include "models/scene_parser.hpp"
+
+using namespace condyn;
+
+namespace {
+
+/// Shortest round-trip decimal of x (what a user writes, what a TOML parser reads back as x).
+std::string literal(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+/// Two unit masses tied by u_a = u_b, springs K = [[2, −1], [−1, 2]], unit step loads on `a` at
+/// `starts` (TOML literals, read by the parser as a user's file would be). The sum of the two
+/// equations, with q = (u_a + u_b) / 2, is 2 q'' + 2 q = Σ H(t − s_k) whatever the constraint
+/// force (so penalty's violation of u_a = u_b leaves q exact too): q(t) = Σ_k (1 − cos(t − s_k)) /
+/// 2 over the steps on.
+std::string scene(const std::vector<std::string>& starts, const std::string& output_step,
+                  const std::string& t_end) {
+  std::ostringstream s;
+  s << "[model]\ntype = \"matrix\"\ndofs = [\"a\", \"b\"]\nmass = [[1.0, 0.0], [0.0, 1.0]]\n"
+    << "stiffness = [[2.0, -1.0], [-1.0, 2.0]]\n";
+  for (const auto& start : starts) {
+    s << "[[load]]\ndof = \"a\"\nvalue = { type = \"step\", start = " << start << " }\n";
+  }
+  s << "[[constraint]]\nterms = { a = 1.0, b = -1.0 }\n"
+    << "[solve]\nt_end = " << t_end << "\noutput_step = " << output_step << "\n";
+  return s.str();
+}
+
+double closed_form(double t, const std::vector<double>& starts) {
+  double q = 0.0;
+  for (double s : starts) {
+    if (t >= s) q += 0.5 * (1.0 - std::cos(t - s));
+  }
+  return q;
+}
+
+/// The rows a run must have: k·h (as Model::output_times computes them) and t_end, each one
+/// within roundoff of a load step replaced by that step's time.
+std::vector<double> expected_rows(double h, double t_end, const std::vector<double>& starts) {
+  const double tol = time_merge_tolerance(0.0, t_end);
+  std::vector<double> rows;
+  for (long k = 0;; ++k) {
+    double t = static_cast<double>(k) * h;
+    if (t > t_end - 1e-9 * h) break;
+    for (double s : starts) {
+      if (std::abs(t - s) <= tol) t = s;
+    }
+    rows.push_back(t);
+  }
+  rows.push_back(t_end);
+  return rows;
+}
+
+// Global error of the integrated response against the closed form, for rtol = 1e-8 over a few
+// restarts: BDF's global error is a modest multiple of rtol (measured below 2e-7 here, all schemes
+// but penalty); 100 rtol leaves room and still fails when a step is missed (an error of order 1e-3
+// at least, a step's response over one output interval).
+constexpr double kRtol = 1e-8;
+constexpr double kErrorBound = 100 * kRtol;
+
+void check_every_scheme(const std::string& text, const std::vector<double>& starts, double h,
+                        double t_end) {
+  const Model model = build_model(parse_scene_text(text, "steps.toml"));
+  const std::vector<double> rows = expected_rows(h, t_end, starts);
+  for (Scheme scheme : kSchemes) {
+    const std::string name = to_string(scheme);
+    CAPTURE(name);
+    SolveSummary summary;
+    Trajectory traj;
+    REQUIRE_NOTHROW(traj = solve(model, scheme, integrator_options(model), summary));
+    REQUIRE(traj.t.size() == rows.size());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      CAPTURE(k);
+      CHECK(traj.t[k] == rows[k]);  // exactly: the grid's times, not times near them
+      const auto col = static_cast<Eigen::Index>(k);
+      const double q = 0.5 * (traj.u(0, col) + traj.u(1, col));
+      worst = std::max(worst, std::abs(q - closed_form(traj.t[k], starts)));
+    }
+    CAPTURE(worst);
+    CHECK(worst <= kErrorBound);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("time grid: an output one ulp from a load step is the load step") {
+  const std::vector<double> outputs = {0.0, 0.1, 0.2, 3 * 0.1, 0.4, 0.5, 6 * 0.1, 7 * 0.1, 1.0};
+  REQUIRE(3 * 0.1 != 0.3);  // the premise: k·h and the decimal differ
+  const TimeGrid grid = make_time_grid(outputs, {0.3, 0.6, 0.7});
+  CHECK(grid.stops == std::vector<double>{0.3, 0.6, 0.7});
+  CHECK(grid.outputs == std::vector<double>{0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 1.0});
+  CHECK_FALSE(grid.initial_stop);
+  // One ulp before and after an output time.
+  const double below = std::nextafter(0.5, 0.0), above = std::nextafter(0.5, 1.0);
+  CHECK(make_time_grid(outputs, {below}).outputs[5] == below);
+  CHECK(make_time_grid(outputs, {above}).outputs[5] == above);
+  // Load steps within roundoff of each other are one stop (the last: all of them on after it);
+  // within roundoff of t0 a restart before the first step; within roundoff of t_end, nothing.
+  const TimeGrid close = make_time_grid(outputs, {0.3, std::nextafter(0.3, 1.0)});
+  CHECK(close.stops == std::vector<double>{std::nextafter(0.3, 1.0)});
+  const TimeGrid start = make_time_grid(outputs, {1e-300, 0.5});
+  REQUIRE(start.initial_stop);
+  CHECK(*start.initial_stop == 1e-300);
+  CHECK(start.stops == std::vector<double>{0.5});
+  CHECK(make_time_grid(outputs, {std::nextafter(1.0, 0.0)}).stops.empty());
+  CHECK(make_time_grid(outputs, {std::nextafter(1.0, 0.0)}).outputs.back() == 1.0);
+}
+
+TEST_CASE("time grid: random k·dt load steps leave every kept time apart by more than roundoff") {
+  std::mt19937 rng(12345);  // fixed seed: the same cases every run
+  for (double dt : {0.1, 0.01, 0.001, 0.07, 1.0 / 3.0, 0.025}) {
+    CAPTURE(dt);
+    const double t_end = 1000 * dt;
+    std::vector<double> outputs;
+    for (int k = 0; k < 1000; ++k) outputs.push_back(k * dt);
+    outputs.push_back(t_end);
+    std::uniform_int_distribution<int> pick(1, 999);
+    std::vector<double> breakpoints;
+    for (int i = 0; i < 50; ++i) {
+      // The decimal a user would write for k·dt, which may differ from k * dt by an ulp or two.
+      breakpoints.push_back(std::stod(literal(pick(rng) * dt)));
+    }
+    std::sort(breakpoints.begin(), breakpoints.end());
+    const TimeGrid grid = make_time_grid(outputs, breakpoints);
+    CHECK(grid.outputs.size() == outputs.size());  // none lost, none added
+    CHECK(grid.outputs.front() == 0.0);
+    CHECK(grid.outputs.back() == t_end);
+    for (std::size_t k = 1; k < grid.outputs.size(); ++k) {
+      CHECK(grid.outputs[k] - grid.outputs[k - 1] > grid.tolerance);
+    }
+    for (std::size_t k = 1; k < grid.stops.size(); ++k) {
+      CHECK(grid.stops[k] - grid.stops[k - 1] > grid.tolerance);
+    }
+    // Every output within roundoff of a stop is that stop.
+    for (double t : grid.outputs) {
+      for (double s : grid.stops) {
+        if (std::abs(t - s) <= grid.tolerance) CHECK(t == s);
+      }
+    }
+  }
+}
+
+TEST_CASE("load steps at 0.3, 0.6 and 0.7 with output_step 0.1 run under every scheme") {
+  check_every_scheme(scene({"0.3", "0.6", "0.7"}, "0.1", "1.0"), {0.3, 0.6, 0.7}, 0.1, 1.0);
+}
+
+TEST_CASE("fifty load steps 1 ms apart run under every scheme") {
+  std::vector<std::string> literals;
+  std::vector<double> starts;
+  for (int k = 1; k <= 50; ++k) {
+    literals.push_back(std::to_string(k) + "e-3");  // 1e-3, 2e-3, ...: as a user writes them
+    starts.push_back(std::stod(literals.back()));
+  }
+  check_every_scheme(scene(literals, "1e-3", "0.1"), starts, 1e-3, 0.1);
+}
+
+TEST_CASE("random k·dt load steps, and steps one ulp off an output, run under every scheme") {
+  std::mt19937 rng(2026);  // fixed seed: the same cases every run
+  for (const auto& [m, p] : std::vector<std::pair<int, int>>{{1, 1}, {7, 2}, {25, 3}}) {
+    // dt = m·10^-p written as a user would ("7e-2"); load steps at k·dt written the same way.
+    const std::string dt_literal = std::to_string(m) + "e-" + std::to_string(p);
+    const double dt = std::stod(dt_literal);
+    CAPTURE(dt_literal);
+    std::uniform_int_distribution<int> pick(1, 19);
+    std::vector<std::string> literals;
+    std::vector<double> starts;
+    for (int i = 0; i < 4; ++i) {
+      literals.push_back(std::to_string(pick(rng) * m) + "e-" + std::to_string(p));
+      starts.push_back(std::stod(literals.back()));
+    }
+    std::sort(starts.begin(), starts.end());
+    check_every_scheme(scene(literals, dt_literal, literal(20 * dt)), starts, dt, 20 * dt);
+  }
+  const double below = std::nextafter(0.5, 0.0), above = std::nextafter(0.2, 1.0);
+  check_every_scheme(scene({literal(below), literal(above)}, "0.1", "1.0"), {above, below}, 0.1,
+                     1.0);
+}
