@@ -43,9 +43,18 @@ ConstraintClass classify_nonlinear(const Model& model, int row) {
   k.name = c.name;
   k.linear = false;
   k.velocity_level = c.level == ConstraintSpec::Level::velocity;
-  const Eigen::MatrixXd A(s.constraint_jacobian(0.0, model.u0));
+  // The DOFs the row depends on: the structural pattern of its Jacobian row (explicit zeros
+  // included), not the values at u0, where a coefficient may vanish by accident (the knife edge's
+  // -sin(theta) at theta = 0).
+  const auto& A = s.constraint_jacobian(0.0, model.u0);
+  std::vector<bool> on(static_cast<std::size_t>(model.dofs()), false);
+  for (int col = 0; col < A.outerSize(); ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it) {
+      if (it.row() == row) on[static_cast<std::size_t>(it.col())] = true;
+    }
+  }
   for (int d = 0; d < model.dofs(); ++d) {
-    if (A(row, d) != 0.0) k.dofs.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+    if (on[static_cast<std::size_t>(d)]) k.dofs.push_back(model.dof_names[static_cast<std::size_t>(d)]);
   }
   k.single_freedom = k.dofs.size() == 1;
   const int m = model.constraint_count();

@@ -12,10 +12,49 @@ namespace condyn {
 
 namespace {
 
-std::string join_dofs(const Model& model, const std::vector<int>& dofs) {
+// Lines of the report stay within this width (a terminal, a log viewer, a diff).
+constexpr std::size_t kWidth = 100;
+// Long lists (hundreds of masters) are shown in full up to this many lines, then counted.
+constexpr std::size_t kMaxListLines = 8;
+
+/// "label: a, b, c" wrapped at kWidth columns, continuation lines indented under the first name;
+/// beyond kMaxListLines lines the rest is counted ("... and 290 more").
+std::string wrapped_list(const std::string& label, const std::vector<std::string>& names) {
+  if (names.empty()) return label + "none\n";
+  const std::string indent(std::min<std::size_t>(label.size(), 24), ' ');
+  std::string out, line = label;
+  std::size_t lines = 1, k = 0;
+  for (; k < names.size(); ++k) {
+    const std::string item = names[k] + (k + 1 < names.size() ? "," : "");
+    const bool first_on_line = line.size() == label.size() || line == indent;
+    if (!first_on_line && line.size() + 1 + item.size() > kWidth) {
+      if (lines == kMaxListLines) break;
+      out += line + "\n";
+      line = indent;
+      ++lines;
+    }
+    line += (line.size() == label.size() || line == indent ? "" : " ") + item;
+  }
+  if (k < names.size()) {
+    line += " ... and " + std::to_string(names.size() - k) + " more (" +
+            std::to_string(names.size()) + " in all)";
+  }
+  return out + line + "\n";
+}
+
+std::vector<std::string> names_of(const Model& model, const std::vector<int>& dofs) {
+  std::vector<std::string> out;
+  for (int d : dofs) out.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+  return out;
+}
+
+/// A constraint's DOFs in its table row: the first few, then counted.
+std::string short_list(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 8;
   std::string s;
-  for (int d : dofs) s += (s.empty() ? "" : ", ") + model.dof_names[static_cast<std::size_t>(d)];
-  return s.empty() ? "none" : s;
+  for (std::size_t k = 0; k < names.size() && k < kShown; ++k) s += (k ? ", " : "") + names[k];
+  if (names.size() > kShown) s += " ... and " + std::to_string(names.size() - kShown) + " more";
+  return s;
 }
 
 }  // namespace
@@ -45,8 +84,7 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
           << (c.rheonomic ? "rheonomic" : "scleronomic") << std::setw(16)
           << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
           << (c.linear ? "linear" : "nonlinear");
-      for (std::size_t k = 0; k < c.dofs.size(); ++k) out << (k ? ", " : "") << c.dofs[k];
-      out << "\n";
+      out << short_list(c.dofs) << "\n";
       if (!c.note.empty())
         out << "  " << std::setw(width) << ""
             << "  " << c.note << "\n";
@@ -72,11 +110,12 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   if (choice.scheme == Scheme::elimination && !refusal) {
     const ReducedSystem reduced = reduce(model);
     const auto& ms = reduced.transform;
-    out << "elimination: slaves " << join_dofs(model, ms.slaves) << "; masters "
-        << join_dofs(model, ms.masters) << " (slaves "
+    out << "elimination: " << ms.slaves.size() << " slaves ("
         << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
                                        : "named in [solve] slaves")
-        << ")\n";
+        << "), " << ms.masters.size() << " masters\n"
+        << wrapped_list("  slaves: ", names_of(model, ms.slaves))
+        << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
   if (choice.scheme == Scheme::baumgarte)
     out << "baumgarte: " << baumgarte_gains(model).rule << "\n";

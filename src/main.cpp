@@ -2,6 +2,7 @@
 // Commands: run, info, validate, compare, stress. See README.md.
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -199,10 +200,21 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", run_args.scene, "scene file (TOML)")->required();
   run_cmd->add_option("--scheme", run_args.scheme,
                       "scheme (overrides [solve] scheme): " + scheme_names());
+  // CLI::PositiveNumber lets nan and inf through (nan <= 0 is false): a tolerance must be a
+  // finite number > 0, like [solve] rtol and atol.
+  const CLI::Validator finite_positive(
+      [](std::string& text) -> std::string {
+        double v = 0.0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || !(v > 0.0)) {
+          return "must be a finite number > 0 (got '" + text + "')";
+        }
+        return {};
+      },
+      "FINITE > 0");
   run_cmd->add_option("--rtol", run_args.rtol, "relative tolerance (overrides [solve] rtol)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive);
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive);
   run_cmd->add_option("--out", run_args.out,
                       "CSV file (default: [output] file, else SCENE-STEM.csv here)");
   run_cmd->add_option("--steps-out", run_args.steps_out,
