@@ -651,7 +651,8 @@ class Builder {
                         (model_.is_nonlinear() ? ""
                                                : ", or set [solve] redundant = \"drop\" to drop it")
                   : "incompatible (the combination that vanishes on the left leaves " +
-                        verdict.detail + " on the right), so the set is conflicting: no motion "
+                        verdict.detail +
+                        " on the right), so the set is conflicting: no motion "
                         "satisfies it"));
   }
 
@@ -835,15 +836,17 @@ class Builder {
       }
     }
     for (const auto& [row, residual] : e.violated) {
-      rows += (rows.empty() ? "'" : ", '") + model_.constraints[static_cast<std::size_t>(row)].name +
-              "' (residual " + fmt(residual) + ")";
+      rows += (rows.empty() ? "'" : ", '") +
+              model_.constraints[static_cast<std::size_t>(row)].name + "' (residual " +
+              fmt(residual) + ")";
     }
     rows += " at the closest state";
     fail({"initial." + level + "." + model_.dof_names[static_cast<std::size_t>(e.given.front())],
           spec_.initial.where.line},
          "project = true keeps the values given in [initial], but with " + level + " " + keys +
              " kept no initial state satisfies constraint" + (e.violated.size() == 1 ? " " : "s ") +
-             rows + ": the given values are inconsistent with the constraints; change or "
+             rows +
+             ": the given values are inconsistent with the constraints; change or "
              "remove one of them");
   }
 
@@ -925,7 +928,8 @@ class Builder {
       for (std::size_t j = 0; j < k; ++j) {
         if (slaves[j] == slaves[k]) {
           fail(key(k), "'" + slaves[k] + "' is named twice (also as solve.slaves[" +
-                           std::to_string(j + 1) + "]): each slave is solved from its own constraint");
+                           std::to_string(j + 1) +
+                           "]): each slave is solved from its own constraint");
         }
       }
       if (!touched[static_cast<std::size_t>(d)]) {
@@ -991,7 +995,8 @@ class Builder {
       const Eigen::MatrixXd kernel = lu.kernel();
       for (Eigen::Index c = 0; c < nz; ++c) {
         if (kernel.row(c).cwiseAbs().maxCoeff() > kRankTolerance) {
-          free.push_back(model_.dof_names[static_cast<std::size_t>(massless[static_cast<std::size_t>(c)])]);
+          free.push_back(
+              model_.dof_names[static_cast<std::size_t>(massless[static_cast<std::size_t>(c)])]);
         }
       }
     }
@@ -1002,8 +1007,8 @@ class Builder {
                        spec_.model.type == ModelSpec::Type::truss3d;
     fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
          std::to_string(free.size()) + " DOF" + (free.size() == 1 ? "" : "s") + " (" + names +
-             ") ha" + (free.size() == 1 ? "s" : "ve") +
-             " no mass and no constraint holds " + (free.size() == 1 ? "it" : "them") +
+             ") ha" + (free.size() == 1 ? "s" : "ve") + " no mass and no constraint holds " +
+             (free.size() == 1 ? "it" : "them") +
              ": the mass matrix is singular on the motions the constraints allow, so the "
              "accelerations are undefined under every scheme; give " +
              (truss ? "the node a mass in model.masses" : "the DOF a mass in model.mass") +

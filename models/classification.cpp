@@ -54,7 +54,8 @@ ConstraintClass classify_nonlinear(const Model& model, int row) {
     }
   }
   for (int d = 0; d < model.dofs(); ++d) {
-    if (on[static_cast<std::size_t>(d)]) k.dofs.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+    if (on[static_cast<std::size_t>(d)])
+      k.dofs.push_back(model.dof_names[static_cast<std::size_t>(d)]);
   }
   k.single_freedom = k.dofs.size() == 1;
   const int m = model.constraint_count();

@@ -246,10 +246,10 @@ std::string project_initial_state(const MechanicalSystem& system, double t, Eige
   }
   // Moves at the roundoff of the state's size are not reported (a consistent DOF touched by the
   // least-squares solve), only counted.
-  const double u_noise = 4 * std::numeric_limits<double>::epsilon() *
-                         std::max(1.0, u.lpNorm<Eigen::Infinity>());
-  const double v_noise = 4 * std::numeric_limits<double>::epsilon() *
-                         std::max(1.0, v.lpNorm<Eigen::Infinity>());
+  const double u_noise =
+      4 * std::numeric_limits<double>::epsilon() * std::max(1.0, u.lpNorm<Eigen::Infinity>());
+  const double v_noise =
+      4 * std::numeric_limits<double>::epsilon() * std::max(1.0, v.lpNorm<Eigen::Infinity>());
   std::vector<std::string> moved;
   int roundoff = 0;
   for (int i = 0; i < n; ++i) {

@@ -273,8 +273,8 @@ std::string near_duplicate(const std::vector<double>& keys, const std::string& w
 
 }  // namespace
 
-ZeroSumVerdict weighted_sum_vanishes(
-    const std::vector<std::pair<double, const TimeFunction*>>& sum, double t_end) {
+ZeroSumVerdict weighted_sum_vanishes(const std::vector<std::pair<double, const TimeFunction*>>& sum,
+                                     double t_end) {
   std::map<std::size_t, Coefficient> poly;
   std::map<double, std::pair<Coefficient, Coefficient>> harmonic;  // ω -> (sin ω t, cos ω t)
   std::map<double, Coefficient> exponential, step;                 // rate, start
@@ -320,9 +320,9 @@ ZeroSumVerdict weighted_sum_vanishes(
   for (const auto& [k, v] : harmonic) omegas.push_back(k);
   for (const auto& [k, v] : exponential) rates.push_back(k);
   for (const auto& [k, v] : step) starts.push_back(k);
-  for (const auto& doubt : {near_duplicate(omegas, "the frequencies"),
-                            near_duplicate(rates, "the exponential rates"),
-                            near_duplicate(starts, "the step times")}) {
+  for (const auto& doubt :
+       {near_duplicate(omegas, "the frequencies"), near_duplicate(rates, "the exponential rates"),
+        near_duplicate(starts, "the step times")}) {
     if (!doubt.empty()) return {ZeroSumVerdict::Kind::undecided, doubt};
   }
   std::vector<std::string> left;

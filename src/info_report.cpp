@@ -17,29 +17,49 @@ constexpr std::size_t kWidth = 100;
 // Long lists (hundreds of masters) are shown in full up to this many lines, then counted.
 constexpr std::size_t kMaxListLines = 8;
 
-/// "label: a, b, c" wrapped at kWidth columns, continuation lines indented under the first name;
-/// beyond kMaxListLines lines the rest is counted ("... and 290 more").
+/// "label: a, b, c" wrapped at kWidth columns, continuation lines indented by the label's width;
+/// beyond kMaxListLines lines the rest is counted ("... and 290 more (598 in all)").
 std::string wrapped_list(const std::string& label, const std::vector<std::string>& names) {
   if (names.empty()) return label + "none\n";
-  const std::string indent(std::min<std::size_t>(label.size(), 24), ' ');
-  std::string out, line = label;
-  std::size_t lines = 1, k = 0;
-  for (; k < names.size(); ++k) {
+  const std::string indent(label.size(), ' ');
+  std::vector<std::vector<std::string>> lines(1);
+  std::size_t width = label.size();
+  for (std::size_t k = 0; k < names.size(); ++k) {
     const std::string item = names[k] + (k + 1 < names.size() ? "," : "");
-    const bool first_on_line = line.size() == label.size() || line == indent;
-    if (!first_on_line && line.size() + 1 + item.size() > kWidth) {
-      if (lines == kMaxListLines) break;
-      out += line + "\n";
-      line = indent;
-      ++lines;
+    if (!lines.back().empty() && width + 1 + item.size() > kWidth) {
+      lines.emplace_back();
+      width = indent.size();
     }
-    line += (line.size() == label.size() || line == indent ? "" : " ") + item;
+    width += (lines.back().empty() ? 0 : 1) + item.size();
+    lines.back().push_back(item);
   }
-  if (k < names.size()) {
-    line += " ... and " + std::to_string(names.size() - k) + " more (" +
-            std::to_string(names.size()) + " in all)";
+  std::string suffix;
+  if (lines.size() > kMaxListLines) {
+    lines.resize(kMaxListLines);
+    auto& last = lines.back();
+    std::size_t shown = 0;
+    for (const auto& l : lines) shown += l.size();
+    const auto line_width = [&last, &indent] {
+      std::size_t w = indent.size();
+      for (const auto& item : last) w += item.size() + 1;
+      return w;
+    };
+    do {
+      suffix = "... and " + std::to_string(names.size() - shown) + " more (" +
+               std::to_string(names.size()) + " in all)";
+      if (line_width() + suffix.size() <= kWidth || last.size() <= 1) break;
+      last.pop_back();
+      --shown;
+    } while (true);
   }
-  return out + line + "\n";
+  std::string out;
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    std::string line = l == 0 ? label : indent;
+    for (std::size_t k = 0; k < lines[l].size(); ++k) line += (k ? " " : "") + lines[l][k];
+    if (l + 1 == lines.size() && !suffix.empty()) line += " " + suffix;
+    out += line + "\n";
+  }
+  return out;
 }
 
 std::vector<std::string> names_of(const Model& model, const std::vector<int>& dofs) {

@@ -69,8 +69,9 @@ TEST_CASE("initial projection keeps the four-bar's given crank speed exactly") {
   CHECK(dv < kDriftTolerance);
   // The coupler's far end moves (C's speed comes from the crank's); the supports stay.
   CHECK(model.v0[dof(model, "ux3")] != 0.0);
-  CHECK(model.v0[dof(model, "ux1")] == 0.0);
-  CHECK(model.initial_projection.find("keeping the 1 value given in [initial]") != std::string::npos);
+  CHECK(std::abs(model.v0[dof(model, "ux1")]) < kDriftTolerance);
+  CHECK(model.initial_projection.find("keeping the 1 value given in [initial]") !=
+        std::string::npos);
 }
 
 TEST_CASE("initial projection keeps a crank speed of 10 rad/s") {
@@ -99,8 +100,10 @@ TEST_CASE("given values that over-determine the constraints are refused, constra
   CHECK(msg.find("constraint 'rigid_1_2' (residual 1)") != std::string::npos);
   CHECK(msg.find("rigid_2_3") == std::string::npos);  // the coupler can follow: not blamed
   // At position level: a displacement that stretches the rigid rod.
-  const std::string pos = error_of(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = 0.0, uy2 = -0.2 }"));
-  CHECK(pos.find("initial.displacement.uy2: ") != std::string::npos);
+  const std::string pos =
+      error_of(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = 0.0, uy2 = -0.2 }"));
+  CHECK(pos.find("initial.displacement.ux2: ") != std::string::npos);
+  CHECK(pos.find("displacement ux2 = 0, uy2 = -0.2 kept") != std::string::npos);
   CHECK(pos.find("constraint 'rigid_1_2'") != std::string::npos);
 }
 

@@ -93,10 +93,10 @@ output_step = 0.5
                   "holds them");
   }
   // An all-massless truss under gravity (its weight is zero, nothing has inertia).
-  check_refused(run_scene(replace(replace(triangle, "masses = [1.0, 1.0, 0.0]",
-                                          "masses = [0.0, 0.0, 0.0]"),
-                                  "supports = [1]", "supports = [1]\ngravity = [0.0, -9.81]")),
-                "bad.toml:1: model.masses: 4 DOFs (ux2, uy2, ux3, uy3) have no mass");
+  check_refused(
+      run_scene(replace(replace(triangle, "masses = [1.0, 1.0, 0.0]", "masses = [0.0, 0.0, 0.0]"),
+                        "supports = [1]", "supports = [1]\ngravity = [0.0, -9.81]")),
+      "bad.toml:1: model.masses: 4 DOFs (ux2, uy2, ux3, uy3) have no mass");
   // A massless DOF that a constraint holds is fine (a massless support).
   const Result ok = run_scene(replace(kScene, "masses = [1.0, 1.0]", "masses = [0.0, 1.0]"));
   CHECK(ok.code == 0);
