@@ -945,6 +945,27 @@ class Builder {
                (model_.dropped_constraints.empty() ? "" : " after dropping the redundant ones") +
                ": name exactly one slave per constraint");
     }
+    // The elimination solves A_S u_S = g − A_R u_R: the slaves' columns must be well conditioned
+    // (the elimination's own limit, 1e12). Dense SVD of m x m; skipped beyond the dense limit.
+    if (model_.is_nonlinear() || static_cast<double>(m) * m > kMaxDenseEntries) return;
+    const Eigen::MatrixXd a(model_.A);
+    Eigen::MatrixXd a_s(m, m);
+    std::string names;
+    for (int k = 0; k < m; ++k) {
+      a_s.col(k) = a.col(model_.dof_index.at(slaves[static_cast<std::size_t>(k)]));
+      names += (k ? ", " : "") + slaves[static_cast<std::size_t>(k)];
+    }
+    const Eigen::BDCSVD<Eigen::MatrixXd> svd(a_s);
+    const double smax = svd.singularValues()(0), smin = svd.singularValues()(m - 1);
+    constexpr double kMaxSlaveCondition = 1e12;
+    if (!(smin > smax / kMaxSlaveCondition)) {
+      fail({"solve.slaves", line},
+           "the slaves " + names +
+               " do not determine the constraints (condition number of their "
+               "columns of the constraint matrix " +
+               (smin > 0.0 ? fmt(smax / smin) : std::string("infinite")) +
+               ", limit 1e12): choose slaves that the constraints fix independently");
+    }
   }
 
   /// Accelerations are defined only when M is regular on the motions the constraints allow:
@@ -960,6 +981,16 @@ class Builder {
         local[static_cast<std::size_t>(i)] = static_cast<int>(massless.size());
         massless.push_back(i);
       }
+    }
+    bool diagonal = true;
+    for (int k = 0; k < model_.M.outerSize() && diagonal; ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(model_.M, k); it; ++it) {
+        if (it.row() != it.col() && it.value() != 0.0) diagonal = false;
+      }
+    }
+    if (!diagonal) {
+      check_singular_mass();
+      return;
     }
     if (massless.empty()) return;
     const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
@@ -1013,6 +1044,48 @@ class Builder {
              "accelerations are undefined under every scheme; give " +
              (truss ? "the node a mass in model.masses" : "the DOF a mass in model.mass") +
              " or constrain it");
+  }
+
+  /// A full mass matrix (matrix models, generalized coordinates): its null space N from a dense
+  /// eigendecomposition (zero to 1e-12 of its largest eigenvalue, the PSD check's roundoff), and
+  /// the motions N y that A N y = 0 leaves free. Skipped beyond the dense limit (the solvers'
+  /// own guards remain).
+  void check_singular_mass() const {
+    const int n = model_.dofs();
+    if (static_cast<double>(n) * n > kMaxDenseEntries) return;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(model_.M)};
+    const Eigen::VectorXd& lambda = eig.eigenvalues();
+    const double largest = lambda.cwiseAbs().maxCoeff();
+    std::vector<Eigen::Index> null;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (lambda[k] <= 1e-12 * largest) null.push_back(k);
+    }
+    if (null.empty()) return;
+    Eigen::MatrixXd N(n, static_cast<Eigen::Index>(null.size()));
+    for (std::size_t k = 0; k < null.size(); ++k) {
+      N.col(static_cast<Eigen::Index>(k)) = eig.eigenvectors().col(null[k]);
+    }
+    Eigen::MatrixXd motions = N;  // the null motions no constraint holds
+    if (model_.constraint_count() > 0) {
+      const Eigen::MatrixXd AN = model_.A * N;
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(AN);
+      lu.setThreshold(kRankTolerance);
+      if (lu.rank() == AN.cols()) return;
+      motions = N * lu.kernel();
+    }
+    std::string names;
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+      if (motions.row(i).cwiseAbs().maxCoeff() <= kRankTolerance) continue;
+      if (count < 10) names += (count ? ", " : "") + model_.dof_names[static_cast<std::size_t>(i)];
+      ++count;
+    }
+    if (count > 10) names += " ... and " + std::to_string(count - 10) + " more";
+    fail({"model.mass", spec_.model.where.line},
+         "the mass matrix is singular along a motion of " + std::to_string(count) + " DOF" +
+             (count == 1 ? "" : "s") + " (" + names +
+             ") that no constraint holds: the accelerations are undefined under every scheme; "
+             "give that motion inertia in model.mass, or constrain it");
   }
 
   Model build() {

@@ -130,10 +130,10 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   if (choice.scheme == Scheme::elimination && !refusal) {
     const ReducedSystem reduced = reduce(model);
     const auto& ms = reduced.transform;
-    out << "elimination: " << ms.slaves.size() << " slaves ("
+    out << "elimination: " << ms.slaves.size() << (ms.slaves.size() == 1 ? " slave (" : " slaves (")
         << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
                                        : "named in [solve] slaves")
-        << "), " << ms.masters.size() << " masters\n"
+        << "), " << ms.masters.size() << (ms.masters.size() == 1 ? " master\n" : " masters\n")
         << wrapped_list("  slaves: ", names_of(model, ms.slaves))
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }

@@ -71,6 +71,13 @@ TEST_CASE("[solve] slaves repeated, too many or on unconstrained DOFs: refused w
                 "bad.toml:15: solve.slaves[3]: 'ux2' appears in no constraint");
   check_refused(run_scene(with("[\"ux1\"]")),
                 "bad.toml:15: solve.slaves: names 1 slave but the scene has 2 constraints");
+  // Slaves each in a constraint, but their columns of A are dependent ([1 1; 2 2]).
+  const std::string coupled =
+      replace(replace(kScene, "terms = { ux1 = 1.0 }", "terms = { ux1 = 1.0, ux2 = 1.0 }"),
+              "terms = { uy1 = 1.0 }", "terms = { uy1 = 1.0, ux1 = 2.0, ux2 = 2.0 }");
+  check_refused(run_scene(replace(coupled, "output_step = 0.5",
+                                  "output_step = 0.5\nslaves = [\"ux1\", \"ux2\"]")),
+                "bad.toml:15: solve.slaves: the slaves ux1, ux2 do not determine the constraints");
 }
 
 TEST_CASE("a massless DOF nothing holds is bad input under every scheme, DOFs named") {
@@ -100,6 +107,25 @@ output_step = 0.5
   // A massless DOF that a constraint holds is fine (a massless support).
   const Result ok = run_scene(replace(kScene, "masses = [1.0, 1.0]", "masses = [0.0, 1.0]"));
   CHECK(ok.code == 0);
+}
+
+TEST_CASE("a full mass matrix singular along a motion no constraint holds: refused, DOFs named") {
+  const std::string matrix = R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 1.0], [1.0, 1.0]]
+stiffness = [[2.0, -1.0], [-1.0, 2.0]]
+
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  check_refused(run_scene(matrix, "--scheme ggl"),
+                "bad.toml:1: model.mass: the mass matrix is singular along a motion of 2 DOFs "
+                "(a, b) that no constraint holds");
+  // Holding a fixes the motion (1, -1): accepted.
+  const Result held = run_scene(matrix + "[[constraint]]\nterms = { a = 1.0 }\n", "--scheme ggl");
+  CHECK(held.code == 0);
 }
 
 TEST_CASE("tolerances that are nan or inf are usage errors naming the flag or key") {
