@@ -36,7 +36,7 @@ class InconsistentGivenValues : public std::runtime_error {
   /// found with the rows that involve no given value held (nearly) exactly, so the residual
   /// lands on the rows that do.
   std::vector<std::pair<int, double>> violated;
-  std::vector<int> given;  ///< the given DOFs those rows depend on (structurally), ascending
+  std::vector<int> given;  ///< the given DOFs those rows act on there (nonzero in A), ascending
 };
 
 /// Projects in place. `given_u[i]` / `given_v[i]` mark the DOFs whose value the scene wrote (kept
