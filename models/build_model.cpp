@@ -968,6 +968,28 @@ class Builder {
     }
   }
 
+  /// The penalty scheme integrates M u'' = f − Aᵀ w (A u − g) with M itself factored: every DOF
+  /// needs mass, constrained or not (a massless support included).
+  void check_penalty_mass() const {
+    std::vector<std::string> massless;
+    for (int i = 0; i < model_.dofs(); ++i) {
+      if (model_.M.coeff(i, i) == 0.0)
+        massless.push_back(model_.dof_names[static_cast<std::size_t>(i)]);
+    }
+    if (massless.empty()) return;
+    std::string names;
+    for (std::size_t k = 0; k < massless.size() && k < 10; ++k)
+      names += (k ? ", " : "") + massless[k];
+    if (massless.size() > 10) names += " ... and " + std::to_string(massless.size() - 10) + " more";
+    const bool truss = spec_.model.type == ModelSpec::Type::truss2d ||
+                       spec_.model.type == ModelSpec::Type::truss3d;
+    fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
+         std::to_string(massless.size()) + " DOF" + (massless.size() == 1 ? "" : "s") + " (" +
+             names + ") " + (massless.size() == 1 ? "has" : "have") +
+             " no mass: the penalty scheme factors M itself (its constraints are springs), so it "
+             "needs mass on every DOF, constrained or not; give them mass or use another scheme");
+  }
+
   /// Accelerations are defined only when M is regular on the motions the constraints allow:
   /// [M Aᵀ; A 0] (and the elimination's Tᵀ M T) is singular exactly when some motion x has
   /// M x = 0 and A x = 0. With M positive semi-definite, a zero diagonal entry means a zero row:
@@ -1131,7 +1153,11 @@ class Builder {
     check_degenerate_dofs();
     while (const auto dependent = check_rank()) drop_constraint(*dependent);
     check_initial_consistency();
-    if (spec_.solve.scheme != Scheme::penalty) check_massless_dofs();
+    if (spec_.solve.scheme == Scheme::penalty) {
+      check_penalty_mass();
+    } else {
+      check_massless_dofs();
+    }
     check_energy_output();
     check_output();
     return std::move(model_);
