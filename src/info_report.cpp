@@ -64,6 +64,7 @@ std::string wrapped_list(const std::string& label, const std::vector<std::string
 
 std::vector<std::string> names_of(const Model& model, const std::vector<int>& dofs) {
   std::vector<std::string> out;
+  out.reserve(dofs.size());
   for (int d : dofs) out.push_back(model.dof_names[static_cast<std::size_t>(d)]);
   return out;
 }
