@@ -61,3 +61,25 @@ TEST_CASE("info: hundreds of masters print no line over 100 characters") {
   for (std::string line; std::getline(lines, line);) longest = std::max(longest, line.size());
   CHECK(longest <= kWidth);
 }
+
+TEST_CASE("info: DOF lists of nonlinear rows are what the rows use, not the stored pattern") {
+  // Andrews and the car axis store their small Jacobian blocks dense (explicit zeros), so the
+  // pattern alone would list every DOF; values at u0 alone missed the car axle's yl, yr (their
+  // coefficients are zero there).
+  const auto row_of = [](const std::string& out, const std::string& name) {
+    const auto at = out.find("  " + name + " ");
+    REQUIRE(at != std::string::npos);
+    return out.substr(at, out.find('\n', at) - at);
+  };
+  Sandbox box;
+  const Result andrews =
+      box.run("info '" + std::string(CONDYN_SOURCE_DIR) + "/models/scenes/andrews.toml'");
+  REQUIRE(andrews.code == 0);
+  const std::string g1 = row_of(andrews.out, "g1");
+  CHECK(g1.substr(g1.size() - 19) == " beta, Theta, gamma");
+  const Result car =
+      box.run("info '" + std::string(CONDYN_SOURCE_DIR) + "/models/scenes/car_axis.toml'");
+  REQUIRE(car.code == 0);
+  const std::string axle = row_of(car.out, "axle");
+  CHECK(axle.substr(axle.size() - 15) == " xl, yl, xr, yr");
+}
