@@ -616,7 +616,7 @@ class Builder {
       names += (names.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
     }
     // Compatible when the same combination of the right-hand sides vanishes identically over
-    // [0, t_end]: decided from the terms (time_function.hpp), never from samples, which two
+    // [0, t_end]: decided from the terms (zero_sum.hpp), never from samples, which two
     // different functions can share (0 and 1 - cos(64 pi t) agree at every multiple of 1/32).
     std::vector<std::pair<double, const TimeFunction*>> sum;
     for (const auto& [j, w] : combo) {
