@@ -38,7 +38,7 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
   if (preferred_slaves.empty()) {
     // Pivot on the row-normalised matrix so that a constraint's scale does not bias the choice.
     Eigen::MatrixXd scaled = a;
-    for (int i = 0; i < m; ++i) scaled.row(i) /= scaled.row(i).norm();
+    for (int i = 0; i < m; ++i) scaled.row(i) /= scaled.row(i).stableNorm();  // no underflow
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled.rows(), scaled.cols());
     qr.setThreshold(kRankTolerance);
     qr.compute(scaled);

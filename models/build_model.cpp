@@ -12,6 +12,7 @@
 #include "models/point_mass_system.hpp"
 #include "models/scene_parser.hpp"
 #include "models/sleigh.hpp"
+#include "models/zero_sum.hpp"
 
 namespace condyn {
 
@@ -384,6 +385,28 @@ class Builder {
     }
   }
 
+  /// A coefficient must carry information: a subnormal one has lost its precision (and its
+  /// square underflows to 0 in any row norm), and one below eps times the row's largest vanishes
+  /// in every sum a·u, so it only pretends that its DOF is constrained.
+  void check_coefficients(const ConstraintSpec& cs) const {
+    double largest = 0.0;
+    for (const auto& [name, a] : cs.terms) largest = std::max(largest, std::abs(a));
+    for (const auto& [name, a] : cs.terms) {
+      const SourcePoint key{cs.where.path + ".terms." + name, cs.where.line};
+      if (a != 0.0 && std::abs(a) < std::numeric_limits<double>::min()) {
+        fail(key, "the coefficient " + fmt(a) +
+                      " is subnormal (below 2.2e-308): it has lost its precision; rescale the "
+                      "constraint or remove the term");
+      }
+      if (a != 0.0 && std::abs(a) < std::numeric_limits<double>::epsilon() * largest) {
+        fail(key, "the coefficient " + fmt(a) + " is below the roundoff of the row's largest (" +
+                      fmt(largest) +
+                      "): it changes no sum a·u, so the term only seems to constrain '" + name +
+                      "'; remove it or rescale");
+      }
+    }
+  }
+
   void build_constraints() {
     const int n = model_.dofs();
     std::vector<Eigen::Triplet<double>> trip;
@@ -411,6 +434,7 @@ class Builder {
         const int d = dof(name, {cs.where.path + ".terms." + name, cs.where.line});
         if (a != 0.0) c.coefficients.emplace_back(d, a);
       }
+      check_coefficients(cs);
       std::sort(c.coefficients.begin(), c.coefficients.end());
       check_time_function(c.value, value_at);
       for (double b : c.value.breakpoints()) {
@@ -591,20 +615,25 @@ class Builder {
     for (const auto& [j, w] : combo) {
       names += (names.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
     }
-    // Compatible when the same combination of the right-hand sides vanishes over [0, t_end].
-    double worst = 0.0, scale = 0.0;
-    for (int s = 0; s <= 32; ++s) {
-      const double t = spec_.solve.t_end * s / 32.0;
-      double r = 0.0;
-      for (const auto& [j, w] : combo) {
-        const auto& c = constraints[static_cast<std::size_t>(j)];
-        const double gj = c.position_value.value(t) / row_norm[static_cast<std::size_t>(j)];
-        r += w * gj;
-        scale = std::max(scale, std::abs(w * gj));
-      }
-      worst = std::max(worst, std::abs(r));
+    // Compatible when the same combination of the right-hand sides vanishes identically over
+    // [0, t_end]: decided from the terms (zero_sum.hpp), never from samples, which two
+    // different functions can share (0 and 1 - cos(64 pi t) agree at every multiple of 1/32).
+    std::vector<std::pair<double, const TimeFunction*>> sum;
+    for (const auto& [j, w] : combo) {
+      const auto& c = constraints[static_cast<std::size_t>(j)];
+      sum.emplace_back(w / row_norm[static_cast<std::size_t>(j)], &c.position_value);
     }
-    const bool compatible = worst <= 1e-9 * std::max(scale, 1e-300) || worst == 0.0;
+    const ZeroSumVerdict verdict = weighted_sum_vanishes(sum, spec_.solve.t_end);
+    if (verdict.kind == ZeroSumVerdict::Kind::undecided) {
+      fail(constraints[static_cast<std::size_t>(dep)].where,
+           "the constraints " + names + " are linearly dependent (constraint matrix rank " +
+               std::to_string(rank) + " < " + std::to_string(m) +
+               "), and condyn cannot decide whether their right-hand sides are compatible: " +
+               verdict.detail +
+               "; write the same numbers where the functions are meant to be equal, or remove "
+               "one of the constraints");
+    }
+    const bool compatible = verdict.kind == ZeroSumVerdict::Kind::zero;
     if (compatible && spec_.solve.drop_redundant && !model_.is_nonlinear()) {
       std::string others;
       for (const auto& [j, w] : combo) {
@@ -621,8 +650,10 @@ class Builder {
                   ? std::string("compatible, so the set is redundant: remove one of them") +
                         (model_.is_nonlinear() ? ""
                                                : ", or set [solve] redundant = \"drop\" to drop it")
-                  : "incompatible (residual " + fmt(worst) +
-                        "), so the set is conflicting: no motion satisfies it"));
+                  : "incompatible (the combination that vanishes on the left leaves " +
+                        verdict.detail +
+                        " on the right), so the set is conflicting: no motion "
+                        "satisfies it"));
   }
 
   /// The last line of defence against a silent inf or NaN: whatever the checks above let through,
@@ -792,7 +823,35 @@ class Builder {
     }
   }
 
-  /// [initial] project = true: the minimum-norm projection of (u0, v0) onto the constraints.
+  /// [initial] project = true keeps what the scene wrote: given values that no state satisfying
+  /// the constraints has are refused (bad input), naming the keys and the constraints violated.
+  [[noreturn]] void refuse_given_values(const InconsistentGivenValues& e) const {
+    const std::string level = e.velocity_level ? "velocity" : "displacement";
+    const auto& values = e.velocity_level ? spec_.initial.velocity : spec_.initial.displacement;
+    std::string keys, rows;
+    for (int d : e.given) {
+      const auto& name = model_.dof_names[static_cast<std::size_t>(d)];
+      for (const auto& [given, value] : values) {
+        if (given == name) keys += (keys.empty() ? "" : ", ") + name + " = " + fmt(value);
+      }
+    }
+    for (const auto& [row, residual] : e.violated) {
+      rows += (rows.empty() ? "'" : ", '") +
+              model_.constraints[static_cast<std::size_t>(row)].name + "' (residual " +
+              fmt(residual) + ")";
+    }
+    rows += " at the closest state";
+    fail({"initial." + level + "." + model_.dof_names[static_cast<std::size_t>(e.given.front())],
+          spec_.initial.where.line},
+         "project = true keeps the values given in [initial], but with " + level + " " + keys +
+             " kept no initial state satisfies constraint" + (e.violated.size() == 1 ? " " : "s ") +
+             rows +
+             ": the given values are inconsistent with the constraints; change or "
+             "remove one of them");
+  }
+
+  /// [initial] project = true: the least-change projection of (u0, v0) onto the constraints,
+  /// keeping the values given in [initial].
   void project_initial() {
     if (static_cast<double>(model_.constraint_count()) * model_.dofs() > kMaxDenseEntries) {
       fail(spec_.initial.where, "project = true factors the dense constraint Jacobian: " +
@@ -806,8 +865,17 @@ class Builder {
       linear = std::make_unique<LinearSystem>(model_);
       s = linear.get();
     }
+    const auto n = static_cast<std::size_t>(model_.dofs());
+    std::vector<bool> given_u(n, false), given_v(n, false);
+    for (const auto& [name, value] : spec_.initial.displacement)
+      given_u[static_cast<std::size_t>(model_.dof_index.at(name))] = true;
+    for (const auto& [name, value] : spec_.initial.velocity)
+      given_v[static_cast<std::size_t>(model_.dof_index.at(name))] = true;
     try {
-      model_.initial_projection = project_initial_state(*s, 0.0, model_.u0, model_.v0);
+      model_.initial_projection =
+          project_initial_state(*s, 0.0, model_.u0, model_.v0, given_u, given_v, model_.dof_names);
+    } catch (const InconsistentGivenValues& e) {
+      refuse_given_values(e);
     } catch (const std::runtime_error& e) {
       fail(spec_.initial.where, e.what());
     }
@@ -837,7 +905,209 @@ class Builder {
            "would write " + fmt(rows) + " rows (limit " + fmt(kMaxOutputRows) +
                "): increase output_step");
     }
-    for (const auto& s : spec_.solve.slaves) (void)dof(s, {"solve.slaves", spec_.solve.where.line});
+    check_slaves();
+  }
+
+  /// [solve] slaves: one distinct DOF per constraint, each in some constraint (the elimination
+  /// solves the constraints for them).
+  void check_slaves() const {
+    const auto& slaves = spec_.solve.slaves;
+    if (slaves.empty()) return;
+    const int line = spec_.solve.where.line;
+    const auto key = [&](std::size_t k) {
+      return SourcePoint{"solve.slaves[" + std::to_string(k + 1) + "]", line};
+    };
+    std::vector<int> touched(static_cast<std::size_t>(model_.dofs()), 0);
+    for (int k = 0; k < model_.A.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(model_.A, k); it; ++it) {
+        if (it.value() != 0.0) touched[static_cast<std::size_t>(it.col())] = 1;
+      }
+    }
+    for (std::size_t k = 0; k < slaves.size(); ++k) {
+      const int d = dof(slaves[k], key(k));
+      for (std::size_t j = 0; j < k; ++j) {
+        if (slaves[j] == slaves[k]) {
+          fail(key(k), "'" + slaves[k] + "' is named twice (also as solve.slaves[" +
+                           std::to_string(j + 1) +
+                           "]): each slave is solved from its own constraint");
+        }
+      }
+      if (!touched[static_cast<std::size_t>(d)]) {
+        fail(key(k), "'" + slaves[k] +
+                         "' appears in no constraint: a slave is a DOF the constraints determine");
+      }
+    }
+    const int m = model_.constraint_count();
+    if (static_cast<int>(slaves.size()) != m) {
+      fail({"solve.slaves", line},
+           "names " + std::to_string(slaves.size()) + " slave" + (slaves.size() == 1 ? "" : "s") +
+               " but the scene has " + std::to_string(m) + " constraint" + (m == 1 ? "" : "s") +
+               (model_.dropped_constraints.empty() ? "" : " after dropping the redundant ones") +
+               ": name exactly one slave per constraint");
+    }
+    // The elimination solves A_S u_S = g − A_R u_R: the slaves' columns must be well conditioned
+    // (the elimination's own limit, 1e12). Dense SVD of m x m; skipped beyond the dense limit.
+    if (model_.is_nonlinear() || static_cast<double>(m) * m > kMaxDenseEntries) return;
+    const Eigen::MatrixXd a(model_.A);
+    Eigen::MatrixXd a_s(m, m);
+    std::string names;
+    for (int k = 0; k < m; ++k) {
+      a_s.col(k) = a.col(model_.dof_index.at(slaves[static_cast<std::size_t>(k)]));
+      names += (k ? ", " : "") + slaves[static_cast<std::size_t>(k)];
+    }
+    const Eigen::BDCSVD<Eigen::MatrixXd> svd(a_s);
+    const double smax = svd.singularValues()(0), smin = svd.singularValues()(m - 1);
+    constexpr double kMaxSlaveCondition = 1e12;
+    if (!(smin > smax / kMaxSlaveCondition)) {
+      fail({"solve.slaves", line},
+           "the slaves " + names +
+               " do not determine the constraints (condition number of their "
+               "columns of the constraint matrix " +
+               (smin > 0.0 ? fmt(smax / smin) : std::string("infinite")) +
+               ", limit 1e12): choose slaves that the constraints fix independently");
+    }
+  }
+
+  /// The penalty scheme integrates M u'' = f − Aᵀ w (A u − g) with M itself factored: every DOF
+  /// needs mass, constrained or not (a massless support included).
+  void check_penalty_mass() const {
+    std::vector<std::string> massless;
+    for (int i = 0; i < model_.dofs(); ++i) {
+      if (model_.M.coeff(i, i) == 0.0)
+        massless.push_back(model_.dof_names[static_cast<std::size_t>(i)]);
+    }
+    if (massless.empty()) return;
+    std::string names;
+    for (std::size_t k = 0; k < massless.size() && k < 10; ++k)
+      names += (k ? ", " : "") + massless[k];
+    if (massless.size() > 10) names += " ... and " + std::to_string(massless.size() - 10) + " more";
+    const bool truss = spec_.model.type == ModelSpec::Type::truss2d ||
+                       spec_.model.type == ModelSpec::Type::truss3d;
+    fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
+         std::to_string(massless.size()) + " DOF" + (massless.size() == 1 ? "" : "s") + " (" +
+             names + ") " + (massless.size() == 1 ? "has" : "have") +
+             " no mass: the penalty scheme factors M itself (its constraints are springs), so it "
+             "needs mass on every DOF, constrained or not; give them mass or use another scheme");
+  }
+
+  /// Accelerations are defined only when M is regular on the motions the constraints allow:
+  /// [M Aᵀ; A 0] (and the elimination's Tᵀ M T) is singular exactly when some motion x has
+  /// M x = 0 and A x = 0. With M positive semi-definite, a zero diagonal entry means a zero row:
+  /// the massless DOFs Z, and the singular motions are the kernel of A restricted to Z. (Massless
+  /// DOFs held by stiffness alone are not yet integrated: README "Known limitations".)
+  void check_massless_dofs() const {
+    const int n = model_.dofs();
+    std::vector<int> massless, local(static_cast<std::size_t>(n), -1);
+    for (int i = 0; i < n; ++i) {
+      if (model_.M.coeff(i, i) == 0.0) {
+        local[static_cast<std::size_t>(i)] = static_cast<int>(massless.size());
+        massless.push_back(i);
+      }
+    }
+    bool diagonal = true;
+    for (int k = 0; k < model_.M.outerSize() && diagonal; ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(model_.M, k); it; ++it) {
+        if (it.row() != it.col() && it.value() != 0.0) diagonal = false;
+      }
+    }
+    if (!diagonal) {
+      check_singular_mass();
+      return;
+    }
+    if (massless.empty()) return;
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
+    std::vector<int> rows;
+    for (int r = 0; r < a.rows(); ++r) {
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, r); it; ++it) {
+        if (local[static_cast<std::size_t>(it.col())] >= 0 && it.value() != 0.0) {
+          rows.push_back(r);
+          break;
+        }
+      }
+    }
+    const auto nz = static_cast<Eigen::Index>(massless.size());
+    if (static_cast<double>(rows.size()) * static_cast<double>(nz) > kMaxDenseEntries) return;
+    Eigen::MatrixXd az = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), nz);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, rows[k]); it; ++it) {
+        const int c = local[static_cast<std::size_t>(it.col())];
+        if (c >= 0) az(static_cast<Eigen::Index>(k), c) = it.value();
+      }
+    }
+    std::vector<std::string> free;
+    if (rows.empty()) {
+      for (int d : massless) free.push_back(model_.dof_names[static_cast<std::size_t>(d)]);
+    } else {
+      for (Eigen::Index r = 0; r < az.rows(); ++r) {
+        const double norm = az.row(r).stableNorm();
+        if (norm > 0.0) az.row(r) /= norm;
+      }
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(az);
+      lu.setThreshold(kRankTolerance);
+      if (lu.rank() == nz) return;
+      const Eigen::MatrixXd kernel = lu.kernel();
+      for (Eigen::Index c = 0; c < nz; ++c) {
+        if (kernel.row(c).cwiseAbs().maxCoeff() > kRankTolerance) {
+          free.push_back(
+              model_.dof_names[static_cast<std::size_t>(massless[static_cast<std::size_t>(c)])]);
+        }
+      }
+    }
+    std::string names;
+    for (std::size_t k = 0; k < free.size() && k < 10; ++k) names += (k ? ", " : "") + free[k];
+    if (free.size() > 10) names += " ... and " + std::to_string(free.size() - 10) + " more";
+    const bool truss = spec_.model.type == ModelSpec::Type::truss2d ||
+                       spec_.model.type == ModelSpec::Type::truss3d;
+    fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
+         std::to_string(free.size()) + " DOF" + (free.size() == 1 ? "" : "s") + " (" + names +
+             ") ha" + (free.size() == 1 ? "s" : "ve") + " no mass and no constraint holds " +
+             (free.size() == 1 ? "it" : "them") +
+             ": the mass matrix is singular on the motions the constraints allow, so the "
+             "accelerations are undefined under every scheme; give " +
+             (truss ? "the node a mass in model.masses" : "the DOF a mass in model.mass") +
+             " or constrain it");
+  }
+
+  /// A full mass matrix (matrix models, generalized coordinates): its null space N from a dense
+  /// eigendecomposition (zero to 1e-12 of its largest eigenvalue, the PSD check's roundoff), and
+  /// the motions N y that A N y = 0 leaves free. Skipped beyond the dense limit (the solvers'
+  /// own guards remain).
+  void check_singular_mass() const {
+    const int n = model_.dofs();
+    if (static_cast<double>(n) * n > kMaxDenseEntries) return;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(model_.M)};
+    const Eigen::VectorXd& lambda = eig.eigenvalues();
+    const double largest = lambda.cwiseAbs().maxCoeff();
+    std::vector<Eigen::Index> null;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (lambda[k] <= 1e-12 * largest) null.push_back(k);
+    }
+    if (null.empty()) return;
+    Eigen::MatrixXd N(n, static_cast<Eigen::Index>(null.size()));
+    for (std::size_t k = 0; k < null.size(); ++k) {
+      N.col(static_cast<Eigen::Index>(k)) = eig.eigenvectors().col(null[k]);
+    }
+    Eigen::MatrixXd motions = N;  // the null motions no constraint holds
+    if (model_.constraint_count() > 0) {
+      const Eigen::MatrixXd AN = model_.A * N;
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(AN);
+      lu.setThreshold(kRankTolerance);
+      if (lu.rank() == AN.cols()) return;
+      motions = N * lu.kernel();
+    }
+    std::string names;
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+      if (motions.row(i).cwiseAbs().maxCoeff() <= kRankTolerance) continue;
+      if (count < 10) names += (count ? ", " : "") + model_.dof_names[static_cast<std::size_t>(i)];
+      ++count;
+    }
+    if (count > 10) names += " ... and " + std::to_string(count - 10) + " more";
+    fail({"model.mass", spec_.model.where.line},
+         "the mass matrix is singular along a motion of " + std::to_string(count) + " DOF" +
+             (count == 1 ? "" : "s") + " (" + names +
+             ") that no constraint holds: the accelerations are undefined under every scheme; "
+             "give that motion inertia in model.mass, or constrain it");
   }
 
   Model build() {
@@ -883,6 +1153,11 @@ class Builder {
     check_degenerate_dofs();
     while (const auto dependent = check_rank()) drop_constraint(*dependent);
     check_initial_consistency();
+    if (spec_.solve.scheme == Scheme::penalty) {
+      check_penalty_mass();
+    } else {
+      check_massless_dofs();
+    }
     check_energy_output();
     check_output();
     return std::move(model_);

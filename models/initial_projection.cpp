@@ -1,6 +1,9 @@
 #include "models/initial_projection.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -9,63 +12,274 @@ namespace condyn {
 namespace {
 
 constexpr int kMaxIterations = 50;
+// Rank threshold of the weighted, row-normalised free-column block (as build_model's rank check).
+constexpr double kRankTolerance = 1e-10;
+// A row counts as met when its residual is below this relative size (as build_model's initial
+// consistency check: hand-written decimals, a few hundred ulps of the terms).
+constexpr double kConsistencyTolerance = 1e-10;
+// Diagnosis of inconsistent given values: rows that involve no given value are weighted this much
+// more, so that the least-squares residual lands on the rows that do (and names them).
+constexpr double kHardRowWeight = 1e6;
+constexpr int kMaxReportedDofs = 20;
 
-/// The minimum-norm solution dx of A dx = −r (A with full row rank).
-Eigen::VectorXd minimum_norm_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& r) {
-  Eigen::LDLT<Eigen::MatrixXd> gram(A * A.transpose());
-  const Eigen::VectorXd y = gram.solve(r);
-  if (gram.info() != Eigen::Success || !y.allFinite() ||
-      gram.vectorD().cwiseAbs().minCoeff() <= 1e-14 * gram.vectorD().cwiseAbs().maxCoeff()) {
-    throw std::runtime_error(
-        "cannot project the initial state: the constraints are dependent (singular A Aᵀ) there");
+class Projector {
+ public:
+  Projector(const MechanicalSystem& system, double t, const Eigen::VectorXd& u0,
+            const std::vector<bool>& given_u, const std::vector<bool>& given_v)
+      : s_(system), t_(t), n_(system.dofs()), m_(system.constraints()) {
+    for (int i = 0; i < n_; ++i) {
+      if (!given_u[static_cast<std::size_t>(i)]) free_u_.push_back(i);
+      if (!given_v[static_cast<std::size_t>(i)]) free_v_.push_back(i);
+    }
+    for (int i = 0; i < m_; ++i) {
+      if (s_.position_rows()[static_cast<std::size_t>(i)]) position_rows_.push_back(i);
+    }
+    // The structural pattern of every row (explicit zeros included: it does not depend on u).
+    const auto& A = s_.constraint_jacobian(t, u0);
+    row_dofs_.resize(static_cast<std::size_t>(m_));
+    for (int k = 0; k < A.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+        row_dofs_[static_cast<std::size_t>(it.row())].push_back(static_cast<int>(it.col()));
+      }
+    }
+    for (auto& r : row_dofs_) std::sort(r.begin(), r.end());
+    // W = diag(M(t, u0)); massless DOFs weigh as the lightest DOF with mass (1 when none has).
+    const Eigen::VectorXd d = s_.mass(t, u0).diagonal();
+    double lightest = 0.0;
+    for (int i = 0; i < n_; ++i) {
+      if (d[i] > 0.0 && (lightest == 0.0 || d[i] < lightest)) lightest = d[i];
+    }
+    if (lightest == 0.0) lightest = 1.0;
+    w_inv_sqrt_.resize(n_);
+    for (int i = 0; i < n_; ++i) w_inv_sqrt_[i] = 1.0 / std::sqrt(d[i] > 0.0 ? d[i] : lightest);
+    hard_given_u_ = row_weights(given_u);
+    hard_given_v_ = row_weights(given_v);
   }
-  return -A.transpose() * y;
+
+  [[nodiscard]] const std::vector<int>& row_dofs(int row) const {
+    return row_dofs_[static_cast<std::size_t>(row)];
+  }
+  /// Row weights for the diagnosis: kHardRowWeight on rows that involve no given value.
+  [[nodiscard]] Eigen::VectorXd row_weights(const std::vector<bool>& given) const {
+    Eigen::VectorXd w = Eigen::VectorXd::Constant(m_, kHardRowWeight);
+    for (int i = 0; i < m_; ++i) {
+      for (int d : row_dofs(i)) {
+        if (given[static_cast<std::size_t>(d)]) w[i] = 1.0;
+      }
+    }
+    return w;
+  }
+  [[nodiscard]] const Eigen::VectorXd& hard_rows(bool velocity) const {
+    return velocity ? hard_given_v_ : hard_given_u_;
+  }
+
+  /// Gauss-Newton on the position rows over the free DOFs; returns the iterations taken.
+  int project_positions(Eigen::VectorXd& u, const Eigen::VectorXd& row_weight) const {
+    if (position_rows_.empty()) return 0;
+    Eigen::VectorXd all(m_);
+    int iterations = 0;
+    for (; iterations < kMaxIterations; ++iterations) {
+      if (violated(u, nullptr).empty()) break;  // met: leave the state as it is, no roundoff moves
+      s_.position_residual(t_, u, all);
+      const Eigen::VectorXd du = least_change_step(Eigen::MatrixXd(s_.constraint_jacobian(t_, u)),
+                                                   position_rows_, free_u_, all, row_weight);
+      u += du;
+      if (!u.allFinite()) break;
+      if (du.lpNorm<Eigen::Infinity>() <= 1e-14 * (1.0 + u.lpNorm<Eigen::Infinity>())) {
+        ++iterations;
+        break;
+      }
+    }
+    return iterations;
+  }
+
+  /// ψ is affine in v: one least-change step solves it; a second one removes its roundoff.
+  void project_velocities(const Eigen::VectorXd& u, Eigen::VectorXd& v,
+                          const Eigen::VectorXd& row_weight) const {
+    if (m_ == 0) return;
+    std::vector<int> rows(static_cast<std::size_t>(m_));
+    for (int i = 0; i < m_; ++i) rows[static_cast<std::size_t>(i)] = i;
+    Eigen::VectorXd psi(m_);
+    const Eigen::MatrixXd A(s_.constraint_jacobian(t_, u));
+    for (int pass = 0; pass < 2; ++pass) {
+      if (violated(u, &v).empty()) break;
+      s_.velocity_residual(t_, u, v, psi);
+      v += least_change_step(A, rows, free_v_, psi, row_weight);
+    }
+  }
+
+  /// Rows left violated: position rows at u, or every row at (u, v).
+  [[nodiscard]] std::vector<std::pair<int, double>> violated(const Eigen::VectorXd& u,
+                                                             const Eigen::VectorXd* v) const {
+    std::vector<std::pair<int, double>> out;
+    if (m_ == 0) return out;
+    Eigen::VectorXd r(m_);
+    if (v != nullptr) {
+      s_.velocity_residual(t_, u, *v, r);
+    } else {
+      s_.position_residual(t_, u, r);
+    }
+    const Eigen::MatrixXd A(s_.constraint_jacobian(t_, u));
+    const double scale = std::max(1.0, u.lpNorm<Eigen::Infinity>()) *
+                         (v ? std::max(1.0, v->lpNorm<Eigen::Infinity>()) : 1.0);
+    for (int i = 0; i < m_; ++i) {
+      if (v == nullptr && !s_.position_rows()[static_cast<std::size_t>(i)]) continue;
+      const double row_size = std::max(1.0, A.row(i).lpNorm<Eigen::Infinity>());
+      // Negated comparison: a NaN residual is a violation.
+      if (!(std::abs(r[i]) <= kConsistencyTolerance * scale * row_size)) out.emplace_back(i, r[i]);
+    }
+    return out;
+  }
+
+ private:
+  /// min ‖W^½ dx_F‖ over the free DOFs F subject to A(rows, F) dx_F = −r(rows) in the
+  /// (row-weighted) least-squares sense; dx is zero on the given DOFs.
+  [[nodiscard]] Eigen::VectorXd least_change_step(const Eigen::MatrixXd& A,
+                                                  const std::vector<int>& rows,
+                                                  const std::vector<int>& free,
+                                                  const Eigen::VectorXd& r,
+                                                  const Eigen::VectorXd& row_weight) const {
+    Eigen::VectorXd dx = Eigen::VectorXd::Zero(n_);
+    if (free.empty() || rows.empty()) return dx;
+    const auto nr = static_cast<Eigen::Index>(rows.size());
+    const auto nf = static_cast<Eigen::Index>(free.size());
+    Eigen::MatrixXd B(nr, nf);
+    Eigen::VectorXd rhs(nr);
+    for (Eigen::Index k = 0; k < nr; ++k) {
+      const int i = rows[static_cast<std::size_t>(k)];
+      for (Eigen::Index c = 0; c < nf; ++c) {
+        const int d = free[static_cast<std::size_t>(c)];
+        B(k, c) = A(i, d) * w_inv_sqrt_[d];
+      }
+      const double norm = B.row(k).norm();
+      if (norm > 0.0) {  // a row on given DOFs only: nothing free can change its residual
+        B.row(k) *= row_weight[i] / norm;
+        rhs[k] = -r[i] * row_weight[i] / norm;
+      } else {
+        rhs[k] = 0.0;
+      }
+    }
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(B.rows(), B.cols());
+    cod.setThreshold(kRankTolerance);
+    cod.compute(B);
+    const Eigen::VectorXd z = cod.solve(rhs);
+    for (Eigen::Index c = 0; c < nf; ++c) {
+      const int d = free[static_cast<std::size_t>(c)];
+      dx[d] = w_inv_sqrt_[d] * z[c];
+    }
+    return dx;
+  }
+
+  const MechanicalSystem& s_;
+  double t_;
+  int n_, m_;
+  std::vector<int> free_u_, free_v_, position_rows_;
+  std::vector<std::vector<int>> row_dofs_;
+  Eigen::VectorXd w_inv_sqrt_, hard_given_u_, hard_given_v_;
+};
+
+/// The given DOFs the violated rows act on at u (a nonzero coefficient there: a DOF the row
+/// depends on but not at this state cannot be the culprit), ascending.
+std::vector<int> given_in(const MechanicalSystem& s, double t, const Eigen::VectorXd& u,
+                          const std::vector<std::pair<int, double>>& rows,
+                          const std::vector<bool>& given) {
+  const Eigen::MatrixXd A(s.constraint_jacobian(t, u));
+  std::set<int> out;
+  for (const auto& [row, r] : rows) {
+    for (Eigen::Index d = 0; d < A.cols(); ++d) {
+      if (given[static_cast<std::size_t>(d)] && A(row, d) != 0.0) out.insert(static_cast<int>(d));
+    }
+  }
+  return {out.begin(), out.end()};
 }
 
 }  // namespace
 
 std::string project_initial_state(const MechanicalSystem& system, double t, Eigen::VectorXd& u,
-                                  Eigen::VectorXd& v) {
-  const int m = system.constraints();
+                                  Eigen::VectorXd& v, const std::vector<bool>& given_u,
+                                  const std::vector<bool>& given_v,
+                                  const std::vector<std::string>& dof_names) {
+  const int n = system.dofs(), m = system.constraints();
   const Eigen::VectorXd u_in = u, v_in = v;
-  std::vector<int> rows;
-  for (int i = 0; i < m; ++i) {
-    if (system.position_rows()[static_cast<std::size_t>(i)]) rows.push_back(i);
-  }
-  Eigen::VectorXd all(m);
-  int iterations = 0;
-  if (!rows.empty()) {
-    bool converged = false;
-    for (; iterations < kMaxIterations && !converged; ++iterations) {
-      const Eigen::MatrixXd A(system.constraint_jacobian(t, u));
-      system.position_residual(t, u, all);
-      Eigen::MatrixXd Ap(static_cast<Eigen::Index>(rows.size()), A.cols());
-      Eigen::VectorXd phi(static_cast<Eigen::Index>(rows.size()));
-      for (std::size_t k = 0; k < rows.size(); ++k) {
-        Ap.row(static_cast<Eigen::Index>(k)) = A.row(rows[k]);
-        phi[static_cast<Eigen::Index>(k)] = all[rows[k]];
-      }
-      const Eigen::VectorXd du = minimum_norm_step(Ap, phi);
-      u += du;
-      converged = du.lpNorm<Eigen::Infinity>() <= 1e-14 * (1.0 + u.lpNorm<Eigen::Infinity>());
+  const Projector p(system, t, u_in, given_u, given_v);
+  const Eigen::VectorXd plain = Eigen::VectorXd::Ones(m);
+
+  // Inconsistent: diagnose with the rows that involve no given value held (nearly) exactly, so
+  // the residual is reported on the rows that do; name the given values there.
+  const auto refuse = [&](bool velocity, const std::vector<std::pair<int, double>>& first) {
+    Eigen::VectorXd uu = u_in, vv = v_in;
+    p.project_positions(uu, velocity ? plain : p.hard_rows(false));
+    if (velocity) p.project_velocities(uu, vv, p.hard_rows(true));
+    auto rows = p.violated(uu, velocity ? &vv : nullptr);
+    if (rows.empty()) rows = first;
+    const auto& given = velocity ? given_v : given_u;
+    std::vector<int> named = given_in(system, t, uu, rows, given);
+    if (named.empty()) {  // the constraints alone cannot be met (or the diagnosis moved them)
+      named = given_in(system, t, uu, first, given);
+      if (named.empty()) return;  // not the given values: the caller's generic message
+      rows = first;
     }
-    if (!converged || !u.allFinite()) {
-      std::ostringstream s;
-      s << "cannot project the initial state: Gauss-Newton did not converge in " << kMaxIterations
-        << " iterations (no configuration near the given one satisfies the constraints)";
-      throw std::runtime_error(s.str());
-    }
+    throw InconsistentGivenValues("the given initial values are inconsistent", velocity, rows,
+                                  named);
+  };
+
+  const int iterations = p.project_positions(u, plain);
+  if (const auto bad = p.violated(u, nullptr); !bad.empty() || !u.allFinite()) {
+    refuse(false, bad);
+    std::ostringstream s;
+    s << "cannot project the initial state: Gauss-Newton did not converge in " << kMaxIterations
+      << " iterations (no configuration near the given one satisfies the constraints)";
+    throw std::runtime_error(s.str());
   }
-  if (m > 0) {
-    system.velocity_residual(t, u, v, all);
-    v += minimum_norm_step(Eigen::MatrixXd(system.constraint_jacobian(t, u)), all);
+  p.project_velocities(u, v, plain);
+  if (const auto bad = p.violated(u, &v); !bad.empty() || !v.allFinite()) {
+    refuse(true, bad);
+    throw std::runtime_error(
+        "cannot project the initial velocities: the constraints are dependent (singular) at the "
+        "projected configuration, and no velocity satisfies them all");
+  }
+
+  int kept = 0;
+  for (int i = 0; i < n; ++i) {
+    kept += static_cast<int>(given_u[static_cast<std::size_t>(i)]) +
+            static_cast<int>(given_v[static_cast<std::size_t>(i)]);
+  }
+  // Moves at the roundoff of the state's size are not reported (a consistent DOF touched by the
+  // least-squares solve), only counted.
+  const double u_noise =
+      4 * std::numeric_limits<double>::epsilon() * std::max(1.0, u.lpNorm<Eigen::Infinity>());
+  const double v_noise =
+      4 * std::numeric_limits<double>::epsilon() * std::max(1.0, v.lpNorm<Eigen::Infinity>());
+  std::vector<std::string> moved;
+  int roundoff = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto& name = dof_names[static_cast<std::size_t>(i)];
+    const bool du = std::abs(u[i] - u_in[i]) > u_noise, dv = std::abs(v[i] - v_in[i]) > v_noise;
+    roundoff += static_cast<int>(!du && !dv && (u[i] != u_in[i] || v[i] != v_in[i]));
+    std::ostringstream line;
+    line.precision(10);
+    if (du) line << "  " << name << ": displacement " << u_in[i] << " -> " << u[i];
+    if (dv) {
+      line << (du ? ", velocity " : "  " + name + ": velocity ") << v_in[i] << " -> " << v[i];
+    }
+    if (du || dv) moved.push_back(line.str());
   }
   std::ostringstream s;
   s.precision(3);
-  s << "projected the initial state onto the constraints: max |Δu| = "
-    << (u - u_in).lpNorm<Eigen::Infinity>()
-    << ", max |Δv| = " << (v - v_in).lpNorm<Eigen::Infinity>() << " (" << iterations
-    << " Gauss-Newton iterations)";
+  if (moved.empty()) {
+    s << "[initial] project = true: the initial state already satisfies the constraints"
+      << (roundoff > 0 ? " (to roundoff)" : "") << "; nothing moved";
+    return s.str();
+  }
+  s << "projected onto the constraints, keeping the " << kept << " value" << (kept == 1 ? "" : "s")
+    << " given in [initial]\n  moved " << moved.size() << " DOF" << (moved.size() == 1 ? "" : "s")
+    << " by the least mass-weighted change (" << iterations << " Gauss-Newton iteration"
+    << (iterations == 1 ? "" : "s") << "):";
+  for (std::size_t k = 0; k < moved.size() && k < kMaxReportedDofs; ++k) s << "\n" << moved[k];
+  if (moved.size() > kMaxReportedDofs) {
+    s << "\n  ... and " << moved.size() - kMaxReportedDofs << " more DOFs";
+  }
+  if (roundoff > 0) s << "\n  (" << roundoff << " more by roundoff only)";
   return s.str();
 }
 

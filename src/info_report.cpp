@@ -12,10 +12,70 @@ namespace condyn {
 
 namespace {
 
-std::string join_dofs(const Model& model, const std::vector<int>& dofs) {
+// Lines of the report stay within this width (a terminal, a log viewer, a diff).
+constexpr std::size_t kWidth = 100;
+// Long lists (hundreds of masters) are shown in full up to this many lines, then counted.
+constexpr std::size_t kMaxListLines = 8;
+
+/// "label: a, b, c" wrapped at kWidth columns, continuation lines indented by the label's width;
+/// beyond kMaxListLines lines the rest is counted ("... and 290 more (598 in all)").
+std::string wrapped_list(const std::string& label, const std::vector<std::string>& names) {
+  if (names.empty()) return label + "none\n";
+  const std::string indent(label.size(), ' ');
+  std::vector<std::vector<std::string>> lines(1);
+  std::size_t width = label.size();
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string item = names[k] + (k + 1 < names.size() ? "," : "");
+    if (!lines.back().empty() && width + 1 + item.size() > kWidth) {
+      lines.emplace_back();
+      width = indent.size();
+    }
+    width += (lines.back().empty() ? 0 : 1) + item.size();
+    lines.back().push_back(item);
+  }
+  std::string suffix;
+  if (lines.size() > kMaxListLines) {
+    lines.resize(kMaxListLines);
+    auto& last = lines.back();
+    std::size_t shown = 0;
+    for (const auto& l : lines) shown += l.size();
+    const auto line_width = [&last, &indent] {
+      std::size_t w = indent.size();
+      for (const auto& item : last) w += item.size() + 1;
+      return w;
+    };
+    do {
+      suffix = "... and " + std::to_string(names.size() - shown) + " more (" +
+               std::to_string(names.size()) + " in all)";
+      if (line_width() + suffix.size() <= kWidth || last.size() <= 1) break;
+      last.pop_back();
+      --shown;
+    } while (true);
+  }
+  std::string out;
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    std::string line = l == 0 ? label : indent;
+    for (std::size_t k = 0; k < lines[l].size(); ++k) line += (k ? " " : "") + lines[l][k];
+    if (l + 1 == lines.size() && !suffix.empty()) line += " " + suffix;
+    out += line + "\n";
+  }
+  return out;
+}
+
+std::vector<std::string> names_of(const Model& model, const std::vector<int>& dofs) {
+  std::vector<std::string> out;
+  out.reserve(dofs.size());
+  for (int d : dofs) out.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+  return out;
+}
+
+/// A constraint's DOFs in its table row: the first few, then counted.
+std::string short_list(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 8;
   std::string s;
-  for (int d : dofs) s += (s.empty() ? "" : ", ") + model.dof_names[static_cast<std::size_t>(d)];
-  return s.empty() ? "none" : s;
+  for (std::size_t k = 0; k < names.size() && k < kShown; ++k) s += (k ? ", " : "") + names[k];
+  if (names.size() > kShown) s += " ... and " + std::to_string(names.size() - kShown) + " more";
+  return s;
 }
 
 }  // namespace
@@ -45,8 +105,7 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
           << (c.rheonomic ? "rheonomic" : "scleronomic") << std::setw(16)
           << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
           << (c.linear ? "linear" : "nonlinear");
-      for (std::size_t k = 0; k < c.dofs.size(); ++k) out << (k ? ", " : "") << c.dofs[k];
-      out << "\n";
+      out << short_list(c.dofs) << "\n";
       if (!c.note.empty())
         out << "  " << std::setw(width) << ""
             << "  " << c.note << "\n";
@@ -72,11 +131,12 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   if (choice.scheme == Scheme::elimination && !refusal) {
     const ReducedSystem reduced = reduce(model);
     const auto& ms = reduced.transform;
-    out << "elimination: slaves " << join_dofs(model, ms.slaves) << "; masters "
-        << join_dofs(model, ms.masters) << " (slaves "
+    out << "elimination: " << ms.slaves.size() << (ms.slaves.size() == 1 ? " slave (" : " slaves (")
         << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
                                        : "named in [solve] slaves")
-        << ")\n";
+        << "), " << ms.masters.size() << (ms.masters.size() == 1 ? " master\n" : " masters\n")
+        << wrapped_list("  slaves: ", names_of(model, ms.slaves))
+        << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
   if (choice.scheme == Scheme::baumgarte)
     out << "baumgarte: " << baumgarte_gains(model).rule << "\n";

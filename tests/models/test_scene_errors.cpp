@@ -326,11 +326,12 @@ TEST_CASE("constraints with coefficients or initial values near the double range
 }
 
 TEST_CASE("a nonlinear model linearized at an initial state near the double range") {
-  // Andrews' mechanism at Omega' = 1e300: its linearization holds inf. This was refused already,
-  // by the consistency check (a residual of 1e282, with "set project = true" when it is set); the
+  // Andrews' mechanism at beta' = 1e300 (projected: Theta' = -0.75e300, the only motion the
+  // constraints allow there): its linearization holds inf. This was refused already, by the
+  // consistency check (a residual of 1e282, with "set project = true" when it is set); the
   // finiteness check that guards every accepted model now names the cause first.
   check_error(
-      "[model]\ntype = \"andrews\"\n\n[initial]\nvelocity = { Omega = 1e300 }\nproject = "
+      "[model]\ntype = \"andrews\"\n\n[initial]\nvelocity = { beta = 1e300 }\nproject = "
       "true\n\n[solve]\nt_end = 0.03\noutput_step = 0.03\n",
       "bad.toml:4: initial: the stiffness matrix K linearized at the initial state has "
       "entries beyond the double range");

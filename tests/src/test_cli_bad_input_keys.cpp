@@ -1,0 +1,146 @@
+// Issue 10, item 16: bad input that used to exit 1 (a failed run) without naming a key now exits
+// 2 with FILE:LINE: key.path: problem.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "tests/cli_sandbox.hpp"
+
+using condyn::test::Result;
+using condyn::test::Sandbox;
+
+namespace {
+
+// Two masses on a bar, node 1 pinned by two constraints.
+const std::string kScene = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [1.0, 1.0]
+members = [{ nodes = [1, 2], EA = 10.0 }]
+
+[[constraint]]
+name = "pin_x"
+terms = { ux1 = 1.0 }
+
+[[constraint]]
+name = "pin_y"
+terms = { uy1 = 1.0 }
+
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  REQUIRE_MESSAGE(pos != std::string::npos, from);
+  return s.replace(pos, from.size(), to);
+}
+
+Result run_scene(const std::string& text, const std::string& flags = "") {
+  Sandbox box;
+  box.write("bad.toml", text);
+  return box.run("run bad.toml --out out.csv " + flags);
+}
+
+void check_refused(const Result& r, const std::string& needle) {
+  CAPTURE(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.find(needle) != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("a subnormal or negligible constraint coefficient is refused with its key") {
+  // 5e-324 squared underflows: the elimination saw a zero row ("rank deficient", exit 1).
+  check_refused(run_scene(replace(kScene, "terms = { uy1 = 1.0 }", "terms = { uy1 = 5e-324 }")),
+                "bad.toml:11: constraint[2].terms.uy1: the coefficient 4.940656458e-324 is "
+                "subnormal");
+  check_refused(
+      run_scene(replace(kScene, "terms = { uy1 = 1.0 }", "terms = { uy1 = 1.0, uy2 = 1e-20 }")),
+      "bad.toml:11: constraint[2].terms.uy2: the coefficient 1e-20 is below the roundoff");
+}
+
+TEST_CASE("[solve] slaves repeated, too many or on unconstrained DOFs: refused with the key") {
+  const auto with = [](const std::string& slaves) {
+    return replace(kScene, "output_step = 0.5", "output_step = 0.5\nslaves = " + slaves);
+  };
+  check_refused(run_scene(with("[\"ux1\", \"ux1\"]")),
+                "bad.toml:15: solve.slaves[2]: 'ux1' is named twice");
+  check_refused(run_scene(with("[\"ux1\", \"uy1\", \"ux2\"]")),
+                "bad.toml:15: solve.slaves[3]: 'ux2' appears in no constraint");
+  check_refused(run_scene(with("[\"ux1\"]")),
+                "bad.toml:15: solve.slaves: names 1 slave but the scene has 2 constraints");
+  // Slaves each in a constraint, but their columns of A are dependent ([1 1; 2 2]).
+  const std::string coupled =
+      replace(replace(kScene, "terms = { ux1 = 1.0 }", "terms = { ux1 = 1.0, ux2 = 1.0 }"),
+              "terms = { uy1 = 1.0 }", "terms = { uy1 = 1.0, ux1 = 2.0, ux2 = 2.0 }");
+  check_refused(run_scene(replace(coupled, "output_step = 0.5",
+                                  "output_step = 0.5\nslaves = [\"ux1\", \"ux2\"]")),
+                "bad.toml:15: solve.slaves: the slaves ux1, ux2 do not determine the constraints");
+}
+
+TEST_CASE("a massless DOF nothing holds is bad input under every scheme, DOFs named") {
+  // A triangle, node 1 pinned; node 3 held by two bars (stiffness) but without mass.
+  const std::string triangle = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+masses = [1.0, 1.0, 0.0]
+members = [{ nodes = [1, 2], EA = 10.0 }, { nodes = [2, 3], EA = 10.0 }, { nodes = [1, 3], EA = 10.0 }]
+supports = [1]
+
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  for (const std::string scheme : {"ggl", "index1", "elimination", "projection"}) {
+    CAPTURE(scheme);
+    check_refused(run_scene(triangle, "--scheme " + scheme),
+                  "bad.toml:1: model.masses: 2 DOFs (ux3, uy3) have no mass and no constraint "
+                  "holds them");
+  }
+  // An all-massless truss under gravity (its weight is zero, nothing has inertia).
+  check_refused(
+      run_scene(replace(replace(triangle, "masses = [1.0, 1.0, 0.0]", "masses = [0.0, 0.0, 0.0]"),
+                        "supports = [1]", "supports = [1]\ngravity = [0.0, -9.81]")),
+      "bad.toml:1: model.masses: 4 DOFs (ux2, uy2, ux3, uy3) have no mass");
+  // A massless DOF that a constraint holds is fine (a massless support), except under penalty,
+  // which factors M itself.
+  const std::string support = replace(kScene, "masses = [1.0, 1.0]", "masses = [0.0, 1.0]");
+  CHECK(run_scene(support).code == 0);
+  check_refused(run_scene(support, "--scheme penalty"),
+                "bad.toml:1: model.masses: 2 DOFs (ux1, uy1) have no mass: the penalty scheme");
+}
+
+TEST_CASE("a full mass matrix singular along a motion no constraint holds: refused, DOFs named") {
+  const std::string matrix = R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 1.0], [1.0, 1.0]]
+stiffness = [[2.0, -1.0], [-1.0, 2.0]]
+
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  check_refused(run_scene(matrix, "--scheme ggl"),
+                "bad.toml:1: model.mass: the mass matrix is singular along a motion of 2 DOFs "
+                "(a, b) that no constraint holds");
+  // Holding a fixes the motion (1, -1): accepted.
+  const Result held = run_scene(matrix + "[[constraint]]\nterms = { a = 1.0 }\n", "--scheme ggl");
+  CHECK(held.code == 0);
+}
+
+TEST_CASE("tolerances that are nan or inf are usage errors naming the flag or key") {
+  for (const std::string flag : {"--rtol nan", "--atol nan", "--rtol inf", "--atol -inf"}) {
+    CAPTURE(flag);
+    const Result r = run_scene(kScene, flag);
+    CHECK(r.code == 2);
+    CHECK(r.err.find(flag.substr(0, 6)) != std::string::npos);
+    CHECK(r.err.find("is not a decimal number") != std::string::npos);
+  }
+  check_refused(run_scene(replace(kScene, "output_step = 0.5", "output_step = 0.5\nrtol = nan")),
+                "bad.toml:18: solve.rtol: must be finite");
+  check_refused(run_scene(replace(kScene, "output_step = 0.5", "output_step = 0.5\natol = inf")),
+                "bad.toml:18: solve.atol: must be finite");
+}
