@@ -6,6 +6,8 @@
 #include <Eigen/Sparse>
 #include <vector>
 
+#include "dae/unknown_kind.hpp"
+
 namespace condyn {
 
 class DaeProblem {
@@ -41,6 +43,9 @@ class DaeProblem {
   /// even when they are of index 1 (IDASetSuppressAlg), for algebraic variables whose error
   /// estimate amplifies the differential ones' (Baumgarte's λ, see MultiplierDae).
   [[nodiscard]] virtual bool suppress_algebraic_error() const { return false; }
+  /// The kind of each unknown, for its absolute tolerance (IntegratorOptions::atol_of); empty:
+  /// every unknown gets the displacement atol.
+  [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
   /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
   /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
   /// step, where accelerations and multipliers jump). Throws std::runtime_error when the

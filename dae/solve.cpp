@@ -10,6 +10,7 @@
 #include "dae/cvode_integrator.hpp"
 #include "dae/elimination.hpp"
 #include "dae/ida_integrator.hpp"
+#include "dae/model_scales.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/projected_ode.hpp"
@@ -62,7 +63,13 @@ SchemeChoice choose_scheme(const Model& model, Scheme requested) {
 IntegratorOptions integrator_options(const Model& model) {
   IntegratorOptions o;
   o.rtol = model.solve.rtol;
-  o.atol = model.solve.atol;
+  const AbsoluteTolerances atol = absolute_tolerances(model);
+  o.atol = atol.displacement;
+  o.atol_velocity = atol.velocity;
+  o.atol_multiplier = atol.multiplier;
+  o.atol_mu = atol.mu;
+  o.time_scale = atol.time_scale;
+  o.first_step = atol.first_step;
   o.dense_linear_solver = model.solve.dense_linear_solver;
   o.output_times = model.output_times();
   o.breakpoints = model.breakpoints();

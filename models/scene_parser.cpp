@@ -404,13 +404,18 @@ class Reader {
     const auto& t = table(node, path);
     solve.where = at(node, path);
     check_keys(t, path,
-               {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "penalty", "slaves",
-                "linear_solver", "redundant"});
+               {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
+                "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "redundant"});
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
     if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
     if (const auto* n = t.get("rtol")) solve.rtol = positive(*n, "solve.rtol");
     if (const auto* n = t.get("atol")) solve.atol = positive(*n, "solve.atol");
+    if (const auto* n = t.get("atol_velocity"))
+      solve.atol_velocity = positive(*n, "solve.atol_velocity");
+    if (const auto* n = t.get("atol_multiplier"))
+      solve.atol_multiplier = positive(*n, "solve.atol_multiplier");
+    if (const auto* n = t.get("atol_mu")) solve.atol_mu = positive(*n, "solve.atol_mu");
     if (const auto* n = t.get("baumgarte")) {
       const auto& b = table(*n, "solve.baumgarte");
       check_keys(b, "solve.baumgarte", {"alpha", "beta"});

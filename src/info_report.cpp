@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "dae/baumgarte_gains.hpp"
+#include "dae/model_scales.hpp"
 #include "dae/elimination.hpp"
 #include "dae/solve.hpp"
 #include "models/classification.hpp"
@@ -80,6 +81,7 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   }
   if (choice.scheme == Scheme::baumgarte)
     out << "baumgarte: " << baumgarte_gains(model).rule << "\n";
+  out << "tolerances: rtol " << model.solve.rtol << "; " << absolute_tolerances(model).rule << "\n";
   out << "\nsystem each scheme integrates:\n";
   out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";
