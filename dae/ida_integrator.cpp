@@ -24,9 +24,9 @@ void IntegratorOptions::validate() const {
   auto bad = [](const std::string& what) { throw std::invalid_argument("integrator: " + what); };
   if (!(rtol > 0.0) || !std::isfinite(rtol)) bad("rtol must be > 0");
   if (!(atol > 0.0) || !std::isfinite(atol)) bad("atol must be > 0");
-  for (const auto& [value, name] : {std::pair{atol_velocity, "atol_velocity"},
-                                    std::pair{atol_multiplier, "atol_multiplier"},
-                                    std::pair{atol_mu, "atol_mu"}}) {
+  for (const auto& [value, name] :
+       {std::pair{atol_velocity, "atol_velocity"}, std::pair{atol_multiplier, "atol_multiplier"},
+        std::pair{atol_mu, "atol_mu"}}) {
     if (value && (!(*value > 0.0) || !std::isfinite(*value)))
       bad(std::string(name) + " must be > 0 and finite");
   }
@@ -96,9 +96,9 @@ using IdaPtr = std::unique_ptr<void, IdaDeleter>;
 struct CallbackData {
   const DaeProblem* problem = nullptr;
   double rtol = 0.0;
-  Eigen::VectorXd atol;    ///< per component (IntegratorOptions::atol_vector)
+  Eigen::VectorXd atol;     ///< per component (IntegratorOptions::atol_vector)
   double time_scale = 1.0;  ///< IntegratorOptions::time_scale
-  void* mem = nullptr;  ///< IDA memory, for the step size in the weight function
+  void* mem = nullptr;      ///< IDA memory, for the step size in the weight function
   /// The step the weights assume before IDA has taken one (at t0 and after each restart, where
   /// IDA computes the weights once for the first step and all its retries). With h = 1 there,
   /// the higher-index components' weights were 1/h larger than in later steps and the first
@@ -159,10 +159,8 @@ constexpr double kFirstStepFraction = 1e-8;
 
 /// Error weights (h/T)^(k_i − 1) / (rtol |y_i| + atol_i), k_i the component's index (DaeProblem),
 /// T the model's time scale (IntegratorOptions::time_scale): h/T is a pure number, so the
-/// weights do not change with the units. With the default atol per kind (dae/model_scales.hpp)
-/// the Newton tolerance of every higher-index component then means the same displacement: a λ
-/// (index 2) correction δλ ≤ atol_λ T/h moves v by h a δλ / m ≤ atol_v, and GGL's δμ ≤ atol_μ T/h
-/// moves u by h a δμ ≤ atol.
+/// weights do not change with the units (with the default atol of λ, dae/model_scales.hpp, an
+/// index-2 correction δλ ≤ atol_λ T/h moves v by h a δλ / m ≤ atol / T).
 int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   auto* data = static_cast<CallbackData*>(user);
   double h = 0.0;

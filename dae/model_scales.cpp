@@ -142,7 +142,7 @@ AbsoluteTolerances absolute_tolerances(const Model& model) {
   const double T = s.omega_min > 0.0 ? std::min(1.0 / s.omega_min, t_end) : t_end;
   AbsoluteTolerances a;
   a.displacement = model.solve.atol;
-  a.velocity = model.solve.atol_velocity.value_or(a.displacement / T);
+  a.velocity = model.solve.atol_velocity.value_or(a.displacement / t_end);
   a.multiplier =
       model.solve.atol_multiplier.value_or(a.displacement * s.mass / (T * T * s.coefficient));
   a.mu = model.solve.atol_mu.value_or(a.velocity / s.coefficient);

@@ -3,8 +3,8 @@
 
 #include <Eigen/Dense>
 #include <functional>
-#include <string>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "dae/unknown_kind.hpp"
@@ -38,8 +38,7 @@ struct IntegratorOptions {
   /// The absolute tolerance of one kind of unknown.
   [[nodiscard]] double atol_of(UnknownKind kind) const;
   /// One absolute tolerance per unknown (`kinds` empty: atol for all `size` unknowns).
-  [[nodiscard]] Eigen::VectorXd atol_vector(const std::vector<UnknownKind>& kinds,
-                                            int size) const;
+  [[nodiscard]] Eigen::VectorXd atol_vector(const std::vector<UnknownKind>& kinds, int size) const;
 };
 
 struct SolveSummary {

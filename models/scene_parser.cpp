@@ -403,9 +403,10 @@ class Reader {
     const std::string path = "solve";
     const auto& t = table(node, path);
     solve.where = at(node, path);
-    check_keys(t, path,
-               {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
-                "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "redundant"});
+    check_keys(
+        t, path,
+        {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
+         "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "redundant"});
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
     if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");

@@ -4,8 +4,8 @@
 #include <iomanip>
 
 #include "dae/baumgarte_gains.hpp"
-#include "dae/model_scales.hpp"
 #include "dae/elimination.hpp"
+#include "dae/model_scales.hpp"
 #include "dae/solve.hpp"
 #include "models/classification.hpp"
 
