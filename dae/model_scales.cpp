@@ -3,6 +3,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -142,7 +143,11 @@ AbsoluteTolerances absolute_tolerances(const Model& model) {
   const double T = s.omega_min > 0.0 ? std::min(1.0 / s.omega_min, t_end) : t_end;
   AbsoluteTolerances a;
   a.displacement = model.solve.atol;
-  a.velocity = model.solve.atol_velocity.value_or(a.displacement / t_end);
+  // Never below the velocities' own roundoff: the four-bar (|v0| = 6) at atol 1e-15 over 2 s
+  // (atol_v 5e-16) had Newton fail at t = 6e-8; 16 eps |v0| is 2e-14 there.
+  const double v_roundoff = 16.0 * std::numeric_limits<double>::epsilon() *
+                            (model.v0.size() > 0 ? model.v0.cwiseAbs().maxCoeff() : 0.0);
+  a.velocity = model.solve.atol_velocity.value_or(std::max(a.displacement / t_end, v_roundoff));
   a.multiplier =
       model.solve.atol_multiplier.value_or(a.displacement * s.mass / (T * T * s.coefficient));
   a.mu = model.solve.atol_mu.value_or(a.velocity / s.coefficient);

@@ -37,7 +37,8 @@ inline constexpr int kDenseScaleLimit = 1500;
 /// displacements by atol:
 ///   velocity    atol_v = atol / t_end            (sustained over the run; a looser atol / T cost
 ///                                                 the car axis a digit at rtol 1e-10: its motion
-///                                                 is forced, slower than its lowest mode)
+///                                                 is forced, slower than its lowest mode), but at
+///                                                 least 16 eps max|v(0)|, the roundoff of v
 ///   multiplier  atol_λ = atol · m / (T² · a)     (a force error Δf sustained over the model's
 ///                                                 slowest natural time scale T = min(1/ω_min,
 ///                                                 t_end) displaces a mass m by Δf T²/m; λ is a
