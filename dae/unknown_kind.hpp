@@ -3,6 +3,7 @@
 /// constraint multipliers (forces per unit constraint coefficient) and GGL's μ have different
 /// units, so one atol cannot fit them all (dae/model_scales.hpp derives one per kind).
 
+#include <cstddef>
 #include <vector>
 
 namespace condyn {
@@ -13,7 +14,8 @@ enum class UnknownKind { displacement, velocity, multiplier, mu };
 /// and the ODE schemes have no λ or μ).
 [[nodiscard]] inline std::vector<UnknownKind> unknown_kinds(int n, int m = 0, int p = 0) {
   std::vector<UnknownKind> kinds;
-  kinds.reserve(static_cast<std::size_t>(2 * n + m + p));
+  kinds.reserve(2 * static_cast<std::size_t>(n) + static_cast<std::size_t>(m) +
+                static_cast<std::size_t>(p));
   kinds.insert(kinds.end(), static_cast<std::size_t>(n), UnknownKind::displacement);
   kinds.insert(kinds.end(), static_cast<std::size_t>(n), UnknownKind::velocity);
   kinds.insert(kinds.end(), static_cast<std::size_t>(m), UnknownKind::multiplier);
