@@ -3,10 +3,12 @@
 ///   A u'' = γ − 2α ψ − β² φ,
 /// so a constraint error e obeys e'' + 2α e' + β² e = 0. The default rule, when the scene gives
 /// no gains: critical damping (α = β, the error decays fastest without oscillating) on the time
-/// scale of the constrained system's highest natural frequency (β = ω_max of the reduced system
-/// K̂, M̂): the drift is removed as fast as the physics itself moves, and no faster, so
-/// stabilization adds no stiffness beyond the model's own. When ω_max is 0 (no stiffness) or the
-/// reduced mass is singular, β = 2π / output_step: the error decays within one output interval.
+/// scale of the constrained system's highest natural frequency (β = ω_max of the linearization
+/// at t = 0 on the constraint manifold, the geometric stiffness of the constraint forces included:
+/// dae/model_scales.hpp; a pendulum gets √(g/L)): the drift is removed as fast as the physics
+/// itself moves, and no faster, so stabilization adds no stiffness beyond the model's own. The
+/// gains are the model's: they never depend on output_step. When ω_max is 0 (no stiffness, no
+/// force, no motion), β = 2π / t_end.
 
 #include <optional>
 #include <string>

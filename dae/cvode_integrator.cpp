@@ -88,7 +88,7 @@ FailureKind failure_kind(int flag) {
       return FailureKind::linear_solver;
     case CV_FIRST_RHSFUNC_ERR:  // the right-hand side stayed non-finite
     case CV_REPTD_RHSFUNC_ERR:
-      return FailureKind::non_finite;
+      return FailureKind::residual_non_finite;
     case CV_ILL_INPUT:
     case CV_TOO_CLOSE:
     case CV_BAD_T:
@@ -127,7 +127,9 @@ class Cvode final : public Stepper {
     check(CVodeSetErrHandlerFn(mem_.get(), error_handler, &data_), "CVodeSetErrHandlerFn");
     check(CVodeInit(mem_.get(), rhs_trampoline, t0, y_.get()), "CVodeInit");
     check(CVodeSetUserData(mem_.get(), &data_), "CVodeSetUserData");
-    check(CVodeSStolerances(mem_.get(), options.rtol, options.atol), "CVodeSStolerances");
+    view(work_.get()) = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
+    check(CVodeSVtolerances(mem_.get(), options.rtol, work_.get()),
+          "CVodeSVtolerances");  // copies the vector
     check(CVodeSetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
     if (problem.has_projection()) {
       check(CVodeSetProjFn(mem_.get(), projection_trampoline), "CVodeSetProjFn");

@@ -6,6 +6,8 @@
 #include <Eigen/Sparse>
 #include <vector>
 
+#include "dae/unknown_kind.hpp"
+
 namespace condyn {
 
 class DaeProblem {
@@ -31,7 +33,8 @@ class DaeProblem {
   /// algebraic components; 2 for GGL's and index2's multipliers and index3's velocities; 3 for
   /// index3's multipliers. Components of index k >= 2 are left out of the local error test (the
   /// BDF error estimate does not apply to them) and their error weights in the Newton
-  /// convergence test are scaled by h^(k−1), as RADAU5 scales higher-index components.
+  /// convergence test are scaled by (h/T)^(k−1), T the model's time scale (so that the factor is a
+  /// pure number), as RADAU5 scales higher-index components by h^(k−1).
   /// Unscaled, the Newton matrix's conditioning (1/h² for index 2) makes their roundoff exceed any
   /// tolerance at small steps and the step size collapses (seen under GGL on chapter case E at
   /// rtol <= 1e-9); with zero weight, IDA's modified Newton never converges them (GGL's μ grew
@@ -41,6 +44,9 @@ class DaeProblem {
   /// even when they are of index 1 (IDASetSuppressAlg), for algebraic variables whose error
   /// estimate amplifies the differential ones' (Baumgarte's λ, see MultiplierDae).
   [[nodiscard]] virtual bool suppress_algebraic_error() const { return false; }
+  /// The kind of each unknown, for its absolute tolerance (IntegratorOptions::atol_of); empty:
+  /// every unknown gets the displacement atol.
+  [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
   /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
   /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
   /// step, where accelerations and multipliers jump). Throws std::runtime_error when the

@@ -24,6 +24,12 @@ void IntegratorOptions::validate() const {
   auto bad = [](const std::string& what) { throw std::invalid_argument("integrator: " + what); };
   if (!(rtol > 0.0) || !std::isfinite(rtol)) bad("rtol must be > 0");
   if (!(atol > 0.0) || !std::isfinite(atol)) bad("atol must be > 0");
+  for (const auto& [value, name] :
+       {std::pair{atol_velocity, "atol_velocity"}, std::pair{atol_multiplier, "atol_multiplier"},
+        std::pair{atol_mu, "atol_mu"}}) {
+    if (value && (!(*value > 0.0) || !std::isfinite(*value)))
+      bad(std::string(name) + " must be > 0 and finite");
+  }
   if (output_times.empty()) bad("no output times");
   if (!std::is_sorted(output_times.begin(), output_times.end())) bad("output times not ascending");
   if (!std::is_sorted(breakpoints.begin(), breakpoints.end())) bad("breakpoints not ascending");
@@ -33,6 +39,33 @@ void IntegratorOptions::validate() const {
     bad("max_wall_seconds must be >= 0");
   if (!(progress_after_seconds >= 0.0) || !(progress_every_seconds >= 0.0))
     bad("progress intervals must be >= 0");
+  if (!(time_scale > 0.0) || !std::isfinite(time_scale)) bad("time_scale must be > 0");
+  if (first_step && (!(*first_step > 0.0) || !std::isfinite(*first_step)))
+    bad("first_step must be > 0");
+}
+
+double IntegratorOptions::atol_of(UnknownKind kind) const {
+  switch (kind) {
+    case UnknownKind::displacement:
+      break;
+    case UnknownKind::velocity:
+      return atol_velocity.value_or(atol);
+    case UnknownKind::multiplier:
+      return atol_multiplier.value_or(atol);
+    case UnknownKind::mu:
+      return atol_mu.value_or(atol);
+  }
+  return atol;
+}
+
+Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& kinds,
+                                               int size) const {
+  if (kinds.empty()) return Eigen::VectorXd::Constant(size, atol);
+  if (static_cast<int>(kinds.size()) != size)
+    throw std::logic_error("integrator: unknown kinds do not match the problem size");
+  Eigen::VectorXd out(size);
+  for (int i = 0; i < size; ++i) out[i] = atol_of(kinds[static_cast<std::size_t>(i)]);
+  return out;
 }
 
 std::string SolveSummary::brief() const {
@@ -66,8 +99,10 @@ using IdaPtr = std::unique_ptr<void, IdaDeleter>;
 /// through IDA's C frames.
 struct CallbackData {
   const DaeProblem* problem = nullptr;
-  double rtol = 0.0, atol = 0.0;
-  void* mem = nullptr;  ///< IDA memory, for the step size in the weight function
+  double rtol = 0.0;
+  Eigen::VectorXd atol;     ///< per component (IntegratorOptions::atol_vector)
+  double time_scale = 1.0;  ///< IntegratorOptions::time_scale
+  void* mem = nullptr;      ///< IDA memory, for the step size in the weight function
   /// The step the weights assume before IDA has taken one (at t0 and after each restart, where
   /// IDA computes the weights once for the first step and all its retries). With h = 1 there,
   /// the higher-index components' weights were 1/h larger than in later steps and the first
@@ -126,7 +161,10 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
 /// BDF start at order 1 ramps up from there within a few steps).
 constexpr double kFirstStepFraction = 1e-8;
 
-/// Error weights h^(k_i − 1) / (rtol |y_i| + atol), k_i the component's index (DaeProblem).
+/// Error weights (h/T)^(k_i − 1) / (rtol |y_i| + atol_i), k_i the component's index (DaeProblem),
+/// T the model's time scale (IntegratorOptions::time_scale): h/T is a pure number, so the
+/// weights do not change with the units (with the default atol of λ, dae/model_scales.hpp, an
+/// index-2 correction δλ ≤ atol_λ T/h moves v by h a δλ / m ≤ atol / T).
 int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   auto* data = static_cast<CallbackData*>(user);
   double h = 0.0;
@@ -135,7 +173,8 @@ int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   if (!(h > 0.0)) h = data->first_step;
   auto w = view(ewt);
   for (Eigen::Index i = 0; i < w.size(); ++i) {
-    w[i] = std::pow(h, data->index[i] - 1.0) / (data->rtol * std::abs(view(y)[i]) + data->atol);
+    w[i] = std::pow(h / data->time_scale, data->index[i] - 1.0) /
+           (data->rtol * std::abs(view(y)[i]) + data->atol[i]);
   }
   return 0;
 }
@@ -160,7 +199,7 @@ FailureKind failure_kind(int flag) {
     case IDA_LSOLVE_FAIL:
       return FailureKind::linear_solver;
     case IDA_REP_RES_ERR:  // the residual stayed non-finite however small the step
-      return FailureKind::non_finite;
+      return FailureKind::residual_non_finite;
     case IDA_ILL_INPUT:
     case IDA_BAD_EWT:
     case IDA_BAD_T:
@@ -222,20 +261,24 @@ class Ida final : public Stepper {
     }
     check(IDAInit(mem_.get(), residual_trampoline, t0, y_.get(), yp_.get()), "IDAInit");
     if (options.output_times.size() > 1) {
-      data_.first_step = kFirstStepFraction * (options.output_times[1] - options.output_times[0]);
+      const double interval = options.output_times[1] - options.output_times[0];
+      data_.first_step = options.first_step ? std::min(*options.first_step, 0.5 * interval)
+                                            : kFirstStepFraction * interval;
     }
     check(IDASetUserData(mem_.get(), &data_), "IDASetUserData");
     check(IDASetId(mem_.get(), id_.get()), "IDASetId");
+    data_.atol = options.atol_vector(data_.problem->unknown_kinds(), static_cast<int>(n_));
     if (higher_index) {
       data_.rtol = options.rtol;
-      data_.atol = options.atol;
+      data_.time_scale = options.time_scale;
       data_.index = index;
       data_.mem = mem_.get();
       check(IDAWFtolerances(mem_.get(), weight_trampoline), "IDAWFtolerances");
       check(IDASetInitStep(mem_.get(), data_.first_step), "IDASetInitStep");
       check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
     } else {
-      check(IDASStolerances(mem_.get(), options.rtol, options.atol), "IDASStolerances");
+      view(work_.get()) = data_.atol;  // IDASVtolerances copies it
+      check(IDASVtolerances(mem_.get(), options.rtol, work_.get()), "IDASVtolerances");
       if (data_.problem->suppress_algebraic_error()) {
         check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
       }

@@ -2,6 +2,9 @@
 /// An ODE y' = F(t, y) with an invariant manifold it should stay on, as CVODE sees it.
 
 #include <Eigen/Dense>
+#include <vector>
+
+#include "dae/unknown_kind.hpp"
 
 namespace condyn {
 
@@ -14,6 +17,8 @@ class OdeProblem {
   [[nodiscard]] virtual int size() const = 0;
   /// ydot = F(t, y); load steps on when start <= step_reference.
   virtual void rhs(double t, double step_reference, ConstRef y, Ref ydot) const = 0;
+  /// The kind of each unknown, for its absolute tolerance; empty: all get the displacement atol.
+  [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
   /// True when the problem has an invariant to project onto after each step.
   [[nodiscard]] virtual bool has_projection() const = 0;
   /// corr such that y + corr lies on the manifold (CVodeSetProjFn).

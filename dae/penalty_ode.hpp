@@ -44,6 +44,9 @@ class PenaltyOde final : public DaeProblem {
   }
   void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
+  [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
+    return condyn::unknown_kinds(n_);
+  }
   [[nodiscard]] Eigen::VectorXd differential_id() const override {
     return Eigen::VectorXd::Ones(size());
   }

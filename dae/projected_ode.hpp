@@ -40,6 +40,9 @@ class ProjectedOde final : public OdeProblem {
   [[nodiscard]] int size() const override { return 2 * n_; }
   void rhs(double t, double step_reference, ConstRef y, Ref ydot) const override;
   [[nodiscard]] bool has_projection() const override { return m_ > 0; }
+  [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
+    return condyn::unknown_kinds(n_);
+  }
   bool project(double t, ConstRef y, Ref corr) const override;
   void project_error(Ref err) const override;
 

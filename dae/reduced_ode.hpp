@@ -27,6 +27,10 @@ class ReducedOde final : public DaeProblem {
   }
   void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
+  /// û are master displacements, w their velocities.
+  [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
+    return condyn::unknown_kinds(nm_);
+  }
   [[nodiscard]] Eigen::VectorXd differential_id() const override {
     return Eigen::VectorXd::Ones(size());
   }

@@ -11,6 +11,7 @@
 #include "dae/cvode_integrator.hpp"
 #include "dae/elimination.hpp"
 #include "dae/ida_integrator.hpp"
+#include "dae/model_scales.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/projected_ode.hpp"
@@ -63,7 +64,13 @@ SchemeChoice choose_scheme(const Model& model, Scheme requested) {
 IntegratorOptions integrator_options(const Model& model) {
   IntegratorOptions o;
   o.rtol = model.solve.rtol;
-  o.atol = model.solve.atol;
+  const AbsoluteTolerances atol = absolute_tolerances(model);
+  o.atol = atol.displacement;
+  o.atol_velocity = atol.velocity;
+  o.atol_multiplier = atol.multiplier;
+  o.atol_mu = atol.mu;
+  o.time_scale = atol.time_scale;
+  o.first_step = atol.first_step;
   o.dense_linear_solver = model.solve.dense_linear_solver;
   o.output_times = model.output_times();
   o.breakpoints = model.breakpoints();
@@ -306,6 +313,7 @@ std::string failure_suggestion(Scheme scheme, const IntegrationError& e) {
   const double seconds_left = progressed ? e.elapsed_seconds * left / (e.t_reached - e.t0) : 0.0;
   switch (e.kind) {
     case FailureKind::non_finite:
+    case FailureKind::residual_non_finite:
       return "the solution blew up: check loads and time functions for runaway growth, and masses "
              "and stiffnesses for absurd magnitudes";
     case FailureKind::step_budget: {

@@ -3,8 +3,11 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "dae/unknown_kind.hpp"
 
 namespace condyn {
 
@@ -17,7 +20,17 @@ struct Progress {
 
 struct IntegratorOptions {
   double rtol = 1e-8;
+  /// Absolute tolerance of the displacements ([solve] atol, in the model's length unit).
   double atol = 1e-10;
+  /// Absolute tolerances of the other kinds of unknown ([solve] atol_velocity, atol_multiplier,
+  /// atol_mu); unset means atol (integrator_options(model) sets them from the model's scales).
+  std::optional<double> atol_velocity, atol_multiplier, atol_mu;
+  /// The model's time scale T (dae/model_scales.hpp): higher-index components' Newton weights
+  /// are scaled by (h/T)^(k−1), a pure number. 1 when the caller knows no model.
+  double time_scale = 1.0;
+  /// First step of the higher-index schemes (GGL, index2, index3), at most half the first output
+  /// interval; unset: 1e-8 of that interval.
+  std::optional<double> first_step;
   bool dense_linear_solver = false;    ///< SUNDIALS dense LU instead of KLU (tiny systems only)
   std::vector<double> output_times;    ///< ascending, first one is the initial time
   std::vector<double> breakpoints;     ///< load steps inside (t0, t_end): stop and restart there
@@ -35,6 +48,10 @@ struct IntegratorOptions {
   bool record_steps = false;
   /// Throws std::invalid_argument naming the bad field.
   void validate() const;
+  /// The absolute tolerance of one kind of unknown.
+  [[nodiscard]] double atol_of(UnknownKind kind) const;
+  /// One absolute tolerance per unknown (`kinds` empty: atol for all `size` unknowns).
+  [[nodiscard]] Eigen::VectorXd atol_vector(const std::vector<UnknownKind>& kinds, int size) const;
 };
 
 struct SolveSummary {

@@ -14,6 +14,8 @@ const char* to_string(FailureKind kind) {
       return "integrator failure";
     case FailureKind::non_finite:
       return "non-finite solution";
+    case FailureKind::residual_non_finite:
+      return "non-finite residual";
     case FailureKind::step_budget:
       return "step budget exhausted";
     case FailureKind::wall_time_budget:
@@ -204,6 +206,9 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
     }
     // The facts refine the integrator's word: a failure before any step is a failure to start;
     // failures (or a stall) with the last step at roundoff of the time reached are a collapse.
+    // A residual that stays non-finite (IDA_REP_RES_ERR) at a step cut to roundoff is the
+    // collapse's consequence (y' = cj (y − y_pred) overflows), not a blow-up of the solution.
+    const bool residual_failure = e.kind == FailureKind::residual_non_finite;
     const bool solver_failure =
         e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
         e.kind == FailureKind::linear_solver || e.kind == FailureKind::unknown;
@@ -211,8 +216,8 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
     if (solver_failure && total_steps == 0) {
       e.kind = FailureKind::first_step;
     } else if ((e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
-                e.kind == FailureKind::steps_per_output) &&
-               std::abs(e.last_step) <= kCollapsedStep * std::abs(e.t_reached)) {
+                e.kind == FailureKind::steps_per_output || residual_failure) &&
+               total_steps > 0 && std::abs(e.last_step) <= kCollapsedStep * std::abs(e.t_reached)) {
       e.kind = FailureKind::step_size_collapsed;
     }
     e.raw_partial = std::make_shared<const RawTrajectory>(std::move(out));

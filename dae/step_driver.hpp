@@ -27,7 +27,8 @@ struct Trajectory;
 /// loop's own checks), refined by the loop from the facts (no step taken, step at roundoff).
 enum class FailureKind {
   unknown,
-  non_finite,           ///< the solution (or the residual, repeatedly) became NaN or inf
+  non_finite,           ///< the solution became NaN or inf
+  residual_non_finite,  ///< the residual (right-hand side) stayed NaN or inf at every trial step
   step_budget,          ///< IntegratorOptions::max_steps exhausted
   wall_time_budget,     ///< IntegratorOptions::max_wall_seconds exhausted
   steps_per_output,     ///< max_steps_per_output steps without reaching the next output time

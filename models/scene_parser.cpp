@@ -520,8 +520,9 @@ class Reader {
     const auto& t = table(node, path);
     solve.where = at(node, path);
     check_keys(t, path,
-               {"t_end", "output_step", "scheme", "rtol", "atol", "baumgarte", "penalty", "slaves",
-                "linear_solver", "redundant", "max_steps", "max_wall_time"});
+               {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity",
+                "atol_multiplier", "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver",
+                "redundant", "max_steps", "max_wall_time"});
     solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
     solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
     if (const auto* n = t.get("max_steps")) {
@@ -544,6 +545,11 @@ class Reader {
       }
     }
     if (const auto* n = t.get("atol")) solve.atol = positive(*n, "solve.atol");
+    if (const auto* n = t.get("atol_velocity"))
+      solve.atol_velocity = positive(*n, "solve.atol_velocity");
+    if (const auto* n = t.get("atol_multiplier"))
+      solve.atol_multiplier = positive(*n, "solve.atol_multiplier");
+    if (const auto* n = t.get("atol_mu")) solve.atol_mu = positive(*n, "solve.atol_mu");
     if (const auto* n = t.get("baumgarte")) {
       const auto& b = table(*n, "solve.baumgarte");
       check_keys(b, "solve.baumgarte", {"alpha", "beta"});

@@ -99,7 +99,10 @@ struct SolveSpec {
   double output_step = 0.0;
   Scheme scheme = Scheme::automatic;
   double rtol = 1e-8;
-  double atol = 1e-10;
+  double atol = 1e-10;  ///< displacements (model length unit)
+  /// Absolute tolerances of velocities, multipliers and GGL's μ; unset: derived from atol and the
+  /// model's scales (dae/model_scales.hpp).
+  std::optional<double> atol_velocity, atol_multiplier, atol_mu;
   std::optional<double> baumgarte_alpha, baumgarte_beta;
   std::optional<double> penalty_weight;  ///< [solve] penalty = { weight = w }
   /// Optional slave DOFs for the master-slave transformation (default: chosen by pivoting).

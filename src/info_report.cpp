@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <sstream>
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/elimination.hpp"
+#include "dae/model_scales.hpp"
 #include "dae/solve.hpp"
 #include "models/classification.hpp"
 
@@ -16,6 +18,27 @@ namespace {
 constexpr std::size_t kWidth = 100;
 // Long lists (hundreds of masters) are shown in full up to this many lines, then counted.
 constexpr std::size_t kMaxListLines = 8;
+
+/// "label: text" with the words of text wrapped at kWidth columns, continuation lines indented
+/// by the label's width.
+std::string wrapped_text(const std::string& label, const std::string& text) {
+  const std::string indent(label.size(), ' ');
+  std::string out = label, word;
+  std::size_t width = label.size();
+  std::istringstream words(text);
+  bool first = true;
+  while (words >> word) {
+    if (!first && width + 1 + word.size() > kWidth) {
+      out += "\n" + indent;
+      width = indent.size();
+      first = true;
+    }
+    out += (first ? "" : " ") + word;
+    width += (first ? 0 : 1) + word.size();
+    first = false;
+  }
+  return out + "\n";
+}
 
 /// "label: a, b, c" wrapped at kWidth columns, continuation lines indented by the label's width;
 /// beyond kMaxListLines lines the rest is counted ("... and 290 more (598 in all)").
@@ -139,7 +162,10 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
   if (choice.scheme == Scheme::baumgarte)
-    out << "baumgarte: " << baumgarte_gains(model).rule << "\n";
+    out << wrapped_text("baumgarte: ", baumgarte_gains(model).rule);
+  std::ostringstream rtol;
+  rtol << "rtol " << model.solve.rtol << "; ";
+  out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model).rule);
   out << "\nsystem each scheme integrates:\n";
   out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";
