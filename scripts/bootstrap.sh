@@ -73,15 +73,15 @@ run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option
 }
 echo "bootstrap: clang-format and clang-tidy clean"
 
-# Sanitizers: the unit tier again, built by clang with ASan and UBSan into build-asan/ (its
+# Sanitizers: the unit and e2e tiers again, built by clang with ASan and UBSan into build-asan/ (its
 # CONDYN_BINARY is build-asan/condyn, sanitized too, so the CLI tests run under them as well).
 # Any report aborts the test. The same build has the libFuzzer harness (CONDYN_FUZZ).
 sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS="$sanitize" -DCONDYN_TESTS=ON \
   -DCONDYN_FUZZ=ON >/dev/null
-cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_fuzz_scene
-(cd build-asan && ctest -L unit --output-on-failure)
+cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
+(cd build-asan && ctest -L "unit|e2e" --output-on-failure -j "$jobs")
 
 # Fuzz the scene parser and model builder for 60 s from the seed corpus. A finding (crash,
 # sanitizer report, uncaught exception, refusal without the file name, non-finite model, input over
