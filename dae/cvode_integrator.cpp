@@ -1,5 +1,7 @@
 #include "dae/cvode_integrator.hpp"
 
+#include "dae/recoverable_error.hpp"
+
 #include "dae/sundials_raii.hpp"
 
 #include <cvode/cvode.h>
@@ -35,6 +37,7 @@ struct CallbackData {
   const OdeProblem* problem = nullptr;
   double step_reference = 0.0;
   std::exception_ptr error;
+  std::string recoverable;  ///< the last RecoverableError a callback met (CVODE then cut its step)
   std::string message;
 };
 
@@ -44,6 +47,9 @@ int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user) {
     auto out = view(ydot);
     data->problem->rhs(t, data->step_reference, view(y), out);
     return out.allFinite() ? 0 : 1;  // recoverable: CVODE retries with a smaller step
+  } catch (const RecoverableError& e) {
+    data->recoverable = e.what();
+    return 1;
   } catch (...) {
     data->error = std::current_exception();
     return -1;
@@ -61,6 +67,9 @@ int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N
       data->problem->project_error(e);
     }
     return c.allFinite() ? 0 : 1;
+  } catch (const RecoverableError& e) {
+    data->recoverable = e.what();
+    return 1;
   } catch (...) {
     data->error = std::current_exception();
     return -1;
@@ -149,6 +158,8 @@ class Cvode final : public Stepper {
       s << "CVode failed with " << sundials::flag_name(CVodeGetReturnFlagName, flag)
         << " at t = " << tcur << " (last step " << hlast << ")";
       if (!data_.message.empty()) s << ": " << data_.message;
+      if (!data_.recoverable.empty())
+        s << " (the equations' last complaint: " << data_.recoverable << ")";
       throw IntegrationError(failure_kind(flag), s.str());
     }
     return tret;

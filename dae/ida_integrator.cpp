@@ -1,5 +1,7 @@
 #include "dae/ida_integrator.hpp"
 
+#include "dae/recoverable_error.hpp"
+
 #include "dae/step_driver.hpp"
 #include "dae/sundials_raii.hpp"
 
@@ -114,6 +116,7 @@ struct CallbackData {
   double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
   std::exception_ptr error;
+  std::string recoverable;  ///< the last RecoverableError a callback met (IDA then cut its step)
   std::string ida_message;
 };
 
@@ -124,6 +127,9 @@ int residual_trampoline(double t, N_Vector y, N_Vector yp, N_Vector r, void* use
     data->problem->residual(t, data->step_reference, view(y), view(yp), rv);
     // A non-finite residual is recoverable: IDA retries with a smaller step.
     return rv.allFinite() ? 0 : 1;
+  } catch (const RecoverableError& e) {
+    data->recoverable = e.what();
+    return 1;
   } catch (...) {
     data->error = std::current_exception();
     return -1;
@@ -315,6 +321,8 @@ class Ida final : public Stepper {
       s << "IDASolve failed with " << sundials::flag_name(IDAGetReturnFlagName, flag)
         << " at t = " << tcur << " (last step " << hlast << ")";
       if (!data_.ida_message.empty()) s << ": " << data_.ida_message;
+      if (!data_.recoverable.empty())
+        s << " (the equations' last complaint: " << data_.recoverable << ")";
       throw IntegrationError(failure_kind(flag), s.str());
     }
     return tret;

@@ -1,5 +1,7 @@
 #include "dae/projected_ode.hpp"
 
+#include "dae/recoverable_error.hpp"
+
 #include "dae/kkt.hpp"
 
 #include <sstream>
@@ -49,7 +51,7 @@ void ProjectedOde::factor(double t, const ConstRef& u, Factors& f) const {
       s << "the KKT system [M Aᵀ; A 0] is singular at t = " << t
         << " (a DOF without mass that no constraint fixes, dependent constraints, or a singular "
            "configuration)";
-      throw std::runtime_error(s.str());
+      throw RecoverableError(s.str());  // at a trial state: a smaller step may avoid it
     }
   }
 }

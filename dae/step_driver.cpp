@@ -15,7 +15,7 @@ const char* to_string(FailureKind kind) {
     case FailureKind::non_finite:
       return "non-finite solution";
     case FailureKind::residual_non_finite:
-      return "non-finite residual";
+      return "repeated residual failures";
     case FailureKind::step_budget:
       return "step budget exhausted";
     case FailureKind::wall_time_budget:

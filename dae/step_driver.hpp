@@ -28,7 +28,7 @@ struct Trajectory;
 enum class FailureKind {
   unknown,
   non_finite,           ///< the solution became NaN or inf
-  residual_non_finite,  ///< the residual (right-hand side) stayed NaN or inf at every trial step
+  residual_non_finite,  ///< the residual (right-hand side) was NaN, inf or refused at every retry
   step_budget,          ///< IntegratorOptions::max_steps exhausted
   wall_time_budget,     ///< IntegratorOptions::max_wall_seconds exhausted
   steps_per_output,     ///< max_steps_per_output steps without reaching the next output time
