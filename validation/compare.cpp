@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "validation/accuracy.hpp"
 

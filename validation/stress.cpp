@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "dae/baumgarte_gains.hpp"
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"

@@ -3,7 +3,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "dae/baumgarte_gains.hpp"
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/solve.hpp"

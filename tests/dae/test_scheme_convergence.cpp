@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"

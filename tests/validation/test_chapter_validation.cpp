@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"

@@ -1,4 +1,4 @@
-#include "dae/exact_solution.hpp"
+#include "validation/exact_solution.hpp"
 
 namespace condyn {
 

@@ -1,4 +1,4 @@
-#include "dae/modal_exact.hpp"
+#include "validation/modal_exact.hpp"
 
 #include <doctest/doctest.h>
 

@@ -4,11 +4,11 @@
 /// written u = N q + A⁺ g(t) with N an orthonormal basis of null(A) (from a QR factorisation of
 /// Aᵀ) and A⁺ = Aᵀ(AAᵀ)⁻¹, so neither the slave choice nor the transformation T is shared. The
 /// reduced system NᵀMN q'' + NᵀCN q' + NᵀKN q = Nᵀ(f − K A⁺g − C A⁺g' − M A⁺g'') is solved in
-/// closed form by modal superposition (dae/modal_exact.hpp).
+/// closed form by modal superposition (validation/modal_exact.hpp).
 
 #include <vector>
 
-#include "dae/modal_exact.hpp"
+#include "validation/modal_exact.hpp"
 #include "dae/trajectory.hpp"
 #include "models/model.hpp"
 

@@ -1,0 +1,23 @@
+# Fails when a source file includes a header from a layer above its own. The layers, lowest first:
+# models <- dae <- validation <- src (the command line). Run by the build (target condyn_layers):
+#   cmake -DROOT=<source dir> -P scripts/check_layers.cmake
+set(layers models dae validation src)
+set(bad "")
+foreach(layer IN LISTS layers)
+  list(FIND layers ${layer} own)
+  file(GLOB files ${ROOT}/${layer}/*.cpp ${ROOT}/${layer}/*.hpp)
+  foreach(file IN LISTS files)
+    file(STRINGS ${file} includes REGEX "^#include \"[a-z_]+/")
+    foreach(line IN LISTS includes)
+      string(REGEX REPLACE "^#include \"([a-z_]+)/.*" "\\1" target "${line}")
+      list(FIND layers ${target} level)
+      if(level GREATER own)
+        file(RELATIVE_PATH rel ${ROOT} ${file})
+        string(APPEND bad "\n  ${rel}: ${line} (${layer} may include only layers below it)")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(bad)
+  message(FATAL_ERROR "include up the layers (models <- dae <- validation <- src):${bad}")
+endif()
