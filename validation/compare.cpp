@@ -7,9 +7,9 @@
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
-#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "validation/accuracy.hpp"
+#include "validation/exact_solution.hpp"
 
 namespace condyn {
 

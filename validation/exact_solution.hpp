@@ -8,9 +8,9 @@
 
 #include <vector>
 
-#include "validation/modal_exact.hpp"
 #include "dae/trajectory.hpp"
 #include "models/model.hpp"
+#include "validation/modal_exact.hpp"
 
 namespace condyn {
 

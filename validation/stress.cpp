@@ -12,11 +12,11 @@
 #include <thread>
 
 #include "dae/baumgarte_gains.hpp"
-#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
+#include "validation/exact_solution.hpp"
 
 namespace condyn {
 

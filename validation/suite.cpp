@@ -3,13 +3,13 @@
 #include <iomanip>
 #include <sstream>
 
-#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/benchmark_suite.hpp"
 #include "validation/chapter_report.hpp"
 #include "validation/embedded_scenes.hpp"
+#include "validation/exact_solution.hpp"
 
 namespace condyn {
 

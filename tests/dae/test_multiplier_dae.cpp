@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "dae/baumgarte_gains.hpp"
-#include "validation/exact_solution.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/solve.hpp"
@@ -12,6 +11,7 @@
 #include "tests/compare.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
+#include "validation/exact_solution.hpp"
 #include "validation/suite.hpp"
 
 using namespace condyn;

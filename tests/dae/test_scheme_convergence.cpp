@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
+#include "validation/exact_solution.hpp"
 
 using namespace condyn;
 

@@ -10,11 +10,11 @@
 #include <sstream>
 #include <string>
 
-#include "validation/exact_solution.hpp"
 #include "dae/model_scales.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/accuracy.hpp"
+#include "validation/exact_solution.hpp"
 
 using namespace condyn;
 
@@ -75,10 +75,10 @@ TEST_CASE("SI shear frame: every scheme starts and agrees with the exact solutio
   // rtol 1e-4 … 1e-10. First with the default atol (1e-10 m), where index1 failed at t = 0: every
   // scheme must reach t_end. Then with atol = 1e-2 rtol (m: the base amplitude is 2e-2 m, so the
   // displacements' atol does not cap the accuracy), against the closed-form modal solution
-  // (validation/exact_solution.hpp), relative to the largest displacement: 200 × rtol bounds the global
-  // error of a BDF run over 2 s and ~8 periods of the base motion (observed up to 101 × rtol, by
-  // index3 at rtol 1e-10; the others up to 36 × rtol). Penalty is left out: its error is |f_con|/w
-  // by design.
+  // (validation/exact_solution.hpp), relative to the largest displacement: 200 × rtol bounds the
+  // global error of a BDF run over 2 s and ~8 periods of the base motion (observed up to 101 ×
+  // rtol, by index3 at rtol 1e-10; the others up to 36 × rtol). Penalty is left out: its error is
+  // |f_con|/w by design.
   for (const double rtol : {1e-4, 1e-6, 1e-8, 1e-10}) {
     CAPTURE(rtol);
     const Model model = frame(1.0, rtol);

@@ -6,7 +6,6 @@
 #include <set>
 #include <sstream>
 
-#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
@@ -14,6 +13,7 @@
 #include "validation/benchmark_suite.hpp"
 #include "validation/chapter_report.hpp"
 #include "validation/embedded_scenes.hpp"
+#include "validation/exact_solution.hpp"
 #include "validation/suite.hpp"
 
 using namespace condyn;

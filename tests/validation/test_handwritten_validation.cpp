@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include "validation/exact_solution.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "validation/accuracy.hpp"
+#include "validation/exact_solution.hpp"
 #include "validation/suite.hpp"
 
 using namespace condyn;
