@@ -88,6 +88,14 @@ Trajectory reference(const SceneSpec& spec, const CompareOptions& options, Compa
 
 }  // namespace
 
+WallStatistics wall_statistics(std::vector<double> walls) {
+  if (walls.empty()) throw std::invalid_argument("wall_statistics: no timings");
+  std::sort(walls.begin(), walls.end());
+  const std::size_t n = walls.size();
+  const double median = n % 2 ? walls[n / 2] : 0.5 * (walls[n / 2 - 1] + walls[n / 2]);
+  return {median, walls.front(), walls.back()};
+}
+
 CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) {
   options.validate();
   CompareResult out;
@@ -161,11 +169,11 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
           r.newton_failures = summary.newton_failures;
           r.error_test_failures = summary.error_test_failures;
         }
-        std::sort(walls.begin(), walls.end());
         r.repeats = static_cast<int>(walls.size());
-        r.wall_median = walls[walls.size() / 2];
-        r.wall_min = walls.front();
-        r.wall_max = walls.back();
+        const WallStatistics stats = wall_statistics(walls);
+        r.wall_median = stats.median;
+        r.wall_min = stats.min;
+        r.wall_max = stats.max;
         r.ok = std::isfinite(r.error_u) && std::isfinite(r.error_v) &&
                (out.reference_kind == "published" || std::isfinite(r.error_reaction));
         if (!r.ok) r.message = "non-finite error against the reference";

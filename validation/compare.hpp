@@ -18,6 +18,13 @@
 
 namespace condyn {
 
+/// Median (the mean of the middle two for an even count), minimum and maximum of repeated wall
+/// times. Throws std::invalid_argument for no timings.
+struct WallStatistics {
+  double median = 0.0, min = 0.0, max = 0.0;
+};
+[[nodiscard]] WallStatistics wall_statistics(std::vector<double> walls);
+
 struct CompareOptions {
   std::vector<double> tolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   /// atol = rtol · atol_ratio (the scene's atol/rtol when not set).

@@ -29,6 +29,16 @@ CompareOptions small_options() {
 
 }  // namespace
 
+TEST_CASE("compare: wall-time statistics of repeated runs") {
+  const WallStatistics odd = wall_statistics({3.0, 1.0, 2.0});
+  CHECK(odd.median == 2.0);
+  CHECK(odd.min == 1.0);
+  CHECK(odd.max == 3.0);
+  CHECK(wall_statistics({4.0, 1.0, 3.0, 2.0}).median == 2.5);  // the middle two's mean
+  CHECK(wall_statistics({5.0}).median == 5.0);
+  CHECK_THROWS_AS((void)wall_statistics({}), std::invalid_argument);
+}
+
 TEST_CASE("compare: every scheme and tolerance, errors against the exact solution") {
   const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_5_1").text, "A");
   const CompareResult r = run_compare(spec, small_options());
@@ -38,8 +48,8 @@ TEST_CASE("compare: every scheme and tolerance, errors against the exact solutio
     CAPTURE(std::string(to_string(run.scheme)));
     CHECK(run.ok);
     CHECK(run.repeats == 2);
-    CHECK(run.wall_min <= run.wall_median);
-    CHECK(run.wall_median <= run.wall_max);
+    CHECK(run.wall_min > 0.0);  // every repeat was timed
+    CHECK(std::isfinite(run.wall_max));
     CHECK(run.steps > 0);
   }
   // Tighter tolerance, smaller error (elimination, GGL); penalty saturates at its 1/w error.
