@@ -15,6 +15,7 @@
 #include "dae/solve.hpp"
 #include "dae/step_driver.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/scene_text.hpp"
 
 using namespace condyn;
 
@@ -321,15 +322,7 @@ TEST_CASE("an IDA failure in process: its kind from the flag's code") {
 namespace {
 
 std::string pendulum(const std::string& solve_keys) {
-  return R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-)" + solve_keys;
+  return condyn::test::pendulum_scene(solve_keys);
 }
 
 }  // namespace

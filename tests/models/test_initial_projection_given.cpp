@@ -10,8 +10,11 @@
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+using condyn::test::replace;
 
 namespace {
 
@@ -21,12 +24,6 @@ constexpr double kDriftTolerance = 1e-12;
 std::string four_bar_text() {
   std::ifstream in(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/four_bar.toml");
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  REQUIRE_MESSAGE(pos != std::string::npos, from);
-  return s.replace(pos, from.size(), to);
 }
 
 std::string error_of(const std::string& text) {

@@ -7,8 +7,11 @@
 
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+using condyn::test::replace;
 
 namespace {
 
@@ -40,12 +43,6 @@ terms = { uy2 = 1.0 }
 t_end = 1.0
 output_step = 0.1
 )";
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  REQUIRE_MESSAGE(pos != std::string::npos, from);
-  return s.replace(pos, from.size(), to);
-}
 
 /// The message of the SceneError thrown while parsing and building, or "" when none is thrown.
 std::string error_of(const std::string& text) {

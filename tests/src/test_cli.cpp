@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 namespace fs = std::filesystem;
 using condyn::test::Result;
@@ -23,22 +24,7 @@ using condyn::test::slurp;
 
 namespace {
 
-const std::string kScene = R"(name = "two masses"
-[model]
-type = "matrix"
-dofs = ["a", "b"]
-mass = [[1.0, 0.0], [0.0, 2.0]]
-stiffness = [[3.0, -1.0], [-1.0, 1.0]]
-[[load]]
-dof = "b"
-value = { type = "step", amplitude = 1.0, start = 0.25 }
-[[constraint]]
-name = "tie"
-terms = { a = 1.0 }
-[solve]
-t_end = 1.0
-output_step = 0.25
-)";
+const std::string& kScene = condyn::test::kTwoMassesScene;
 
 }  // namespace
 

@@ -5,9 +5,12 @@
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using condyn::test::Result;
 using condyn::test::Sandbox;
+
+using condyn::test::replace;
 
 namespace {
 
@@ -30,12 +33,6 @@ terms = { uy1 = 1.0 }
 t_end = 1.0
 output_step = 0.5
 )";
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  REQUIRE_MESSAGE(pos != std::string::npos, from);
-  return s.replace(pos, from.size(), to);
-}
 
 Result run_scene(const std::string& text, const std::string& flags = "") {
   Sandbox box;

@@ -7,22 +7,14 @@
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using namespace condyn::test;
 
 namespace {
 
 std::string pendulum(const std::string& solve_keys) {
-  return R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-scheme = "ggl"
-)" + solve_keys;
+  return condyn::test::pendulum_scene("scheme = \"ggl\"\n" + solve_keys);
 }
 
 bool contains(const std::string& s, const std::string& part) {

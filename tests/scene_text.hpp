@@ -1,0 +1,51 @@
+#pragma once
+/// Scene texts the tests share, and the edit they make to them: the same small models serve
+/// the parser, CLI and integrator tests, so each is written once.
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+namespace condyn::test {
+
+/// Two masses on springs, one tied by a constraint, a step load at t = 0.25; four output
+/// intervals to t = 1 (the CLI tests' model).
+inline const std::string kTwoMassesScene = R"(name = "two masses"
+[model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 1.0]]
+[[load]]
+dof = "b"
+value = { type = "step", amplitude = 1.0, start = 0.25 }
+[[constraint]]
+name = "tie"
+terms = { a = 1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.25
+)";
+
+/// A pendulum of unit length and mass released from rest with its rod horizontal, under
+/// gravity, as a truss with a rigid member; `solve_keys` are the lines of its [solve] table.
+inline std::string pendulum_scene(const std::string& solve_keys) {
+  return R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[solve]
+)" + solve_keys;
+}
+
+/// `s` with its first `from` replaced by `to`; fails the test when `from` is absent.
+inline std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  REQUIRE_MESSAGE(pos != std::string::npos, from);
+  return s.replace(pos, from.size(), to);
+}
+
+}  // namespace condyn::test
