@@ -1,4 +1,4 @@
-// Issue 10, item 5: [initial] project = true keeps the values the scene gave and finds the others;
+// [initial] project = true keeps the values the scene gave and finds the others;
 // given values that no consistent state has are refused with the constraint and the keys named.
 #include <doctest/doctest.h>
 
@@ -9,7 +9,6 @@
 
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
-#include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
@@ -102,18 +101,4 @@ TEST_CASE("given values that over-determine the constraints are refused, constra
   CHECK(pos.find("initial.displacement.ux2: ") != std::string::npos);
   CHECK(pos.find("displacement ux2 = 0, uy2 = -0.2 kept") != std::string::npos);
   CHECK(pos.find("constraint 'rigid_1_2'") != std::string::npos);
-}
-
-TEST_CASE("run and info print, per DOF, what the projection moved") {
-  condyn::test::Sandbox box;
-  box.write("four_bar.toml", four_bar_text());
-  for (const std::string command : {"info four_bar.toml", "run four_bar.toml --out f.csv"}) {
-    CAPTURE(command);
-    const auto r = box.run(command);
-    REQUIRE(r.code == 0);
-    CHECK(r.out.find("keeping the 1 value given in [initial]") != std::string::npos);
-    CHECK(r.out.find("  ux3: velocity 0 -> ") != std::string::npos);
-    CHECK(r.out.find("ux2: velocity") == std::string::npos);  // given, kept
-    CHECK(r.out.find("ux1:") == std::string::npos);           // support, did not move
-  }
 }
