@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "dae/ida_integrator.hpp"
+#include "dae/observed_run.hpp"
 #include "dae/reduced_ode.hpp"
 
 namespace condyn {
@@ -143,7 +144,7 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
   summary.scheme = "elimination";
   const auto& T = reduced.transform.T;
   const auto& G = reduced.transform.G;
-  auto full_state = [&](double t, const Eigen::VectorXd& y) {
+  const Observation::FullState full_state = [&](double t, const Eigen::VectorXd& y) {
     Eigen::VectorXd u = T * y.head(nm), v = T * y.tail(nm);
     if (reduced.rheonomic) {
       u += G * model.position_rhs(0, t);
@@ -151,43 +152,19 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
     }
     return std::make_pair(u, v);
   };
-  std::vector<StepRecord> steps;
-  IntegratorOptions observed = options;
-  VelocityReversals reversals;
-  if (options.record_steps) {
-    observed.on_step = [&](double t, const Eigen::VectorXd& y) {
-      const auto [u, v] = full_state(t, y);
-      const auto [dp, dv] = model.drift(t, u, v);
-      steps.push_back({t, dp, dv, reversals(v)});
-    };
-  }
   const MultiplierRecovery recover(model);
-  const auto assemble = [&](const RawTrajectory& raw) {
-    std::vector<Eigen::VectorXd> u, v, lambda;
-    for (std::size_t k = 0; k < raw.t.size(); ++k) {
-      const double t = raw.t[k];
-      const auto [uk, vk] = full_state(t, raw.y[k]);
-      Eigen::VectorXd a = T * ode.acceleration(t, raw.y[k].head(nm), raw.y[k].tail(nm));
-      if (reduced.rheonomic) a += G * model.position_rhs(2, t);
-      u.push_back(uk);
-      v.push_back(vk);
-      lambda.push_back(recover(t, uk, vk, a));
-    }
-    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
-    traj.steps = steps;
-    return traj;
+  Observation observe;
+  observe.full_state = full_state;
+  observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& u,
+                            const Eigen::VectorXd& v) {
+    Eigen::VectorXd a = T * ode.acceleration(t, y.head(nm), y.tail(nm));
+    if (reduced.rheonomic) a += G * model.position_rhs(2, t);
+    return recover(t, u, v, a);
   };
-  RawTrajectory raw;
-  try {
-    raw = integrate(ode, y0, observed, summary);
-  } catch (IntegrationError& e) {
-    keep_partial(e, assemble);
-    throw;
-  }
-  Trajectory traj = assemble(raw);
-  summary.max_drift_position = traj.drift_position.size() ? traj.drift_position.maxCoeff() : 0.0;
-  summary.max_drift_velocity = traj.drift_velocity.size() ? traj.drift_velocity.maxCoeff() : 0.0;
-  return traj;
+  observe.drift_at_every_step = false;
+  return run_observed(
+      model, options, summary,
+      [&](const IntegratorOptions& o) { return integrate(ode, y0, o, summary); }, observe);
 }
 
 }  // namespace condyn

@@ -13,6 +13,7 @@
 #include "dae/ida_integrator.hpp"
 #include "dae/model_scales.hpp"
 #include "dae/multiplier_dae.hpp"
+#include "dae/observed_run.hpp"
 #include "dae/penalty_ode.hpp"
 #include "dae/projected_ode.hpp"
 #include "dae/reduced_ode.hpp"
@@ -115,51 +116,6 @@ MultiplierScheme multiplier_scheme(Scheme s) {
   }
 }
 
-/// Integrates a formulation whose state starts with [u; v] and assembles the trajectory: drift at
-/// every internal step (where the scheme's equations hold exactly) and at the outputs (which are
-/// interpolated), λ at the outputs from `multipliers`, and `on_state` for any further per-step
-/// observation (GGL's μ).
-Trajectory run_observed(
-    const Model& model, const IntegratorOptions& options, SolveSummary& summary,
-    const std::function<RawTrajectory(const IntegratorOptions&)>& run,
-    const std::function<Eigen::VectorXd(double, const Eigen::VectorXd&)>& multipliers,
-    const std::function<void(const Eigen::VectorXd&)>& on_state = {}) {
-  const int n = model.dofs();
-  double max_dp = 0.0, max_dv = 0.0;
-  std::vector<StepRecord> steps;
-  VelocityReversals reversals;
-  IntegratorOptions observed = options;
-  observed.on_step = [&](double t, const Eigen::VectorXd& y) {
-    const auto [dp, dv] = model.drift(t, y.head(n), y.segment(n, n));
-    max_dp = std::max(max_dp, dp);
-    max_dv = std::max(max_dv, dv);
-    if (on_state) on_state(y);
-    if (options.record_steps) steps.push_back({t, dp, dv, reversals(y.segment(n, n))});
-  };
-  const auto assemble = [&](const RawTrajectory& raw) {
-    std::vector<Eigen::VectorXd> u, v, lambda;
-    for (std::size_t k = 0; k < raw.t.size(); ++k) {
-      u.emplace_back(raw.y[k].head(n));
-      v.emplace_back(raw.y[k].segment(n, n));
-      lambda.push_back(multipliers(raw.t[k], raw.y[k]));
-    }
-    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
-    traj.steps = steps;
-    return traj;
-  };
-  RawTrajectory raw;
-  try {
-    raw = run(observed);
-  } catch (IntegrationError& e) {
-    keep_partial(e, assemble);
-    throw;
-  }
-  Trajectory traj = assemble(raw);
-  summary.max_drift_position = std::max(max_dp, traj.drift_position.maxCoeff());
-  summary.max_drift_velocity = std::max(max_dv, traj.drift_velocity.maxCoeff());
-  return traj;
-}
-
 Eigen::VectorXd initial_state(const Model& model) {
   Eigen::VectorXd y0(2 * model.dofs());
   y0 << model.u0, model.v0;
@@ -178,15 +134,19 @@ Trajectory solve_multipliers(const Model& model, Scheme scheme, const Integrator
   const MultiplierDae dae(system, multiplier_scheme(scheme), gains.alpha, gains.beta);
   summary.scheme = to_string(scheme);
   double max_mu = 0.0;
+  Observation observe;
+  observe.full_state = full_state_prefix(model.dofs());
+  observe.multipliers = [&](double, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd&) { return Eigen::VectorXd(dae.lambda(y)); };
+  observe.on_state = [&](const Eigen::VectorXd& y) {
+    if (dae.mu(y).size() > 0) max_mu = std::max(max_mu, dae.mu(y).cwiseAbs().maxCoeff());
+  };
   Trajectory traj = run_observed(
       model, options, summary,
       [&](const IntegratorOptions& o) {
         return integrate(dae, dae.pack(model.u0, model.v0), o, summary);
       },
-      [&](double, const Eigen::VectorXd& y) { return Eigen::VectorXd(dae.lambda(y)); },
-      [&](const Eigen::VectorXd& y) {
-        if (dae.mu(y).size() > 0) max_mu = std::max(max_mu, dae.mu(y).cwiseAbs().maxCoeff());
-      });
+      observe);
   if (scheme == Scheme::ggl) summary.max_abs_mu = max_mu;
   return traj;
 }
@@ -198,10 +158,14 @@ Trajectory solve_penalty(const Model& model, const IntegratorOptions& options,
   summary.notes = weights.rule;
   summary.scheme = to_string(Scheme::penalty);
   const PenaltyOde ode(system, weights);
+  Observation observe;
+  observe.full_state = full_state_prefix(model.dofs());
+  observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd&) { return ode.multipliers(t, y); };
   return run_observed(
       model, options, summary,
       [&](const IntegratorOptions& o) { return integrate(ode, initial_state(model), o, summary); },
-      [&](double t, const Eigen::VectorXd& y) { return ode.multipliers(t, y); });
+      observe);
 }
 
 Trajectory solve_projection(const Model& model, const IntegratorOptions& options,
@@ -209,12 +173,16 @@ Trajectory solve_projection(const Model& model, const IntegratorOptions& options
   const SystemOf system(model);
   summary.scheme = to_string(Scheme::projection);
   const ProjectedOde ode(*system, model.u0);
+  Observation observe;
+  observe.full_state = full_state_prefix(model.dofs());
+  observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd&) { return ode.multipliers(t, y); };
   return run_observed(
       model, options, summary,
       [&](const IntegratorOptions& o) {
         return integrate_ode(ode, initial_state(model), o, summary);
       },
-      [&](double t, const Eigen::VectorXd& y) { return ode.multipliers(t, y); });
+      observe);
 }
 
 }  // namespace

@@ -1,0 +1,58 @@
+#include "dae/observed_run.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace condyn {
+
+Observation::FullState full_state_prefix(int n) {
+  return [n](double, const Eigen::VectorXd& y) {
+    return std::make_pair(Eigen::VectorXd(y.head(n)), Eigen::VectorXd(y.segment(n, n)));
+  };
+}
+
+Trajectory run_observed(const Model& model, const IntegratorOptions& options, SolveSummary& summary,
+                        const std::function<RawTrajectory(const IntegratorOptions&)>& run,
+                        const Observation& observe) {
+  double max_dp = 0.0, max_dv = 0.0;
+  std::vector<StepRecord> steps;
+  VelocityReversals reversals;
+  IntegratorOptions observed = options;
+  if (observe.drift_at_every_step || options.record_steps || observe.on_state) {
+    observed.on_step = [&](double t, const Eigen::VectorXd& y) {
+      if (observe.on_state) observe.on_state(y);
+      if (!observe.drift_at_every_step && !options.record_steps) return;
+      const auto [u, v] = observe.full_state(t, y);
+      const auto [dp, dv] = model.drift(t, u, v);
+      max_dp = std::max(max_dp, dp);
+      max_dv = std::max(max_dv, dv);
+      if (options.record_steps) steps.push_back({t, dp, dv, reversals(v)});
+    };
+  }
+  const auto assemble = [&](const RawTrajectory& raw) {
+    std::vector<Eigen::VectorXd> u, v, lambda;
+    for (std::size_t k = 0; k < raw.t.size(); ++k) {
+      auto [uk, vk] = observe.full_state(raw.t[k], raw.y[k]);
+      lambda.push_back(observe.multipliers(raw.t[k], raw.y[k], uk, vk));
+      u.push_back(std::move(uk));
+      v.push_back(std::move(vk));
+    }
+    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+    traj.steps = steps;
+    return traj;
+  };
+  RawTrajectory raw;
+  try {
+    raw = run(observed);
+  } catch (IntegrationError& e) {
+    keep_partial(e, assemble);
+    throw;
+  }
+  Trajectory traj = assemble(raw);
+  const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
+  summary.max_drift_position = std::max(max_dp, max_of(traj.drift_position));
+  summary.max_drift_velocity = std::max(max_dv, max_of(traj.drift_velocity));
+  return traj;
+}
+
+}  // namespace condyn
