@@ -1,8 +1,7 @@
 #include "dae/cvode_integrator.hpp"
 
-#include "dae/recoverable_error.hpp"
-
 #include "dae/sundials_raii.hpp"
+#include "dae/sundials_stepper.hpp"
 
 #include <cvode/cvode.h>
 #include <cvode/cvode_proj.h>
@@ -32,34 +31,26 @@ struct CvodeDeleter {
 };
 using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
-/// What the C callbacks need; exceptions are parked here, never propagated through CVODE.
+/// What the C callbacks need; exceptions go to `report`, never through CVODE's C frames.
 struct CallbackData {
   const OdeProblem* problem = nullptr;
   double step_reference = 0.0;
-  std::exception_ptr error;
-  std::string recoverable;  ///< the last RecoverableError a callback met (CVODE then cut its step)
-  std::string message;
+  sundials::CallbackReport* report = nullptr;
 };
 
 int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user) {
   auto* data = static_cast<CallbackData*>(user);
-  try {
+  return sundials::guarded(*data->report, [&] {
     auto out = view(ydot);
     data->problem->rhs(t, data->step_reference, view(y), out);
     return out.allFinite() ? 0 : 1;  // recoverable: CVODE retries with a smaller step
-  } catch (const RecoverableError& e) {
-    data->recoverable = e.what();
-    return 1;
-  } catch (...) {
-    data->error = std::current_exception();
-    return -1;
-  }
+  });
 }
 
 int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N_Vector err,
                           void* user) {
   auto* data = static_cast<CallbackData*>(user);
-  try {
+  return sundials::guarded(*data->report, [&] {
     auto c = view(corr);
     if (!data->problem->project(t, view(y), c)) return 1;  // recoverable: smaller step
     if (err != nullptr) {
@@ -67,13 +58,7 @@ int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N
       data->problem->project_error(e);
     }
     return c.allFinite() ? 0 : 1;
-  } catch (const RecoverableError& e) {
-    data->recoverable = e.what();
-    return 1;
-  } catch (...) {
-    data->error = std::current_exception();
-    return -1;
-  }
+  });
 }
 
 /// What a CVODE return flag says happened (by its code, never its text).
@@ -109,17 +94,17 @@ FailureKind failure_kind(int flag) {
   }
 }
 
-void error_handler(int /*code*/, const char* /*module*/, const char* function, char* msg,
-                   void* user) {
-  static_cast<CallbackData*>(user)->message = std::string(function) + ": " + msg;
-}
+const sundials::Api kCvodeApi{
+    "CVode",     CVodeGetReturnFlagName, CVodeGetCurrentTime, CVodeGetLastStep, CVodeGetDky,
+    failure_kind};
 
-class Cvode final : public Stepper {
+class Cvode final : public sundials::SundialsStepper {
  public:
   Cvode(const OdeProblem& problem, const Eigen::VectorXd& y0, double t0,
         const IntegratorOptions& options)
-      : n_(problem.size()) {
+      : SundialsStepper(kCvodeApi), n_(problem.size()) {
     data_.problem = &problem;
+    data_.report = &report_;
     data_.step_reference = t0;
     SUNContext raw = nullptr;
     if (SUNContext_Create(nullptr, &raw) != 0) throw IntegrationError("SUNContext_Create failed");
@@ -133,7 +118,9 @@ class Cvode final : public Stepper {
     if (!matrix_ || !solver_) throw IntegrationError("could not create the dense linear solver");
     mem_.reset(CVodeCreate(CV_BDF, ctx_.get()));
     if (!mem_) throw IntegrationError("CVodeCreate failed");
-    check(CVodeSetErrHandlerFn(mem_.get(), error_handler, &data_), "CVodeSetErrHandlerFn");
+    attach(mem_.get(), work_.get());
+    check(CVodeSetErrHandlerFn(mem_.get(), sundials::record_message, &report_),
+          "CVodeSetErrHandlerFn");
     check(CVodeInit(mem_.get(), rhs_trampoline, t0, y_.get()), "CVodeInit");
     check(CVodeSetUserData(mem_.get(), &data_), "CVodeSetUserData");
     view(work_.get()) = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
@@ -148,29 +135,10 @@ class Cvode final : public Stepper {
 
   double step(double tout) override {
     double tret = 0.0;
-    const int flag = CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP);
-    if (data_.error) std::rethrow_exception(data_.error);
-    if (flag < 0) {
-      double tcur = 0.0, hlast = 0.0;
-      CVodeGetCurrentTime(mem_.get(), &tcur);
-      CVodeGetLastStep(mem_.get(), &hlast);
-      std::ostringstream s;
-      s << "CVode failed with " << sundials::flag_name(CVodeGetReturnFlagName, flag)
-        << " at t = " << tcur << " (last step " << hlast << ")";
-      if (!data_.message.empty()) s << ": " << data_.message;
-      if (!data_.recoverable.empty())
-        s << " (the equations' last complaint: " << data_.recoverable << ")";
-      throw IntegrationError(failure_kind(flag), s.str());
-    }
+    after_step(CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP));
     return tret;
   }
 
-  void interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) override {
-    check(CVodeGetDky(mem_.get(), t, 0, work_.get()), "CVodeGetDky");
-    y = view(work_.get());
-    check(CVodeGetDky(mem_.get(), t, 1, work_.get()), "CVodeGetDky");
-    yp = view(work_.get());
-  }
   [[nodiscard]] Eigen::VectorXd y() override { return view(y_.get()); }
   [[nodiscard]] Eigen::VectorXd yp() override {
     double t = 0.0;
@@ -183,35 +151,18 @@ class Cvode final : public Stepper {
     collect();  // CVodeReInit may reset the counters: keep what this segment did
     data_.step_reference = t;
     check(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
-    baseline_ = read_counters();
+    rebase();
   }
   void set_stop_time(double t) override {
     check(CVodeSetStopTime(mem_.get(), t), "CVodeSetStopTime");
   }
-  void fill_summary(SolveSummary& summary) override {
-    collect();
-    summary.steps = totals_.steps;
-    summary.residual_evals = totals_.rhs;
-    summary.jacobian_evals = totals_.jac;
-    summary.newton_iterations = totals_.newton;
-    summary.newton_failures = totals_.newton_failures;
-    summary.error_test_failures = totals_.error_tests;
-    double h = 0.0;
-    check(CVodeGetLastStep(mem_.get(), &h), "CVodeGetLastStep");
-    summary.last_step = h;
-    summary.notes = std::to_string(totals_.projections) + " projections onto the constraints";
-  }
 
  private:
-  struct Counters {
-    long steps = 0, rhs = 0, jac = 0, newton = 0, newton_failures = 0, error_tests = 0,
-         projections = 0;
-  };
-  [[nodiscard]] Counters read_counters() const {
-    Counters c;
+  [[nodiscard]] sundials::Counters read_counters() const override {
+    sundials::Counters c;
     check(CVodeGetNumSteps(mem_.get(), &c.steps), "CVodeGetNumSteps");
-    check(CVodeGetNumRhsEvals(mem_.get(), &c.rhs), "CVodeGetNumRhsEvals");
-    check(CVodeGetNumJacEvals(mem_.get(), &c.jac), "CVodeGetNumJacEvals");
+    check(CVodeGetNumRhsEvals(mem_.get(), &c.evaluations), "CVodeGetNumRhsEvals");
+    check(CVodeGetNumJacEvals(mem_.get(), &c.jacobians), "CVodeGetNumJacEvals");
     check(CVodeGetNumNonlinSolvIters(mem_.get(), &c.newton), "CVodeGetNumNonlinSolvIters");
     check(CVodeGetNumNonlinSolvConvFails(mem_.get(), &c.newton_failures),
           "CVodeGetNumNonlinSolvConvFails");
@@ -221,29 +172,12 @@ class Cvode final : public Stepper {
     }
     return c;
   }
-  void collect() {
-    const Counters now = read_counters();
-    totals_.steps += now.steps - baseline_.steps;
-    totals_.rhs += now.rhs - baseline_.rhs;
-    totals_.jac += now.jac - baseline_.jac;
-    totals_.newton += now.newton - baseline_.newton;
-    totals_.newton_failures += now.newton_failures - baseline_.newton_failures;
-    totals_.error_tests += now.error_tests - baseline_.error_tests;
-    totals_.projections += now.projections - baseline_.projections;
-    baseline_ = now;
-  }
-  void check(int flag, const char* call) const {
-    if (flag < 0) {
-      throw IntegrationError(failure_kind(flag),
-                             std::string(call) + " failed with " +
-                                 sundials::flag_name(CVodeGetReturnFlagName, flag) +
-                                 (data_.message.empty() ? "" : ": " + data_.message));
-    }
+  [[nodiscard]] std::string notes(const sundials::Counters& totals) const override {
+    return std::to_string(totals.projections) + " projections onto the constraints";
   }
 
   sunindextype n_;
   CallbackData data_;
-  Counters totals_, baseline_;
   // Declared in creation order: destroyed in reverse (CVODE memory first, context last).
   ContextPtr ctx_;
   VectorPtr y_, work_;

@@ -1,9 +1,8 @@
 #include "dae/ida_integrator.hpp"
 
-#include "dae/recoverable_error.hpp"
-
 #include "dae/step_driver.hpp"
 #include "dae/sundials_raii.hpp"
+#include "dae/sundials_stepper.hpp"
 
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
@@ -97,8 +96,8 @@ struct IdaDeleter {
 };
 using IdaPtr = std::unique_ptr<void, IdaDeleter>;
 
-/// What the C callbacks need; exceptions thrown by the problem are parked here, never propagated
-/// through IDA's C frames.
+/// What the C callbacks need; exceptions thrown by the problem go to `report`, never through IDA's
+/// C frames.
 struct CallbackData {
   const DaeProblem* problem = nullptr;
   double rtol = 0.0;
@@ -115,31 +114,23 @@ struct CallbackData {
   Eigen::VectorXd index;  ///< differentiation index per component (DaeProblem::variable_index)
   double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
-  std::exception_ptr error;
-  std::string recoverable;  ///< the last RecoverableError a callback met (IDA then cut its step)
-  std::string ida_message;
+  sundials::CallbackReport* report = nullptr;
 };
 
 int residual_trampoline(double t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
   auto* data = static_cast<CallbackData*>(user);
-  try {
+  return sundials::guarded(*data->report, [&] {
     auto rv = view(r);
     data->problem->residual(t, data->step_reference, view(y), view(yp), rv);
     // A non-finite residual is recoverable: IDA retries with a smaller step.
     return rv.allFinite() ? 0 : 1;
-  } catch (const RecoverableError& e) {
-    data->recoverable = e.what();
-    return 1;
-  } catch (...) {
-    data->error = std::current_exception();
-    return -1;
-  }
+  });
 }
 
 int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /*r*/, SUNMatrix J,
                         void* user, N_Vector /*t1*/, N_Vector /*t2*/, N_Vector /*t3*/) {
   auto* data = static_cast<CallbackData*>(user);
-  try {
+  return sundials::guarded(*data->report, [&] {
     data->problem->jacobian(t, data->step_reference, view(y), view(yp), cj, data->jac);
     const auto& jac = data->jac;
     if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
@@ -157,10 +148,7 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
       }
     }
     return 0;
-  } catch (...) {
-    data->error = std::current_exception();
-    return -1;
-  }
+  });
 }
 
 /// Higher-index problems: the first step, as a fraction of the first output interval (the
@@ -217,16 +205,15 @@ FailureKind failure_kind(int flag) {
   }
 }
 
-void error_handler(int /*code*/, const char* /*module*/, const char* function, char* msg,
-                   void* user) {
-  auto* data = static_cast<CallbackData*>(user);
-  data->ida_message = std::string(function) + ": " + msg;
-}
+const sundials::Api kIdaApi{"IDASolve", IDAGetReturnFlagName, IDAGetCurrentTime, IDAGetLastStep,
+                            IDAGetDky,  failure_kind};
 
-class Ida final : public Stepper {
+class Ida final : public sundials::SundialsStepper {
  public:
-  Ida(const DaeProblem& problem, const IntegratorOptions& options) : n_(problem.size()) {
+  Ida(const DaeProblem& problem, const IntegratorOptions& options)
+      : SundialsStepper(kIdaApi), n_(problem.size()) {
     data_.problem = &problem;
+    data_.report = &report_;
     data_.jac = problem.jacobian_pattern();
     data_.jac.makeCompressed();
     SUNContext raw_ctx = nullptr;
@@ -249,7 +236,8 @@ class Ida final : public Stepper {
     if (!matrix_ || !solver_) throw IntegrationError("could not create the linear solver");
     mem_.reset(IDACreate(ctx_.get()));
     if (!mem_) throw IntegrationError("IDACreate failed");
-    check(IDASetErrHandlerFn(mem_.get(), error_handler, &data_), "IDASetErrHandlerFn");
+    attach(mem_.get(), work_.get());
+    check(IDASetErrHandlerFn(mem_.get(), sundials::record_message, &report_), "IDASetErrHandlerFn");
   }
 
   void init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0,
@@ -300,7 +288,7 @@ class Ida final : public Stepper {
     check(IDAReInit(mem_.get(), t0, y_.get(), yp_.get()), "IDAReInit");
     if (data_.index.size() > 0)
       check(IDASetInitStep(mem_.get(), data_.first_step), "IDASetInitStep");
-    baseline_ = read_counters();
+    rebase();
   }
 
   void set_stop_time(double t) override { check(IDASetStopTime(mem_.get(), t), "IDASetStopTime"); }
@@ -311,29 +299,8 @@ class Ida final : public Stepper {
   /// (re)initialisation from the distance to `tout`, so callers pass the next output time.
   double step(double tout) override {
     double tret = 0.0;
-    const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
-    if (data_.error) std::rethrow_exception(data_.error);
-    if (flag < 0) {
-      double tcur = 0.0, hlast = 0.0;
-      IDAGetCurrentTime(mem_.get(), &tcur);
-      IDAGetLastStep(mem_.get(), &hlast);
-      std::ostringstream s;
-      s << "IDASolve failed with " << sundials::flag_name(IDAGetReturnFlagName, flag)
-        << " at t = " << tcur << " (last step " << hlast << ")";
-      if (!data_.ida_message.empty()) s << ": " << data_.ida_message;
-      if (!data_.recoverable.empty())
-        s << " (the equations' last complaint: " << data_.recoverable << ")";
-      throw IntegrationError(failure_kind(flag), s.str());
-    }
+    after_step(IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_ONE_STEP));
     return tret;
-  }
-
-  /// y and y' at t inside the last step, from IDA's interpolating polynomial.
-  void interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) override {
-    check(IDAGetDky(mem_.get(), t, 0, work_.get()), "IDAGetDky");
-    y = view(work_.get());
-    check(IDAGetDky(mem_.get(), t, 1, work_.get()), "IDAGetDky");
-    yp = view(work_.get());
   }
 
   [[nodiscard]] Eigen::VectorXd y() override { return view(y_.get()); }
@@ -346,55 +313,16 @@ class Ida final : public Stepper {
     reinit(t, yb, ypb);
   }
 
-  void fill_summary(SolveSummary& summary) override {
-    collect();
-    summary.steps = totals_.steps;
-    summary.residual_evals = totals_.residual_evals;
-    summary.jacobian_evals = totals_.jacobian_evals;
-    summary.newton_iterations = totals_.newton_iterations;
-    summary.newton_failures = totals_.newton_failures;
-    summary.error_test_failures = totals_.error_test_failures;
-    summary.last_step = totals_.last_step;
-  }
-
-  /// Adds what IDA counted since the last collect() to the totals. Differencing against a
-  /// baseline keeps the totals right whether or not IDAReInit resets IDA's own counters.
-  void collect() {
-    const Counters now = read_counters();
-    totals_.steps += now.steps - baseline_.steps;
-    totals_.residual_evals += now.residual_evals - baseline_.residual_evals;
-    totals_.jacobian_evals += now.jacobian_evals - baseline_.jacobian_evals;
-    totals_.newton_iterations += now.newton_iterations - baseline_.newton_iterations;
-    totals_.newton_failures += now.newton_failures - baseline_.newton_failures;
-    totals_.error_test_failures += now.error_test_failures - baseline_.error_test_failures;
-    baseline_ = now;
-    double h = 0.0;
-    check(IDAGetLastStep(mem_.get(), &h), "IDAGetLastStep");
-    if (h != 0.0) totals_.last_step = h;
-  }
-
  private:
-  void check(int flag, const char* call) const {
-    if (flag < 0) {
-      throw IntegrationError(failure_kind(flag),
-                             std::string(call) + " failed with " +
-                                 sundials::flag_name(IDAGetReturnFlagName, flag) +
-                                 (data_.ida_message.empty() ? "" : ": " + data_.ida_message));
-    }
-  }
-  struct Counters {
-    long steps = 0, residual_evals = 0, jacobian_evals = 0, newton_iterations = 0,
-         newton_failures = 0, error_test_failures = 0;
-  };
-  [[nodiscard]] Counters read_counters() const {
-    Counters c;
+  [[nodiscard]] sundials::Counters read_counters() const override {
+    sundials::Counters c;
     check(IDAGetNumSteps(mem_.get(), &c.steps), "IDAGetNumSteps");
-    check(IDAGetNumResEvals(mem_.get(), &c.residual_evals), "IDAGetNumResEvals");
-    check(IDAGetNumJacEvals(mem_.get(), &c.jacobian_evals), "IDAGetNumJacEvals");
-    check(IDAGetNumNonlinSolvIters(mem_.get(), &c.newton_iterations), "IDAGetNumNonlinSolvIters");
+    check(IDAGetNumResEvals(mem_.get(), &c.evaluations), "IDAGetNumResEvals");
+    check(IDAGetNumJacEvals(mem_.get(), &c.jacobians), "IDAGetNumJacEvals");
+    check(IDAGetNumNonlinSolvIters(mem_.get(), &c.newton), "IDAGetNumNonlinSolvIters");
     check(IDAGetNumNonlinSolvConvFails(mem_.get(), &c.newton_failures),
           "IDAGetNumNonlinSolvConvFails");
-    check(IDAGetNumErrTestFails(mem_.get(), &c.error_test_failures), "IDAGetNumErrTestFails");
+    check(IDAGetNumErrTestFails(mem_.get(), &c.error_tests), "IDAGetNumErrTestFails");
     return c;
   }
   static void check_raw(int flag, const char* call) {
@@ -404,8 +332,6 @@ class Ida final : public Stepper {
 
   sunindextype n_;
   CallbackData data_;
-  SolveSummary totals_;
-  Counters baseline_;
   // Declared in creation order: destroyed in reverse (IDA memory first, context last).
   ContextPtr ctx_;
   VectorPtr y_, yp_, id_, work_;
