@@ -69,7 +69,9 @@ TEST_CASE("run: bad budgets are refused, naming the key or flag") {
       {"max_wall_time = inf", "solve.max_wall_time"},
       {"max_wall_time = nan", "solve.max_wall_time"},
   };
-  for (const auto& [line, key] : bad_keys) {
+  for (const auto& bad : bad_keys) {
+    // Named copies: clang 14 cannot capture structured bindings in CAPTURE's lambda.
+    const std::string line = bad.first, key = bad.second;
     CAPTURE(line);
     box.write("p.toml", pendulum(std::string("t_end = 1.0\noutput_step = 0.1\n") + line + "\n"));
     const Result r = box.run("run p.toml --out out.csv");
