@@ -168,8 +168,10 @@ class Reader {
   }
 
   /// DOF and constraint names become CSV column names (scene-format.md, "Output"), written as
-  /// they are: a name may hold ASCII letters, digits and these only.
-  static constexpr std::string_view kNameMarks = "_.-:+[]()";
+  /// they are, unquoted: a name may not hold what would split or quote a field (a comma, a double
+  /// quote), control characters (line breaks, tabs), nor begin or end with a space (CSV readers
+  /// trim it). Everything else is the user's: spaces inside, slashes, UTF-8.
+  static constexpr std::string_view kNameBreakers = ",\"";
 
   static std::string describe_char(char c) {
     const auto u = static_cast<unsigned char>(c);
@@ -203,15 +205,20 @@ class Reader {
 
   void check_name(const toml::node& node, const std::string& path, const std::string& name,
                   const char* what) const {
+    const auto refuse = [&](const std::string& why) {
+      fail(node, path,
+           std::string(what) + " name '" + printable(name) + "' " + why +
+               ": names become CSV column names and may not hold a comma, a double quote or a "
+               "control character, nor begin or end with a space");
+    };
     for (char c : name) {
       const auto u = static_cast<unsigned char>(c);
-      if (u < 0x80 && (std::isalnum(u) != 0 || kNameMarks.find(c) != std::string_view::npos)) {
-        continue;
+      if (u < 0x20 || u == 0x7f || kNameBreakers.find(c) != std::string_view::npos) {
+        refuse("holds " + describe_char(c));
       }
-      fail(node, path,
-           std::string(what) + " name '" + printable(name) + "' holds " + describe_char(c) +
-               ": names become CSV column names and may hold only ASCII letters, digits and " +
-               "_ . - : + [ ] ( )");
+    }
+    if (!name.empty() && (name.front() == ' ' || name.back() == ' ')) {
+      refuse(std::string(name.front() == ' ' ? "begins" : "ends") + " with a space");
     }
   }
 

@@ -36,7 +36,8 @@ TEST_CASE("names that would break the CSV are refused with their line") {
   const Case cases[] = {
       {R"(["a,b", "c"])", "", "n.toml:3: model.dofs[1]", "holds ','"},
       {R"(["a\nb", "c"])", "", "n.toml:3: model.dofs[1]", "holds a line break"},
-      {R"(["a", "b c"])", "", "n.toml:3: model.dofs[2]", "holds a space"},
+      {R"(["a", " b"])", "", "n.toml:3: model.dofs[2]", "begins with a space"},
+      {R"(["a", "b "])", "", "n.toml:3: model.dofs[2]", "ends with a space"},
       {R"(["a", "b\"c"])", "", "n.toml:3: model.dofs[2]", "holds '\"'"},
       {R"(["a", "b\u0001"])", "", "n.toml:3: model.dofs[2]", "the control character \\x01"},
       {R"(["a", "b"])", "[[constraint]]\nname = \"roll,extra\"\nterms = { a = 1.0 }\n",
@@ -53,7 +54,9 @@ TEST_CASE("names that would break the CSV are refused with their line") {
     CHECK(e.find("CSV column") != std::string::npos);
     CHECK(e.find('\n') == std::string::npos);  // the message itself stays on one line
   }
-  // What users write stays valid: indices, dots, colons, signs, brackets.
+  // What users write stays valid: indices, dots, colons, signs, brackets, spaces inside,
+  // slashes, UTF-8 (names as FE programs export them).
+  CHECK(error_of(scene(R"(["node 12 x", "N12/\u00e9l\u00e9ment"])", "")) == "");
   CHECK(error_of(scene(R"(["x[1]", "node.3:y-"])",
                        "[[constraint]]\nname = \"tie\"\nterms = { \"x[1]\" = 1.0 }\n")) == "");
   CHECK(error_of(scene(R"(["a", "b"])",
