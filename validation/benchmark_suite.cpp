@@ -18,22 +18,21 @@ const std::vector<PublishedCase>& published_cases() {
        8.0,
        0.0,
        true,
-       "at least 8 digits in positions with GGL at a tight tolerance (observed 8.73)"},
+       "at least 8 digits in positions with GGL at a tight tolerance"},
       {"benchmark_car_axis",
        {3.0},
        8.0,
        0.0,
        true,
-       "at least 8 digits in positions with GGL at a tight tolerance (observed 8.48)"},
-      // Observed at rtol = atol = 1e-10: 8.01, 7.10, 6.13, 4.95 digits at N = 1, 10, 100, 1000;
-      // the floor 7 - log10(N) keeps 0.95 to 1.13 digits of margin at every N.
+       "at least 8 digits in positions with GGL at a tight tolerance"},
+      // Observed at rtol = atol = 1e-10 (`condyn validate`): 8.88, 8.52, 7.84, 6.55 digits at
+      // N = 1, 10, 100, 1000; the floor 7 - log10(N) keeps 1.88 to 2.84 digits of margin.
       {"benchmark_pendulum_period2",
        {2.0, 20.0, 200.0, 2000.0},
        7.0,
        1.0,
        false,
-       "7 digits at N = 1, one fewer per decade of N (linear phase-error growth; observed "
-       "8.01 to 4.95)"},
+       "7 digits at N = 1, one fewer per decade of N (linear phase-error growth)"},
   };
   return cases;
 }

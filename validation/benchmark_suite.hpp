@@ -21,7 +21,7 @@ struct PublishedCase {
   double digits_lost_per_decade = 0.0;
   /// Also run the other multiplier schemes, for the report (cheap cases only).
   bool report_other_schemes = false;
-  std::string reason;  ///< where the requirement comes from, with the observed figure
+  std::string reason;  ///< where the requirement comes from (printed: no figures that go stale)
 };
 
 [[nodiscard]] const std::vector<PublishedCase>& published_cases();
