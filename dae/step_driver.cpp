@@ -145,6 +145,7 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
       const double tout = times[k] - reached > grid.tolerance ? times[k] : stop_ahead();
       const double t = stepper.step(tout);
       ++total_steps;
+      reached = t;  // the step succeeded: a budget that ends the run here ends it at t
       if (++steps_since_output > options.max_steps_per_output) {
         std::ostringstream s;
         s << "took " << options.max_steps_per_output << " steps without reaching the output time "
@@ -157,7 +158,6 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
           << ", the step budget of this run)";
         throw IntegrationError(FailureKind::step_budget, s.str());
       }
-      reached = t;
       if (options.on_step) options.on_step(t, stepper.y());
       const bool at_stop = next_stop < stops.size() && t >= stops[next_stop];
       // Outputs inside the step; one at a load step's time waits for the state after the step.

@@ -34,8 +34,8 @@ std::string describe_failure(const IntegrationError& e, const Model& model, RunO
   s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << " ("
     << to_string(e.kind) << "): " << e.what();
   if (e.in_loop) {
-    s << "\n  reached t = " << e.t_reached << " of t_end = " << model.solve.t_end << ", last step "
-      << e.last_step;
+    s << "\n  reached t = " << e.t_reached << " of t_end = " << model.solve.t_end
+      << ", last successful step " << e.last_step;
   }
   if (!e.suggestion.empty()) s << "\n  suggestion: " << e.suggestion;
   if (e.partial) s << "\n  " << outputs.write_partial(model, *e.partial);

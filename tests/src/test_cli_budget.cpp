@@ -39,6 +39,16 @@ TEST_CASE("run: a step budget ends a long run with its kind, advice and partial 
   CHECK_FALSE(fs::exists(box.path("out.csv")));
   const std::string partial = slurp(box.path("out.partial.csv"));
   CHECK(std::count(partial.begin(), partial.end(), '\n') > 2);  // header, t = 0 and later rows
+  // The time in the budget's message is the time reached the report gives: the step that used
+  // up the budget succeeded (they differed by one step).
+  const auto number_after = [&](const std::string& key) {
+    const auto at = r.err.find(key);
+    REQUIRE(at != std::string::npos);
+    const auto from = at + key.size();
+    return r.err.substr(from, r.err.find_first_of(",)", from) - from);
+  };
+  CHECK(number_after("steps in all (at t = ") ==
+        number_after("reached t = ").substr(0, number_after("reached t = ").find(' ')));
 
   // --max-steps overrides the scene's budget.
   const Result flag = box.run("run p.toml --max-steps 300 --out out.csv");

@@ -162,6 +162,26 @@ TEST_CASE("plot_compare.py draws the four plots from a compare folder") {
   fs::remove_all(dir);
 }
 
+TEST_CASE("compare against a reference at rest: errors relative to the run's own scale") {
+  // The period-2 pendulum is back at rest at t = 2: its reference velocity is 0, and a velocity
+  // error relative to it was 0/0 ("non-finite error against the reference" for every run).
+  SceneSpec spec =
+      parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/pendulum_period2.toml");
+  spec.solve.t_end = 2.0;
+  CompareOptions o;
+  o.tolerances = {1e-6, 1e-9};
+  o.repeats = 1;
+  o.schemes = {Scheme::ggl};
+  const CompareResult r = run_compare(spec, o);
+  REQUIRE(r.runs.size() == 2);
+  for (const auto& run : r.runs) {
+    CAPTURE(run.message);
+    CHECK(run.ok);
+    CHECK(std::isfinite(run.error_v));
+  }
+  CHECK(r.runs[1].error_v < r.runs[0].error_v / 100);  // three decades of rtol, at least two
+}
+
 TEST_CASE("compare on a published benchmark: digits per run, inapplicable schemes not run") {
   namespace fs = std::filesystem;
   const SceneSpec spec =
