@@ -153,9 +153,12 @@ AbsoluteTolerances absolute_tolerances(const Model& model) {
   const double sustained = s.omega_min > 0.0 ? std::min(t_end, 1e3 / s.omega_min) : t_end;
   a.velocity = model.solve.atol_velocity.value_or(
       std::max({a.displacement / sustained, v_roundoff, 1e-30 * a.displacement}));
-  a.multiplier =
-      model.solve.atol_multiplier.value_or(a.displacement * s.mass / (T * T * s.coefficient));
-  a.mu = model.solve.atol_mu.value_or(a.velocity / s.coefficient);
+  // The derived ones never below kMinAtol, where error weights stop fitting in a double's
+  // error norm (a tiny mass or a huge coefficient could take them there).
+  a.velocity = std::max(a.velocity, kMinAtol);
+  a.multiplier = model.solve.atol_multiplier.value_or(
+      std::max(a.displacement * s.mass / (T * T * s.coefficient), kMinAtol));
+  a.mu = model.solve.atol_mu.value_or(std::max(a.velocity / s.coefficient, kMinAtol));
   a.time_scale = T;
   const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;
   a.first_step = std::sqrt(model.solve.rtol) * fast;

@@ -551,12 +551,22 @@ class Reader {
                  fmt(solve.rtol) + ")");
       }
     }
-    if (const auto* n = t.get("atol")) solve.atol = positive(*n, "solve.atol");
+    const auto atol_at = [&](const toml::node& n, const std::string& key) {
+      const double v = positive(n, key);
+      if (v < kMinAtol) {
+        fail(n, key,
+             "is too small: an absolute tolerance below " + fmt(kMinAtol) +
+                 " gives error weights the integrator cannot hold in double precision (got " +
+                 fmt(v) + ")");
+      }
+      return v;
+    };
+    if (const auto* n = t.get("atol")) solve.atol = atol_at(*n, "solve.atol");
     if (const auto* n = t.get("atol_velocity"))
-      solve.atol_velocity = positive(*n, "solve.atol_velocity");
+      solve.atol_velocity = atol_at(*n, "solve.atol_velocity");
     if (const auto* n = t.get("atol_multiplier"))
-      solve.atol_multiplier = positive(*n, "solve.atol_multiplier");
-    if (const auto* n = t.get("atol_mu")) solve.atol_mu = positive(*n, "solve.atol_mu");
+      solve.atol_multiplier = atol_at(*n, "solve.atol_multiplier");
+    if (const auto* n = t.get("atol_mu")) solve.atol_mu = atol_at(*n, "solve.atol_mu");
     if (const auto* n = t.get("baumgarte")) {
       const auto& b = table(*n, "solve.baumgarte");
       check_keys(b, "solve.baumgarte", {"alpha", "beta"});

@@ -94,6 +94,12 @@ inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Sc
 /// Below, a few ulps of 1: no integrator can meet it; 1 and above accept any answer.
 inline constexpr double kMinRtol = 1e-15;
 
+/// Absolute tolerances accepted ([solve] atol and atol_*, --atol): at least kMinAtol. The error
+/// weights are 1/(rtol |y| + atol): below this they overflow the integrator's error norm (its
+/// squares) for any error above 1e-50, and the run fails with nonsense (IDA_ILL_INPUT at a load
+/// step with atol 1e-300). No model unit makes such an atol meaningful.
+inline constexpr double kMinAtol = 1e-100;
+
 struct SolveSpec {
   double t_end = 0.0;
   double output_step = 0.0;

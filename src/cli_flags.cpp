@@ -75,6 +75,19 @@ CLI::Validator rtol_check() {
           "RTOL in [" + shortest(kMinRtol) + ", 1)"};
 }
 
+CLI::Validator atol_check() {
+  return {[](std::string& text) {
+            const auto v = parse_decimal(text);
+            if (!v) return not_a_number(text);
+            if (!(*v >= kMinAtol)) {
+              return text + " is out of range: an absolute tolerance is at least " +
+                     shortest(kMinAtol) + " (smaller error weights overflow)";
+            }
+            return std::string();
+          },
+          "ATOL >= " + shortest(kMinAtol)};
+}
+
 CLI::Validator positive_check() {
   return {[](std::string& text) {
             const auto v = parse_decimal(text);

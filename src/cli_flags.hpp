@@ -22,6 +22,8 @@ namespace condyn {
 /// [kMinRtol, 1), a number > 0, a whole number in [lo, hi].
 [[nodiscard]] CLI::Validator rtol_check();
 [[nodiscard]] CLI::Validator positive_check();
+/// An absolute tolerance: a number >= kMinAtol.
+[[nodiscard]] CLI::Validator atol_check();
 [[nodiscard]] CLI::Validator whole_check(int lo, int hi);
 /// A tolerance for a side run (compare --drift-rtol): like rtol_check, bounded by [lo, hi].
 [[nodiscard]] CLI::Validator decimal_range_check(double lo, double hi);

@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--rtol", run_args.rtol, "relative tolerance (overrides [solve] rtol)")
       ->check(rtol_check());
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
-      ->check(positive_check());
+      ->check(atol_check());
   run_cmd
       ->add_option("--max-steps", run_args.max_steps,
                    "step budget of the run (overrides [solve] max_steps); more is a failure")

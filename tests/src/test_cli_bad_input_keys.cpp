@@ -141,3 +141,23 @@ TEST_CASE("tolerances that are nan or inf are usage errors naming the flag or ke
   check_refused(run_scene(replace(kScene, "output_step = 0.5", "output_step = 0.5\natol = inf")),
                 "bad.toml:18: solve.atol: must be finite");
 }
+
+TEST_CASE("an absolute tolerance too small for double-precision error weights is refused") {
+  // atol 1e-300 was accepted and failed at the first load step with IDA_ILL_INPUT ("tstop is
+  // behind current t") and advice about the load step times: the weights 1/atol overflow.
+  for (const std::string flag : {"--atol 1e-300", "--atol 1e-101"}) {
+    CAPTURE(flag);
+    const Result r = run_scene(kScene, flag);
+    CHECK(r.code == 2);
+    CHECK(r.err.find("--atol") != std::string::npos);
+    CHECK(r.err.find("at least 1e-100") != std::string::npos);
+  }
+  for (const std::string key : {"atol", "atol_velocity", "atol_multiplier", "atol_mu"}) {
+    CAPTURE(key);
+    const Result r =
+        run_scene(replace(kScene, "output_step = 0.5", "output_step = 0.5\n" + key + " = 1e-300"));
+    CHECK(r.code == 2);
+    CHECK(r.err.find("bad.toml:18: solve." + key + ": is too small") != std::string::npos);
+  }
+  CHECK(run_scene(kScene, "--atol 1e-30").code == 0);  // tiny, but weighable: accepted
+}

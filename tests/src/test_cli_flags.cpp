@@ -49,7 +49,7 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       {"run s.toml --rtol -1e-6", "--rtol", "out of range"},
       {"run s.toml --atol 0x1", "--atol", "'0x1' is not a decimal number"},
       {"run s.toml --atol 1e999", "--atol", "'1e999' is not a decimal number"},
-      {"run s.toml --atol 0", "--atol", "must be > 0"},
+      {"run s.toml --atol 0", "--atol", "an absolute tolerance is at least 1e-100"},
       {"compare --tolerances 1e-3x", "--tolerances", "'1e-3x' is not a decimal number"},
       {"compare --tolerances 1e-4,0x10", "--tolerances", "'0x10' is not a decimal number"},
       {"compare --tolerances 1", "--tolerances", "out of range"},
