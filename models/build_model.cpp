@@ -1060,10 +1060,11 @@ class Builder {
                        spec_.model.type == ModelSpec::Type::truss3d;
     fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
          std::to_string(free.size()) + " DOF" + (free.size() == 1 ? "" : "s") + " (" + names +
-             ") ha" + (free.size() == 1 ? "s" : "ve") + " no mass and no constraint holds " +
+             ") ha" + (free.size() == 1 ? "s" : "ve") + " no mass and no constraint fixes " +
              (free.size() == 1 ? "it" : "them") +
              ": the mass matrix is singular on the motions the constraints allow, so the "
-             "accelerations are undefined under every scheme; give " +
+             "accelerations are undefined under every scheme (a massless DOF held only by "
+             "stiffness is algebraic, which condyn does not integrate yet); give " +
              (truss ? "the node a mass in model.masses" : "the DOF a mass in model.mass") +
              " or constrain it");
   }

@@ -77,7 +77,8 @@ DriftGrowthAssessment assess_drift_growth(const std::vector<StepRecord>& steps, 
   const double oscillations = static_cast<double>(steps.back().velocity_reversals) / 2.0;
   if (oscillations < kMinOscillations) {
     out.reason = "the run spans " + figure(oscillations) +
-                 " oscillations of the motion (sign changes of a velocity over the steps); "
+                 (oscillations == 1.0 ? " oscillation" : " oscillations") +
+                 " of the motion (sign changes of a velocity over the steps); "
                  "a growth law describes long runs, of 10 oscillations or more";
     return out;
   }

@@ -94,7 +94,7 @@ output_step = 0.5
     CAPTURE(scheme);
     check_refused(run_scene(triangle, "--scheme " + scheme),
                   "bad.toml:1: model.masses: 2 DOFs (ux3, uy3) have no mass and no constraint "
-                  "holds them");
+                  "fixes them");
   }
   // An all-massless truss under gravity (its weight is zero, nothing has inertia).
   check_refused(
