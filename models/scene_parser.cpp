@@ -21,44 +21,6 @@ std::string scene_message(const std::string& file, const SourcePoint& where,
   return msg + problem;
 }
 
-const char* to_string(Scheme s) {
-  switch (s) {
-    case Scheme::automatic:
-      return "auto";
-    case Scheme::elimination:
-      return "elimination";
-    case Scheme::index1:
-      return "index1";
-    case Scheme::baumgarte:
-      return "baumgarte";
-    case Scheme::ggl:
-      return "ggl";
-    case Scheme::index2:
-      return "index2";
-    case Scheme::index3:
-      return "index3";
-    case Scheme::penalty:
-      return "penalty";
-    case Scheme::projection:
-      return "projection";
-  }
-  return "?";
-}
-
-std::optional<Scheme> scheme_from_string(std::string_view s) {
-  if (s == to_string(Scheme::automatic)) return Scheme::automatic;
-  for (Scheme scheme : kSchemes) {
-    if (s == to_string(scheme)) return scheme;
-  }
-  return std::nullopt;
-}
-
-std::string scheme_names() {
-  std::string names = to_string(Scheme::automatic);
-  for (Scheme scheme : kSchemes) names += std::string(", ") + to_string(scheme);
-  return names;
-}
-
 const char* to_string(Quantity q) {
   switch (q) {
     case Quantity::displacement:

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/scheme.hpp"
 #include "models/time_function.hpp"
 
 namespace condyn {
@@ -71,25 +72,6 @@ struct InitialSpec {
   SourcePoint where;
 };
 
-/// The formulation used to solve the scene (README "Schemes").
-enum class Scheme {
-  automatic,
-  elimination,
-  index1,
-  baumgarte,
-  ggl,
-  index2,
-  index3,
-  penalty,
-  projection
-};
-
-/// Every runnable scheme, the chapter's reference path first (automatic is not one: it resolves
-/// to one of these).
-inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Scheme::baumgarte,
-                                      Scheme::ggl,         Scheme::index2,    Scheme::index3,
-                                      Scheme::penalty,     Scheme::projection};
-
 /// Relative tolerances accepted ([solve] rtol, --rtol, compare --tolerances): [kMinRtol, 1).
 /// Below, a few ulps of 1: no integrator can meet it; 1 and above accept any answer.
 inline constexpr double kMinRtol = 1e-15;
@@ -144,11 +126,6 @@ struct SceneSpec {
   OutputSpec output;
 };
 
-[[nodiscard]] const char* to_string(Scheme s);
-/// The scheme named s ("auto" included), or nothing.
-[[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view s);
-/// "auto, elimination, index1, ..." for messages.
-[[nodiscard]] std::string scheme_names();
 [[nodiscard]] const char* to_string(Quantity q);
 
 }  // namespace condyn

@@ -1,0 +1,36 @@
+#pragma once
+/// The schemes a scene can be solved with, and their names as scenes, the command line and the
+/// reports write them: one table for the parser, the CLI and the solver's dispatch.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace condyn {
+
+/// The formulation used to solve the scene (README "Schemes").
+enum class Scheme {
+  automatic,
+  elimination,
+  index1,
+  baumgarte,
+  ggl,
+  index2,
+  index3,
+  penalty,
+  projection
+};
+
+/// Every runnable scheme, the chapter's reference path first (automatic is not one: it resolves
+/// to one of these).
+inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Scheme::baumgarte,
+                                      Scheme::ggl,         Scheme::index2,    Scheme::index3,
+                                      Scheme::penalty,     Scheme::projection};
+
+[[nodiscard]] const char* to_string(Scheme s);
+/// The scheme named s ("auto" included), or nothing.
+[[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view s);
+/// "auto, elimination, index1, ..." for messages.
+[[nodiscard]] std::string scheme_names();
+
+}  // namespace condyn
