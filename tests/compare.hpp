@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <string>
+#include <vector>
 
 #include "dae/dae_problem.hpp"
 
@@ -23,6 +24,10 @@ struct Mismatch {
 [[nodiscard]] Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t,
                                                          const Eigen::VectorXd& y,
                                                          const Eigen::VectorXd& yp, double cj);
+
+/// Least-squares slope of y against x (observed orders of convergence).
+[[nodiscard]] double least_squares_slope(const std::vector<double>& x,
+                                         const std::vector<double>& y);
 
 }  // namespace condyn::test
 

@@ -41,6 +41,28 @@ gravity = [0.0, -9.81]
 )" + solve_keys;
 }
 
+/// The pendulum with a rheonomic row pulling its mass straight down at unit speed, under GGL to
+/// t = 2: at t = 1 the rod is vertical, its row parallel to the pull's, and no motion satisfies
+/// both beyond it. A run that fails midway, after ten output rows.
+inline const std::string kPulledPendulumScene = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[[constraint]]
+name = "pull"
+terms = { uy2 = 1.0 }
+value = { type = "polynomial", coefficients = [0.0, -1.0] }
+[initial]
+velocity = { uy2 = -1.0 }
+[solve]
+t_end = 2.0
+output_step = 0.1
+scheme = "ggl"
+)";
+
 /// `s` with its first `from` replaced by `to`; fails the test when `from` is absent.
 inline std::string replace(std::string s, const std::string& from, const std::string& to) {
   const auto pos = s.find(from);

@@ -6,6 +6,7 @@
 
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/compare.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/exact_solution.hpp"
@@ -29,16 +30,7 @@ TEST_CASE("elimination error shrinks in proportion to rtol") {
       log_rtol.push_back(std::log10(rtol));
       log_err.push_back(std::log10(err));
     }
-    // Least-squares slope of log(error) against log(rtol).
-    const auto n = static_cast<double>(log_rtol.size());
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (std::size_t k = 0; k < log_rtol.size(); ++k) {
-      sx += log_rtol[k];
-      sy += log_err[k];
-      sxx += log_rtol[k] * log_rtol[k];
-      sxy += log_rtol[k] * log_err[k];
-    }
-    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    const double slope = test::least_squares_slope(log_rtol, log_err);
     MESSAGE("observed order in rtol: " << slope);
     // Tolerance proportionality of a variable-order BDF is approximate; 0.7-1.3 rejects both a
     // stalled error (slope ~0) and an error that does not respond to rtol.

@@ -10,6 +10,7 @@
 
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/compare.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/exact_solution.hpp"
@@ -17,19 +18,6 @@
 using namespace condyn;
 
 namespace {
-
-/// Least-squares slope of y against x.
-double slope(const std::vector<double>& x, const std::vector<double>& y) {
-  const auto n = static_cast<double>(x.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    sx += x[k];
-    sy += y[k];
-    sxx += x[k] * x[k];
-    sxy += x[k] * y[k];
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
 
 struct Errors {
   double displacement = 0.0, reaction = 0.0;
@@ -64,7 +52,8 @@ TEST_CASE("every multiplier scheme and projection: error shrinks in proportion t
         log_u.push_back(std::log10(e.displacement));
         log_r.push_back(std::log10(e.reaction));
       }
-      const double order_u = slope(log_rtol, log_u), order_r = slope(log_rtol, log_r);
+      const double order_u = test::least_squares_slope(log_rtol, log_u),
+                   order_r = test::least_squares_slope(log_rtol, log_r);
       MESSAGE(name << ": observed order in rtol " << order_u << " (u), " << order_r
                    << " (reactions)");
       CHECK(order_u >= 0.7);
@@ -95,7 +84,7 @@ TEST_CASE("penalty: error shrinks in proportion to 1/w") {
     log_w.push_back(std::log10(w));
     log_u.push_back(std::log10(e.displacement));
   }
-  const double order = slope(log_w, log_u);
+  const double order = test::least_squares_slope(log_w, log_u);
   MESSAGE("observed order in w: " << order);
   CHECK(order <= -0.9);
   CHECK(order >= -1.1);

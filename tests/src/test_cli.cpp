@@ -290,24 +290,7 @@ TEST_CASE("a run that fails midway keeps its rows in FILE.partial.csv and says w
   const Sandbox box;
   // A rheonomic row pulls the pendulum's mass straight down at unit speed: at t = 1 the rod is
   // vertical, its row becomes parallel to the pull's, and no motion satisfies both beyond it.
-  box.write("s.toml", R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[[constraint]]
-name = "pull"
-terms = { uy2 = 1.0 }
-value = { type = "polynomial", coefficients = [0.0, -1.0] }
-[initial]
-velocity = { uy2 = -1.0 }
-[solve]
-t_end = 2.0
-output_step = 0.1
-scheme = "ggl"
-)");
+  box.write("s.toml", condyn::test::kPulledPendulumScene);
   box.write("out.csv", "precious\n");
   const Result r = box.run("run s.toml --out out.csv");
   CAPTURE(r.err);

@@ -29,24 +29,7 @@ const std::string kHeader = "t,a,b,drift_position,drift_velocity\n";
 
 // A run that fails at t = 1 (test_cli.cpp explains why): an output checked only after the
 // integration shows up as exit 1 there, one checked before it as exit 2 with no solver message.
-const std::string kFailing = R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[[constraint]]
-name = "pull"
-terms = { uy2 = 1.0 }
-value = { type = "polynomial", coefficients = [0.0, -1.0] }
-[initial]
-velocity = { uy2 = -1.0 }
-[solve]
-t_end = 2.0
-output_step = 0.1
-scheme = "ggl"
-)";
+const std::string& kFailing = condyn::test::kPulledPendulumScene;
 
 bool contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
