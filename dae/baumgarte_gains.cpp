@@ -8,12 +8,12 @@
 
 namespace condyn {
 
-BaumgarteGains baumgarte_gains(const Model& model) {
+BaumgarteGains baumgarte_gains(const Model& model, const SolveSpec& settings) {
   BaumgarteGains g;
   std::ostringstream rule;
   rule.precision(6);
-  const auto& a = model.solve.baumgarte_alpha;
-  const auto& b = model.solve.baumgarte_beta;
+  const auto& a = settings.baumgarte_alpha;
+  const auto& b = settings.baumgarte_beta;
   if (a && b) {
     g.alpha = *a;
     g.beta = *b;
@@ -29,7 +29,7 @@ BaumgarteGains baumgarte_gains(const Model& model) {
       why = "beta = highest constrained natural frequency (" + s.method + ")";
     } else {
       // No stiffness, no force, no motion: the run's length is the only time scale left.
-      natural = 2.0 * std::numbers::pi / model.solve.t_end;
+      natural = 2.0 * std::numbers::pi / settings.t_end;
       why = "beta = 2 pi / t_end (no constrained frequency)";
     }
     g.beta = natural;

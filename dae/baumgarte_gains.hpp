@@ -22,7 +22,7 @@ struct BaumgarteGains {
   std::string rule;  ///< how they were chosen, printed in the summary
 };
 
-/// Gains from the scene's [solve] baumgarte (either may be omitted) and the default rule above.
-[[nodiscard]] BaumgarteGains baumgarte_gains(const Model& model);
+/// Gains from the run's [solve] baumgarte (either may be omitted) and the default rule above.
+[[nodiscard]] BaumgarteGains baumgarte_gains(const Model& model, const SolveSpec& settings);
 
 }  // namespace condyn

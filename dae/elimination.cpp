@@ -88,9 +88,9 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
   return out;
 }
 
-ReducedSystem reduce(const Model& model) {
+ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferred_slaves) {
   std::vector<int> preferred;
-  for (const auto& name : model.solve.slaves) preferred.push_back(model.dof_index.at(name));
+  for (const auto& name : preferred_slaves) preferred.push_back(model.dof_index.at(name));
   ReducedSystem r;
   r.transform = master_slave_transform(model.A, preferred);
   const auto& T = r.transform.T;
@@ -130,9 +130,9 @@ Eigen::VectorXd ReducedSystem::forces(const Model& model, double t, double step_
   return f;
 }
 
-Trajectory solve_elimination(const Model& model, const IntegratorOptions& options,
-                             SolveSummary& summary) {
-  const ReducedSystem reduced = reduce(model);
+void solve_elimination(const Model& model, const std::vector<std::string>& preferred_slaves,
+                       const IntegratorOptions& options, SolveResult& result) {
+  const ReducedSystem reduced = reduce(model, preferred_slaves);
   const ReducedOde ode(model, reduced);
   const auto& masters = reduced.transform.masters;
   const int nm = static_cast<int>(masters.size());
@@ -141,7 +141,7 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
     y0[k] = model.u0[masters[static_cast<std::size_t>(k)]];
     y0[nm + k] = model.v0[masters[static_cast<std::size_t>(k)]];
   }
-  summary.scheme = "elimination";
+  result.summary.scheme = "elimination";
   const auto& T = reduced.transform.T;
   const auto& G = reduced.transform.G;
   const Observation::FullState full_state = [&](double t, const Eigen::VectorXd& y) {
@@ -162,9 +162,10 @@ Trajectory solve_elimination(const Model& model, const IntegratorOptions& option
     return recover(t, u, v, a);
   };
   observe.drift_at_every_step = false;
-  return run_observed(
-      model, options, summary,
-      [&](const IntegratorOptions& o) { return integrate(ode, y0, o, summary); }, observe);
+  run_observed(
+      model, options,
+      [&](const IntegratorOptions& o) { return integrate(ode, y0, o, result.summary); }, observe,
+      result);
 }
 
 }  // namespace condyn

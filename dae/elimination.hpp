@@ -20,8 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "dae/solve_summary.hpp"
-#include "dae/trajectory.hpp"
+#include "dae/solve_result.hpp"
 #include "models/model.hpp"
 
 namespace condyn {
@@ -54,11 +53,14 @@ struct ReducedSystem {
   [[nodiscard]] Eigen::VectorXd forces(const Model& model, double t, double step_reference) const;
 };
 
-[[nodiscard]] ReducedSystem reduce(const Model& model);
+/// `preferred_slaves` ([solve] slaves: DOF names, size m, or empty) as master_slave_transform.
+[[nodiscard]] ReducedSystem reduce(const Model& model,
+                                   const std::vector<std::string>& preferred_slaves = {});
 
-/// Runs the elimination path with IDA. Throws std::invalid_argument when the reduced mass matrix
-/// is singular (massless master DOFs are not supported on this path).
-[[nodiscard]] Trajectory solve_elimination(const Model& model, const IntegratorOptions& options,
-                                           SolveSummary& summary);
+/// Runs the elimination path with IDA into `result` (dae/observed_run.hpp), slaves as reduce().
+/// Throws std::invalid_argument when the reduced mass matrix is singular (massless master DOFs are
+/// not supported on this path).
+void solve_elimination(const Model& model, const std::vector<std::string>& preferred_slaves,
+                       const IntegratorOptions& options, SolveResult& result);
 
 }  // namespace condyn

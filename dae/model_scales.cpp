@@ -136,13 +136,13 @@ ModelScales model_scales(const Model& model) {
   return s;
 }
 
-AbsoluteTolerances absolute_tolerances(const Model& model) {
+AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& settings) {
   const ModelScales s = model_scales(model);
-  const double t_end = model.solve.t_end > 0.0 ? model.solve.t_end : 1.0;
+  const double t_end = settings.t_end > 0.0 ? settings.t_end : 1.0;
   // The slowest time scale: the lowest natural period's 1/ω, at most the run's length.
   const double T = s.omega_min > 0.0 ? std::min(1.0 / s.omega_min, t_end) : t_end;
   AbsoluteTolerances a;
-  a.displacement = model.solve.atol;
+  a.displacement = settings.atol;
   // Never below the velocities' own roundoff: the four-bar (|v0| = 6) at atol 1e-15 over 2 s
   // (atol_v 5e-16) had Newton fail at t = 6e-8; 16 eps |v0| is 2e-14 there.
   const double v_roundoff = 16.0 * std::numeric_limits<double>::epsilon() *
@@ -151,24 +151,24 @@ AbsoluteTolerances absolute_tolerances(const Model& model) {
   // scales (an oscillator turns a velocity error into a displacement of Δv/ω, not Δv·t_end), and
   // never below 1e-30 atol per unit time: t_end = 1e300 gave 1e-310, an infinite error weight.
   const double sustained = s.omega_min > 0.0 ? std::min(t_end, 1e3 / s.omega_min) : t_end;
-  a.velocity = model.solve.atol_velocity.value_or(
+  a.velocity = settings.atol_velocity.value_or(
       std::max({a.displacement / sustained, v_roundoff, 1e-30 * a.displacement}));
   // The derived ones never below kMinAtol, where error weights stop fitting in a double's
   // error norm (a tiny mass or a huge coefficient could take them there).
   a.velocity = std::max(a.velocity, kMinAtol);
-  a.multiplier = model.solve.atol_multiplier.value_or(
+  a.multiplier = settings.atol_multiplier.value_or(
       std::max(a.displacement * s.mass / (T * T * s.coefficient), kMinAtol));
-  a.mu = model.solve.atol_mu.value_or(std::max(a.velocity / s.coefficient, kMinAtol));
+  a.mu = settings.atol_mu.value_or(std::max(a.velocity / s.coefficient, kMinAtol));
   a.time_scale = T;
   const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;
-  a.first_step = std::sqrt(model.solve.rtol) * fast;
+  a.first_step = std::sqrt(settings.rtol) * fast;
   std::ostringstream r;
   r.precision(3);
   r << "atol displacement " << a.displacement << ", velocity " << a.velocity
-    << (model.solve.atol_velocity ? " (scene)" : "") << ", multiplier " << a.multiplier
-    << (model.solve.atol_multiplier ? " (scene)" : "") << ", mu " << a.mu
-    << (model.solve.atol_mu ? " (scene)" : "") << "; time scale T = " << T << " (lowest "
-    << s.method << " frequency " << s.omega_min << ", t_end " << t_end << "), mass " << s.mass
+    << (settings.atol_velocity ? " (scene)" : "") << ", multiplier " << a.multiplier
+    << (settings.atol_multiplier ? " (scene)" : "") << ", mu " << a.mu
+    << (settings.atol_mu ? " (scene)" : "") << "; time scale T = " << T << " (lowest " << s.method
+    << " frequency " << s.omega_min << ", t_end " << t_end << "), mass " << s.mass
     << ", coefficient " << s.coefficient;
   a.rule = r.str();
   return a;

@@ -58,6 +58,6 @@ struct AbsoluteTolerances {
   std::string rule;  ///< one line for `condyn info`
 };
 
-[[nodiscard]] AbsoluteTolerances absolute_tolerances(const Model& model);
+[[nodiscard]] AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& settings);
 
 }  // namespace condyn

@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace condyn {
 
-MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme scheme, double alpha,
+MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, double alpha,
                              double beta)
     : system_(system),
       scheme_(scheme),
@@ -17,7 +18,12 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, MultiplierScheme sc
       n_(system.dofs()),
       m_(system.constraints()),
       p_(0) {
-  if (scheme == MultiplierScheme::ggl) {
+  if (scheme != Scheme::index1 && scheme != Scheme::baumgarte && scheme != Scheme::ggl &&
+      scheme != Scheme::index2 && scheme != Scheme::index3) {
+    throw std::invalid_argument(std::string("MultiplierDae: ") + to_string(scheme) +
+                                " is not a multiplier scheme");
+  }
+  if (scheme == Scheme::ggl) {
     for (int i = 0; i < m_; ++i) {
       if (system.position_rows()[static_cast<std::size_t>(i)]) position_row_.push_back(i);
     }
@@ -74,26 +80,26 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
     visit(il, iv, system_.acceleration_bias_jacobian_v(t, uu, vv), -1.0);
   };
   switch (scheme_) {
-    case MultiplierScheme::index1:
+    case Scheme::index1:
       acceleration_level(0.0);
       break;
-    case MultiplierScheme::baumgarte:  // + 2α ψ + β² φ
+    case Scheme::baumgarte:  // + 2α ψ + β² φ
       acceleration_level(2.0 * alpha_);
       visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 2.0 * alpha_);
       visit(il, iu, Sparse(position_mask_ * A), beta_ * beta_);
       break;
-    case MultiplierScheme::index2:
+    case Scheme::index2:
       visit(il, iv, A, 1.0);
       visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 1.0);
       break;
-    case MultiplierScheme::index3: {  // φ on position rows, ψ on velocity rows
+    case Scheme::index3: {  // φ on position rows, ψ on velocity rows
       visit(il, iu, Sparse(position_mask_ * A), 1.0);
       visit(il, iv, Sparse(velocity_mask_ * A), 1.0);
       const auto& psi_u = system_.velocity_residual_jacobian(t, uu, vv);
       if (psi_u.size() > 0) visit(il, iu, Sparse(velocity_mask_ * psi_u), 1.0);
       break;
     }
-    case MultiplierScheme::ggl: {  // ψ = 0, φ_p = 0, and A_pᵀμ in the u rows
+    case Scheme::ggl: {  // ψ = 0, φ_p = 0, and A_pᵀμ in the u rows
       visit(il, iv, A, 1.0);
       visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 1.0);
       const Sparse Ap = select_p_ * A;
@@ -103,6 +109,11 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
       visit(iu, iu, system_.constraint_force_jacobian(t, uu, w), 1.0);
       break;
     }
+    case Scheme::automatic:
+    case Scheme::elimination:
+    case Scheme::penalty:
+    case Scheme::projection:
+      break;  // not multiplier schemes: refused by the constructor
   }
 }
 
@@ -115,19 +126,24 @@ Eigen::VectorXd MultiplierDae::differential_id() const {
 Eigen::VectorXd MultiplierDae::variable_index() const {
   Eigen::VectorXd index = Eigen::VectorXd::Ones(size());
   switch (scheme_) {
-    case MultiplierScheme::index1:
-    case MultiplierScheme::baumgarte:
+    case Scheme::index1:
+    case Scheme::baumgarte:
       break;
-    case MultiplierScheme::ggl:
-    case MultiplierScheme::index2:
+    case Scheme::ggl:
+    case Scheme::index2:
       index.tail(size() - lambda_at()).setConstant(2.0);  // λ (and μ)
       break;
-    case MultiplierScheme::index3:
+    case Scheme::index3:
       index.segment(n_, n_).setConstant(2.0);  // velocities
       for (int i = 0; i < m_; ++i) {
         index[lambda_at() + i] = system_.position_rows()[static_cast<std::size_t>(i)] ? 3.0 : 2.0;
       }
       break;
+    case Scheme::automatic:
+    case Scheme::elimination:
+    case Scheme::penalty:
+    case Scheme::projection:
+      break;  // not multiplier schemes: refused by the constructor
   }
   return index;
 }
@@ -154,11 +170,11 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
   auto rl = r.segment(lambda_at(), m_);
   auto& work = rows_;
   switch (scheme_) {
-    case MultiplierScheme::index1:
+    case Scheme::index1:
       system_.acceleration_bias(t, uu, vv, work);
       rl = A * vp - work;
       break;
-    case MultiplierScheme::baumgarte: {
+    case Scheme::baumgarte: {
       system_.acceleration_bias(t, uu, vv, work);
       rl = A * vp - work;
       system_.velocity_residual(t, uu, vv, work);
@@ -167,17 +183,17 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
       rl += beta_ * beta_ * work;
       break;
     }
-    case MultiplierScheme::index2:
+    case Scheme::index2:
       system_.velocity_residual(t, uu, vv, rl);
       break;
-    case MultiplierScheme::index3: {
+    case Scheme::index3: {
       system_.position_residual(t, uu, work);  // zero on velocity rows
       rl = work;
       system_.velocity_residual(t, uu, vv, work);
       rl += velocity_mask_ * work;
       break;
     }
-    case MultiplierScheme::ggl: {
+    case Scheme::ggl: {
       system_.velocity_residual(t, uu, vv, rl);
       const auto mu = y.segment(mu_at(), p_);
       r.segment(0, n_) += A.transpose() * (select_p_.transpose() * mu);
@@ -185,6 +201,11 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
       r.segment(mu_at(), p_) = select_p_ * work;
       break;
     }
+    case Scheme::automatic:
+    case Scheme::elimination:
+    case Scheme::penalty:
+    case Scheme::projection:
+      break;  // not multiplier schemes: refused by the constructor
   }
 }
 
@@ -217,7 +238,7 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
   const auto& A = system_.constraint_jacobian(t, uu);
   Eigen::VectorXd rhs_l(m_), work(m_);
   system_.acceleration_bias(t, uu, vv, rhs_l);
-  if (scheme_ == MultiplierScheme::baumgarte) {
+  if (scheme_ == Scheme::baumgarte) {
     system_.velocity_residual(t, uu, vv, work);
     rhs_l -= 2.0 * alpha_ * work;
     system_.position_residual(t, uu, work);

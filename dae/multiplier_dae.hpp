@@ -24,15 +24,15 @@
 #include "dae/block_jacobian.hpp"
 #include "dae/dae_problem.hpp"
 #include "models/mechanical_system.hpp"
+#include "models/scheme.hpp"
 
 namespace condyn {
 
-enum class MultiplierScheme { index1, baumgarte, ggl, index2, index3 };
-
 class MultiplierDae final : public DaeProblem {
  public:
-  /// Keeps a reference to `system`. alpha and beta are used by Baumgarte only.
-  MultiplierDae(const MechanicalSystem& system, MultiplierScheme scheme, double alpha = 0.0,
+  /// Keeps a reference to `system`. `scheme` is index1, baumgarte, ggl, index2 or index3 (else
+  /// std::invalid_argument); alpha and beta are used by Baumgarte only.
+  MultiplierDae(const MechanicalSystem& system, Scheme scheme, double alpha = 0.0,
                 double beta = 0.0);
 
   [[nodiscard]] int size() const override { return mu_at() + p_; }
@@ -57,7 +57,7 @@ class MultiplierDae final : public DaeProblem {
   /// Newton and 39,213 error-test failures) against 4,643 without, and was less accurate (1.9e-4
   /// against 6.6e-6 from a tight GGL run): README, schemes.
   [[nodiscard]] bool suppress_algebraic_error() const override {
-    return scheme_ == MultiplierScheme::baumgarte || scheme_ == MultiplierScheme::index1;
+    return scheme_ == Scheme::baumgarte || scheme_ == Scheme::index1;
   }
   /// Keeps u and v; λ and v' from [M Aᵀ; A 0][v'; λ] = [f; γ − stabilization]; μ = 0, u' = v.
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
@@ -82,7 +82,7 @@ class MultiplierDae final : public DaeProblem {
                       const BlockVisitor& visit) const;
 
   const MechanicalSystem& system_;
-  MultiplierScheme scheme_;
+  Scheme scheme_;
   double alpha_, beta_;
   int n_, m_, p_;
   std::vector<int> position_row_;              ///< μ index k -> constraint row

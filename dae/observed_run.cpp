@@ -1,6 +1,7 @@
 #include "dae/observed_run.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <vector>
 
 namespace condyn {
@@ -11,9 +12,9 @@ Observation::FullState full_state_prefix(int n) {
   };
 }
 
-Trajectory run_observed(const Model& model, const IntegratorOptions& options, SolveSummary& summary,
-                        const std::function<RawTrajectory(const IntegratorOptions&)>& run,
-                        const Observation& observe) {
+void run_observed(const Model& model, const IntegratorOptions& options,
+                  const std::function<RawTrajectory(const IntegratorOptions&)>& run,
+                  const Observation& observe, SolveResult& result) {
   double max_dp = 0.0, max_dv = 0.0;
   std::vector<StepRecord> steps;
   VelocityReversals reversals;
@@ -44,15 +45,23 @@ Trajectory run_observed(const Model& model, const IntegratorOptions& options, So
   RawTrajectory raw;
   try {
     raw = run(observed);
-  } catch (IntegrationError& e) {
-    keep_partial(e, assemble);
-    throw;
+  } catch (const IntegrationError& e) {
+    result.failure = failure_of(e);
+    result.summary.max_drift_position = max_dp;
+    result.summary.max_drift_velocity = max_dv;
+    if (!e.raw_partial || e.raw_partial->t.size() < 2) return;
+    try {
+      result.trajectory = assemble(*e.raw_partial);
+    } catch (const std::exception&) {
+      // Best effort: a partial result that cannot be assembled (a singular KKT matrix at the
+      // last row, say) is dropped; the failure being reported is the integrator's, not this one.
+    }
+    return;
   }
-  Trajectory traj = assemble(raw);
+  result.trajectory = assemble(raw);
   const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
-  summary.max_drift_position = std::max(max_dp, max_of(traj.drift_position));
-  summary.max_drift_velocity = std::max(max_dv, max_of(traj.drift_velocity));
-  return traj;
+  result.summary.max_drift_position = std::max(max_dp, max_of(result.trajectory.drift_position));
+  result.summary.max_drift_velocity = std::max(max_dv, max_of(result.trajectory.drift_velocity));
 }
 
 }  // namespace condyn

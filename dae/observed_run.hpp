@@ -1,15 +1,14 @@
 #pragma once
 /// One observed integration for every scheme: the constraint drift at every internal step (where
 /// the scheme's equations hold exactly) and at the outputs (interpolated), a per-step drift log
-/// when asked for, the trajectory assembled in full DOF space with its multipliers, and the rows
-/// computed before a failure kept on the IntegrationError.
+/// when asked for, the trajectory assembled in full DOF space with its multipliers, and, when the
+/// integrator fails, the failure as data with the rows computed before it.
 
 #include <Eigen/Dense>
 #include <functional>
 #include <utility>
 
-#include "dae/solve_summary.hpp"
-#include "dae/trajectory.hpp"
+#include "dae/solve_result.hpp"
 #include "models/model.hpp"
 
 namespace condyn {
@@ -32,11 +31,13 @@ struct Observation {
   bool drift_at_every_step = true;
 };
 
-/// Runs `run` with a per-step observer added to `options` and assembles the trajectory. The
-/// summary's max drifts cover the steps observed and the outputs.
-[[nodiscard]] Trajectory run_observed(
-    const Model& model, const IntegratorOptions& options, SolveSummary& summary,
-    const std::function<RawTrajectory(const IntegratorOptions&)>& run, const Observation& observe);
+/// Runs `run` with a per-step observer added to `options` and assembles the trajectory into
+/// result.trajectory; the summary's max drifts cover the steps observed and the outputs. When the
+/// integrator fails (IntegrationError), result.failure holds its facts and result.trajectory the
+/// rows before it (when there is more than the initial one). `run` fills result.summary's counters.
+void run_observed(const Model& model, const IntegratorOptions& options,
+                  const std::function<RawTrajectory(const IntegratorOptions&)>& run,
+                  const Observation& observe, SolveResult& result);
 
 /// The full-state map of a scheme whose state starts with [u; v] (every scheme but elimination).
 [[nodiscard]] Observation::FullState full_state_prefix(int n);

@@ -8,13 +8,13 @@
 
 namespace condyn {
 
-PenaltyWeights penalty_weights(const Model& model) {
+PenaltyWeights penalty_weights(const Model& model, const SolveSpec& settings) {
   PenaltyWeights p;
   std::ostringstream rule;
   rule.precision(6);
   const double m_max = Eigen::VectorXd(model.M.diagonal()).cwiseAbs().maxCoeff();
-  if (model.solve.penalty_weight) {
-    p.position = *model.solve.penalty_weight;
+  if (settings.penalty_weight) {
+    p.position = *settings.penalty_weight;
     rule << "penalty weight w = " << p.position << " from the scene";
   } else {
     const double k_max = Eigen::VectorXd(model.K.diagonal()).cwiseAbs().maxCoeff();
@@ -22,7 +22,7 @@ PenaltyWeights penalty_weights(const Model& model) {
       p.position = 1e4 * k_max;
       rule << "penalty weight w = " << p.position << " (1e4 x the largest stiffness diagonal)";
     } else {
-      const double w = 2.0 * std::numbers::pi / model.solve.output_step;
+      const double w = 2.0 * std::numbers::pi / settings.output_step;
       p.position = 1e4 * m_max * w * w;
       rule << "penalty weight w = " << p.position
            << " (no stiffness: 1e4 m (2 pi / output_step)^2)";

@@ -30,7 +30,7 @@ struct PenaltyWeights {
 /// are four orders stiffer than the stiffest element, so the constraint error is about 1e-4 of
 /// the elastic deformation. Without stiffness, w = 1e4 · m_max (2π / output_step)². Velocity rows
 /// get c = √(w · m_max), the critical dashpot of the largest mass on a spring w.
-[[nodiscard]] PenaltyWeights penalty_weights(const Model& model);
+[[nodiscard]] PenaltyWeights penalty_weights(const Model& model, const SolveSpec& settings);
 
 class PenaltyOde final : public DaeProblem {
  public:

@@ -1,12 +1,12 @@
 #pragma once
 /// Scheme choice and dispatch: the one entry point the CLI and the validation suite use.
 
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
-#include "dae/solve_summary.hpp"
-#include "dae/trajectory.hpp"
+#include "dae/solve_result.hpp"
 #include "models/model.hpp"
 
 namespace condyn {
@@ -36,21 +36,26 @@ struct SystemSize {
   long jacobian_nonzeros = 0;
 };
 
-/// Builds the scheme's DAE (without integrating) and sizes it. Throws like solve() would.
-[[nodiscard]] SystemSize system_size(const Model& model, Scheme scheme);
+/// Builds the DAE of settings.scheme (without integrating) and sizes it. Throws like solve().
+[[nodiscard]] SystemSize system_size(const Model& model, const SolveSpec& settings);
 
-/// What to try after `scheme` failed with `e`, in one line: chosen by e.kind, worded from the
-/// facts it carries (time reached against t0 and t_end, last step, steps, wall time).
-[[nodiscard]] std::string failure_suggestion(Scheme scheme, const IntegrationError& e);
+/// What the integrator is asked to do for this model under these settings: tolerances per kind of
+/// unknown (dae/model_scales.hpp), first step, output times, load steps, budgets.
+[[nodiscard]] IntegratorOptions integrator_options(const Model& model, const SolveSpec& settings);
 
-/// Integrator options from the model's [solve] section, possibly overridden by the caller.
-[[nodiscard]] IntegratorOptions integrator_options(const Model& model);
+/// What the caller observes of a run besides its result.
+struct RunHooks {
+  bool record_steps = false;  ///< keep the drift at every internal step (Trajectory::steps)
+  std::function<void(const Progress&)> on_progress;  ///< for long runs (IntegratorOptions)
+};
 
-/// Solves the model under `scheme` (`automatic` resolves through choose_scheme). Throws
-/// SchemeNotApplicable for a scheme that cannot treat the model, IntegrationError on solver
-/// failure: with the scheme, the time reached, the last step, a suggestion and, when the loop
-/// had produced output rows, the partial trajectory up to the failure.
-[[nodiscard]] Trajectory solve(const Model& model, Scheme scheme, const IntegratorOptions& options,
-                               SolveSummary& summary);
+/// Solves the model under settings.scheme (`automatic` resolves through choose_scheme) with the
+/// run's settings (tolerances, budgets, times, scheme parameters). A run that fails returns its
+/// failure as data (SolveResult::failure, with a suggestion) and the rows computed before it.
+/// Throws SchemeNotApplicable for a scheme that cannot treat the model, std::invalid_argument
+/// for settings that fail SolveSpec::validate(), and std::exception when the scheme cannot be set
+/// up for the model (a singular reduced mass, say).
+[[nodiscard]] SolveResult solve(const Model& model, const SolveSpec& settings,
+                                const RunHooks& hooks = {});
 
 }  // namespace condyn

@@ -21,8 +21,6 @@ struct RawTrajectory {
   std::vector<Eigen::VectorXd> y, yp;
 };
 
-struct Trajectory;
-
 /// How a run failed: set where the failure arises (SUNDIALS flags mapped by their codes, the
 /// loop's own checks), refined by the loop from the facts (no step taken, step at roundoff).
 enum class FailureKind {
@@ -47,8 +45,9 @@ enum class FailureKind {
 /// The integrator failed (or refused an input). The message names the SUNDIALS call, its flag
 /// name, the time reached and the integrator's own explanation. When the failure happens inside
 /// the integration loop, the exception also says how far the run got and carries what it had
-/// computed: the output rows before the failure (t0 included), raw from the loop and, once the
-/// solve layer has assembled them, as a trajectory.
+/// computed: the output rows before the failure (t0 included), raw from the loop. It travels only
+/// from the loop to the observed run (dae/observed_run.hpp), which turns it into data
+/// (SolveResult::failure and the partial trajectory).
 class IntegrationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -61,9 +60,6 @@ class IntegrationError : public std::runtime_error {
   double elapsed_seconds = 0.0;  ///< wall time of the loop before the failure
   double t0 = 0.0, t_end = 0.0;  ///< the run's start and end
   std::shared_ptr<const RawTrajectory> raw_partial;
-  std::shared_ptr<const Trajectory> partial;  ///< set by solve(); rows up to t_reached
-  std::string scheme;                         ///< set by solve()
-  std::string suggestion;                     ///< set by solve(): what to try instead
 };
 
 /// One integrator, as the loop sees it.

@@ -2,7 +2,6 @@
 /// Results at the output times, in full DOF space, whatever the scheme.
 
 #include <Eigen/Dense>
-#include <memory>
 #include <vector>
 
 #include "dae/step_driver.hpp"
@@ -70,18 +69,5 @@ class MultiplierRecovery {
                                              const std::vector<Eigen::VectorXd>& u,
                                              const std::vector<Eigen::VectorXd>& v,
                                              const std::vector<Eigen::VectorXd>& lambda);
-
-/// For a failure inside the integration loop: assembles the rows computed before it (when there
-/// is more than the initial one) into e.partial with `assemble` (RawTrajectory -> Trajectory).
-template <class Assemble>
-void keep_partial(IntegrationError& e, const Assemble& assemble) {
-  if (!e.raw_partial || e.raw_partial->t.size() < 2) return;
-  try {
-    e.partial = std::make_shared<const Trajectory>(assemble(*e.raw_partial));
-  } catch (const std::exception&) {
-    // Best effort: a partial result that cannot be assembled (a singular KKT matrix at the last
-    // row, say) is dropped; the failure being reported is the integrator's, not this one.
-  }
-}
 
 }  // namespace condyn

@@ -887,12 +887,12 @@ class Builder {
 
   /// [output] energy needs a conservative system (else the energy is not a first integral).
   void check_energy_output() const {
-    const auto& q = model_.output.quantities;
+    const auto& q = spec_.output.quantities;
     if (std::find(q.begin(), q.end(), Quantity::energy) == q.end()) return;
     const LinearSystem linear(model_);
     const MechanicalSystem& s = model_.is_nonlinear() ? *model_.nonlinear : linear;
     if (!s.energy(0.0, model_.u0, model_.v0)) {
-      fail({"output.quantities", model_.output.where.line},
+      fail({"output.quantities", spec_.output.where.line},
            "'energy' needs a conservative scene (no damping, time-independent loads and "
            "constraints): the energy of this one is not conserved, so its error means nothing");
     }
@@ -1114,8 +1114,6 @@ class Builder {
   Model build() {
     model_.file = spec_.file;
     model_.name = spec_.name;
-    model_.solve = spec_.solve;
-    model_.output = spec_.output;
     switch (spec_.model.type) {
       case ModelSpec::Type::truss2d:
       case ModelSpec::Type::truss3d:
@@ -1228,28 +1226,14 @@ std::pair<double, double> Model::drift(double t, const Eigen::VectorXd& u,
   return {pos, vel};
 }
 
-std::vector<double> Model::breakpoints() const {
+std::vector<double> Model::breakpoints(double t_end) const {
   std::set<double> times;
   for (const auto& l : loads) {
     for (double b : l.value.breakpoints()) {
-      if (b < solve.t_end) times.insert(b);
+      if (b < t_end) times.insert(b);
     }
   }
   return {times.begin(), times.end()};
-}
-
-std::vector<double> Model::output_times() const {
-  std::vector<double> times;
-  const double h = solve.output_step, t_end = solve.t_end;
-  for (long k = 0;; ++k) {
-    double t = static_cast<double>(k) * h;
-    if (t > t_end - 1e-9 * h) {
-      times.push_back(t_end);
-      break;
-    }
-    times.push_back(t);
-  }
-  return times;
 }
 
 }  // namespace condyn

@@ -61,7 +61,7 @@ std::vector<int> dependent_dofs(const MechanicalSystem& s, int row, const Eigen:
 
 /// Nonlinear rows: time dependence probed by evaluating the residuals at two times with the same
 /// state; integrability by the Frobenius test.
-ConstraintClass classify_nonlinear(const Model& model, int row) {
+ConstraintClass classify_nonlinear(const Model& model, int row, double t_end) {
   const auto& c = model.constraints[static_cast<std::size_t>(row)];
   const auto& s = *model.nonlinear;
   ConstraintClass k;
@@ -78,7 +78,7 @@ ConstraintClass classify_nonlinear(const Model& model, int row) {
   k.single_freedom = k.dofs.size() == 1;
   const int m = model.constraint_count();
   Eigen::VectorXd r0(m), r1(m);
-  const double t1 = 0.5 * model.solve.t_end + 0.1234;
+  const double t1 = 0.5 * t_end + 0.1234;
   s.velocity_residual(0.0, model.u0, model.v0, r0);
   s.velocity_residual(t1, model.u0, model.v0, r1);
   k.rheonomic = r0[row] != r1[row];
@@ -101,11 +101,11 @@ ConstraintClass classify_nonlinear(const Model& model, int row) {
 
 }  // namespace
 
-std::vector<ConstraintClass> classify_constraints(const Model& model) {
+std::vector<ConstraintClass> classify_constraints(const Model& model, double t_end) {
   std::vector<ConstraintClass> out;
   for (const auto& c : model.constraints) {
     if (!c.nonlinear_kind.empty()) {
-      out.push_back(classify_nonlinear(model, static_cast<int>(out.size())));
+      out.push_back(classify_nonlinear(model, static_cast<int>(out.size()), t_end));
       continue;
     }
     ConstraintClass k;

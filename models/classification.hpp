@@ -25,7 +25,8 @@ struct ConstraintClass {
   [[nodiscard]] std::string holonomy() const;
 };
 
-/// Classifies every constraint of the model, in scene order.
-[[nodiscard]] std::vector<ConstraintClass> classify_constraints(const Model& model);
+/// Classifies every constraint of the model, in scene order. Nonlinear rows are probed for time
+/// dependence inside the run, at 0 and 0.5 t_end + 0.1234.
+[[nodiscard]] std::vector<ConstraintClass> classify_constraints(const Model& model, double t_end);
 
 }  // namespace condyn

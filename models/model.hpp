@@ -51,8 +51,6 @@ struct Model {
   std::vector<Constraint> constraints;
   Eigen::SparseMatrix<double> A;  ///< m x n, row i = constraints[i].coefficients
   Eigen::VectorXd u0, v0;
-  SolveSpec solve;
-  OutputSpec output;
   /// Set for models whose M, f or constraints depend on the state (large-displacement bars,
   /// rigid members, generalized coordinates, nonholonomic rows): the system every formulation
   /// integrates. M, C, K and A above then hold its linearization at t = 0 and (u0, v0), for
@@ -88,9 +86,7 @@ struct Model {
   [[nodiscard]] std::pair<double, double> drift(double t, const Eigen::VectorXd& u,
                                                 const Eigen::VectorXd& v) const;
   /// Times in (0, t_end) where a load step switches on, sorted, unique.
-  [[nodiscard]] std::vector<double> breakpoints() const;
-  /// Output times 0, h, 2h, ..., t_end (the last one is t_end even when h does not divide it).
-  [[nodiscard]] std::vector<double> output_times() const;
+  [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };
 
 /// Builds and checks the model: DOF names, geometry, matrix properties, constraint rank and

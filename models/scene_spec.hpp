@@ -1,5 +1,6 @@
 #pragma once
-/// The parsed, validated scene (scene-format.md): plain data, no behaviour. Produced by
+/// The parsed, validated scene (scene-format.md): plain data (SolveSpec, the run settings, also
+/// checks itself and lists its output times: models/solve_settings.cpp). Produced by
 /// parse_scene(); consumed by build_model(). Every field has been checked for type and range;
 /// cross-field checks that need the assembled model (ranks, consistency) happen in build_model().
 
@@ -82,6 +83,8 @@ inline constexpr double kMinRtol = 1e-15;
 /// step with atol 1e-300). No model unit makes such an atol meaningful.
 inline constexpr double kMinAtol = 1e-100;
 
+/// The run settings ([solve]): passed beside the Model to everything that runs it, never stored
+/// in it, so one model serves runs at many tolerances and schemes.
 struct SolveSpec {
   double t_end = 0.0;
   double output_step = 0.0;
@@ -105,6 +108,12 @@ struct SolveSpec {
   long max_steps = 0;
   double max_wall_time = 0.0;
   SourcePoint where;
+
+  /// Throws std::invalid_argument naming the first key out of range (the parser's rules, for
+  /// settings made or changed in code).
+  void validate() const;
+  /// Output times 0, h, 2h, ..., t_end (the last one is t_end even when h does not divide it).
+  [[nodiscard]] std::vector<double> output_times() const;
 };
 
 enum class Quantity { displacement, velocity, reaction, multiplier, drift, energy };

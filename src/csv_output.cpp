@@ -8,10 +8,10 @@ namespace condyn {
 
 namespace {
 
-void write_rows(std::ostream& out, const Model& model, const Trajectory& traj) {
+void write_rows(std::ostream& out, const Model& model, const std::vector<Quantity>& q,
+                const Trajectory& traj) {
   out.precision(17);
   out << "t";
-  const auto& q = model.output.quantities;
   for (Quantity quantity : q) {
     switch (quantity) {
       case Quantity::displacement:
@@ -76,10 +76,6 @@ std::string partial_path(const std::string& out) {
 
 }  // namespace
 
-void write_csv(std::ostream& out, const Model& model, const Trajectory& traj) {
-  write_rows(out, model, traj);
-}
-
 void write_steps_csv(std::ostream& out, const Trajectory& traj) {
   out.precision(17);
   out << "t,drift_position,drift_velocity\n";
@@ -89,7 +85,9 @@ void write_steps_csv(std::ostream& out, const Trajectory& traj) {
 }
 
 RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
-                       const std::string& output_file, const std::string& steps_out) {
+                       const OutputSpec& output, const std::string& steps_out)
+    : quantities_(output.quantities) {
+  const std::string& output_file = output.file;
   plan_.add_input(scene);
   if (!out_flag.empty()) {
     csv_ = plan_.add_output(out_flag, "--out");
@@ -114,7 +112,7 @@ std::string RunOutputs::csv_name() const { return plan_.display_name(csv_); }
 std::string RunOutputs::steps_name() const { return steps_ ? plan_.display_name(*steps_) : ""; }
 
 void RunOutputs::write(const Model& model, const Trajectory& traj) {
-  plan_.write(csv_, [&](std::ostream& out) { write_rows(out, model, traj); });
+  plan_.write(csv_, [&](std::ostream& out) { write_rows(out, model, quantities_, traj); });
   std::vector<OutputPlan::Id> ids{csv_};
   if (steps_) {
     plan_.write(*steps_, [&](std::ostream& out) { write_steps_csv(out, traj); });
@@ -133,7 +131,8 @@ std::string RunOutputs::write_partial(const Model& model, const Trajectory& part
     return s.str();
   }
   try {
-    plan_.write(*partial_, [&](std::ostream& out) { write_rows(out, model, partial); });
+    plan_.write(*partial_,
+                [&](std::ostream& out) { write_rows(out, model, quantities_, partial); });
     plan_.commit({*partial_});
     s << " are in " << plan_.display_name(*partial_) << " (the run did not reach t_end; "
       << csv_name() << " was not written)";

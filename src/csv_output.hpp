@@ -6,6 +6,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "dae/trajectory.hpp"
 #include "models/model.hpp"
@@ -13,21 +14,19 @@
 
 namespace condyn {
 
-/// The CSV rows of a trajectory, header first.
-void write_csv(std::ostream& out, const Model& model, const Trajectory& traj);
-
 /// The per-step drift log (run --steps-out): columns t, drift_position, drift_velocity, one row per
 /// internal step of the integrator.
 void write_steps_csv(std::ostream& out, const Trajectory& traj);
 
-/// The files of `condyn run`, checked before the integration (OutputPlan): the CSV (--out, else
-/// [output] file, else SCENE-STEM.csv in the current folder), the drift log (--steps-out) and,
-/// for a failed run, FILE.partial.csv beside the CSV. None may be the scene or another output.
-/// A CSV going to a stream (standard output, a device, a FIFO) gets complete results only: a
-/// failed run writes nothing there and no partial file. Throws OutputError (bad paths).
+/// The files of `condyn run`, checked before the integration (OutputPlan): the CSV of the
+/// [output] quantities (to --out, else [output] file, else SCENE-STEM.csv in the current folder),
+/// the drift log (--steps-out) and, for a failed run, FILE.partial.csv beside the CSV. None may be
+/// the scene or another output. A CSV going to a stream (standard output, a device, a FIFO) gets
+/// complete results only: a failed run writes nothing there and no partial file. Throws OutputError
+/// (bad paths).
 class RunOutputs {
  public:
-  RunOutputs(const std::string& scene, const std::string& out_flag, const std::string& output_file,
+  RunOutputs(const std::string& scene, const std::string& out_flag, const OutputSpec& output,
              const std::string& steps_out);
 
   /// Where every line but the data goes: standard error when an output is standard output.
@@ -44,6 +43,7 @@ class RunOutputs {
   [[nodiscard]] std::string write_partial(const Model& model, const Trajectory& partial);
 
  private:
+  std::vector<Quantity> quantities_;
   OutputPlan plan_;
   OutputPlan::Id csv_ = 0;
   std::optional<OutputPlan::Id> steps_, partial_;

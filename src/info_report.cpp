@@ -103,7 +103,7 @@ std::string short_list(const std::vector<std::string>& names) {
 
 }  // namespace
 
-void print_info(std::ostream& out, const Model& model, Scheme requested) {
+void print_info(std::ostream& out, const Model& model, const SolveSpec& settings) {
   out << "scene: " << model.file << (model.name.empty() ? "" : "  (" + model.name + ")") << "\n";
   if (!model.description.empty()) out << "model: " << model.description << "\n";
   if (!model.initial_projection.empty())
@@ -112,7 +112,7 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
   for (const auto& d : model.dropped_constraints)
     out << "dropped redundant constraint " << d << "\n";
   out << "\n";
-  const auto classes = classify_constraints(model);
+  const auto classes = classify_constraints(model, settings.t_end);
   if (classes.empty()) {
     out << "constraints: none (the model is unconstrained)\n";
   } else {
@@ -147,32 +147,33 @@ void print_info(std::ostream& out, const Model& model, Scheme requested) {
       << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
       << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
       << model.C.nonZeros() << ", K " << model.K.nonZeros() << ", A " << model.A.nonZeros() << "\n";
-  const SchemeChoice choice = choose_scheme(model, requested);
+  const SchemeChoice choice = choose_scheme(model, settings.scheme);
   const auto refusal = scheme_refusal(model, choice.scheme);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
       << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";
   if (choice.scheme == Scheme::elimination && !refusal) {
-    const ReducedSystem reduced = reduce(model);
+    const ReducedSystem reduced = reduce(model, settings.slaves);
     const auto& ms = reduced.transform;
     out << "elimination: " << ms.slaves.size() << (ms.slaves.size() == 1 ? " slave (" : " slaves (")
-        << (model.solve.slaves.empty() ? "chosen by column pivoting on A"
-                                       : "named in [solve] slaves")
+        << (settings.slaves.empty() ? "chosen by column pivoting on A" : "named in [solve] slaves")
         << "), " << ms.masters.size() << (ms.masters.size() == 1 ? " master\n" : " masters\n")
         << wrapped_list("  slaves: ", names_of(model, ms.slaves))
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
   if (choice.scheme == Scheme::baumgarte)
-    out << wrapped_text("baumgarte: ", baumgarte_gains(model).rule);
+    out << wrapped_text("baumgarte: ", baumgarte_gains(model, settings).rule);
   std::ostringstream rtol;
-  rtol << "rtol " << model.solve.rtol << "; ";
-  out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model).rule);
+  rtol << "rtol " << settings.rtol << "; ";
+  out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model, settings).rule);
   out << "\nsystem each scheme integrates:\n";
   out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";
   for (Scheme s : kSchemes) {
     out << "  " << std::left << std::setw(13) << to_string(s);
     try {
-      const SystemSize size = system_size(model, s);
+      SolveSpec as_scheme = settings;
+      as_scheme.scheme = s;
+      const SystemSize size = system_size(model, as_scheme);
       out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
     } catch (const std::exception& e) {
       out << "not applicable: " << e.what();

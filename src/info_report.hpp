@@ -7,6 +7,7 @@
 
 namespace condyn {
 
-void print_info(std::ostream& out, const Model& model, Scheme requested);
+/// The report on `model` under the run `settings` (settings.scheme: the scheme asked for).
+void print_info(std::ostream& out, const Model& model, const SolveSpec& settings);
 
 }  // namespace condyn

@@ -28,17 +28,18 @@ namespace {
 using namespace condyn;
 
 /// The message for a failed run: what failed where, what to try, and where the rows computed
-/// before the failure went (written here, so nothing computed is lost).
-std::string describe_failure(const IntegrationError& e, const Model& model, RunOutputs& outputs) {
+/// before the failure went (`partial_note`, from RunOutputs::write_partial).
+std::string describe_failure(const SolveResult& result, double t_end,
+                             const std::string& partial_note) {
+  const RunFailure& f = *result.failure;
   std::ostringstream s;
-  s << "under " << (e.scheme.empty() ? "the requested scheme" : e.scheme) << " ("
-    << to_string(e.kind) << "): " << e.what();
-  if (e.in_loop) {
-    s << "\n  reached t = " << e.t_reached << " of t_end = " << model.solve.t_end
-      << ", last successful step " << e.last_step;
+  s << "under " << to_string(result.scheme) << " (" << to_string(f.kind) << "): " << f.message;
+  if (f.in_loop) {
+    s << "\n  reached t = " << f.t_reached << " of t_end = " << t_end << ", last successful step "
+      << f.last_step;
   }
-  if (!e.suggestion.empty()) s << "\n  suggestion: " << e.suggestion;
-  if (e.partial) s << "\n  " << outputs.write_partial(model, *e.partial);
+  if (!f.suggestion.empty()) s << "\n  suggestion: " << f.suggestion;
+  if (!partial_note.empty()) s << "\n  " << partial_note;
   return s.str();
 }
 
@@ -74,20 +75,23 @@ int run(const RunArgs& args) {
   if (args.max_wall_time) spec.solve.max_wall_time = *args.max_wall_time;
   // Every output is checked before the work; with data on standard output, the rest goes to
   // standard error.
-  RunOutputs outputs(args.scene, args.out, spec.output.file, args.steps_out);
+  RunOutputs outputs(args.scene, args.out, spec.output, args.steps_out);
   std::ostream& msg = outputs.messages();
   const Model model = build_model(spec);
 
-  const SchemeChoice choice = choose_scheme(model, spec.solve.scheme);
-  SolveSummary summary;
-  IntegratorOptions options = integrator_options(model);
-  options.record_steps = !args.steps_out.empty();
-  options.on_progress = print_progress;
-  Trajectory traj;
-  try {
-    traj = solve(model, choice.scheme, options, summary);
-  } catch (const IntegrationError& e) {
-    throw IntegrationError(e.kind, describe_failure(e, model, outputs));
+  RunHooks hooks;
+  hooks.record_steps = !args.steps_out.empty();
+  hooks.on_progress = print_progress;
+  const SolveResult result = solve(model, spec.solve, hooks);
+  const Trajectory& traj = result.trajectory;
+  const SolveSummary& summary = result.summary;
+  if (!result.ok()) {
+    // Nothing computed is lost: the rows before the failure go to FILE.partial.csv.
+    const std::string partial = traj.t.empty() ? "" : outputs.write_partial(model, traj);
+    std::cerr << "error: " << args.scene
+              << ": integration failed: " << describe_failure(result, spec.solve.t_end, partial)
+              << "\n";
+    return 1;
   }
   outputs.write(model, traj);
   if (!model.initial_projection.empty())
@@ -99,10 +103,11 @@ int run(const RunArgs& args) {
   if (const double e = relative_energy_error(model, traj); e >= 0.0) {
     msg << "energy: max |E(t) - E(0)| = " << e << " relative to max(|E(0)|, max kinetic energy)\n";
   }
-  if (const auto score = score_against_reference(model, traj, options.rtol, options.atol)) {
+  const SolveSpec& settings = spec.solve;
+  if (const auto score = score_against_reference(model, traj, settings.rtol, settings.atol)) {
     msg << "published reference at t = " << score->t << " (" << score->source
-        << "): " << score->describe() << " (mescd with rtol " << options.rtol << ", atol "
-        << options.atol << ")\n";
+        << "): " << score->describe() << " (mescd with rtol " << settings.rtol << ", atol "
+        << settings.atol << ")\n";
   }
   msg << "wrote " << traj.t.size() << " rows to " << outputs.csv_name() << "\n";
   if (outputs.has_steps()) {
@@ -265,7 +270,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) {
       SceneSpec spec = parse_scene_file(info_scene);
       if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", info_scheme);
-      print_info(std::cout, build_model(spec), spec.solve.scheme);
+      print_info(std::cout, build_model(spec), spec.solve);
       return 0;
     }
     if (*validate_cmd) return run_validation(std::cout, validate_options) ? 0 : 1;
@@ -286,9 +291,6 @@ int main(int argc, char** argv) {
   } catch (const SchemeNotApplicable& e) {
     std::cerr << "error: " << scene << ": " << e.what() << "\n";
     return 2;
-  } catch (const IntegrationError& e) {
-    std::cerr << "error: " << scene << ": integration failed: " << e.what() << "\n";
-    return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << (scene.empty() ? "" : scene + ": ") << e.what() << "\n";
     return 1;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "dae/elimination.hpp"
@@ -22,10 +23,16 @@ double printed_at(const PrintedMatrix& p, int i, int j) {
 // absorbs the 15-digit √2 in the scene and nothing else.
 constexpr double kPrintedTolerance = 1e-9;
 
-Model case_model(const std::string& scene, const std::vector<double>* masses = nullptr) {
+/// A chapter case's model and the slaves its scene names for the master-slave transformation.
+struct CaseModel {
+  Model model;
+  std::vector<std::string> slaves;
+};
+
+CaseModel case_model(const std::string& scene, const std::vector<double>* masses = nullptr) {
   SceneSpec spec = parse_scene_text(embedded_scene(scene).text, "<embedded:" + scene + ">");
   if (masses != nullptr) spec.model.masses = *masses;
-  return build_model(spec);
+  return {build_model(spec), spec.solve.slaves};
 }
 
 Eigen::MatrixXd rows_of(const Eigen::MatrixXd& m, const std::vector<int>& rows) {
@@ -50,8 +57,11 @@ Eigen::MatrixXd computed(ChapterQuantity q, const Model& model, const ReducedSys
       return Eigen::MatrixXd(r.M);
     case ChapterQuantity::reduced_stiffness:
       return Eigen::MatrixXd(r.K);
-    case ChapterQuantity::reduced_loads:
-      return T.transpose() * model.applied_forces(model.solve.t_end);  // every step on
+    case ChapterQuantity::reduced_loads: {
+      // The chapter's loads are steps: evaluated where every one of them is on.
+      const auto steps = model.breakpoints(std::numeric_limits<double>::infinity());
+      return T.transpose() * model.applied_forces(steps.empty() ? 0.0 : steps.back());
+    }
     case ChapterQuantity::reduced_transfer_g:
       return r.FK;
     case ChapterQuantity::reduced_transfer_gdd:
@@ -99,13 +109,13 @@ bool all_agree(const std::vector<MatrixComparison>& cs) {
   return true;
 }
 
-std::vector<MatrixComparison> compare_case(const PrintedCase& pc, const Model& model,
+std::vector<MatrixComparison> compare_case(const PrintedCase& pc, const CaseModel& cm,
                                            bool mass_dependent_only) {
-  const ReducedSystem r = reduce(model);
+  const ReducedSystem r = reduce(cm.model, cm.slaves);
   std::vector<MatrixComparison> out;
   for (const auto& p : pc.matrices) {
     if (mass_dependent_only && !p.mass_dependent) continue;
-    out.push_back(compare(p, computed(p.quantity, model, r)));
+    out.push_back(compare(p, computed(p.quantity, cm.model, r)));
   }
   return out;
 }
@@ -117,8 +127,9 @@ ChapterReport chapter_report() {
   const auto& printed = chapter_printed();
   for (const auto& pc : printed) {
     ChapterCaseReport cr{pc.scene, pc.section, {}, {}};
-    const Model model = case_model(pc.scene);
-    cr.comparisons = compare_case(pc, model, false);
+    const CaseModel cm = case_model(pc.scene);
+    const Model& model = cm.model;
+    cr.comparisons = compare_case(pc, cm, false);
     for (const auto& c : cr.comparisons) {
       if (c.differing.empty()) continue;
       std::string d = c.printed.what + ":";
@@ -161,7 +172,7 @@ ChapterReport chapter_report() {
     }
     if (pc.scene == "chapter_5_6_1") {
       // §5.6.1 says "The transformed stiffness matrix M̂ has rank 2 and nullity 1".
-      const ReducedSystem r = reduce(model);
+      const ReducedSystem r = reduce(model, cm.slaves);
       const auto rank = [](const Eigen::SparseMatrix<double>& s) {
         Eigen::FullPivLU<Eigen::MatrixXd> lu{Eigen::MatrixXd(s)};
         lu.setThreshold(1e-10);
@@ -179,7 +190,7 @@ ChapterReport chapter_report() {
     }
     if (pc.scene == "chapter_5_6_2") {
       // Eq. 5.26 as printed, Tᵀ(f − Kg), has no g'' term; 5.28 prints g'' coefficients.
-      const ReducedSystem r = reduce(model);
+      const ReducedSystem r = reduce(model, cm.slaves);
       for (const auto& p : pc.matrices) {
         if (p.quantity != ChapterQuantity::reduced_transfer_gdd) continue;
         const Eigen::MatrixXd formula_5_26 = Eigen::MatrixXd::Zero(r.FM.rows(), r.FM.cols());

@@ -34,20 +34,22 @@ std::string sci(double v) {
   return s.str();
 }
 
-Model with_tolerances(const SceneSpec& spec, double rtol, double atol) {
-  SceneSpec s = spec;
-  s.solve.rtol = rtol;
-  s.solve.atol = atol;
-  return build_model(s);
+/// The scene's run settings with the scheme and tolerances of one run of the sweep.
+SolveSpec settings_of(const SolveSpec& scene, Scheme scheme, double rtol, double atol) {
+  SolveSpec s = scene;
+  s.scheme = scheme;
+  s.rtol = rtol;
+  s.atol = atol;
+  return s;
 }
 
 /// The best reference available: a built-in benchmark's published state at t_end, else the exact
 /// modal solution, else a tight elimination run, else (elimination not applicable: massless
 /// DOFs, nonlinear models) a tight GGL run.
-Trajectory reference(const SceneSpec& spec, const CompareOptions& options, CompareResult& out) {
-  const Model model = build_model(spec);
+Trajectory reference(const Model& model, const SolveSpec& settings, const CompareOptions& options,
+                     CompareResult& out) {
   if (model.reference) {
-    if (const auto published = model.reference(model.solve.t_end)) {
+    if (const auto published = model.reference(settings.t_end)) {
       out.reference_kind = "published";
       out.reference_description = published->source;
       out.trusted_digits_u = published->digits_u;
@@ -60,18 +62,17 @@ Trajectory reference(const SceneSpec& spec, const CompareOptions& options, Compa
     }
   }
   try {
-    Trajectory exact = exact_trajectory(model, model.output_times());
+    Trajectory exact = exact_trajectory(model, settings.output_times());
     out.reference_kind = "exact";
     out.reference_description = "exact modal solution (closed form)";
     return exact;
   } catch (const ExactSolutionUnavailable& e) {
     const double tight = std::max(
         1e-13, *std::min_element(options.tolerances.begin(), options.tolerances.end()) / 100.0);
-    const Model tight_model = with_tolerances(spec, tight, tight * 1e-2);
     for (Scheme scheme : {Scheme::elimination, Scheme::ggl}) {
       try {
-        SolveSummary summary;
-        Trajectory ref = solve(tight_model, scheme, integrator_options(tight_model), summary);
+        const SolveResult run = solve(model, settings_of(settings, scheme, tight, tight * 1e-2));
+        Trajectory ref = succeeded(run).trajectory;
         out.reference_kind = to_string(scheme);
         out.reference_description = std::string(to_string(scheme)) + " at rtol " + sci(tight) +
                                     " (no exact solution: " + e.what() + ")";
@@ -101,7 +102,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   CompareResult out;
   out.options = options;
   out.scene_name = spec.name.empty() ? spec.file : spec.name;
-  const Model base = build_model(spec);
+  const Model base = build_model(spec);    // once: the runs differ only in their settings
   for (int d = 0; d < base.dofs(); ++d) {  // A holds the linearization of nonlinear models
     if (base.A.col(d).nonZeros() > 0) {
       out.constrained_dofs.emplace_back(base.dof_names[static_cast<std::size_t>(d)], d);
@@ -123,7 +124,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   }
   const double ratio =
       options.atol_ratio > 0.0 ? options.atol_ratio : spec.solve.atol / spec.solve.rtol;
-  const Trajectory ref = reference(spec, options, out);
+  const Trajectory ref = reference(base, spec.solve, options, out);
 
   const std::size_t total = schemes.size() * options.tolerances.size();
   std::size_t done = 0;
@@ -133,12 +134,13 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
       r.scheme = scheme;
       r.rtol = rtol;
       r.atol = rtol * ratio;
-      const Model model = with_tolerances(spec, r.rtol, r.atol);
+      const SolveSpec settings = settings_of(spec.solve, scheme, r.rtol, r.atol);
       std::vector<double> walls;
       try {
         for (int k = 0; k < options.repeats; ++k) {
-          SolveSummary summary;
-          const Trajectory run = solve(model, scheme, integrator_options(model), summary);
+          const SolveResult result = solve(base, settings);
+          const Trajectory& run = succeeded(result).trajectory;
+          const SolveSummary& summary = result.summary;
           walls.push_back(summary.wall_seconds);
           if (k > 0) continue;  // repeats only time the run: the numbers are deterministic
           if (out.reference_kind == "published") {
@@ -155,7 +157,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
             r.error_u = rel(run.u.col(last), ref.u, run.u);
             r.error_v = rel(run.v.col(last), ref.v, run.v);
             r.error_reaction = std::numeric_limits<double>::quiet_NaN();  // λ: not scored
-            const auto score = score_against_reference(model, run, r.rtol, r.atol);
+            const auto score = score_against_reference(base, run, r.rtol, r.atol);
             r.mescd_u = score->digits_u;
             if (score->digits_v) r.mescd_v = *score->digits_v;
           } else {
@@ -164,7 +166,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
             r.error_v = err.velocity;
             r.error_reaction = err.reaction;
           }
-          if (const double e = relative_energy_error(model, run); e >= 0.0) r.energy_error = e;
+          if (const double e = relative_energy_error(base, run); e >= 0.0) r.energy_error = e;
           r.max_drift_position = summary.max_drift_position;
           r.max_drift_velocity = summary.max_drift_velocity;
           r.final_drift_position = run.drift_position[run.drift_position.size() - 1];
@@ -202,15 +204,18 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   }
 
   // Drift logs and histories at one tolerance.
-  const Model drift_model = with_tolerances(spec, options.drift_rtol, options.drift_rtol * ratio);
+  const SolveSpec drift_settings =
+      settings_of(spec.solve, Scheme::automatic, options.drift_rtol, options.drift_rtol * ratio);
   for (Scheme scheme : schemes) {
     SchemeHistory h;
     h.scheme = scheme;
     try {
-      IntegratorOptions o = integrator_options(drift_model);
-      o.record_steps = true;
-      SolveSummary summary;
-      h.trajectory = solve(drift_model, scheme, o, summary);
+      RunHooks hooks;
+      hooks.record_steps = true;
+      SolveSpec settings = drift_settings;
+      settings.scheme = scheme;
+      const SolveResult run = solve(base, settings, hooks);
+      h.trajectory = succeeded(run).trajectory;
       // Roundoff in the drift: a few dozen ulps of the largest displacement (1 when all are 0).
       const double u_scale = h.trajectory.u.size() > 0 ? h.trajectory.u.cwiseAbs().maxCoeff() : 0.0;
       const double roundoff =
@@ -226,22 +231,20 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   // Baumgarte study: the default gains scaled over a grid.
   if (std::find(schemes.begin(), schemes.end(), Scheme::baumgarte) != schemes.end() &&
       base.constraint_count() > 0) {
-    const BaumgarteGains defaults = baumgarte_gains(drift_model);
+    const BaumgarteGains defaults = baumgarte_gains(base, drift_settings);
     for (double fa : options.baumgarte_factors) {
       for (double fb : options.baumgarte_factors) {
         BaumgarteStudyPoint p;
         p.alpha = defaults.alpha * fa;
         p.beta = defaults.beta * fb;
         p.is_default = fa == 1.0 && fb == 1.0;
-        SceneSpec s = spec;
-        s.solve.rtol = options.drift_rtol;
-        s.solve.atol = options.drift_rtol * ratio;
-        s.solve.baumgarte_alpha = p.alpha;
-        s.solve.baumgarte_beta = p.beta;
+        SolveSpec s = drift_settings;
+        s.scheme = Scheme::baumgarte;
+        s.baumgarte_alpha = p.alpha;
+        s.baumgarte_beta = p.beta;
         try {
-          const Model model = build_model(s);
-          SolveSummary summary;
-          (void)solve(model, Scheme::baumgarte, integrator_options(model), summary);
+          const SolveResult result = solve(base, s);
+          const SolveSummary& summary = succeeded(result).summary;
           p.ok = true;
           p.max_drift_position = summary.max_drift_position;
           p.max_drift_velocity = summary.max_drift_velocity;

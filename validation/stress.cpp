@@ -82,7 +82,8 @@ std::string chapter_truss(const std::string& extra_loads, const std::string& sol
 /// Highest natural frequency of the constrained chapter truss (the Baumgarte default's scale).
 double chapter_frequency() {
   const std::string text = chapter_truss("", "[solve]\nt_end = 1.0\noutput_step = 0.1\n");
-  return baumgarte_gains(build_model(parse_scene_text(text, "chapter"))).beta;
+  const SceneSpec spec = parse_scene_text(text, "chapter");
+  return baumgarte_gains(build_model(spec), spec.solve).beta;
 }
 
 /// The four-bar A(0,0)-B-C-D(4,0): crank AB = 1 at 90°, coupler BC = 4, rocker CD = 1 + eps.
@@ -297,20 +298,19 @@ Reference make_reference(const SceneSpec& spec) {
   try {
     const Model model = build_model(spec);
     try {
-      r.trajectory = exact_trajectory(model, model.output_times());
+      r.trajectory = exact_trajectory(model, spec.solve.output_times());
       r.kind = "exact";
       return r;
     } catch (const ExactSolutionUnavailable&) {
       // fall through to a tight GGL run
     }
-    SceneSpec tight = spec;
-    tight.solve.rtol = 1e-11;
-    tight.solve.atol = 1e-13;
-    const Model tight_model = build_model(tight);
-    IntegratorOptions o = integrator_options(tight_model);
-    o.max_steps = 2000000;
-    SolveSummary summary;
-    r.trajectory = solve(tight_model, Scheme::ggl, o, summary);
+    SolveSpec tight = spec.solve;
+    tight.scheme = Scheme::ggl;
+    tight.rtol = 1e-11;
+    tight.atol = 1e-13;
+    tight.max_steps = 2000000;
+    const SolveResult run = solve(model, tight);
+    r.trajectory = succeeded(run).trajectory;
     r.kind = "ggl at rtol 1e-11";
   } catch (const std::exception&) {
     // No reference: the scene is refused, or even tight GGL fails (the records say why).
@@ -339,38 +339,47 @@ StressRecord run_one(const StressCase& c, const SceneSpec& spec, const Reference
       r.reason = *why;
       return r;
     }
-    IntegratorOptions o = integrator_options(model);
-    o.max_steps = c.max_steps;
-    SolveSummary summary;
-    const Trajectory run = solve(model, scheme, o, summary);
-    r.steps = summary.steps;
-    r.max_drift_position = summary.max_drift_position;
-    r.max_drift_velocity = summary.max_drift_velocity;
-    r.t_reached = run.t.back();
-    if (const double e = relative_energy_error(model, run); e >= 0.0) r.energy_error = e;
-    if (ref.trajectory) r.error = relative_error(run, *ref.trajectory).displacement;
-    const bool finite = std::isfinite(r.max_drift_position) &&
-                        std::isfinite(r.max_drift_velocity) &&
-                        (!r.error || std::isfinite(*r.error));
-    if (!finite) {
+    SolveSpec settings = spec.solve;
+    settings.scheme = scheme;
+    settings.max_steps = c.max_steps;
+    const SolveResult result = solve(model, settings);
+    const SolveSummary& summary = result.summary;
+    if (const auto& failure = result.failure) {
       r.status = "failed";
-      r.reason = "the run finished with non-finite errors or drift";
-    } else if (c.drift_limit) {
-      r.status = r.max_drift_position <= *c.drift_limit ? "holds" : "inaccurate";
-      if (r.status == "inaccurate") {
-        std::ostringstream s;
-        s << "position drift " << std::setprecision(2) << r.max_drift_position << " exceeds "
-          << *c.drift_limit << " (this family is judged by its drift)";
-        r.reason = s.str();
-      }
-    } else if (r.error && *r.error > kStressErrorFactor * r.rtol) {
-      r.status = "inaccurate";
-      std::ostringstream s;
-      s << "error " << std::setprecision(2) << *r.error << " is " << std::setprecision(3)
-        << *r.error / r.rtol << " x rtol (limit " << kStressErrorFactor << " x)";
-      r.reason = s.str();
+      r.reason = failure->message;
+      r.suggestion = failure->suggestion;
+      r.t_reached = failure->t_reached;
     } else {
-      r.status = "holds";
+      const Trajectory& run = result.trajectory;
+      r.steps = summary.steps;
+      r.max_drift_position = summary.max_drift_position;
+      r.max_drift_velocity = summary.max_drift_velocity;
+      r.t_reached = run.t.back();
+      if (const double e = relative_energy_error(model, run); e >= 0.0) r.energy_error = e;
+      if (ref.trajectory) r.error = relative_error(run, *ref.trajectory).displacement;
+      const bool finite = std::isfinite(r.max_drift_position) &&
+                          std::isfinite(r.max_drift_velocity) &&
+                          (!r.error || std::isfinite(*r.error));
+      if (!finite) {
+        r.status = "failed";
+        r.reason = "the run finished with non-finite errors or drift";
+      } else if (c.drift_limit) {
+        r.status = r.max_drift_position <= *c.drift_limit ? "holds" : "inaccurate";
+        if (r.status == "inaccurate") {
+          std::ostringstream s;
+          s << "position drift " << std::setprecision(2) << r.max_drift_position << " exceeds "
+            << *c.drift_limit << " (this family is judged by its drift)";
+          r.reason = s.str();
+        }
+      } else if (r.error && *r.error > kStressErrorFactor * r.rtol) {
+        r.status = "inaccurate";
+        std::ostringstream s;
+        s << "error " << std::setprecision(2) << *r.error << " is " << std::setprecision(3)
+          << *r.error / r.rtol << " x rtol (limit " << kStressErrorFactor << " x)";
+        r.reason = s.str();
+      } else {
+        r.status = "holds";
+      }
     }
   } catch (const SceneError& e) {
     r.status = "refused";
@@ -378,11 +387,6 @@ StressRecord run_one(const StressCase& c, const SceneSpec& spec, const Reference
   } catch (const SchemeNotApplicable& e) {
     r.status = "refused";
     r.reason = e.what();
-  } catch (const IntegrationError& e) {
-    r.status = "failed";
-    r.reason = e.what();
-    r.suggestion = e.suggestion;
-    r.t_reached = e.t_reached;
   } catch (const std::exception& e) {
     // Not the integrator's failure: the formulation could not be set up for this scene (a
     // singular consistency system at t = 0, a massless master DOF).

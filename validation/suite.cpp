@@ -32,24 +32,28 @@ bool run_validation(std::ostream& out, const ValidationOptions& options) {
       << "solution; tolerance = " << kGlobalErrorFactor << " x rtol\n\n";
   for (const auto& cr : chapter.cases) {
     const std::string file = "<embedded:" + cr.scene + ">";
-    const Model model = build_model(parse_scene_text(embedded_scene(cr.scene).text, file));
+    const SceneSpec spec = parse_scene_text(embedded_scene(cr.scene).text, file);
+    const Model model = build_model(spec);
     out << "== " << cr.section << ": " << model.name << "\n";
     if (!options.quiet) print_case_matrices(out, cr);
-    const Trajectory exact = exact_trajectory(model, model.output_times());
+    const Trajectory exact = exact_trajectory(model, spec.solve.output_times());
     out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "rtol"
         << std::setw(11) << "err u" << std::setw(11) << "err v" << std::setw(11) << "err f_con"
         << std::setw(11) << "max drift" << std::setw(8) << "steps" << std::setw(10) << "time ms"
         << "verdict\n";
     for (Scheme scheme : kValidatedSchemes) {
-      SolveSummary summary;
-      const Trajectory run = solve(model, scheme, integrator_options(model), summary);
+      SolveSpec settings = spec.solve;
+      settings.scheme = scheme;
+      const SolveResult result = solve(model, settings);
+      const Trajectory& run = succeeded(result).trajectory;
+      const SolveSummary& summary = result.summary;
       const TrajectoryError err = relative_error(run, exact);
-      const double tol = kGlobalErrorFactor * model.solve.rtol;
+      const double tol = kGlobalErrorFactor * spec.solve.rtol;
       const bool pass = err.worst() <= tol;
       all_pass = all_pass && pass;
       const double drift = std::max(summary.max_drift_position, summary.max_drift_velocity);
       out << "  " << std::left << std::setw(13) << to_string(scheme) << std::setw(10)
-          << sci(model.solve.rtol) << std::setw(11) << sci(err.displacement) << std::setw(11)
+          << sci(spec.solve.rtol) << std::setw(11) << sci(err.displacement) << std::setw(11)
           << sci(err.velocity) << std::setw(11) << sci(err.reaction) << std::setw(11) << sci(drift)
           << std::setw(8) << summary.steps << std::setw(10) << std::fixed << std::setprecision(2)
           << summary.wall_seconds * 1e3 << std::defaultfloat << (pass ? "pass" : "FAIL") << "\n";

@@ -7,6 +7,7 @@
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/embedded_scenes.hpp"
 
 using namespace condyn;
@@ -19,8 +20,8 @@ constexpr double kAssemblyTolerance = 1e-12;
 constexpr double kIdentityTolerance = 1e-13;
 
 Model scene_model(const std::string& text) { return build_model(parse_scene_text(text, "test")); }
-Model chapter_model(const std::string& name) {
-  return build_model(parse_scene_text(embedded_scene(name).text, name));
+test::BuiltScene chapter_model(const std::string& name) {
+  return test::built(parse_scene_text(embedded_scene(name).text, name));
 }
 
 }  // namespace
@@ -34,7 +35,7 @@ TEST_CASE("truss2d assembles the chapter's master stiffness") {
       0, 0, 0, 5, 0, -5,          //
       -10, -10, 0, 0, 10, 10,     //
       -10, -10, 0, -5, 10, 15;
-  const Model model = chapter_model("chapter_5_5_1");
+  const Model model = chapter_model("chapter_5_5_1").model;
   CONDYN_CHECK_CLOSE(Eigen::MatrixXd(model.K), K, kAssemblyTolerance);
   Eigen::VectorXd m(6);
   m << 5, 5, 3, 3, 4, 4;
@@ -55,7 +56,7 @@ TEST_CASE("master-slave transform: A T = 0, A G = I, pivoted slave choice") {
                      kIdentityTolerance);
 
   // Single-freedom constraints: the slaves are exactly the constrained DOFs (direct elimination).
-  const Model model = chapter_model("chapter_5_5_1");
+  const Model model = chapter_model("chapter_5_5_1").model;
   const MasterSlave sfc = master_slave_transform(model.A);
   CHECK(sfc.slaves == std::vector<int>{0, 1, 3});
   CHECK(sfc.masters == std::vector<int>{2, 4, 5});
@@ -124,12 +125,14 @@ output_step = 0.5
 rtol = 1e-10
 atol = 1e-12
 )";
-  const Model model = scene_model(text);
+  const SceneSpec spec = parse_scene_text(text, "test");
+  const Model model = build_model(spec);
   const double w = std::sqrt(2.0);
   for (Scheme scheme : {Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
     CAPTURE(std::string(to_string(scheme)));
-    SolveSummary summary;
-    const Trajectory run = solve(model, scheme, integrator_options(model), summary);
+    const SolveResult result = test::solved(model, test::under(spec.solve, scheme));
+    const Trajectory& run = result.trajectory;
+    const SolveSummary& summary = result.summary;
     CHECK(summary.restarts == 1);
     double worst_x = 0.0, worst_r = 0.0;
     for (std::size_t k = 0; k < run.t.size(); ++k) {
@@ -167,12 +170,11 @@ output_step = 0.5
 }
 
 TEST_CASE("the dense linear solver gives the KLU answer") {
-  Model model = chapter_model("chapter_5_6_2");
-  SolveSummary s1, s2;
-  IntegratorOptions o = integrator_options(model);
-  const Trajectory klu = solve(model, Scheme::elimination, o, s1);
-  o.dense_linear_solver = true;
-  const Trajectory dense = solve(model, Scheme::elimination, o, s2);
+  const test::BuiltScene built = chapter_model("chapter_5_6_2");
+  SolveSpec settings = test::under(built.spec.solve, Scheme::elimination);
+  const Trajectory klu = test::solved(built.model, settings).trajectory;
+  settings.dense_linear_solver = true;
+  const Trajectory dense = test::solved(built.model, settings).trajectory;
   // Same Newton iterations with a different LU: identical to a few ulps per step.
   CONDYN_CHECK_CLOSE(dense.u, klu.u, 1e-10);
 }

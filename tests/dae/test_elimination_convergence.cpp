@@ -7,6 +7,7 @@
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/exact_solution.hpp"
@@ -22,10 +23,11 @@ TEST_CASE("elimination error shrinks in proportion to rtol") {
       spec.solve.rtol = rtol;
       spec.solve.atol = rtol * 1e-2;
       const Model model = build_model(spec);
-      SolveSummary summary;
-      const Trajectory run = solve(model, Scheme::elimination, integrator_options(model), summary);
+      const SolveResult result = test::solved(model, test::under(spec.solve, Scheme::elimination));
+      const Trajectory& run = result.trajectory;
+      const SolveSummary& summary = result.summary;
       const double err =
-          relative_error(run, exact_trajectory(model, model.output_times())).displacement;
+          relative_error(run, exact_trajectory(model, spec.solve.output_times())).displacement;
       MESSAGE("rtol " << rtol << ": error " << err << ", " << summary.steps << " steps");
       log_rtol.push_back(std::log10(rtol));
       log_err.push_back(std::log10(err));

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dae/cvode_integrator.hpp"
+#include "dae/failure_advice.hpp"
 #include "dae/ida_integrator.hpp"
 #include "dae/solve.hpp"
 #include "dae/step_driver.hpp"
@@ -80,8 +81,7 @@ IntegrationError drive_failure(FakeStepper& stepper, const IntegratorOptions& op
 }
 
 /// A failure as the loop leaves it: in the loop, from t0 = 0 to t_end.
-IntegrationError failure(FailureKind kind, double t_reached, double last_step, double t_end,
-                         long steps) {
+RunFailure failure(FailureKind kind, double t_reached, double last_step, double t_end, long steps) {
   IntegrationError e(kind, "constructed");
   e.in_loop = true;
   e.t_reached = t_reached;
@@ -89,7 +89,7 @@ IntegrationError failure(FailureKind kind, double t_reached, double last_step, d
   e.t_end = t_end;
   e.steps = steps;
   e.elapsed_seconds = 10.0;
-  return e;
+  return failure_of(e);
 }
 
 }  // namespace
@@ -139,7 +139,7 @@ TEST_CASE("each failure kind gets its own advice, worded from the facts") {
   CHECK(contains(conv, "Baumgarte gains"));
   // The advice follows the kind, not the message: a message with another kind's words in it.
   IntegrationError misleading(FailureKind::first_step, "took 10 steps without reaching NaN");
-  CHECK(contains(failure_suggestion(Scheme::ggl, misleading), "before its first step"));
+  CHECK(contains(failure_suggestion(Scheme::ggl, failure_of(misleading)), "before its first step"));
 }
 
 TEST_CASE("the loop refines a solver failure from the facts: no step taken, step at roundoff") {
@@ -334,46 +334,41 @@ TEST_CASE("real failures: t_end = 1e300 stops at the step budget; a failure at t
   {
     // index1 takes ordinary steps toward 1e300: the budget ends it, and the advice says how far
     // off t_end is, not that the step collapsed.
-    const Model model = build_model(parse_scene_text(
+    const SceneSpec spec = parse_scene_text(
         pendulum("t_end = 1e300\noutput_step = 1e297\nscheme = \"index1\"\nmax_steps = 500\n"),
-        "p.toml"));
-    SolveSummary summary;
-    bool thrown = false;
-    try {
-      (void)solve(model, Scheme::index1, integrator_options(model), summary);
-    } catch (const IntegrationError& e) {
-      thrown = true;
-      CAPTURE(std::string(e.what()));
-      CAPTURE(e.suggestion);
-      CHECK(e.kind == FailureKind::step_budget);
-      CHECK(e.steps == 501);
-      CHECK(contains(e.suggestion, "step budget"));
-      CHECK(contains(e.suggestion, "more steps"));
-      CHECK_FALSE(contains(e.suggestion, "collapsed"));
-      CHECK_FALSE(contains(e.suggestion, "singular"));
+        "p.toml");
+    const SolveResult result = solve(build_model(spec), spec.solve);
+    const bool thrown = !result.ok();
+    if (const auto& e = result.failure) {
+      CAPTURE(e->message);
+      CAPTURE(e->suggestion);
+      CHECK(e->kind == FailureKind::step_budget);
+      CHECK(e->steps == 501);
+      CHECK(contains(e->suggestion, "step budget"));
+      CHECK(contains(e->suggestion, "more steps"));
+      CHECK_FALSE(contains(e->suggestion, "collapsed"));
+      CHECK_FALSE(contains(e->suggestion, "singular"));
     }
     CHECK(thrown);
   }
   {
     // GGL asked for 15 digits with atol 1e-30: the error test fails at every trial of the first
     // step (h down to 4e-14), so IDA gives up at t = 0 with no step taken.
-    const Model model = build_model(parse_scene_text(
-        pendulum("t_end = 10.0\noutput_step = 0.1\nrtol = 1e-15\natol = 1e-30\n"), "p.toml"));
-    SolveSummary summary;
-    bool thrown = false;
-    try {
-      (void)solve(model, Scheme::ggl, integrator_options(model), summary);
-    } catch (const IntegrationError& e) {
-      thrown = true;
-      CAPTURE(std::string(e.what()));
-      CAPTURE(e.suggestion);
-      CHECK(contains(e.what(), "IDA_"));  // the flag's name (a string IDA allocates: freed)
-      CHECK(e.kind == FailureKind::first_step);
-      CHECK(e.t_reached == 0.0);
-      CHECK(e.steps == 0);
-      CHECK(contains(e.suggestion, "before its first step"));
-      CHECK_FALSE(contains(e.suggestion, "singular configuration"));
-      CHECK_FALSE(contains(e.suggestion, "collapsed"));
+    SceneSpec spec = parse_scene_text(
+        pendulum("t_end = 10.0\noutput_step = 0.1\nrtol = 1e-15\natol = 1e-30\n"), "p.toml");
+    spec.solve.scheme = Scheme::ggl;
+    const SolveResult result = solve(build_model(spec), spec.solve);
+    const bool thrown = !result.ok();
+    if (const auto& e = result.failure) {
+      CAPTURE(e->message);
+      CAPTURE(e->suggestion);
+      CHECK(contains(e->message, "IDA_"));  // the flag's name (a string IDA allocates: freed)
+      CHECK(e->kind == FailureKind::first_step);
+      CHECK(e->t_reached == 0.0);
+      CHECK(e->steps == 0);
+      CHECK(contains(e->suggestion, "before its first step"));
+      CHECK_FALSE(contains(e->suggestion, "singular configuration"));
+      CHECK_FALSE(contains(e->suggestion, "collapsed"));
     }
     CHECK(thrown);
   }

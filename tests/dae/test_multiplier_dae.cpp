@@ -9,6 +9,7 @@
 #include "models/linear_system.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/exact_solution.hpp"
@@ -47,8 +48,7 @@ output_step = 0.5
 TEST_CASE("multiplier formulations: Jacobian agrees with central differences") {
   const Model model = build_model(parse_scene_text(kScene, "jacobian test"));
   const LinearSystem system(model);
-  for (auto scheme :
-       {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
+  for (auto scheme : {Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
     CAPTURE(static_cast<int>(scheme));
     const MultiplierDae dae(system, scheme, 0.7, 1.3);
     const int n = dae.size();
@@ -68,9 +68,9 @@ TEST_CASE("multiplier formulations: sizes pay only for what the scene uses") {
   const Model model = build_model(parse_scene_text(kScene, "sizes"));
   const LinearSystem system(model);
   // n = 4 DOFs, m = 2 constraints, one of them at position level.
-  CHECK(MultiplierDae(system, MultiplierScheme::index1).size() == 2 * 4 + 2);
-  CHECK(MultiplierDae(system, MultiplierScheme::baumgarte, 1, 1).size() == 2 * 4 + 2);
-  CHECK(MultiplierDae(system, MultiplierScheme::ggl).size() == 2 * 4 + 2 + 1);  // μ: position rows
+  CHECK(MultiplierDae(system, Scheme::index1).size() == 2 * 4 + 2);
+  CHECK(MultiplierDae(system, Scheme::baumgarte, 1, 1).size() == 2 * 4 + 2);
+  CHECK(MultiplierDae(system, Scheme::ggl).size() == 2 * 4 + 2 + 1);  // μ: position rows
 
   const char* free_scene = R"([model]
 type = "matrix"
@@ -83,8 +83,7 @@ output_step = 0.5
 )";
   const Model free_model = build_model(parse_scene_text(free_scene, "free"));
   const LinearSystem free_system(free_model);
-  for (auto scheme :
-       {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
+  for (auto scheme : {Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
     const MultiplierDae dae(free_system, scheme, 1, 1);
     CHECK(dae.size() == 4);  // no multiplier, no μ: a plain second-order ODE
     CHECK(dae.differential_id().sum() == 4);
@@ -96,8 +95,7 @@ output_step = 0.5
 TEST_CASE("multiplier formulations: consistent initial values") {
   const Model model = build_model(parse_scene_text(kScene, "consistency"));
   const LinearSystem system(model);
-  for (auto scheme :
-       {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl}) {
+  for (auto scheme : {Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
     CAPTURE(static_cast<int>(scheme));
     const MultiplierDae dae(system, scheme, 0.7, 1.3);
     Eigen::VectorXd y = dae.pack(model.u0, model.v0), yp;
@@ -110,36 +108,35 @@ TEST_CASE("multiplier formulations: consistent initial values") {
 }
 
 TEST_CASE("system_size reports what the solver integrates, for every scheme") {
-  const Model model = build_model(parse_scene_text(kScene, "sizes"));
+  const SceneSpec spec = parse_scene_text(kScene, "sizes");
+  const Model model = build_model(spec);
   for (Scheme scheme : {Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
     CAPTURE(std::string(to_string(scheme)));
-    const SystemSize size = system_size(model, scheme);
-    SolveSummary summary;
-    (void)solve(model, scheme, integrator_options(model), summary);
+    const SystemSize size = system_size(model, test::under(spec.solve, scheme));
+    const SolveSummary summary = test::solved(model, test::under(spec.solve, scheme)).summary;
     CHECK(size.unknowns == summary.unknowns);
     CHECK(size.jacobian_nonzeros == summary.jacobian_nonzeros);
   }
   // auto picks elimination here: n − m = 2 masters, (û, û').
-  CHECK(system_size(model, Scheme::automatic).unknowns == 4);
+  CHECK(system_size(model, test::under(spec.solve, Scheme::automatic)).unknowns == 4);
 }
 
 TEST_CASE("Baumgarte gains: default rule and scene values") {
   // Chapter §5.5.1: constrained frequencies 0.740310, 1.825742, 2.387874 rad/s
   // (reference/chapter-truss.md, "Useful facts"). Default: β = ω_max, α = β.
-  const Model a = build_model(parse_scene_text(embedded_scene("chapter_5_5_1").text, "A"));
-  const BaumgarteGains g = baumgarte_gains(a);
+  SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_5_1").text, "A");
+  const BaumgarteGains g = baumgarte_gains(build_model(spec), spec.solve);
   CHECK(g.beta == doctest::Approx(2.387874).epsilon(1e-6));
   CHECK(g.alpha == g.beta);
   CHECK(g.rule.find("critical damping") != std::string::npos);
 
-  SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_5_1").text, "A");
   spec.solve.baumgarte_alpha = 3.0;
   spec.solve.baumgarte_beta = 5.0;
-  const BaumgarteGains both = baumgarte_gains(build_model(spec));
+  const BaumgarteGains both = baumgarte_gains(build_model(spec), spec.solve);
   CHECK(both.alpha == 3.0);
   CHECK(both.beta == 5.0);
   spec.solve.baumgarte_beta.reset();
-  const BaumgarteGains alpha_only = baumgarte_gains(build_model(spec));
+  const BaumgarteGains alpha_only = baumgarte_gains(build_model(spec), spec.solve);
   CHECK(alpha_only.alpha == 3.0);
   CHECK(alpha_only.beta == doctest::Approx(2.387874).epsilon(1e-6));
 
@@ -156,7 +153,8 @@ terms = { a = 1.0, b = -1.0 }
 t_end = 1.0
 output_step = 0.25
 )";
-  const BaumgarteGains fallback = baumgarte_gains(build_model(parse_scene_text(free_mass, "free")));
+  const SceneSpec free_spec = parse_scene_text(free_mass, "free");
+  const BaumgarteGains fallback = baumgarte_gains(build_model(free_spec), free_spec.solve);
   CHECK(fallback.beta == doctest::Approx(2 * 3.141592653589793 / 1.0));
 }
 
@@ -165,8 +163,8 @@ TEST_CASE("Baumgarte gains from the scene reach the summary") {
   spec.solve.baumgarte_alpha = 2.0;
   spec.solve.baumgarte_beta = 4.0;
   const Model model = build_model(spec);
-  SolveSummary summary;
-  (void)solve(model, Scheme::baumgarte, integrator_options(model), summary);
+  const SolveSummary summary =
+      test::solved(model, test::under(spec.solve, Scheme::baumgarte)).summary;
   CHECK(summary.brief().find("alpha = 2, beta = 4 from the scene") != std::string::npos);
 }
 
@@ -180,9 +178,10 @@ TEST_CASE("homogeneous scleronomic constraints evaluate no time function") {
 }
 
 TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
-  const Model model = build_model(parse_scene_text(kScene, "penalty"));
+  const SceneSpec spec = parse_scene_text(kScene, "penalty");
+  const Model model = build_model(spec);
   const LinearSystem system(model);
-  const PenaltyWeights weights = penalty_weights(model);
+  const PenaltyWeights weights = penalty_weights(model, spec.solve);
   // Default: 1e4 × the largest stiffness diagonal (5), c = √(w · m_max) with m_max = 3.
   CHECK(weights.position == doctest::Approx(5e4));
   CHECK(weights.velocity == doctest::Approx(std::sqrt(5e4 * 3.0)));
@@ -205,19 +204,19 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
 }
 
 TEST_CASE("index2 and index3 follow the exact solution at their own accuracy") {
-  const Model model = build_model(parse_scene_text(embedded_scene("chapter_5_6_2").text, "E"));
-  const Trajectory exact = exact_trajectory(model, model.output_times());
+  const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
+  const Model model = build_model(spec);
+  const Trajectory exact = exact_trajectory(model, spec.solve.output_times());
   for (Scheme scheme : {Scheme::index2, Scheme::index3}) {
     CAPTURE(std::string(to_string(scheme)));
-    SolveSummary summary;
-    const Trajectory run = solve(model, scheme, integrator_options(model), summary);
+    const Trajectory run = test::solved(model, test::under(spec.solve, scheme)).trajectory;
     const TrajectoryError err = relative_error(run, exact);
     MESSAGE(std::string(to_string(scheme)) << ": err u " << err.displacement << ", v "
                                            << err.velocity << ", f_con " << err.reaction);
     // States as accurate as the other schemes (validation/suite.hpp's factor). index3's
     // multipliers are index-3 variables, out of the error test: observed 2.4e-7 at rtol 1e-10,
     // bounded here by 1e4 x rtol; index2's are index 2 and meet the common factor.
-    const double tol = kGlobalErrorFactor * model.solve.rtol;
+    const double tol = kGlobalErrorFactor * spec.solve.rtol;
     CHECK(err.displacement <= tol);
     CHECK(err.velocity <= tol);
     CHECK(err.reaction <= (scheme == Scheme::index3 ? 10.0 : 1.0) * tol);
@@ -232,9 +231,10 @@ TEST_CASE("penalty: the constraint error shrinks like 1/w") {
   for (double w : {2e4, 2e6}) {
     spec.solve.penalty_weight = w;
     const Model model = build_model(spec);
-    const Trajectory exact = exact_trajectory(model, model.output_times());
-    SolveSummary summary;
-    const Trajectory run = solve(model, Scheme::penalty, integrator_options(model), summary);
+    const Trajectory exact = exact_trajectory(model, spec.solve.output_times());
+    const SolveResult result = test::solved(model, test::under(spec.solve, Scheme::penalty));
+    const Trajectory& run = result.trajectory;
+    const SolveSummary& summary = result.summary;
     const double err = relative_error(run, exact).displacement;
     MESSAGE("w = " << w << ": err u " << err << ", max drift " << summary.max_drift_position << ", "
                    << summary.steps << " steps");

@@ -11,6 +11,7 @@
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/exact_solution.hpp"
@@ -25,9 +26,8 @@ struct Errors {
 
 Errors errors_of(const SceneSpec& spec, Scheme scheme) {
   const Model model = build_model(spec);
-  SolveSummary summary;
-  const Trajectory run = solve(model, scheme, integrator_options(model), summary);
-  const auto err = relative_error(run, exact_trajectory(model, model.output_times()));
+  const Trajectory run = test::solved(model, test::under(spec.solve, scheme)).trajectory;
+  const auto err = relative_error(run, exact_trajectory(model, spec.solve.output_times()));
   return {err.displacement, err.reaction};
 }
 

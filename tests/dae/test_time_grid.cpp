@@ -15,6 +15,7 @@
 #include "dae/solve.hpp"
 #include "dae/step_driver.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/solve_helpers.hpp"
 
 using namespace condyn;
 
@@ -80,14 +81,15 @@ constexpr double kErrorBound = 100 * kRtol;
 
 void check_every_scheme(const std::string& text, const std::vector<double>& starts, double h,
                         double t_end) {
-  const Model model = build_model(parse_scene_text(text, "steps.toml"));
+  const SceneSpec spec = parse_scene_text(text, "steps.toml");
+  const Model model = build_model(spec);
   const std::vector<double> rows = expected_rows(h, t_end, starts);
   for (Scheme scheme : kSchemes) {
     const std::string name = to_string(scheme);
     CAPTURE(name);
-    SolveSummary summary;
-    Trajectory traj;
-    REQUIRE_NOTHROW(traj = solve(model, scheme, integrator_options(model), summary));
+    const SolveResult result = solve(model, test::under(spec.solve, scheme));
+    REQUIRE(result.ok());
+    const Trajectory& traj = result.trajectory;
     REQUIRE(traj.t.size() == rows.size());
     double worst = 0.0;
     for (std::size_t k = 0; k < rows.size(); ++k) {

@@ -13,6 +13,7 @@
 #include "dae/model_scales.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/exact_solution.hpp"
 
@@ -63,10 +64,10 @@ std::string shear_frame(double scale, const std::string& extra_solve = "") {
   return t.str();
 }
 
-Model frame(double scale, double rtol, const std::string& extra_solve = "") {
+test::BuiltScene frame(double scale, double rtol, const std::string& extra_solve = "") {
   SceneSpec spec = parse_scene_text(shear_frame(scale, extra_solve), "shear frame");
   spec.solve.rtol = rtol;
-  return build_model(spec);
+  return test::built(spec);
 }
 
 }  // namespace
@@ -81,22 +82,22 @@ TEST_CASE("SI shear frame: every scheme starts and agrees with the exact solutio
   // |f_con|/w by design.
   for (const double rtol : {1e-4, 1e-6, 1e-8, 1e-10}) {
     CAPTURE(rtol);
-    const Model model = frame(1.0, rtol);
-    std::ostringstream atol;
-    atol << "atol = " << rtol * 1e-2 << "\n";
-    const Model tight = frame(1.0, rtol, atol.str());
-    const Trajectory exact = exact_trajectory(model, model.output_times());
-    {
-      SolveSummary summary;  // penalty too must start (its accuracy is w's, not rtol's)
-      CHECK_NOTHROW((void)solve(model, Scheme::penalty, integrator_options(model), summary));
-    }
+    const test::BuiltScene scene = frame(1.0, rtol);
+    const Model& model = scene.model;
+    SolveSpec tight = scene.spec.solve;
+    tight.atol = rtol * 1e-2;
+    const Trajectory exact = exact_trajectory(model, scene.spec.solve.output_times());
+    // penalty too must start (its accuracy is w's, not rtol's)
+    CHECK(solve(model, test::under(scene.spec.solve, Scheme::penalty)).ok());
     for (const Scheme scheme : {Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl,
                                 Scheme::index2, Scheme::index3, Scheme::projection}) {
       CAPTURE(std::string(to_string(scheme)));
-      SolveSummary summary, tight_summary;
-      REQUIRE_NOTHROW((void)solve(model, scheme, integrator_options(model), summary));
-      Trajectory run;
-      REQUIRE_NOTHROW(run = solve(tight, scheme, integrator_options(tight), tight_summary));
+      const SolveResult loose = solve(model, test::under(scene.spec.solve, scheme));
+      REQUIRE(loose.ok());
+      const SolveResult tight_run = solve(model, test::under(tight, scheme));
+      REQUIRE(tight_run.ok());
+      const SolveSummary &summary = loose.summary, &tight_summary = tight_run.summary;
+      const Trajectory& run = tight_run.trajectory;
       const TrajectoryError err = relative_error(run, exact);
       MESSAGE(std::string(to_string(scheme))
               << " rtol " << rtol << ": " << summary.steps << " steps (default atol), "
@@ -113,10 +114,11 @@ TEST_CASE("the same frame in other units: the same motion, forces scaled, about 
   // steering a step decision; with one scalar atol the SI frame did not start at all).
   for (const Scheme scheme : {Scheme::index1, Scheme::ggl, Scheme::index3}) {
     CAPTURE(std::string(to_string(scheme)));
-    const Model si = frame(1.0, 1e-8), kn = frame(1e-3, 1e-8);
-    SolveSummary s_si, s_kn;
-    const Trajectory a = solve(si, scheme, integrator_options(si), s_si);
-    const Trajectory b = solve(kn, scheme, integrator_options(kn), s_kn);
+    const test::BuiltScene si = frame(1.0, 1e-8), kn = frame(1e-3, 1e-8);
+    const SolveResult r_si = test::solved(si.model, test::under(si.spec.solve, scheme));
+    const SolveResult r_kn = test::solved(kn.model, test::under(kn.spec.solve, scheme));
+    const SolveSummary &s_si = r_si.summary, &s_kn = r_kn.summary;
+    const Trajectory &a = r_si.trajectory, &b = r_kn.trajectory;
     const double ratio = static_cast<double>(std::max(s_si.steps, s_kn.steps)) /
                          static_cast<double>(std::min(s_si.steps, s_kn.steps));
     MESSAGE(std::string(to_string(scheme))
@@ -132,8 +134,9 @@ TEST_CASE("the same frame in other units: the same motion, forces scaled, about 
 }
 
 TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solve] keys") {
-  const Model model = frame(1.0, 1e-6);
-  const AbsoluteTolerances a = absolute_tolerances(model);
+  const test::BuiltScene scene = frame(1.0, 1e-6);
+  const Model& model = scene.model;
+  const AbsoluteTolerances a = absolute_tolerances(model, scene.spec.solve);
   const ModelScales s = model_scales(model);
   // T = 1 / ω_min (below t_end = 2 s here); the rule of dae/model_scales.hpp.
   REQUIRE(s.omega_min > 1.0 / 2.0);
@@ -145,9 +148,9 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
   // The mean floor mass (kg): the multipliers' atol is in newtons.
   CHECK(s.mass == doctest::Approx((1e4 + 2e4 + 1.5e4 + 1.2e4 + 8e3 + 2.5e3 + 2.5e3) / 7));
 
-  const Model set =
+  const test::BuiltScene set =
       frame(1.0, 1e-6, "atol_velocity = 1e-7\natol_multiplier = 1e-3\natol_mu = 2e-9\n");
-  const IntegratorOptions o = integrator_options(set);
+  const IntegratorOptions o = integrator_options(set.model, set.spec.solve);
   CHECK(o.atol_of(UnknownKind::displacement) == 1e-10);
   CHECK(o.atol_of(UnknownKind::velocity) == 1e-7);
   CHECK(o.atol_of(UnknownKind::multiplier) == 1e-3);

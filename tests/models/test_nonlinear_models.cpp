@@ -14,14 +14,15 @@
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/solve_helpers.hpp"
 #include "tests/system_check.hpp"
 
 using namespace condyn;
 
 namespace {
 
-Model scene(const std::string& name) {
-  return build_model(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name));
+test::BuiltScene scene(const std::string& name) {
+  return test::built(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name));
 }
 
 std::string build_error(const std::string& text) {
@@ -56,7 +57,7 @@ const char* kNonlinearScenes[] = {
 TEST_CASE("nonlinear scenes: every derivative agrees with finite differences") {
   for (const char* name : kNonlinearScenes) {
     CAPTURE(std::string(name));
-    const Model model = scene(name);
+    const Model model = scene(name).model;
     REQUIRE(model.is_nonlinear());
     const State s = generic_state(model);
     const auto problems = test::check_system_derivatives(*model.nonlinear, 0.3, s.u, s.v, s.a, s.w);
@@ -68,10 +69,9 @@ TEST_CASE("nonlinear scenes: every derivative agrees with finite differences") {
 TEST_CASE("multiplier formulations with curvature: Jacobian agrees with central differences") {
   for (const char* name :
        {"double_pendulum.toml", "chaplygin_sleigh.toml", "von_mises_truss.toml"}) {
-    const Model model = scene(name);
+    const Model model = scene(name).model;
     for (auto scheme :
-         {MultiplierScheme::index1, MultiplierScheme::baumgarte, MultiplierScheme::ggl,
-          MultiplierScheme::index2, MultiplierScheme::index3}) {
+         {Scheme::index1, Scheme::baumgarte, Scheme::ggl, Scheme::index2, Scheme::index3}) {
       CAPTURE(std::string(name));
       CAPTURE(static_cast<int>(scheme));
       const MultiplierDae dae(*model.nonlinear, scheme, 0.7, 1.3);
@@ -90,8 +90,9 @@ TEST_CASE("multiplier formulations with curvature: Jacobian agrees with central 
 }
 
 TEST_CASE("Chaplygin sleigh: nonholonomic, refused by elimination with the chapter's reason") {
-  const Model model = scene("chaplygin_sleigh.toml");
-  const auto classes = classify_constraints(model);
+  const test::BuiltScene built = scene("chaplygin_sleigh.toml");
+  const Model& model = built.model;
+  const auto classes = classify_constraints(model, built.spec.solve.t_end);
   REQUIRE(classes.size() == 1);
   CHECK(classes[0].holonomy() == "nonholonomic");
   CHECK_FALSE(classes[0].linear);
@@ -101,8 +102,7 @@ TEST_CASE("Chaplygin sleigh: nonholonomic, refused by elimination with the chapt
   REQUIRE(why);
   CHECK(why->find("nonholonomic") != std::string::npos);
   CHECK(why->find("§5.6") != std::string::npos);
-  SolveSummary summary;
-  CHECK_THROWS_AS((void)solve(model, Scheme::elimination, integrator_options(model), summary),
+  CHECK_THROWS_AS((void)solve(model, test::under(built.spec.solve, Scheme::elimination)),
                   std::invalid_argument);
   CHECK(choose_scheme(model, Scheme::automatic).scheme == Scheme::ggl);
 }
@@ -124,13 +124,15 @@ output_step = 0.5
 rtol = 1e-10
 atol = 1e-12
 )";
-  const Model model = build_model(parse_scene_text(text, "sleigh"));
+  const SceneSpec spec = parse_scene_text(text, "sleigh");
+  const Model model = build_model(spec);
   const double s = 1.5, w = 0.8;
   for (Scheme scheme : {Scheme::index1, Scheme::baumgarte, Scheme::ggl, Scheme::index2,
                         Scheme::index3, Scheme::projection}) {
     CAPTURE(std::string(to_string(scheme)));
-    SolveSummary summary;
-    const Trajectory traj = solve(model, scheme, integrator_options(model), summary);
+    const SolveResult result = test::solved(model, test::under(spec.solve, scheme));
+    const Trajectory& traj = result.trajectory;
+    const SolveSummary& summary = result.summary;
     double err = 0.0;
     for (std::size_t k = 0; k < traj.t.size(); ++k) {
       const double t = traj.t[k];
@@ -146,7 +148,7 @@ atol = 1e-12
 }
 
 TEST_CASE("initial projection: the four-bar's crank speed becomes a consistent state") {
-  const Model model = scene("four_bar.toml");
+  const Model model = scene("four_bar.toml").model;
   CHECK(model.initial_projection.find("projected") != std::string::npos);
   const auto [dp, dv] = model.drift(0.0, model.u0, model.v0);
   CHECK(dp < 1e-13);
@@ -167,14 +169,16 @@ TEST_CASE("initial projection: the four-bar's crank speed becomes a consistent s
 }
 
 TEST_CASE("nonlinear scenes: energy is conserved by the schemes that hold the constraints") {
-  const Model model = scene("pendulum.toml");
-  IntegratorOptions options = integrator_options(model);
-  options.rtol = 1e-10;
-  options.atol = 1e-12;
+  const test::BuiltScene built = scene("pendulum.toml");
+  const Model& model = built.model;
+  SolveSpec settings = built.spec.solve;
+  settings.rtol = 1e-10;
+  settings.atol = 1e-12;
   for (Scheme scheme : {Scheme::ggl, Scheme::index3, Scheme::projection}) {
     CAPTURE(std::string(to_string(scheme)));
-    SolveSummary summary;
-    const Trajectory traj = solve(model, scheme, options, summary);
+    const SolveResult result = test::solved(model, test::under(settings, scheme));
+    const Trajectory& traj = result.trajectory;
+    const SolveSummary& summary = result.summary;
     REQUIRE(traj.energy.size() == static_cast<Eigen::Index>(traj.t.size()));
     // 10 s (about 5 swings) at rtol 1e-10: the energy error stays at the integration error
     // (index3, the least accurate per tolerance: 4.7e-6 observed).

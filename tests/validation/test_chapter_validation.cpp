@@ -9,6 +9,7 @@
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/benchmark_suite.hpp"
 #include "validation/chapter_report.hpp"
@@ -20,8 +21,8 @@ using namespace condyn;
 
 namespace {
 
-Model chapter_model(const std::string& scene) {
-  return build_model(parse_scene_text(embedded_scene(scene).text, scene));
+test::BuiltScene chapter_model(const std::string& scene) {
+  return test::built(parse_scene_text(embedded_scene(scene).text, scene));
 }
 
 }  // namespace
@@ -52,14 +53,17 @@ TEST_CASE("chapter cases: every scheme agrees with the exact modal solution") {
   for (const char* scene :
        {"chapter_5_5_1", "chapter_5_5_2", "chapter_5_5_3", "chapter_5_6_1", "chapter_5_6_2"}) {
     CAPTURE(scene);
-    const Model model = chapter_model(scene);
-    const Trajectory exact = exact_trajectory(model, model.output_times());
+    const test::BuiltScene built = chapter_model(scene);
+    const Model& model = built.model;
+    const SolveSpec& settings = built.spec.solve;
+    const Trajectory exact = exact_trajectory(model, settings.output_times());
     for (Scheme scheme : kValidatedSchemes) {
       CAPTURE(to_string(scheme));
-      SolveSummary summary;
-      const Trajectory run = solve(model, scheme, integrator_options(model), summary);
+      const SolveResult result = test::solved(model, test::under(settings, scheme));
+      const Trajectory& run = result.trajectory;
+      const SolveSummary& summary = result.summary;
       const TrajectoryError err = relative_error(run, exact);
-      const double tol = kGlobalErrorFactor * model.solve.rtol;
+      const double tol = kGlobalErrorFactor * settings.rtol;
       CHECK(err.displacement <= tol);
       CHECK(err.velocity <= tol);
       CHECK(err.reaction <= tol);
@@ -69,16 +73,16 @@ TEST_CASE("chapter cases: every scheme agrees with the exact modal solution") {
         CHECK(summary.max_drift_position <= 1e-12 * scale);
       } else if (scheme == Scheme::ggl) {
         // Enforces A u = g as an equation: drift at the level of the Newton tolerance.
-        CHECK(summary.max_drift_position <= 10 * model.solve.rtol * scale);
+        CHECK(summary.max_drift_position <= 10 * settings.rtol * scale);
       }
     }
   }
 }
 
 TEST_CASE("chapter §5.5.3 integrates to §5.5.2: both give the same motion") {
-  const Model b = chapter_model("chapter_5_5_2"), c = chapter_model("chapter_5_5_3");
-  const Trajectory tb = exact_trajectory(b, b.output_times());
-  const Trajectory tc = exact_trajectory(c, c.output_times());
+  const test::BuiltScene b = chapter_model("chapter_5_5_2"), c = chapter_model("chapter_5_5_3");
+  const Trajectory tb = exact_trajectory(b.model, b.spec.solve.output_times());
+  const Trajectory tc = exact_trajectory(c.model, c.spec.solve.output_times());
   // Same closed form through different constraint levels: agreement to roundoff of the
   // largest entries (|u| reaches 1e3 at t = 10).
   const TrajectoryError e = relative_error(tc, tb);
@@ -108,7 +112,7 @@ TEST_CASE("chapter §5.5.1 with damping settles on the static solution and its r
   spec.solve.t_end = 400.0;
   spec.solve.output_step = 400.0;
   const Model model = build_model(spec);
-  const Trajectory exact = exact_trajectory(model, model.output_times());
+  const Trajectory exact = exact_trajectory(model, spec.solve.output_times());
   Eigen::VectorXd u_static(6), f_static(6);
   u_static << 0, 0, 0, 0, 0.4, -0.2;
   f_static << -2, -2, 0, 1, 0, 0;

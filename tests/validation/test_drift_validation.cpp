@@ -9,6 +9,7 @@
 
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/drift_growth.hpp"
 
 using namespace condyn;
@@ -34,13 +35,15 @@ TEST_CASE("long runs: GGL drift stays at the Newton tolerance, index1 drift grow
   spec.solve.rtol = 1e-6;
   spec.solve.atol = 1e-8;
   const Model model = build_model(spec);
-  IntegratorOptions options = integrator_options(model);
-  options.record_steps = true;
+  RunHooks hooks;
+  hooks.record_steps = true;
 
-  SolveSummary s_ggl, s_i1, s_proj;
-  const Trajectory ggl = solve(model, Scheme::ggl, options, s_ggl);
-  const Trajectory i1 = solve(model, Scheme::index1, options, s_i1);
-  const Trajectory proj = solve(model, Scheme::projection, options, s_proj);
+  const SolveResult r_ggl = test::solved(model, test::under(spec.solve, Scheme::ggl), hooks);
+  const SolveResult r_i1 = test::solved(model, test::under(spec.solve, Scheme::index1), hooks);
+  const SolveResult r_proj =
+      test::solved(model, test::under(spec.solve, Scheme::projection), hooks);
+  const Trajectory &ggl = r_ggl.trajectory, &i1 = r_i1.trajectory, &proj = r_proj.trajectory;
+  const SolveSummary& s_ggl = r_ggl.summary;
   const double u_scale = ggl.u.cwiseAbs().maxCoeff();
 
   // Windows a decade apart: [1, 10), [10, 100), [100, 1000).
@@ -56,7 +59,7 @@ TEST_CASE("long runs: GGL drift stays at the Newton tolerance, index1 drift grow
 
   // GGL enforces A u = g in every Newton solve: its drift is bounded by the Newton tolerance, a
   // fraction of rtol·|u|, and does not grow with time.
-  CHECK(s_ggl.max_drift_position <= model.solve.rtol * u_scale);
+  CHECK(s_ggl.max_drift_position <= spec.solve.rtol * u_scale);
   CHECK(g3 <= 10.0 * g1);
   // μ vanishes on exact solutions (u' = v); with homogeneous constraints what remains is the
   // unconverged part of the Newton iteration, in velocity units: far below the velocities.
@@ -93,8 +96,8 @@ TEST_CASE("pendulum over 1000 periods: the fitted drift growth follows theory, p
   spec.solve.rtol = 1e-6;
   spec.solve.atol = 1e-8;
   const Model model = build_model(spec);
-  IntegratorOptions options = integrator_options(model);
-  options.record_steps = true;
+  RunHooks hooks;
+  hooks.record_steps = true;
   struct Expected {
     Scheme scheme;
     double low, high;  ///< bounds on the fitted exponent
@@ -106,8 +109,7 @@ TEST_CASE("pendulum over 1000 periods: the fitted drift growth follows theory, p
         Expected{Scheme::ggl, -0.4, 0.4}, Expected{Scheme::index3, -0.4, 0.4},
         Expected{Scheme::baumgarte, -0.4, 0.4}}) {
     CAPTURE(std::string(to_string(e.scheme)));
-    SolveSummary summary;
-    const Trajectory run = solve(model, e.scheme, options, summary);
+    const Trajectory run = test::solved(model, test::under(spec.solve, e.scheme), hooks).trajectory;
     const auto growth = fit_drift_growth(run.steps);
     REQUIRE(growth.has_value());
     MESSAGE(std::string(to_string(e.scheme))
@@ -124,8 +126,8 @@ TEST_CASE("pendulum over 1000 periods: the fitted drift growth follows theory, p
     CHECK(shown.fit->exponent <= e.high);
   }
   // Projection: drift at the steps stays at roundoff, below the fit's floor (1e-15).
-  SolveSummary summary;
-  const Trajectory proj = solve(model, Scheme::projection, options, summary);
+  const Trajectory proj =
+      test::solved(model, test::under(spec.solve, Scheme::projection), hooks).trajectory;
   double at_steps = 0.0;
   for (const auto& s : proj.steps) at_steps = std::max(at_steps, s.drift_position);
   CHECK(at_steps <= 1e-13);

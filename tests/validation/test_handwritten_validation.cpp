@@ -8,6 +8,7 @@
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/exact_solution.hpp"
 #include "validation/suite.hpp"
@@ -19,8 +20,8 @@ namespace {
 // The issue's acceptance level: agreement to 1e-6 relative at rtol = 1e-10.
 constexpr double kAcceptance = 1e-6;
 
-Model scene(const std::string& name) {
-  return build_model(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name));
+test::BuiltScene scene(const std::string& name) {
+  return test::built(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name));
 }
 
 }  // namespace
@@ -28,13 +29,15 @@ Model scene(const std::string& name) {
 TEST_CASE("hand-written scenes: every scheme agrees with the exact solution, reactions included") {
   for (const char* name : {"truss_inclined_roller.toml", "chain_driven_base.toml"}) {
     CAPTURE(name);
-    const Model model = scene(name);
-    REQUIRE(model.solve.rtol == 1e-10);
+    const test::BuiltScene built = scene(name);
+    const Model& model = built.model;
+    REQUIRE(built.spec.solve.rtol == 1e-10);
     for (Scheme scheme : kValidatedSchemes) {
       CAPTURE(to_string(scheme));
-      SolveSummary summary;
-      const Trajectory run = solve(model, scheme, integrator_options(model), summary);
-      const Trajectory exact = exact_trajectory(model, model.output_times());
+      const SolveResult result = test::solved(model, test::under(built.spec.solve, scheme));
+      const Trajectory& run = result.trajectory;
+      const SolveSummary& summary = result.summary;
+      const Trajectory exact = exact_trajectory(model, built.spec.solve.output_times());
       const TrajectoryError err = relative_error(run, exact);
       MESSAGE(std::string(name) << " " << std::string(to_string(scheme)) << ": err u "
                                 << err.displacement << ", v " << err.velocity << ", f_con "
@@ -48,8 +51,9 @@ TEST_CASE("hand-written scenes: every scheme agrees with the exact solution, rea
 }
 
 TEST_CASE("inclined roller: the reaction is normal to the incline and balances momentum") {
-  const Model model = scene("truss_inclined_roller.toml");
-  const Trajectory exact = exact_trajectory(model, model.output_times());
+  const test::BuiltScene built = scene("truss_inclined_roller.toml");
+  const Model& model = built.model;
+  const Trajectory exact = exact_trajectory(model, built.spec.solve.output_times());
   const Eigen::MatrixXd M(model.M);
   for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(exact.t.size()); k += 17) {
     const double t = exact.t[static_cast<std::size_t>(k)];
@@ -97,11 +101,12 @@ atol = 1e-12
 [output]
 quantities = ["displacement", "reaction"]
 )";
-  const Model model = build_model(parse_scene_text(text, "driven base"));
+  const SceneSpec spec = parse_scene_text(text, "driven base");
+  const Model model = build_model(spec);
   const double m0 = 0.5, m = 2.0, k = 50.0, a = 0.2, w = 3.0, wn = std::sqrt(k / m);
-  SolveSummary summary;
-  const Trajectory run = solve(model, Scheme::elimination, integrator_options(model), summary);
-  const Trajectory exact = exact_trajectory(model, model.output_times());
+  const Trajectory run =
+      test::solved(model, test::under(spec.solve, Scheme::elimination)).trajectory;
+  const Trajectory exact = exact_trajectory(model, spec.solve.output_times());
   double worst_x = 0, worst_r = 0;
   for (std::size_t i = 0; i < run.t.size(); ++i) {
     const double t = run.t[i];

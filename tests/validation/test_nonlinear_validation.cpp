@@ -7,19 +7,20 @@
 
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/solve_helpers.hpp"
 #include "validation/accuracy.hpp"
 
 using namespace condyn;
 
 namespace {
 
-Model scene(const std::string& name, double t_end, double rtol) {
+test::BuiltScene scene(const std::string& name, double t_end, double rtol) {
   SceneSpec spec = parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name);
   spec.solve.t_end = t_end;
   spec.solve.output_step = t_end / 20;
   spec.solve.rtol = rtol;
   spec.solve.atol = rtol * 1e-2;
-  return build_model(spec);
+  return test::built(spec);
 }
 
 }  // namespace
@@ -37,18 +38,21 @@ TEST_CASE("nonlinear scenes under every applicable scheme agree with a tight GGL
   for (const char* name :
        {"pendulum.toml", "double_pendulum.toml", "four_bar.toml", "chaplygin_sleigh.toml"}) {
     CAPTURE(std::string(name));
-    const Model model = scene(name, 2.0, 1e-10);
-    const Model tight = scene(name, 2.0, 1e-13);
-    SolveSummary ref_summary;
-    const Trajectory ref = solve(tight, Scheme::ggl, integrator_options(tight), ref_summary);
+    const test::BuiltScene built = scene(name, 2.0, 1e-10);
+    const Model& model = built.model;
+    SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
+    tight.rtol = 1e-13;
+    tight.atol = 1e-15;
+    const Trajectory ref = test::solved(model, tight).trajectory;
     for (Scheme scheme : {Scheme::elimination, Scheme::penalty}) {
       CHECK(scheme_refusal(model, scheme).has_value());
     }
     for (Scheme scheme : kApplicable) {
       CAPTURE(std::string(to_string(scheme)));
       REQUIRE_FALSE(scheme_refusal(model, scheme).has_value());
-      SolveSummary summary;
-      const Trajectory run = solve(model, scheme, integrator_options(model), summary);
+      const SolveResult result = test::solved(model, test::under(built.spec.solve, scheme));
+      const Trajectory& run = result.trajectory;
+      const SolveSummary& summary = result.summary;
       const TrajectoryError err = relative_error(run, ref);
       const double energy = relative_energy_error(model, run);
       MESSAGE(std::string(to_string(scheme))

@@ -1,0 +1,114 @@
+#include "dae/failure_advice.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace condyn {
+
+namespace {
+
+/// "about 140", "about 4e+304": two significant digits, an order of magnitude for the advice.
+std::string about(double x) {
+  std::ostringstream s;
+  if (x >= 1.0 && x < 1e6) {
+    const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+    s << "about " << static_cast<long>(std::round(x / unit) * unit);
+  } else {
+    s.precision(2);
+    s << "about " << x;
+  }
+  return s.str();
+}
+
+/// What the scheme itself adds to the advice after a solver failure.
+std::string scheme_advice(Scheme scheme) {
+  switch (scheme) {
+    case Scheme::baumgarte:
+      return "; large Baumgarte gains make the system stiff: try smaller [solve] baumgarte gains "
+             "or ggl";
+    case Scheme::penalty:
+      return "; a large penalty weight makes the system stiff: try a smaller [solve] penalty "
+             "weight or ggl";
+    case Scheme::index1:
+    case Scheme::index2:
+      return "; this scheme lets the drift grow: ggl or projection hold the constraints";
+    case Scheme::index3:
+      return "; index3 is the least robust formulation: try ggl";
+    default:
+      return "";
+  }
+}
+
+}  // namespace
+
+std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
+  // What is left of the run, in steps of the last size and in wall time at the pace so far.
+  const double left = e.t_end - e.t_reached;
+  const bool progressed = e.in_loop && e.t_reached > e.t0;
+  const double steps_left = e.last_step != 0.0 ? left / std::abs(e.last_step) : 0.0;
+  const double seconds_left = progressed ? e.elapsed_seconds * left / (e.t_reached - e.t0) : 0.0;
+  switch (e.kind) {
+    case FailureKind::non_finite:
+    case FailureKind::residual_non_finite:
+      return "the solution blew up: check loads and time functions for runaway growth, and masses "
+             "and stiffnesses for absurd magnitudes";
+    case FailureKind::step_budget: {
+      std::string s = "the run used up its step budget ([solve] max_steps or --max-steps)";
+      if (steps_left > 0.0) {
+        s += "; at the last step size the rest of the run needs " + about(steps_left) +
+             " more steps";
+      }
+      return s + ": shorten t_end, raise the budget, or loosen rtol (larger steps)";
+    }
+    case FailureKind::wall_time_budget: {
+      std::string s =
+          "the run used up its wall-time budget ([solve] max_wall_time or "
+          "--max-wall-time)";
+      if (seconds_left > 0.0) {
+        s += "; at the pace so far the rest of the run needs " + about(seconds_left) + " s";
+      }
+      return s + ": shorten t_end, raise the budget, or loosen rtol (larger steps)";
+    }
+    case FailureKind::steps_per_output:
+      return "the step size stayed tiny for many steps: the model is very stiff or oscillates far "
+             "faster than the output step; a smaller output_step lets the run go on, a looser "
+             "rtol takes larger steps" +
+             scheme_advice(scheme);
+    case FailureKind::step_size_collapsed:
+      return "the step size collapsed to roundoff of the time reached: the motion reaches a "
+             "singular configuration (constraints that become dependent, a mechanism at a dead "
+             "point, a prescribed motion it cannot follow) or a jump; check the scene at the time "
+             "reached" +
+             scheme_advice(scheme);
+    case FailureKind::tolerance_too_tight:
+      return "the tolerances ask for more than double precision holds at these magnitudes: "
+             "loosen rtol, or raise atol to the size of the smallest quantity that matters";
+    case FailureKind::linear_solver:
+      return "the iteration matrix could not be factored (singular): a DOF that nothing holds "
+             "(no mass, stiffness or constraint), or constraints that became dependent near the "
+             "time reached; `condyn info` shows the classification, another scheme may pass" +
+             scheme_advice(scheme);
+    case FailureKind::first_step:
+      return "the integrator failed before its first step, so no motion was computed: check the "
+             "initial state (displacements and velocities consistent with the constraints; "
+             "[initial] project = true), the tolerances (atol on the scale of the smallest "
+             "unknown that matters, rtol not tighter than needed), and the time scale (t_end and "
+             "output_step against the model's periods); another scheme may start";
+    case FailureKind::bad_input:
+      return "the integrator refused an input (a time, tolerance or size it cannot use): check "
+             "t_end, output_step, the load step times and the tolerances";
+    case FailureKind::convergence:
+    case FailureKind::error_test:
+    case FailureKind::unknown:
+      break;
+  }
+  std::string s = progressed ? "repeated convergence or error-test failures near the time "
+                               "reached: the motion may pass a singular configuration or jump "
+                               "there; a looser rtol or another scheme may pass"
+                             : "repeated convergence or error-test failures right after the "
+                               "start or a load step: check the state there and the tolerances; "
+                               "a looser rtol or another scheme may pass";
+  return s + scheme_advice(scheme);
+}
+
+}  // namespace condyn

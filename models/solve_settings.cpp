@@ -1,0 +1,70 @@
+// SolveSpec's behaviour: the run settings checked on their own (the parser checks them with file
+// and line; callers that set them in code, such as compare's tolerance sweep and the Python
+// module, get the same rules here) and the output times they ask for.
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "models/scene_spec.hpp"
+
+namespace condyn {
+
+namespace {
+
+std::string text(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+void require(bool ok, const std::string& key, const std::string& what, double got) {
+  if (!ok) throw std::invalid_argument("solve." + key + " " + what + " (got " + text(got) + ")");
+}
+
+void require_positive(double v, const std::string& key) {
+  require(std::isfinite(v) && v > 0.0, key, "must be a finite number > 0", v);
+}
+
+void require_atol(double v, const std::string& key) {
+  require_positive(v, key);
+  require(v >= kMinAtol, key, "must be at least " + text(kMinAtol), v);
+}
+
+}  // namespace
+
+void SolveSpec::validate() const {
+  require_positive(t_end, "t_end");
+  require_positive(output_step, "output_step");
+  require(std::isfinite(rtol) && rtol >= kMinRtol && rtol < 1.0, "rtol",
+          "must lie in [" + text(kMinRtol) + ", 1)", rtol);
+  require_atol(atol, "atol");
+  if (atol_velocity) require_atol(*atol_velocity, "atol_velocity");
+  if (atol_multiplier) require_atol(*atol_multiplier, "atol_multiplier");
+  if (atol_mu) require_atol(*atol_mu, "atol_mu");
+  if (baumgarte_alpha) require_positive(*baumgarte_alpha, "baumgarte.alpha");
+  if (baumgarte_beta) require_positive(*baumgarte_beta, "baumgarte.beta");
+  if (penalty_weight) require_positive(*penalty_weight, "penalty.weight");
+  require(max_steps >= 0, "max_steps", "must be >= 0 (0: no budget)",
+          static_cast<double>(max_steps));
+  require(std::isfinite(max_wall_time) && max_wall_time >= 0.0, "max_wall_time",
+          "must be a finite number >= 0 (0: no budget)", max_wall_time);
+}
+
+std::vector<double> SolveSpec::output_times() const {
+  std::vector<double> times;
+  const double h = output_step;
+  for (long k = 0;; ++k) {
+    const double t = static_cast<double>(k) * h;
+    if (t > t_end - 1e-9 * h) {
+      times.push_back(t_end);
+      break;
+    }
+    times.push_back(t);
+  }
+  return times;
+}
+
+}  // namespace condyn

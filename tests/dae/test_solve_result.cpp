@@ -1,0 +1,94 @@
+// solve() returns its result as data: a failed run's kind, facts, suggestion and the rows before
+// it; run settings are checked by SolveSpec::validate() before anything runs; one model serves
+// runs under different settings.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "dae/solve.hpp"
+#include "models/scene_parser.hpp"
+#include "tests/scene_text.hpp"
+#include "tests/solve_helpers.hpp"
+#include "validation/accuracy.hpp"
+
+using namespace condyn;
+
+TEST_CASE("a failed run is data: kind, time reached, suggestion and the rows before it") {
+  // The pulled pendulum cannot go past t = 1 (tests/scene_text.hpp): GGL fails midway.
+  const SceneSpec spec = parse_scene_text(test::kPulledPendulumScene, "pulled.toml");
+  const Model model = build_model(spec);
+  SolveResult result;
+  REQUIRE_NOTHROW(result = solve(model, spec.solve));
+  REQUIRE_FALSE(result.ok());
+  const RunFailure& f = *result.failure;
+  CAPTURE(f.message);
+  CHECK(result.scheme == Scheme::ggl);
+  CHECK(f.in_loop);
+  CHECK(f.t0 == 0.0);
+  CHECK(f.t_end == 2.0);
+  CHECK(f.t_reached > 0.9);  // the motion exists up to t = 1
+  CHECK(f.t_reached < 2.0);
+  CHECK_FALSE(f.message.empty());
+  CHECK_FALSE(f.suggestion.empty());
+  // The rows before the failure, assembled like a whole run's: output times up to t_reached.
+  const Trajectory& rows = result.trajectory;
+  REQUIRE(rows.t.size() >= 2);
+  CHECK(rows.t.front() == 0.0);
+  CHECK(rows.t.back() <= f.t_reached);
+  CHECK(rows.u.cols() == static_cast<Eigen::Index>(rows.t.size()));
+  CHECK(rows.multiplier.cols() == static_cast<Eigen::Index>(rows.t.size()));
+  // A caller to whom failure is an error gets the message as an exception.
+  CHECK_THROWS_WITH_AS((void)succeeded(result), f.message.c_str(), std::runtime_error);
+}
+
+TEST_CASE("run settings are validated before a run, naming the key") {
+  const SceneSpec spec = parse_scene_text(test::kTwoMassesScene, "two.toml");
+  const Model model = build_model(spec);
+  const auto refusal = [&](void (*change)(SolveSpec&)) {
+    SolveSpec s = spec.solve;
+    change(s);
+    try {
+      (void)solve(model, s);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK(refusal([](SolveSpec& s) { s.rtol = 0.0; }).find("solve.rtol") == 0);
+  CHECK(refusal([](SolveSpec& s) { s.rtol = 1.0; }).find("solve.rtol") == 0);
+  CHECK(refusal([](SolveSpec& s) { s.atol = 1e-300; }).find("solve.atol") == 0);
+  CHECK(refusal([](SolveSpec& s) { s.atol_mu = -1.0; }).find("solve.atol_mu") == 0);
+  CHECK(refusal([](SolveSpec& s) { s.t_end = -1.0; }).find("solve.t_end") == 0);
+  CHECK(refusal([](SolveSpec& s) {
+          s.output_step = std::numeric_limits<double>::quiet_NaN();
+        }).find("solve.output_step") == 0);
+  CHECK(refusal([](SolveSpec& s) { s.penalty_weight = 0.0; }).find("solve.penalty.weight") == 0);
+  CHECK(refusal([](SolveSpec& s) { s.max_steps = -5; }).find("solve.max_steps") == 0);
+  CHECK(refusal([](SolveSpec& s) { s.max_wall_time = INFINITY; }).find("solve.max_wall_time") ==
+        0);
+  CHECK(refusal([](SolveSpec&) {}) == "accepted");
+}
+
+TEST_CASE("one model, many settings: a tolerance sweep on one build matches fresh builds") {
+  // compare runs every tolerance on the model it built once; the settings are the only input that
+  // changes, so a run on the shared model equals a run on a model built with those settings.
+  SceneSpec spec = parse_scene_text(test::kTwoMassesScene, "two.toml");
+  const Model shared = build_model(spec);
+  for (const double rtol : {1e-4, 1e-8}) {
+    CAPTURE(rtol);
+    spec.solve.rtol = rtol;
+    spec.solve.atol = rtol * 1e-2;
+    for (const Scheme scheme : {Scheme::elimination, Scheme::ggl}) {
+      CAPTURE(std::string(to_string(scheme)));
+      const SolveSpec settings = test::under(spec.solve, scheme);
+      const SolveResult a = test::solved(shared, settings);
+      const SolveResult b = test::solved(build_model(spec), settings);
+      CHECK(a.summary.steps == b.summary.steps);
+      CHECK(a.trajectory.u == b.trajectory.u);  // deterministic: bit for bit
+    }
+  }
+}

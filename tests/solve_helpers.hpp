@@ -1,0 +1,39 @@
+#pragma once
+// Running a scene in tests: the model is built from the spec and run under the spec's settings,
+// with the scheme of the case.
+
+#include <string>
+#include <utility>
+
+#include "dae/solve.hpp"
+#include "models/scene_parser.hpp"
+
+namespace condyn::test {
+
+/// A scene's settings and the model built from it.
+struct BuiltScene {
+  SceneSpec spec;
+  Model model;
+};
+
+inline BuiltScene built(SceneSpec spec) {
+  Model model = build_model(spec);
+  return {std::move(spec), std::move(model)};
+}
+
+/// `settings` with another scheme.
+inline SolveSpec under(SolveSpec settings, Scheme scheme) {
+  settings.scheme = scheme;
+  return settings;
+}
+
+/// solve() for a run the test expects to succeed: a failed run throws its message (the test case
+/// fails with it, as an uncaught exception).
+inline SolveResult solved(const Model& model, const SolveSpec& settings,
+                          const RunHooks& hooks = {}) {
+  SolveResult result = solve(model, settings, hooks);
+  (void)succeeded(result);
+  return result;
+}
+
+}  // namespace condyn::test
