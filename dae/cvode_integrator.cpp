@@ -33,8 +33,7 @@ using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
 /// What the C callbacks need; exceptions go to `report`, never through CVODE's C frames.
 struct CallbackData {
-  const OdeProblem* problem = nullptr;
-  double step_reference = 0.0;
+  OdeProblem* problem = nullptr;
   sundials::CallbackReport* report = nullptr;
 };
 
@@ -42,7 +41,7 @@ int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user) {
   auto* data = static_cast<CallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
     auto out = view(ydot);
-    data->problem->rhs(t, data->step_reference, view(y), out);
+    data->problem->rhs(t, view(y), out);
     return out.allFinite() ? 0 : 1;  // recoverable: CVODE retries with a smaller step
   });
 }
@@ -100,12 +99,10 @@ const sundials::Api kCvodeApi{
 
 class Cvode final : public sundials::SundialsStepper {
  public:
-  Cvode(const OdeProblem& problem, const Eigen::VectorXd& y0, double t0,
-        const IntegratorOptions& options)
+  Cvode(OdeProblem& problem, const Eigen::VectorXd& y0, double t0, const IntegratorOptions& options)
       : SundialsStepper(kCvodeApi), n_(problem.size()) {
     data_.problem = &problem;
     data_.report = &report_;
-    data_.step_reference = t0;
     SUNContext raw = nullptr;
     if (SUNContext_Create(nullptr, &raw) != 0) throw IntegrationError("SUNContext_Create failed");
     ctx_.reset(raw);
@@ -144,12 +141,12 @@ class Cvode final : public sundials::SundialsStepper {
     double t = 0.0;
     check(CVodeGetCurrentTime(mem_.get(), &t), "CVodeGetCurrentTime");
     Eigen::VectorXd out(n_);
-    data_.problem->rhs(t, data_.step_reference, view(y_.get()), out);
+    data_.problem->rhs(t, view(y_.get()), out);
     return out;
   }
   void restart(double t) override {
     collect();  // CVodeReInit may reset the counters: keep what this segment did
-    data_.step_reference = t;
+    data_.problem->begin_segment(t);
     check(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
     rebase();
   }
@@ -188,15 +185,16 @@ class Cvode final : public sundials::SundialsStepper {
 
 }  // namespace
 
-RawTrajectory integrate_ode(const OdeProblem& problem, const Eigen::VectorXd& y0,
+RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
                             const IntegratorOptions& options, SolveSummary& summary) {
   options.validate();
   if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
   const auto start = std::chrono::steady_clock::now();
   const double t0 = options.output_times.front();
+  problem.begin_segment(t0);
   Cvode cvode(problem, y0, t0, options);
   Eigen::VectorXd yp0(problem.size());
-  problem.rhs(t0, t0, y0, yp0);
+  problem.rhs(t0, y0, yp0);
   RawTrajectory out = drive(cvode, y0, yp0, options, summary);
   summary.unknowns = problem.size();
   summary.jacobian_nonzeros = problem.size() * problem.size();  // dense

@@ -10,7 +10,7 @@ namespace condyn {
 
 /// Integrates y' = F(t, y) from y0 at options.output_times.front(). Fills the summary (the number
 /// of projections goes into notes). Throws IntegrationError on solver failure.
-[[nodiscard]] RawTrajectory integrate_ode(const OdeProblem& problem, const Eigen::VectorXd& y0,
+[[nodiscard]] RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
                                           const IntegratorOptions& options, SolveSummary& summary);
 
 }  // namespace condyn

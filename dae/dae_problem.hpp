@@ -19,13 +19,16 @@ class DaeProblem {
 
   /// Number of unknowns in y.
   [[nodiscard]] virtual int size() const = 0;
-  /// r = F(t, y, y'). `step_reference` is the start of the current integration segment: load steps
-  /// with start <= step_reference are on, so no step switches on inside a segment.
-  virtual void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const = 0;
+  /// The integration segment starting at t0 begins (at the start of the run and at every load
+  /// step, before make_consistent): load steps with start <= t0 are on until the next call, so no
+  /// step switches on inside a segment.
+  virtual void begin_segment(double t0) = 0;
+  /// r = F(t, y, y') in the current segment.
+  virtual void residual(double t, ConstRef y, ConstRef yp, Ref r) const = 0;
   /// Sparsity pattern of dF/dy + cj dF/dy' (column-major, compressed), fixed for the whole run.
   [[nodiscard]] virtual const Eigen::SparseMatrix<double>& jacobian_pattern() const = 0;
   /// Fills the values of J = dF/dy + cj dF/dy' in the pattern (J has exactly that pattern).
-  virtual void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+  virtual void jacobian(double t, ConstRef y, ConstRef yp, double cj,
                         Eigen::SparseMatrix<double>& J) const = 0;
   /// 1 for differential components, 0 for algebraic ones (IDASetId).
   [[nodiscard]] virtual Eigen::VectorXd differential_id() const = 0;
@@ -47,9 +50,9 @@ class DaeProblem {
   /// The kind of each unknown, for its absolute tolerance (IntegratorOptions::atol_of); empty:
   /// every unknown gets the displacement atol.
   [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
-  /// Makes (y, y') consistent at time t for the segment starting at t: keeps the differential
-  /// components of y, recomputes the algebraic ones and y' (used at t = 0 and after every load
-  /// step, where accelerations and multipliers jump). Throws std::runtime_error when the
+  /// Makes (y, y') consistent at time t, where the segment begins (begin_segment(t)): keeps the
+  /// differential components of y, recomputes the algebraic ones and y' (used at t = 0 and after
+  /// every load step, where accelerations and multipliers jump). Throws std::runtime_error when the
   /// consistency system is singular.
   virtual void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const = 0;
 };

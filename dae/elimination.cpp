@@ -133,7 +133,7 @@ Eigen::VectorXd ReducedSystem::forces(const Model& model, double t, double step_
 void solve_elimination(const Model& model, const std::vector<std::string>& preferred_slaves,
                        const IntegratorOptions& options, SolveResult& result) {
   const ReducedSystem reduced = reduce(model, preferred_slaves);
-  const ReducedOde ode(model, reduced);
+  ReducedOde ode(model, reduced);
   const auto& masters = reduced.transform.masters;
   const int nm = static_cast<int>(masters.size());
   Eigen::VectorXd y0(2 * nm);

@@ -99,7 +99,7 @@ using IdaPtr = std::unique_ptr<void, IdaDeleter>;
 /// What the C callbacks need; exceptions thrown by the problem go to `report`, never through IDA's
 /// C frames.
 struct CallbackData {
-  const DaeProblem* problem = nullptr;
+  DaeProblem* problem = nullptr;
   double rtol = 0.0;
   Eigen::VectorXd atol;     ///< per component (IntegratorOptions::atol_vector)
   double time_scale = 1.0;  ///< IntegratorOptions::time_scale
@@ -112,7 +112,6 @@ struct CallbackData {
   /// cost nothing. Also passed to IDASetInitStep.
   double first_step = 1.0;
   Eigen::VectorXd index;  ///< differentiation index per component (DaeProblem::variable_index)
-  double step_reference = 0.0;
   Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
   sundials::CallbackReport* report = nullptr;
 };
@@ -121,7 +120,7 @@ int residual_trampoline(double t, N_Vector y, N_Vector yp, N_Vector r, void* use
   auto* data = static_cast<CallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
     auto rv = view(r);
-    data->problem->residual(t, data->step_reference, view(y), view(yp), rv);
+    data->problem->residual(t, view(y), view(yp), rv);
     // A non-finite residual is recoverable: IDA retries with a smaller step.
     return rv.allFinite() ? 0 : 1;
   });
@@ -131,7 +130,7 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
                         void* user, N_Vector /*t1*/, N_Vector /*t2*/, N_Vector /*t3*/) {
   auto* data = static_cast<CallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
-    data->problem->jacobian(t, data->step_reference, view(y), view(yp), cj, data->jac);
+    data->problem->jacobian(t, view(y), view(yp), cj, data->jac);
     const auto& jac = data->jac;
     if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
       // IDA zeroes the whole sparse matrix (values and index arrays) before each call, so the
@@ -210,7 +209,7 @@ const sundials::Api kIdaApi{"IDASolve", IDAGetReturnFlagName, IDAGetCurrentTime,
 
 class Ida final : public sundials::SundialsStepper {
  public:
-  Ida(const DaeProblem& problem, const IntegratorOptions& options)
+  Ida(DaeProblem& problem, const IntegratorOptions& options)
       : SundialsStepper(kIdaApi), n_(problem.size()) {
     data_.problem = &problem;
     data_.report = &report_;
@@ -292,8 +291,6 @@ class Ida final : public sundials::SundialsStepper {
   }
 
   void set_stop_time(double t) override { check(IDASetStopTime(mem_.get(), t), "IDASetStopTime"); }
-  void set_segment(double t0) { data_.step_reference = t0; }
-
   /// Takes one internal step (bounded by the stop time that is set); returns the time reached,
   /// the stop time exactly when the step lands on it. IDA sizes its first step after a
   /// (re)initialisation from the distance to `tout`, so callers pass the next output time.
@@ -307,7 +304,7 @@ class Ida final : public sundials::SundialsStepper {
   [[nodiscard]] Eigen::VectorXd yp() override { return view(yp_.get()); }
 
   void restart(double t) override {
-    set_segment(t);
+    data_.problem->begin_segment(t);
     Eigen::VectorXd yb = view(y_.get()), ypb;
     data_.problem->make_consistent(t, yb, ypb);
     reinit(t, yb, ypb);
@@ -342,14 +339,14 @@ class Ida final : public sundials::SundialsStepper {
 
 }  // namespace
 
-RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
+RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
                         const IntegratorOptions& options, SolveSummary& summary) {
   options.validate();
   if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
   const auto start = std::chrono::steady_clock::now();
   const double t0 = options.output_times.front();
   Ida ida(problem, options);
-  ida.set_segment(t0);
+  problem.begin_segment(t0);
   Eigen::VectorXd y_init = y0, yp0;
   problem.make_consistent(t0, y_init, yp0);
   ida.init(t0, y_init, yp0, options);

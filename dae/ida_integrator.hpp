@@ -15,7 +15,7 @@ namespace condyn {
 /// problem.make_consistent. Fills the counters and the wall
 /// time of `summary`. Throws IntegrationError on solver failure, std::invalid_argument on bad
 /// options.
-[[nodiscard]] RawTrajectory integrate(const DaeProblem& problem, const Eigen::VectorXd& y0,
+[[nodiscard]] RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
                                       const IntegratorOptions& options, SolveSummary& summary);
 
 }  // namespace condyn

@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "dae/kkt.hpp"
-#include "models/linear_system.hpp"
 
 namespace condyn {
 
@@ -58,9 +57,8 @@ Eigen::VectorXd diagonal_estimates(const Eigen::SparseMatrix<double>& M,
 }  // namespace
 
 ModelScales model_scales(const Model& model) {
-  std::optional<LinearSystem> linear;
-  if (!model.is_nonlinear()) linear.emplace(model);
-  const MechanicalSystem& system = model.is_nonlinear() ? *model.nonlinear : *linear;
+  const auto evaluator = model.evaluator();
+  MechanicalSystem& system = *evaluator;
   const int n = system.dofs(), m = system.constraints();
   const double t = 0.0;
   ModelScales s;
@@ -77,7 +75,7 @@ ModelScales model_scales(const Model& model) {
     if (count > 0) s.mass = total / count;
   }
   Eigen::VectorXd f(n);
-  system.force(t, t, model.u0, model.v0, f);
+  system.force(t, model.u0, model.v0, f);
   Eigen::SparseMatrix<double> K = -system.force_jacobian_u(t, model.u0, model.v0);
   Eigen::SparseMatrix<double> A;
   if (m > 0) {

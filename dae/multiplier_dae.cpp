@@ -11,7 +11,7 @@ namespace condyn {
 
 MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, double alpha,
                              double beta)
-    : system_(system),
+    : system_(system.clone()),
       scheme_(scheme),
       alpha_(alpha),
       beta_(beta),
@@ -65,19 +65,19 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
   const auto vp = yp.segment(n_, n_);
   const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
   // Momentum rows: M v' − f + Aᵀλ.
-  visit(iv, iv, system_.mass(t, uu), cj);
-  visit(iv, iu, system_.force_jacobian_u(t, uu, vv), -1.0);
-  visit(iv, iv, system_.force_jacobian_v(t, uu, vv), -1.0);
-  visit(iv, iu, system_.mass_jacobian(t, uu, vp), 1.0);
+  visit(iv, iv, system_->mass(t, uu), cj);
+  visit(iv, iu, system_->force_jacobian_u(t, uu, vv), -1.0);
+  visit(iv, iv, system_->force_jacobian_v(t, uu, vv), -1.0);
+  visit(iv, iu, system_->mass_jacobian(t, uu, vp), 1.0);
   if (m_ == 0) return;
-  const auto& A = system_.constraint_jacobian(t, uu);
+  const auto& A = system_->constraint_jacobian(t, uu);
   visit(iv, il, Sparse(A.transpose()), 1.0);
-  visit(iv, iu, system_.constraint_force_jacobian(t, uu, y.segment(il, m_)), 1.0);
+  visit(iv, iu, system_->constraint_force_jacobian(t, uu, y.segment(il, m_)), 1.0);
   const auto acceleration_level = [&](double velocity_scale) {  // A v' − γ
     visit(il, iv, A, cj + velocity_scale);
-    visit(il, iu, system_.constraint_product_jacobian(t, uu, vp), 1.0);
-    visit(il, iu, system_.acceleration_bias_jacobian_u(t, uu, vv), -1.0);
-    visit(il, iv, system_.acceleration_bias_jacobian_v(t, uu, vv), -1.0);
+    visit(il, iu, system_->constraint_product_jacobian(t, uu, vp), 1.0);
+    visit(il, iu, system_->acceleration_bias_jacobian_u(t, uu, vv), -1.0);
+    visit(il, iv, system_->acceleration_bias_jacobian_v(t, uu, vv), -1.0);
   };
   switch (scheme_) {
     case Scheme::index1:
@@ -85,28 +85,28 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
       break;
     case Scheme::baumgarte:  // + 2α ψ + β² φ
       acceleration_level(2.0 * alpha_);
-      visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 2.0 * alpha_);
+      visit(il, iu, system_->velocity_residual_jacobian(t, uu, vv), 2.0 * alpha_);
       visit(il, iu, Sparse(position_mask_ * A), beta_ * beta_);
       break;
     case Scheme::index2:
       visit(il, iv, A, 1.0);
-      visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 1.0);
+      visit(il, iu, system_->velocity_residual_jacobian(t, uu, vv), 1.0);
       break;
     case Scheme::index3: {  // φ on position rows, ψ on velocity rows
       visit(il, iu, Sparse(position_mask_ * A), 1.0);
       visit(il, iv, Sparse(velocity_mask_ * A), 1.0);
-      const auto& psi_u = system_.velocity_residual_jacobian(t, uu, vv);
+      const auto& psi_u = system_->velocity_residual_jacobian(t, uu, vv);
       if (psi_u.size() > 0) visit(il, iu, Sparse(velocity_mask_ * psi_u), 1.0);
       break;
     }
     case Scheme::ggl: {  // ψ = 0, φ_p = 0, and A_pᵀμ in the u rows
       visit(il, iv, A, 1.0);
-      visit(il, iu, system_.velocity_residual_jacobian(t, uu, vv), 1.0);
+      visit(il, iu, system_->velocity_residual_jacobian(t, uu, vv), 1.0);
       const Sparse Ap = select_p_ * A;
       visit(iu, im, Sparse(Ap.transpose()), 1.0);
       visit(im, iu, Ap, 1.0);
       const Eigen::VectorXd w = select_p_.transpose() * y.segment(im, p_);
-      visit(iu, iu, system_.constraint_force_jacobian(t, uu, w), 1.0);
+      visit(iu, iu, system_->constraint_force_jacobian(t, uu, w), 1.0);
       break;
     }
     case Scheme::automatic:
@@ -136,7 +136,7 @@ Eigen::VectorXd MultiplierDae::variable_index() const {
     case Scheme::index3:
       index.segment(n_, n_).setConstant(2.0);  // velocities
       for (int i = 0; i < m_; ++i) {
-        index[lambda_at() + i] = system_.position_rows()[static_cast<std::size_t>(i)] ? 3.0 : 2.0;
+        index[lambda_at() + i] = system_->position_rows()[static_cast<std::size_t>(i)] ? 3.0 : 2.0;
       }
       break;
     case Scheme::automatic:
@@ -155,49 +155,48 @@ Eigen::VectorXd MultiplierDae::pack(const Eigen::VectorXd& u0, const Eigen::Vect
   return y;
 }
 
-void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstRef yp,
-                             Ref r) const {
+void MultiplierDae::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   const auto uu = y.segment(0, n_), vv = y.segment(n_, n_), lam = y.segment(lambda_at(), m_);
   const auto up = yp.segment(0, n_), vp = yp.segment(n_, n_);
   auto& f = force_;
-  system_.force(t, step_reference, uu, vv, f);
-  const auto& M = system_.mass(t, uu);
+  system_->force(t, uu, vv, f);
+  const auto& M = system_->mass(t, uu);
   r.segment(0, n_) = up - vv;
   r.segment(n_, n_) = M * vp - f;
   if (m_ == 0) return;  // unconstrained: a plain second-order ODE
-  const auto& A = system_.constraint_jacobian(t, uu);
+  const auto& A = system_->constraint_jacobian(t, uu);
   r.segment(n_, n_) += A.transpose() * lam;
   auto rl = r.segment(lambda_at(), m_);
   auto& work = rows_;
   switch (scheme_) {
     case Scheme::index1:
-      system_.acceleration_bias(t, uu, vv, work);
+      system_->acceleration_bias(t, uu, vv, work);
       rl = A * vp - work;
       break;
     case Scheme::baumgarte: {
-      system_.acceleration_bias(t, uu, vv, work);
+      system_->acceleration_bias(t, uu, vv, work);
       rl = A * vp - work;
-      system_.velocity_residual(t, uu, vv, work);
+      system_->velocity_residual(t, uu, vv, work);
       rl += 2.0 * alpha_ * work;
-      system_.position_residual(t, uu, work);
+      system_->position_residual(t, uu, work);
       rl += beta_ * beta_ * work;
       break;
     }
     case Scheme::index2:
-      system_.velocity_residual(t, uu, vv, rl);
+      system_->velocity_residual(t, uu, vv, rl);
       break;
     case Scheme::index3: {
-      system_.position_residual(t, uu, work);  // zero on velocity rows
+      system_->position_residual(t, uu, work);  // zero on velocity rows
       rl = work;
-      system_.velocity_residual(t, uu, vv, work);
+      system_->velocity_residual(t, uu, vv, work);
       rl += velocity_mask_ * work;
       break;
     }
     case Scheme::ggl: {
-      system_.velocity_residual(t, uu, vv, rl);
+      system_->velocity_residual(t, uu, vv, rl);
       const auto mu = y.segment(mu_at(), p_);
       r.segment(0, n_) += A.transpose() * (select_p_.transpose() * mu);
-      system_.position_residual(t, uu, work);
+      system_->position_residual(t, uu, work);
       r.segment(mu_at(), p_) = select_p_ * work;
       break;
     }
@@ -209,8 +208,8 @@ void MultiplierDae::residual(double t, double step_reference, ConstRef y, ConstR
   }
 }
 
-void MultiplierDae::jacobian(double t, double /*step_reference*/, ConstRef y, ConstRef yp,
-                             double cj, Eigen::SparseMatrix<double>& J) const {
+void MultiplierDae::jacobian(double t, ConstRef y, ConstRef yp, double cj,
+                             Eigen::SparseMatrix<double>& J) const {
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, 0, 0, n_, cj);
   BlockJacobian::add_identity(J, 0, n_, n_, -1.0);
@@ -223,8 +222,8 @@ void MultiplierDae::jacobian(double t, double /*step_reference*/, ConstRef y, Co
 void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
   const Eigen::VectorXd uu = y.segment(0, n_), vv = y.segment(n_, n_);
   auto& f = force_;
-  system_.force(t, t, uu, vv, f);
-  const auto& M = system_.mass(t, uu);
+  system_->force(t, uu, vv, f);
+  const auto& M = system_->mass(t, uu);
   yp = Eigen::VectorXd::Zero(size());
   yp.segment(0, n_) = vv;
   if (m_ == 0) {
@@ -235,13 +234,13 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
     yp.segment(n_, n_) = lu.solve(f);
     return;
   }
-  const auto& A = system_.constraint_jacobian(t, uu);
+  const auto& A = system_->constraint_jacobian(t, uu);
   Eigen::VectorXd rhs_l(m_), work(m_);
-  system_.acceleration_bias(t, uu, vv, rhs_l);
+  system_->acceleration_bias(t, uu, vv, rhs_l);
   if (scheme_ == Scheme::baumgarte) {
-    system_.velocity_residual(t, uu, vv, work);
+    system_->velocity_residual(t, uu, vv, work);
     rhs_l -= 2.0 * alpha_ * work;
-    system_.position_residual(t, uu, work);
+    system_->position_residual(t, uu, work);
     rhs_l -= beta_ * beta_ * work;
   }
   // [M Aᵀ; A 0] [v'; λ] = [f; γ]

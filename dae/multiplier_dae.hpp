@@ -30,17 +30,18 @@ namespace condyn {
 
 class MultiplierDae final : public DaeProblem {
  public:
-  /// Keeps a reference to `system`. `scheme` is index1, baumgarte, ggl, index2 or index3 (else
-  /// std::invalid_argument); alpha and beta are used by Baumgarte only.
+  /// Evaluates its own clone of `system`. `scheme` is index1, baumgarte, ggl, index2 or index3
+  /// (else std::invalid_argument); alpha and beta are used by Baumgarte only.
   MultiplierDae(const MechanicalSystem& system, Scheme scheme, double alpha = 0.0,
                 double beta = 0.0);
 
   [[nodiscard]] int size() const override { return mu_at() + p_; }
-  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override;
+  void begin_segment(double t0) override { system_->begin_segment(t0); }
+  void residual(double t, ConstRef y, ConstRef yp, Ref r) const override;
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
-  void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+  void jacobian(double t, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   [[nodiscard]] Eigen::VectorXd differential_id() const override;
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
@@ -81,7 +82,7 @@ class MultiplierDae final : public DaeProblem {
   void for_each_block(double t, ConstRef y, ConstRef yp, double cj,
                       const BlockVisitor& visit) const;
 
-  const MechanicalSystem& system_;
+  std::unique_ptr<MechanicalSystem> system_;  ///< this run's evaluator
   Scheme scheme_;
   double alpha_, beta_;
   int n_, m_, p_;

@@ -4,6 +4,8 @@
 #include <exception>
 #include <vector>
 
+#include "models/constraint_drift.hpp"
+
 namespace condyn {
 
 Observation::FullState full_state_prefix(int n) {
@@ -18,13 +20,14 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   double max_dp = 0.0, max_dv = 0.0;
   std::vector<StepRecord> steps;
   VelocityReversals reversals;
+  ConstraintDrift drift(model);
   IntegratorOptions observed = options;
   if (observe.drift_at_every_step || options.record_steps || observe.on_state) {
     observed.on_step = [&](double t, const Eigen::VectorXd& y) {
       if (observe.on_state) observe.on_state(y);
       if (!observe.drift_at_every_step && !options.record_steps) return;
       const auto [u, v] = observe.full_state(t, y);
-      const auto [dp, dv] = model.drift(t, u, v);
+      const auto [dp, dv] = drift(t, u, v);
       max_dp = std::max(max_dp, dp);
       max_dv = std::max(max_dv, dv);
       if (options.record_steps) steps.push_back({t, dp, dv, reversals(v)});

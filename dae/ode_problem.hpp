@@ -15,8 +15,11 @@ class OdeProblem {
 
   virtual ~OdeProblem() = default;
   [[nodiscard]] virtual int size() const = 0;
-  /// ydot = F(t, y); load steps on when start <= step_reference.
-  virtual void rhs(double t, double step_reference, ConstRef y, Ref ydot) const = 0;
+  /// The integration segment starting at t0 begins (at the start of the run and at every load
+  /// step): load steps with start <= t0 are on until the next call.
+  virtual void begin_segment(double t0) = 0;
+  /// ydot = F(t, y) in the current segment.
+  virtual void rhs(double t, ConstRef y, Ref ydot) const = 0;
   /// The kind of each unknown, for its absolute tolerance; empty: all get the displacement atol.
   [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
   /// True when the problem has an invariant to project onto after each step.

@@ -35,7 +35,7 @@ PenaltyWeights penalty_weights(const Model& model, const SolveSpec& settings) {
 }
 
 PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& weights)
-    : system_(system), weights_(weights), n_(system.dofs()), m_(system.constraints()) {
+    : system_(system.clone()), weights_(weights), n_(system.dofs()), m_(system.constraints()) {
   if (system.has_curvature()) {
     throw std::invalid_argument(
         "the penalty formulation does not yet support nonlinear constraints");
@@ -51,10 +51,10 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
     (position ? position_mask_ : velocity_mask_).insert(i, i) = 1.0;
   }
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  const auto& M = system.mass(0.0, zero);
-  const auto& A = system.constraint_jacobian(0.0, zero);
-  const auto& f_u = system.force_jacobian_u(0.0, zero, zero);
-  const auto& f_v = system.force_jacobian_v(0.0, zero, zero);
+  const auto& M = system_->mass(0.0, zero);
+  const auto& A = system_->constraint_jacobian(0.0, zero);
+  const auto& f_u = system_->force_jacobian_u(0.0, zero, zero);
+  const auto& f_v = system_->force_jacobian_v(0.0, zero, zero);
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(0, 0, n_);
   jacobian_.declare_identity(0, n_, n_);
@@ -70,30 +70,30 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
 Eigen::VectorXd PenaltyOde::multipliers(double t, const Eigen::VectorXd& y) const {
   if (m_ == 0) return {};
   Eigen::VectorXd phi(m_), psi(m_);
-  system_.position_residual(t, y.head(n_), phi);  // zero on velocity rows
-  system_.velocity_residual(t, y.head(n_), y.tail(n_), psi);
+  system_->position_residual(t, y.head(n_), phi);  // zero on velocity rows
+  system_->velocity_residual(t, y.head(n_), y.tail(n_), psi);
   return row_weight_.asDiagonal() * (phi + velocity_mask_ * psi);
 }
 
-void PenaltyOde::residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const {
+void PenaltyOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   const auto u = y.head(n_), v = y.tail(n_);
   auto& f = force_;
-  system_.force(t, step_reference, u, v, f);
-  const auto& M = system_.mass(t, u);
+  system_->force(t, u, v, f);
+  const auto& M = system_->mass(t, u);
   r.head(n_) = yp.head(n_) - v;
   r.tail(n_) = M * yp.tail(n_) - f;
   if (m_ > 0) {
-    const auto& A = system_.constraint_jacobian(t, u);
+    const auto& A = system_->constraint_jacobian(t, u);
     r.tail(n_) += A.transpose() * multipliers(t, y);
   }
 }
 
-void PenaltyOde::jacobian(double t, double /*step_reference*/, ConstRef y, ConstRef /*yp*/,
-                          double cj, Eigen::SparseMatrix<double>& J) const {
+void PenaltyOde::jacobian(double t, ConstRef y, ConstRef /*yp*/, double cj,
+                          Eigen::SparseMatrix<double>& J) const {
   const auto u = y.head(n_), v = y.tail(n_);
-  const auto& M = system_.mass(t, u);
-  const auto& f_u = system_.force_jacobian_u(t, u, v);
-  const auto& f_v = system_.force_jacobian_v(t, u, v);
+  const auto& M = system_->mass(t, u);
+  const auto& f_u = system_->force_jacobian_u(t, u, v);
+  const auto& f_v = system_->force_jacobian_v(t, u, v);
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, 0, 0, n_, cj);
   BlockJacobian::add_identity(J, 0, n_, n_, -1.0);
@@ -101,7 +101,7 @@ void PenaltyOde::jacobian(double t, double /*step_reference*/, ConstRef y, Const
   BlockJacobian::add(J, n_, n_, f_v, -1.0);
   BlockJacobian::add(J, n_, n_, M, cj);
   if (m_ == 0) return;
-  const auto& A = system_.constraint_jacobian(t, u);
+  const auto& A = system_->constraint_jacobian(t, u);
   const Eigen::SparseMatrix<double> At = A.transpose();
   BlockJacobian::add(J, n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A),
                      weights_.position);
@@ -112,10 +112,10 @@ void PenaltyOde::jacobian(double t, double /*step_reference*/, ConstRef y, Const
 void PenaltyOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
   const Eigen::VectorXd u = y.head(n_), v = y.tail(n_);
   auto& f = force_;
-  system_.force(t, t, u, v, f);
-  const auto& M = system_.mass(t, u);
+  system_->force(t, u, v, f);
+  const auto& M = system_->mass(t, u);
   if (m_ > 0) {
-    const auto& A = system_.constraint_jacobian(t, u);
+    const auto& A = system_->constraint_jacobian(t, u);
     f -= A.transpose() * multipliers(t, y);
   }
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M);

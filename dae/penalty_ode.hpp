@@ -34,15 +34,16 @@ struct PenaltyWeights {
 
 class PenaltyOde final : public DaeProblem {
  public:
-  /// Keeps a reference to `system`. Throws std::invalid_argument for curvature terms.
+  /// Evaluates its own clone of `system`. Throws std::invalid_argument for curvature terms.
   PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& weights);
 
   [[nodiscard]] int size() const override { return 2 * n_; }
-  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override;
+  void begin_segment(double t0) override { system_->begin_segment(t0); }
+  void residual(double t, ConstRef y, ConstRef yp, Ref r) const override;
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
-  void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+  void jacobian(double t, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_);
@@ -57,7 +58,7 @@ class PenaltyOde final : public DaeProblem {
   [[nodiscard]] Eigen::VectorXd multipliers(double t, const Eigen::VectorXd& y) const;
 
  private:
-  const MechanicalSystem& system_;
+  std::unique_ptr<MechanicalSystem> system_;  ///< this run's evaluator
   PenaltyWeights weights_;
   int n_, m_;
   Eigen::VectorXd row_weight_;  ///< w on position rows, c on velocity rows

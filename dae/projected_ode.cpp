@@ -19,7 +19,8 @@ constexpr int kMaxProjectionIterations = 10;
 }  // namespace
 
 ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0)
-    : system_(system),
+    : system_(system.clone()),
+      observer_(system.clone()),
       n_(system.dofs()),
       m_(system.constraints()),
       varying_(system.has_curvature()) {
@@ -40,8 +41,8 @@ ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd
 }
 
 void ProjectedOde::factor(double t, const ConstRef& u, Factors& f) const {
-  const auto& M = system_.mass(t, u);
-  f.A = system_.constraint_jacobian(t, u);
+  const auto& M = system_->mass(t, u);
+  f.A = system_->constraint_jacobian(t, u);
   f.Ap = select_p_ * f.A;
   for (auto [lu, B] : {std::pair{&f.kkt, &f.A}, std::pair{&f.kkt_p, &f.Ap}}) {
     if (B == &f.Ap && position_rows_.empty()) break;  // no position projection
@@ -69,26 +70,26 @@ Eigen::VectorXd ProjectedOde::correction(const Eigen::SparseLU<Eigen::SparseMatr
   return kkt.solve(rhs).head(n_);
 }
 
-Eigen::VectorXd ProjectedOde::accelerations(double t, double step_reference, const ConstRef& u,
-                                            const ConstRef& v) const {
+Eigen::VectorXd ProjectedOde::accelerations(MechanicalSystem& loads_from, double t,
+                                            const ConstRef& u, const ConstRef& v) const {
   const Factors& f = factors(t, u);
-  system_.force(t, step_reference, u, v, force_);
+  loads_from.force(t, u, v, force_);
   Eigen::VectorXd rhs(n_ + m_);
   rhs.head(n_) = force_;
   if (m_ > 0) {
-    system_.acceleration_bias(t, u, v, rows_);
+    system_->acceleration_bias(t, u, v, rows_);
     rhs.tail(m_) = rows_;
   }
   return f.kkt.solve(rhs);
 }
 
-void ProjectedOde::rhs(double t, double step_reference, ConstRef y, Ref ydot) const {
+void ProjectedOde::rhs(double t, ConstRef y, Ref ydot) const {
   ydot.head(n_) = y.tail(n_);
-  ydot.tail(n_) = accelerations(t, step_reference, y.head(n_), y.tail(n_)).head(n_);
+  ydot.tail(n_) = accelerations(*system_, t, y.head(n_), y.tail(n_)).head(n_);
 }
 
 Eigen::VectorXd ProjectedOde::multipliers(double t, const Eigen::VectorXd& y) const {
-  return accelerations(t, t, y.head(n_), y.tail(n_)).tail(m_);
+  return accelerations(*observer_, t, y.head(n_), y.tail(n_)).tail(m_);
 }
 
 bool ProjectedOde::project(double t, ConstRef y, Ref corr) const {
@@ -98,7 +99,7 @@ bool ProjectedOde::project(double t, ConstRef y, Ref corr) const {
   const Factors* f = &factors(t, u);
   if (!position_rows_.empty()) {
     for (int it = 0; it < kMaxProjectionIterations; ++it) {
-      system_.position_residual(t, u, rows_);
+      system_->position_residual(t, u, rows_);
       const Eigen::VectorXd du = correction(f->kkt_p, select_p_ * rows_);
       u += du;
       if (varying_) f = &factors(t, u);
@@ -110,7 +111,7 @@ bool ProjectedOde::project(double t, ConstRef y, Ref corr) const {
     }
     corr.head(n_) = u - y.head(n_);
   }
-  system_.velocity_residual(t, u, y.tail(n_), rows_);
+  system_->velocity_residual(t, u, y.tail(n_), rows_);
   corr.tail(n_) = correction(f->kkt, rows_);
   last_ = f;
   return converged;

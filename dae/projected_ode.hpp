@@ -33,12 +33,13 @@ namespace condyn {
 
 class ProjectedOde final : public OdeProblem {
  public:
-  /// Keeps a reference to `system`. Throws std::invalid_argument when a KKT matrix is singular
-  /// at the initial state u0.
+  /// Evaluates its own clones of `system`. Throws std::invalid_argument when a KKT matrix is
+  /// singular at the initial state u0.
   ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0);
 
   [[nodiscard]] int size() const override { return 2 * n_; }
-  void rhs(double t, double step_reference, ConstRef y, Ref ydot) const override;
+  void begin_segment(double t0) override { system_->begin_segment(t0); }
+  void rhs(double t, ConstRef y, Ref ydot) const override;
   [[nodiscard]] bool has_projection() const override { return m_ > 0; }
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_);
@@ -46,13 +47,15 @@ class ProjectedOde final : public OdeProblem {
   bool project(double t, ConstRef y, Ref corr) const override;
   void project_error(Ref err) const override;
 
-  /// λ at a state, from the same KKT system (f_con = −Aᵀλ).
+  /// λ at a state, from the same KKT system (f_con = −Aᵀλ), with the loads on at t as outside
+  /// the integration (the right limit at a load step).
   [[nodiscard]] Eigen::VectorXd multipliers(double t, const Eigen::VectorXd& y) const;
 
  private:
-  /// [a; λ] from the KKT system at (t, u, v).
-  [[nodiscard]] Eigen::VectorXd accelerations(double t, double step_reference, const ConstRef& u,
-                                              const ConstRef& v) const;
+  /// [a; λ] from the KKT system at (t, u, v), with the forces of `loads_from` (the run's evaluator
+  /// or the observer).
+  [[nodiscard]] Eigen::VectorXd accelerations(MechanicalSystem& loads_from, double t,
+                                              const ConstRef& u, const ConstRef& v) const;
 
   /// Everything the right-hand side and the projections need at one (t, u): the KKT matrices
   /// with all rows and with the position rows, factored.
@@ -68,7 +71,8 @@ class ProjectedOde final : public OdeProblem {
   [[nodiscard]] Eigen::VectorXd correction(const Eigen::SparseLU<Eigen::SparseMatrix<double>>& kkt,
                                            const Eigen::VectorXd& r) const;
 
-  const MechanicalSystem& system_;
+  std::unique_ptr<MechanicalSystem> system_;    ///< this run's evaluator
+  std::unique_ptr<MechanicalSystem> observer_;  ///< outside any segment: for multipliers()
   int n_, m_;
   bool varying_;
   std::vector<int> position_rows_;

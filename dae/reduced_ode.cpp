@@ -36,16 +36,16 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
   jacobian_.finish();
 }
 
-void ReducedOde::residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const {
+void ReducedOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   const auto x = y.head(nm_), w = y.tail(nm_);
   r.head(nm_) = yp.head(nm_) - w;
-  r.tail(nm_) =
-      reduced_.M * yp.tail(nm_) + reduced_.K * x - reduced_.forces(model_, t, step_reference);
+  r.tail(nm_) = reduced_.M * yp.tail(nm_) + reduced_.K * x -
+                reduced_.forces(model_, t, segment_start_.value_or(t));
   if (model_.has_damping()) r.tail(nm_) += reduced_.C * w;
 }
 
-void ReducedOde::jacobian(double /*t*/, double /*step_reference*/, ConstRef /*y*/, ConstRef /*yp*/,
-                          double cj, Eigen::SparseMatrix<double>& J) const {
+void ReducedOde::jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
+                          Eigen::SparseMatrix<double>& J) const {
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, 0, 0, nm_, cj);
   BlockJacobian::add_identity(J, 0, nm_, nm_, -1.0);

@@ -7,6 +7,7 @@
 /// Its Jacobian is dF/dy + cj dF/dy' = [[cj I, −I], [K̂, Ĉ + cj M̂]].
 
 #include <Eigen/SparseCholesky>
+#include <optional>
 
 #include "dae/block_jacobian.hpp"
 #include "dae/dae_problem.hpp"
@@ -21,11 +22,12 @@ class ReducedOde final : public DaeProblem {
   ReducedOde(const Model& model, const ReducedSystem& reduced);
 
   [[nodiscard]] int size() const override { return 2 * nm_; }
-  void residual(double t, double step_reference, ConstRef y, ConstRef yp, Ref r) const override;
+  void begin_segment(double t0) override { segment_start_ = t0; }
+  void residual(double t, ConstRef y, ConstRef yp, Ref r) const override;
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
-  void jacobian(double t, double step_reference, ConstRef y, ConstRef yp, double cj,
+  void jacobian(double t, ConstRef y, ConstRef yp, double cj,
                 Eigen::SparseMatrix<double>& J) const override;
   /// û are master displacements, w their velocities.
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
@@ -46,6 +48,8 @@ class ReducedOde final : public DaeProblem {
   int nm_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass_;
   BlockJacobian jacobian_;
+  /// Load steps with start <= it are on (begin_segment); before any segment, those at t.
+  std::optional<double> segment_start_;
 };
 
 }  // namespace condyn

@@ -18,7 +18,6 @@
 #include "dae/penalty_ode.hpp"
 #include "dae/projected_ode.hpp"
 #include "dae/reduced_ode.hpp"
-#include "models/linear_system.hpp"
 
 namespace condyn {
 
@@ -83,21 +82,6 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
 
 namespace {
 
-/// The MechanicalSystem a model is integrated as: its own for nonlinear models, else a view of
-/// the linear model.
-class SystemOf {
- public:
-  explicit SystemOf(const Model& model) {
-    if (!model.is_nonlinear()) linear_.emplace(model);
-    system_ = model.is_nonlinear() ? model.nonlinear.get() : &*linear_;
-  }
-  const MechanicalSystem& operator*() const { return *system_; }
-
- private:
-  std::optional<LinearSystem> linear_;
-  const MechanicalSystem* system_ = nullptr;
-};
-
 void refuse_inapplicable(const Model& model, Scheme scheme) {
   if (auto why = scheme_refusal(model, scheme)) throw SchemeNotApplicable(*why);
 }
@@ -111,14 +95,12 @@ Eigen::VectorXd initial_state(const Model& model) {
 void solve_multipliers(const Model& model, Scheme scheme, const SolveSpec& settings,
                        const IntegratorOptions& options, SolveResult& result) {
   SolveSummary& summary = result.summary;
-  const SystemOf system_of(model);
-  const MechanicalSystem& system = *system_of;
   BaumgarteGains gains;
   if (scheme == Scheme::baumgarte) {
     gains = baumgarte_gains(model, settings);
     summary.notes = gains.rule;
   }
-  const MultiplierDae dae(system, scheme, gains.alpha, gains.beta);
+  MultiplierDae dae(*model.system, scheme, gains.alpha, gains.beta);
   summary.scheme = to_string(scheme);
   double max_mu = 0.0;
   Observation observe;
@@ -140,11 +122,10 @@ void solve_multipliers(const Model& model, Scheme scheme, const SolveSpec& setti
 void solve_penalty(const Model& model, const SolveSpec& settings, const IntegratorOptions& options,
                    SolveResult& result) {
   SolveSummary& summary = result.summary;
-  const LinearSystem system(model);  // linear models only (scheme_refusal)
   const PenaltyWeights weights = penalty_weights(model, settings);
   summary.notes = weights.rule;
   summary.scheme = to_string(Scheme::penalty);
-  const PenaltyOde ode(system, weights);
+  PenaltyOde ode(*model.system, weights);  // linear models only (scheme_refusal)
   Observation observe;
   observe.full_state = full_state_prefix(model.dofs());
   observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
@@ -157,9 +138,8 @@ void solve_penalty(const Model& model, const SolveSpec& settings, const Integrat
 
 void solve_projection(const Model& model, const IntegratorOptions& options, SolveResult& result) {
   SolveSummary& summary = result.summary;
-  const SystemOf system(model);
   summary.scheme = to_string(Scheme::projection);
-  const ProjectedOde ode(*system, model.u0);
+  ProjectedOde ode(*model.system, model.u0);
   Observation observe;
   observe.full_state = full_state_prefix(model.dofs());
   observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
@@ -184,12 +164,10 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
   if (scheme == Scheme::penalty) {
-    const LinearSystem system(model);
-    const PenaltyOde ode(system, penalty_weights(model, settings));
+    const PenaltyOde ode(*model.system, penalty_weights(model, settings));
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
-  const SystemOf system_of(model);
-  const MechanicalSystem& system = *system_of;
+  const MechanicalSystem& system = *model.system;
   if (scheme == Scheme::projection) {
     const ProjectedOde ode(system, model.u0);
     return {ode.size(), static_cast<long>(ode.size()) * ode.size()};  // dense

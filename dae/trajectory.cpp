@@ -1,8 +1,8 @@
 #include "dae/trajectory.hpp"
 
-#include <optional>
+#include "models/constraint_drift.hpp"
 
-#include "models/linear_system.hpp"
+#include <optional>
 
 namespace condyn {
 
@@ -36,9 +36,9 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
   out.multiplier.resize(m, nt);
   out.drift_position.resize(nt);
   out.drift_velocity.resize(nt);
-  std::optional<LinearSystem> linear;
-  if (!model.is_nonlinear()) linear.emplace(model);
-  const MechanicalSystem& system = model.is_nonlinear() ? *model.nonlinear : *linear;
+  const auto evaluator = model.evaluator();
+  MechanicalSystem& system = *evaluator;
+  ConstraintDrift drift(model);
   const bool conservative = nt > 0 && system.energy(times[0], u[0], v[0]).has_value();
   if (conservative) out.energy.resize(nt);
   for (Eigen::Index k = 0; k < nt; ++k) {
@@ -52,7 +52,7 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
     } else {
       out.reaction.col(k).setZero();
     }
-    const auto [dp, dv] = model.drift(times[i], u[i], v[i]);
+    const auto [dp, dv] = drift(times[i], u[i], v[i]);
     out.drift_position[k] = dp;
     out.drift_velocity[k] = dv;
     if (conservative) out.energy[k] = *system.energy(times[i], u[i], v[i]);
@@ -62,9 +62,8 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
 
 double relative_energy_error(const Model& model, const Trajectory& traj) {
   if (traj.energy.size() == 0) return -1.0;
-  std::optional<LinearSystem> linear;
-  if (!model.is_nonlinear()) linear.emplace(model);
-  const MechanicalSystem& system = model.is_nonlinear() ? *model.nonlinear : *linear;
+  const auto evaluator = model.evaluator();
+  MechanicalSystem& system = *evaluator;
   double scale = std::abs(traj.energy[0]);
   for (Eigen::Index k = 0; k < traj.energy.size(); ++k) {
     const Eigen::VectorXd v = traj.v.col(k);

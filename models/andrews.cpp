@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 
 #include "models/benchmarks.hpp"
 
@@ -124,11 +125,15 @@ class Andrews final : public MechanicalSystem {
     M_.makeCompressed();
   }
 
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> clone() const override {
+    return std::make_unique<Andrews>(*this);
+  }
+
   [[nodiscard]] int dofs() const override { return kN; }
   [[nodiscard]] int constraints() const override { return kM; }
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
 
-  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef q) const override {
+  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef q) override {
     using namespace par;
     const double cT = std::cos(q[Theta]), sP = std::sin(q[Phi]), sO = std::sin(q[Omega]);
     const double ee = (e - ea) * (e - ea), ff = (zf - fa) * (zf - fa);
@@ -151,8 +156,7 @@ class Andrews final : public MechanicalSystem {
   }
 
   /// The driving moment on β, the spring on γ, and the velocity-dependent inertia terms.
-  void force(double /*t*/, double /*step_reference*/, ConstRef q, ConstRef v,
-             Ref f) const override {
+  void force(double /*t*/, ConstRef q, ConstRef v, Ref f) override {
     using par::c2, par::c4, par::c6;
     const Spring sp(q[gamma_]);
     const double sT = std::sin(q[Theta]), cP = std::cos(q[Phi]), cO = std::cos(q[Omega]);
@@ -165,8 +169,7 @@ class Andrews final : public MechanicalSystem {
     f[epsilon] = -c6 * v[Omega] * (v[Omega] + 2 * v[epsilon]) * cO;
   }
 
-  [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef q,
-                                               ConstRef v) const override {
+  [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef q, ConstRef v) override {
     using par::c2, par::c4, par::c6;
     const Spring sp(q[gamma_]);
     const double cT = std::cos(q[Theta]), sP = std::sin(q[Phi]), sO = std::sin(q[Omega]);
@@ -184,8 +187,7 @@ class Andrews final : public MechanicalSystem {
     return f_u_;
   }
 
-  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef q,
-                                               ConstRef v) const override {
+  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef q, ConstRef v) override {
     using par::c2, par::c4, par::c6;
     const double sT = std::sin(q[Theta]), cP = std::cos(q[Phi]), cO = std::cos(q[Omega]);
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(kN, kN);
@@ -202,7 +204,7 @@ class Andrews final : public MechanicalSystem {
     return f_v_;
   }
 
-  [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef q) const override {
+  [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef q) override {
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(kM, kN);
     for (const auto& term : kTerms)
       add_row(D, term.row, term, term.c * trig_derivative(term.sine, 1, along(term, q)));
@@ -210,19 +212,19 @@ class Andrews final : public MechanicalSystem {
     return A_;
   }
 
-  void position_residual(double /*t*/, ConstRef q, Ref phi) const override {
+  void position_residual(double /*t*/, ConstRef q, Ref phi) override {
     for (int r = 0; r < kM; ++r) phi[r] = kRowConstant[static_cast<std::size_t>(r)];
     for (const auto& term : kTerms)
       phi[term.row] += term.c * trig_derivative(term.sine, 0, along(term, q));
   }
 
   /// Scleronomic rows: ψ = A v.
-  void velocity_residual(double t, ConstRef q, ConstRef v, Ref psi) const override {
+  void velocity_residual(double t, ConstRef q, ConstRef v, Ref psi) override {
     psi = constraint_jacobian(t, q) * v;
   }
 
   /// γ = −vᵀ φ_qq v = −Σ c trig''(θ) (s·v)².
-  void acceleration_bias(double /*t*/, ConstRef q, ConstRef v, Ref gamma) const override {
+  void acceleration_bias(double /*t*/, ConstRef q, ConstRef v, Ref gamma) override {
     gamma.setZero();
     for (const auto& term : kTerms) {
       const double sv = along(term, v);
@@ -232,7 +234,7 @@ class Andrews final : public MechanicalSystem {
 
   [[nodiscard]] bool has_curvature() const override { return true; }
 
-  [[nodiscard]] const Sparse& mass_jacobian(double /*t*/, ConstRef q, ConstRef a) const override {
+  [[nodiscard]] const Sparse& mass_jacobian(double /*t*/, ConstRef q, ConstRef a) override {
     using par::c2, par::c4, par::c6;
     const double sT = std::sin(q[Theta]), cP = std::cos(q[Phi]), cO = std::cos(q[Omega]);
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(kN, kN);
@@ -250,7 +252,7 @@ class Andrews final : public MechanicalSystem {
 
   /// Σ_r w_r φ_r,qq = Σ w_r c trig''(θ) s sᵀ.
   [[nodiscard]] const Sparse& constraint_force_jacobian(double /*t*/, ConstRef q,
-                                                        ConstRef w) const override {
+                                                        ConstRef w) override {
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(kN, kN);
     for (const auto& term : kTerms)
       add_outer(D, term, w[term.row] * term.c * trig_derivative(term.sine, 2, along(term, q)));
@@ -260,34 +262,34 @@ class Andrews final : public MechanicalSystem {
 
   /// Row r: Σ c trig''(θ) (s·a) sᵀ.
   [[nodiscard]] const Sparse& constraint_product_jacobian(double /*t*/, ConstRef q,
-                                                          ConstRef a) const override {
+                                                          ConstRef a) override {
     store_dense(product_jac_, curvature_rows(q, a, 2, 1.0, 1));
     return product_jac_;
   }
 
   /// Row r: Σ c trig''(θ) (s·v) sᵀ.
   [[nodiscard]] const Sparse& velocity_residual_jacobian(double /*t*/, ConstRef q,
-                                                         ConstRef v) const override {
+                                                         ConstRef v) override {
     store_dense(psi_jac_, curvature_rows(q, v, 2, 1.0, 1));
     return psi_jac_;
   }
 
   /// Row r: −Σ c trig'''(θ) (s·v)² sᵀ.
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_u(double /*t*/, ConstRef q,
-                                                           ConstRef v) const override {
+                                                           ConstRef v) override {
     store_dense(gamma_jac_u_, curvature_rows(q, v, 3, -1.0, 2));
     return gamma_jac_u_;
   }
 
   /// Row r: −2 Σ c trig''(θ) (s·v) sᵀ.
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double /*t*/, ConstRef q,
-                                                           ConstRef v) const override {
+                                                           ConstRef v) override {
     store_dense(gamma_jac_v_, curvature_rows(q, v, 2, -2.0, 1));
     return gamma_jac_v_;
   }
 
   /// ½ vᵀ M v + ½ c0 (L − l0)² − mom β: the moment is constant and the spring conservative.
-  [[nodiscard]] std::optional<double> energy(double t, ConstRef q, ConstRef v) const override {
+  [[nodiscard]] std::optional<double> energy(double t, ConstRef q, ConstRef v) override {
     const Spring sp(q[gamma_]);
     const double stretch = sp.L - par::l0;
     return 0.5 * v.dot(mass(t, q) * v) + 0.5 * par::c0 * stretch * stretch - par::mom * q[beta];
@@ -307,7 +309,7 @@ class Andrews final : public MechanicalSystem {
   }
 
   std::vector<bool> position_ = std::vector<bool>(kM, true);
-  mutable Sparse M_, f_u_, f_v_, A_, mass_jac_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_,
+  Sparse M_, f_u_, f_v_, A_, mass_jac_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_,
       gamma_jac_v_;
 };
 

@@ -252,7 +252,8 @@ class Builder {
                              : type == ModelSpec::Type::car_axis ? make_car_axis()
                                                                  : make_pendulum();
     set_dofs(b.dof_names);
-    model_.nonlinear = b.system;
+    model_.system = b.system;
+    model_.nonlinear = true;
     model_.reference = b.reference;
     model_.description = b.description;
     base_u0_ = b.u0;
@@ -279,7 +280,8 @@ class Builder {
 
   void finish_sleigh() {
     const auto& m = spec_.model;
-    model_.nonlinear = make_sleigh({m.body_mass, m.inertia, m.contact_offset, model_.loads});
+    model_.nonlinear = true;
+    model_.system = make_sleigh({m.body_mass, m.inertia, m.contact_offset, model_.loads});
     Constraint row;
     row.name = "knife_edge";
     row.level = ConstraintSpec::Level::velocity;
@@ -295,7 +297,8 @@ class Builder {
   void finish_point_masses() {
     layout_.loads = model_.loads;
     layout_.linear_rows = model_.constraints;
-    model_.nonlinear = std::make_shared<PointMassSystem>(layout_);
+    model_.nonlinear = true;
+    model_.system = std::make_shared<PointMassSystem>(layout_);
     for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
       const auto& b = layout_.rods[r];
       Constraint row;
@@ -307,9 +310,17 @@ class Builder {
     }
   }
 
+  /// An evaluator of the model as built so far: its nonlinear system, or the linear system of its
+  /// matrices and rows (the Model's own LinearSystem is made last, from the final model).
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> evaluator() const {
+    if (model_.nonlinear) return model_.evaluator();
+    return std::make_unique<LinearSystem>(model_);
+  }
+
   /// M, C, K, A of a nonlinear model: its linearization at t = 0, (u0, v0).
   void linearize() {
-    const auto& s = *model_.nonlinear;
+    const auto evaluator = model_.evaluator();
+    MechanicalSystem& s = *evaluator;
     model_.M = s.mass(0.0, model_.u0);
     model_.K = -s.force_jacobian_u(0.0, model_.u0, model_.v0);
     model_.C = -s.force_jacobian_v(0.0, model_.u0, model_.v0);
@@ -800,7 +811,8 @@ class Builder {
 
   /// φ(0, u0) and ψ(0, u0, v0) of a nonlinear model, relative to the size of the state.
   void check_nonlinear_consistency() const {
-    const auto& s = *model_.nonlinear;
+    const auto evaluator = model_.evaluator();
+    MechanicalSystem& s = *evaluator;
     const int m = model_.constraint_count();
     Eigen::VectorXd phi(m), psi(m);
     s.position_residual(0.0, model_.u0, phi);
@@ -859,12 +871,7 @@ class Builder {
                                     std::to_string(model_.dofs()) + " DOFs is too large (limit " +
                                     fmt(kMaxDenseEntries) + " entries)");
     }
-    std::unique_ptr<LinearSystem> linear;
-    const MechanicalSystem* s = model_.nonlinear.get();
-    if (s == nullptr) {
-      linear = std::make_unique<LinearSystem>(model_);
-      s = linear.get();
-    }
+    const auto s = evaluator();
     const auto n = static_cast<std::size_t>(model_.dofs());
     std::vector<bool> given_u(n, false), given_v(n, false);
     for (const auto& [name, value] : spec_.initial.displacement)
@@ -889,9 +896,7 @@ class Builder {
   void check_energy_output() const {
     const auto& q = spec_.output.quantities;
     if (std::find(q.begin(), q.end(), Quantity::energy) == q.end()) return;
-    const LinearSystem linear(model_);
-    const MechanicalSystem& s = model_.is_nonlinear() ? *model_.nonlinear : linear;
-    if (!s.energy(0.0, model_.u0, model_.v0)) {
+    if (!evaluator()->energy(0.0, model_.u0, model_.v0)) {
       fail({"output.quantities", spec_.output.where.line},
            "'energy' needs a conservative scene (no damping, time-independent loads and "
            "constraints): the energy of this one is not conserved, so its error means nothing");
@@ -1159,6 +1164,8 @@ class Builder {
     }
     check_energy_output();
     check_output();
+    // Last: the linear system copies the model's final matrices, constraints and loads.
+    if (!model_.nonlinear) model_.system = std::make_shared<LinearSystem>(model_);
     return std::move(model_);
   }
 
@@ -1198,32 +1205,6 @@ bool Model::is_conservative() const {
     if (!c.position_value.is_constant()) return false;
   }
   return true;
-}
-
-std::pair<double, double> Model::drift(double t, const Eigen::VectorXd& u,
-                                       const Eigen::VectorXd& v) const {
-  if (nonlinear) {
-    Eigen::VectorXd phi(constraint_count()), psi(constraint_count());
-    nonlinear->position_residual(t, u, phi);
-    nonlinear->velocity_residual(t, u, v, psi);
-    return {phi.size() ? phi.lpNorm<Eigen::Infinity>() : 0.0,
-            psi.size() ? psi.lpNorm<Eigen::Infinity>() : 0.0};
-  }
-  double pos = 0.0, vel = 0.0;
-  for (const auto& c : constraints) {
-    double au = 0.0, av = 0.0;
-    for (const auto& [d, a] : c.coefficients) {
-      au += a * u[d];
-      av += a * v[d];
-    }
-    if (c.level == ConstraintSpec::Level::position) {
-      pos = std::max(pos, std::abs(au - c.value.value(t)));
-      vel = std::max(vel, std::abs(av - c.value.derivative(1, t)));
-    } else {
-      vel = std::max(vel, std::abs(av - c.value.value(t)));
-    }
-  }
-  return {pos, vel};
 }
 
 std::vector<double> Model::breakpoints(double t_end) const {

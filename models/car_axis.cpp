@@ -8,6 +8,7 @@
 /// negated accordingly). The road makes g1 rheonomic: ψ and γ carry xb', yb', xb'', yb''.
 
 #include <cmath>
+#include <memory>
 
 #include "models/benchmarks.hpp"
 
@@ -57,13 +58,16 @@ class CarAxis final : public MechanicalSystem {
     no_terms_.resize(4, 4);
   }
 
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> clone() const override {
+    return std::make_unique<CarAxis>(*this);
+  }
+
   [[nodiscard]] int dofs() const override { return 4; }
   [[nodiscard]] int constraints() const override { return 2; }
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
-  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) const override { return M_; }
+  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
 
-  void force(double t, double /*step_reference*/, ConstRef u, ConstRef /*v*/,
-             Ref f) const override {
+  void force(double t, ConstRef u, ConstRef /*v*/, Ref f) override {
     const Road road(t);
     f.head<2>() = spring_force(u.head<2>());
     f.tail<2>() = spring_force(u.tail<2>() - Eigen::Vector2d(road.xb, road.yb));
@@ -71,8 +75,7 @@ class CarAxis final : public MechanicalSystem {
     f[yr] -= par::k * par::g;
   }
 
-  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u,
-                                               ConstRef /*v*/) const override {
+  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef /*v*/) override {
     const Road road(t);
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(4, 4);
     D.topLeftCorner<2, 2>() = spring_stiffness(u.head<2>());
@@ -82,12 +85,12 @@ class CarAxis final : public MechanicalSystem {
   }
   /// No damping: 4 x 4 without entries.
   [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) const override {
+                                               ConstRef /*v*/) override {
     return no_terms_;
   }
 
   /// Rows (xb, yb, 0, 0) and 2 (dx, dy, −dx, −dy), d = l − r.
-  [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) const override {
+  [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) override {
     const Road road(t);
     const double dx = u[xl] - u[xr], dy = u[yl] - u[yr];
     Eigen::MatrixXd D(2, 4);
@@ -96,21 +99,21 @@ class CarAxis final : public MechanicalSystem {
     return A_;
   }
 
-  void position_residual(double t, ConstRef u, Ref phi) const override {
+  void position_residual(double t, ConstRef u, Ref phi) override {
     const Road road(t);
     const double dx = u[xl] - u[xr], dy = u[yl] - u[yr];
     phi[0] = road.xb * u[xl] + road.yb * u[yl];
     phi[1] = dx * dx + dy * dy - par::L * par::L;
   }
 
-  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override {
+  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) override {
     const Road road(t);
     psi[0] = road.xb * v[xl] + road.yb * v[yl] + road.dxb * u[xl] + road.dyb * u[yl];
     psi[1] = 2 * ((u[xl] - u[xr]) * (v[xl] - v[xr]) + (u[yl] - u[yr]) * (v[yl] - v[yr]));
   }
 
   /// γ1 = −2 (xb' ul + yb' vl) − (xb'' xl + yb'' yl), γ2 = −2 |l' − r'|².
-  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override {
+  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) override {
     const Road road(t);
     const double dvx = v[xl] - v[xr], dvy = v[yl] - v[yr];
     gamma[0] = -2 * (road.dxb * v[xl] + road.dyb * v[yl]) - (road.ddxb * u[xl] + road.ddyb * u[yl]);
@@ -121,7 +124,7 @@ class CarAxis final : public MechanicalSystem {
 
   /// Only the axle row depends on u: d(2 w2 (d, −d))/du = 2 w2 [I −I; −I I].
   [[nodiscard]] const Sparse& constraint_force_jacobian(double /*t*/, ConstRef /*u*/,
-                                                        ConstRef w) const override {
+                                                        ConstRef w) override {
     Eigen::MatrixXd D(4, 4);
     const Eigen::Matrix2d I = 2 * w[1] * Eigen::Matrix2d::Identity();
     D << I, -I, -I, I;
@@ -130,27 +133,27 @@ class CarAxis final : public MechanicalSystem {
   }
 
   [[nodiscard]] const Sparse& constraint_product_jacobian(double /*t*/, ConstRef /*u*/,
-                                                          ConstRef a) const override {
+                                                          ConstRef a) override {
     store_dense(product_jac_, axle_row(a, 2.0, 0.0, 0.0));
     return product_jac_;
   }
 
   [[nodiscard]] const Sparse& velocity_residual_jacobian(double t, ConstRef /*u*/,
-                                                         ConstRef v) const override {
+                                                         ConstRef v) override {
     const Road road(t);
     store_dense(psi_jac_, axle_row(v, 2.0, road.dxb, road.dyb));
     return psi_jac_;
   }
 
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_u(double t, ConstRef /*u*/,
-                                                           ConstRef v) const override {
+                                                           ConstRef v) override {
     const Road road(t);
     store_dense(gamma_jac_u_, axle_row(v, 0.0, -road.ddxb, -road.ddyb));
     return gamma_jac_u_;
   }
 
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double t, ConstRef /*u*/,
-                                                           ConstRef v) const override {
+                                                           ConstRef v) override {
     const Road road(t);
     store_dense(gamma_jac_v_, axle_row(v, -4.0, -2 * road.dxb, -2 * road.dyb));
     return gamma_jac_v_;
@@ -168,7 +171,7 @@ class CarAxis final : public MechanicalSystem {
 
   std::vector<bool> position_ = {true, true};
   Sparse M_, no_terms_;
-  mutable Sparse f_u_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_, gamma_jac_v_;
+  Sparse f_u_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_, gamma_jac_v_;
 };
 
 }  // namespace

@@ -15,7 +15,7 @@ namespace {
 /// Frobenius test of one velocity row a(u)·u' = 0 at u: the row is integrable near u only if
 /// the 3-form a ∧ da vanishes, i.e. a_i (∂_j a_k − ∂_k a_j) + cyclic = 0 for all i < j < k
 /// (for n = 3: a · (∇ × a) = 0). Returns the largest |component| (0 when n < 3).
-double frobenius_defect(const MechanicalSystem& s, int row, const Eigen::VectorXd& u) {
+double frobenius_defect(MechanicalSystem& s, int row, const Eigen::VectorXd& u) {
   const int n = s.dofs();
   Eigen::VectorXd w = Eigen::VectorXd::Zero(s.constraints());
   w[row] = 1.0;
@@ -37,7 +37,7 @@ double frobenius_defect(const MechanicalSystem& s, int row, const Eigen::VectorX
 /// The DOFs row `row` of A(t, u) depends on: pattern entries that are nonzero (or not finite) at
 /// u0 or at three states around it, u0 + δ_k with δ_k,i = 0.1 (1 + |u0_i|) sin(1.7 i + k): an
 /// entry that is not identically zero vanishes at all four only by coincidence.
-std::vector<int> dependent_dofs(const MechanicalSystem& s, int row, const Eigen::VectorXd& u0) {
+std::vector<int> dependent_dofs(MechanicalSystem& s, int row, const Eigen::VectorXd& u0) {
   const auto n = static_cast<Eigen::Index>(s.dofs());
   std::vector<bool> on(static_cast<std::size_t>(n), false);
   for (int k = 0; k < 4; ++k) {
@@ -63,7 +63,8 @@ std::vector<int> dependent_dofs(const MechanicalSystem& s, int row, const Eigen:
 /// state; integrability by the Frobenius test.
 ConstraintClass classify_nonlinear(const Model& model, int row, double t_end) {
   const auto& c = model.constraints[static_cast<std::size_t>(row)];
-  const auto& s = *model.nonlinear;
+  const auto evaluator = model.evaluator();
+  MechanicalSystem& s = *evaluator;
   ConstraintClass k;
   k.name = c.name;
   k.linear = false;

@@ -24,7 +24,7 @@ constexpr int kMaxReportedDofs = 20;
 
 class Projector {
  public:
-  Projector(const MechanicalSystem& system, double t, const Eigen::VectorXd& u0,
+  Projector(MechanicalSystem& system, double t, const Eigen::VectorXd& u0,
             const std::vector<bool>& given_u, const std::vector<bool>& given_v)
       : s_(system), t_(t), n_(system.dofs()), m_(system.constraints()) {
     for (int i = 0; i < n_; ++i) {
@@ -170,7 +170,7 @@ class Projector {
     return dx;
   }
 
-  const MechanicalSystem& s_;
+  MechanicalSystem& s_;
   double t_;
   int n_, m_;
   std::vector<int> free_u_, free_v_, position_rows_;
@@ -180,7 +180,7 @@ class Projector {
 
 /// The given DOFs the violated rows act on at u (a nonzero coefficient there: a DOF the row
 /// depends on but not at this state cannot be the culprit), ascending.
-std::vector<int> given_in(const MechanicalSystem& s, double t, const Eigen::VectorXd& u,
+std::vector<int> given_in(MechanicalSystem& s, double t, const Eigen::VectorXd& u,
                           const std::vector<std::pair<int, double>>& rows,
                           const std::vector<bool>& given) {
   const Eigen::MatrixXd A(s.constraint_jacobian(t, u));
@@ -195,7 +195,7 @@ std::vector<int> given_in(const MechanicalSystem& s, double t, const Eigen::Vect
 
 }  // namespace
 
-std::string project_initial_state(const MechanicalSystem& system, double t, Eigen::VectorXd& u,
+std::string project_initial_state(MechanicalSystem& system, double t, Eigen::VectorXd& u,
                                   Eigen::VectorXd& v, const std::vector<bool>& given_u,
                                   const std::vector<bool>& given_v,
                                   const std::vector<std::string>& dof_names) {

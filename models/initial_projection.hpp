@@ -44,7 +44,7 @@ class InconsistentGivenValues : public std::runtime_error {
 /// moved ("  ux3: displacement 0 -> 0.25"), at most 20 lines, the rest counted.
 /// Throws InconsistentGivenValues (above), or std::runtime_error when the constraints cannot be
 /// met at all near u0 (the iteration does not converge).
-std::string project_initial_state(const MechanicalSystem& system, double t, Eigen::VectorXd& u,
+std::string project_initial_state(MechanicalSystem& system, double t, Eigen::VectorXd& u,
                                   Eigen::VectorXd& v, const std::vector<bool>& given_u,
                                   const std::vector<bool>& given_v,
                                   const std::vector<std::string>& dof_names);

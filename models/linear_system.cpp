@@ -2,23 +2,36 @@
 
 namespace condyn {
 
-LinearSystem::LinearSystem(const Model& model)
-    : model_(model), rows_(model.constraints), minus_K_(-model.K), minus_C_(-model.C) {
+LinearSystem::LinearSystem(const Model& model) {
+  auto d = std::make_shared<Data>();
+  d->M = model.M;
+  d->minus_K = -model.K;
+  d->minus_C = -model.C;
+  d->A = model.A;
+  d->loads = model.loads;
+  d->rows = LinearRows(model.constraints);
   for (const auto& c : model.constraints) {
-    position_.push_back(c.level == ConstraintSpec::Level::position);
+    d->position.push_back(c.level == ConstraintSpec::Level::position);
   }
-  conservative_ = model.is_conservative();
+  d->damped = model.has_damping();
+  d->conservative = model.is_conservative();
+  data_ = std::move(d);
 }
 
-void LinearSystem::force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const {
-  f.noalias() = minus_K_ * u;
-  if (model_.has_damping()) f.noalias() += minus_C_ * v;
-  for (const auto& load : model_.loads) f[load.dof] += load.value.derivative(0, t, step_reference);
+void LinearSystem::force(double t, ConstRef u, ConstRef v, Ref f) {
+  const Data& d = *data_;
+  f.noalias() = d.minus_K * u;
+  if (d.damped) f.noalias() += d.minus_C * v;
+  const double steps = steps_at(t);
+  for (const auto& load : d.loads) f[load.dof] += load.value.derivative(0, t, steps);
 }
 
-std::optional<double> LinearSystem::energy(double t, ConstRef u, ConstRef v) const {
-  if (!conservative_) return std::nullopt;
-  return 0.5 * v.dot(model_.M * v) + 0.5 * u.dot(model_.K * u) - model_.applied_forces(t).dot(u);
+std::optional<double> LinearSystem::energy(double t, ConstRef u, ConstRef v) {
+  if (!data_->conservative) return std::nullopt;
+  const Data& d = *data_;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(u.size());
+  for (const auto& load : d.loads) f[load.dof] += load.value.derivative(0, t, t);
+  return 0.5 * v.dot(d.M * v) - 0.5 * u.dot(d.minus_K * u) - f.dot(u);
 }
 
 }  // namespace condyn

@@ -9,13 +9,20 @@
 ///   A(t, u) u'' = γ(t, u, u')  the acceleration-level form, γ = A u'' − dψ/dt (for nonlinear
 ///                              rows it carries the curvature terms, −u'ᵀ ∂²φ/∂u² u' − …)
 ///
-/// Linear models are one case of it (dae/linear_system.hpp): constant M, A, and curvature blocks
-/// that are empty. Every Jacobian block is reported with a pattern that does not depend on the
-/// arguments (structural zeros are stored as explicit zeros), so a formulation assembles its
+/// Linear models are one case of it (models/linear_system.hpp): constant M, A, and curvature
+/// blocks that are empty. Every Jacobian block is reported with a pattern that does not depend on
+/// the arguments (structural zeros are stored as explicit zeros), so a formulation assembles its
 /// Jacobian pattern once, at the initial state.
+///
+/// An object of this class is an evaluator: it keeps scratch space and the matrices it returns by
+/// reference, so evaluating changes it (the methods are not const). The Model holds its system as
+/// a constant prototype; every run, and every thread, evaluates its own clone(), which shares the
+/// constant data and owns its caches. The evaluator also knows the integration segment it is in
+/// (begin_segment), so that no load step switches on inside a segment.
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -29,6 +36,15 @@ class MechanicalSystem {
 
   virtual ~MechanicalSystem() = default;
 
+  /// A new evaluator of the same system: the constant data shared, its own caches (a clone of the
+  /// Model's prototype starts outside any segment).
+  [[nodiscard]] virtual std::unique_ptr<MechanicalSystem> clone() const = 0;
+
+  /// The integration segment starting at t0 begins: load steps with start <= t0 are on, later ones
+  /// off, until the next call. Before any call (an evaluation outside an integration), a step is
+  /// on at t when start <= t.
+  void begin_segment(double t0) { segment_start_ = t0; }
+
   [[nodiscard]] virtual int dofs() const = 0;
   [[nodiscard]] virtual int constraints() const = 0;
   /// true for rows written at position level (they get φ and, under GGL, a μ).
@@ -36,23 +52,22 @@ class MechanicalSystem {
 
   /// M(t, u), n x n, its pattern fixed. The reference stays valid until the next call (a linear
   /// system returns its constant matrix: no copy on the residual's hot path).
-  [[nodiscard]] virtual const Sparse& mass(double t, ConstRef u) const = 0;
+  [[nodiscard]] virtual const Sparse& mass(double t, ConstRef u) = 0;
   /// f(t, u, u'): applied loads minus internal forces (K u + C u' for a linear model), plus the
-  /// velocity-dependent inertia terms of generalized coordinates. Steps are on when
-  /// start <= step_reference.
-  virtual void force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const = 0;
+  /// velocity-dependent inertia terms of generalized coordinates. Load steps as begin_segment says.
+  virtual void force(double t, ConstRef u, ConstRef v, Ref f) = 0;
   /// df/du and df/du', n x n each, patterns fixed; references valid until the next call.
-  [[nodiscard]] virtual const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) const = 0;
-  [[nodiscard]] virtual const Sparse& force_jacobian_v(double t, ConstRef u, ConstRef v) const = 0;
+  [[nodiscard]] virtual const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) = 0;
+  [[nodiscard]] virtual const Sparse& force_jacobian_v(double t, ConstRef u, ConstRef v) = 0;
 
   /// A(t, u), m x n, pattern fixed; the reference stays valid until the next call.
-  [[nodiscard]] virtual const Sparse& constraint_jacobian(double t, ConstRef u) const = 0;
+  [[nodiscard]] virtual const Sparse& constraint_jacobian(double t, ConstRef u) = 0;
   /// φ (m; zero on velocity rows).
-  virtual void position_residual(double t, ConstRef u, Ref phi) const = 0;
+  virtual void position_residual(double t, ConstRef u, Ref phi) = 0;
   /// ψ (m).
-  virtual void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const = 0;
+  virtual void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) = 0;
   /// γ (m).
-  virtual void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const = 0;
+  virtual void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) = 0;
 
   /// true when M or A depend on the state (nonlinear geometry, generalized coordinates,
   /// nonholonomic rows): the curvature blocks below are then nonempty and M, A must be
@@ -66,48 +81,56 @@ class MechanicalSystem {
   // The defaults ignore their arguments; by-value Refs are the signature every override shares.
   // NOLINTBEGIN(performance-unnecessary-value-param)
   /// d(M(t, u) a)/du, n x n.
-  [[nodiscard]] virtual const Sparse& mass_jacobian(double /*t*/, ConstRef /*u*/,
-                                                    ConstRef /*a*/) const {
+  [[nodiscard]] virtual const Sparse& mass_jacobian(double /*t*/, ConstRef /*u*/, ConstRef /*a*/) {
     return empty();
   }
   /// d(A(t, u)ᵀ w)/du, n x n (w: m multipliers).
   [[nodiscard]] virtual const Sparse& constraint_force_jacobian(double /*t*/, ConstRef /*u*/,
-                                                                ConstRef /*w*/) const {
+                                                                ConstRef /*w*/) {
     return empty();
   }
   /// d(A(t, u) a)/du, m x n (a: n accelerations).
   [[nodiscard]] virtual const Sparse& constraint_product_jacobian(double /*t*/, ConstRef /*u*/,
-                                                                  ConstRef /*a*/) const {
+                                                                  ConstRef /*a*/) {
     return empty();
   }
   /// dψ/du, m x n (dψ/du' is A).
   [[nodiscard]] virtual const Sparse& velocity_residual_jacobian(double /*t*/, ConstRef /*u*/,
-                                                                 ConstRef /*v*/) const {
+                                                                 ConstRef /*v*/) {
     return empty();
   }
   /// dγ/du and dγ/du', m x n each.
   [[nodiscard]] virtual const Sparse& acceleration_bias_jacobian_u(double /*t*/, ConstRef /*u*/,
-                                                                   ConstRef /*v*/) const {
+                                                                   ConstRef /*v*/) {
     return empty();
   }
   [[nodiscard]] virtual const Sparse& acceleration_bias_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                                                   ConstRef /*v*/) const {
+                                                                   ConstRef /*v*/) {
     return empty();
   }
 
   /// Total mechanical energy ½ u'ᵀ M u' + V(u) for a conservative system (time-independent
   /// loads and constraints, no damping); nothing otherwise.
-  [[nodiscard]] virtual std::optional<double> energy(double /*t*/, ConstRef /*u*/,
-                                                     ConstRef /*v*/) const {
+  [[nodiscard]] virtual std::optional<double> energy(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) {
     return std::nullopt;
   }
   // NOLINTEND(performance-unnecessary-value-param)
 
  protected:
+  MechanicalSystem() = default;
+  MechanicalSystem(const MechanicalSystem&) = default;  ///< for clone()
+  MechanicalSystem& operator=(const MechanicalSystem&) = delete;
+
   static const Sparse& empty() {
     static const Sparse none;
     return none;
   }
+  /// The step_reference of TimeFunction::derivative for an evaluation at t: the segment's start,
+  /// or t itself outside an integration.
+  [[nodiscard]] double steps_at(double t) const { return segment_start_.value_or(t); }
+
+ private:
+  std::optional<double> segment_start_;
 };
 
 /// Stores a dense block in S with every entry in the pattern (explicit zeros kept), so that the

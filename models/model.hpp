@@ -51,11 +51,15 @@ struct Model {
   std::vector<Constraint> constraints;
   Eigen::SparseMatrix<double> A;  ///< m x n, row i = constraints[i].coefficients
   Eigen::VectorXd u0, v0;
-  /// Set for models whose M, f or constraints depend on the state (large-displacement bars,
-  /// rigid members, generalized coordinates, nonholonomic rows): the system every formulation
-  /// integrates. M, C, K and A above then hold its linearization at t = 0 and (u0, v0), for
-  /// `info`, the rank check and the default gains.
-  std::shared_ptr<const MechanicalSystem> nonlinear;
+  /// The system every formulation integrates, decided once by the builder: a LinearSystem (owning
+  /// copies of M, C, K, A and the loads) for linear models, else the model's own, whose M, f or
+  /// constraints depend on the state (large-displacement bars, rigid members, generalized
+  /// coordinates, nonholonomic rows); M, C, K and A above then hold its linearization at t = 0
+  /// and (u0, v0), for `info`, the rank check and the default gains. A constant prototype: runs
+  /// evaluate their own evaluator() (models/mechanical_system.hpp), so one model serves many runs
+  /// and threads.
+  std::shared_ptr<const MechanicalSystem> system;
+  bool nonlinear = false;  ///< `system` is not the LinearSystem of M, C, K, A
   /// Built-in benchmarks: the published reference state at a time, when one is known there.
   std::function<std::optional<PublishedReference>(double)> reference;
   /// What [initial] project = true changed (empty when nothing was projected).
@@ -70,7 +74,9 @@ struct Model {
   [[nodiscard]] int dofs() const { return static_cast<int>(dof_names.size()); }
   [[nodiscard]] int constraint_count() const { return static_cast<int>(constraints.size()); }
   [[nodiscard]] bool has_damping() const { return C.nonZeros() > 0; }
-  [[nodiscard]] bool is_nonlinear() const { return nonlinear != nullptr; }
+  [[nodiscard]] bool is_nonlinear() const { return nonlinear; }
+  /// A new evaluator of the system, for one run (or one thread).
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> evaluator() const { return system->clone(); }
   /// No damping, time-independent loads (steps at t = 0 included), scleronomic constraints: the
   /// total energy is a first integral. (Nonlinear systems answer through their energy().)
   [[nodiscard]] bool is_conservative() const;
@@ -80,11 +86,6 @@ struct Model {
   [[nodiscard]] Eigen::VectorXd applied_forces(double t) const { return applied_forces(t, t); }
   /// d^order/dt^order of the position-level right-hand sides (m), order in {0, 1, 2}.
   [[nodiscard]] Eigen::VectorXd position_rhs(int order, double t) const;
-  /// Max-norm drifts: position over position-level constraints |φ| (|a·u − g| for linear rows),
-  /// velocity over all constraints |ψ| (|a·v − g'| or |a·v − h| for linear rows). 0 without
-  /// constraints.
-  [[nodiscard]] std::pair<double, double> drift(double t, const Eigen::VectorXd& u,
-                                                const Eigen::VectorXd& v) const;
   /// Times in (0, t_end) where a load step switches on, sorted, unique.
   [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 #include "models/benchmarks.hpp"
@@ -38,67 +39,68 @@ class Pendulum final : public MechanicalSystem {
     no_terms_.resize(2, 2);
   }
 
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> clone() const override {
+    return std::make_unique<Pendulum>(*this);
+  }
+
   [[nodiscard]] int dofs() const override { return 2; }
   [[nodiscard]] int constraints() const override { return 1; }
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
-  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) const override { return M_; }
-  void force(double /*t*/, double /*step_reference*/, ConstRef /*u*/, ConstRef /*v*/,
-             Ref f) const override {
-    f << 0.0, -g_;
-  }
+  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
+  void force(double /*t*/, ConstRef /*u*/, ConstRef /*v*/, Ref f) override { f << 0.0, -g_; }
   /// Constant gravity: 2 x 2 without entries.
   [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) const override {
+                                               ConstRef /*v*/) override {
     return no_terms_;
   }
   [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) const override {
+                                               ConstRef /*v*/) override {
     return no_terms_;
   }
 
-  [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef u) const override {
+  [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef u) override {
     store_dense(A_, u.transpose());
     return A_;
   }
-  void position_residual(double /*t*/, ConstRef u, Ref phi) const override {
+  void position_residual(double /*t*/, ConstRef u, Ref phi) override {
     phi[0] = (u.squaredNorm() - 1) / 2;
   }
-  void velocity_residual(double /*t*/, ConstRef u, ConstRef v, Ref psi) const override {
+  void velocity_residual(double /*t*/, ConstRef u, ConstRef v, Ref psi) override {
     psi[0] = u.dot(v);
   }
   /// γ = −|u'|² (the centripetal term).
-  void acceleration_bias(double /*t*/, ConstRef /*u*/, ConstRef v, Ref gamma) const override {
+  void acceleration_bias(double /*t*/, ConstRef /*u*/, ConstRef v, Ref gamma) override {
     gamma[0] = -v.squaredNorm();
   }
 
   [[nodiscard]] bool has_curvature() const override { return true; }
   /// d(u w)/du = w I.
   [[nodiscard]] const Sparse& constraint_force_jacobian(double /*t*/, ConstRef /*u*/,
-                                                        ConstRef w) const override {
+                                                        ConstRef w) override {
     store_dense(force_jac_, w[0] * Eigen::Matrix2d::Identity());
     return force_jac_;
   }
   /// d(u·a)/du = aᵀ.
   [[nodiscard]] const Sparse& constraint_product_jacobian(double /*t*/, ConstRef /*u*/,
-                                                          ConstRef a) const override {
+                                                          ConstRef a) override {
     store_dense(product_jac_, a.transpose());
     return product_jac_;
   }
   /// d(u·v)/du = vᵀ.
   [[nodiscard]] const Sparse& velocity_residual_jacobian(double /*t*/, ConstRef /*u*/,
-                                                         ConstRef v) const override {
+                                                         ConstRef v) override {
     store_dense(psi_jac_, v.transpose());
     return psi_jac_;
   }
   /// γ does not depend on u (the default empty block); dγ/du' = −2 vᵀ.
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                                           ConstRef v) const override {
+                                                           ConstRef v) override {
     store_dense(gamma_jac_v_, -2.0 * v.transpose());
     return gamma_jac_v_;
   }
 
   /// ½ |v|² + g y.
-  [[nodiscard]] std::optional<double> energy(double /*t*/, ConstRef u, ConstRef v) const override {
+  [[nodiscard]] std::optional<double> energy(double /*t*/, ConstRef u, ConstRef v) override {
     return 0.5 * v.squaredNorm() + g_ * u[1];
   }
 
@@ -106,7 +108,7 @@ class Pendulum final : public MechanicalSystem {
   double g_;
   std::vector<bool> position_ = {true};
   Sparse M_, no_terms_;
-  mutable Sparse A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
+  Sparse A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
 };
 
 }  // namespace

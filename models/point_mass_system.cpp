@@ -89,10 +89,9 @@ const MechanicalSystem::Sparse& PointMassSystem::assemble(
   return S;
 }
 
-void PointMassSystem::force(double t, double step_reference, ConstRef u, ConstRef /*v*/,
-                            Ref f) const {
+void PointMassSystem::force(double t, ConstRef u, ConstRef /*v*/, Ref f) {
   f.setZero();
-  for (const auto& l : layout_.loads) f[l.dof] += l.value.derivative(0, t, step_reference);
+  for (const auto& l : layout_.loads) f[l.dof] += l.value.derivative(0, t, steps_at(t));
   if (!layout_.nonlinear_geometry) {
     f.noalias() -= K_linear_ * u;
     return;
@@ -109,7 +108,7 @@ void PointMassSystem::force(double t, double step_reference, ConstRef u, ConstRe
 }
 
 const MechanicalSystem::Sparse& PointMassSystem::force_jacobian_u(double /*t*/, ConstRef u,
-                                                                  ConstRef /*v*/) const {
+                                                                  ConstRef /*v*/) {
   if (!layout_.nonlinear_geometry) {
     f_u_ = -K_linear_;
     return f_u_;
@@ -128,8 +127,7 @@ const MechanicalSystem::Sparse& PointMassSystem::force_jacobian_u(double /*t*/, 
   return assemble(f_u_, n_, n_, trip_);
 }
 
-const MechanicalSystem::Sparse& PointMassSystem::constraint_jacobian(double /*t*/,
-                                                                     ConstRef u) const {
+const MechanicalSystem::Sparse& PointMassSystem::constraint_jacobian(double /*t*/, ConstRef u) {
   linear_.append_triplets(0, trip_);
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
@@ -138,7 +136,7 @@ const MechanicalSystem::Sparse& PointMassSystem::constraint_jacobian(double /*t*
   return assemble(A_, m_, n_, trip_);
 }
 
-void PointMassSystem::position_residual(double t, ConstRef u, Ref phi) const {
+void PointMassSystem::position_residual(double t, ConstRef u, Ref phi) {
   linear_.position_residual(t, u, phi.head(linear_count_));
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
@@ -147,7 +145,7 @@ void PointMassSystem::position_residual(double t, ConstRef u, Ref phi) const {
   }
 }
 
-void PointMassSystem::velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const {
+void PointMassSystem::velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) {
   linear_.velocity_residual(t, v, psi.head(linear_count_));
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
@@ -155,7 +153,7 @@ void PointMassSystem::velocity_residual(double t, ConstRef u, ConstRef v, Ref ps
   }
 }
 
-void PointMassSystem::acceleration_bias(double t, ConstRef /*u*/, ConstRef v, Ref gamma) const {
+void PointMassSystem::acceleration_bias(double t, ConstRef /*u*/, ConstRef v, Ref gamma) {
   linear_.acceleration_bias(t, gamma.head(linear_count_));
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
@@ -165,7 +163,7 @@ void PointMassSystem::acceleration_bias(double t, ConstRef /*u*/, ConstRef v, Re
 
 const MechanicalSystem::Sparse& PointMassSystem::constraint_force_jacobian(double /*t*/,
                                                                            ConstRef /*u*/,
-                                                                           ConstRef w) const {
+                                                                           ConstRef w) {
   // Aᵀw on the rod rows: ±w_r d/L, so d/du = (w_r/L) [I −I; −I I].
   const int dim = layout_.dimension;
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
@@ -178,7 +176,7 @@ const MechanicalSystem::Sparse& PointMassSystem::constraint_force_jacobian(doubl
 
 const MechanicalSystem::Sparse& PointMassSystem::constraint_product_jacobian(double /*t*/,
                                                                              ConstRef /*u*/,
-                                                                             ConstRef a) const {
+                                                                             ConstRef a) {
   // (A a)_r = d·(a_j − a_i)/L.
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
@@ -189,7 +187,7 @@ const MechanicalSystem::Sparse& PointMassSystem::constraint_product_jacobian(dou
 
 const MechanicalSystem::Sparse& PointMassSystem::velocity_residual_jacobian(double /*t*/,
                                                                             ConstRef /*u*/,
-                                                                            ConstRef v) const {
+                                                                            ConstRef v) {
   // ψ_r = d·d'/L.
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
@@ -200,7 +198,7 @@ const MechanicalSystem::Sparse& PointMassSystem::velocity_residual_jacobian(doub
 
 const MechanicalSystem::Sparse& PointMassSystem::acceleration_bias_jacobian_v(double /*t*/,
                                                                               ConstRef /*u*/,
-                                                                              ConstRef v) const {
+                                                                              ConstRef v) {
   // γ_r = −|d'|²/L.
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
@@ -209,7 +207,7 @@ const MechanicalSystem::Sparse& PointMassSystem::acceleration_bias_jacobian_v(do
   return assemble(gamma_jac_v_, m_, n_, trip_);
 }
 
-std::optional<double> PointMassSystem::energy(double t, ConstRef u, ConstRef v) const {
+std::optional<double> PointMassSystem::energy(double t, ConstRef u, ConstRef v) {
   if (!conservative_) return std::nullopt;
   double e = 0.5 * v.dot(M_ * v);
   for (const auto& l : layout_.loads) e -= l.value.derivative(0, t) * u[l.dof];

@@ -14,6 +14,7 @@
 /// finite differences).
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "models/linear_rows.hpp"
@@ -41,31 +42,33 @@ class PointMassSystem final : public MechanicalSystem {
  public:
   explicit PointMassSystem(PointMassLayout layout);
 
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> clone() const override {
+    return std::make_unique<PointMassSystem>(*this);
+  }
+
   [[nodiscard]] int dofs() const override { return n_; }
   [[nodiscard]] int constraints() const override { return m_; }
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
-  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) const override { return M_; }
-  void force(double t, double step_reference, ConstRef u, ConstRef v, Ref f) const override;
-  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) const override;
+  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
+  void force(double t, ConstRef u, ConstRef v, Ref f) override;
+  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) override;
   [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) const override {
+                                               ConstRef /*v*/) override {
     return no_damping_;
   }
-  [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) const override;
-  void position_residual(double t, ConstRef u, Ref phi) const override;
-  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override;
-  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override;
+  [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) override;
+  void position_residual(double t, ConstRef u, Ref phi) override;
+  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) override;
+  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) override;
 
   [[nodiscard]] bool has_curvature() const override { return !layout_.rods.empty(); }
-  [[nodiscard]] const Sparse& constraint_force_jacobian(double t, ConstRef u,
-                                                        ConstRef w) const override;
+  [[nodiscard]] const Sparse& constraint_force_jacobian(double t, ConstRef u, ConstRef w) override;
   [[nodiscard]] const Sparse& constraint_product_jacobian(double t, ConstRef u,
-                                                          ConstRef a) const override;
-  [[nodiscard]] const Sparse& velocity_residual_jacobian(double t, ConstRef u,
-                                                         ConstRef v) const override;
+                                                          ConstRef a) override;
+  [[nodiscard]] const Sparse& velocity_residual_jacobian(double t, ConstRef u, ConstRef v) override;
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double t, ConstRef u,
-                                                           ConstRef v) const override;
-  [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) const override;
+                                                           ConstRef v) override;
+  [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) override;
 
  private:
   /// d = x_j + u_j − x_i − u_i for a member (dimension entries).
@@ -89,8 +92,8 @@ class PointMassSystem final : public MechanicalSystem {
   std::vector<bool> position_;
   Sparse M_, K_linear_, no_damping_;
   bool conservative_ = false;
-  mutable Sparse f_u_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
-  mutable std::vector<Eigen::Triplet<double>> trip_;
+  Sparse f_u_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
+  std::vector<Eigen::Triplet<double>> trip_;
 };
 
 }  // namespace condyn

@@ -1,6 +1,7 @@
 #include "models/sleigh.hpp"
 
 #include <cmath>
+#include <memory>
 
 namespace condyn {
 
@@ -31,70 +32,73 @@ class Sleigh final : public MechanicalSystem {
     for (const auto& l : p_.loads) conservative_ = conservative_ && l.value.is_constant();
   }
 
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> clone() const override {
+    return std::make_unique<Sleigh>(*this);
+  }
+
   [[nodiscard]] int dofs() const override { return 3; }
   [[nodiscard]] int constraints() const override { return 1; }
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
-  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) const override { return M_; }
-  void force(double t, double step_reference, ConstRef /*u*/, ConstRef /*v*/,
-             Ref f) const override {
+  [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
+  void force(double t, ConstRef /*u*/, ConstRef /*v*/, Ref f) override {
     f.setZero();
-    for (const auto& l : p_.loads) f[l.dof] += l.value.derivative(0, t, step_reference);
+    for (const auto& l : p_.loads) f[l.dof] += l.value.derivative(0, t, steps_at(t));
   }
   [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) const override {
+                                               ConstRef /*v*/) override {
     return zero_;
   }
   [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) const override {
+                                               ConstRef /*v*/) override {
     return zero_;
   }
-  [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef u) const override {
+  [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef u) override {
     A_.valuePtr()[kX] = -std::sin(u[kTheta]);
     A_.valuePtr()[kY] = std::cos(u[kTheta]);
     A_.valuePtr()[kTheta] = p_.contact_offset;
     return A_;
   }
-  void position_residual(double /*t*/, ConstRef /*u*/, Ref phi) const override { phi.setZero(); }
-  void velocity_residual(double /*t*/, ConstRef u, ConstRef v, Ref psi) const override {
+  void position_residual(double /*t*/, ConstRef /*u*/, Ref phi) override { phi.setZero(); }
+  void velocity_residual(double /*t*/, ConstRef u, ConstRef v, Ref psi) override {
     psi[0] =
         -std::sin(u[kTheta]) * v[kX] + std::cos(u[kTheta]) * v[kY] + p_.contact_offset * v[kTheta];
   }
-  void acceleration_bias(double /*t*/, ConstRef u, ConstRef v, Ref gamma) const override {
+  void acceleration_bias(double /*t*/, ConstRef u, ConstRef v, Ref gamma) override {
     gamma[0] = v[kTheta] * forward_speed(u, v);
   }
   [[nodiscard]] bool has_curvature() const override { return true; }
   /// Aᵀw = w (−sin θ, cos θ, a): d/dθ = w (−cos θ, −sin θ, 0).
   [[nodiscard]] const Sparse& constraint_force_jacobian(double /*t*/, ConstRef u,
-                                                        ConstRef w) const override {
+                                                        ConstRef w) override {
     theta_column_.valuePtr()[0] = -w[0] * std::cos(u[kTheta]);
     theta_column_.valuePtr()[1] = -w[0] * std::sin(u[kTheta]);
     return theta_column_;
   }
   [[nodiscard]] const Sparse& constraint_product_jacobian(double /*t*/, ConstRef u,
-                                                          ConstRef a) const override {
+                                                          ConstRef a) override {
     product_u_.valuePtr()[0] = -forward_speed(u, a);
     return product_u_;
   }
   [[nodiscard]] const Sparse& velocity_residual_jacobian(double /*t*/, ConstRef u,
-                                                         ConstRef v) const override {
+                                                         ConstRef v) override {
     psi_u_.valuePtr()[0] = -forward_speed(u, v);
     return psi_u_;
   }
   /// γ = θ' (cos θ x' + sin θ y'): d/dθ = θ' (−sin θ x' + cos θ y').
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_u(double /*t*/, ConstRef u,
-                                                           ConstRef v) const override {
+                                                           ConstRef v) override {
     gamma_u_.valuePtr()[0] =
         v[kTheta] * (-std::sin(u[kTheta]) * v[kX] + std::cos(u[kTheta]) * v[kY]);
     return gamma_u_;
   }
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double /*t*/, ConstRef u,
-                                                           ConstRef v) const override {
+                                                           ConstRef v) override {
     gamma_v_.valuePtr()[kX] = v[kTheta] * std::cos(u[kTheta]);
     gamma_v_.valuePtr()[kY] = v[kTheta] * std::sin(u[kTheta]);
     gamma_v_.valuePtr()[kTheta] = forward_speed(u, v);
     return gamma_v_;
   }
-  [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) const override {
+  [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) override {
     if (!conservative_) return std::nullopt;
     double e = 0.5 * v.dot(M_ * v);
     for (const auto& l : p_.loads) e -= l.value.derivative(0, t) * u[l.dof];
@@ -111,7 +115,7 @@ class Sleigh final : public MechanicalSystem {
   std::vector<bool> position_;
   Sparse M_, zero_;
   bool conservative_ = false;
-  mutable Sparse A_, theta_column_, product_u_, psi_u_, gamma_u_, gamma_v_;
+  Sparse A_, theta_column_, product_u_, psi_u_, gamma_u_, gamma_v_;
 };
 
 }  // namespace

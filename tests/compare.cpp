@@ -39,8 +39,8 @@ Eigen::MatrixXd finite_difference_jacobian(const DaeProblem& dae, double t,
     y2[j] -= h;
     yp1[j] += cj * h;
     yp2[j] -= cj * h;
-    dae.residual(t, t, y1, yp1, rp);
-    dae.residual(t, t, y2, yp2, rm);
+    dae.residual(t, y1, yp1, rp);
+    dae.residual(t, y2, yp2, rm);
     fd.col(j) = (rp - rm) / (2 * h);
   }
   return fd;

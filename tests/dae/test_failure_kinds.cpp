@@ -231,7 +231,8 @@ namespace {
 class OdeBreaksAtT : public OdeProblem {
  public:
   [[nodiscard]] int size() const override { return 1; }
-  void rhs(double t, double /*step_reference*/, ConstRef /*y*/, Ref ydot) const override {
+  void begin_segment(double /*t0*/) override {}
+  void rhs(double t, ConstRef /*y*/, Ref ydot) const override {
     ydot[0] = t <= 0.0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
   }
   [[nodiscard]] bool has_projection() const override { return false; }
@@ -245,7 +246,7 @@ class OdeBreaksAtT : public OdeProblem {
 }  // namespace
 
 TEST_CASE("a CVODE failure in process: its kind from the flag's code") {
-  const OdeBreaksAtT problem;
+  OdeBreaksAtT problem;
   IntegratorOptions options;
   for (int k = 0; k <= 10; ++k) options.output_times.push_back(0.1 * k);
   SolveSummary summary;
@@ -280,14 +281,14 @@ class DaeNanAfterStart : public DaeProblem {
     pattern_.makeCompressed();
   }
   [[nodiscard]] int size() const override { return 1; }
-  void residual(double t, double /*step_reference*/, ConstRef /*y*/, ConstRef yp,
-                Ref r) const override {
+  void begin_segment(double /*t0*/) override {}
+  void residual(double t, ConstRef /*y*/, ConstRef yp, Ref r) const override {
     r[0] = t <= 0.0 ? yp[0] - 1.0 : std::numeric_limits<double>::quiet_NaN();
   }
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return pattern_;
   }
-  void jacobian(double /*t*/, double /*step_reference*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
+  void jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
                 Eigen::SparseMatrix<double>& J) const override {
     J.valuePtr()[0] = cj;
   }
@@ -305,7 +306,7 @@ class DaeNanAfterStart : public DaeProblem {
 }  // namespace
 
 TEST_CASE("an IDA failure in process: its kind from the flag's code") {
-  const DaeNanAfterStart problem;
+  DaeNanAfterStart problem;
   IntegratorOptions options;
   for (int k = 0; k <= 10; ++k) options.output_times.push_back(0.1 * k);
   SolveSummary summary;

@@ -56,7 +56,7 @@ TEST_CASE("multiplier formulations: Jacobian agrees with central differences") {
     const Eigen::VectorXd yp = Eigen::VectorXd::LinSpaced(n, -0.2, 0.9);
     const double t = 0.37, cj = 12.5;
     Eigen::SparseMatrix<double> J = dae.jacobian_pattern();
-    dae.jacobian(t, t, y, yp, cj, J);
+    dae.jacobian(t, y, yp, cj, J);
     // The residual is linear in (y, y'): central differences are exact up to roundoff
     // eps·|F|/h ≈ 1e-10.
     CONDYN_CHECK_CLOSE(Eigen::MatrixXd(J), test::finite_difference_jacobian(dae, t, y, yp, cj),
@@ -101,7 +101,7 @@ TEST_CASE("multiplier formulations: consistent initial values") {
     Eigen::VectorXd y = dae.pack(model.u0, model.v0), yp;
     dae.make_consistent(0.0, y, yp);
     Eigen::VectorXd r(dae.size());
-    dae.residual(0.0, 0.0, y, yp, r);
+    dae.residual(0.0, y, yp, r);
     // Consistent: F(0, y0, y'0) = 0 to roundoff of the O(1) terms.
     CHECK(r.cwiseAbs().maxCoeff() <= 1e-13);
   }
@@ -191,7 +191,7 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.3, -0.7);
   const Eigen::VectorXd yp = Eigen::VectorXd::LinSpaced(n, -0.2, 0.9);
   Eigen::SparseMatrix<double> J = ode.jacobian_pattern();
-  ode.jacobian(0.37, 0.37, y, yp, 12.5, J);
+  ode.jacobian(0.37, y, yp, 12.5, J);
   // Linear residual with entries up to w = 5e4: central differences exact to eps·w/h ≈ 1e-5.
   CONDYN_CHECK_CLOSE(Eigen::MatrixXd(J), test::finite_difference_jacobian(ode, 0.37, y, yp, 12.5),
                      1e-8);
@@ -199,7 +199,7 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   y0 << model.u0, model.v0;
   ode.make_consistent(0.0, y0, yp0);
   Eigen::VectorXd r(n);
-  ode.residual(0.0, 0.0, y0, yp0, r);
+  ode.residual(0.0, y0, yp0, r);
   CHECK(r.cwiseAbs().maxCoeff() <= 1e-12);
 }
 

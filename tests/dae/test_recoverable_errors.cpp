@@ -19,7 +19,8 @@ class OdeRefusesSomeTrials : public OdeProblem {
  public:
   explicit OdeRefusesSomeTrials(int refusals) : refusals_(refusals) {}
   [[nodiscard]] int size() const override { return 1; }
-  void rhs(double t, double /*step_reference*/, ConstRef y, Ref ydot) const override {
+  void begin_segment(double /*t0*/) override {}
+  void rhs(double t, ConstRef y, Ref ydot) const override {
     if (t > 0.0 && refusals_ > 0) {
       --refusals_;
       throw RecoverableError("singular at this trial state");
@@ -48,7 +49,7 @@ IntegratorOptions unit_interval() {
 }  // namespace
 
 TEST_CASE("a trial state the equations refuse once: the step is cut and the run goes on") {
-  const OdeRefusesSomeTrials problem(1);
+  OdeRefusesSomeTrials problem(1);
   SolveSummary summary;
   const RawTrajectory out =
       integrate_ode(problem, Eigen::VectorXd::Ones(1), unit_interval(), summary);
@@ -58,7 +59,7 @@ TEST_CASE("a trial state the equations refuse once: the step is cut and the run 
 }
 
 TEST_CASE("trial states refused again and again: a failure quoting the equations' complaint") {
-  const OdeRefusesSomeTrials problem(1000);
+  OdeRefusesSomeTrials problem(1000);
   SolveSummary summary;
   bool thrown = false;
   try {

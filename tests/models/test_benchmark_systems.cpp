@@ -38,7 +38,7 @@ struct KktSolution {
 };
 
 /// The acceleration-level equations [M Aᵀ; A 0][a; λ] = [f; γ] at (t, u, v), dense.
-KktSolution solve_kkt(const MechanicalSystem& s, double t, const VectorXd& u, const VectorXd& v) {
+KktSolution solve_kkt(MechanicalSystem& s, double t, const VectorXd& u, const VectorXd& v) {
   const int n = s.dofs(), m = s.constraints();
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
   K.topLeftCorner(n, n) = Eigen::MatrixXd(s.mass(t, u));
@@ -46,20 +46,19 @@ KktSolution solve_kkt(const MechanicalSystem& s, double t, const VectorXd& u, co
   K.topRightCorner(n, m) = A.transpose();
   K.bottomLeftCorner(m, n) = A;
   VectorXd rhs(n + m);
-  s.force(t, t, u, v, rhs.head(n));
+  s.force(t, u, v, rhs.head(n));
   s.acceleration_bias(t, u, v, rhs.tail(m));
   const VectorXd x = K.fullPivLu().solve(rhs);
   return {x.head(n), x.tail(m), (K * x - rhs).norm() / rhs.norm()};
 }
 
-VectorXd position_residual(const MechanicalSystem& s, double t, const VectorXd& u) {
+VectorXd position_residual(MechanicalSystem& s, double t, const VectorXd& u) {
   VectorXd phi(s.constraints());
   s.position_residual(t, u, phi);
   return phi;
 }
 
-VectorXd velocity_residual(const MechanicalSystem& s, double t, const VectorXd& u,
-                           const VectorXd& v) {
+VectorXd velocity_residual(MechanicalSystem& s, double t, const VectorXd& u, const VectorXd& v) {
   VectorXd psi(s.constraints());
   s.velocity_residual(t, u, v, psi);
   return psi;
@@ -72,7 +71,7 @@ struct EnergyRate {
 
 /// dE/dt = ∂E/∂u · u' + ∂E/∂u' · a, by a central difference of energy() along the path
 /// s ↦ (u + s u' + s²/2 a, u' + s a), step 1e-5 of the state's time scale.
-EnergyRate energy_rate(const MechanicalSystem& s, double t, const VectorXd& u, const VectorXd& v,
+EnergyRate energy_rate(MechanicalSystem& s, double t, const VectorXd& u, const VectorXd& v,
                        const VectorXd& a) {
   const double vn = v.lpNorm<Eigen::Infinity>(), an = a.lpNorm<Eigen::Infinity>();
   double tau = 1.0;
@@ -83,7 +82,7 @@ EnergyRate energy_rate(const MechanicalSystem& s, double t, const VectorXd& u, c
     return *s.energy(t, VectorXd(u + x * v + 0.5 * x * x * a), VectorXd(v + x * a));
   };
   VectorXd f(s.dofs());
-  s.force(t, t, u, v, f);
+  s.force(t, u, v, f);
   const VectorXd Ma = s.mass(t, u) * a;
   return {(E(h) - E(-h)) / (2 * h), v.cwiseAbs().dot(f.cwiseAbs() + Ma.cwiseAbs())};
 }
@@ -92,66 +91,67 @@ EnergyRate energy_rate(const MechanicalSystem& s, double t, const VectorXd& u, c
 class Defective final : public MechanicalSystem {
  public:
   enum class Defect { entry_of_A, missing_curvature };
-  Defective(const MechanicalSystem& inner, Defect defect) : s_(inner), defect_(defect) {}
+  Defective(const MechanicalSystem& inner, Defect defect) : s_(inner.clone()), defect_(defect) {}
 
-  [[nodiscard]] int dofs() const override { return s_.dofs(); }
-  [[nodiscard]] int constraints() const override { return s_.constraints(); }
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> clone() const override {
+    return std::make_unique<Defective>(*s_, defect_);
+  }
+
+  [[nodiscard]] int dofs() const override { return s_->dofs(); }
+  [[nodiscard]] int constraints() const override { return s_->constraints(); }
   [[nodiscard]] const std::vector<bool>& position_rows() const override {
-    return s_.position_rows();
+    return s_->position_rows();
   }
-  [[nodiscard]] const Sparse& mass(double t, ConstRef u) const override { return s_.mass(t, u); }
-  void force(double t, double r, ConstRef u, ConstRef v, Ref f) const override {
-    s_.force(t, r, u, v, f);
+  [[nodiscard]] const Sparse& mass(double t, ConstRef u) override { return s_->mass(t, u); }
+  void force(double t, ConstRef u, ConstRef v, Ref f) override { s_->force(t, u, v, f); }
+  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) override {
+    return s_->force_jacobian_u(t, u, v);
   }
-  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) const override {
-    return s_.force_jacobian_u(t, u, v);
+  [[nodiscard]] const Sparse& force_jacobian_v(double t, ConstRef u, ConstRef v) override {
+    return s_->force_jacobian_v(t, u, v);
   }
-  [[nodiscard]] const Sparse& force_jacobian_v(double t, ConstRef u, ConstRef v) const override {
-    return s_.force_jacobian_v(t, u, v);
-  }
-  [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) const override {
-    A_ = s_.constraint_jacobian(t, u);
+  [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) override {
+    A_ = s_->constraint_jacobian(t, u);
     if (defect_ == Defect::entry_of_A) A_.coeffRef(0, 0) += 1e-3;
     return A_;
   }
-  void position_residual(double t, ConstRef u, Ref phi) const override {
-    s_.position_residual(t, u, phi);
+  void position_residual(double t, ConstRef u, Ref phi) override {
+    s_->position_residual(t, u, phi);
   }
-  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) const override {
-    s_.velocity_residual(t, u, v, psi);
+  void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) override {
+    s_->velocity_residual(t, u, v, psi);
   }
-  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) const override {
-    s_.acceleration_bias(t, u, v, gamma);
+  void acceleration_bias(double t, ConstRef u, ConstRef v, Ref gamma) override {
+    s_->acceleration_bias(t, u, v, gamma);
   }
-  [[nodiscard]] bool has_curvature() const override { return s_.has_curvature(); }
-  [[nodiscard]] const Sparse& mass_jacobian(double t, ConstRef u, ConstRef a) const override {
-    return s_.mass_jacobian(t, u, a);
+  [[nodiscard]] bool has_curvature() const override { return s_->has_curvature(); }
+  [[nodiscard]] const Sparse& mass_jacobian(double t, ConstRef u, ConstRef a) override {
+    return s_->mass_jacobian(t, u, a);
   }
-  [[nodiscard]] const Sparse& constraint_force_jacobian(double t, ConstRef u,
-                                                        ConstRef w) const override {
-    return defect_ == Defect::missing_curvature ? empty() : s_.constraint_force_jacobian(t, u, w);
+  [[nodiscard]] const Sparse& constraint_force_jacobian(double t, ConstRef u, ConstRef w) override {
+    return defect_ == Defect::missing_curvature ? empty() : s_->constraint_force_jacobian(t, u, w);
   }
   [[nodiscard]] const Sparse& constraint_product_jacobian(double t, ConstRef u,
-                                                          ConstRef a) const override {
-    return s_.constraint_product_jacobian(t, u, a);
+                                                          ConstRef a) override {
+    return s_->constraint_product_jacobian(t, u, a);
   }
   [[nodiscard]] const Sparse& velocity_residual_jacobian(double t, ConstRef u,
-                                                         ConstRef v) const override {
-    return s_.velocity_residual_jacobian(t, u, v);
+                                                         ConstRef v) override {
+    return s_->velocity_residual_jacobian(t, u, v);
   }
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_u(double t, ConstRef u,
-                                                           ConstRef v) const override {
-    return s_.acceleration_bias_jacobian_u(t, u, v);
+                                                           ConstRef v) override {
+    return s_->acceleration_bias_jacobian_u(t, u, v);
   }
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double t, ConstRef u,
-                                                           ConstRef v) const override {
-    return s_.acceleration_bias_jacobian_v(t, u, v);
+                                                           ConstRef v) override {
+    return s_->acceleration_bias_jacobian_v(t, u, v);
   }
 
  private:
-  const MechanicalSystem& s_;
+  std::unique_ptr<MechanicalSystem> s_;
   Defect defect_;
-  mutable Sparse A_;
+  Sparse A_;
 };
 
 bool mentions(const std::vector<std::string>& messages, const std::string& what) {
@@ -190,7 +190,8 @@ TEST_CASE("system check: a wrong entry of A or a missing curvature block is repo
 
 TEST_CASE("benchmark Andrews: derivatives agree with central differences") {
   const auto b = make_andrews();
-  const auto& s = *b.system;
+  const auto owned = b.system->clone();  // evaluation changes a system: its own copy
+  auto& s = *owned;
   CHECK(s.dofs() == 7);
   CHECK(s.constraints() == 6);
   CHECK(b.dof_names.size() == 7);
@@ -212,7 +213,8 @@ TEST_CASE("benchmark Andrews: derivatives agree with central differences") {
 
 TEST_CASE("benchmark Andrews: the published initial state is consistent and gives w0, lambda0") {
   const auto b = make_andrews();
-  const auto& s = *b.system;
+  const auto owned = b.system->clone();  // evaluation changes a system: its own copy
+  auto& s = *owned;
   // q0 is published to 30 digits: φ vanishes to the round-off of its terms (|terms| < 0.1).
   CHECK(position_residual(s, 0.0, b.u0).lpNorm<Eigen::Infinity>() <= 1e-16);
   CHECK(velocity_residual(s, 0.0, b.u0, b.v0).lpNorm<Eigen::Infinity>() == 0.0);
@@ -225,7 +227,8 @@ TEST_CASE("benchmark Andrews: the published initial state is consistent and give
 
 TEST_CASE("benchmark Andrews: the reference at t = 0.03 is consistent, and energy is conserved") {
   const auto b = make_andrews();
-  const auto& s = *b.system;
+  const auto owned = b.system->clone();  // evaluation changes a system: its own copy
+  auto& s = *owned;
   CHECK(b.t_end == 0.03);
   CHECK_FALSE(b.reference(0.02));
   const auto ref = b.reference(0.03);
@@ -252,7 +255,8 @@ TEST_CASE("benchmark Andrews: the reference at t = 0.03 is consistent, and energ
 
 TEST_CASE("benchmark car axis: derivatives agree with central differences") {
   const auto b = make_car_axis();
-  const auto& s = *b.system;
+  const auto owned = b.system->clone();  // evaluation changes a system: its own copy
+  auto& s = *owned;
   CHECK(s.dofs() == 4);
   CHECK(s.constraints() == 2);
   CHECK(s.has_curvature());
@@ -269,7 +273,8 @@ TEST_CASE("benchmark car axis: derivatives agree with central differences") {
 
 TEST_CASE("benchmark car axis: initial state, KKT at t = 0 and the reference at t = 3") {
   const auto b = make_car_axis();
-  const auto& s = *b.system;
+  const auto owned = b.system->clone();  // evaluation changes a system: its own copy
+  auto& s = *owned;
   CHECK(b.t_end == 3.0);
   CHECK(position_residual(s, 0.0, b.u0).lpNorm<Eigen::Infinity>() == 0.0);
   CHECK(velocity_residual(s, 0.0, b.u0, b.v0).lpNorm<Eigen::Infinity>() <= 1e-16);
@@ -299,9 +304,10 @@ TEST_CASE("benchmark car axis: initial state, KKT at t = 0 and the reference at 
 
 TEST_CASE("benchmark pendulum: gravity, derivatives, exact reference and energy") {
   const auto b = make_pendulum();
-  const auto& s = *b.system;
+  const auto owned = b.system->clone();  // evaluation changes a system: its own copy
+  auto& s = *owned;
   VectorXd f(2);
-  s.force(0.0, 0.0, b.u0, b.v0, f);
+  s.force(0.0, b.u0, b.v0, f);
   const double g = -f[1];
   CHECK(f[0] == 0.0);
   CHECK(std::abs(g - 13.7503716360407456) <= 1e-15 * 13.7503716360407456);
