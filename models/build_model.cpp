@@ -91,7 +91,7 @@ bool all_finite(const Eigen::SparseMatrix<double>& m) {
 
 class Builder {
  public:
-  explicit Builder(const SceneSpec& spec) : spec_(spec) {}
+  Builder(const SceneSpec& spec, BuildReport& report) : spec_(spec), report_(report) {}
 
   [[noreturn]] void fail(const SourcePoint& where, const std::string& problem) const {
     throw SceneError(scene_message(spec_.file, where, problem));
@@ -506,8 +506,8 @@ class Builder {
   /// Removes constraint `d.row` from the linear model and reports it.
   void drop_constraint(const Dependent& d) {
     const auto row = static_cast<std::size_t>(d.row);
-    model_.dropped_constraints.push_back("'" + model_.constraints[row].name +
-                                         "' (a combination of " + d.others + ")");
+    report_.dropped_constraints.push_back("'" + model_.constraints[row].name +
+                                          "' (a combination of " + d.others + ")");
     model_.constraints.erase(model_.constraints.begin() + d.row);
     std::vector<Eigen::Triplet<double>> kept;
     for (int k = 0; k < model_.A.outerSize(); ++k) {
@@ -696,15 +696,15 @@ class Builder {
       }
       // The largest entry sets the matrix's scale; single tiny entries are roundoff (cos 90°).
       if (hi > kFar || (hi > 0.0 && hi < 1.0 / kFar)) {
-        model_.warnings.push_back(std::string("the ") + name + " has entries up to magnitude " +
-                                  fmt(hi) + ": beyond 1e-15 ... 1e15, check the units");
+        report_.warnings.push_back(std::string("the ") + name + " has entries up to magnitude " +
+                                   fmt(hi) + ": beyond 1e-15 ... 1e15, check the units");
       }
       const bool diagonal_matters = mat == &model_.M || mat == &model_.K;
       if (diagonal_matters && dhi > 0.0 && dhi / dlo > kSpread) {
-        model_.warnings.push_back(std::string("the diagonal of the ") + name + " spans " +
-                                  fmt(dlo) + " to " + fmt(dhi) + " (ratio " + fmt(dhi / dlo) +
-                                  "): beyond 1/eps of double precision (4.5e15), the smallest "
-                                  "entries are lost in roundoff");
+        report_.warnings.push_back(std::string("the diagonal of the ") + name + " spans " +
+                                   fmt(dlo) + " to " + fmt(dhi) + " (ratio " + fmt(dhi / dlo) +
+                                   "): beyond 1/eps of double precision (4.5e15), the smallest "
+                                   "entries are lost in roundoff");
       }
     }
   }
@@ -879,7 +879,7 @@ class Builder {
     for (const auto& [name, value] : spec_.initial.velocity)
       given_v[static_cast<std::size_t>(model_.dof_index.at(name))] = true;
     try {
-      model_.initial_projection =
+      report_.initial_projection =
           project_initial_state(*s, 0.0, model_.u0, model_.v0, given_u, given_v, model_.dof_names);
     } catch (const InconsistentGivenValues& e) {
       refuse_given_values(e);
@@ -947,7 +947,7 @@ class Builder {
       fail({"solve.slaves", line},
            "names " + std::to_string(slaves.size()) + " slave" + (slaves.size() == 1 ? "" : "s") +
                " but the scene has " + std::to_string(m) + " constraint" + (m == 1 ? "" : "s") +
-               (model_.dropped_constraints.empty() ? "" : " after dropping the redundant ones") +
+               (report_.dropped_constraints.empty() ? "" : " after dropping the redundant ones") +
                ": name exactly one slave per constraint");
     }
     // The elimination solves A_S u_S = g − A_R u_R: the slaves' columns must be well conditioned
@@ -1172,6 +1172,7 @@ class Builder {
  private:
   const SceneSpec& spec_;
   Model model_;
+  BuildReport& report_;
   PointMassLayout layout_;
   bool nonlinear_truss_ = false;
   std::vector<SourcePoint> rod_where_;
@@ -1180,7 +1181,15 @@ class Builder {
 
 }  // namespace
 
-Model build_model(const SceneSpec& spec) { return Builder(spec).build(); }
+Model build_model(const SceneSpec& spec, BuildReport& report) {
+  report = {};
+  return Builder(spec, report).build();
+}
+
+Model build_model(const SceneSpec& spec) {
+  BuildReport ignored;
+  return build_model(spec, ignored);
+}
 
 Eigen::VectorXd Model::applied_forces(double t, double step_reference) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());

@@ -62,13 +62,6 @@ struct Model {
   bool nonlinear = false;  ///< `system` is not the LinearSystem of M, C, K, A
   /// Built-in benchmarks: the published reference state at a time, when one is known there.
   std::function<std::optional<PublishedReference>(double)> reference;
-  /// What [initial] project = true changed (empty when nothing was projected).
-  std::string initial_projection;
-  /// Accepted, but worth a look: magnitudes so far from 1, or so spread, that double precision
-  /// loses the physics (run prints them to stderr, info to its report).
-  std::vector<std::string> warnings;
-  /// What [solve] redundant = "drop" removed, one entry per constraint (empty when nothing).
-  std::vector<std::string> dropped_constraints;
   std::string description;  ///< one line for `condyn info` (built-in models)
 
   [[nodiscard]] int dofs() const { return static_cast<int>(dof_names.size()); }
@@ -90,8 +83,23 @@ struct Model {
   [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
 };
 
+/// What building a model found worth telling, kept apart from the model (run prints it to the
+/// terminal, info to its report).
+struct BuildReport {
+  /// What [initial] project = true changed (empty when nothing was projected).
+  std::string initial_projection;
+  /// Accepted, but worth a look: magnitudes so far from 1, or so spread, that double precision
+  /// loses the physics.
+  std::vector<std::string> warnings;
+  /// What [solve] redundant = "drop" removed, one entry per constraint (empty when nothing).
+  std::vector<std::string> dropped_constraints;
+};
+
 /// Builds and checks the model: DOF names, geometry, matrix properties, constraint rank and
-/// compatibility, initial consistency. Throws SceneError naming file, line and key.
+/// compatibility, initial consistency. Throws SceneError naming file, line and key. `report`
+/// receives what the build found worth telling.
+[[nodiscard]] Model build_model(const SceneSpec& spec, BuildReport& report);
+/// The same, for callers that do not print the report.
 [[nodiscard]] Model build_model(const SceneSpec& spec);
 
 }  // namespace condyn

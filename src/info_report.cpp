@@ -103,13 +103,14 @@ std::string short_list(const std::vector<std::string>& names) {
 
 }  // namespace
 
-void print_info(std::ostream& out, const Model& model, const SolveSpec& settings) {
+void print_info(std::ostream& out, const Model& model, const BuildReport& report,
+                const SolveSpec& settings) {
   out << "scene: " << model.file << (model.name.empty() ? "" : "  (" + model.name + ")") << "\n";
   if (!model.description.empty()) out << "model: " << model.description << "\n";
-  if (!model.initial_projection.empty())
-    out << "initial state: " << model.initial_projection << "\n";
-  for (const auto& w : model.warnings) out << "warning: " << w << "\n";
-  for (const auto& d : model.dropped_constraints)
+  if (!report.initial_projection.empty())
+    out << "initial state: " << report.initial_projection << "\n";
+  for (const auto& w : report.warnings) out << "warning: " << w << "\n";
+  for (const auto& d : report.dropped_constraints)
     out << "dropped redundant constraint " << d << "\n";
   out << "\n";
   const auto classes = classify_constraints(model, settings.t_end);

@@ -7,7 +7,9 @@
 
 namespace condyn {
 
-/// The report on `model` under the run `settings` (settings.scheme: the scheme asked for).
-void print_info(std::ostream& out, const Model& model, const SolveSpec& settings);
+/// The report on `model`, what its build reported, and the run `settings` (settings.scheme: the
+/// scheme asked for).
+void print_info(std::ostream& out, const Model& model, const BuildReport& report,
+                const SolveSpec& settings);
 
 }  // namespace condyn

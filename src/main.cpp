@@ -77,7 +77,8 @@ int run(const RunArgs& args) {
   // standard error.
   RunOutputs outputs(args.scene, args.out, spec.output, args.steps_out);
   std::ostream& msg = outputs.messages();
-  const Model model = build_model(spec);
+  BuildReport report;
+  const Model model = build_model(spec, report);
 
   RunHooks hooks;
   hooks.record_steps = !args.steps_out.empty();
@@ -94,10 +95,10 @@ int run(const RunArgs& args) {
     return 1;
   }
   outputs.write(model, traj);
-  if (!model.initial_projection.empty())
-    msg << "initial state: " << model.initial_projection << "\n";
-  for (const auto& w : model.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";
-  for (const auto& d : model.dropped_constraints)
+  if (!report.initial_projection.empty())
+    msg << "initial state: " << report.initial_projection << "\n";
+  for (const auto& w : report.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";
+  for (const auto& d : report.dropped_constraints)
     msg << "dropped redundant constraint " << d << "\n";
   msg << summary.brief() << "\n";
   if (const double e = relative_energy_error(model, traj); e >= 0.0) {
@@ -270,7 +271,9 @@ int main(int argc, char** argv) {
     if (*info_cmd) {
       SceneSpec spec = parse_scene_file(info_scene);
       if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", info_scheme);
-      print_info(std::cout, build_model(spec), spec.solve);
+      BuildReport report;
+      const Model model = build_model(spec, report);
+      print_info(std::cout, model, report, spec.solve);
       return 0;
     }
     if (*validate_cmd) return run_validation(std::cout, validate_options) ? 0 : 1;

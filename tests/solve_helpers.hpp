@@ -10,15 +10,17 @@
 
 namespace condyn::test {
 
-/// A scene's settings and the model built from it.
+/// A scene's settings, the model built from it and what the build reported.
 struct BuiltScene {
   SceneSpec spec;
   Model model;
+  BuildReport report;
 };
 
 inline BuiltScene built(SceneSpec spec) {
-  Model model = build_model(spec);
-  return {std::move(spec), std::move(model)};
+  BuildReport report;
+  Model model = build_model(spec, report);
+  return {std::move(spec), std::move(model), std::move(report)};
 }
 
 /// `settings` with another scheme.

@@ -58,8 +58,11 @@ std::string scene(const std::string& roll, const std::string& twin, double u0 = 
 /// The SceneError message, or "" when the scene builds; `dropped` gets what was dropped.
 std::string outcome(const std::string& text, std::string* dropped = nullptr) {
   try {
-    const Model m = build_model(parse_scene_text(text, "r.toml"));
-    if (dropped != nullptr && !m.dropped_constraints.empty()) *dropped = m.dropped_constraints[0];
+    BuildReport report;
+    (void)build_model(parse_scene_text(text, "r.toml"), report);
+    if (dropped != nullptr && !report.dropped_constraints.empty()) {
+      *dropped = report.dropped_constraints[0];
+    }
   } catch (const SceneError& e) {
     return e.what();
   }
