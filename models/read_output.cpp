@@ -1,0 +1,60 @@
+#include "models/scene_readers.hpp"
+
+#include <string>
+
+namespace condyn {
+
+const char* to_string(Quantity q) {
+  switch (q) {
+    case Quantity::displacement:
+      return "displacement";
+    case Quantity::velocity:
+      return "velocity";
+    case Quantity::reaction:
+      return "reaction";
+    case Quantity::multiplier:
+      return "multiplier";
+    case Quantity::drift:
+      return "drift";
+    case Quantity::energy:
+      return "energy";
+  }
+  return "?";
+}
+
+void SceneReader::read_output(const toml::node& node, OutputSpec& output) const {
+  const std::string path = "output";
+  const auto& t = table(node, path);
+  output.where = at(node, path);
+  check_keys(t, path, {"quantities", "file"});
+  if (const auto* n = t.get("quantities")) {
+    output.quantities.clear();
+    const auto& arr = array(*n, "output.quantities");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string p = index("output.quantities", i);
+      const std::string s = string(*arr.get(i), p);
+      bool found = false;
+      for (Quantity q : {Quantity::displacement, Quantity::velocity, Quantity::reaction,
+                         Quantity::multiplier, Quantity::drift, Quantity::energy}) {
+        if (s == to_string(q)) {
+          for (Quantity seen : output.quantities) {
+            if (seen == q) fail(*arr.get(i), p, "'" + s + "' is listed twice");
+          }
+          output.quantities.push_back(q);
+          found = true;
+        }
+      }
+      if (!found) {
+        fail(*arr.get(i), p,
+             "unknown quantity '" + s +
+                 "' (expected displacement, velocity, reaction, multiplier, drift or energy)");
+      }
+    }
+  }
+  if (const auto* n = t.get("file")) {
+    output.file = string(*n, "output.file");
+    if (output.file.empty()) fail(*n, "output.file", "must not be empty");
+  }
+}
+
+}  // namespace condyn

@@ -1,0 +1,91 @@
+#include "models/scene_readers.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace condyn {
+
+void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
+  const std::string path = "solve";
+  const auto& t = table(node, path);
+  solve.where = at(node, path);
+  check_keys(t, path,
+             {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
+              "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "redundant",
+              "max_steps", "max_wall_time"});
+  solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
+  solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
+  if (const auto* n = t.get("max_steps")) {
+    // A whole number >= 1 (1e6 is accepted: a budget is often written so).
+    const double v = number(*n, "solve.max_steps");
+    if (!(v >= 1.0) || v != std::floor(v) || v > 1e18) {
+      fail(*n, "solve.max_steps", "must be a whole number of steps >= 1 (got " + fmt(v) + ")");
+    }
+    solve.max_steps = static_cast<long>(v);
+  }
+  if (const auto* n = t.get("max_wall_time"))
+    solve.max_wall_time = positive(*n, "solve.max_wall_time");
+  if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
+  if (const auto* n = t.get("rtol")) {
+    solve.rtol = positive(*n, "solve.rtol");
+    if (solve.rtol < kMinRtol || solve.rtol >= 1.0) {
+      fail(*n, "solve.rtol",
+           "is out of range: a relative tolerance lies in [" + fmt(kMinRtol) + ", 1) (got " +
+               fmt(solve.rtol) + ")");
+    }
+  }
+  const auto atol_at = [&](const toml::node& n, const std::string& key) {
+    const double v = positive(n, key);
+    if (v < kMinAtol) {
+      fail(n, key,
+           "is too small: an absolute tolerance below " + fmt(kMinAtol) +
+               " gives error weights the integrator cannot hold in double precision (got " +
+               fmt(v) + ")");
+    }
+    return v;
+  };
+  if (const auto* n = t.get("atol")) solve.atol = atol_at(*n, "solve.atol");
+  if (const auto* n = t.get("atol_velocity"))
+    solve.atol_velocity = atol_at(*n, "solve.atol_velocity");
+  if (const auto* n = t.get("atol_multiplier"))
+    solve.atol_multiplier = atol_at(*n, "solve.atol_multiplier");
+  if (const auto* n = t.get("atol_mu")) solve.atol_mu = atol_at(*n, "solve.atol_mu");
+  if (const auto* n = t.get("baumgarte")) {
+    const auto& b = table(*n, "solve.baumgarte");
+    check_keys(b, "solve.baumgarte", {"alpha", "beta"});
+    if (const auto* a = b.get("alpha"))
+      solve.baumgarte_alpha = positive(*a, "solve.baumgarte.alpha");
+    if (const auto* be = b.get("beta"))
+      solve.baumgarte_beta = positive(*be, "solve.baumgarte.beta");
+  }
+  if (const auto* n = t.get("penalty")) {
+    const auto& pt = table(*n, "solve.penalty");
+    check_keys(pt, "solve.penalty", {"weight"});
+    if (const auto* w = pt.get("weight"))
+      solve.penalty_weight = positive(*w, "solve.penalty.weight");
+  }
+  if (const auto* n = t.get("slaves")) {
+    const auto& arr = array(*n, "solve.slaves");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      solve.slaves.push_back(string(*arr.get(i), index("solve.slaves", i)));
+    }
+  }
+  if (const auto* n = t.get("linear_solver")) {
+    const std::string s = string(*n, "solve.linear_solver");
+    if (s != "klu" && s != "dense") fail(*n, "solve.linear_solver", "expected 'klu' or 'dense'");
+    solve.dense_linear_solver = s == "dense";
+  }
+  if (const auto* n = t.get("redundant")) {
+    const std::string s = string(*n, "solve.redundant");
+    if (s != "refuse" && s != "drop") fail(*n, "solve.redundant", "expected 'refuse' or 'drop'");
+    solve.drop_redundant = s == "drop";
+  }
+}
+
+Scheme SceneReader::parse_scheme(const toml::node& node, const std::string& path) const {
+  const std::string s = string(node, path);
+  if (const auto scheme = scheme_from_string(s)) return *scheme;
+  fail(node, path, "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
+}
+
+}  // namespace condyn

@@ -1,0 +1,49 @@
+#pragma once
+/// The scene's section readers (internal to models/): each reads one section of the scene into
+/// its part of SceneSpec, through the typed getters of TomlAccess, and is defined in the file
+/// named for what it reads. parse_scene_text() (scene_parser.cpp) calls them in order.
+
+#include <string>
+#include <vector>
+
+#include "models/scene_spec.hpp"
+#include "models/toml_access.hpp"
+
+namespace condyn {
+
+class SceneReader : public TomlAccess {
+ public:
+  using TomlAccess::TomlAccess;
+
+  /// The whole scene: its top-level keys, then every section in order (scene_parser.cpp).
+  [[nodiscard]] SceneSpec read(const toml::table& root) const;
+
+  /// [model] (read_model.cpp); trusses by read_truss().
+  void read_model(const toml::node& node, ModelSpec& model) const;
+  void read_truss(const toml::table& t, int dim, ModelSpec& model) const;
+  /// [[load]] (read_loads.cpp).
+  void read_loads(const toml::node& node, std::vector<LoadSpec>& out) const;
+  /// [[constraint]] (read_constraints.cpp).
+  void read_constraints(const toml::node& node, std::vector<ConstraintSpec>& out) const;
+  /// [initial] (read_initial.cpp).
+  void read_initial(const toml::node& node, InitialSpec& initial) const;
+  /// [solve] (read_solve.cpp).
+  void read_solve(const toml::node& node, SolveSpec& solve) const;
+  [[nodiscard]] Scheme parse_scheme(const toml::node& node, const std::string& path) const;
+  /// [output] (read_output.cpp).
+  void read_output(const toml::node& node, OutputSpec& output) const;
+
+  /// A load's or a constraint's value: a number, one term table or a list of terms
+  /// (read_time_function.cpp).
+  [[nodiscard]] TimeFunction time_function(const toml::node& node, const std::string& path) const;
+  [[nodiscard]] TimeTerm term(const toml::node& node, const std::string& path) const;
+
+  /// DOF and constraint names, which become CSV column names (scene_names.cpp): check_name()
+  /// refuses what would break a CSV field; check_columns() refuses two names that give the same
+  /// column under any quantity.
+  void check_name(const toml::node& node, const std::string& path, const std::string& name,
+                  const char* what) const;
+  void check_columns(const toml::table& root, const SceneSpec& spec) const;
+};
+
+}  // namespace condyn
