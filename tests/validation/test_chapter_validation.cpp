@@ -20,6 +20,9 @@ using namespace condyn;
 
 namespace {
 
+/// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
 Model chapter_model(const std::string& scene) {
   return build_model(parse_scene_text(embedded_scene(scene).text, scene));
 }
@@ -65,8 +68,9 @@ TEST_CASE("chapter cases: every scheme agrees with the exact modal solution") {
       CHECK(err.reaction <= tol);
       const double scale = std::max(1.0, run.u.cwiseAbs().maxCoeff());
       if (scheme == Scheme::elimination) {
-        // Satisfies the constraints by construction: drift is roundoff of the reconstruction.
-        CHECK(summary.max_drift_position <= 1e-12 * scale);
+        // Satisfies the constraints by construction: drift is roundoff of the reconstruction,
+        // sums of at most n terms of size ≤ |u|: 4 n eps × scale (observed 8.2e-17 × scale).
+        CHECK(summary.max_drift_position <= 4.0 * model.dofs() * kEps * scale);
       } else if (scheme == Scheme::ggl) {
         // Enforces A u = g as an equation: drift at the level of the Newton tolerance.
         CHECK(summary.max_drift_position <= 10 * model.solve.rtol * scale);
