@@ -84,9 +84,10 @@ TEST_CASE("chapter §5.5.3 integrates to §5.5.2: both give the same motion") {
   const Trajectory tb = exact_trajectory(b, b.output_times());
   const Trajectory tc = exact_trajectory(c, c.output_times());
   // Same closed form through different constraint levels: agreement to roundoff of the
-  // largest entries (|u| reaches 1e3 at t = 10).
+  // largest entries (|u| reaches 1e3 at t = 10), the exponentials' eps ||tZ|| with ||tZ|| ≤ 100
+  // times 32 (as in test_modal_exact.cpp; observed exact).
   const TrajectoryError e = relative_error(tc, tb);
-  CHECK(e.worst() <= 1e-12);
+  CHECK(e.worst() <= 32 * kEps * 100.0);
 }
 
 TEST_CASE("chapter §5.5.1 with damping settles on the static solution and its reactions") {
@@ -117,7 +118,9 @@ TEST_CASE("chapter §5.5.1 with damping settles on the static solution and its r
   u_static << 0, 0, 0, 0, 0.4, -0.2;
   f_static << -2, -2, 0, 1, 0, 0;
   // The slowest mode decays like exp(−ζω t) with ζω ≥ 0.25: exp(−100) at t = 400, so the state
-  // equals the static one to roundoff of O(1) numbers.
+  // equals the static one to roundoff of O(1) numbers. The exponentials' bound 32 eps ||tZ|| with
+  // ||tZ|| ≈ 1e3 at t = 400 would be 7e-12, 240 times the observed 2.9e-14: 1e-12 is kept, tight
+  // enough to catch a slower decay than claimed or a reaction recovery off in the 12th digit.
   CONDYN_CHECK_CLOSE(exact.u.col(1), u_static, 1e-12);
   CONDYN_CHECK_CLOSE(exact.reaction.col(1), f_static, 1e-12);
 }
