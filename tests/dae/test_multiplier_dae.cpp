@@ -162,7 +162,7 @@ t_end = 1.0
 output_step = 0.25
 )";
   const BaumgarteGains fallback = baumgarte_gains(build_model(parse_scene_text(free_mass, "free")));
-  CHECK(fallback.beta == doctest::Approx(2 * 3.141592653589793 / 1.0));
+  CHECK(fallback.beta == doctest::Approx(2 * 3.141592653589793 / 1.0).epsilon(8 * kEps));
 }
 
 TEST_CASE("Baumgarte gains from the scene reach the summary") {
@@ -189,8 +189,8 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   const LinearSystem system(model);
   const PenaltyWeights weights = penalty_weights(model);
   // Default: 1e4 × the largest stiffness diagonal (5), c = √(w · m_max) with m_max = 3.
-  CHECK(weights.position == doctest::Approx(5e4));
-  CHECK(weights.velocity == doctest::Approx(std::sqrt(5e4 * 3.0)));
+  CHECK(weights.position == doctest::Approx(5e4).epsilon(8 * kEps));
+  CHECK(weights.velocity == doctest::Approx(std::sqrt(5e4 * 3.0)).epsilon(8 * kEps));
   const PenaltyOde ode(system, weights);
   CHECK(ode.size() == 2 * model.dofs());  // no multiplier unknowns
   const int n = ode.size();

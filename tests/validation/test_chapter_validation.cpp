@@ -44,7 +44,7 @@ TEST_CASE("chapter errata: the code flags exactly the documented ones") {
     if (c.printed.equation == "5.7" && c.printed.quantity == ChapterQuantity::reduced_stiffness) {
       REQUIRE(c.differing.size() == 1);
       CHECK(c.differing[0] == std::make_pair(2, 1));
-      CHECK(c.computed(2, 1) == doctest::Approx(10.0));
+      CHECK(c.computed(2, 1) == doctest::Approx(10.0).epsilon(8 * kEps));
       k_entry = true;
     }
   }
