@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -20,6 +21,9 @@
 using namespace condyn;
 
 namespace {
+
+/// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
+constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 /// The frame with masses and stiffnesses multiplied by `scale` (1: kg and N/m; 1e-3: t and kN/m,
 /// the same model in other units: displacements unchanged, forces times 1e-3).
@@ -138,15 +142,19 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
   const Model& model = scene.model;
   const AbsoluteTolerances a = absolute_tolerances(model, scene.spec.solve);
   const ModelScales s = model_scales(model);
-  // T = 1 / ω_min (below t_end = 2 s here); the rule of dae/model_scales.hpp.
+  // T = 1 / ω_min (below t_end = 2 s here); the rule of dae/model_scales.hpp: velocities atol /
+  // t_end (the run, shorter than 1e3 / ω_min), multipliers atol m / T². Closed forms of the same
+  // few operations: 8 eps. (With doctest's default Approx, 1e-5 absolute for values this small,
+  // the velocity check could not fail and still expected the older atol / T.)
   REQUIRE(s.omega_min > 1.0 / 2.0);
   const double T = 1.0 / s.omega_min;
   CHECK(a.displacement == 1e-10);
-  CHECK(a.velocity == doctest::Approx(1e-10 / T));
-  CHECK(a.multiplier == doctest::Approx(1e-10 * s.mass / (T * T)));
-  CHECK(a.mu == doctest::Approx(a.velocity));  // unit coefficients
+  CHECK(a.velocity == doctest::Approx(1e-10 / 2.0).epsilon(8 * kEps));
+  CHECK(a.multiplier == doctest::Approx(1e-10 * s.mass / (T * T)).epsilon(8 * kEps));
+  CHECK(a.mu == doctest::Approx(a.velocity).epsilon(8 * kEps));  // unit coefficients
   // The mean floor mass (kg): the multipliers' atol is in newtons.
-  CHECK(s.mass == doctest::Approx((1e4 + 2e4 + 1.5e4 + 1.2e4 + 8e3 + 2.5e3 + 2.5e3) / 7));
+  CHECK(s.mass ==
+        doctest::Approx((1e4 + 2e4 + 1.5e4 + 1.2e4 + 8e3 + 2.5e3 + 2.5e3) / 7).epsilon(8 * kEps));
 
   const test::BuiltScene set =
       frame(1.0, 1e-6, "atol_velocity = 1e-7\natol_multiplier = 1e-3\natol_mu = 2e-9\n");

@@ -21,6 +21,9 @@ using namespace condyn;
 
 namespace {
 
+/// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
 test::BuiltScene chapter_model(const std::string& scene) {
   return test::built(parse_scene_text(embedded_scene(scene).text, scene));
 }
@@ -42,7 +45,7 @@ TEST_CASE("chapter errata: the code flags exactly the documented ones") {
     if (c.printed.equation == "5.7" && c.printed.quantity == ChapterQuantity::reduced_stiffness) {
       REQUIRE(c.differing.size() == 1);
       CHECK(c.differing[0] == std::make_pair(2, 1));
-      CHECK(c.computed(2, 1) == doctest::Approx(10.0));
+      CHECK(c.computed(2, 1) == doctest::Approx(10.0).epsilon(8 * kEps));
       k_entry = true;
     }
   }
@@ -69,8 +72,9 @@ TEST_CASE("chapter cases: every scheme agrees with the exact modal solution") {
       CHECK(err.reaction <= tol);
       const double scale = std::max(1.0, run.u.cwiseAbs().maxCoeff());
       if (scheme == Scheme::elimination) {
-        // Satisfies the constraints by construction: drift is roundoff of the reconstruction.
-        CHECK(summary.max_drift_position <= 1e-12 * scale);
+        // Satisfies the constraints by construction: drift is roundoff of the reconstruction,
+        // sums of at most n terms of size ≤ |u|: 4 n eps × scale (observed 8.2e-17 × scale).
+        CHECK(summary.max_drift_position <= 4.0 * model.dofs() * kEps * scale);
       } else if (scheme == Scheme::ggl) {
         // Enforces A u = g as an equation: drift at the level of the Newton tolerance.
         CHECK(summary.max_drift_position <= 10 * settings.rtol * scale);
@@ -84,9 +88,10 @@ TEST_CASE("chapter §5.5.3 integrates to §5.5.2: both give the same motion") {
   const Trajectory tb = exact_trajectory(b.model, b.spec.solve.output_times());
   const Trajectory tc = exact_trajectory(c.model, c.spec.solve.output_times());
   // Same closed form through different constraint levels: agreement to roundoff of the
-  // largest entries (|u| reaches 1e3 at t = 10).
+  // largest entries (|u| reaches 1e3 at t = 10), the exponentials' eps ||tZ|| with ||tZ|| ≤ 100
+  // times 32 (as in test_modal_exact.cpp; observed exact).
   const TrajectoryError e = relative_error(tc, tb);
-  CHECK(e.worst() <= 1e-12);
+  CHECK(e.worst() <= 32 * kEps * 100.0);
 }
 
 TEST_CASE("chapter §5.5.1 with damping settles on the static solution and its reactions") {
@@ -117,7 +122,9 @@ TEST_CASE("chapter §5.5.1 with damping settles on the static solution and its r
   u_static << 0, 0, 0, 0, 0.4, -0.2;
   f_static << -2, -2, 0, 1, 0, 0;
   // The slowest mode decays like exp(−ζω t) with ζω ≥ 0.25: exp(−100) at t = 400, so the state
-  // equals the static one to roundoff of O(1) numbers.
+  // equals the static one to roundoff of O(1) numbers. The exponentials' bound 32 eps ||tZ|| with
+  // ||tZ|| ≈ 1e3 at t = 400 would be 7e-12, 240 times the observed 2.9e-14: 1e-12 is kept, tight
+  // enough to catch a slower decay than claimed or a reaction recovery off in the 12th digit.
   CONDYN_CHECK_CLOSE(exact.u.col(1), u_static, 1e-12);
   CONDYN_CHECK_CLOSE(exact.reaction.col(1), f_static, 1e-12);
 }
