@@ -1,3 +1,6 @@
+// Constraint rows: supports and [[constraint]] terms to rows of A, their right-hand sides, and
+// the position_value of velocity rows.
+
 #include <algorithm>
 #include <cmath>
 #include <limits>

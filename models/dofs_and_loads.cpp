@@ -1,3 +1,5 @@
+// DOF names and their lookup, refusals naming the scene's key, and the scene's loads.
+
 #include <cmath>
 
 #include "models/model_builder.hpp"

@@ -1,3 +1,6 @@
+// The initial state: u0 and v0 from [initial], their consistency with the constraints
+// (kConsistencyTolerance), and [initial] project = true.
+
 #include <algorithm>
 #include <cmath>
 #include <memory>

@@ -1,3 +1,7 @@
+// Input checks of build_model(): time functions that stay finite over the horizon
+// (magnitude_bound), finite matrices and initial state, magnitude warnings, the size limits
+// (kMax*), and DOFs that nothing defines.
+
 #include <algorithm>
 #include <cmath>
 #include <limits>

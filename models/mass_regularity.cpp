@@ -1,3 +1,5 @@
+// The mass matrix on the motions the constraints allow: regular, so the accelerations are defined.
+
 #include <Eigen/Dense>
 #include <string>
 #include <vector>

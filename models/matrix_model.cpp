@@ -1,3 +1,5 @@
+// The matrix model: M, K and C as the scene writes them, each positive semi-definite.
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,5 @@
+// The Model's own member functions.
+
 #include <algorithm>
 #include <cmath>
 #include <set>

@@ -1,3 +1,6 @@
+// Nonlinear systems: which MechanicalSystem a scene gets (built-in benchmarks, the sleigh,
+// point masses for rigid members or large displacements), and its linearization at t = 0.
+
 #include <memory>
 
 #include "models/model_builder.hpp"

@@ -1,3 +1,5 @@
+// The rank and redundancy check of the constraints (kRankTolerance), and dropping a redundant one.
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,6 @@
+// Checks of the [solve] and [output] settings against the built model: output rows, energy,
+// slaves.
+
 #include <Eigen/Dense>
 #include <algorithm>
 

@@ -1,3 +1,5 @@
+// Truss assembly: nodes to DOFs, members to bars and rods, M and K of the truss, gravity.
+
 #include <algorithm>
 #include <array>
 #include <cmath>
