@@ -1,0 +1,52 @@
+// DOF names and their lookup, refusals naming the scene's key, and the scene's loads.
+
+#include <cmath>
+
+#include "models/model_builder.hpp"
+#include "models/scene_parser.hpp"
+
+namespace condyn {
+
+void ModelBuilder::fail(const SourcePoint& where, const std::string& problem) const {
+  throw SceneError(scene_message(spec_.file, where, problem));
+}
+
+int ModelBuilder::dof(const std::string& name, const SourcePoint& where) const {
+  auto it = model_.dof_index.find(name);
+  if (it == model_.dof_index.end()) {
+    std::string hint;
+    if (model_.dofs() <= 12) {
+      for (const auto& d : model_.dof_names) hint += (hint.empty() ? "" : ", ") + d;
+      hint = " (DOFs are: " + hint + ")";
+    }
+    fail(where, "no such DOF '" + name + "'" + hint);
+  }
+  return it->second;
+}
+
+void ModelBuilder::set_dofs(std::vector<std::string> names) {
+  model_.dof_names = std::move(names);
+  for (int i = 0; i < model_.dofs(); ++i) model_.dof_index[model_.dof_names[i]] = i;
+}
+
+void ModelBuilder::build_loads() {
+  // Gravity loads come first; several loads on one DOF add up, and so must stay finite.
+  std::vector<double> total(static_cast<std::size_t>(model_.dofs()), 0.0);
+  for (const auto& l : model_.loads) {
+    total[static_cast<std::size_t>(l.dof)] += magnitude_bound(l.value, spec_.solve.t_end);
+  }
+  for (const auto& l : spec_.loads) {
+    const SourcePoint value_at{l.where.path + ".value", l.where.line};
+    check_time_function(l.value, value_at);
+    const int d = dof(l.dof, {l.where.path + ".dof", l.where.line});
+    auto& sum = total[static_cast<std::size_t>(d)];
+    sum += magnitude_bound(l.value, spec_.solve.t_end);
+    if (!std::isfinite(sum)) {
+      fail(value_at,
+           "the loads on DOF '" + l.dof + "' add up to more than the double range (about 1.8e308)");
+    }
+    model_.loads.push_back(Load{d, l.value});
+  }
+}
+
+}  // namespace condyn

@@ -1,0 +1,155 @@
+// The initial state: u0 and v0 from [initial], their consistency with the constraints
+// (kConsistencyTolerance), and [initial] project = true.
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "models/initial_projection.hpp"
+#include "models/linear_system.hpp"
+#include "models/model_builder.hpp"
+
+namespace condyn {
+
+namespace {
+
+// Initial conditions must satisfy the constraints to this relative accuracy: a scene writes them
+// by hand in decimal, so a few hundred ulps of the terms' size is the right scale.
+constexpr double kConsistencyTolerance = 1e-10;
+
+}  // namespace
+
+void ModelBuilder::build_initial() {
+  const int n = model_.dofs();
+  model_.u0 = base_u0_.size() == n ? base_u0_ : Eigen::VectorXd::Zero(n);
+  model_.v0 = base_v0_.size() == n ? base_v0_ : Eigen::VectorXd::Zero(n);
+  for (const auto& [name, value] : spec_.initial.displacement) {
+    model_.u0[dof(name, {"initial.displacement." + name, spec_.initial.where.line})] = value;
+  }
+  for (const auto& [name, value] : spec_.initial.velocity) {
+    model_.v0[dof(name, {"initial.velocity." + name, spec_.initial.where.line})] = value;
+  }
+}
+
+void ModelBuilder::check_initial_consistency() const {
+  if (model_.is_nonlinear()) {
+    check_nonlinear_consistency();
+    return;
+  }
+  for (const auto& c : model_.constraints) {
+    double au = 0.0, av = 0.0, su = 0.0, sv = 0.0;
+    for (const auto& [d, a] : c.coefficients) {
+      au += a * model_.u0[d];
+      av += a * model_.v0[d];
+      su += std::abs(a * model_.u0[d]);
+      sv += std::abs(a * model_.v0[d]);
+    }
+    const bool position = c.level == ConstraintSpec::Level::position;
+    const std::string where = "constraint '" + c.name + "'";
+    if (!std::isfinite(su) || !std::isfinite(sv)) {
+      fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+           "a·u(0) or a·v(0) of " + where +
+               " overflows the double range (coefficients times initial values)");
+    }
+    // Negated comparisons: a NaN residual is a violation, never a pass.
+    if (position) {
+      const double g = c.value.value(0.0);
+      if (!(std::abs(au - g) <= kConsistencyTolerance * std::max({su, std::abs(g), 1e-300}))) {
+        fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+             "initial displacements violate " + where + ": a·u(0) = " + fmt(au) +
+                 " but the constraint requires " + fmt(g) + " (residual " + fmt(au - g) + ")");
+      }
+    }
+    const double gv = position ? c.value.derivative(1, 0.0) : c.value.value(0.0);
+    if (!(std::abs(av - gv) <= kConsistencyTolerance * std::max({sv, std::abs(gv), 1e-300}))) {
+      fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+           "initial velocities violate " + where + ": a·v(0) = " + fmt(av) +
+               " but the constraint requires " + fmt(gv) + " (residual " + fmt(av - gv) +
+               "); set [initial] velocity to match");
+    }
+  }
+}
+
+/// φ(0, u0) and ψ(0, u0, v0) of a nonlinear model, relative to the size of the state.
+void ModelBuilder::check_nonlinear_consistency() const {
+  const auto evaluator = model_.evaluator();
+  MechanicalSystem& s = *evaluator;
+  const int m = model_.constraint_count();
+  Eigen::VectorXd phi(m), psi(m);
+  s.position_residual(0.0, model_.u0, phi);
+  s.velocity_residual(0.0, model_.u0, model_.v0, psi);
+  const double u_scale = std::max(1.0, model_.u0.lpNorm<Eigen::Infinity>());
+  const double v_scale = std::max(1.0, model_.v0.lpNorm<Eigen::Infinity>());
+  for (int i = 0; i < m; ++i) {
+    const auto& c = model_.constraints[static_cast<std::size_t>(i)];
+    // Negated comparisons: a NaN residual is a violation, never a pass.
+    const bool bad_u = !(std::abs(phi[i]) <= kConsistencyTolerance * u_scale);
+    const bool bad_v = !(std::abs(psi[i]) <= kConsistencyTolerance * v_scale * u_scale);
+    if (!bad_u && !bad_v) continue;
+    fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+         std::string("initial ") + (bad_u ? "displacements" : "velocities") +
+             " violate constraint '" + c.name + "'" +
+             (c.nonlinear_kind.empty() ? "" : " (" + c.nonlinear_kind + ")") + ": residual " +
+             fmt(bad_u ? phi[i] : psi[i]) +
+             "; fix [initial], or set [initial] project = true to project the initial state "
+             "onto the constraints");
+  }
+}
+
+/// [initial] project = true keeps what the scene wrote: given values that no state satisfying
+/// the constraints has are refused (bad input), naming the keys and the constraints violated.
+void ModelBuilder::refuse_given_values(const InconsistentGivenValues& e) const {
+  const std::string level = e.velocity_level ? "velocity" : "displacement";
+  const auto& values = e.velocity_level ? spec_.initial.velocity : spec_.initial.displacement;
+  std::string keys, rows;
+  for (int d : e.given) {
+    const auto& name = model_.dof_names[static_cast<std::size_t>(d)];
+    for (const auto& [given, value] : values) {
+      if (given == name) keys += (keys.empty() ? "" : ", ") + name + " = " + fmt(value);
+    }
+  }
+  for (const auto& [row, residual] : e.violated) {
+    rows += (rows.empty() ? "'" : ", '") + model_.constraints[static_cast<std::size_t>(row)].name +
+            "' (residual " + fmt(residual) + ")";
+  }
+  rows += " at the closest state";
+  fail({"initial." + level + "." + model_.dof_names[static_cast<std::size_t>(e.given.front())],
+        spec_.initial.where.line},
+       "project = true keeps the values given in [initial], but with " + level + " " + keys +
+           " kept no initial state satisfies constraint" + (e.violated.size() == 1 ? " " : "s ") +
+           rows +
+           ": the given values are inconsistent with the constraints; change or "
+           "remove one of them");
+}
+
+/// [initial] project = true: the least-change projection of (u0, v0) onto the constraints,
+/// keeping the values given in [initial].
+void ModelBuilder::project_initial() {
+  if (static_cast<double>(model_.constraint_count()) * model_.dofs() > kMaxDenseEntries) {
+    fail(spec_.initial.where, "project = true factors the dense constraint Jacobian: " +
+                                  std::to_string(model_.constraint_count()) + " constraints x " +
+                                  std::to_string(model_.dofs()) + " DOFs is too large (limit " +
+                                  fmt(kMaxDenseEntries) + " entries)");
+  }
+  const auto s = evaluator();
+  const auto n = static_cast<std::size_t>(model_.dofs());
+  std::vector<bool> given_u(n, false), given_v(n, false);
+  for (const auto& [name, value] : spec_.initial.displacement)
+    given_u[static_cast<std::size_t>(model_.dof_index.at(name))] = true;
+  for (const auto& [name, value] : spec_.initial.velocity)
+    given_v[static_cast<std::size_t>(model_.dof_index.at(name))] = true;
+  try {
+    report_.initial_projection =
+        project_initial_state(*s, 0.0, model_.u0, model_.v0, given_u, given_v, model_.dof_names);
+  } catch (const InconsistentGivenValues& e) {
+    refuse_given_values(e);
+  } catch (const std::runtime_error& e) {
+    fail(spec_.initial.where, e.what());
+  }
+  if (!model_.is_nonlinear()) {  // velocity rows integrate with the projected u(0)
+    model_.constraints.clear();
+    build_constraints();
+  }
+}
+
+}  // namespace condyn

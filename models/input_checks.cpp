@@ -1,0 +1,198 @@
+// Input checks of build_model(): time functions that stay finite over the horizon
+// (magnitude_bound), finite matrices and initial state, magnitude warnings, the size limits
+// (kMax*), and DOFs that nothing defines.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "models/model_builder.hpp"
+
+namespace condyn {
+
+namespace {
+
+// exp(709) is the largest finite double; leave headroom for amplitudes and derivatives.
+constexpr double kMaxExponent = 700.0;
+// The solvers, `info` and the exact and elimination paths use dense DOF x DOF and constraint x DOF
+// matrices: 5000 of either is about 40 s and 600 MB for `run`; 10x more would take hours and GBs.
+constexpr int kMaxDofs = 5000;
+constexpr int kMaxConstraints = 5000;
+
+}  // namespace
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+/// An upper bound of |d^order/dt^order term(t)| over [0, t_end], order in {0, 1, 2}; infinite when
+/// the term leaves the double range there.
+double magnitude_bound(const TimeTerm& term, int order, double t_end) {
+  if (term.is_zero()) return 0.0;
+  switch (term.kind) {
+    case TimeTerm::Kind::step:
+      return order == 0 ? std::abs(term.amplitude) : 0.0;
+    case TimeTerm::Kind::polynomial: {
+      double sum = 0.0;
+      for (std::size_t k = static_cast<std::size_t>(order); k < term.coefficients.size(); ++k) {
+        if (term.coefficients[k] == 0.0) continue;
+        double factor = std::abs(term.coefficients[k]);
+        for (int j = 0; j < order; ++j)
+          factor *= static_cast<double>(k - static_cast<std::size_t>(j));
+        sum += factor * std::pow(t_end, static_cast<double>(k - static_cast<std::size_t>(order)));
+      }
+      return sum;
+    }
+    case TimeTerm::Kind::harmonic:
+      return std::abs(term.amplitude) * std::pow(std::abs(term.omega), order);
+    case TimeTerm::Kind::exponential:
+      return std::abs(term.amplitude) * std::pow(std::abs(term.rate), order) *
+             std::exp(std::max(term.rate * t_end, 0.0));
+  }
+  return 0.0;
+}
+
+/// The largest of the bounds of f, f' and f'' over [0, t_end] (infinite on overflow).
+double magnitude_bound(const TimeFunction& f, double t_end) {
+  double worst = 0.0;
+  for (int order = 0; order <= 2; ++order) {
+    double sum = 0.0;
+    for (const auto& term : f.terms()) sum += magnitude_bound(term, order, t_end);
+    worst = std::max(worst, sum);
+  }
+  return worst;
+}
+
+bool all_finite(const Eigen::SparseMatrix<double>& m) {
+  for (Eigen::Index k = 0; k < m.nonZeros(); ++k) {
+    if (!std::isfinite(m.valuePtr()[k])) return false;
+  }
+  return true;
+}
+
+/// f, f' and f'' must stay finite over [0, t_end]: an overflowing load or right-hand side would
+/// reach the solver as inf or NaN.
+void ModelBuilder::check_time_function(const TimeFunction& f, const SourcePoint& where) const {
+  for (const auto& term : f.terms()) {
+    if (term.kind == TimeTerm::Kind::exponential &&
+        std::abs(term.rate) * spec_.solve.t_end > kMaxExponent && term.rate > 0) {
+      fail(where,
+           "exp(" + fmt(term.rate) + "*t) overflows before t_end = " + fmt(spec_.solve.t_end));
+    }
+  }
+  if (!std::isfinite(magnitude_bound(f, spec_.solve.t_end))) {
+    fail(where, f.describe() +
+                    " or its first two time derivatives overflow the double range "
+                    "(about 1.8e308) before t_end = " +
+                    fmt(spec_.solve.t_end));
+  }
+}
+
+void ModelBuilder::check_finite() const {
+  const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
+      {&model_.M, "mass matrix M"},
+      {&model_.C, "damping matrix C"},
+      {&model_.K, "stiffness matrix K"},
+      {&model_.A, "constraint matrix A"}};
+  // A nonlinear model's matrices are its linearization at (u0, v0): too large an initial state
+  // is the likelier cause there.
+  const bool at_start = model_.is_nonlinear() && spec_.initial.where.line > 0;
+  for (const auto& [mat, name] : matrices) {
+    if (!all_finite(*mat)) {
+      fail(at_start ? spec_.initial.where : spec_.model.where,
+           std::string("the ") + name +
+               (at_start ? " linearized at the initial state has entries beyond the double "
+                           "range: are the initial values too large?"
+                         : " has entries beyond the double range: the scene's numbers are too "
+                           "large"));
+    }
+  }
+  if (!model_.u0.allFinite() || !model_.v0.allFinite()) {
+    fail(spec_.initial.where.line ? spec_.initial.where : spec_.model.where,
+         "the initial state is not finite (it overflows the double range)");
+  }
+}
+
+/// The last line of defence against a silent inf or NaN: whatever the checks above let through,
+/// the matrices and the initial state handed to the solvers are finite.
+/// Warns (does not refuse) about magnitudes that double precision cannot carry well: M, C, K or
+/// A whose largest entry lies beyond 1e±15 (a unit mistake, most likely), and diagonals of M or
+/// K whose largest and smallest positive entries differ by more than 1/eps ≈ 4.5e15 (the soft
+/// or light DOFs are then lost in the roundoff of the stiff or heavy ones).
+void ModelBuilder::check_magnitudes() {
+  constexpr double kFar = 1e15, kSpread = 4.5e15;
+  const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
+      {&model_.M, "mass matrix M"},
+      {&model_.C, "damping matrix C"},
+      {&model_.K, "stiffness matrix K"},
+      {&model_.A, "constraint matrix A"}};
+  for (const auto& [mat, name] : matrices) {
+    double hi = 0.0;
+    double dlo = std::numeric_limits<double>::infinity(), dhi = 0.0;
+    for (int k = 0; k < mat->outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(*mat, k); it; ++it) {
+        const double a = std::abs(it.value());
+        if (a == 0.0) continue;
+        hi = std::max(hi, a);
+        if (it.row() == it.col() && it.value() > 0.0) {
+          dlo = std::min(dlo, it.value());
+          dhi = std::max(dhi, it.value());
+        }
+      }
+    }
+    // The largest entry sets the matrix's scale; single tiny entries are roundoff (cos 90°).
+    if (hi > kFar || (hi > 0.0 && hi < 1.0 / kFar)) {
+      report_.warnings.push_back(std::string("the ") + name + " has entries up to magnitude " +
+                                 fmt(hi) + ": beyond 1e-15 ... 1e15, check the units");
+    }
+    const bool diagonal_matters = mat == &model_.M || mat == &model_.K;
+    if (diagonal_matters && dhi > 0.0 && dhi / dlo > kSpread) {
+      report_.warnings.push_back(std::string("the diagonal of the ") + name + " spans " + fmt(dlo) +
+                                 " to " + fmt(dhi) + " (ratio " + fmt(dhi / dlo) +
+                                 "): beyond 1/eps of double precision (4.5e15), the smallest "
+                                 "entries are lost in roundoff");
+    }
+  }
+}
+
+/// Sizes the dense parts of condyn can treat (README "Known limitations": small and medium
+/// models), refused before any dense work rather than left to exhaust memory or time.
+void ModelBuilder::check_size() const {
+  if (model_.dofs() > kMaxDofs) {
+    fail(spec_.model.where, std::to_string(model_.dofs()) + " DOFs: more than condyn's limit of " +
+                                std::to_string(kMaxDofs) +
+                                " (its solvers factor dense DOF x DOF matrices)");
+  }
+  if (model_.constraint_count() > kMaxConstraints) {
+    const auto& last = model_.constraints.back();
+    fail(last.where, std::to_string(model_.constraint_count()) +
+                         " constraints: more than condyn's limit of " +
+                         std::to_string(kMaxConstraints) +
+                         " (its solvers factor dense constraint x constraint matrices)");
+  }
+}
+
+void ModelBuilder::check_degenerate_dofs() const {
+  const int n = model_.dofs();
+  std::vector<bool> has(static_cast<std::size_t>(n), false);
+  for (const auto* mat : {&model_.M, &model_.K, &model_.C, &model_.A}) {
+    for (int k = 0; k < mat->outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(*mat, k); it; ++it) {
+        if (it.value() != 0.0) has[static_cast<std::size_t>(it.col())] = true;
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!has[static_cast<std::size_t>(i)]) {
+      fail(spec_.model.where, "DOF '" + model_.dof_names[static_cast<std::size_t>(i)] +
+                                  "' has neither mass nor stiffness nor damping nor a "
+                                  "constraint: its motion is undefined");
+    }
+  }
+}
+
+}  // namespace condyn

@@ -1,0 +1,154 @@
+// The mass matrix on the motions the constraints allow: regular, so the accelerations are defined.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "models/model_builder.hpp"
+
+namespace condyn {
+
+/// The penalty scheme integrates M u'' = f − Aᵀ w (A u − g) with M itself factored: every DOF
+/// needs mass, constrained or not (a massless support included).
+void ModelBuilder::check_penalty_mass() const {
+  std::vector<std::string> massless;
+  for (int i = 0; i < model_.dofs(); ++i) {
+    if (model_.M.coeff(i, i) == 0.0)
+      massless.push_back(model_.dof_names[static_cast<std::size_t>(i)]);
+  }
+  if (massless.empty()) return;
+  std::string names;
+  for (std::size_t k = 0; k < massless.size() && k < 10; ++k)
+    names += (k ? ", " : "") + massless[k];
+  if (massless.size() > 10) names += " ... and " + std::to_string(massless.size() - 10) + " more";
+  const bool truss =
+      spec_.model.type == ModelSpec::Type::truss2d || spec_.model.type == ModelSpec::Type::truss3d;
+  fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
+       std::to_string(massless.size()) + " DOF" + (massless.size() == 1 ? "" : "s") + " (" + names +
+           ") " + (massless.size() == 1 ? "has" : "have") +
+           " no mass: the penalty scheme factors M itself (its constraints are springs), so it "
+           "needs mass on every DOF, constrained or not; give them mass or use another scheme");
+}
+
+/// Accelerations are defined only when M is regular on the motions the constraints allow:
+/// [M Aᵀ; A 0] (and the elimination's Tᵀ M T) is singular exactly when some motion x has
+/// M x = 0 and A x = 0. With M positive semi-definite, a zero diagonal entry means a zero row:
+/// the massless DOFs Z, and the singular motions are the kernel of A restricted to Z. (Massless
+/// DOFs held by stiffness alone are not yet integrated: README "Known limitations".)
+void ModelBuilder::check_massless_dofs() const {
+  const int n = model_.dofs();
+  std::vector<int> massless, local(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i) {
+    if (model_.M.coeff(i, i) == 0.0) {
+      local[static_cast<std::size_t>(i)] = static_cast<int>(massless.size());
+      massless.push_back(i);
+    }
+  }
+  bool diagonal = true;
+  for (int k = 0; k < model_.M.outerSize() && diagonal; ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(model_.M, k); it; ++it) {
+      if (it.row() != it.col() && it.value() != 0.0) diagonal = false;
+    }
+  }
+  if (!diagonal) {
+    check_singular_mass();
+    return;
+  }
+  if (massless.empty()) return;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
+  std::vector<int> rows;
+  for (int r = 0; r < a.rows(); ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, r); it; ++it) {
+      if (local[static_cast<std::size_t>(it.col())] >= 0 && it.value() != 0.0) {
+        rows.push_back(r);
+        break;
+      }
+    }
+  }
+  const auto nz = static_cast<Eigen::Index>(massless.size());
+  if (static_cast<double>(rows.size()) * static_cast<double>(nz) > kMaxDenseEntries) return;
+  Eigen::MatrixXd az = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), nz);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, rows[k]); it; ++it) {
+      const int c = local[static_cast<std::size_t>(it.col())];
+      if (c >= 0) az(static_cast<Eigen::Index>(k), c) = it.value();
+    }
+  }
+  std::vector<std::string> free;
+  if (rows.empty()) {
+    for (int d : massless) free.push_back(model_.dof_names[static_cast<std::size_t>(d)]);
+  } else {
+    for (Eigen::Index r = 0; r < az.rows(); ++r) {
+      const double norm = az.row(r).stableNorm();
+      if (norm > 0.0) az.row(r) /= norm;
+    }
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(az);
+    lu.setThreshold(kRankTolerance);
+    if (lu.rank() == nz) return;
+    const Eigen::MatrixXd kernel = lu.kernel();
+    for (Eigen::Index c = 0; c < nz; ++c) {
+      if (kernel.row(c).cwiseAbs().maxCoeff() > kRankTolerance) {
+        free.push_back(
+            model_.dof_names[static_cast<std::size_t>(massless[static_cast<std::size_t>(c)])]);
+      }
+    }
+  }
+  std::string names;
+  for (std::size_t k = 0; k < free.size() && k < 10; ++k) names += (k ? ", " : "") + free[k];
+  if (free.size() > 10) names += " ... and " + std::to_string(free.size() - 10) + " more";
+  const bool truss =
+      spec_.model.type == ModelSpec::Type::truss2d || spec_.model.type == ModelSpec::Type::truss3d;
+  fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
+       std::to_string(free.size()) + " DOF" + (free.size() == 1 ? "" : "s") + " (" + names +
+           ") ha" + (free.size() == 1 ? "s" : "ve") + " no mass and no constraint fixes " +
+           (free.size() == 1 ? "it" : "them") +
+           ": the mass matrix is singular on the motions the constraints allow, so the "
+           "accelerations are undefined under every scheme (a massless DOF held only by "
+           "stiffness is algebraic, which condyn does not integrate yet); give " +
+           (truss ? "the node a mass in model.masses" : "the DOF a mass in model.mass") +
+           " or constrain it");
+}
+
+/// A full mass matrix (matrix models, generalized coordinates): its null space N from a dense
+/// eigendecomposition (zero to 1e-12 of its largest eigenvalue, the PSD check's roundoff), and
+/// the motions N y that A N y = 0 leaves free. Skipped beyond the dense limit (the solvers'
+/// own guards remain).
+void ModelBuilder::check_singular_mass() const {
+  const int n = model_.dofs();
+  if (static_cast<double>(n) * n > kMaxDenseEntries) return;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(model_.M)};
+  const Eigen::VectorXd& lambda = eig.eigenvalues();
+  const double largest = lambda.cwiseAbs().maxCoeff();
+  std::vector<Eigen::Index> null;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (lambda[k] <= 1e-12 * largest) null.push_back(k);
+  }
+  if (null.empty()) return;
+  Eigen::MatrixXd N(n, static_cast<Eigen::Index>(null.size()));
+  for (std::size_t k = 0; k < null.size(); ++k) {
+    N.col(static_cast<Eigen::Index>(k)) = eig.eigenvectors().col(null[k]);
+  }
+  Eigen::MatrixXd motions = N;  // the null motions no constraint holds
+  if (model_.constraint_count() > 0) {
+    const Eigen::MatrixXd AN = model_.A * N;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(AN);
+    lu.setThreshold(kRankTolerance);
+    if (lu.rank() == AN.cols()) return;
+    motions = N * lu.kernel();
+  }
+  std::string names;
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    if (motions.row(i).cwiseAbs().maxCoeff() <= kRankTolerance) continue;
+    if (count < 10) names += (count ? ", " : "") + model_.dof_names[static_cast<std::size_t>(i)];
+    ++count;
+  }
+  if (count > 10) names += " ... and " + std::to_string(count - 10) + " more";
+  fail({"model.mass", spec_.model.where.line},
+       "the mass matrix is singular along a motion of " + std::to_string(count) + " DOF" +
+           (count == 1 ? "" : "s") + " (" + names +
+           ") that no constraint holds: the accelerations are undefined under every scheme; "
+           "give that motion inertia in model.mass, or constrain it");
+}
+
+}  // namespace condyn

@@ -1,0 +1,46 @@
+// The Model's own member functions.
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "models/model.hpp"
+
+namespace condyn {
+
+Eigen::VectorXd Model::applied_forces(double t, double step_reference) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
+  for (const auto& l : loads) f[l.dof] += l.value.derivative(0, t, step_reference);
+  return f;
+}
+
+Eigen::VectorXd Model::position_rhs(int order, double t) const {
+  Eigen::VectorXd g(constraint_count());
+  for (int i = 0; i < constraint_count(); ++i) {
+    g[i] = constraints[static_cast<std::size_t>(i)].position_value.derivative(order, t);
+  }
+  return g;
+}
+
+bool Model::is_conservative() const {
+  if (has_damping()) return false;
+  for (const auto& l : loads) {
+    if (!l.value.is_constant()) return false;
+  }
+  for (const auto& c : constraints) {
+    if (!c.position_value.is_constant()) return false;
+  }
+  return true;
+}
+
+std::vector<double> Model::breakpoints(double t_end) const {
+  std::set<double> times;
+  for (const auto& l : loads) {
+    for (double b : l.value.breakpoints()) {
+      if (b < t_end) times.insert(b);
+    }
+  }
+  return {times.begin(), times.end()};
+}
+
+}  // namespace condyn

@@ -1,0 +1,121 @@
+#pragma once
+// Internal to build_model(): the state the stages of turning a SceneSpec into a Model share, and
+// the stages themselves, each defined in the file named above its group. The order in which
+// build_model() calls them, and why, is written down in models/build_model.cpp.
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/linear_system.hpp"
+#include "models/model.hpp"
+#include "models/point_mass_system.hpp"
+#include "models/scene_spec.hpp"
+#include "models/time_function.hpp"
+
+namespace condyn {
+
+class InconsistentGivenValues;
+
+// Relative size below which a (row-normalised) constraint set counts as rank deficient.
+// Rows are scaled to unit norm first, so this compares directions: 1e-10 keeps constraints whose
+// normals differ by more than ~1e-10 rad, far below anything a scene means on purpose.
+constexpr double kRankTolerance = 1e-10;
+// The rank check and [initial] project factor dense matrices (constraints x DOFs): refuse sizes
+// whose memory and time would look like a hang (4e6 doubles = 32 MB; a QR of about 10 s).
+constexpr double kMaxDenseEntries = 4e6;
+
+// input_checks.cpp
+std::string fmt(double v);
+double magnitude_bound(const TimeTerm& term, int order, double t_end);
+double magnitude_bound(const TimeFunction& f, double t_end);
+bool all_finite(const Eigen::SparseMatrix<double>& m);
+
+class ModelBuilder {
+ public:
+  ModelBuilder(const SceneSpec& spec, BuildReport& report) : spec_(spec), report_(report) {}
+
+  /// The stages in their order: models/build_model.cpp.
+  Model build();
+
+  /// An evaluator of the model as built so far: its nonlinear system, or the linear system of its
+  /// matrices and rows (the Model's own LinearSystem is made last, from the final model).
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> evaluator() const {
+    if (model_.nonlinear) return model_.evaluator();
+    return std::make_unique<LinearSystem>(model_);
+  }
+
+  // dofs_and_loads.cpp
+  [[noreturn]] void fail(const SourcePoint& where, const std::string& problem) const;
+  int dof(const std::string& name, const SourcePoint& where) const;
+  void set_dofs(std::vector<std::string> names);
+  void build_loads();
+
+  // input_checks.cpp
+  void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
+  void check_finite() const;
+  void check_magnitudes();
+  void check_size() const;
+  void check_degenerate_dofs() const;
+
+  // truss_assembly.cpp
+  void build_truss();
+
+  // matrix_model.cpp
+  Eigen::SparseMatrix<double> sparse_psd(const std::vector<std::vector<double>>& rows,
+                                         const std::string& key) const;
+  void build_matrix();
+
+  // nonlinear_systems.cpp
+  void build_benchmark();
+  void build_sleigh();
+  void finish_sleigh();
+  void finish_point_masses();
+  void keep_reference_only_at_published_start();
+  void linearize();
+
+  // constraint_rows.cpp
+  void check_coefficients(const ConstraintSpec& cs) const;
+  void build_constraints();
+
+  // rank_check.cpp
+  /// A redundant constraint (a combination of others, right-hand sides compatible) that the scene
+  /// asks to drop.
+  struct Dependent {
+    int row = 0;
+    std::string others;  ///< the constraints it combines, quoted
+  };
+  void drop_constraint(const Dependent& d);
+  [[nodiscard]] std::optional<Dependent> check_rank() const;
+
+  // initial_state.cpp
+  void build_initial();
+  void check_initial_consistency() const;
+  void check_nonlinear_consistency() const;
+  [[noreturn]] void refuse_given_values(const InconsistentGivenValues& e) const;
+  void project_initial();
+
+  // mass_regularity.cpp
+  void check_penalty_mass() const;
+  void check_massless_dofs() const;
+  void check_singular_mass() const;
+
+  // solve_settings_checks.cpp
+  void check_energy_output() const;
+  void check_output() const;
+  void check_slaves() const;
+
+ private:
+  const SceneSpec& spec_;
+  BuildReport& report_;
+  Model model_;
+  PointMassLayout layout_;
+  bool nonlinear_truss_ = false;
+  std::vector<SourcePoint> rod_where_;
+  Eigen::VectorXd base_u0_, base_v0_;  ///< built-in models' published initial state
+};
+
+}  // namespace condyn

@@ -1,0 +1,100 @@
+// Checks of the [solve] and [output] settings against the built model: output rows, energy,
+// slaves.
+
+#include <Eigen/Dense>
+#include <algorithm>
+
+#include "models/linear_system.hpp"
+#include "models/model_builder.hpp"
+
+namespace condyn {
+
+namespace {
+
+// Refuse horizons that would write more rows than this (about 1 GB of CSV for a small model).
+constexpr double kMaxOutputRows = 1e7;
+
+}  // namespace
+
+/// [output] energy needs a conservative system (else the energy is not a first integral).
+void ModelBuilder::check_energy_output() const {
+  const auto& q = spec_.output.quantities;
+  if (std::find(q.begin(), q.end(), Quantity::energy) == q.end()) return;
+  if (!evaluator()->energy(0.0, model_.u0, model_.v0)) {
+    fail({"output.quantities", spec_.output.where.line},
+         "'energy' needs a conservative scene (no damping, time-independent loads and "
+         "constraints): the energy of this one is not conserved, so its error means nothing");
+  }
+}
+
+void ModelBuilder::check_output() const {
+  const double rows = spec_.solve.t_end / spec_.solve.output_step + 1.0;
+  if (rows > kMaxOutputRows) {
+    fail({"solve.output_step", spec_.solve.where.line}, "would write " + fmt(rows) +
+                                                            " rows (limit " + fmt(kMaxOutputRows) +
+                                                            "): increase output_step");
+  }
+  check_slaves();
+}
+
+/// [solve] slaves: one distinct DOF per constraint, each in some constraint (the elimination
+/// solves the constraints for them).
+void ModelBuilder::check_slaves() const {
+  const auto& slaves = spec_.solve.slaves;
+  if (slaves.empty()) return;
+  const int line = spec_.solve.where.line;
+  const auto key = [&](std::size_t k) {
+    return SourcePoint{"solve.slaves[" + std::to_string(k + 1) + "]", line};
+  };
+  std::vector<int> touched(static_cast<std::size_t>(model_.dofs()), 0);
+  for (int k = 0; k < model_.A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(model_.A, k); it; ++it) {
+      if (it.value() != 0.0) touched[static_cast<std::size_t>(it.col())] = 1;
+    }
+  }
+  for (std::size_t k = 0; k < slaves.size(); ++k) {
+    const int d = dof(slaves[k], key(k));
+    for (std::size_t j = 0; j < k; ++j) {
+      if (slaves[j] == slaves[k]) {
+        fail(key(k), "'" + slaves[k] + "' is named twice (also as solve.slaves[" +
+                         std::to_string(j + 1) +
+                         "]): each slave is solved from its own constraint");
+      }
+    }
+    if (!touched[static_cast<std::size_t>(d)]) {
+      fail(key(k), "'" + slaves[k] +
+                       "' appears in no constraint: a slave is a DOF the constraints determine");
+    }
+  }
+  const int m = model_.constraint_count();
+  if (static_cast<int>(slaves.size()) != m) {
+    fail({"solve.slaves", line},
+         "names " + std::to_string(slaves.size()) + " slave" + (slaves.size() == 1 ? "" : "s") +
+             " but the scene has " + std::to_string(m) + " constraint" + (m == 1 ? "" : "s") +
+             (report_.dropped_constraints.empty() ? "" : " after dropping the redundant ones") +
+             ": name exactly one slave per constraint");
+  }
+  // The elimination solves A_S u_S = g − A_R u_R: the slaves' columns must be well conditioned
+  // (the elimination's own limit, 1e12). Dense SVD of m x m; skipped beyond the dense limit.
+  if (model_.is_nonlinear() || static_cast<double>(m) * m > kMaxDenseEntries) return;
+  const Eigen::MatrixXd a(model_.A);
+  Eigen::MatrixXd a_s(m, m);
+  std::string names;
+  for (int k = 0; k < m; ++k) {
+    a_s.col(k) = a.col(model_.dof_index.at(slaves[static_cast<std::size_t>(k)]));
+    names += (k ? ", " : "") + slaves[static_cast<std::size_t>(k)];
+  }
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(a_s);
+  const double smax = svd.singularValues()(0), smin = svd.singularValues()(m - 1);
+  constexpr double kMaxSlaveCondition = 1e12;
+  if (!(smin > smax / kMaxSlaveCondition)) {
+    fail({"solve.slaves", line},
+         "the slaves " + names +
+             " do not determine the constraints (condition number of their "
+             "columns of the constraint matrix " +
+             (smin > 0.0 ? fmt(smax / smin) : std::string("infinite")) +
+             ", limit 1e12): choose slaves that the constraints fix independently");
+  }
+}
+
+}  // namespace condyn
