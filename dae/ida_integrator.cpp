@@ -21,67 +21,6 @@
 
 namespace condyn {
 
-void IntegratorOptions::validate() const {
-  auto bad = [](const std::string& what) { throw std::invalid_argument("integrator: " + what); };
-  if (!(rtol > 0.0) || !std::isfinite(rtol)) bad("rtol must be > 0");
-  if (!(atol > 0.0) || !std::isfinite(atol)) bad("atol must be > 0");
-  for (const auto& [value, name] :
-       {std::pair{atol_velocity, "atol_velocity"}, std::pair{atol_multiplier, "atol_multiplier"},
-        std::pair{atol_mu, "atol_mu"}}) {
-    if (value && (!(*value > 0.0) || !std::isfinite(*value)))
-      bad(std::string(name) + " must be > 0 and finite");
-  }
-  if (output_times.empty()) bad("no output times");
-  if (!std::is_sorted(output_times.begin(), output_times.end())) bad("output times not ascending");
-  if (!std::is_sorted(breakpoints.begin(), breakpoints.end())) bad("breakpoints not ascending");
-  if (max_steps_per_output <= 0) bad("max_steps_per_output must be > 0");
-  if (max_steps < 0) bad("max_steps must be >= 0");
-  if (!(max_wall_seconds >= 0.0) || !std::isfinite(max_wall_seconds))
-    bad("max_wall_seconds must be >= 0");
-  if (!(progress_after_seconds >= 0.0) || !(progress_every_seconds >= 0.0))
-    bad("progress intervals must be >= 0");
-  if (!(time_scale > 0.0) || !std::isfinite(time_scale)) bad("time_scale must be > 0");
-  if (first_step && (!(*first_step > 0.0) || !std::isfinite(*first_step)))
-    bad("first_step must be > 0");
-}
-
-double IntegratorOptions::atol_of(UnknownKind kind) const {
-  switch (kind) {
-    case UnknownKind::displacement:
-      break;
-    case UnknownKind::velocity:
-      return atol_velocity.value_or(atol);
-    case UnknownKind::multiplier:
-      return atol_multiplier.value_or(atol);
-    case UnknownKind::mu:
-      return atol_mu.value_or(atol);
-  }
-  return atol;
-}
-
-Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& kinds,
-                                               int size) const {
-  if (kinds.empty()) return Eigen::VectorXd::Constant(size, atol);
-  if (static_cast<int>(kinds.size()) != size)
-    throw std::logic_error("integrator: unknown kinds do not match the problem size");
-  Eigen::VectorXd out(size);
-  for (int i = 0; i < size; ++i) out[i] = atol_of(kinds[static_cast<std::size_t>(i)]);
-  return out;
-}
-
-std::string SolveSummary::brief() const {
-  std::ostringstream s;
-  s.precision(3);
-  s << scheme << ": " << termination << ", " << steps << " steps, " << residual_evals
-    << " residual and " << jacobian_evals << " Jacobian evaluations, " << newton_failures
-    << " Newton and " << error_test_failures << " error-test failures, " << unknowns
-    << " unknowns, wall " << wall_seconds * 1e3 << " ms, max drift position " << max_drift_position
-    << " velocity " << max_drift_velocity;
-  if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
-  if (!notes.empty()) s << "; " << notes;
-  return s.str();
-}
-
 namespace {
 
 using sundials::ContextPtr;
