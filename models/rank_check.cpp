@@ -15,15 +15,13 @@ void ModelBuilder::drop_constraint(const Dependent& d) {
   report_.dropped_constraints.push_back("'" + model_.constraints[row].name +
                                         "' (a combination of " + d.others + ")");
   model_.constraints.erase(model_.constraints.begin() + d.row);
-  std::vector<Eigen::Triplet<double>> kept;
-  for (int k = 0; k < model_.A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(model_.A, k); it; ++it) {
-      if (it.row() == d.row) continue;
-      kept.emplace_back(it.row() > d.row ? it.row() - 1 : it.row(), it.col(), it.value());
-    }
-  }
-  model_.A.resize(model_.A.rows() - 1, model_.A.cols());
-  model_.A.setFromTriplets(kept.begin(), kept.end());
+  // Row d.row moves to the end (the others keep their order) and is cut off.
+  const auto m = static_cast<int>(model_.A.rows());
+  Eigen::VectorXi position(m);
+  for (int i = 0; i < m; ++i) position[i] = i < d.row ? i : (i == d.row ? m - 1 : i - 1);
+  const Eigen::PermutationMatrix<Eigen::Dynamic> to_end(position);
+  const Eigen::SparseMatrix<double> moved = to_end * model_.A;
+  model_.A = moved.topRows(m - 1);
 }
 
 /// Rank of the row-normalised constraint matrix; a dependent set is named with the
