@@ -106,6 +106,7 @@ class ModelBuilder {
   // solve_settings_checks.cpp
   void check_energy_output() const;
   void check_output() const;
+  void check_output_dofs() const;
   void check_slaves() const;
 
  private:

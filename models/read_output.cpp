@@ -26,7 +26,7 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
   const std::string path = "output";
   const auto& t = table(node, path);
   output.where = at(node, path);
-  check_keys(t, path, {"quantities", "file"});
+  check_keys(t, path, {"quantities", "file", "dofs"});
   if (const auto* n = t.get("quantities")) {
     output.quantities.clear();
     const auto& arr = array(*n, "output.quantities");
@@ -49,6 +49,16 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
              "unknown quantity '" + s +
                  "' (expected displacement, velocity, reaction, multiplier, drift or energy)");
       }
+    }
+  }
+  if (const auto* n = t.get("dofs")) {
+    const auto& arr = array(*n, "output.dofs");
+    if (arr.empty()) fail(*n, "output.dofs", "is empty: omit the key for every DOF");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string p = index("output.dofs", i);
+      const std::string s = string(*arr.get(i), p);
+      if (s.empty()) fail(*arr.get(i), p, "must not be empty");
+      output.dofs.push_back(s);
     }
   }
   if (const auto* n = t.get("file")) {

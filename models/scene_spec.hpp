@@ -121,8 +121,18 @@ enum class Quantity { displacement, velocity, reaction, multiplier, drift, energ
 struct OutputSpec {
   std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};
   std::string file;  ///< empty: decided by the CLI
+  /// [output] dofs: the DOFs that get displacement, velocity and reaction columns, as names or
+  /// patterns where `*` stands for any run of characters; empty: every DOF.
+  std::vector<std::string> dofs;
   SourcePoint where;
 };
+
+/// The DOF indices (ascending) the output's `dofs` patterns select among `names`; every DOF when
+/// there are no patterns.
+[[nodiscard]] std::vector<int> selected_dofs(const OutputSpec& output,
+                                             const std::vector<std::string>& names);
+/// Whether `name` matches `pattern`, where `*` stands for any run of characters (none included).
+[[nodiscard]] bool matches_dof_pattern(const std::string& pattern, const std::string& name);
 
 struct SceneSpec {
   std::string file;  ///< path the scene was read from (or "<embedded:NAME>")

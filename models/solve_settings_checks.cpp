@@ -34,7 +34,26 @@ void ModelBuilder::check_output() const {
                                                             " rows (limit " + fmt(kMaxOutputRows) +
                                                             "): increase output_step");
   }
+  check_output_dofs();
   check_slaves();
+}
+
+/// [output] dofs: every name or pattern selects some DOF (a typo would silently drop columns).
+void ModelBuilder::check_output_dofs() const {
+  const auto& patterns = spec_.output.dofs;
+  for (std::size_t k = 0; k < patterns.size(); ++k) {
+    bool any = false;
+    for (const auto& name : model_.dof_names) any = any || matches_dof_pattern(patterns[k], name);
+    if (any) continue;
+    std::string some;
+    for (std::size_t d = 0; d < model_.dof_names.size() && d < 6; ++d) {
+      some += (d ? ", " : "") + model_.dof_names[d];
+    }
+    if (model_.dof_names.size() > 6) some += ", ...";
+    fail({"output.dofs[" + std::to_string(k + 1) + "]", spec_.output.where.line},
+         "'" + patterns[k] + "' matches no DOF (the model's DOFs: " + some +
+             "; `*` stands for any run of characters)");
+  }
 }
 
 /// [solve] slaves: one distinct DOF per constraint, each in some constraint (the elimination

@@ -1,5 +1,7 @@
 #include "src/csv_output.hpp"
 
+#include <array>
+#include <charconv>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -8,62 +10,81 @@ namespace condyn {
 
 namespace {
 
-void write_rows(std::ostream& out, const Model& model, const std::vector<Quantity>& q,
+/// Appends v in the shortest form that reads back as the same double (std::to_chars): exact, and
+/// several times faster than a 17-digit printf, which took a fifth of a large run's time.
+void append(std::string& line, double v) {
+  std::array<char, 32> buf{};
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr;
+  line.append(buf.data(), end);
+}
+
+void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
                 const Trajectory& traj) {
-  out.precision(17);
-  out << "t";
-  for (Quantity quantity : q) {
+  const std::vector<int> shown = selected_dofs(output, model.dof_names);
+  std::string line = "t";
+  const auto names = [&](const char* prefix) {
+    for (int d : shown)
+      line.append(",").append(prefix).append(model.dof_names[static_cast<std::size_t>(d)]);
+  };
+  for (Quantity quantity : output.quantities) {
     switch (quantity) {
       case Quantity::displacement:
-        for (const auto& d : model.dof_names) out << "," << d;
+        names("");
         break;
       case Quantity::velocity:
-        for (const auto& d : model.dof_names) out << ",vel_" << d;
+        names("vel_");
         break;
       case Quantity::reaction:
-        for (const auto& d : model.dof_names) out << ",reaction_" << d;
+        names("reaction_");
         break;
       case Quantity::multiplier:
-        for (const auto& c : model.constraints) out << ",lambda_" << c.name;
+        for (const auto& c : model.constraints) line.append(",lambda_").append(c.name);
         break;
       case Quantity::drift:
-        out << ",drift_position,drift_velocity";
+        line += ",drift_position,drift_velocity";
         break;
       case Quantity::energy:
-        out << ",energy,energy_error";
+        line += ",energy,energy_error";
         break;
     }
   }
-  out << "\n";
+  out << line << "\n";
   for (std::size_t k = 0; k < traj.t.size(); ++k) {
     const auto col = static_cast<Eigen::Index>(k);
-    out << traj.t[k];
-    auto column = [&](const Eigen::MatrixXd& m) {
-      for (Eigen::Index i = 0; i < m.rows(); ++i) out << "," << m(i, col);
+    line.clear();
+    append(line, traj.t[k]);
+    const auto value = [&](double v) {
+      line += ',';
+      append(line, v);
     };
-    for (Quantity quantity : q) {
+    const auto dofs = [&](const Eigen::MatrixXd& m) {
+      for (int d : shown) value(m(d, col));
+    };
+    for (Quantity quantity : output.quantities) {
       switch (quantity) {
         case Quantity::displacement:
-          column(traj.u);
+          dofs(traj.u);
           break;
         case Quantity::velocity:
-          column(traj.v);
+          dofs(traj.v);
           break;
         case Quantity::reaction:
-          column(traj.reaction);
+          dofs(traj.reaction);
           break;
         case Quantity::multiplier:
-          column(traj.multiplier);
+          for (Eigen::Index i = 0; i < traj.multiplier.rows(); ++i) value(traj.multiplier(i, col));
           break;
         case Quantity::drift:
-          out << "," << traj.drift_position[col] << "," << traj.drift_velocity[col];
+          value(traj.drift_position[col]);
+          value(traj.drift_velocity[col]);
           break;
         case Quantity::energy:  // build_model refuses 'energy' for nonconservative scenes
-          out << "," << traj.energy[col] << "," << traj.energy[col] - traj.energy[0];
+          value(traj.energy[col]);
+          value(traj.energy[col] - traj.energy[0]);
           break;
       }
     }
-    out << "\n";
+    out << line << "\n";
   }
 }
 
@@ -77,16 +98,22 @@ std::string partial_path(const std::string& out) {
 }  // namespace
 
 void write_steps_csv(std::ostream& out, const Trajectory& traj) {
-  out.precision(17);
   out << "t,drift_position,drift_velocity\n";
+  std::string line;
   for (const auto& s : traj.steps) {
-    out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
+    line.clear();
+    append(line, s.t);
+    line += ',';
+    append(line, s.drift_position);
+    line += ',';
+    append(line, s.drift_velocity);
+    out << line << "\n";
   }
 }
 
 RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
                        const OutputSpec& output, const std::string& steps_out)
-    : quantities_(output.quantities) {
+    : output_(output) {
   const std::string& output_file = output.file;
   plan_.add_input(scene);
   if (!out_flag.empty()) {
@@ -112,7 +139,7 @@ std::string RunOutputs::csv_name() const { return plan_.display_name(csv_); }
 std::string RunOutputs::steps_name() const { return steps_ ? plan_.display_name(*steps_) : ""; }
 
 void RunOutputs::write(const Model& model, const Trajectory& traj) {
-  plan_.write(csv_, [&](std::ostream& out) { write_rows(out, model, quantities_, traj); });
+  plan_.write(csv_, [&](std::ostream& out) { write_rows(out, model, output_, traj); });
   std::vector<OutputPlan::Id> ids{csv_};
   if (steps_) {
     plan_.write(*steps_, [&](std::ostream& out) { write_steps_csv(out, traj); });
@@ -131,8 +158,7 @@ std::string RunOutputs::write_partial(const Model& model, const Trajectory& part
     return s.str();
   }
   try {
-    plan_.write(*partial_,
-                [&](std::ostream& out) { write_rows(out, model, quantities_, partial); });
+    plan_.write(*partial_, [&](std::ostream& out) { write_rows(out, model, output_, partial); });
     plan_.commit({*partial_});
     s << " are in " << plan_.display_name(*partial_) << " (the run did not reach t_end; "
       << csv_name() << " was not written)";

@@ -43,7 +43,7 @@ class RunOutputs {
   [[nodiscard]] std::string write_partial(const Model& model, const Trajectory& partial);
 
  private:
-  std::vector<Quantity> quantities_;
+  OutputSpec output_;
   OutputPlan plan_;
   OutputPlan::Id csv_ = 0;
   std::optional<OutputPlan::Id> steps_, partial_;

@@ -305,7 +305,8 @@ TEST_CASE("a run that fails midway keeps its rows in FILE.partial.csv and says w
   // Rows at t = 0, 0.1, ..., 0.9: up to the singular time, none beyond it, no NaN.
   CHECK(std::count(partial.begin(), partial.end(), '\n') == 1 + 10);
   CHECK(partial.find("nan") == std::string::npos);
-  CHECK(partial.find("\n0.90000000000000002,") != std::string::npos);
+  // The row at 0.9, in the shortest form that reads back as that double.
+  CHECK(partial.find("\n0.9,") != std::string::npos);
 }
 
 TEST_CASE("stress: unknown families are usage errors, named") {
