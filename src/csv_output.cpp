@@ -1,5 +1,7 @@
 #include "src/csv_output.hpp"
 
+#include "src/hdf5_output.hpp"
+
 #include <array>
 #include <charconv>
 #include <filesystem>
@@ -138,8 +140,19 @@ std::string RunOutputs::csv_name() const { return plan_.display_name(csv_); }
 
 std::string RunOutputs::steps_name() const { return steps_ ? plan_.display_name(*steps_) : ""; }
 
-void RunOutputs::write(const Model& model, const Trajectory& traj) {
-  plan_.write(csv_, [&](std::ostream& out) { write_rows(out, model, output_, traj); });
+void RunOutputs::write_result(OutputPlan::Id id, const Model& model, const RunAttributes& run,
+                              const Trajectory& traj) {
+  plan_.write(id, [&](std::ostream& out) {
+    if (is_hdf5_path(plan_.display_name(id))) {
+      write_hdf5(out, model, output_, run, traj);
+    } else {
+      write_rows(out, model, output_, traj);
+    }
+  });
+}
+
+void RunOutputs::write(const Model& model, const RunAttributes& run, const Trajectory& traj) {
+  write_result(csv_, model, run, traj);
   std::vector<OutputPlan::Id> ids{csv_};
   if (steps_) {
     plan_.write(*steps_, [&](std::ostream& out) { write_steps_csv(out, traj); });
@@ -148,7 +161,8 @@ void RunOutputs::write(const Model& model, const Trajectory& traj) {
   plan_.commit(ids);
 }
 
-std::string RunOutputs::write_partial(const Model& model, const Trajectory& partial) {
+std::string RunOutputs::write_partial(const Model& model, const RunAttributes& run,
+                                      const Trajectory& partial) {
   std::ostringstream s;
   s << "partial result: the " << partial.t.size() << " output rows up to t = " << partial.t.back();
   if (!partial_) {
@@ -158,7 +172,7 @@ std::string RunOutputs::write_partial(const Model& model, const Trajectory& part
     return s.str();
   }
   try {
-    plan_.write(*partial_, [&](std::ostream& out) { write_rows(out, model, output_, partial); });
+    write_result(*partial_, model, run, partial);
     plan_.commit({*partial_});
     s << " are in " << plan_.display_name(*partial_) << " (the run did not reach t_end; "
       << csv_name() << " was not written)";

@@ -10,6 +10,7 @@
 
 #include "dae/trajectory.hpp"
 #include "models/model.hpp"
+#include "src/hdf5_output.hpp"
 #include "src/output_files.hpp"
 
 namespace condyn {
@@ -36,13 +37,19 @@ class RunOutputs {
   [[nodiscard]] bool has_steps() const { return steps_.has_value(); }
   [[nodiscard]] std::string steps_name() const;
 
-  /// A finished run: the CSV and the drift log, committed together.
-  void write(const Model& model, const Trajectory& traj);
+  /// A finished run: the CSV (HDF5 for a name ending in .h5) and the drift log, committed
+  /// together.
+  void write(const Model& model, const RunAttributes& run, const Trajectory& traj);
   /// A failed run: its rows into FILE.partial.csv (the CSV and drift log are left as they were);
   /// returns the sentence saying where they went, or why they were not written.
-  [[nodiscard]] std::string write_partial(const Model& model, const Trajectory& partial);
+  [[nodiscard]] std::string write_partial(const Model& model, const RunAttributes& run,
+                                          const Trajectory& partial);
 
  private:
+  /// The result into output `id`, in the format its name asks for.
+  void write_result(OutputPlan::Id id, const Model& model, const RunAttributes& run,
+                    const Trajectory& traj);
+
   OutputSpec output_;
   OutputPlan plan_;
   OutputPlan::Id csv_ = 0;

@@ -86,15 +86,17 @@ int run(const RunArgs& args) {
   const SolveResult result = solve(model, spec.solve, hooks);
   const Trajectory& traj = result.trajectory;
   const SolveSummary& summary = result.summary;
+  const RunAttributes attributes{to_string(result.scheme), spec.solve.rtol, spec.solve.atol};
   if (!result.ok()) {
     // Nothing computed is lost: the rows before the failure go to FILE.partial.csv.
-    const std::string partial = traj.t.empty() ? "" : outputs.write_partial(model, traj);
+    const std::string partial =
+        traj.t.empty() ? "" : outputs.write_partial(model, attributes, traj);
     std::cerr << "error: " << args.scene
               << ": integration failed: " << describe_failure(result, spec.solve.t_end, partial)
               << "\n";
     return 1;
   }
-  outputs.write(model, traj);
+  outputs.write(model, attributes, traj);
   if (!report.initial_projection.empty())
     msg << "initial state: " << report.initial_projection << "\n";
   for (const auto& w : report.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";

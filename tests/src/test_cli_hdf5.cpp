@@ -1,0 +1,135 @@
+// `--out FILE.h5` writes the contract's HDF5 layout; its numbers are the CSV's, bit for bit.
+
+#include <doctest/doctest.h>
+#include <hdf5.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
+
+using namespace condyn::test;
+
+namespace {
+
+/// A dataset of doubles: its dimensions and values (row-major).
+struct Dataset {
+  std::vector<hsize_t> dims;
+  std::vector<double> values;
+};
+
+Dataset read_doubles(hid_t file, const char* name) {
+  Dataset d;
+  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+  REQUIRE(set >= 0);
+  const hid_t space = H5Dget_space(set);
+  d.dims.resize(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+  H5Sget_simple_extent_dims(space, d.dims.data(), nullptr);
+  hsize_t count = 1;
+  for (hsize_t n : d.dims) count *= n;
+  d.values.resize(static_cast<std::size_t>(count));
+  CHECK(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.values.data()) >= 0);
+  H5Sclose(space);
+  H5Dclose(set);
+  return d;
+}
+
+std::vector<std::string> read_strings(hid_t file, const char* name) {
+  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+  REQUIRE(set >= 0);
+  const hid_t space = H5Dget_space(set);
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space, &n, nullptr);
+  std::vector<char*> raw(static_cast<std::size_t>(n));
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);  // as written: names are UTF-8
+  CHECK(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()) >= 0);
+  std::vector<std::string> out(raw.begin(), raw.end());
+  H5Dvlen_reclaim(type, space, H5P_DEFAULT, raw.data());
+  H5Tclose(type);
+  H5Sclose(space);
+  H5Dclose(set);
+  return out;
+}
+
+double read_attribute(hid_t file, const char* name) {
+  double v = 0.0;
+  const hid_t attr = H5Aopen(file, name, H5P_DEFAULT);
+  REQUIRE(attr >= 0);
+  CHECK(H5Aread(attr, H5T_NATIVE_DOUBLE, &v) >= 0);
+  H5Aclose(attr);
+  return v;
+}
+
+/// The CSV's rows as numbers (header dropped).
+std::vector<std::vector<double>> csv_rows(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("run --out FILE.h5: datasets, names and attributes of the contract, the CSV's numbers") {
+  const Sandbox box;
+  box.write("s.toml", replace(kTwoMassesScene, "output_step = 0.25\n",
+                              "output_step = 0.25\nrtol = 1e-7\n[output]\nquantities = "
+                              "[\"displacement\", \"multiplier\", \"drift\"]\ndofs = [\"b\"]\n"));
+  const Result h5 = box.run("run s.toml --out out.h5");
+  CAPTURE(h5.err);
+  REQUIRE(h5.code == 0);
+  const Result csv = box.run("run s.toml --out out.csv");
+  REQUIRE(csv.code == 0);
+  const auto rows = csv_rows(slurp(box.path("out.csv")));  // t, b, lambda_tie, drift x 2
+  REQUIRE(rows.size() == 5);
+
+  const hid_t file = H5Fopen(box.path("out.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  const Dataset t = read_doubles(file, "t");
+  const Dataset u = read_doubles(file, "displacement");
+  const Dataset lambda = read_doubles(file, "multiplier");
+  const Dataset drift = read_doubles(file, "drift");
+  CHECK(t.dims == std::vector<hsize_t>{5});
+  CHECK(u.dims == std::vector<hsize_t>{5, 1});  // [output] dofs = ["b"]
+  CHECK(lambda.dims == std::vector<hsize_t>{5, 1});
+  CHECK(drift.dims == std::vector<hsize_t>{5, 2});
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    CAPTURE(k);
+    CHECK(t.values[k] == rows[k][0]);
+    CHECK(u.values[k] == rows[k][1]);
+    CHECK(lambda.values[k] == rows[k][2]);
+    CHECK(drift.values[2 * k] == rows[k][3]);
+    CHECK(drift.values[2 * k + 1] == rows[k][4]);
+  }
+  CHECK(read_strings(file, "dof_names") == std::vector<std::string>{"b"});
+  CHECK(read_strings(file, "constraint_names") == std::vector<std::string>{"tie"});
+  CHECK(read_attribute(file, "rtol") == 1e-7);
+  CHECK(read_attribute(file, "atol") == 1e-10);
+  CHECK(H5Aexists(file, "scheme") > 0);
+  CHECK(H5Lexists(file, "velocity", H5P_DEFAULT) == 0);  // not asked for
+  H5Fclose(file);
+}
+
+TEST_CASE("a failed run with --out FILE.h5 keeps its rows in FILE.partial.h5") {
+  const Sandbox box;
+  box.write("p.toml", kPulledPendulumScene);
+  const Result r = box.run("run p.toml --out out.h5");
+  CHECK(r.code == 1);
+  CHECK(r.err.find("out.partial.h5") != std::string::npos);
+  const hid_t file = H5Fopen(box.path("out.partial.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  CHECK(read_doubles(file, "t").dims == std::vector<hsize_t>{10});  // t = 0 ... 0.9
+  H5Fclose(file);
+}
