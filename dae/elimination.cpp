@@ -90,6 +90,7 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
 
 ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferred_slaves) {
   std::vector<int> preferred;
+  preferred.reserve(preferred_slaves.size());
   for (const auto& name : preferred_slaves) preferred.push_back(model.dof_index.at(name));
   ReducedSystem r;
   r.transform = master_slave_transform(model.A, preferred);
