@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -184,6 +185,11 @@ MarketMatrix parse_matrix_market(const std::string& text) {
 }
 
 MarketMatrix read_matrix_market(const std::string& path) {
+  // A device or a pipe (/dev/zero, a FIFO) would be read forever or block: regular files only.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw MatrixMarketError(0, "is not a regular file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw MatrixMarketError(0, "cannot open the file");
   std::ostringstream text;

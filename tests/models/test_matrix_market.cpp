@@ -175,8 +175,11 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
   }
 }
 
-TEST_CASE("matrix market: a file that cannot be opened") {
+TEST_CASE("matrix market: a file that cannot be opened, or is no regular file") {
   CHECK_THROWS_AS((void)read_matrix_market("/nonexistent/K.mtx"), MatrixMarketError);
+  // A device is read forever: refused before reading.
+  CHECK_THROWS_WITH_AS((void)read_matrix_market("/dev/zero"), "is not a regular file",
+                       MatrixMarketError);
 }
 
 TEST_CASE("matrix model from files: DOFs u1..un, sparse matrices as the files say") {
