@@ -50,11 +50,11 @@ void ModelBuilder::build_loads() {
       fail(value_at,
            "the loads on DOF '" + l.dof + "' add up to more than the double range (about 1.8e308)");
     }
-    model_.loads.push_back(Load{d, l.value});
+    model_.loads.push_back(Load{d, l.value, {}});
   }
 }
 
-/// pattern = { file = "f.mtx" }: one load p_i value(t) per nonzero p_i, linear in the nonzeros.
+/// pattern = { file = "f.mtx" }: one Load holding the pattern as a sparse vector.
 void ModelBuilder::add_pattern_load(const LoadSpec& l, double bound, std::vector<double>& total) {
   const auto& p = l.pattern.matrix;
   if (p.cols() != 1 || p.rows() != model_.dofs()) {
@@ -62,6 +62,7 @@ void ModelBuilder::add_pattern_load(const LoadSpec& l, double bound, std::vector
          l.pattern.file + " is " + std::to_string(p.rows()) + " x " + std::to_string(p.cols()) +
              ": a load pattern is n x 1 (n = " + std::to_string(model_.dofs()) + " DOFs)");
   }
+  Load load{-1, l.value, Eigen::SparseVector<double>(p.rows())};
   for (Eigen::SparseMatrix<double>::InnerIterator it(p, 0); it; ++it) {
     if (it.value() == 0.0) continue;
     const auto d = static_cast<int>(it.row());
@@ -72,8 +73,9 @@ void ModelBuilder::add_pattern_load(const LoadSpec& l, double bound, std::vector
            "the loads on DOF '" + model_.dof_names[static_cast<std::size_t>(d)] +
                "' add up to more than the double range (about 1.8e308)");
     }
-    model_.loads.push_back(Load{d, l.value.scaled(it.value())});
+    load.pattern.insertBack(d) = it.value();
   }
+  if (load.pattern.nonZeros() > 0) model_.loads.push_back(std::move(load));
 }
 
 }  // namespace condyn
