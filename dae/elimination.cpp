@@ -111,7 +111,12 @@ ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferr
                              : Eigen::MatrixXd::Zero(nm, model.constraint_count());
   r.loads.resize(nm, static_cast<Eigen::Index>(model.loads.size()));
   for (std::size_t k = 0; k < model.loads.size(); ++k) {
-    r.loads.col(static_cast<Eigen::Index>(k)) = Tt.col(model.loads[k].dof);
+    const Load& load = model.loads[k];
+    if (load.dof >= 0) {
+      r.loads.col(static_cast<Eigen::Index>(k)) = Tt.col(load.dof);
+    } else {
+      r.loads.col(static_cast<Eigen::Index>(k)) = Tt * Eigen::VectorXd(load.pattern);
+    }
   }
   for (const auto& c : model.constraints) r.rheonomic = r.rheonomic || !c.position_value.is_zero();
   return r;

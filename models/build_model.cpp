@@ -7,6 +7,7 @@ namespace condyn {
 //     names the DOFs, in which every later stage looks names up; and a truss's gravity loads
 //     enter the load list before the scene's, whose sum per DOF build_loads bounds; a built-in
 //     benchmark also brings its system, constraints and published initial state here.
+//     apply_rayleigh needs the type's M and K (1).
 //  2. build_loads needs the DOF names (1).
 //  3. build_initial needs the DOF names and a benchmark's published state (1).
 //  4. build_constraints (linear models; a nonlinear system brings its own rows) needs u(0) (3):
@@ -49,6 +50,7 @@ Model ModelBuilder::build() {
       build_benchmark();
       break;
   }
+  apply_rayleigh();
   build_loads();
   build_initial();
   if (!model_.is_nonlinear()) build_constraints();

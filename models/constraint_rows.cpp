@@ -98,6 +98,7 @@ void ModelBuilder::build_constraints() {
     for (const auto& [d, a] : c.coefficients) trip.emplace_back(row, d, a);
     model_.constraints.push_back(std::move(c));
   }
+  append_constraint_blocks(trip);
   model_.A.resize(static_cast<int>(model_.constraints.size()), n);
   model_.A.setFromTriplets(trip.begin(), trip.end());
   model_.A.makeCompressed();

@@ -38,15 +38,44 @@ void ModelBuilder::build_loads() {
   for (const auto& l : spec_.loads) {
     const SourcePoint value_at{l.where.path + ".value", l.where.line};
     check_time_function(l.value, value_at);
+    const double bound = magnitude_bound(l.value, spec_.solve.t_end);
+    if (l.pattern.given()) {
+      add_pattern_load(l, bound, total);
+      continue;
+    }
     const int d = dof(l.dof, {l.where.path + ".dof", l.where.line});
     auto& sum = total[static_cast<std::size_t>(d)];
-    sum += magnitude_bound(l.value, spec_.solve.t_end);
+    sum += bound;
     if (!std::isfinite(sum)) {
       fail(value_at,
            "the loads on DOF '" + l.dof + "' add up to more than the double range (about 1.8e308)");
     }
-    model_.loads.push_back(Load{d, l.value});
+    model_.loads.push_back(Load{d, l.value, {}});
   }
+}
+
+/// pattern = { file = "f.mtx" }: one Load holding the pattern as a sparse vector.
+void ModelBuilder::add_pattern_load(const LoadSpec& l, double bound, std::vector<double>& total) {
+  const auto& p = l.pattern.matrix;
+  if (p.cols() != 1 || p.rows() != model_.dofs()) {
+    fail(l.pattern.where,
+         l.pattern.file + " is " + std::to_string(p.rows()) + " x " + std::to_string(p.cols()) +
+             ": a load pattern is n x 1 (n = " + std::to_string(model_.dofs()) + " DOFs)");
+  }
+  Load load{-1, l.value, Eigen::SparseVector<double>(p.rows())};
+  for (Eigen::SparseMatrix<double>::InnerIterator it(p, 0); it; ++it) {
+    if (it.value() == 0.0) continue;
+    const auto d = static_cast<int>(it.row());
+    auto& sum = total[static_cast<std::size_t>(d)];
+    sum += std::abs(it.value()) * bound;
+    if (!std::isfinite(sum)) {
+      fail({l.where.path + ".value", l.where.line},
+           "the loads on DOF '" + model_.dof_names[static_cast<std::size_t>(d)] +
+               "' add up to more than the double range (about 1.8e308)");
+    }
+    load.pattern.insertBack(d) = it.value();
+  }
+  if (load.pattern.nonZeros() > 0) model_.loads.push_back(std::move(load));
 }
 
 }  // namespace condyn

@@ -23,14 +23,14 @@ void LinearSystem::force(double t, ConstRef u, ConstRef v, Ref f) {
   f.noalias() = d.minus_K * u;
   if (d.damped) f.noalias() += d.minus_C * v;
   const double steps = steps_at(t);
-  for (const auto& load : d.loads) f[load.dof] += load.value.derivative(0, t, steps);
+  for (const auto& load : d.loads) load.add_to(f, load.value.derivative(0, t, steps));
 }
 
 std::optional<double> LinearSystem::energy(double t, ConstRef u, ConstRef v) {
   if (!data_->conservative) return std::nullopt;
   const Data& d = *data_;
   Eigen::VectorXd f = Eigen::VectorXd::Zero(u.size());
-  for (const auto& load : d.loads) f[load.dof] += load.value.derivative(0, t, t);
+  for (const auto& load : d.loads) load.add_to(f, load.value.derivative(0, t, t));
   return 0.5 * v.dot(d.M * v) - 0.5 * u.dot(d.minus_K * u) - f.dot(u);
 }
 

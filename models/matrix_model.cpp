@@ -1,4 +1,5 @@
-// The matrix model: M, K and C as the scene writes them, each positive semi-definite.
+// The matrix model: M, K and C as the scene writes them (rows or Matrix Market files), each
+// positive semi-definite; and Rayleigh damping C = a0 M + a1 K for any linear model.
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -8,6 +9,14 @@
 
 namespace condyn {
 
+namespace {
+
+// Above this size a file-given matrix is not made dense for its eigenvalues (n^2 memory, n^3
+// time); 500 keeps the dense check at 2 MB and a few tens of ms, as for rows a scene writes.
+constexpr Eigen::Index kDensePsdCheck = 500;
+
+}  // namespace
+
 Eigen::SparseMatrix<double> ModelBuilder::sparse_psd(const std::vector<std::vector<double>>& rows,
                                                      const std::string& key) const {
   const int n = static_cast<int>(rows.size());
@@ -16,30 +25,86 @@ Eigen::SparseMatrix<double> ModelBuilder::sparse_psd(const std::vector<std::vect
     for (int j = 0; j < n; ++j)
       dense(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
   }
+  check_psd(dense, {"model." + key, spec_.model.where.line});
+  return dense.sparseView();
+}
+
+void ModelBuilder::check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where) const {
   // Positive semi-definite up to roundoff of the largest eigenvalue.
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense, Eigen::EigenvaluesOnly);
   const double lo = eig.eigenvalues().minCoeff();
   const double hi = eig.eigenvalues().cwiseAbs().maxCoeff();
   if (!std::isfinite(lo) || !std::isfinite(hi)) {
-    fail(SourcePoint{"model." + key, spec_.model.where.line},
-         "has eigenvalues beyond the double range: the entries are too large");
+    fail(where, "has eigenvalues beyond the double range: the entries are too large");
   }
   if (lo < -1e-12 * std::max(hi, 1e-300)) {
-    fail(SourcePoint{"model." + key, spec_.model.where.line},
-         "is not positive semi-definite (smallest eigenvalue " + fmt(lo) + ")");
+    fail(where, "is not positive semi-definite (smallest eigenvalue " + fmt(lo) + ")");
   }
-  return dense.sparseView();
+}
+
+/// A file's matrix (already square and symmetric: read_matrix_files.cpp) stays sparse. Small ones
+/// get the eigenvalue check of written rows; larger ones the necessary conditions that cost
+/// O(nnz): a_ii >= 0 and every 2 x 2 principal minor >= 0 (|a_ij| <= sqrt(a_ii a_jj)), which catch
+/// a sign slip or a misplaced entry, not every indefinite matrix.
+Eigen::SparseMatrix<double> ModelBuilder::file_psd(const FileMatrix& m,
+                                                   const std::string& key) const {
+  const SourcePoint where{m.where.path, m.where.line};
+  const Eigen::SparseMatrix<double>& a = m.matrix;
+  if (a.rows() <= kDensePsdCheck) {
+    check_psd(Eigen::MatrixXd(a), where);
+    return a;
+  }
+  const Eigen::VectorXd d = a.diagonal();
+  for (Eigen::Index i = 0; i < d.size(); ++i) {
+    if (d[i] < 0.0) {
+      fail(where, m.file + " is not positive semi-definite: its diagonal entry (" +
+                      std::to_string(i + 1) + "," + std::to_string(i + 1) + ") = " + fmt(d[i]) +
+                      " < 0 (" + key + ")");
+    }
+  }
+  for (Eigen::Index k = 0; k < a.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, k); it; ++it) {
+      const double bound = std::sqrt(d[it.row()] * d[it.col()]);
+      // Roundoff of the product's square root.
+      if (std::abs(it.value()) > bound * (1.0 + 1e-12) && it.row() != it.col()) {
+        fail(where, m.file + " is not positive semi-definite: |entry (" +
+                        std::to_string(it.row() + 1) + "," + std::to_string(it.col() + 1) +
+                        ")| = " + fmt(std::abs(it.value())) +
+                        " exceeds the square root of its two diagonal entries' product (" +
+                        fmt(bound) + ")");
+      }
+    }
+  }
+  return a;
 }
 
 void ModelBuilder::build_matrix() {
   const auto& m = spec_.model;
   set_dofs(m.dofs);
-  model_.M = sparse_psd(m.mass, "mass");
-  model_.K = sparse_psd(m.stiffness, "stiffness");
+  model_.M = m.mass_file.given() ? file_psd(m.mass_file, "mass") : sparse_psd(m.mass, "mass");
+  model_.K = m.stiffness_file.given() ? file_psd(m.stiffness_file, "stiffness")
+                                      : sparse_psd(m.stiffness, "stiffness");
   model_.C.resize(model_.dofs(), model_.dofs());
-  if (!m.damping.empty()) model_.C = sparse_psd(m.damping, "damping");
+  if (m.damping_file.given()) {
+    model_.C = file_psd(m.damping_file, "damping");
+  } else if (!m.damping.empty()) {
+    model_.C = sparse_psd(m.damping, "damping");
+  }
   model_.M.makeCompressed();
   model_.K.makeCompressed();
+  model_.C.makeCompressed();
+}
+
+void ModelBuilder::apply_rayleigh() {
+  if (!spec_.model.rayleigh) return;
+  if (model_.is_nonlinear() || nonlinear_truss_) {
+    fail(spec_.model.rayleigh_where,
+         "Rayleigh damping needs a linear model: this truss has large displacements or rigid "
+         "members, whose system has no damping matrix");
+  }
+  const auto [a0, a1] = *spec_.model.rayleigh;
+  // M and K are positive semi-definite, a0 and a1 >= 0: so is C.
+  model_.C = (a0 * model_.M + a1 * model_.K).pruned();
   model_.C.makeCompressed();
 }
 

@@ -10,7 +10,7 @@ namespace condyn {
 
 Eigen::VectorXd Model::applied_forces(double t, double step_reference) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
-  for (const auto& l : loads) f[l.dof] += l.value.derivative(0, t, step_reference);
+  for (const auto& l : loads) l.add_to(f, l.value.derivative(0, t, step_reference));
   return f;
 }
 

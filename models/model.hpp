@@ -3,9 +3,9 @@
 ///
 ///   M u'' + C u' + K u = f(t),   A u = g(t)  (position level),   A_v u' = h(t)  (velocity level)
 ///
-/// with sparse M, C, K (n x n), loads f(t) = sum_k e_dof(k) load_k(t), and the constraint matrix A
-/// (m x n) holding every constraint row in scene order. Nothing in a Model changes after
-/// build_model(): state and scratch space live in the formulations and solvers.
+/// with sparse M, C, K (n x n), loads f(t) = sum_k b_k load_k(t) (b_k = e_dof(k) or a pattern),
+/// and the constraint matrix A (m x n) holding every constraint row in scene order. Nothing in a
+/// Model changes after build_model(): state and scratch space live in the formulations and solvers.
 
 #include <Eigen/Sparse>
 #include <functional>
@@ -21,9 +21,30 @@
 
 namespace condyn {
 
+/// f(t) += e_dof value(t), or pattern value(t) for a [[load]] pattern (one sparse vector, however
+/// many DOFs it loads: linear in its nonzeros wherever the loads are used).
 struct Load {
-  int dof = 0;
+  int dof = 0;  ///< the loaded DOF; -1 for a pattern load
   TimeFunction value;
+  Eigen::SparseVector<double> pattern;  ///< n entries for a pattern load, else empty
+
+  /// f += s e_dof (or s pattern).
+  void add_to(Eigen::Ref<Eigen::VectorXd> f, double s) const {
+    if (dof >= 0) {
+      f[dof] += s;
+    } else {
+      for (Eigen::SparseVector<double>::InnerIterator it(pattern); it; ++it)
+        f[it.index()] += s * it.value();
+    }
+  }
+  /// e_dofᵀ u (or patternᵀ u).
+  [[nodiscard]] double dot(const Eigen::Ref<const Eigen::VectorXd>& u) const {
+    if (dof >= 0) return u[dof];
+    double sum = 0.0;
+    for (Eigen::SparseVector<double>::InnerIterator it(pattern); it; ++it)
+      sum += it.value() * u[it.index()];
+    return sum;
+  }
 };
 
 struct Constraint {

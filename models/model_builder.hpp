@@ -53,6 +53,7 @@ class ModelBuilder {
   int dof(const std::string& name, const SourcePoint& where) const;
   void set_dofs(std::vector<std::string> names);
   void build_loads();
+  void add_pattern_load(const LoadSpec& l, double bound, std::vector<double>& total);
 
   // input_checks.cpp
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
@@ -67,7 +68,10 @@ class ModelBuilder {
   // matrix_model.cpp
   Eigen::SparseMatrix<double> sparse_psd(const std::vector<std::vector<double>>& rows,
                                          const std::string& key) const;
+  Eigen::SparseMatrix<double> file_psd(const FileMatrix& m, const std::string& key) const;
+  void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where) const;
   void build_matrix();
+  void apply_rayleigh();
 
   // nonlinear_systems.cpp
   void build_benchmark();
@@ -80,6 +84,8 @@ class ModelBuilder {
   // constraint_rows.cpp
   void check_coefficients(const ConstraintSpec& cs) const;
   void build_constraints();
+  // constraint_blocks.cpp
+  void append_constraint_blocks(std::vector<Eigen::Triplet<double>>& trip);
 
   // rank_check.cpp
   /// A redundant constraint (a combination of others, right-hand sides compatible) that the scene

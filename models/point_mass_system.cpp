@@ -91,7 +91,7 @@ const MechanicalSystem::Sparse& PointMassSystem::assemble(
 
 void PointMassSystem::force(double t, ConstRef u, ConstRef /*v*/, Ref f) {
   f.setZero();
-  for (const auto& l : layout_.loads) f[l.dof] += l.value.derivative(0, t, steps_at(t));
+  for (const auto& l : layout_.loads) l.add_to(f, l.value.derivative(0, t, steps_at(t)));
   if (!layout_.nonlinear_geometry) {
     f.noalias() -= K_linear_ * u;
     return;
@@ -210,7 +210,7 @@ const MechanicalSystem::Sparse& PointMassSystem::acceleration_bias_jacobian_v(do
 std::optional<double> PointMassSystem::energy(double t, ConstRef u, ConstRef v) {
   if (!conservative_) return std::nullopt;
   double e = 0.5 * v.dot(M_ * v);
-  for (const auto& l : layout_.loads) e -= l.value.derivative(0, t) * u[l.dof];
+  for (const auto& l : layout_.loads) e -= l.value.derivative(0, t) * l.dot(u);
   if (!layout_.nonlinear_geometry) return e + 0.5 * u.dot(K_linear_ * u);
   for (const auto& b : layout_.bars) {
     const double stretch = separation(b, u).norm() - b.length;

@@ -11,10 +11,15 @@ void SceneReader::read_loads(const toml::node& node, std::vector<LoadSpec>& out)
   for (std::size_t i = 0; i < loads.size(); ++i) {
     const std::string p = index("load", i);
     const auto& t = table(*loads.get(i), p);
-    check_keys(t, p, {"dof", "value"});
+    check_keys(t, p, {"dof", "pattern", "value"});
     LoadSpec load;
     load.where = at(*loads.get(i), p);
-    load.dof = string(required(t, p, "dof"), join(p, "dof"));
+    if (const auto* pat = t.get("pattern")) {
+      if (t.contains("dof")) fail(*pat, join(p, "pattern"), "give either dof or pattern, not both");
+      load.pattern = matrix_file(*pat, join(p, "pattern"));
+    } else {
+      load.dof = string(required(t, p, "dof"), join(p, "dof"));
+    }
     load.value = time_function(required(t, p, "value"), join(p, "value"));
     out.push_back(std::move(load));
   }

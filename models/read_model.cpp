@@ -10,7 +10,9 @@ namespace condyn {
 
 void SceneReader::read_truss(const toml::table& t, int dim, ModelSpec& model) const {
   const std::string path = "model";
-  check_keys(t, path, {"type", "nodes", "masses", "members", "geometry", "gravity", "supports"});
+  check_keys(t, path,
+             {"type", "nodes", "masses", "members", "geometry", "gravity", "supports", "damping"});
+  if (const auto* d = t.get("damping")) read_rayleigh(*d, "model.damping", model);
   model.type = dim == 3 ? ModelSpec::Type::truss3d : ModelSpec::Type::truss2d;
   model.dimension = dim;
   const auto& nodes = array(required(t, path, "nodes"), "model.nodes");
@@ -109,52 +111,7 @@ void SceneReader::read_model(const toml::node& node, ModelSpec& model) const {
   if (type == "truss2d" || type == "truss3d") {
     read_truss(t, type == "truss3d" ? 3 : 2, model);
   } else if (type == "matrix") {
-    check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
-    model.type = ModelSpec::Type::matrix;
-    const auto& dofs = array(required(t, path, "dofs"), "model.dofs");
-    std::set<std::string> seen;
-    for (std::size_t i = 0; i < dofs.size(); ++i) {
-      const std::string name = string(*dofs.get(i), index("model.dofs", i));
-      if (name.empty()) fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
-      check_name(*dofs.get(i), index("model.dofs", i), name, "DOF");
-      if (!seen.insert(name).second) {
-        fail(*dofs.get(i), index("model.dofs", i), "duplicate DOF name '" + name + "'");
-      }
-      model.dofs.push_back(name);
-    }
-    if (model.dofs.empty()) fail(dofs, "model.dofs", "at least one DOF is needed");
-    auto square = [&](std::string_view key, std::vector<std::vector<double>>& out) {
-      const std::string p = join(path, std::string(key));
-      const auto& mat = required(t, path, key);
-      out = dense_matrix(mat, p);
-      const std::size_t n = model.dofs.size();
-      if (out.size() != n) {
-        fail(mat, p,
-             "has " + std::to_string(out.size()) + " rows for " + std::to_string(n) + " DOFs");
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        if (out[i].size() != n) {
-          fail(*array(mat, p).get(i), index(p, i),
-               "has " + std::to_string(out[i].size()) + " entries for " + std::to_string(n) +
-                   " DOFs");
-        }
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = 0; j < i; ++j) {
-          const double a = out[i][j], b = out[j][i];
-          // Symmetry to a few ulps of the entries' size: a scene writes these by hand.
-          if (std::abs(a - b) > 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) {
-            fail(mat, p,
-                 "is not symmetric: entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
-                     ") = " + fmt(a) + " but (" + std::to_string(j + 1) + "," +
-                     std::to_string(i + 1) + ") = " + fmt(b));
-          }
-        }
-      }
-    };
-    square("mass", model.mass);
-    square("stiffness", model.stiffness);
-    if (t.contains("damping")) square("damping", model.damping);
+    read_matrix_model(t, model);
   } else if (type == "sleigh") {
     check_keys(t, path, {"type", "mass", "inertia", "contact_offset"});
     model.type = ModelSpec::Type::sleigh;

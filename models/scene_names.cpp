@@ -127,6 +127,17 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
     claim("lambda_" + c, "the multiplier column of constraint '" + c + "'", *where,
           join(index("constraint", i), "name"), c, "constraint");
   }
+  const auto* blocks = root.get_as<toml::array>("constraint_block");
+  for (std::size_t i = 0; i < spec.constraint_blocks.size() && blocks != nullptr; ++i) {
+    const auto& b = spec.constraint_blocks[i];
+    const auto& t = *blocks->get(i)->as_table();
+    const toml::node* where = t.get("name") != nullptr ? t.get("name") : blocks->get(i);
+    for (Eigen::Index k = 1; k <= b.A.matrix.rows(); ++k) {
+      const std::string c = b.prefix + std::to_string(k);
+      claim("lambda_" + c, "the multiplier column of constraint '" + c + "'", *where,
+            join(index("constraint_block", i), "name"), c, "constraint");
+    }
+  }
 }
 
 }  // namespace condyn

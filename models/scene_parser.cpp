@@ -20,12 +20,17 @@ std::string scene_message(const std::string& file, const SourcePoint& where,
 SceneSpec SceneReader::read(const toml::table& root) const {
   SceneSpec spec;
   spec.file = file_;
-  check_keys(root, "", {"name", "model", "load", "constraint", "initial", "solve", "output"});
+  check_keys(
+      root, "",
+      {"name", "model", "load", "constraint", "constraint_block", "initial", "solve", "output"});
   if (const auto* n = root.get("name")) spec.name = string(*n, "name");
   read_model(required(root, "", "model"), spec.model);
 
   if (const auto* n = root.get("load")) read_loads(*n, spec.loads);
   if (const auto* n = root.get("constraint")) read_constraints(*n, spec.constraints);
+  if (const auto* n = root.get("constraint_block")) {
+    read_constraint_blocks(*n, spec.constraint_blocks);
+  }
   if (const auto* n = root.get("initial")) read_initial(*n, spec.initial);
   read_solve(required(root, "", "solve"), spec.solve);
   if (spec.solve.output_step > spec.solve.t_end) {

@@ -21,6 +21,16 @@ class SceneReader : public TomlAccess {
   /// [model] (read_model.cpp); trusses by read_truss().
   void read_model(const toml::node& node, ModelSpec& model) const;
   void read_truss(const toml::table& t, int dim, ModelSpec& model) const;
+  /// The matrix model, Matrix Market files and Rayleigh damping (read_matrix_files.cpp).
+  void read_matrix_model(const toml::table& t, ModelSpec& model) const;
+  /// `{ file = "K.mtx" }` at `path`, read (relative to the scene's folder) and held sparse.
+  [[nodiscard]] FileMatrix matrix_file(const toml::node& node, const std::string& path) const;
+  /// The Matrix Market file named by the string `file_node` (key path `key`).
+  [[nodiscard]] FileMatrix read_market(const toml::node& file_node, const std::string& key) const;
+  /// damping = { rayleigh = [a0, a1] } at `path`.
+  void read_rayleigh(const toml::node& node, const std::string& path, ModelSpec& model) const;
+  /// [[constraint_block]].
+  void read_constraint_blocks(const toml::node& node, std::vector<ConstraintBlockSpec>& out) const;
   /// [[load]] (read_loads.cpp).
   void read_loads(const toml::node& node, std::vector<LoadSpec>& out) const;
   /// [[constraint]] (read_constraints.cpp).

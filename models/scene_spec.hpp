@@ -4,6 +4,7 @@
 /// parse_scene(); consumed by build_model(). Every field has been checked for type and range;
 /// cross-field checks that need the assembled model (ranks, consistency) happen in build_model().
 
+#include <Eigen/Sparse>
 #include <array>
 #include <map>
 #include <optional>
@@ -20,6 +21,15 @@ namespace condyn {
 struct SourcePoint {
   std::string path;
   int line = 0;  ///< 1-based; 0 when unknown
+};
+
+/// A matrix or vector read from a Matrix Market file ({ file = "K.mtx" }): held sparse from the
+/// file on, never dense.
+struct FileMatrix {
+  std::string file;  ///< the path as the scene writes it (empty: not given by a file)
+  Eigen::SparseMatrix<double> matrix;
+  SourcePoint where;  ///< the key, e.g. "model.stiffness.file"
+  [[nodiscard]] bool given() const { return !file.empty(); }
 };
 
 struct MemberSpec {
@@ -47,11 +57,18 @@ struct ModelSpec {
   // matrix
   std::vector<std::string> dofs;
   std::vector<std::vector<double>> mass, stiffness, damping;  ///< damping may be empty
+  /// The same, given by files instead of rows (models/read_matrix_files.cpp); `dofs` is then
+  /// u1..un when the scene omits it.
+  FileMatrix mass_file, stiffness_file, damping_file;
+  /// damping = { rayleigh = [a0, a1] }: C = a0 M + a1 K (any linear model).
+  std::optional<std::array<double, 2>> rayleigh;
+  SourcePoint rayleigh_where;
   SourcePoint where;
 };
 
 struct LoadSpec {
-  std::string dof;
+  std::string dof;     ///< empty when `pattern` is given
+  FileMatrix pattern;  ///< pattern = { file = "f.mtx" } (n x 1): the load is pattern x value(t)
   TimeFunction value;
   SourcePoint where;
 };
@@ -62,6 +79,15 @@ struct ConstraintSpec {
   std::vector<std::pair<std::string, double>> terms;  ///< in the order written
   Level level = Level::position;
   TimeFunction value;
+  SourcePoint where;
+};
+
+/// [[constraint_block]]: m position-level rows A u = scale(t) g at once, named PREFIX1..PREFIXm.
+struct ConstraintBlockSpec {
+  std::string prefix;  ///< name = "PREFIX" (default block1_, block2_, ...)
+  FileMatrix A;        ///< m x n
+  FileMatrix g;        ///< m x 1 (not given: 0)
+  TimeFunction scale = TimeFunction::constant(1.0);
   SourcePoint where;
 };
 
@@ -140,6 +166,7 @@ struct SceneSpec {
   ModelSpec model;
   std::vector<LoadSpec> loads;
   std::vector<ConstraintSpec> constraints;
+  std::vector<ConstraintBlockSpec> constraint_blocks;  ///< rows after `constraints`
   InitialSpec initial;
   SolveSpec solve;
   OutputSpec output;

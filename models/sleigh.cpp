@@ -42,7 +42,7 @@ class Sleigh final : public MechanicalSystem {
   [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
   void force(double t, ConstRef /*u*/, ConstRef /*v*/, Ref f) override {
     f.setZero();
-    for (const auto& l : p_.loads) f[l.dof] += l.value.derivative(0, t, steps_at(t));
+    for (const auto& l : p_.loads) l.add_to(f, l.value.derivative(0, t, steps_at(t)));
   }
   [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef /*u*/,
                                                ConstRef /*v*/) override {
@@ -101,7 +101,7 @@ class Sleigh final : public MechanicalSystem {
   [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) override {
     if (!conservative_) return std::nullopt;
     double e = 0.5 * v.dot(M_ * v);
-    for (const auto& l : p_.loads) e -= l.value.derivative(0, t) * u[l.dof];
+    for (const auto& l : p_.loads) e -= l.value.derivative(0, t) * l.dot(u);
     return e;
   }
 

@@ -120,6 +120,24 @@ std::string TimeTerm::describe() const {
   return s.str();
 }
 
+TimeFunction TimeFunction::scaled(double c) const {
+  if (c == 0.0) return {};
+  std::vector<TimeTerm> out = terms_;
+  for (auto& term : out) {
+    switch (term.kind) {
+      case TimeTerm::Kind::polynomial:
+        for (double& a : term.coefficients) a *= c;
+        break;
+      case TimeTerm::Kind::step:
+      case TimeTerm::Kind::harmonic:
+      case TimeTerm::Kind::exponential:
+        term.amplitude *= c;
+        break;
+    }
+  }
+  return TimeFunction(std::move(out));
+}
+
 TimeFunction TimeFunction::constant(double c) {
   TimeTerm term;
   term.kind = TimeTerm::Kind::polynomial;

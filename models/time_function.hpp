@@ -60,6 +60,9 @@ class TimeFunction {
   /// whose derivative jumps: the caller must refuse the constraint).
   [[nodiscard]] TimeFunction antiderivative() const;
   [[nodiscard]] std::string describe() const;
+  /// c f(t): every term's amplitude (a polynomial's coefficients) times c; c = 0 gives the zero
+  /// function (a load pattern's or a constraint block's entry times its time function).
+  [[nodiscard]] TimeFunction scaled(double c) const;
 
  private:
   std::vector<TimeTerm> terms_;

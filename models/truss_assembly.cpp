@@ -102,7 +102,7 @@ void ModelBuilder::build_truss() {
                                                   ") overflows the double range");
       }
       if (w != 0.0) {
-        model_.loads.push_back(Load{static_cast<int>(k) * dim + d, TimeFunction::constant(w)});
+        model_.loads.push_back(Load{static_cast<int>(k) * dim + d, TimeFunction::constant(w), {}});
       }
     }
   }

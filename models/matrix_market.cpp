@@ -1,0 +1,201 @@
+// The strict Matrix Market reader (why not Eigen's loadMarket: models/matrix_market.hpp).
+
+#include "models/matrix_market.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+namespace condyn {
+
+namespace {
+
+// A lying size line must not make the reader reserve gigabytes before the first entry is read.
+constexpr long long kMaxReserve = 10'000'000;
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return out;
+}
+
+/// Splits a line into whitespace-separated tokens (views into the line).
+std::vector<std::string_view> tokens(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+    if (i > start) out.push_back(line.substr(start, i - start));
+  }
+  return out;
+}
+
+long long to_integer(std::string_view s, int line, const char* what) {
+  long long v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) {
+    throw MatrixMarketError(line,
+                            std::string(what) + " '" + std::string(s) + "' is not an integer");
+  }
+  return v;
+}
+
+double to_double(std::string_view s, int line) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) {
+    throw MatrixMarketError(line, "the value '" + std::string(s) + "' is not a number");
+  }
+  if (!std::isfinite(v)) {
+    throw MatrixMarketError(line, "the value '" + std::string(s) + "' is not finite");
+  }
+  return v;
+}
+
+}  // namespace
+
+MarketMatrix parse_matrix_market(const std::string& text) {
+  std::string_view rest(text);
+  int line_no = 0;
+  const auto next_line = [&](std::string_view& line) {
+    if (rest.empty()) return false;
+    const std::size_t nl = rest.find('\n');
+    line = rest.substr(0, nl);
+    rest = nl == std::string_view::npos ? std::string_view() : rest.substr(nl + 1);
+    ++line_no;
+    return true;
+  };
+  std::string_view line;
+  if (!next_line(line)) throw MatrixMarketError(0, "the file is empty");
+  const auto head = tokens(line);
+  if (head.empty() || lower(head[0]) != "%%matrixmarket") {
+    throw MatrixMarketError(1, "the first line is not a Matrix Market header (%%MatrixMarket ...)");
+  }
+  if (head.size() != 5 || lower(head[1]) != "matrix") {
+    throw MatrixMarketError(
+        1, "the header must read '%%MatrixMarket matrix coordinate real general' (or symmetric)");
+  }
+  const std::string format = lower(head[2]), field = lower(head[3]), symmetry = lower(head[4]);
+  if (format != "coordinate") {
+    throw MatrixMarketError(1, "format '" + format +
+                                   "' is not supported: only 'coordinate' (sparse); write the "
+                                   "file from a sparse matrix, e.g. scipy.sparse.coo_matrix");
+  }
+  if (field != "real" && field != "integer") {
+    throw MatrixMarketError(1,
+                            "field '" + field + "' is not supported: only 'real' (or 'integer')");
+  }
+  if (symmetry != "general" && symmetry != "symmetric") {
+    throw MatrixMarketError(
+        1, "symmetry '" + symmetry + "' is not supported: only 'general' or 'symmetric'");
+  }
+  MarketMatrix out;
+  out.symmetric = symmetry == "symmetric";
+
+  // The size line: the first line that is neither a comment nor blank.
+  std::vector<std::string_view> size;
+  while (next_line(line)) {
+    if (!line.empty() && line.front() == '%') continue;
+    size = tokens(line);
+    if (!size.empty()) break;
+  }
+  if (size.empty())
+    throw MatrixMarketError(line_no, "the size line (rows cols entries) is missing");
+  if (size.size() != 3) {
+    throw MatrixMarketError(line_no, "the size line must hold three integers: rows cols entries");
+  }
+  const int size_line = line_no;
+  const long long rows = to_integer(size[0], line_no, "the row count");
+  const long long cols = to_integer(size[1], line_no, "the column count");
+  const long long entries = to_integer(size[2], line_no, "the entry count");
+  constexpr long long kMaxIndex = std::numeric_limits<int>::max();
+  if (rows < 1 || cols < 1 || rows > kMaxIndex || cols > kMaxIndex) {
+    throw MatrixMarketError(line_no, "the size " + std::to_string(rows) + " x " +
+                                         std::to_string(cols) + " is not between 1 and 2^31 - 1");
+  }
+  if (out.symmetric && rows != cols) {
+    throw MatrixMarketError(line_no, "a symmetric matrix must be square (the file says " +
+                                         std::to_string(rows) + " x " + std::to_string(cols) + ")");
+  }
+  // No upper bound from rows x cols: duplicate entries are allowed (and summed).
+  if (entries < 0) {
+    throw MatrixMarketError(line_no, "the entry count " + std::to_string(entries) + " is negative");
+  }
+
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(std::min(entries * (out.symmetric ? 2 : 1), kMaxReserve)));
+  long long read = 0;
+  while (next_line(line)) {
+    if (!line.empty() && line.front() == '%') continue;
+    const auto tok = tokens(line);
+    if (tok.empty()) continue;
+    if (read == entries) {
+      throw MatrixMarketError(line_no, "more entries than the " + std::to_string(entries) +
+                                           " the size line (line " + std::to_string(size_line) +
+                                           ") declares");
+    }
+    if (tok.size() != 3) {
+      throw MatrixMarketError(line_no, "an entry is 'row column value' (found " +
+                                           std::to_string(tok.size()) + " fields)");
+    }
+    const long long i = to_integer(tok[0], line_no, "the row index");
+    const long long j = to_integer(tok[1], line_no, "the column index");
+    if (i < 1 || i > rows || j < 1 || j > cols) {
+      throw MatrixMarketError(line_no, "the index (" + std::to_string(i) + ", " +
+                                           std::to_string(j) + ") lies outside the " +
+                                           std::to_string(rows) + " x " + std::to_string(cols) +
+                                           " matrix (indices are 1-based)");
+    }
+    if (out.symmetric && j > i) {
+      throw MatrixMarketError(line_no, "the entry (" + std::to_string(i) + ", " +
+                                           std::to_string(j) +
+                                           ") lies above the diagonal: a symmetric file holds the "
+                                           "lower triangle only");
+    }
+    const double v = to_double(tok[2], line_no);
+    const auto r = static_cast<int>(i - 1), c = static_cast<int>(j - 1);
+    trip.emplace_back(r, c, v);
+    if (out.symmetric && r != c) trip.emplace_back(c, r, v);
+    ++read;
+  }
+  if (read != entries) {
+    throw MatrixMarketError(line_no, "the file ends after " + std::to_string(read) + " of the " +
+                                         std::to_string(entries) + " entries the size line (line " +
+                                         std::to_string(size_line) + ") declares");
+  }
+  out.matrix.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  out.matrix.setFromTriplets(trip.begin(), trip.end());  // duplicates are summed
+  out.matrix.makeCompressed();
+  for (Eigen::Index k = 0; k < out.matrix.nonZeros(); ++k) {
+    if (!std::isfinite(out.matrix.valuePtr()[k])) {
+      throw MatrixMarketError(0, "duplicate entries add up beyond the double range");
+    }
+  }
+  return out;
+}
+
+MarketMatrix read_matrix_market(const std::string& path) {
+  // A device or a pipe (/dev/zero, a FIFO) would be read forever or block: regular files only.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw MatrixMarketError(0, "is not a regular file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MatrixMarketError(0, "cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw MatrixMarketError(0, "cannot read the file");
+  return parse_matrix_market(text.str());
+}
+
+}  // namespace condyn

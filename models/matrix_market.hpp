@@ -1,0 +1,41 @@
+#pragma once
+/// A strict reader of Matrix Market files (scene-format.md, "Matrices and vectors from files"):
+/// `%%MatrixMarket matrix coordinate real|integer general|symmetric`, 1-based indices, one entry
+/// per line, duplicates summed (as SciPy and Eigen do). A symmetric file holds the lower triangle
+/// and is expanded to both. The result is sparse from the first entry on: nothing dense.
+///
+/// Why not Eigen's unsupported loadMarket (Eigen 3.4, MarketIO.h): it ignores the header, so a
+/// symmetric file stays one triangle and a pattern, complex or array file is misread; it prints an
+/// out-of-range index or a short entry count to stderr and still returns true; it parses values
+/// with sscanf, so "nan" and "inf" pass and a garbled line gives a default value; and it reports
+/// no line for anything. Scenes need each of those refused with the file's line.
+
+#include <Eigen/Sparse>
+#include <stdexcept>
+#include <string>
+
+namespace condyn {
+
+/// A malformed Matrix Market file: `line` is the 1-based line of the file (0 when the whole file
+/// is at fault, e.g. it cannot be opened); what() says what is wrong.
+class MatrixMarketError : public std::runtime_error {
+ public:
+  MatrixMarketError(int line, const std::string& what) : std::runtime_error(what), line_(line) {}
+  [[nodiscard]] int line() const { return line_; }
+
+ private:
+  int line_;
+};
+
+struct MarketMatrix {
+  Eigen::SparseMatrix<double> matrix;  ///< rows x cols, compressed, symmetric storage expanded
+  bool symmetric = false;              ///< the header said `symmetric`
+};
+
+/// Reads `path`. Throws MatrixMarketError for anything but a well-formed coordinate real (or
+/// integer) general or symmetric file with finite values and indices inside the declared size.
+[[nodiscard]] MarketMatrix read_matrix_market(const std::string& path);
+/// The same, from the file's text (tests).
+[[nodiscard]] MarketMatrix parse_matrix_market(const std::string& text);
+
+}  // namespace condyn

@@ -1,0 +1,214 @@
+// Scene keys that name Matrix Market files (scene-format.md, "Matrices and vectors from files"):
+// the matrix model's M, K, C given by files, Rayleigh damping, and [[constraint_block]]. Files are
+// read here, at parse time, so a bad file is refused with the scene's key and line.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "models/matrix_market.hpp"
+#include "models/scene_readers.hpp"
+
+namespace condyn {
+
+namespace {
+
+/// The first pair (i, j) where a differs from aᵀ by more than a few ulps of the pair's size; none
+/// when a is symmetric. Sparse: O(nnz log nnz), no dense n x n.
+std::optional<std::array<Eigen::Index, 2>> asymmetry(const Eigen::SparseMatrix<double>& a) {
+  const Eigen::SparseMatrix<double> at = a.transpose();
+  for (Eigen::Index k = 0; k < a.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, k); it; ++it) {
+      const double x = it.value(), y = at.coeff(it.row(), it.col());
+      // The inline rows' rule (read_model.cpp): a few ulps of the entries' size.
+      if (std::abs(x - y) > 1e-12 * std::max({std::abs(x), std::abs(y), 1e-300})) {
+        return std::array<Eigen::Index, 2>{it.row(), it.col()};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+FileMatrix SceneReader::matrix_file(const toml::node& node, const std::string& path) const {
+  const auto& t = table(node, path);
+  check_keys(t, path, {"file"});
+  const auto& file_node = required(t, path, "file");
+  return read_market(file_node, join(path, "file"));
+}
+
+FileMatrix SceneReader::read_market(const toml::node& file_node, const std::string& key) const {
+  FileMatrix out;
+  out.file = string(file_node, key);
+  out.where = at(file_node, key);
+  if (out.file.empty()) fail(file_node, key, "the file name is empty");
+  // Relative to the scene file's folder (a scene given as text: the working directory).
+  const std::filesystem::path resolved =
+      std::filesystem::path(file_).parent_path() / std::filesystem::path(out.file);
+  try {
+    out.matrix = read_matrix_market(resolved.string()).matrix;
+  } catch (const MatrixMarketError& e) {
+    const std::string where =
+        resolved.string() + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string());
+    fail(file_node, key, where + ": " + e.what());
+  }
+  return out;
+}
+
+void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
+                                ModelSpec& model) const {
+  const auto& t = table(node, path);
+  check_keys(t, path, {"rayleigh"});
+  const std::string p = join(path, "rayleigh");
+  const auto& r = required(t, path, "rayleigh");
+  const auto a = numbers(r, p);
+  if (a.size() != 2) fail(r, p, "expected [a0, a1] (C = a0 M + a1 K)");
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (a[i] < 0.0) {
+      fail(*array(r, p).get(i), index(p, i), "must be >= 0 (a negative one feeds energy in)");
+    }
+  }
+  model.rayleigh = std::array<double, 2>{a[0], a[1]};
+  model.rayleigh_where = at(r, p);
+}
+
+void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) const {
+  const std::string path = "model";
+  check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
+  model.type = ModelSpec::Type::matrix;
+  const auto is_file = [&](std::string_view key) {
+    const auto* n = t.get(key);
+    return n != nullptr && n->is_table() && !n->as_table()->contains("rayleigh");
+  };
+  // Files first: when `dofs` is omitted their size fixes n.
+  const std::pair<std::string_view, FileMatrix*> files[] = {{"mass", &model.mass_file},
+                                                            {"stiffness", &model.stiffness_file},
+                                                            {"damping", &model.damping_file}};
+  const FileMatrix* first = nullptr;
+  for (const auto& [key, out] : files) {
+    if (key != "damping") (void)required(t, path, key);
+    if (!is_file(key)) continue;
+    *out = matrix_file(*t.get(key), join(path, std::string(key)));
+    if (first == nullptr) first = out;
+  }
+  if (const auto* d = t.get("dofs"); d != nullptr || first == nullptr) {
+    const auto& dofs = array(required(t, path, "dofs"), "model.dofs");
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      const std::string name = string(*dofs.get(i), index("model.dofs", i));
+      if (name.empty()) fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
+      check_name(*dofs.get(i), index("model.dofs", i), name, "DOF");
+      if (!seen.insert(name).second) {
+        fail(*dofs.get(i), index("model.dofs", i), "duplicate DOF name '" + name + "'");
+      }
+      model.dofs.push_back(name);
+    }
+    if (model.dofs.empty()) fail(dofs, "model.dofs", "at least one DOF is needed");
+  } else {
+    const auto n = static_cast<std::size_t>(first->matrix.rows());
+    model.dofs.reserve(n);
+    for (std::size_t i = 1; i <= n; ++i) model.dofs.push_back("u" + std::to_string(i));
+  }
+  const auto n = static_cast<Eigen::Index>(model.dofs.size());
+  for (const auto& [key, out] : files) {
+    if (!out->given()) continue;
+    const auto& node = *t.get(key)->as_table()->get("file");
+    const std::string p = join(join(path, std::string(key)), "file");
+    const auto& a = out->matrix;
+    if (a.rows() != n || a.cols() != n) {
+      fail(node, p,
+           out->file + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols()) +
+               (t.contains("dofs") ? " for " + std::to_string(n) + " DOFs"
+                                   : " but " + first->file + " is " + std::to_string(n) + " x " +
+                                         std::to_string(n)));
+    }
+    if (const auto ij = asymmetry(a)) {
+      const auto [i, j] = *ij;
+      fail(node, p,
+           out->file + " is not symmetric: entry (" + std::to_string(i + 1) + "," +
+               std::to_string(j + 1) + ") = " + fmt(a.coeff(i, j)) + " but (" +
+               std::to_string(j + 1) + "," + std::to_string(i + 1) + ") = " + fmt(a.coeff(j, i)));
+    }
+  }
+  const auto square = [&](std::string_view key, std::vector<std::vector<double>>& out) {
+    const std::string p = join(path, std::string(key));
+    const auto& mat = required(t, path, key);
+    out = dense_matrix(mat, p);
+    const std::size_t rows = model.dofs.size();
+    if (out.size() != rows) {
+      fail(mat, p,
+           "has " + std::to_string(out.size()) + " rows for " + std::to_string(rows) + " DOFs");
+    }
+    for (std::size_t i = 0; i < rows; ++i) {
+      if (out[i].size() != rows) {
+        fail(*array(mat, p).get(i), index(p, i),
+             "has " + std::to_string(out[i].size()) + " entries for " + std::to_string(rows) +
+                 " DOFs");
+      }
+    }
+    for (std::size_t i = 0; i < rows; ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        const double a = out[i][j], b = out[j][i];
+        // Symmetry to a few ulps of the entries' size: a scene writes these by hand.
+        if (std::abs(a - b) > 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) {
+          fail(mat, p,
+               "is not symmetric: entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+                   ") = " + fmt(a) + " but (" + std::to_string(j + 1) + "," +
+                   std::to_string(i + 1) + ") = " + fmt(b));
+        }
+      }
+    }
+  };
+  if (!model.mass_file.given()) square("mass", model.mass);
+  if (!model.stiffness_file.given()) square("stiffness", model.stiffness);
+  if (const auto* d = t.get("damping"); d != nullptr && !model.damping_file.given()) {
+    if (d->is_table()) {
+      read_rayleigh(*d, "model.damping", model);
+    } else {
+      square("damping", model.damping);
+    }
+  }
+}
+
+void SceneReader::read_constraint_blocks(const toml::node& node,
+                                         std::vector<ConstraintBlockSpec>& out) const {
+  const auto& blocks = array(node, "constraint_block");
+  std::set<std::string> prefixes;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const std::string p = index("constraint_block", i);
+    const auto& t = table(*blocks.get(i), p);
+    check_keys(t, p, {"file", "name", "value", "scale"});
+    ConstraintBlockSpec b;
+    b.where = at(*blocks.get(i), p);
+    b.prefix = "block" + std::to_string(i + 1) + "_";
+    if (const auto* nm = t.get("name")) {
+      b.prefix = string(*nm, join(p, "name"));
+      if (b.prefix.empty()) fail(*nm, join(p, "name"), "must not be empty");
+      check_name(*nm, join(p, "name"), b.prefix, "constraint");
+    }
+    if (!prefixes.insert(b.prefix).second) {
+      fail(*blocks.get(i), p, "duplicate constraint block name '" + b.prefix + "'");
+    }
+    b.A = read_market(required(t, p, "file"), join(p, "file"));
+    if (const auto* v = t.get("value")) {
+      b.g = matrix_file(*v, join(p, "value"));
+      if (b.g.matrix.cols() != 1 || b.g.matrix.rows() != b.A.matrix.rows()) {
+        fail(*v->as_table()->get("file"), join(join(p, "value"), "file"),
+             b.g.file + " is " + std::to_string(b.g.matrix.rows()) + " x " +
+                 std::to_string(b.g.matrix.cols()) + ": the right-hand side of " + b.A.file + " (" +
+                 std::to_string(b.A.matrix.rows()) + " rows) must be " +
+                 std::to_string(b.A.matrix.rows()) + " x 1");
+      }
+    }
+    if (const auto* s = t.get("scale")) b.scale = time_function(*s, join(p, "scale"));
+    out.push_back(std::move(b));
+  }
+}
+
+}  // namespace condyn
