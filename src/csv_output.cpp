@@ -142,8 +142,11 @@ std::string RunOutputs::steps_name() const { return steps_ ? plan_.display_name(
 
 void RunOutputs::write_result(OutputPlan::Id id, const Model& model, const RunAttributes& run,
                               const Trajectory& traj) {
-  plan_.write(id, [&](std::ostream& out) {
-    if (is_hdf5_path(plan_.display_name(id))) {
+  // A stream's writer runs later, at commit (OutputPlan): it captures what it needs by value or
+  // refers to what outlives the commit (the model, the trajectory, the caller's attributes).
+  const bool hdf5 = is_hdf5_path(plan_.display_name(id));
+  plan_.write(id, [this, hdf5, &model, &run, &traj](std::ostream& out) {
+    if (hdf5) {
       write_hdf5(out, model, output_, run, traj);
     } else {
       write_rows(out, model, output_, traj);
