@@ -232,7 +232,8 @@ def main(argv=None):
     print("\n" + head + "\n|" + "---|" * 13)
     for r in rows:
         if r["status"] != "ok":
-            status = r["status"] if len(r["status"]) <= 110 else r["status"][:107] + "..."
+            status = re.sub(r"error: \S+?:\d+: ", "", r["status"])  # the scene's path: in the CSV
+            status = status if len(status) <= 110 else status[:107] + "..."
             print(f'| {r["n"]} | {r["m"]} | {r["variant"]} | {r["scheme"]} | {status} |' + " |" * 8)
             continue
         print(f'| {r["n"]} | {r["m"]} | {r["variant"]} | {r["scheme"]} | {r["steps"]:.0f} | '
