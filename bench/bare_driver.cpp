@@ -1,0 +1,362 @@
+// The benchmark's floor (issue 12, item 5): a bare SUNDIALS IDA + KLU driver, no condyn code, that
+// solves the index-1 (acceleration-level) constrained system read from Matrix Market files
+//   u' = v,   M v' = s(t) f - K u - A^T lambda,   A v' = 0,
+// y = [u; v; lambda], with s(t) the unit step, u(0) = v(0) = 0, consistent v'(0) and lambda(0) by
+// IDACalcIC, scalar tolerances rtol/atol with the multipliers left out of the error test, and the
+// Newton matrix dF/dy + cj dF/dy' filled by hand into a CSC matrix factored by KLU.
+//
+//   condyn_bare_driver DIR [--t-end T] [--output-step H] [--rtol R] [--atol A]
+// reads DIR/M.mtx, DIR/K.mtx, DIR/A.mtx, DIR/f.mtx (the flags default to bench/lattice.py's
+// defaults; bench/run_bench.py passes the scene's) and prints one line of key=value figures:
+//   steps, residual and Jacobian evaluations, Newton iterations, failures, the wall time of the
+//   solver loop (IDACalcIC to t_end), of the whole process, and the peak RSS (getrusage).
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A compressed sparse column matrix, rows sorted within each column.
+struct Csc {
+  long rows = 0, cols = 0;
+  std::vector<long> ptr;  // cols + 1
+  std::vector<long> idx;
+  std::vector<double> val;
+};
+
+/// Reads a Matrix Market file: `coordinate real general|symmetric` or `array real general`.
+Csc read_mtx(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::string line;
+  std::getline(in, line);
+  std::string banner, object, format, field, symmetry;
+  std::istringstream(line) >> banner >> object >> format >> field >> symmetry;
+  if (banner != "%%MatrixMarket" || object != "matrix" || field != "real")
+    throw std::runtime_error(path + ": line 1: expected '%%MatrixMarket matrix ... real ...'");
+  const bool symmetric = symmetry == "symmetric";
+  if (!symmetric && symmetry != "general")
+    throw std::runtime_error(path + ": line 1: symmetry must be general or symmetric");
+  while (std::getline(in, line) && (line.empty() || line[0] == '%')) {
+  }
+  std::istringstream size(line);
+  long rows = 0, cols = 0, entries = 0;
+  size >> rows >> cols;
+  std::vector<long> ri, ci;
+  std::vector<double> vi;
+  if (format == "coordinate") {
+    size >> entries;
+    if (!size || rows <= 0 || cols <= 0 || entries < 0)
+      throw std::runtime_error(path + ": bad size line '" + line + "'");
+    ri.reserve(static_cast<std::size_t>(symmetric ? 2 * entries : entries));
+    ci.reserve(ri.capacity());
+    vi.reserve(ri.capacity());
+    for (long e = 0; e < entries; ++e) {
+      long r = 0, c = 0;
+      double v = 0.0;
+      if (!(in >> r >> c >> v) || r < 1 || r > rows || c < 1 || c > cols)
+        throw std::runtime_error(path + ": bad or missing entry " + std::to_string(e + 1));
+      ri.push_back(r - 1);
+      ci.push_back(c - 1);
+      vi.push_back(v);
+      if (symmetric && r != c) {
+        ri.push_back(c - 1);
+        ci.push_back(r - 1);
+        vi.push_back(v);
+      }
+    }
+  } else if (format == "array") {
+    if (!size || rows <= 0 || cols <= 0 || symmetric)
+      throw std::runtime_error(path + ": bad size line '" + line + "'");
+    for (long c = 0; c < cols; ++c)
+      for (long r = 0; r < rows; ++r) {
+        double v = 0.0;
+        if (!(in >> v)) throw std::runtime_error(path + ": missing array entry");
+        if (v != 0.0) {
+          ri.push_back(r);
+          ci.push_back(c);
+          vi.push_back(v);
+        }
+      }
+  } else {
+    throw std::runtime_error(path + ": format must be coordinate or array");
+  }
+  // Counting sort by column, then by row within each column; duplicates are summed.
+  Csc m;
+  m.rows = rows;
+  m.cols = cols;
+  m.ptr.assign(static_cast<std::size_t>(cols + 1), 0);
+  for (long c : ci) ++m.ptr[static_cast<std::size_t>(c + 1)];
+  for (long c = 0; c < cols; ++c) m.ptr[c + 1] += m.ptr[c];
+  std::vector<long> next(m.ptr.begin(), m.ptr.end() - 1);
+  std::vector<long> idx(ri.size());
+  std::vector<double> val(ri.size());
+  for (std::size_t e = 0; e < ri.size(); ++e) {
+    const long at = next[static_cast<std::size_t>(ci[e])]++;
+    idx[static_cast<std::size_t>(at)] = ri[e];
+    val[static_cast<std::size_t>(at)] = vi[e];
+  }
+  std::vector<std::pair<long, double>> col;
+  m.ptr.assign(static_cast<std::size_t>(cols + 1), 0);
+  for (long c = 0; c < cols; ++c) {
+    col.clear();
+    const long begin = c == 0 ? 0 : next[static_cast<std::size_t>(c - 1)];
+    for (long k = begin; k < next[static_cast<std::size_t>(c)]; ++k)
+      col.emplace_back(idx[static_cast<std::size_t>(k)], val[static_cast<std::size_t>(k)]);
+    std::sort(col.begin(), col.end());
+    for (std::size_t k = 0; k < col.size(); ++k) {
+      if (k > 0 && col[k].first == col[k - 1].first) {
+        m.val.back() += col[k].second;
+      } else {
+        m.idx.push_back(col[k].first);
+        m.val.push_back(col[k].second);
+      }
+    }
+    m.ptr[static_cast<std::size_t>(c + 1)] = static_cast<long>(m.idx.size());
+  }
+  return m;
+}
+
+Csc transpose(const Csc& a) {
+  Csc t;
+  t.rows = a.cols;
+  t.cols = a.rows;
+  t.ptr.assign(static_cast<std::size_t>(t.cols + 1), 0);
+  for (long i : a.idx) ++t.ptr[static_cast<std::size_t>(i + 1)];
+  for (long c = 0; c < t.cols; ++c) t.ptr[c + 1] += t.ptr[c];
+  t.idx.resize(a.idx.size());
+  t.val.resize(a.val.size());
+  std::vector<long> next(t.ptr.begin(), t.ptr.end() - 1);
+  for (long c = 0; c < a.cols; ++c)  // columns in order: rows of the transpose come out sorted
+    for (long k = a.ptr[c]; k < a.ptr[c + 1]; ++k) {
+      const long at = next[static_cast<std::size_t>(a.idx[k])]++;
+      t.idx[static_cast<std::size_t>(at)] = c;
+      t.val[static_cast<std::size_t>(at)] = a.val[static_cast<std::size_t>(k)];
+    }
+  return t;
+}
+
+/// out += scale * a * x
+void gaxpy(const Csc& a, const double* x, double scale, double* out) {
+  for (long c = 0; c < a.cols; ++c) {
+    const double xc = scale * x[c];
+    if (xc == 0.0) continue;
+    for (long k = a.ptr[c]; k < a.ptr[c + 1]; ++k) out[a.idx[k]] += a.val[k] * xc;
+  }
+}
+
+struct Problem {
+  Csc M, K, A, At;
+  std::vector<double> f;
+  long n = 0, m = 0;
+  long residuals = 0;  // our own count, beside IDA's (which leaves out the Jacobian's none)
+};
+
+int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void* user) {
+  const auto& p = *static_cast<Problem*>(user);
+  const double* y = N_VGetArrayPointer(yy);
+  const double* d = N_VGetArrayPointer(yp);
+  double* r = N_VGetArrayPointer(rr);
+  const long n = p.n;
+  const double s = t >= 0.0 ? 1.0 : 0.0;  // the step load, on from t = 0
+  for (long i = 0; i < n; ++i) r[i] = d[i] - y[n + i];
+  double* r2 = r + n;
+  for (long i = 0; i < n; ++i) r2[i] = -s * p.f[static_cast<std::size_t>(i)];
+  gaxpy(p.M, d + n, 1.0, r2);
+  gaxpy(p.K, y, 1.0, r2);
+  gaxpy(p.At, y + 2 * n, 1.0, r2);
+  double* r3 = r + 2 * n;
+  std::fill(r3, r3 + p.m, 0.0);
+  gaxpy(p.A, d + n, 1.0, r3);
+  return 0;
+}
+
+// J = dF/dy + cj dF/dy':  [cj I, -I, 0; K, cj M, A^T; 0, cj A, 0], filled column by column.
+int jacobian(double, double cj, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* user, N_Vector,
+             N_Vector, N_Vector) {
+  const auto& p = *static_cast<Problem*>(user);
+  sunindextype* ptr = SUNSparseMatrix_IndexPointers(J);
+  sunindextype* row = SUNSparseMatrix_IndexValues(J);
+  double* val = SUNSparseMatrix_Data(J);
+  const long n = p.n;
+  sunindextype at = 0;
+  auto put = [&](long r, double v) {
+    row[at] = static_cast<sunindextype>(r);
+    val[at] = v;
+    ++at;
+  };
+  for (long c = 0; c < n; ++c) {  // u columns
+    ptr[c] = at;
+    put(c, cj);
+    for (long k = p.K.ptr[c]; k < p.K.ptr[c + 1]; ++k) put(n + p.K.idx[k], p.K.val[k]);
+  }
+  for (long c = 0; c < n; ++c) {  // v columns
+    ptr[n + c] = at;
+    put(c, -1.0);
+    for (long k = p.M.ptr[c]; k < p.M.ptr[c + 1]; ++k) put(n + p.M.idx[k], cj * p.M.val[k]);
+    for (long k = p.A.ptr[c]; k < p.A.ptr[c + 1]; ++k) put(2 * n + p.A.idx[k], cj * p.A.val[k]);
+  }
+  for (long c = 0; c < p.m; ++c) {  // lambda columns: A^T
+    ptr[2 * n + c] = at;
+    for (long k = p.At.ptr[c]; k < p.At.ptr[c + 1]; ++k) put(n + p.At.idx[k], p.At.val[k]);
+  }
+  ptr[2 * n + p.m] = at;
+  return 0;
+}
+
+void check(int flag, const char* what) {
+  if (flag < 0)
+    throw std::runtime_error(std::string(what) + " failed with flag " + std::to_string(flag));
+}
+
+/// CPU seconds (user + system) of this process so far: on a shared machine the figure that wall
+/// time inflates and this does not.
+double cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const auto process_start = Clock::now();
+  if (argc < 2) {
+    std::cerr
+        << "usage: condyn_bare_driver DIR [--t-end T] [--output-step H] [--rtol R] [--atol A]\n";
+    return 2;
+  }
+  const std::string dir = argv[1];
+  double t_end = 1.0, output_step = 0.01, rtol = 1e-6, atol = 1e-8;
+  for (int i = 2; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (i + 1 >= argc) {
+      std::cerr << "error: " << flag << " needs a value\n";
+      return 2;
+    }
+    char* end = nullptr;
+    const double v = std::strtod(argv[++i], &end);
+    if (*end != '\0' || !(v > 0.0) || !std::isfinite(v)) {
+      std::cerr << "error: " << flag << ": expected a positive number, got '" << argv[i] << "'\n";
+      return 2;
+    }
+    if (flag == "--t-end")
+      t_end = v;
+    else if (flag == "--output-step")
+      output_step = v;
+    else if (flag == "--rtol")
+      rtol = v;
+    else if (flag == "--atol")
+      atol = v;
+    else {
+      std::cerr << "error: unknown flag " << flag << "\n";
+      return 2;
+    }
+  }
+  try {
+    Problem p;
+    p.M = read_mtx(dir + "/M.mtx");
+    p.K = read_mtx(dir + "/K.mtx");
+    p.A = read_mtx(dir + "/A.mtx");
+    const Csc f = read_mtx(dir + "/f.mtx");
+    p.n = p.M.rows;
+    p.m = p.A.rows;
+    if (p.M.cols != p.n || p.K.rows != p.n || p.K.cols != p.n || p.A.cols != p.n || f.rows != p.n ||
+        f.cols != 1)
+      throw std::runtime_error("sizes of M, K, A, f do not agree");
+    p.f.assign(static_cast<std::size_t>(p.n), 0.0);
+    for (long k = 0; k < f.ptr[1]; ++k) p.f[static_cast<std::size_t>(f.idx[k])] = f.val[k];
+    p.At = transpose(p.A);
+    const long n = p.n, m = p.m, size = 2 * n + m;
+    const long nnz = n + static_cast<long>(p.K.idx.size()) + n + static_cast<long>(p.M.idx.size()) +
+                     2 * static_cast<long>(p.A.idx.size());
+
+    const auto solver_start = Clock::now();
+    const double solver_cpu_start = cpu_seconds();
+    SUNContext ctx = nullptr;
+    check(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
+    N_Vector y = N_VNew_Serial(size, ctx), yp = N_VNew_Serial(size, ctx),
+             id = N_VNew_Serial(size, ctx);
+    if (!y || !yp || !id) throw std::runtime_error("N_VNew_Serial failed");
+    N_VConst(0.0, y);
+    N_VConst(0.0, yp);
+    double* idv = N_VGetArrayPointer(id);
+    for (long i = 0; i < size; ++i) idv[i] = i < 2 * n ? 1.0 : 0.0;
+    SUNMatrix J = SUNSparseMatrix(size, size, nnz, CSC_MAT, ctx);
+    SUNLinearSolver LS = J ? SUNLinSol_KLU(y, J, ctx) : nullptr;
+    if (!J || !LS) throw std::runtime_error("could not create the KLU solver");
+    void* mem = IDACreate(ctx);
+    if (!mem) throw std::runtime_error("IDACreate failed");
+    check(IDAInit(mem, residual, 0.0, y, yp), "IDAInit");
+    check(IDASStolerances(mem, rtol, atol), "IDASStolerances");
+    check(IDASetUserData(mem, &p), "IDASetUserData");
+    check(IDASetId(mem, id), "IDASetId");
+    check(IDASetSuppressAlg(mem, SUNTRUE), "IDASetSuppressAlg");
+    check(IDASetMaxNumSteps(mem, 100000), "IDASetMaxNumSteps");
+    check(IDASetLinearSolver(mem, LS, J), "IDASetLinearSolver");
+    check(IDASetJacFn(mem, jacobian), "IDASetJacFn");
+    check(IDACalcIC(mem, IDA_YA_YDP_INIT, output_step), "IDACalcIC");
+    const long outputs = std::lround(t_end / output_step);
+    double tret = 0.0;
+    double tip = 0.0;  // uy of the last DOF at t_end, a figure to compare runs by
+    for (long k = 1; k <= outputs; ++k) {
+      const double tout = k == outputs ? t_end : static_cast<double>(k) * output_step;
+      check(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
+    }
+    tip = N_VGetArrayPointer(y)[n - 1];
+    const double solver_s = seconds_since(solver_start);
+    const double solver_cpu_s = cpu_seconds() - solver_cpu_start;
+
+    long steps = 0, res = 0, jacs = 0, nli = 0, ncf = 0, etf = 0, lsres = 0;
+    IDAGetNumSteps(mem, &steps);
+    IDAGetNumResEvals(mem, &res);
+    IDAGetNumJacEvals(mem, &jacs);
+    IDAGetNumNonlinSolvIters(mem, &nli);
+    IDAGetNumNonlinSolvConvFails(mem, &ncf);
+    IDAGetNumErrTestFails(mem, &etf);
+    IDAGetNumLinResEvals(mem, &lsres);
+    IDAFree(&mem);
+    SUNLinSolFree(LS);
+    SUNMatDestroy(J);
+    N_VDestroy(y);
+    N_VDestroy(yp);
+    N_VDestroy(id);
+    SUNContext_Free(&ctx);
+
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf(
+        "bare: n=%ld m=%ld unknowns=%ld nnz_jac=%ld steps=%ld residual_evals=%ld "
+        "jacobian_evals=%ld "
+        "newton_iters=%ld newton_failures=%ld error_test_failures=%ld solver_s=%.6g "
+        "solver_cpu_s=%.6g process_s=%.6g process_cpu_s=%.6g peak_rss_mb=%.1f u_last=%.10g\n",
+        n, m, size, nnz, steps, res + lsres, jacs, nli, ncf, etf, solver_s, solver_cpu_s,
+        seconds_since(process_start), cpu_seconds(), static_cast<double>(usage.ru_maxrss) / 1024.0,
+        tip);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << dir << ": " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
