@@ -14,8 +14,9 @@ namespace condyn {
 //     a velocity row's position_value integrates from a·u(0).
 //  5. finish_point_masses / finish_sleigh build the nonlinear system, which takes the loads (2)
 //     and, for a truss, the linear rows (4), its rod rows after them.
-//  6. check_size needs the final DOF and constraint counts (1, 4, 5), and comes before any dense
-//     work (projection, linearization, rank check) so an oversized scene is refused, not hung.
+//  6. check_size estimates memory from the final counts and nonzeros (1, 4, 5), and comes before
+//     the work that grows with the model (projection, rank check), so a model that cannot fit is
+//     refused before it exhausts memory.
 //  7. project_initial needs the system (M, C, K, A of a linear model, or 5) and the constraints;
 //     it rebuilds a linear model's rows (4) from the projected u(0).
 //  8. A benchmark keeps its reference only when the final initial state (3, 7) is the published

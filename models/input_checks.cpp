@@ -1,12 +1,13 @@
 // Input checks of build_model(): time functions that stay finite over the horizon
-// (magnitude_bound), finite matrices and initial state, magnitude warnings, the size limits
-// (kMax*), and DOFs that nothing defines.
+// (magnitude_bound), finite matrices and initial state, magnitude warnings, the memory
+// estimate, and DOFs that nothing defines.
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "models/memory_estimate.hpp"
 #include "models/model_builder.hpp"
 
 namespace condyn {
@@ -15,10 +16,6 @@ namespace {
 
 // exp(709) is the largest finite double; leave headroom for amplitudes and derivatives.
 constexpr double kMaxExponent = 700.0;
-// The solvers, `info` and the exact and elimination paths use dense DOF x DOF and constraint x DOF
-// matrices: 5000 of either is about 40 s and 600 MB for `run`; 10x more would take hours and GBs.
-constexpr int kMaxDofs = 5000;
-constexpr int kMaxConstraints = 5000;
 
 }  // namespace
 
@@ -159,20 +156,25 @@ void ModelBuilder::check_magnitudes() {
   }
 }
 
-/// Sizes the dense parts of condyn can treat (README "Known limitations": small and medium
-/// models), refused before any dense work rather than left to exhaust memory or time.
-void ModelBuilder::check_size() const {
-  if (model_.dofs() > kMaxDofs) {
-    fail(spec_.model.where, std::to_string(model_.dofs()) + " DOFs: more than condyn's limit of " +
-                                std::to_string(kMaxDofs) +
-                                " (its solvers factor dense DOF x DOF matrices)");
-  }
-  if (model_.constraint_count() > kMaxConstraints) {
-    const auto& last = model_.constraints.back();
-    fail(last.where, std::to_string(model_.constraint_count()) +
-                         " constraints: more than condyn's limit of " +
-                         std::to_string(kMaxConstraints) +
-                         " (its solvers factor dense constraint x constraint matrices)");
+/// No fixed limit on DOFs or constraints: the memory integrating will need, estimated from the
+/// nonzeros (models/memory_estimate.hpp), is stated in the report and refused only when it
+/// exceeds what the machine has available.
+void ModelBuilder::check_size() {
+  ModelSizes sizes;
+  sizes.dofs = model_.dofs();
+  sizes.constraints = model_.constraint_count();
+  sizes.nnz_mass = static_cast<double>(model_.M.nonZeros());
+  sizes.nnz_damping = static_cast<double>(model_.C.nonZeros());
+  sizes.nnz_stiffness = static_cast<double>(model_.K.nonZeros());
+  sizes.nnz_constraints = static_cast<double>(model_.A.nonZeros());
+  const MemoryEstimate estimate = integration_memory_estimate(sizes);
+  const std::optional<double> available = available_memory_bytes();
+  report_.memory_estimate =
+      "about " + format_bytes(estimate.bytes) + " to integrate" +
+      (available ? " (" + format_bytes(*available) + " available)" : std::string());
+  if (!available) return;
+  if (const auto refusal = memory_refusal(sizes, estimate, *available)) {
+    fail(spec_.model.where, *refusal);
   }
 }
 

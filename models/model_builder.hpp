@@ -24,9 +24,14 @@ class InconsistentGivenValues;
 // Rows are scaled to unit norm first, so this compares directions: 1e-10 keeps constraints whose
 // normals differ by more than ~1e-10 rad, far below anything a scene means on purpose.
 constexpr double kRankTolerance = 1e-10;
-// The rank check and [initial] project factor dense matrices (constraints x DOFs): refuse sizes
-// whose memory and time would look like a hang (4e6 doubles = 32 MB; a QR of about 10 s).
+// [initial] project and the mass and slave checks still factor dense matrices (constraints x DOFs):
+// refuse or skip sizes whose memory and time would look like a hang (4e6 doubles = 32 MB; a QR of
+// about 10 s).
 constexpr double kMaxDenseEntries = 4e6;
+// A connected group of constraints up to this many constraint-DOF pairs is rank-checked by a
+// dense column-pivoted QR (at most 80 KB and ~1e6 flops per row of the group, so linear in the
+// rows), larger groups by SuiteSparseQR: small scenes keep the dense QR's exact decisions.
+constexpr double kDenseBlockEntries = 1e4;
 
 // input_checks.cpp
 std::string fmt(double v);
@@ -59,7 +64,7 @@ class ModelBuilder {
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
   void check_finite() const;
   void check_magnitudes();
-  void check_size() const;
+  void check_size();
   void check_degenerate_dofs() const;
 
   // truss_assembly.cpp

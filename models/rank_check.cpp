@@ -1,8 +1,10 @@
 // The rank and redundancy check of the constraints (kRankTolerance), and dropping a redundant one.
 
 #include <Eigen/Dense>
+#include <Eigen/SPQRSupport>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "models/model_builder.hpp"
 #include "models/zero_sum.hpp"
@@ -24,11 +26,92 @@ void ModelBuilder::drop_constraint(const Dependent& d) {
   model_.A = moved.topRows(m - 1);
 }
 
+namespace {
+
+/// Rank of one connected group of constraints, given as the columns of its row-normalised
+/// transpose (DOFs x constraints), and, when deficient, the first dependent column in pivot order
+/// with its combination of the independent ones: at.col(dep) = sum_k y_k at.col(basis_k).
+struct GroupRank {
+  int rank = 0;
+  int dep = -1;                               ///< local column; -1 when of full rank
+  std::vector<std::pair<int, double>> combo;  ///< (local column, y_k)
+};
+
+/// Column-pivoted dense QR: kept for groups up to kDenseBlockEntries, where it is cheap, so the
+/// decisions on every small scene stay exactly those of before.
+GroupRank dense_group_rank(const Eigen::SparseMatrix<double>& at_sparse) {
+  const Eigen::MatrixXd at(at_sparse);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(at.rows(), at.cols());
+  qr.setThreshold(kRankTolerance);
+  qr.compute(at);
+  GroupRank g;
+  g.rank = static_cast<int>(qr.rank());
+  if (g.rank == at.cols()) return g;
+  // The first `rank` pivot columns are independent; express the first dependent one in them.
+  const auto& perm = qr.colsPermutation().indices();
+  g.dep = perm[g.rank];
+  Eigen::MatrixXd basis(at.rows(), g.rank);
+  for (int k = 0; k < g.rank; ++k) basis.col(k) = at.col(perm[k]);
+  const Eigen::VectorXd y = basis.colPivHouseholderQr().solve(at.col(g.dep));
+  for (int k = 0; k < g.rank; ++k) g.combo.emplace_back(perm[k], y[k]);
+  return g;
+}
+
+/// SuiteSparseQR with the same meaning of the tolerance: the columns have unit norm, and a column
+/// whose part outside the span of the earlier ones is below kRankTolerance is dependent. SPQR
+/// orders the columns to limit fill (COLAMD) and moves dependent ones last; its rank detection
+/// (Heath's) can miss a dependency that column pivoting would find, never invent one that the
+/// least-squares residual below does not confirm.
+GroupRank sparse_group_rank(const Eigen::SparseMatrix<double>& at) {
+  using Spqr = Eigen::SPQR<Eigen::SparseMatrix<double>>;
+  Spqr qr;
+  qr.setPivotThreshold(kRankTolerance);
+  qr.compute(at);
+  if (qr.info() != Eigen::Success) throw std::runtime_error("SuiteSparseQR failed on A^T");
+  GroupRank g;
+  g.rank = static_cast<int>(qr.rank());
+  const auto cols = static_cast<int>(at.cols());
+  if (g.rank == cols) return g;
+  const auto perm = qr.colsPermutation();  // column perm.indices()[k] of A^T is the k-th
+  std::vector<int> order(static_cast<std::size_t>(cols));
+  for (int k = 0; k < cols; ++k)
+    order[static_cast<std::size_t>(k)] = static_cast<int>(perm.indices()[k]);
+  // The independent columns, and the first dependent one expressed in them (least squares).
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < g.rank; ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(at, order[static_cast<std::size_t>(k)]); it;
+         ++it)
+      t.emplace_back(static_cast<int>(it.row()), k, it.value());
+  }
+  Eigen::SparseMatrix<double> basis(at.rows(), g.rank);
+  basis.setFromTriplets(t.begin(), t.end());
+  Spqr ls;
+  if (g.rank > 0) {
+    ls.setPivotThreshold(kRankTolerance);
+    ls.compute(basis);
+    if (ls.info() != Eigen::Success) throw std::runtime_error("SuiteSparseQR failed on a basis");
+  }
+  for (int k = g.rank; k < cols; ++k) {
+    const int c = order[static_cast<std::size_t>(k)];
+    const Eigen::VectorXd target = at.col(c);
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(g.rank);
+    if (g.rank > 0) y = ls.solve(target);
+    if ((basis * y - target).norm() > kRankTolerance) continue;  // not confirmed
+    g.dep = c;
+    for (int j = 0; j < g.rank; ++j) g.combo.emplace_back(order[static_cast<std::size_t>(j)], y[j]);
+    return g;
+  }
+  g.rank = cols;  // no dependency confirmed
+  return g;
+}
+
+}  // namespace
+
 /// Rank of the row-normalised constraint matrix; a dependent set is named with the
 /// compatibility of its right-hand sides over the horizon. Constraints that share no DOF, even
 /// through others, are independent of each other: each connected group is factored on its own
-/// (supports and other single-DOF rows cost nothing), and a group too large for a dense QR is
-/// refused rather than left to run out of memory or time.
+/// (supports and other single-DOF rows cost nothing), small groups by a dense column-pivoted QR,
+/// larger ones by SuiteSparseQR, so the cost follows the nonzeros.
 /// Refuses dependent constraints, naming them, unless they are redundant and the scene asks to
 /// drop them ([solve] redundant = "drop", linear models): then returns the one to drop.
 std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
@@ -92,42 +175,28 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
     }
     const auto mc = static_cast<Eigen::Index>(rows.size());
     const auto nc = static_cast<Eigen::Index>(dofs.size());
-    if (static_cast<double>(mc) * static_cast<double>(nc) > kMaxDenseEntries) {
-      fail(constraints[static_cast<std::size_t>(rows.front())].where,
-           "constraint '" + constraints[static_cast<std::size_t>(rows.front())].name +
-               "' is coupled through shared DOFs to " + std::to_string(mc - 1) + " others over " +
-               std::to_string(nc) + " DOFs: too many for the dense rank check (limit " +
-               fmt(kMaxDenseEntries) +
-               " constraint-DOF pairs); condyn treats small and medium models");
-    }
     // n_c x m_c, a column per constraint, normalised.
-    Eigen::MatrixXd at = Eigen::MatrixXd::Zero(nc, mc);
+    std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index c = 0; c < mc; ++c) {
       const int j = rows[static_cast<std::size_t>(c)];
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
-        at(local[static_cast<std::size_t>(it.col())], c) =
-            it.value() / row_norm[static_cast<std::size_t>(j)];
+        entries.emplace_back(local[static_cast<std::size_t>(it.col())], static_cast<int>(c),
+                             it.value() / row_norm[static_cast<std::size_t>(j)]);
       }
     }
     for (int d : dofs) local[static_cast<std::size_t>(d)] = -1;
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(at.rows(), at.cols());
-    qr.setThreshold(kRankTolerance);
-    qr.compute(at);
-    const int group_rank = static_cast<int>(qr.rank());
-    rank += group_rank;
-    if (group_rank == mc || dep >= 0) continue;
-    // The first `group_rank` pivot columns are independent; express the first dependent one in
-    // them.
-    const auto& perm = qr.colsPermutation().indices();
-    dep = rows[static_cast<std::size_t>(perm[group_rank])];
-    Eigen::MatrixXd basis(at.rows(), group_rank);
-    for (int k = 0; k < group_rank; ++k) basis.col(k) = at.col(perm[k]);
-    const Eigen::VectorXd y = basis.colPivHouseholderQr().solve(at.col(perm[group_rank]));
+    Eigen::SparseMatrix<double> at(nc, mc);
+    at.setFromTriplets(entries.begin(), entries.end());
+    const GroupRank g = static_cast<double>(mc) * static_cast<double>(nc) <= kDenseBlockEntries
+                            ? dense_group_rank(at)
+                            : sparse_group_rank(at);
+    rank += g.rank;
+    if (g.dep < 0 || dep >= 0) continue;
+    dep = rows[static_cast<std::size_t>(g.dep)];
     // Combination sum_k w_k c_k = 0 over the involved constraints (normalised rows).
     combo = {{dep, 1.0}};
-    for (int k = 0; k < group_rank; ++k) {
-      if (std::abs(y[k]) > 1e-12)
-        combo.emplace_back(rows[static_cast<std::size_t>(perm[k])], -y[k]);
+    for (const auto& [k, y] : g.combo) {
+      if (std::abs(y) > 1e-12) combo.emplace_back(rows[static_cast<std::size_t>(k)], -y);
     }
   }
   if (dep < 0) return std::nullopt;

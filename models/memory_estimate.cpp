@@ -1,0 +1,74 @@
+// The memory a model needs to integrate, from its nonzeros, against MemAvailable: what replaced
+// the fixed DOF and constraint limits.
+
+#include "models/memory_estimate.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace condyn {
+
+namespace {
+
+constexpr double kBytesPerNonzero = 12.0;  // a double and a 32-bit row index
+constexpr double kIdaVectors = 30.0;
+constexpr double kModelCopies = 3.0;
+
+std::string count(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+MemoryEstimate integration_memory_estimate(const ModelSizes& s) {
+  const double model_nonzeros = s.nnz_mass + s.nnz_damping + s.nnz_stiffness + s.nnz_constraints;
+  MemoryEstimate e;
+  e.newton_nonzeros =
+      s.nnz_mass + s.nnz_damping + s.nnz_stiffness + 2.0 * s.dofs + 4.0 * s.nnz_constraints;
+  const double unknowns = 2.0 * s.dofs + 2.0 * s.constraints;
+  e.bytes = (2.0 + kKluFillFactor) * kBytesPerNonzero * e.newton_nonzeros +
+            kIdaVectors * 8.0 * unknowns + kModelCopies * kBytesPerNonzero * model_nonzeros;
+  return e;
+}
+
+std::optional<double> available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key, unit;
+  double value = 0;
+  while (in >> key >> value) {
+    std::getline(in, unit);
+    if (key == "MemAvailable:") return value * 1024.0;  // the kernel writes kB (KiB)
+  }
+  return std::nullopt;
+}
+
+std::string format_bytes(double bytes) {
+  const char* units[] = {"B", "kB", "MB", "GB", "TB", "PB"};
+  int u = 0;
+  while (bytes >= 1000.0 && u < 5) {
+    bytes /= 1000.0;
+    ++u;
+  }
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << bytes << " " << units[u];
+  return s.str();
+}
+
+std::optional<std::string> memory_refusal(const ModelSizes& sizes, const MemoryEstimate& e,
+                                          double available) {
+  if (e.bytes <= available) return std::nullopt;
+  return count(sizes.dofs) + " DOFs and " + count(sizes.constraints) + " constraints need about " +
+         format_bytes(e.bytes) + " to integrate (estimate: a Newton matrix of " +
+         count(e.newton_nonzeros) + " nonzeros, its KLU factors taken as " + count(kKluFillFactor) +
+         " times that, and the solver's vectors), more than the " + format_bytes(available) +
+         " this machine has available (MemAvailable in /proc/meminfo): reduce the model or run "
+         "it on a machine with more memory";
+}
+
+}  // namespace condyn

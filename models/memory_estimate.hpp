@@ -1,0 +1,47 @@
+#pragma once
+/// What integrating a model will hold in memory, estimated from its sizes and nonzeros before any
+/// solver work, and the refusal of a model that will not fit in the machine's available memory.
+
+#include <optional>
+#include <string>
+
+namespace condyn {
+
+/// Sizes the estimate is made from: DOFs n, constraints m, and the nonzeros of M, C, K and A.
+struct ModelSizes {
+  double dofs = 0, constraints = 0;
+  double nnz_mass = 0, nnz_damping = 0, nnz_stiffness = 0, nnz_constraints = 0;
+};
+
+/// Bytes for the largest formulation (GGL: y = [u; v; λ; μ] of size N = 2n + 2m) with a KLU
+/// factorization of its Newton matrix, whose nonzeros are those of cj²M + cjC + K blocks, the
+/// identity couplings (2n) and A, Aᵀ twice (4 nnz(A)):
+///   Jacobian and its pattern copy: 2 × 12 B per nonzero (value + row index);
+///   KLU's L and U: kKluFillFactor × 12 B per nonzero of the Newton matrix;
+///   IDA's vectors: 30 of length N (six history arrays, error weights, work vectors);
+///   the model's own sparse matrices, held three times (Model, LinearSystem, evaluator).
+struct MemoryEstimate {
+  double bytes = 0;
+  double newton_nonzeros = 0;
+};
+[[nodiscard]] MemoryEstimate integration_memory_estimate(const ModelSizes& sizes);
+
+/// KLU's fill is unknown until it factors. AMD-ordered matrices of 2D meshes fill like n log n,
+/// 3 to 10 times their nonzeros up to a million unknowns; 20 leaves a margin for 3D meshes and
+/// constraint rows. A model that needs more fails in KLU with an allocation error, not a crash.
+constexpr double kKluFillFactor = 20.0;
+
+/// MemAvailable of /proc/meminfo in bytes, or nothing when it cannot be read.
+[[nodiscard]] std::optional<double> available_memory_bytes();
+
+/// "about 1.2 GB" style: bytes with a binary-free decimal unit, two significant figures.
+[[nodiscard]] std::string format_bytes(double bytes);
+
+/// The refusal text when `estimate` exceeds `available` bytes (nothing when it fits):
+/// "integrating N DOFs and M constraints needs about X (estimate: ...), more than the Y this
+/// machine has available (MemAvailable in /proc/meminfo)".
+[[nodiscard]] std::optional<std::string> memory_refusal(const ModelSizes& sizes,
+                                                        const MemoryEstimate& estimate,
+                                                        double available);
+
+}  // namespace condyn

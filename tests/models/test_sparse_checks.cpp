@@ -1,0 +1,127 @@
+// The build's checks on models beyond the old fixed limits (5000 DOFs or constraints, 4e6
+// constraint-DOF pairs in one rank-check group): the sparse rank check names the redundant row
+// of a large coupled group, and the size is judged by a memory estimate instead of a count.
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "models/memory_estimate.hpp"
+#include "models/model.hpp"
+#include "models/scene_parser.hpp"
+
+using namespace condyn;
+
+namespace {
+
+/// A truss2d lattice of nx × ny nodes at unit spacing (square cells with one diagonal), unit
+/// masses, its left column supported, and `extra` appended (constraints; [solve] keys after).
+std::string lattice(int nx, int ny, const std::string& extra, const std::string& solve_keys) {
+  const auto id = [nx](int i, int j) { return j * nx + i + 1; };
+  std::string nodes, masses, members, supports;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const bool first = i == 0 && j == 0;
+      nodes +=
+          std::string(first ? "[" : ", [") + std::to_string(i) + ".0, " + std::to_string(j) + ".0]";
+      masses += first ? "1.0" : ", 1.0";
+      const auto bar = [&members](int a, int b) {
+        members += std::string(members.empty() ? "" : ", ") + "{ nodes = [" + std::to_string(a) +
+                   ", " + std::to_string(b) + "], EA = 1.0 }";
+      };
+      if (i + 1 < nx) bar(id(i, j), id(i + 1, j));
+      if (j + 1 < ny) bar(id(i, j), id(i, j + 1));
+      if (i + 1 < nx && j + 1 < ny) bar(id(i, j), id(i + 1, j + 1));
+    }
+    supports += std::string(j ? ", " : "") + std::to_string(id(0, j));
+  }
+  return "[model]\ntype = \"truss2d\"\nnodes = [" + nodes + "]\nmasses = [" + masses +
+         "]\nmembers = [" + members + "]\nsupports = [" + supports + "]\n" + extra +
+         "[solve]\nt_end = 1.0\noutput_step = 0.1\n" + solve_keys;
+}
+
+/// Ties along the top row of a 100 × 100 lattice, ux_k = uy_k = ux_(k+1) for nodes 9902 …
+/// 10000: 197 rows chained over 198 DOFs, one group of 39,006 constraint-DOF pairs (beyond the
+/// dense block, so SuiteSparseQR factors it); then 'again', twice the row 't50'.
+std::string chain_with_duplicate() {
+  std::string c;
+  int row = 0;
+  for (int node = 9902; node <= 10000; ++node) {
+    const std::string x = "ux" + std::to_string(node), y = "uy" + std::to_string(node);
+    c += "[[constraint]]\nname = \"t" + std::to_string(++row) + "\"\nterms = { " + x + " = 1.0, " +
+         y + " = -1.0 }\n";
+    if (node < 10000) {
+      c += "[[constraint]]\nname = \"t" + std::to_string(++row) + "\"\nterms = { " + y +
+           " = 1.0, ux" + std::to_string(node + 1) + " = -1.0 }\n";
+    }
+  }
+  c += "[[constraint]]\nname = \"again\"\nterms = { uy9926 = 2.0, ux9927 = -2.0 }\n";
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("a 20,000-DOF lattice with a redundant tie builds and the redundant row is named") {
+  // Before: refused as "20000 DOFs: more than condyn's limit of 5000".
+  const std::string drop = lattice(100, 100, chain_with_duplicate(), "redundant = \"drop\"\n");
+  BuildReport report;
+  const Model model = build_model(parse_scene_text(drop, "big.toml"), report);
+  CHECK(model.dofs() == 20000);
+  // 200 supports (left column, both directions) + 197 ties + 'again' − the dropped one.
+  CHECK(model.constraint_count() == 200 + 197);
+  REQUIRE(report.dropped_constraints.size() == 1);
+  // 't50' is uy9926 − ux9927; 'again' is twice it: one of the two is dropped, named with the other.
+  const std::string& dropped = report.dropped_constraints.front();
+  CHECK((dropped == "'again' (a combination of 't50')" ||
+         dropped == "'t50' (a combination of 'again')"));
+  // Without the request, the pair is refused, both named, with the remedy.
+  try {
+    (void)build_model(parse_scene_text(lattice(100, 100, chain_with_duplicate(), ""), "big.toml"));
+    FAIL("a dependent pair was accepted");
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    CHECK(what.find("linearly dependent (constraint matrix rank 397 < 398)") != std::string::npos);
+    CHECK(what.find("'t50'") != std::string::npos);
+    CHECK(what.find("'again'") != std::string::npos);
+    CHECK(what.find("redundant = \"drop\"") != std::string::npos);
+  }
+}
+
+TEST_CASE("the size of a model is judged by a memory estimate against the available memory") {
+  BuildReport report;
+  const Model model = build_model(parse_scene_text(lattice(100, 100, "", ""), "big.toml"), report);
+  // The build states its estimate (and the machine's memory when /proc/meminfo is readable).
+  CHECK(report.memory_estimate.rfind("about ", 0) == 0);
+  CHECK(report.memory_estimate.find(" to integrate") != std::string::npos);
+  ModelSizes sizes;
+  sizes.dofs = model.dofs();
+  sizes.constraints = model.constraint_count();
+  sizes.nnz_mass = static_cast<double>(model.M.nonZeros());
+  sizes.nnz_stiffness = static_cast<double>(model.K.nonZeros());
+  sizes.nnz_constraints = static_cast<double>(model.A.nonZeros());
+  const MemoryEstimate e = integration_memory_estimate(sizes);
+  // Newton matrix: M (20,000 diagonal entries), K, the 2n identity couplings, A and Aᵀ twice.
+  CHECK(e.newton_nonzeros ==
+        doctest::Approx(20000.0 + sizes.nnz_stiffness + 40000.0 + 4.0 * 200.0).epsilon(0.0));
+  // It fits in a gigabyte; it does not fit in a megabyte, and the refusal says why in figures.
+  CHECK_FALSE(memory_refusal(sizes, e, 1e9).has_value());
+  const auto refusal = memory_refusal(sizes, e, 1e6);
+  REQUIRE(refusal.has_value());
+  CHECK(refusal->rfind("20000 DOFs and 200 constraints need about ", 0) == 0);
+  CHECK(refusal->find("times that, and the solver's vectors), more than the 1.0 MB this machine "
+                      "has available (MemAvailable in /proc/meminfo)") != std::string::npos);
+  // The estimate is linear in the sizes: a model twice as large needs twice the memory.
+  ModelSizes twice = sizes;
+  for (double* v : {&twice.dofs, &twice.constraints, &twice.nnz_mass, &twice.nnz_stiffness,
+                    &twice.nnz_constraints})
+    *v *= 2.0;
+  CHECK(integration_memory_estimate(twice).bytes == doctest::Approx(2.0 * e.bytes));
+}
+
+TEST_CASE("the available memory is read from /proc/meminfo") {
+  const auto available = available_memory_bytes();
+  REQUIRE(available.has_value());  // Linux, where condyn runs
+  CHECK(*available > 0.0);
+  CHECK(format_bytes(1.5e9) == "1.5 GB");
+  CHECK(format_bytes(999.0) == "999.0 B");
+}
