@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "dae/kkt.hpp"
+#include "dae/largest_frequency.hpp"
 
 namespace condyn {
 
@@ -118,9 +119,16 @@ ModelScales model_scales(const Model& model) {
                                  m > 0 ? Eigen::MatrixXd(A) : Eigen::MatrixXd(0, n));
   }
   s.method = w2 ? "constrained eigenvalues" : "diagonal estimate";
-  if (!w2) w2 = diagonal_estimates(M, K);
-  if (w2->size() > 0 && w2->maxCoeff() > 0.0) {
-    const double top = w2->maxCoeff();
+  // Beyond the dense solver, the top of the spectrum by Lanczos: the diagonal estimates are
+  // Rayleigh quotients of unit vectors, lower bounds of ω²_max that can be far below it.
+  std::optional<double> lanczos;
+  if (!w2) {
+    w2 = diagonal_estimates(M, K);
+    lanczos = largest_eigenvalue(K, M);
+    if (lanczos) s.method_max = "Lanczos";
+  }
+  if (w2->size() > 0 && std::max(w2->maxCoeff(), lanczos.value_or(0.0)) > 0.0) {
+    const double top = std::max(w2->maxCoeff(), lanczos.value_or(0.0));
     s.omega_max = std::sqrt(top);
     // Rigid-body modes come out at roundoff relative to the largest: they set no time scale.
     const double floor = 1e-10 * top;
@@ -166,7 +174,8 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
     << (settings.atol_velocity ? " (scene)" : "") << ", multiplier " << a.multiplier
     << (settings.atol_multiplier ? " (scene)" : "") << ", mu " << a.mu
     << (settings.atol_mu ? " (scene)" : "") << "; time scale T = " << T << " (lowest " << s.method
-    << " frequency " << s.omega_min << ", t_end " << t_end << "), mass " << s.mass
+    << " frequency " << s.omega_min << ", t_end " << t_end << "), highest frequency " << s.omega_max
+    << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", mass " << s.mass
     << ", coefficient " << s.coefficient;
   a.rule = r.str();
   return a;

@@ -11,7 +11,9 @@
 /// horizontal (λ(0) = 0) still gets its gravity stiffness m g / L, hence ω = √(g/L). |ω²| is taken
 /// (compressed members and inverted pendulums give negative ones: their time scale counts all the
 /// same). Models with more than kDenseScaleLimit DOFs, or whose reduced mass is singular (massless
-/// DOFs held by springs), get the diagonal estimates ω² ∈ {K_T,ii / M_ii : M_ii > 0} instead.
+/// DOFs held by springs), get the diagonal estimates ω² ∈ {K_T,ii / M_ii : M_ii > 0} instead,
+/// and ω_max from a few Lanczos iterations on the unconstrained pencil when M is positive definite
+/// (dae/largest_frequency.hpp; the larger of it and the diagonal estimates).
 
 #include <string>
 
@@ -25,6 +27,7 @@ struct ModelScales {
   double mass = 1.0;         ///< mean of the positive diagonal entries of M
   double coefficient = 1.0;  ///< largest |A_ij| at t = 0 (1 without constraints)
   std::string method;        ///< "constrained eigenvalues" or "diagonal estimate"
+  std::string method_max;    ///< how ω_max was found when not as `method` ("Lanczos")
 };
 
 /// Above this many DOFs the frequencies are diagonal estimates: the eigenproblem is dense (QR of

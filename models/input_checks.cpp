@@ -157,8 +157,8 @@ void ModelBuilder::check_magnitudes() {
 }
 
 /// No fixed limit on DOFs or constraints: the memory integrating will need, estimated from the
-/// nonzeros (models/memory_estimate.hpp), is stated in the report and refused only when it
-/// exceeds what the machine has available.
+/// nonzeros (models/memory_estimate.hpp), is stated in the report, warned about when it may not
+/// fit and refused only when even its lower bound exceeds what the machine has available.
 void ModelBuilder::check_size() {
   ModelSizes sizes;
   sizes.dofs = model_.dofs();
@@ -176,6 +176,8 @@ void ModelBuilder::check_size() {
   if (const auto refusal = memory_refusal(sizes, estimate, *available)) {
     fail(spec_.model.where, *refusal);
   }
+  if (const auto warning = memory_warning(estimate, *available))
+    report_.warnings.push_back(*warning);
 }
 
 void ModelBuilder::check_degenerate_dofs() const {

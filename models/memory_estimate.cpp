@@ -30,8 +30,10 @@ MemoryEstimate integration_memory_estimate(const ModelSizes& s) {
   e.newton_nonzeros =
       s.nnz_mass + s.nnz_damping + s.nnz_stiffness + 2.0 * s.dofs + 4.0 * s.nnz_constraints;
   const double unknowns = 2.0 * s.dofs + 2.0 * s.constraints;
-  e.bytes = (2.0 + kKluFillFactor) * kBytesPerNonzero * e.newton_nonzeros +
-            kIdaVectors * 8.0 * unknowns + kModelCopies * kBytesPerNonzero * model_nonzeros;
+  const double rest =
+      kIdaVectors * 8.0 * unknowns + kModelCopies * kBytesPerNonzero * model_nonzeros;
+  e.bytes = (2.0 + kKluFillFactor) * kBytesPerNonzero * e.newton_nonzeros + rest;
+  e.lower_bound = 3.0 * kBytesPerNonzero * e.newton_nonzeros + rest;
   return e;
 }
 
@@ -62,13 +64,22 @@ std::string format_bytes(double bytes) {
 
 std::optional<std::string> memory_refusal(const ModelSizes& sizes, const MemoryEstimate& e,
                                           double available) {
-  if (e.bytes <= available) return std::nullopt;
-  return count(sizes.dofs) + " DOFs and " + count(sizes.constraints) + " constraints need about " +
-         format_bytes(e.bytes) + " to integrate (estimate: a Newton matrix of " +
-         count(e.newton_nonzeros) + " nonzeros, its KLU factors taken as " + count(kKluFillFactor) +
-         " times that, and the solver's vectors), more than the " + format_bytes(available) +
+  if (e.lower_bound <= available) return std::nullopt;
+  return count(sizes.dofs) + " DOFs and " + count(sizes.constraints) +
+         " constraints need at least " + format_bytes(e.lower_bound) +
+         " to integrate (a Newton matrix of " + count(e.newton_nonzeros) +
+         " nonzeros, its KLU factors at least as large, and the solver's vectors; about " +
+         format_bytes(e.bytes) + " with typical fill), more than the " + format_bytes(available) +
          " this machine has available (MemAvailable in /proc/meminfo): reduce the model or run "
          "it on a machine with more memory";
+}
+
+std::optional<std::string> memory_warning(const MemoryEstimate& e, double available) {
+  if (e.bytes <= available) return std::nullopt;
+  return "integrating needs about " + format_bytes(e.bytes) + " (at least " +
+         format_bytes(e.lower_bound) + "; KLU's fill taken as " + count(kKluFillFactor) +
+         " times the Newton matrix), more than the " + format_bytes(available) +
+         " available now: the run may fail for lack of memory";
 }
 
 }  // namespace condyn

@@ -20,8 +20,11 @@ struct ModelSizes {
 ///   KLU's L and U: kKluFillFactor × 12 B per nonzero of the Newton matrix;
 ///   IDA's vectors: 30 of length N (six history arrays, error weights, work vectors);
 ///   the model's own sparse matrices, held three times (Model, LinearSystem, evaluator).
+/// `bytes` takes KLU's fill as kKluFillFactor; `lower_bound` as none at all (L and U hold at
+/// least the Newton matrix's nonzeros), which no run can go below.
 struct MemoryEstimate {
   double bytes = 0;
+  double lower_bound = 0;
   double newton_nonzeros = 0;
 };
 [[nodiscard]] MemoryEstimate integration_memory_estimate(const ModelSizes& sizes);
@@ -37,11 +40,16 @@ constexpr double kKluFillFactor = 20.0;
 /// "about 1.2 GB" style: bytes with a binary-free decimal unit, two significant figures.
 [[nodiscard]] std::string format_bytes(double bytes);
 
-/// The refusal text when `estimate` exceeds `available` bytes (nothing when it fits):
-/// "integrating N DOFs and M constraints needs about X (estimate: ...), more than the Y this
-/// machine has available (MemAvailable in /proc/meminfo)".
+/// The refusal text when even the lower bound of `estimate` exceeds `available` bytes (nothing
+/// when it may fit): "N DOFs and M constraints need at least X to integrate (...), more than the
+/// Y this machine has available (MemAvailable in /proc/meminfo) ...". A model between the lower
+/// bound and the estimate is not refused: memory_warning says it may not fit.
 [[nodiscard]] std::optional<std::string> memory_refusal(const ModelSizes& sizes,
                                                         const MemoryEstimate& estimate,
+                                                        double available);
+
+/// A warning when the estimate (not its lower bound) exceeds `available` bytes.
+[[nodiscard]] std::optional<std::string> memory_warning(const MemoryEstimate& estimate,
                                                         double available);
 
 }  // namespace condyn

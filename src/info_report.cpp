@@ -112,6 +112,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   for (const auto& w : report.warnings) out << "warning: " << w << "\n";
   for (const auto& d : report.dropped_constraints)
     out << "dropped redundant constraint " << d << "\n";
+  if (!report.memory_estimate.empty()) out << "memory: " << report.memory_estimate << "\n";
   out << "\n";
   const auto classes = classify_constraints(model, settings.t_end);
   if (classes.empty()) {
