@@ -1,5 +1,6 @@
 #include "models/initial_projection.hpp"
 
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,6 +22,22 @@ constexpr double kConsistencyTolerance = 1e-10;
 // more, so that the least-squares residual lands on the rows that do (and names them).
 constexpr double kHardRowWeight = 1e6;
 constexpr int kMaxReportedDofs = 20;
+// A least-change step whose block (rows x free DOFs) has more entries than this is solved
+// sparse, by the normal equations of the minimum-norm problem (below); smaller ones keep the
+// dense complete orthogonal decomposition, which also treats rank-deficient rows (32 MB, ~10 s).
+constexpr double kMaxDenseStepEntries = 4e6;
+
+using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// max_j |a_ij| of every row.
+Eigen::VectorXd row_max(const Eigen::SparseMatrix<double>& A) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(A.rows());
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+      out[it.row()] = std::max(out[it.row()], std::abs(it.value()));
+  }
+  return out;
+}
 
 class Projector {
  public:
@@ -81,8 +98,8 @@ class Projector {
     for (; iterations < kMaxIterations; ++iterations) {
       if (violated(u, nullptr).empty()) break;  // met: leave the state as it is, no roundoff moves
       s_.position_residual(t_, u, all);
-      const Eigen::VectorXd du = least_change_step(Eigen::MatrixXd(s_.constraint_jacobian(t_, u)),
-                                                   position_rows_, free_u_, all, row_weight);
+      const Eigen::VectorXd du = least_change_step(s_.constraint_jacobian(t_, u), position_rows_,
+                                                   free_u_, all, row_weight);
       u += du;
       if (!u.allFinite()) break;
       if (du.lpNorm<Eigen::Infinity>() <= 1e-14 * (1.0 + u.lpNorm<Eigen::Infinity>())) {
@@ -100,7 +117,7 @@ class Projector {
     std::vector<int> rows(static_cast<std::size_t>(m_));
     for (int i = 0; i < m_; ++i) rows[static_cast<std::size_t>(i)] = i;
     Eigen::VectorXd psi(m_);
-    const Eigen::MatrixXd A(s_.constraint_jacobian(t_, u));
+    const Eigen::SparseMatrix<double> A = s_.constraint_jacobian(t_, u);
     for (int pass = 0; pass < 2; ++pass) {
       if (violated(u, &v).empty()) break;
       s_.velocity_residual(t_, u, v, psi);
@@ -119,12 +136,12 @@ class Projector {
     } else {
       s_.position_residual(t_, u, r);
     }
-    const Eigen::MatrixXd A(s_.constraint_jacobian(t_, u));
+    const Eigen::VectorXd a_max = row_max(s_.constraint_jacobian(t_, u));
     const double scale = std::max(1.0, u.lpNorm<Eigen::Infinity>()) *
                          (v ? std::max(1.0, v->lpNorm<Eigen::Infinity>()) : 1.0);
     for (int i = 0; i < m_; ++i) {
       if (v == nullptr && !s_.position_rows()[static_cast<std::size_t>(i)]) continue;
-      const double row_size = std::max(1.0, A.row(i).lpNorm<Eigen::Infinity>());
+      const double row_size = std::max(1.0, a_max[i]);
       // Negated comparison: a NaN residual is a violation.
       if (!(std::abs(r[i]) <= kConsistencyTolerance * scale * row_size)) out.emplace_back(i, r[i]);
     }
@@ -133,8 +150,9 @@ class Projector {
 
  private:
   /// min ‖W^½ dx_F‖ over the free DOFs F subject to A(rows, F) dx_F = −r(rows) in the
-  /// (row-weighted) least-squares sense; dx is zero on the given DOFs.
-  [[nodiscard]] Eigen::VectorXd least_change_step(const Eigen::MatrixXd& A,
+  /// (row-weighted) least-squares sense; dx is zero on the given DOFs. With B the weighted,
+  /// row-normalised block and z = W^½ dx_F: z = B⁺ rhs.
+  [[nodiscard]] Eigen::VectorXd least_change_step(const Eigen::SparseMatrix<double>& A,
                                                   const std::vector<int>& rows,
                                                   const std::vector<int>& free,
                                                   const Eigen::VectorXd& r,
@@ -143,14 +161,26 @@ class Projector {
     if (free.empty() || rows.empty()) return dx;
     const auto nr = static_cast<Eigen::Index>(rows.size());
     const auto nf = static_cast<Eigen::Index>(free.size());
-    Eigen::MatrixXd B(nr, nf);
+    // B from A's entries on (rows, free): local indices, -1 outside.
+    std::vector<int> row_at(static_cast<std::size_t>(m_), -1),
+        col_at(static_cast<std::size_t>(n_), -1);
+    for (Eigen::Index k = 0; k < nr; ++k)
+      row_at[static_cast<std::size_t>(rows[static_cast<std::size_t>(k)])] = static_cast<int>(k);
+    for (Eigen::Index c = 0; c < nf; ++c)
+      col_at[static_cast<std::size_t>(free[static_cast<std::size_t>(c)])] = static_cast<int>(c);
+    std::vector<Eigen::Triplet<double>> entries;
+    for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
+        const int k = row_at[static_cast<std::size_t>(it.row())],
+                  c = col_at[static_cast<std::size_t>(it.col())];
+        if (k >= 0 && c >= 0) entries.emplace_back(k, c, it.value() * w_inv_sqrt_[it.col()]);
+      }
+    }
+    SparseRowMajor B(nr, nf);
+    B.setFromTriplets(entries.begin(), entries.end());
     Eigen::VectorXd rhs(nr);
     for (Eigen::Index k = 0; k < nr; ++k) {
       const int i = rows[static_cast<std::size_t>(k)];
-      for (Eigen::Index c = 0; c < nf; ++c) {
-        const int d = free[static_cast<std::size_t>(c)];
-        B(k, c) = A(i, d) * w_inv_sqrt_[d];
-      }
       const double norm = B.row(k).norm();
       if (norm > 0.0) {  // a row on given DOFs only: nothing free can change its residual
         B.row(k) *= row_weight[i] / norm;
@@ -159,15 +189,41 @@ class Projector {
         rhs[k] = 0.0;
       }
     }
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(B.rows(), B.cols());
-    cod.setThreshold(kRankTolerance);
-    cod.compute(B);
-    const Eigen::VectorXd z = cod.solve(rhs);
+    const Eigen::VectorXd z = static_cast<double>(nr) * static_cast<double>(nf) <= kMaxDenseStepEntries
+                                  ? dense_min_norm(B, rhs)
+                                  : sparse_min_norm(B, rhs);
     for (Eigen::Index c = 0; c < nf; ++c) {
       const int d = free[static_cast<std::size_t>(c)];
       dx[d] = w_inv_sqrt_[d] * z[c];
     }
     return dx;
+  }
+
+  /// B⁺ rhs by a complete orthogonal decomposition: rank-deficient rows are treated as well.
+  [[nodiscard]] static Eigen::VectorXd dense_min_norm(const SparseRowMajor& B,
+                                                      const Eigen::VectorXd& rhs) {
+    const Eigen::MatrixXd b(B);
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(b.rows(), b.cols());
+    cod.setThreshold(kRankTolerance);
+    cod.compute(b);
+    return cod.solve(rhs);
+  }
+
+  /// z = Bᵀ (B Bᵀ)⁻¹ rhs by a sparse LDLᵀ of B Bᵀ: the minimum-norm solution when the rows are
+  /// independent (build_model's rank check has made them so). Its error grows with cond(B)²,
+  /// not cond(B): the Gauss-Newton loop iterates on the residual, and violated() judges the
+  /// result, so a step that lost digits is corrected or refused, never kept silently.
+  [[nodiscard]] static Eigen::VectorXd sparse_min_norm(const SparseRowMajor& B,
+                                                       const Eigen::VectorXd& rhs) {
+    const Eigen::SparseMatrix<double> Bt = B.transpose();
+    const Eigen::SparseMatrix<double> BBt = B * Bt;
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(BBt);
+    if (ldlt.info() != Eigen::Success) {
+      throw std::runtime_error(
+          "cannot project the initial state: the constraints are dependent at the projected "
+          "configuration (singular B Bt in the sparse least-change step)");
+    }
+    return Bt * ldlt.solve(rhs);
   }
 
   MechanicalSystem& s_;
@@ -183,11 +239,12 @@ class Projector {
 std::vector<int> given_in(MechanicalSystem& s, double t, const Eigen::VectorXd& u,
                           const std::vector<std::pair<int, double>>& rows,
                           const std::vector<bool>& given) {
-  const Eigen::MatrixXd A(s.constraint_jacobian(t, u));
+  const SparseRowMajor A = s.constraint_jacobian(t, u);
   std::set<int> out;
   for (const auto& [row, r] : rows) {
-    for (Eigen::Index d = 0; d < A.cols(); ++d) {
-      if (given[static_cast<std::size_t>(d)] && A(row, d) != 0.0) out.insert(static_cast<int>(d));
+    for (SparseRowMajor::InnerIterator it(A, row); it; ++it) {
+      if (given[static_cast<std::size_t>(it.col())] && it.value() != 0.0)
+        out.insert(static_cast<int>(it.col()));
     }
   }
   return {out.begin(), out.end()};

@@ -125,12 +125,6 @@ void ModelBuilder::refuse_given_values(const InconsistentGivenValues& e) const {
 /// [initial] project = true: the least-change projection of (u0, v0) onto the constraints,
 /// keeping the values given in [initial].
 void ModelBuilder::project_initial() {
-  if (static_cast<double>(model_.constraint_count()) * model_.dofs() > kMaxDenseEntries) {
-    fail(spec_.initial.where, "project = true factors the dense constraint Jacobian: " +
-                                  std::to_string(model_.constraint_count()) + " constraints x " +
-                                  std::to_string(model_.dofs()) + " DOFs is too large (limit " +
-                                  fmt(kMaxDenseEntries) + " entries)");
-  }
   const auto s = evaluator();
   const auto n = static_cast<std::size_t>(model_.dofs());
   std::vector<bool> given_u(n, false), given_v(n, false);

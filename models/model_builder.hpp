@@ -111,8 +111,8 @@ class ModelBuilder {
 
   // mass_regularity.cpp
   void check_penalty_mass() const;
-  void check_massless_dofs() const;
-  void check_singular_mass() const;
+  void check_massless_dofs();
+  void check_singular_mass();
 
   // solve_settings_checks.cpp
   void check_energy_output() const;

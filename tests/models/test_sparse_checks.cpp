@@ -9,6 +9,7 @@
 #include "models/memory_estimate.hpp"
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/cli_sandbox.hpp"
 
 using namespace condyn;
 
@@ -132,4 +133,70 @@ TEST_CASE("the available memory is read from /proc/meminfo") {
   CHECK(*available > 0.0);
   CHECK(format_bytes(1.5e9) == "1.5 GB");
   CHECK(format_bytes(999.0) == "999.0 B");
+}
+
+TEST_CASE("[initial] project on a 20,000-DOF lattice: the sparse least-change step") {
+  // 200 supports and one tie over 20,000 free DOFs: a 201 x 20,000 block, beyond the dense
+  // step's 4e6 entries (refused before as "project = true factors the dense constraint
+  // Jacobian"). The tie ux10000 = ux9999 with ux10000 given 0.1 and unit masses: the least
+  // mass-weighted change moves ux9999 alone, to 0.1; the supports hold their DOFs at 0.
+  const std::string extra =
+      "[[constraint]]\nname = \"tie\"\nterms = { ux10000 = 1.0, ux9999 = -1.0 }\n"
+      "[initial]\nproject = true\ndisplacement = { ux10000 = 0.1 }\n";
+  BuildReport report;
+  const Model model =
+      build_model(parse_scene_text(lattice(100, 100, extra, ""), "big.toml"), report);
+  const auto at = [&model](const std::string& dof) { return model.u0[model.dof_index.at(dof)]; };
+  CHECK(at("ux10000") == 0.1);  // given: kept exactly
+  // One Gauss-Newton step of a linear row, solved through B Bᵀ (condition 1 here): roundoff of 0.1.
+  CHECK(at("ux9999") == doctest::Approx(0.1).epsilon(1e-14));
+  CHECK(at("ux1") == 0.0);
+  CHECK(model.u0.cwiseAbs().sum() == doctest::Approx(0.2).epsilon(1e-14));
+  CHECK(report.initial_projection.find("moved 1 DOF") != std::string::npos);
+}
+
+namespace {
+
+/// A chain of n DOFs from Matrix Market files: K the fixed-free spring chain, M tridiagonal with
+/// diagonal 4 and off-diagonal `coupling` (positive definite for |coupling| < 2), except that the
+/// first 2 x 2 block is [[1, 1], [1, 1]], uncoupled from the rest, when `singular` (positive
+/// semi-definite, M x = 0 for x = e1 − e2).
+std::string chain_scene(const test::Sandbox& box, int n, bool singular) {
+  std::string m = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) + " " +
+                  std::to_string(n) + " " + std::to_string(2 * n - 1) + "\n";
+  std::string k = m;
+  for (int i = 1; i <= n; ++i) {
+    const bool block = singular && i <= 2;
+    m += std::to_string(i) + " " + std::to_string(i) + (block ? " 1.0\n" : " 4.0\n");
+    k += std::to_string(i) + " " + std::to_string(i) + (i < n ? " 2.0\n" : " 1.0\n");
+    if (i < n) {
+      m += std::to_string(i + 1) + " " + std::to_string(i) +
+           (singular && i == 2 ? " 0.0\n" : " 1.0\n");
+      k += std::to_string(i + 1) + " " + std::to_string(i) + " -1.0\n";
+    }
+  }
+  (void)box.write("M.mtx", m);
+  (void)box.write("K.mtx", k);
+  return box
+      .write("chain.toml",
+             "[model]\ntype = \"matrix\"\nmass = { file = \"M.mtx\" }\n"
+             "stiffness = { file = \"K.mtx\" }\n[solve]\nt_end = 1.0\noutput_step = 0.1\n")
+      .string();
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a full mass matrix beyond the dense check: sparse LDLt decides, or a warning says why not") {
+  // 2,100 DOFs: 4.4e6 entries as a dense matrix, beyond the dense eigen-check (skipped silently
+  // before). Positive definite (diagonally dominant): nothing to say.
+  test::Sandbox box;
+  BuildReport report;
+  (void)build_model(parse_scene_file(chain_scene(box, 2100, false)), report);
+  CHECK(report.warnings.empty());
+  // Singular along e1 − e2 (the [[1, 1], [1, 1]] block): the LDLt pivot of DOF 2 is 0.
+  BuildReport singular;
+  (void)build_model(parse_scene_file(chain_scene(box, 2100, true)), singular);
+  REQUIRE(singular.warnings.size() == 1);
+  CHECK(singular.warnings.front().find("the mass matrix may be singular") != std::string::npos);
 }
