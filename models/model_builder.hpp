@@ -74,6 +74,7 @@ class ModelBuilder {
   Eigen::SparseMatrix<double> sparse_psd(const std::vector<std::vector<double>>& rows,
                                          const std::string& key) const;
   Eigen::SparseMatrix<double> file_psd(const FileMatrix& m, const std::string& key) const;
+  void check_sparse_inertia(const FileMatrix& m, const std::string& key) const;
   void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where) const;
   void build_matrix();
   void apply_rayleigh();

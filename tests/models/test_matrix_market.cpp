@@ -318,6 +318,30 @@ TEST_CASE("matrix model from files: large matrices are checked without a dense c
   CHECK(scene_error(box, scene("I.mtx")).empty());
   CHECK(has(scene_error(box, scene("neg.mtx")), "diagonal entry (7,7) = -1 < 0"));
   CHECK(has(scene_error(box, scene("minor.mtx")), "|entry (2,1)| = 3 exceeds"));
+  // Tridiagonal, diagonal 1 and off-diagonal 0.9: every 2 x 2 minor is positive (accepted
+  // before), but the eigenvalues 1 + 1.8 cos(k pi / (n + 1)) go down to about -0.8. The sparse
+  // LDLt's inertia refuses it; the same pattern with 0.5 (eigenvalues >= 1 - cos(pi/601) > 0)
+  // passes, and so does the free-free spring chain (diagonal 1, 2, ..., 2, 1 and -1 beside it:
+  // positive semi-definite with the rigid motion as an exact zero eigenvalue).
+  const auto tridiagonal = [n](double end, double middle, double off) {
+    std::string t = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) + " " +
+                    std::to_string(n) + " " + std::to_string(2 * n - 1) + "\n";
+    for (int i = 1; i <= n; ++i) {
+      t += std::to_string(i) + " " + std::to_string(i) + " " +
+           std::to_string(i == 1 || i == n ? end : middle) + "\n";
+      if (i < n)
+        t += std::to_string(i + 1) + " " + std::to_string(i) + " " + std::to_string(off) + "\n";
+    }
+    return t;
+  };
+  box.write("tri09.mtx", tridiagonal(1.0, 1.0, 0.9));
+  box.write("tri05.mtx", tridiagonal(1.0, 1.0, 0.5));
+  box.write("chain.mtx", tridiagonal(1.0, 2.0, -1.0));
+  const std::string refusal = scene_error(box, scene("tri09.mtx"));
+  CHECK(has(refusal, "tri09.mtx is not positive semi-definite (stiffness): a sparse LDLt"));
+  CHECK(has(refusal, "negative pivot"));
+  CHECK(scene_error(box, scene("tri05.mtx")).empty());
+  CHECK(scene_error(box, scene("chain.mtx")).empty());
 }
 
 TEST_CASE("rayleigh damping: truss models too, and refusals") {
