@@ -58,27 +58,47 @@ void ModelBuilder::check_massless_dofs() {
   if (massless.empty()) return;
   const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
   std::vector<int> rows;
+  std::vector<bool> touched(massless.size(), false);  // by a nonzero of some constraint row
   for (int r = 0; r < a.rows(); ++r) {
+    bool on_massless = false;
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, r); it; ++it) {
-      if (local[static_cast<std::size_t>(it.col())] >= 0 && it.value() != 0.0) {
-        rows.push_back(r);
-        break;
+      const int c = local[static_cast<std::size_t>(it.col())];
+      if (c >= 0 && it.value() != 0.0) {
+        on_massless = true;
+        touched[static_cast<std::size_t>(c)] = true;
       }
     }
+    if (on_massless) rows.push_back(r);
   }
   const auto nz = static_cast<Eigen::Index>(massless.size());
-  if (static_cast<double>(rows.size()) * static_cast<double>(nz) > kMaxDenseEntries) return;
-  Eigen::MatrixXd az = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), nz);
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, rows[k]); it; ++it) {
-      const int c = local[static_cast<std::size_t>(it.col())];
-      if (c >= 0) az(static_cast<Eigen::Index>(k), c) = it.value();
+  std::vector<std::string> free;
+  if (static_cast<double>(rows.size()) * static_cast<double>(nz) > kMaxDenseEntries) {
+    // Beyond the dense kernel: a massless DOF in no constraint is certainly free (named below);
+    // whether the rows on the others are independent enough to hold them all is not worked out.
+    for (std::size_t c = 0; c < massless.size(); ++c) {
+      if (!touched[c]) free.push_back(model_.dof_names[static_cast<std::size_t>(massless[c])]);
+    }
+    if (free.empty()) {
+      report_.warnings.push_back(std::to_string(nz) +
+                                 " DOFs have no mass; every one appears in a constraint, but at " +
+                                 std::to_string(rows.size()) +
+                                 " such constraints condyn does not check that they hold "
+                                 "all of them (a run fails if they do not)");
+      return;
     }
   }
-  std::vector<std::string> free;
-  if (rows.empty()) {
+  if (!free.empty()) {
+    // named above
+  } else if (rows.empty()) {
     for (int d : massless) free.push_back(model_.dof_names[static_cast<std::size_t>(d)]);
   } else {
+    Eigen::MatrixXd az = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), nz);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, rows[k]); it; ++it) {
+        const int c = local[static_cast<std::size_t>(it.col())];
+        if (c >= 0) az(static_cast<Eigen::Index>(k), c) = it.value();
+      }
+    }
     for (Eigen::Index r = 0; r < az.rows(); ++r) {
       const double norm = az.row(r).stableNorm();
       if (norm > 0.0) az.row(r) /= norm;
