@@ -98,6 +98,14 @@ def run_condyn(condyn, scene, scheme, timeout):
     return row
 
 
+def run_info(condyn, scene, timeout):
+    """`condyn info` on the scene: the whole process, which the issue asks to be near-linear."""
+    code, out, tv = timed([condyn, "info", scene], timeout)
+    if code != 0 or tv is None:
+        return {"status": "failed: " + first_error(out)}
+    return dict({"status": "ok"}, **tv)
+
+
 def median_row(rows):
     """The median of every figure over repeats; a failure in any repeat makes the row a failure."""
     for r in rows:
@@ -193,6 +201,7 @@ def main(argv=None):
     import lattice
 
     rows = []
+    info_rows = []
     for n_target in sizes:
         folder = os.path.join(args.work, f"N{n_target}")
         print(f"== N = {n_target}: generating {folder}", flush=True)
@@ -205,6 +214,10 @@ def main(argv=None):
             bare = median_row([run_bare(args.bare, folder, info, args.timeout) for _ in range(args.repeat)])
             print(f"   bare: {bare}", flush=True)
         rows.append(with_ratios(dict(base, variant="bare", scheme="index1", **bare), bare))
+        r = median_row([run_info(args.condyn, os.path.join(folder, "lattice.toml"), args.timeout)
+                        for _ in range(args.repeat)])
+        print(f"   info: {r}", flush=True)
+        info_rows.append(dict(base, **r))
         variants = [("mtx", os.path.join(folder, "lattice.toml"))]
         if info["inline"] and info["n"] <= INLINE_MAX:
             variants.append(("inline", os.path.join(folder, "inline.toml")))
@@ -248,6 +261,14 @@ def main(argv=None):
     for (variant, scheme), pts in sorted(series.items()):
         k = fit_exponent(pts)
         print(f"  {variant:6s} {scheme:12s} k = {fmt(k, '.3f')} over N = {[p[0] for p in pts]}")
+    print("\n`condyn info lattice.toml` (whole process, medians):\n\n| N | m | process s | peak MB |\n|---|---|---|---|")
+    for r in info_rows:
+        if r["status"] == "ok":
+            print(f'| {r["n"]} | {r["m"]} | {r["process_s"]:.3g} | {r["peak_mb"]:.1f} |')
+        else:
+            print(f'| {r["n"]} | {r["m"]} | {r["status"][:100]} | |')
+    k = fit_exponent([(r["n"], r["process_s"]) for r in info_rows if r["status"] == "ok"])
+    print(f"  info k = {fmt(k, '.3f')} (process time ~ N^k)")
     try:
         plot(rows, args.plot)
         print(f"wrote {args.csv} and {args.plot}")
