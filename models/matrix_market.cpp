@@ -3,6 +3,7 @@
 #include "models/matrix_market.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -27,15 +28,28 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-/// Splits a line into whitespace-separated tokens (views into the line).
-std::vector<std::string_view> tokens(std::string_view line) {
-  std::vector<std::string_view> out;
+/// The whitespace-separated tokens of a line (views into it): the first kMaxTokens, and how many
+/// there are in all. No allocation: an entry line is read millions of times.
+struct Tokens {
+  static constexpr std::size_t kMaxTokens = 6;
+  std::array<std::string_view, kMaxTokens> views;
+  std::size_t count = 0;
+  [[nodiscard]] bool empty() const { return count == 0; }
+  [[nodiscard]] std::size_t size() const { return count; }
+  [[nodiscard]] std::string_view operator[](std::size_t k) const { return views.at(k); }
+};
+
+Tokens tokens(std::string_view line) {
+  Tokens out;
   std::size_t i = 0;
   while (i < line.size()) {
     while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
     const std::size_t start = i;
     while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
+    if (i > start) {
+      if (out.count < Tokens::kMaxTokens) out.views.at(out.count) = line.substr(start, i - start);
+      ++out.count;
+    }
   }
   return out;
 }
@@ -64,14 +78,16 @@ double to_double(std::string_view s, int line) {
 
 }  // namespace
 
-MarketMatrix parse_matrix_market(const std::string& text) {
-  std::string_view rest(text);
+namespace {
+
+/// Reads the file line by line from `in`: never more than one line of it in memory (a stiffness
+/// file of a million DOFs is 300 MB of text).
+MarketMatrix parse_market_stream(std::istream& in) {
   int line_no = 0;
+  std::string buffer;
   const auto next_line = [&](std::string_view& line) {
-    if (rest.empty()) return false;
-    const std::size_t nl = rest.find('\n');
-    line = rest.substr(0, nl);
-    rest = nl == std::string_view::npos ? std::string_view() : rest.substr(nl + 1);
+    if (!std::getline(in, buffer)) return false;
+    line = buffer;
     ++line_no;
     return true;
   };
@@ -103,7 +119,7 @@ MarketMatrix parse_matrix_market(const std::string& text) {
   out.symmetric = symmetry == "symmetric";
 
   // The size line: the first line that is neither a comment nor blank.
-  std::vector<std::string_view> size;
+  Tokens size;
   while (next_line(line)) {
     if (!line.empty() && line.front() == '%') continue;
     size = tokens(line);
@@ -181,7 +197,15 @@ MarketMatrix parse_matrix_market(const std::string& text) {
       throw MatrixMarketError(0, "duplicate entries add up beyond the double range");
     }
   }
+  if (in.bad()) throw MatrixMarketError(line_no, "cannot read the file");
   return out;
+}
+
+}  // namespace
+
+MarketMatrix parse_matrix_market(const std::string& text) {
+  std::istringstream in(text);
+  return parse_market_stream(in);
 }
 
 MarketMatrix read_matrix_market(const std::string& path) {
@@ -192,10 +216,7 @@ MarketMatrix read_matrix_market(const std::string& path) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw MatrixMarketError(0, "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw MatrixMarketError(0, "cannot read the file");
-  return parse_matrix_market(text.str());
+  return parse_market_stream(in);
 }
 
 }  // namespace condyn
