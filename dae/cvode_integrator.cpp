@@ -1,5 +1,6 @@
 #include "dae/cvode_integrator.hpp"
 
+#include "dae/cvode_newton_solver.hpp"
 #include "dae/sundials_raii.hpp"
 #include "dae/sundials_stepper.hpp"
 
@@ -110,11 +111,19 @@ class Cvode final : public sundials::SundialsStepper {
     work_.reset(N_VNew_Serial(n_, ctx_.get()));
     if (!y_ || !work_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
     view(y_.get()) = y0;
-    matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
-    if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
-    if (!matrix_ || !solver_) throw IntegrationError("could not create the dense linear solver");
     mem_.reset(CVodeCreate(CV_BDF, ctx_.get()));
     if (!mem_) throw IntegrationError("CVodeCreate failed");
+    // The problem's own sparse Newton solve when it has one, else a dense difference-quotient
+    // Jacobian ((n_)² entries).
+    newton_ = problem.newton_system();
+    if (newton_) {
+      solver_.reset(sundials::make_newton_solver(*newton_, mem_.get(), ctx_.get()));
+      if (!solver_) throw IntegrationError("could not create the sparse Newton solver");
+    } else {
+      matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
+      if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
+      if (!matrix_ || !solver_) throw IntegrationError("could not create the dense linear solver");
+    }
     attach(mem_.get(), work_.get());
     check(CVodeSetErrHandlerFn(mem_.get(), sundials::record_message, &report_),
           "CVodeSetErrHandlerFn");
@@ -153,13 +162,21 @@ class Cvode final : public sundials::SundialsStepper {
   void set_stop_time(double t) override {
     check(CVodeSetStopTime(mem_.get(), t), "CVodeSetStopTime");
   }
+  /// Entries of the matrix the Newton iterations factor: the problem's sparse one, else dense.
+  [[nodiscard]] long jacobian_nonzeros() const {
+    return newton_ ? newton_->nonzeros() : static_cast<long>(n_) * static_cast<long>(n_);
+  }
 
  private:
   [[nodiscard]] sundials::Counters read_counters() const override {
     sundials::Counters c;
     check(CVodeGetNumSteps(mem_.get(), &c.steps), "CVodeGetNumSteps");
     check(CVodeGetNumRhsEvals(mem_.get(), &c.evaluations), "CVodeGetNumRhsEvals");
-    check(CVodeGetNumJacEvals(mem_.get(), &c.jacobians), "CVodeGetNumJacEvals");
+    if (newton_) {
+      c.jacobians = sundials::newton_solver_setups(solver_.get());  // one matrix per setup
+    } else {
+      check(CVodeGetNumJacEvals(mem_.get(), &c.jacobians), "CVodeGetNumJacEvals");
+    }
     check(CVodeGetNumNonlinSolvIters(mem_.get(), &c.newton), "CVodeGetNumNonlinSolvIters");
     check(CVodeGetNumNonlinSolvConvFails(mem_.get(), &c.newton_failures),
           "CVodeGetNumNonlinSolvConvFails");
@@ -178,9 +195,10 @@ class Cvode final : public sundials::SundialsStepper {
   // Declared in creation order: destroyed in reverse (CVODE memory first, context last).
   ContextPtr ctx_;
   VectorPtr y_, work_;
+  std::unique_ptr<NewtonSystem> newton_;  ///< outlives solver_, which points to it
   MatrixPtr matrix_;
   SolverPtr solver_;
-  CvodePtr mem_;
+  CvodePtr mem_;  ///< destroyed first
 };
 
 }  // namespace
@@ -197,7 +215,7 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
   problem.rhs(t0, y0, yp0);
   RawTrajectory out = drive(cvode, y0, yp0, options, summary);
   summary.unknowns = problem.size();
-  summary.jacobian_nonzeros = problem.size() * problem.size();  // dense
+  summary.jacobian_nonzeros = cvode.jacobian_nonzeros();
   summary.termination = "reached t = " + std::to_string(options.output_times.back());
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

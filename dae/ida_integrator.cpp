@@ -291,7 +291,7 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
   ida.init(t0, y_init, yp0, options);
   RawTrajectory out = drive(ida, y_init, yp0, options, summary);
   summary.unknowns = problem.size();
-  summary.jacobian_nonzeros = static_cast<int>(problem.jacobian_pattern().nonZeros());
+  summary.jacobian_nonzeros = static_cast<long>(problem.jacobian_pattern().nonZeros());
   summary.termination = "reached t = " + std::to_string(options.output_times.back());
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,11 +2,25 @@
 /// An ODE y' = F(t, y) with an invariant manifold it should stay on, as CVODE sees it.
 
 #include <Eigen/Dense>
+#include <memory>
 #include <vector>
 
 #include "dae/unknown_kind.hpp"
 
 namespace condyn {
+
+/// The Newton systems (I − γ ∂F/∂y) x = b of CVODE's BDF iteration, solved by the problem
+/// itself (sparse, without forming ∂F/∂y).
+class NewtonSystem {
+ public:
+  virtual ~NewtonSystem() = default;
+  /// Prepares solves with this γ (a factorization); false when the matrix is singular.
+  virtual bool setup(double gamma) = 0;
+  /// b ← (I − γ ∂F/∂y)⁻¹ b for the γ of the last setup.
+  virtual void solve(Eigen::Ref<Eigen::VectorXd> b) = 0;
+  /// Nonzeros of the matrix factored (for the summary's Jacobian size).
+  [[nodiscard]] virtual long nonzeros() const = 0;
+};
 
 class OdeProblem {
  public:
@@ -29,6 +43,8 @@ class OdeProblem {
   virtual bool project(double t, ConstRef y, Ref corr) const = 0;
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
+  /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian.
+  [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }
 };
 
 }  // namespace condyn

@@ -3,6 +3,7 @@
 #include "dae/recoverable_error.hpp"
 
 #include "dae/kkt.hpp"
+#include "dae/kkt_newton.hpp"
 
 #include <sstream>
 #include <stdexcept>
@@ -18,12 +19,14 @@ constexpr int kMaxProjectionIterations = 10;
 
 }  // namespace
 
-ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0)
+ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0, bool linear)
     : system_(system.clone()),
       observer_(system.clone()),
       n_(system.dofs()),
       m_(system.constraints()),
-      varying_(system.has_curvature()) {
+      varying_(system.has_curvature()),
+      linear_(linear),
+      u0_(u0) {
   for (int i = 0; i < m_; ++i) {
     if (system.position_rows()[static_cast<std::size_t>(i)]) position_rows_.push_back(i);
   }
@@ -123,6 +126,23 @@ void ProjectedOde::project_error(Ref err) const {
     err.head(n_) += correction(f.kkt_p, f.Ap * err.head(n_));
   }
   err.tail(n_) += correction(f.kkt, f.A * err.tail(n_));
+}
+
+}  // namespace condyn
+
+namespace condyn {
+
+std::unique_ptr<NewtonSystem> ProjectedOde::newton_system() const {
+  if (!linear_) return nullptr;
+  // M u'' = f(t) − K u − C v: K = −∂f/∂u, C = −∂f/∂v, constant, evaluated anywhere.
+  const auto s = system_->clone();
+  const Eigen::VectorXd v = Eigen::VectorXd::Zero(n_);
+  Eigen::SparseMatrix<double> M = s->mass(0.0, u0_);
+  Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, u0_, v);
+  Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, u0_, v);
+  Eigen::SparseMatrix<double> A =
+      m_ > 0 ? s->constraint_jacobian(0.0, u0_) : Eigen::SparseMatrix<double>(0, n_);
+  return std::make_unique<KktNewton>(std::move(M), std::move(C), std::move(K), std::move(A));
 }
 
 }  // namespace condyn

@@ -20,9 +20,11 @@
 /// the same step, with A and M re-evaluated at each iterate, until the correction is at roundoff.
 ///
 /// Costs: for constant M and A the KKT system is factored once and every right-hand side is one
-/// solve; with curvature (M or A varying) it is re-factored at every evaluation. CVODE uses a
-/// dense difference-quotient Jacobian, so this scheme suits small and medium models. Needs M
-/// positive definite on the constraints' null space (the KKT matrices nonsingular).
+/// solve; with curvature (M or A varying) it is re-factored at every evaluation. CVODE's Newton
+/// systems: for a linear model the sparse saddle-point solve of dae/kkt_newton.hpp (exact, n + m
+/// unknowns); for a nonlinear one CVODE's dense difference-quotient Jacobian ((2n)² entries:
+/// small and medium models). Needs M positive definite on the constraints' null space (the KKT
+/// matrices nonsingular).
 
 #include <Eigen/SparseLU>
 
@@ -33,9 +35,10 @@ namespace condyn {
 
 class ProjectedOde final : public OdeProblem {
  public:
-  /// Evaluates its own clones of `system`. Throws std::invalid_argument when a KKT matrix is
+  /// Evaluates its own clones of `system`; `linear`: M, C, K and A are constant (Model::nonlinear
+  /// false), so the sparse Newton solve is exact. Throws std::invalid_argument when a KKT matrix is
   /// singular at the initial state u0.
-  ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0);
+  ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0, bool linear);
 
   [[nodiscard]] int size() const override { return 2 * n_; }
   void begin_segment(double t0) override { system_->begin_segment(t0); }
@@ -46,6 +49,8 @@ class ProjectedOde final : public OdeProblem {
   }
   bool project(double t, ConstRef y, Ref corr) const override;
   void project_error(Ref err) const override;
+  /// The sparse saddle-point solve for a linear model (dae/kkt_newton.hpp); nothing otherwise.
+  [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;
 
   /// λ at a state, from the same KKT system (f_con = −Aᵀλ), with the loads on at t as outside
   /// the integration (the right limit at a load step).
@@ -75,6 +80,8 @@ class ProjectedOde final : public OdeProblem {
   std::unique_ptr<MechanicalSystem> observer_;  ///< outside any segment: for multipliers()
   int n_, m_;
   bool varying_;
+  bool linear_;
+  Eigen::VectorXd u0_;  ///< where a linear model's (constant) matrices are evaluated
   std::vector<int> position_rows_;
   Eigen::SparseMatrix<double> select_p_;
   Factors constant_;

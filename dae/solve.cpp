@@ -139,7 +139,7 @@ void solve_penalty(const Model& model, const SolveSpec& settings, const Integrat
 void solve_projection(const Model& model, const IntegratorOptions& options, SolveResult& result) {
   SolveSummary& summary = result.summary;
   summary.scheme = to_string(Scheme::projection);
-  ProjectedOde ode(*model.system, model.u0);
+  ProjectedOde ode(*model.system, model.u0, !model.nonlinear);
   Observation observe;
   observe.full_state = full_state_prefix(model.dofs());
   observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
@@ -169,8 +169,12 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
   }
   const MechanicalSystem& system = *model.system;
   if (scheme == Scheme::projection) {
-    const ProjectedOde ode(system, model.u0);
-    return {ode.size(), static_cast<long>(ode.size()) * ode.size()};  // dense
+    const ProjectedOde ode(system, model.u0, !model.nonlinear);
+    // The matrix the Newton iterations factor: the sparse saddle point, else CVODE's dense one.
+    if (const auto newton = ode.newton_system()) {
+      return {ode.size(), newton->nonzeros()};
+    }
+    return {ode.size(), static_cast<long>(ode.size()) * ode.size()};
   }
   const BaumgarteGains gains =
       scheme == Scheme::baumgarte ? baumgarte_gains(model, settings) : BaumgarteGains{};

@@ -71,7 +71,7 @@ struct SolveSummary {
   double max_abs_mu = -1.0;
   std::string notes;  ///< scheme settings worth printing (Baumgarte gains)
   int unknowns = 0;
-  int jacobian_nonzeros = 0;
+  long jacobian_nonzeros = 0;
   std::string termination = "not run";
   /// One line for the terminal.
   [[nodiscard]] std::string brief() const;

@@ -1,0 +1,67 @@
+// The projection scheme's Newton systems as one sparse saddle-point solve (dae/kkt_newton.hpp).
+// Eigen's KLUSupport wraps KLU (SuiteSparse, the solver IDA uses here too): its symbolic analysis
+// is kept across factorizations, since the pattern of M + γC + γ²K does not depend on γ.
+
+#include "dae/kkt_newton.hpp"
+
+#include <Eigen/KLUSupport>
+#include <stdexcept>
+
+#include "dae/kkt.hpp"
+
+namespace condyn {
+
+struct KktNewton::Factor {
+  Eigen::KLU<Eigen::SparseMatrix<double>> klu;
+};
+
+KktNewton::~KktNewton() = default;
+
+KktNewton::KktNewton(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> C,
+                     Eigen::SparseMatrix<double> K, Eigen::SparseMatrix<double> A)
+    : M_(std::move(M)),
+      C_(std::move(C)),
+      K_(std::move(K)),
+      A_(std::move(A)),
+      n_(static_cast<int>(M_.rows())),
+      m_(static_cast<int>(A_.rows())),
+      factor_(std::make_unique<Factor>()) {
+  if (M_.cols() != n_ || K_.rows() != n_ || K_.cols() != n_ || (m_ > 0 && A_.cols() != n_) ||
+      (C_.size() > 0 && (C_.rows() != n_ || C_.cols() != n_))) {
+    throw std::invalid_argument("KktNewton: the sizes of M, C, K and A disagree");
+  }
+  if (C_.size() == 0) C_.resize(n_, n_);
+  nonzeros_ = saddle(1.0).nonZeros();
+}
+
+Eigen::SparseMatrix<double> KktNewton::saddle(double gamma) const {
+  // M + γC + γ²K keeps the union of the three patterns whatever γ (no pruning): one analysis.
+  const Eigen::SparseMatrix<double> S = M_ + gamma * C_ + (gamma * gamma) * K_;
+  return m_ > 0 ? kkt_matrix(S, A_) : S;
+}
+
+bool KktNewton::setup(double gamma) {
+  const Eigen::SparseMatrix<double> matrix = saddle(gamma);
+  if (!analysed_) {
+    factor_->klu.analyzePattern(matrix);
+    if (factor_->klu.info() != Eigen::Success) return false;
+    analysed_ = true;
+  }
+  factor_->klu.factorize(matrix);
+  gamma_ = gamma;
+  return factor_->klu.info() == Eigen::Success;
+}
+
+void KktNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
+  const auto bu = b.head(n_);
+  const auto bv = b.segment(n_, n_);
+  Eigen::VectorXd rhs(n_ + m_);
+  rhs.head(n_) = M_ * bv - gamma_ * (K_ * bu);
+  if (m_ > 0) rhs.tail(m_) = A_ * bv;
+  const Eigen::VectorXd sol = factor_->klu.solve(rhs);
+  const Eigen::VectorXd xv = sol.head(n_);
+  b.head(n_) += gamma_ * xv;  // x_u = b_u + γ x_v
+  b.segment(n_, n_) = xv;
+}
+
+}  // namespace condyn

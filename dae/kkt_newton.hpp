@@ -1,0 +1,50 @@
+#pragma once
+/// The Newton systems of the projection scheme's BDF steps, solved sparse (issue 12: CVODE's dense
+/// difference-quotient Jacobian held (2n)² entries). For y = [u; v], u' = v, v' = a with
+/// [M Aᵀ; A 0] [a; λ] = [f − C v − K u; γ_c] (the projected ODE of dae/projected_ode.hpp), CVODE
+/// asks for x = [x_u; x_v] with (I − γ J) x = b, J = ∂F/∂y. Eliminating x_u = b_u + γ x_v and the
+/// acceleration's multiplier leaves the saddle-point system
+///
+///   [M + γC + γ²K  Aᵀ] [x_v]   [M b_v − γ K b_u]
+///   [A             0 ] [ μ ] = [A b_v          ]
+///
+/// of n + m unknowns, which KLU factors (its pattern analysed once). It is exact for a linear model
+/// (constant M, C, K, A); the projection scheme uses it for those, and CVODE's dense Jacobian for
+/// nonlinear models.
+
+#include <Eigen/Sparse>
+#include <memory>
+
+#include "dae/ode_problem.hpp"
+
+namespace condyn {
+
+class KktNewton final : public NewtonSystem {
+ public:
+  /// Copies the matrices (M, C, K n x n with C possibly empty; A m x n). Throws
+  /// std::invalid_argument when their sizes disagree.
+  KktNewton(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> C,
+            Eigen::SparseMatrix<double> K, Eigen::SparseMatrix<double> A);
+  ~KktNewton() override;
+  KktNewton(const KktNewton&) = delete;
+  KktNewton& operator=(const KktNewton&) = delete;
+
+  /// Factors the saddle-point matrix for γ; false when it is singular.
+  bool setup(double gamma) override;
+  /// x = (I − γ J)⁻¹ b for the γ of the last setup, in place.
+  void solve(Eigen::Ref<Eigen::VectorXd> b) override;
+  [[nodiscard]] long nonzeros() const override { return nonzeros_; }
+
+ private:
+  [[nodiscard]] Eigen::SparseMatrix<double> saddle(double gamma) const;
+
+  Eigen::SparseMatrix<double> M_, C_, K_, A_;
+  int n_, m_;
+  double gamma_ = 0.0;
+  long nonzeros_ = 0;
+  bool analysed_ = false;
+  struct Factor;  ///< KLU (Eigen's KLUSupport), kept out of the header
+  std::unique_ptr<Factor> factor_;
+};
+
+}  // namespace condyn
