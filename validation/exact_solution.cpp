@@ -8,6 +8,12 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
         "the model is nonlinear (the modal solution needs constant M, C, K, A)");
   }
   const int n = model.dofs(), m = model.constraint_count();
+  if (n > kMaxExactDofs) {
+    throw ExactSolutionUnavailable(
+        std::to_string(n) + " DOFs: the modal solution is dense (a null-space basis and a "
+        "generalized eigenproblem of n x n, O(n^3)); it is computed up to " +
+        std::to_string(kMaxExactDofs) + " DOFs");
+  }
   Eigen::MatrixXd N, P(n, m);
   if (m == 0) {
     N = Eigen::MatrixXd::Identity(n, n);
@@ -24,9 +30,11 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
   sys.K = N.transpose() * K * N;
   if (model.has_damping()) sys.C = N.transpose() * C * N;
   for (const auto& load : model.loads) {
-    for (const auto& term : load.value.terms()) {
-      sys.forcing.push_back({N.transpose().col(load.dof), term});
-    }
+    // Nᵀ b for the load's vector b (e_dof or a [[load]] pattern).
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+    load.add_to(b, 1.0);
+    const Eigen::VectorXd projected = N.transpose() * b;
+    for (const auto& term : load.value.terms()) sys.forcing.push_back({projected, term});
   }
   for (int j = 0; j < m; ++j) {
     const Eigen::VectorXd p = P.col(j);

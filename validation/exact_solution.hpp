@@ -14,8 +14,13 @@
 
 namespace condyn {
 
+/// Above this many DOFs the dense modal solution is not attempted (2,000: a 32 MB basis and an
+/// eigenproblem of seconds; 10^4 would take minutes and GBs).
+inline constexpr int kMaxExactDofs = 2000;
+
 /// Exact trajectory at `times`. Throws ExactSolutionUnavailable when the reduced system has no
-/// modal closed form (singular reduced mass, non-classical damping).
+/// modal closed form (singular reduced mass, non-classical damping) or the model has more than
+/// kMaxExactDofs DOFs (the message says so; compare then uses a tight-tolerance run).
 [[nodiscard]] Trajectory exact_trajectory(const Model& model, const std::vector<double>& times);
 
 }  // namespace condyn
