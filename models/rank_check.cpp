@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "models/constraint_groups.hpp"
 #include "models/model_builder.hpp"
 #include "models/zero_sum.hpp"
 
@@ -120,29 +121,11 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   const auto& constraints = model_.constraints;
   const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
   std::vector<double> row_norm;
-  std::vector<int> parent(static_cast<std::size_t>(m));
-  std::vector<int> owner(static_cast<std::size_t>(model_.dofs()), -1);  // first row on a DOF
-  const auto root = [&parent](int j) {
-    while (parent[static_cast<std::size_t>(j)] != j) {
-      j = parent[static_cast<std::size_t>(j)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(j)])];
-    }
-    return j;
-  };
   for (int j = 0; j < m; ++j) {
-    parent[static_cast<std::size_t>(j)] = j;
     Eigen::VectorXd values(a.row(j).nonZeros());
     Eigen::Index k = 0;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it)
       values[k++] = it.value();
-      int& first = owner[static_cast<std::size_t>(it.col())];
-      if (first < 0) {
-        first = j;
-      } else {  // join the groups; the root stays the group's first row
-        const int r1 = root(first), r2 = root(j);
-        parent[static_cast<std::size_t>(std::max(r1, r2))] = std::min(r1, r2);
-      }
-    }
     // stableNorm: coefficients near the double range neither overflow nor underflow.
     const double norm = values.size() ? values.stableNorm() : 0.0;
     row_norm.push_back(norm);
@@ -152,24 +135,13 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
                "' has no nonzero coefficient");
     }
   }
-  std::vector<std::vector<int>> groups(static_cast<std::size_t>(m));
-  for (int j = 0; j < m; ++j) groups[static_cast<std::size_t>(root(j))].push_back(j);
   int rank = 0;
   int dep = -1;  // the first dependent constraint, and the combination that shows it
   std::vector<std::pair<int, double>> combo;
   std::vector<int> local(static_cast<std::size_t>(model_.dofs()), -1);
-  for (const auto& rows : groups) {
-    if (rows.empty()) continue;
-    std::vector<int> dofs;
-    for (int j : rows) {
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
-        if (local[static_cast<std::size_t>(it.col())] < 0) {
-          local[static_cast<std::size_t>(it.col())] = 0;
-          dofs.push_back(static_cast<int>(it.col()));
-        }
-      }
-    }
-    std::sort(dofs.begin(), dofs.end());
+  for (const auto& group : constraint_groups(a)) {
+    const auto& rows = group.rows;
+    const auto& dofs = group.dofs;
     for (std::size_t i = 0; i < dofs.size(); ++i) {
       local[static_cast<std::size_t>(dofs[i])] = static_cast<int>(i);
     }
