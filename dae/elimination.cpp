@@ -1,7 +1,6 @@
 #include "dae/elimination.hpp"
 
 #include <algorithm>
-#include <sstream>
 #include <stdexcept>
 
 #include "dae/ida_integrator.hpp"
@@ -10,90 +9,18 @@
 
 namespace condyn {
 
-namespace {
-
-// A named slave block whose condition number exceeds this is refused: the slave displacements
-// would carry cond * eps relative error from roundoff alone.
-constexpr double kMaxSlaveCondition = 1e12;
-// Column-pivoting rank threshold on the row-normalised A (same meaning as in build_model).
-constexpr double kRankTolerance = 1e-10;
-
-Eigen::SparseMatrix<double> sparse_from_dense(const Eigen::MatrixXd& d) {
-  return d.sparseView(0.0, 0.0);  // keeps every entry that is not exactly zero
-}
-
-}  // namespace
-
-MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
-                                   const std::vector<int>& preferred_slaves) {
-  const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols());
-  Eigen::MatrixXd a(A);
-  MasterSlave out;
-  if (m == 0) {
-    out.T.resize(n, n);
-    out.T.setIdentity();
-    out.G.resize(n, 0);
-    for (int i = 0; i < n; ++i) out.masters.push_back(i);
-    return out;
-  }
-  if (preferred_slaves.empty()) {
-    // Pivot on the row-normalised matrix so that a constraint's scale does not bias the choice.
-    Eigen::MatrixXd scaled = a;
-    for (int i = 0; i < m; ++i) scaled.row(i) /= scaled.row(i).stableNorm();  // no underflow
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled.rows(), scaled.cols());
-    qr.setThreshold(kRankTolerance);
-    qr.compute(scaled);
-    if (qr.rank() < m) {
-      throw std::invalid_argument("constraint matrix is rank deficient (rank " +
-                                  std::to_string(qr.rank()) + " < " + std::to_string(m) + ")");
-    }
-    for (int k = 0; k < m; ++k) out.slaves.push_back(qr.colsPermutation().indices()[k]);
-  } else {
-    out.slaves = preferred_slaves;
-  }
-  std::sort(out.slaves.begin(), out.slaves.end());
-  if (static_cast<int>(out.slaves.size()) != m ||
-      std::adjacent_find(out.slaves.begin(), out.slaves.end()) != out.slaves.end()) {
-    throw std::invalid_argument("need " + std::to_string(m) +
-                                " distinct slave DOFs, one per constraint");
-  }
-  std::vector<bool> is_slave(static_cast<std::size_t>(n), false);
-  for (int s : out.slaves) is_slave[static_cast<std::size_t>(s)] = true;
-  for (int i = 0; i < n; ++i) {
-    if (!is_slave[static_cast<std::size_t>(i)]) out.masters.push_back(i);
-  }
-  const int nm = n - m;
-  Eigen::MatrixXd a_s(m, m), a_r(m, nm);
-  for (int k = 0; k < m; ++k) a_s.col(k) = a.col(out.slaves[static_cast<std::size_t>(k)]);
-  for (int k = 0; k < nm; ++k) a_r.col(k) = a.col(out.masters[static_cast<std::size_t>(k)]);
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(a_s);
-  const double smax = svd.singularValues()(0), smin = svd.singularValues()(m - 1);
-  if (!(smin > smax / kMaxSlaveCondition)) {
-    std::ostringstream s;
-    s << "the slave DOFs do not determine the constraints (slave block condition number "
-      << (smin > 0 ? smax / smin : INFINITY) << "): choose other slaves";
-    throw std::invalid_argument(s.str());
-  }
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(a_s);
-  const Eigen::MatrixXd s_r = lu.solve(a_r);                              // A_S⁻¹ A_R
-  const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd::Identity(m, m));  // A_S⁻¹
-  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(n, nm), g = Eigen::MatrixXd::Zero(n, m);
-  for (int k = 0; k < nm; ++k) t(out.masters[static_cast<std::size_t>(k)], k) = 1.0;
-  for (int k = 0; k < m; ++k) {
-    t.row(out.slaves[static_cast<std::size_t>(k)]) = -s_r.row(k);
-    g.row(out.slaves[static_cast<std::size_t>(k)]) = s_g.row(k);
-  }
-  out.T = sparse_from_dense(t);
-  out.G = sparse_from_dense(g);
-  return out;
-}
-
 ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferred_slaves) {
   std::vector<int> preferred;
   preferred.reserve(preferred_slaves.size());
   for (const auto& name : preferred_slaves) preferred.push_back(model.dof_index.at(name));
   ReducedSystem r;
-  r.transform = master_slave_transform(model.A, preferred);
+  try {
+    r.transform = master_slave_transform(model.A, preferred);
+  } catch (const CoupledGroupTooLarge& e) {
+    throw std::invalid_argument("elimination: constraint '" +
+                                model.constraints[static_cast<std::size_t>(e.first_row)].name +
+                                "' and " + std::to_string(e.rows - 1) + " others are " + e.what());
+  }
   const auto& T = r.transform.T;
   const auto& G = r.transform.G;
   const Eigen::SparseMatrix<double> Tt = T.transpose();
@@ -105,29 +32,39 @@ ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferr
   } else {
     r.C.resize(nm, nm);
   }
-  r.FK = -Eigen::MatrixXd(Tt * model.K * G);
-  r.FM = -Eigen::MatrixXd(Tt * model.M * G);
-  r.FC = model.has_damping() ? Eigen::MatrixXd(-(Tt * model.C * G))
-                             : Eigen::MatrixXd::Zero(nm, model.constraint_count());
-  r.loads.resize(nm, static_cast<Eigen::Index>(model.loads.size()));
+  // Products right to left: K G is n x m with the slaves' neighbours only.
+  r.FK = -(Tt * Eigen::SparseMatrix<double>(model.K * G));
+  r.FM = -(Tt * Eigen::SparseMatrix<double>(model.M * G));
+  if (model.has_damping()) {
+    r.FC = -(Tt * Eigen::SparseMatrix<double>(model.C * G));
+  } else {
+    r.FC.resize(nm, model.constraint_count());
+  }
+  // B (n x loads): a column per load, e_dof or its pattern; then Tᵀ B.
+  std::vector<Eigen::Triplet<double>> b;
   for (std::size_t k = 0; k < model.loads.size(); ++k) {
     const Load& load = model.loads[k];
+    const auto col = static_cast<int>(k);
     if (load.dof >= 0) {
-      r.loads.col(static_cast<Eigen::Index>(k)) = Tt.col(load.dof);
+      b.emplace_back(load.dof, col, 1.0);
     } else {
-      r.loads.col(static_cast<Eigen::Index>(k)) = Tt * Eigen::VectorXd(load.pattern);
+      for (Eigen::SparseVector<double>::InnerIterator it(load.pattern); it; ++it)
+        b.emplace_back(static_cast<int>(it.index()), col, it.value());
     }
   }
+  Eigen::SparseMatrix<double> B(model.dofs(), static_cast<Eigen::Index>(model.loads.size()));
+  B.setFromTriplets(b.begin(), b.end());
+  r.loads = Tt * B;
   for (const auto& c : model.constraints) r.rheonomic = r.rheonomic || !c.position_value.is_zero();
   return r;
 }
 
 Eigen::VectorXd ReducedSystem::forces(const Model& model, double t, double step_reference) const {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(M.rows());
+  Eigen::VectorXd values(static_cast<Eigen::Index>(model.loads.size()));
   for (std::size_t k = 0; k < model.loads.size(); ++k) {
-    f += loads.col(static_cast<Eigen::Index>(k)) *
-         model.loads[k].value.derivative(0, t, step_reference);
+    values[static_cast<Eigen::Index>(k)] = model.loads[k].value.derivative(0, t, step_reference);
   }
+  Eigen::VectorXd f = loads * values;
   // Homogeneous scleronomic constraints have no transfer forces: skip the time functions.
   if (rheonomic) {
     f += FK * model.position_rhs(0, t) + FM * model.position_rhs(2, t);

@@ -8,8 +8,8 @@ namespace condyn {
 
 MultiplierRecovery::MultiplierRecovery(const Model& model) : model_(model) {
   if (model.constraint_count() > 0) {
-    const Eigen::MatrixXd a(model.A);
-    aat_.compute(a * a.transpose());
+    const Eigen::SparseMatrix<double> At = model.A.transpose();
+    aat_.compute(model.A * At);  // m x m, sparse; positive definite (A has full row rank)
   }
 }
 

@@ -2,6 +2,7 @@
 /// Results at the output times, in full DOF space, whatever the scheme.
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <vector>
 
 #include "dae/step_driver.hpp"
@@ -56,7 +57,7 @@ class MultiplierRecovery {
 
  private:
   const Model& model_;
-  Eigen::LDLT<Eigen::MatrixXd> aat_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> aat_;
 };
 
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))

@@ -63,9 +63,9 @@ Eigen::MatrixXd computed(ChapterQuantity q, const Model& model, const ReducedSys
       return T.transpose() * model.applied_forces(steps.empty() ? 0.0 : steps.back());
     }
     case ChapterQuantity::reduced_transfer_g:
-      return r.FK;
+      return Eigen::MatrixXd(r.FK);
     case ChapterQuantity::reduced_transfer_gdd:
-      return r.FM;
+      return Eigen::MatrixXd(r.FM);
     case ChapterQuantity::transfer_g:
       return -K * G;
     case ChapterQuantity::transfer_gdd:
@@ -195,7 +195,7 @@ ChapterReport chapter_report() {
         if (p.quantity != ChapterQuantity::reduced_transfer_gdd) continue;
         const Eigen::MatrixXd formula_5_26 = Eigen::MatrixXd::Zero(r.FM.rows(), r.FM.cols());
         const bool printed_matches_5_26 = compare(p, formula_5_26).differing.empty();
-        const bool printed_matches_full = compare(p, r.FM).differing.empty();
+        const bool printed_matches_full = compare(p, Eigen::MatrixXd(r.FM)).differing.empty();
         cr.notes.push_back(
             std::string("5.26 vs 5.28: printed 5.28 g'' coefficients ") +
             (printed_matches_full ? "match" : "do not match") + " Tᵀ(f − Kg − M g''), and " +

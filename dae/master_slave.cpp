@@ -1,0 +1,167 @@
+// The master-slave transformation, group by group (dae/master_slave.hpp).
+
+#include "dae/master_slave.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "models/constraint_groups.hpp"
+
+namespace condyn {
+
+namespace {
+
+// A named slave block whose condition number exceeds this is refused: the slave displacements
+// would carry cond * eps relative error from roundoff alone.
+constexpr double kMaxSlaveCondition = 1e12;
+// Column-pivoting rank threshold on the row-normalised A (same meaning as in build_model).
+constexpr double kRankTolerance = 1e-10;
+
+using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// The group's block of A: its rows, and the given DOFs as columns (in their order).
+Eigen::MatrixXd block(const RowMajor& a, const std::vector<int>& rows, const std::vector<int>& cols,
+                      std::vector<int>& local) {
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    local[static_cast<std::size_t>(cols[k])] = static_cast<int>(k);
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()),
+                                            static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (RowMajor::InnerIterator it(a, rows[i]); it; ++it) {
+      const int c = local[static_cast<std::size_t>(it.col())];
+      if (c >= 0) b(static_cast<Eigen::Index>(i), c) = it.value();
+    }
+  }
+  for (int c : cols) local[static_cast<std::size_t>(c)] = -1;
+  return b;
+}
+
+}  // namespace
+
+MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
+                                   const std::vector<int>& preferred_slaves) {
+  const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols());
+  MasterSlave out;
+  if (m == 0) {
+    out.T.resize(n, n);
+    out.T.setIdentity();
+    out.G.resize(n, 0);
+    for (int i = 0; i < n; ++i) out.masters.push_back(i);
+    return out;
+  }
+  const RowMajor a(A);
+  const std::vector<ConstraintGroup> groups = constraint_groups(a);
+  std::vector<int> local(static_cast<std::size_t>(n), -1);
+  for (const auto& g : groups) {
+    const double entries = static_cast<double>(g.rows.size()) * static_cast<double>(g.dofs.size());
+    if (entries > kMaxDenseGroupEntries) {
+      std::ostringstream s;
+      s << g.rows.size() << " constraints coupled through shared DOFs over " << g.dofs.size()
+        << " DOFs: beyond the master-slave transform's dense block per group ("
+        << kMaxDenseGroupEntries << " entries); use index1 or ggl";
+      throw CoupledGroupTooLarge(g.rows.front(), static_cast<int>(g.rows.size()),
+                                 static_cast<int>(g.dofs.size()), s.str());
+    }
+  }
+  if (preferred_slaves.empty()) {
+    // Pivot on each group's row-normalised block so that a constraint's scale does not bias the
+    // choice: the columns a global column-pivoted QR of A would pick, group by group (pivoting
+    // on one group never changes another's column norms).
+    int rank = 0;
+    for (const auto& g : groups) {
+      Eigen::MatrixXd scaled = block(a, g.rows, g.dofs, local);
+      for (Eigen::Index i = 0; i < scaled.rows(); ++i) {
+        const double norm = scaled.row(i).stableNorm();  // no underflow
+        if (norm > 0.0) scaled.row(i) /= norm;
+      }
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled.rows(), scaled.cols());
+      qr.setThreshold(kRankTolerance);
+      qr.compute(scaled);
+      const auto r = static_cast<int>(qr.rank());
+      rank += r;
+      for (int k = 0; k < r; ++k) {
+        out.slaves.push_back(g.dofs[static_cast<std::size_t>(qr.colsPermutation().indices()[k])]);
+      }
+    }
+    if (rank < m) {
+      throw std::invalid_argument("constraint matrix is rank deficient (rank " +
+                                  std::to_string(rank) + " < " + std::to_string(m) + ")");
+    }
+  } else {
+    out.slaves = preferred_slaves;
+  }
+  std::sort(out.slaves.begin(), out.slaves.end());
+  if (static_cast<int>(out.slaves.size()) != m ||
+      std::adjacent_find(out.slaves.begin(), out.slaves.end()) != out.slaves.end()) {
+    throw std::invalid_argument("need " + std::to_string(m) +
+                                " distinct slave DOFs, one per constraint");
+  }
+  std::vector<int> slave_at(static_cast<std::size_t>(n), -1),
+      master_at(static_cast<std::size_t>(n), -1);
+  for (std::size_t k = 0; k < out.slaves.size(); ++k) {
+    const int s = out.slaves[k];
+    if (s < 0 || s >= n) throw std::invalid_argument("a slave DOF index is out of range");
+    slave_at[static_cast<std::size_t>(s)] = static_cast<int>(k);
+  }
+  for (int i = 0; i < n; ++i) {
+    if (slave_at[static_cast<std::size_t>(i)] < 0) {
+      master_at[static_cast<std::size_t>(i)] = static_cast<int>(out.masters.size());
+      out.masters.push_back(i);
+    }
+  }
+  // Per group: A_S (its rows, its slaves) and A_R (its rows, its masters); the slave block of A is
+  // block diagonal over the groups, so its singular values are the union of the groups'. A group
+  // with fewer slaves than rows leaves the block singular (and one with more leaves another short).
+  std::vector<Eigen::Triplet<double>> t, gt;
+  t.reserve(out.masters.size());
+  for (std::size_t k = 0; k < out.masters.size(); ++k) {
+    t.emplace_back(out.masters[k], static_cast<int>(k), 1.0);
+  }
+  double smax = 0.0, smin = INFINITY;
+  std::vector<int> slaves_in, masters_in;
+  for (const auto& g : groups) {
+    slaves_in.clear();
+    masters_in.clear();
+    for (int d : g.dofs)
+      (slave_at[static_cast<std::size_t>(d)] >= 0 ? slaves_in : masters_in).push_back(d);
+    if (slaves_in.size() != g.rows.size()) {
+      smin = 0.0;
+      continue;
+    }
+    const Eigen::MatrixXd a_s = block(a, g.rows, slaves_in, local);
+    const Eigen::MatrixXd a_r = block(a, g.rows, masters_in, local);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a_s);
+    smax = std::max(smax, svd.singularValues()(0));
+    smin = std::min(smin, svd.singularValues()(svd.singularValues().size() - 1));
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(a_s);
+    const Eigen::MatrixXd s_r = lu.solve(a_r);  // A_S⁻¹ A_R
+    const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd::Identity(a_s.rows(), a_s.cols()));
+    for (std::size_t i = 0; i < slaves_in.size(); ++i) {
+      const auto ii = static_cast<Eigen::Index>(i);
+      for (std::size_t j = 0; j < masters_in.size(); ++j) {
+        const double v = -s_r(ii, static_cast<Eigen::Index>(j));
+        if (v != 0.0)
+          t.emplace_back(slaves_in[i], master_at[static_cast<std::size_t>(masters_in[j])], v);
+      }
+      for (std::size_t j = 0; j < g.rows.size(); ++j) {
+        const double v = s_g(ii, static_cast<Eigen::Index>(j));
+        if (v != 0.0) gt.emplace_back(slaves_in[i], g.rows[j], v);
+      }
+    }
+  }
+  if (!(smin > smax / kMaxSlaveCondition)) {
+    std::ostringstream s;
+    s << "the slave DOFs do not determine the constraints (slave block condition number "
+      << (smin > 0 ? smax / smin : INFINITY) << "): choose other slaves";
+    throw std::invalid_argument(s.str());
+  }
+  out.T.resize(n, static_cast<Eigen::Index>(out.masters.size()));
+  out.T.setFromTriplets(t.begin(), t.end());
+  out.G.resize(n, m);
+  out.G.setFromTriplets(gt.begin(), gt.end());
+  return out;
+}
+
+}  // namespace condyn

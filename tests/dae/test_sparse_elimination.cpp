@@ -1,0 +1,66 @@
+// The elimination path at real size (issue 12): the master-slave transform built group by group
+// (dae/master_slave.hpp), sparse T and G, sparse reduced loads, and a 20,000-DOF lattice that runs
+// under elimination as under index1.
+
+#include <doctest/doctest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "dae/elimination.hpp"
+#include "models/scene_parser.hpp"
+#include "tests/solve_helpers.hpp"
+#include "tests/sparse_elimination_scene.hpp"
+
+using namespace condyn;
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+}  // namespace
+
+TEST_CASE("sparse master-slave transform: A T = 0 and A G = I, nonzeros only inside the groups") {
+  const Model model = build_model(parse_scene_text(test::tied_lattice(""), "lattice.toml"));
+  const int n = model.dofs(), m = model.constraint_count();
+  REQUIRE(n == 20000);
+  REQUIRE(m == 200 + 9);  // the left column's supports (x and y of 100 nodes) and the ties
+  const MasterSlave ms = master_slave_transform(model.A);
+  CHECK(ms.T.rows() == n);
+  CHECK(ms.T.cols() == n - m);
+  // A T = 0 and A G = I up to the roundoff of one solve with the slave block (coefficients 1:
+  // a few eps).
+  const Eigen::SparseMatrix<double> AT = model.A * ms.T;
+  const Eigen::SparseMatrix<double> AG = model.A * ms.G;
+  double worst_at = 0.0, worst_ag = 0.0;
+  for (int k = 0; k < AT.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(AT, k); it; ++it)
+      worst_at = std::max(worst_at, std::abs(it.value()));
+  const Eigen::MatrixXd ag(AG);
+  worst_ag = (ag - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff();
+  CHECK(worst_at <= 4 * kEps);
+  CHECK(worst_ag <= 4 * kEps);
+  // Supports are 1 x 1 groups (their slave rows of T are empty), each tie a 1 x 2 group (one
+  // entry): nnz(T) = masters + ties, linear in n, where the dense transform held n x (n - m).
+  CHECK(ms.T.nonZeros() == (n - m) + 9);
+  CHECK(ms.G.nonZeros() == m);
+}
+
+TEST_CASE("elimination declines a coupled group beyond its dense block, naming the constraint") {
+  // A chain of 2,100 rows over 2,101 DOFs of one row of nodes, u_(k+1) = u_k, joined by the
+  // support of node 1 (fix_ux1): one coupled group of 2,101 rows, 4.4e6 entries, beyond
+  // kMaxDenseGroupEntries.
+  std::string chain;
+  for (int k = 1; k <= 2100; ++k) {
+    chain += "[[constraint]]\nname = \"link" + std::to_string(k) + "\"\nterms = { ux" +
+             std::to_string(k + 1) + " = 1.0, ux" + std::to_string(k) + " = -1.0 }\n";
+  }
+  const auto scene = test::built(parse_scene_text(test::lattice(2200, 1, chain, ""), "chain.toml"));
+  CHECK_THROWS_WITH_AS((void)reduce(scene.model),
+                       doctest::Contains("elimination: constraint 'fix_ux1' and 2100 others are "
+                                         "2101 constraints coupled through shared DOFs over "
+                                         "2101 DOFs"),
+                       std::invalid_argument);
+}
