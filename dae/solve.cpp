@@ -46,20 +46,41 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
   return std::nullopt;
 }
 
-SchemeChoice choose_scheme(const Model& model, Scheme requested) {
-  if (requested != Scheme::automatic) return {requested, "requested"};
+SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings) {
+  if (settings.scheme != Scheme::automatic) return {settings.scheme, "requested"};
   if (model.is_nonlinear()) {
     return {Scheme::ggl,
             "nonlinear model: GGL (stabilized index 2) holds position and velocity constraints "
             "to the Newton tolerance at every step, and treats nonholonomic rows too"};
   }
-  // Every constraint condyn reads today is linear with constant coefficients, hence holonomic or
-  // integrable: elimination solves the smallest system (n − m DOFs, no multipliers).
   if (model.constraint_count() == 0) {
     return {Scheme::elimination, "no constraints: the model is integrated as it is"};
   }
-  return {Scheme::elimination,
-          "every constraint is linear and integrable: elimination solves the smallest system"};
+  // Every constraint condyn reads for a linear model is linear with constant coefficients, hence
+  // holonomic or integrable: elimination or GGL, whichever factors the smaller Newton matrix.
+  SolveSpec as_ggl = settings, as_elimination = settings;
+  as_ggl.scheme = Scheme::ggl;
+  as_elimination.scheme = Scheme::elimination;
+  const SystemSize ggl = system_size(model, as_ggl);
+  SystemSize elimination;
+  try {
+    elimination = system_size(model, as_elimination);
+  } catch (const std::invalid_argument& why) {
+    return {Scheme::ggl, std::string("elimination cannot treat this model (") + why.what() +
+                             "): GGL, which holds the constraints to the Newton tolerance"};
+  }
+  std::ostringstream figures;
+  figures << "elimination " << elimination.unknowns << " unknowns, "
+          << elimination.jacobian_nonzeros << " Jacobian nonzeros; GGL " << ggl.unknowns << ", "
+          << ggl.jacobian_nonzeros;
+  if (elimination.jacobian_nonzeros <= ggl.jacobian_nonzeros) {
+    return {Scheme::elimination,
+            "every constraint is linear and integrable, and elimination "
+            "solves the smaller system (" +
+                figures.str() + ")"};
+  }
+  return {Scheme::ggl, "the master-slave transform fills in: GGL solves the smaller system (" +
+                           figures.str() + ")"};
 }
 
 IntegratorOptions integrator_options(const Model& model, const SolveSpec& settings) {
@@ -156,7 +177,7 @@ void solve_projection(const Model& model, const IntegratorOptions& options, Solv
 
 SystemSize system_size(const Model& model, const SolveSpec& settings) {
   Scheme scheme = settings.scheme;
-  if (scheme == Scheme::automatic) scheme = choose_scheme(model, scheme).scheme;
+  if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
   refuse_inapplicable(model, scheme);
   if (scheme == Scheme::elimination) {
     const ReducedSystem reduced = reduce(model, settings.slaves);
@@ -211,7 +232,7 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
   settings.validate();
   Scheme scheme = settings.scheme;
   refuse_inapplicable(model, scheme);
-  if (scheme == Scheme::automatic) scheme = choose_scheme(model, scheme).scheme;
+  if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
   SolveResult result;
   result.scheme = scheme;
   try {

@@ -27,8 +27,11 @@ class SchemeNotApplicable : public std::invalid_argument {
 /// nothing when it can.
 [[nodiscard]] std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme);
 
-/// Resolves `requested` (auto picks the lightest formulation that serves the model).
-[[nodiscard]] SchemeChoice choose_scheme(const Model& model, Scheme requested);
+/// Resolves settings.scheme. auto: GGL for a nonlinear model; for a linear one the cheaper by cost
+/// of elimination and GGL, cost being the nonzeros of the Newton matrix each factors at every
+/// Jacobian update (system_size, with settings.slaves): elimination unless its master-slave
+/// transform fills in (or it cannot treat the model, e.g. a massless master DOF).
+[[nodiscard]] SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings);
 
 /// What a scheme makes the integrator solve for this model.
 struct SystemSize {

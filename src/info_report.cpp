@@ -149,7 +149,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
       << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
       << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
       << model.C.nonZeros() << ", K " << model.K.nonZeros() << ", A " << model.A.nonZeros() << "\n";
-  const SchemeChoice choice = choose_scheme(model, settings.scheme);
+  const SchemeChoice choice = choose_scheme(model, settings);
   const auto refusal = scheme_refusal(model, choice.scheme);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
       << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";

@@ -64,3 +64,45 @@ TEST_CASE("elimination declines a coupled group beyond its dense block, naming t
                                          "2101 DOFs"),
                        std::invalid_argument);
 }
+
+TEST_CASE("auto picks elimination or GGL by the size of the Newton matrix each factors") {
+  // The tied lattice: supports and two-DOF ties leave T as sparse as A; elimination factors the
+  // smaller matrix.
+  const auto lattice = test::built(parse_scene_text(test::tied_lattice(""), "lattice.toml"));
+  const SchemeChoice tied = choose_scheme(lattice.model, lattice.spec.solve);
+  CHECK(tied.scheme == Scheme::elimination);
+  CHECK(tied.reason.find("elimination solves the smaller system") != std::string::npos);
+  // A chain of 100 DOFs whose mean is held: one row over every DOF. Its slave's row of T has 99
+  // entries, so T^T K T couples every master with every other (about 99^2 nonzeros) where GGL's
+  // matrix keeps the chain's few hundred: GGL.
+  std::string rows, mass, terms;
+  const int n = 100;
+  for (int i = 0; i < n; ++i) {
+    std::string row;
+    for (int j = 0; j < n; ++j) {
+      const double k = i == j ? 2.0 : (std::abs(i - j) == 1 ? -1.0 : 0.0);
+      row += (j ? ", " : "") + std::to_string(k);
+    }
+    rows += std::string(i ? ", " : "") + "[" + row + "]";
+    terms += std::string(i ? ", " : "") + "u" + std::to_string(i + 1) + " = 1.0";
+  }
+  std::string dofs, diag;
+  for (int i = 1; i <= n; ++i)
+    dofs += std::string(i > 1 ? ", " : "") + "\"u" + std::to_string(i) + "\"";
+  for (int i = 0; i < n; ++i) {
+    std::string row;
+    for (int j = 0; j < n; ++j) row += std::string(j ? ", " : "") + (i == j ? "1.0" : "0.0");
+    diag += std::string(i ? ", " : "") + "[" + row + "]";
+  }
+  const auto chain = test::built(parse_scene_text(
+      "[model]\ntype = \"matrix\"\ndofs = [" + dofs + "]\nmass = [" + diag + "]\nstiffness = [" +
+          rows + "]\n[[constraint]]\nname = \"mean\"\nterms = { " + terms +
+          " }\n[solve]\nt_end = 1.0\noutput_step = 0.1\n",
+      "chain.toml"));
+  const SchemeChoice filled = choose_scheme(chain.model, chain.spec.solve);
+  CHECK(filled.scheme == Scheme::ggl);
+  CHECK(filled.reason.find("the master-slave transform fills in") != std::string::npos);
+  // A request is taken as it is.
+  CHECK(choose_scheme(chain.model, test::under(chain.spec.solve, Scheme::elimination)).scheme ==
+        Scheme::elimination);
+}
