@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <optional>
 #include <vector>
 
 #include "models/constraint_drift.hpp"
@@ -45,6 +46,20 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     traj.steps = steps;
     return traj;
   };
+  // Streamed: each output row is assembled as the loop reaches it and handed to the sink; the
+  // trajectory keeps its times, drifts and energies only.
+  const bool streamed = static_cast<bool>(options.on_row);
+  std::optional<RowAssembler> rows;
+  if (streamed) {
+    rows.emplace(model);
+    observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
+      auto [u, v] = observe.full_state(t, y);
+      Eigen::VectorXd lambda = observe.multipliers(t, y, u, v);
+      const TrajectoryRow row = (*rows)(t, std::move(u), std::move(v), std::move(lambda));
+      options.on_row(row);
+      append_row(result.trajectory, row, true);
+    };
+  }
   RawTrajectory raw;
   try {
     raw = run(observed);
@@ -52,6 +67,10 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     result.failure = failure_of(e);
     result.summary.max_drift_position = max_dp;
     result.summary.max_drift_velocity = max_dv;
+    if (streamed) {
+      result.trajectory.steps = steps;
+      return;
+    }
     if (!e.raw_partial || e.raw_partial->t.size() < 2) return;
     try {
       result.trajectory = assemble(*e.raw_partial);
@@ -61,7 +80,11 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     }
     return;
   }
-  result.trajectory = assemble(raw);
+  if (streamed) {
+    result.trajectory.steps = steps;
+  } else {
+    result.trajectory = assemble(raw);
+  }
   const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
   result.summary.max_drift_position = std::max(max_dp, max_of(result.trajectory.drift_position));
   result.summary.max_drift_velocity = std::max(max_dv, max_of(result.trajectory.drift_velocity));

@@ -239,6 +239,7 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     IntegratorOptions options = integrator_options(model, settings);
     options.record_steps = hooks.record_steps;
     options.on_progress = hooks.on_progress;
+    options.on_row = hooks.on_row;
     solve_resolved(model, scheme, settings, options, result);
   } catch (const IntegrationError& e) {
     // Outside the loop (the loop's own failures come back as data): the integrator could not be

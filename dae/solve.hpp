@@ -50,6 +50,10 @@ struct SystemSize {
 struct RunHooks {
   bool record_steps = false;  ///< keep the drift at every internal step (Trajectory::steps)
   std::function<void(const Progress&)> on_progress;  ///< for long runs (IntegratorOptions)
+  /// When set, every output row goes here as it is computed (a failed run's rows included) and
+  /// the result's trajectory holds no n x output-times data: its u, v, reaction and multiplier
+  /// are empty; t, drifts and energies stay.
+  std::function<void(const TrajectoryRow&)> on_row;
 };
 
 /// Solves the model under settings.scheme (`automatic` resolves through choose_scheme) with the

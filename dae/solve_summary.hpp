@@ -11,6 +11,8 @@
 
 namespace condyn {
 
+struct TrajectoryRow;  // dae/trajectory.hpp
+
 /// Where a long run stands, for a progress line (IntegratorOptions::on_progress).
 struct Progress {
   double t0 = 0.0, t = 0.0, t_end = 0.0;  ///< start, time reached, end of the run
@@ -46,6 +48,13 @@ struct IntegratorOptions {
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;
   /// Keep a per-step drift log (Trajectory::steps) for drift plots; off by default.
   bool record_steps = false;
+  /// When set, every output row (t, y, y') goes here as it is computed instead of into the
+  /// returned RawTrajectory, which then holds the times only (results streamed, nothing of size
+  /// unknowns x output times held).
+  std::function<void(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp)> on_output;
+  /// Set by solve() from RunHooks::on_row: the observed run streams full-space rows there (and
+  /// sets on_output itself).
+  std::function<void(const TrajectoryRow&)> on_row;
   /// Throws std::invalid_argument naming the bad field.
   void validate() const;
   /// The absolute tolerance of one kind of unknown.

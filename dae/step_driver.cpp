@@ -109,8 +109,12 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
       throw IntegrationError(FailureKind::non_finite, s.str());
     }
     out.t.push_back(t);
-    out.y.push_back(y);
-    out.yp.push_back(yp);
+    if (options.on_output) {
+      options.on_output(t, y, yp);
+    } else {
+      out.y.push_back(y);
+      out.yp.push_back(yp);
+    }
   };
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 

@@ -1,8 +1,7 @@
 #include "dae/trajectory.hpp"
 
-#include "models/constraint_drift.hpp"
-
-#include <optional>
+#include <algorithm>
+#include <cmath>
 
 namespace condyn {
 
@@ -22,6 +21,60 @@ Eigen::VectorXd MultiplierRecovery::operator()(double t, const Eigen::VectorXd& 
   return -aat_.solve(model_.A * rho);
 }
 
+RowAssembler::RowAssembler(const Model& model)
+    : model_(model), system_(model.evaluator()), drift_(model) {}
+
+TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::VectorXd v,
+                                       Eigen::VectorXd lambda) {
+  TrajectoryRow row;
+  row.t = t;
+  if (model_.constraint_count() > 0) {
+    // Aᵀ(−λ) rather than −(Aᵀλ): exactly +0 on DOFs that no constraint touches (no "-0").
+    row.reaction = system_->constraint_jacobian(t, u).transpose() * (-lambda);
+  } else {
+    row.reaction = Eigen::VectorXd::Zero(u.size());
+  }
+  const auto [dp, dv] = drift_(t, u, v);
+  row.drift_position = dp;
+  row.drift_velocity = dv;
+  const auto energy = system_->energy(t, u, v);
+  if (!conservative_) conservative_ = energy.has_value();
+  if (*conservative_ && energy) {
+    row.conservative = true;
+    row.energy = *energy;
+    row.kinetic = 0.5 * v.dot(system_->mass(t, u) * v);
+  }
+  row.u = std::move(u);
+  row.v = std::move(v);
+  row.multiplier = std::move(lambda);
+  return row;
+}
+
+void append_row(Trajectory& traj, const TrajectoryRow& row, bool streamed) {
+  const auto k = static_cast<Eigen::Index>(traj.t.size());
+  traj.t.push_back(row.t);
+  const auto grow = [k](Eigen::VectorXd& x, double value) {
+    x.conservativeResize(k + 1);
+    x[k] = value;
+  };
+  grow(traj.drift_position, row.drift_position);
+  grow(traj.drift_velocity, row.drift_velocity);
+  if (row.conservative) {
+    grow(traj.energy, row.energy);
+    grow(traj.kinetic, row.kinetic);
+  }
+  if (streamed) return;
+  const auto column = [k](Eigen::MatrixXd& m, const Eigen::VectorXd& x) {
+    if (m.cols() == 0) m.resize(x.size(), 0);
+    m.conservativeResize(Eigen::NoChange, k + 1);
+    m.col(k) = x;
+  };
+  column(traj.u, row.u);
+  column(traj.v, row.v);
+  column(traj.reaction, row.reaction);
+  column(traj.multiplier, row.multiplier);
+}
+
 Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                const std::vector<Eigen::VectorXd>& u,
                                const std::vector<Eigen::VectorXd>& v,
@@ -29,47 +82,38 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
   const int n = model.dofs(), m = model.constraint_count();
   const auto nt = static_cast<Eigen::Index>(times.size());
   Trajectory out;
-  out.t = times;
   out.u.resize(n, nt);
   out.v.resize(n, nt);
   out.reaction.resize(n, nt);
   out.multiplier.resize(m, nt);
-  out.drift_position.resize(nt);
-  out.drift_velocity.resize(nt);
-  const auto evaluator = model.evaluator();
-  MechanicalSystem& system = *evaluator;
-  ConstraintDrift drift(model);
-  const bool conservative = nt > 0 && system.energy(times[0], u[0], v[0]).has_value();
-  if (conservative) out.energy.resize(nt);
+  out.t.reserve(times.size());
+  RowAssembler assemble(model);
   for (Eigen::Index k = 0; k < nt; ++k) {
     const auto i = static_cast<std::size_t>(k);
-    out.u.col(k) = u[i];
-    out.v.col(k) = v[i];
-    if (m > 0) {
-      out.multiplier.col(k) = lambda[i];
-      // Aᵀ(−λ) rather than −(Aᵀλ): exactly +0 on DOFs that no constraint touches (no "-0").
-      out.reaction.col(k) = system.constraint_jacobian(times[i], u[i]).transpose() * (-lambda[i]);
-    } else {
-      out.reaction.col(k).setZero();
+    const TrajectoryRow row = assemble(times[i], u[i], v[i], m > 0 ? lambda[i] : Eigen::VectorXd());
+    out.t.push_back(row.t);
+    out.u.col(k) = row.u;
+    out.v.col(k) = row.v;
+    out.reaction.col(k) = row.reaction;
+    if (m > 0) out.multiplier.col(k) = row.multiplier;
+    const auto grow = [k](Eigen::VectorXd& x, Eigen::Index size, double value) {
+      if (x.size() != size) x.resize(size);
+      x[k] = value;
+    };
+    grow(out.drift_position, nt, row.drift_position);
+    grow(out.drift_velocity, nt, row.drift_velocity);
+    if (row.conservative) {
+      grow(out.energy, nt, row.energy);
+      grow(out.kinetic, nt, row.kinetic);
     }
-    const auto [dp, dv] = drift(times[i], u[i], v[i]);
-    out.drift_position[k] = dp;
-    out.drift_velocity[k] = dv;
-    if (conservative) out.energy[k] = *system.energy(times[i], u[i], v[i]);
   }
   return out;
 }
 
-double relative_energy_error(const Model& model, const Trajectory& traj) {
+double relative_energy_error(const Model& /*model*/, const Trajectory& traj) {
   if (traj.energy.size() == 0) return -1.0;
-  const auto evaluator = model.evaluator();
-  MechanicalSystem& system = *evaluator;
   double scale = std::abs(traj.energy[0]);
-  for (Eigen::Index k = 0; k < traj.energy.size(); ++k) {
-    const Eigen::VectorXd v = traj.v.col(k);
-    scale = std::max(
-        scale, 0.5 * v.dot(system.mass(traj.t[static_cast<std::size_t>(k)], traj.u.col(k)) * v));
-  }
+  if (traj.kinetic.size() > 0) scale = std::max(scale, traj.kinetic.maxCoeff());
   const double worst = (traj.energy.array() - traj.energy[0]).abs().maxCoeff();
   return scale > 0.0 ? worst / scale : worst;
 }

@@ -3,9 +3,12 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "dae/step_driver.hpp"
+#include "models/constraint_drift.hpp"
 #include "models/model.hpp"
 
 namespace condyn {
@@ -33,14 +36,42 @@ class VelocityReversals {
   long most_ = 0;
 };
 
+/// One output row in full DOF space, as a streamed run hands it out (RunHooks::on_row).
+struct TrajectoryRow {
+  double t = 0.0;
+  Eigen::VectorXd u, v, reaction, multiplier;
+  double drift_position = 0.0, drift_velocity = 0.0;
+  bool conservative = false;  ///< energy and kinetic are set
+  double energy = 0.0, kinetic = 0.0;
+};
+
+/// The per-row work of a trajectory: reactions f_con = −A(t, u)ᵀλ, drifts, and for a
+/// conservative model the energy and the kinetic energy. One evaluator of the model's own.
+class RowAssembler {
+ public:
+  explicit RowAssembler(const Model& model);
+  [[nodiscard]] TrajectoryRow operator()(double t, Eigen::VectorXd u, Eigen::VectorXd v,
+                                         Eigen::VectorXd lambda);
+
+ private:
+  const Model& model_;
+  std::unique_ptr<MechanicalSystem> system_;
+  ConstraintDrift drift_;
+  std::optional<bool> conservative_;  ///< decided at the first row
+};
+
 struct Trajectory {
   std::vector<double> t;
-  Eigen::MatrixXd u, v;        ///< n x nt displacements and velocities
+  /// n x nt displacements and velocities; empty (no columns) for a streamed run, whose rows went
+  /// to RunHooks::on_row: t, the drifts, energies and kinetic energies below stay.
+  Eigen::MatrixXd u, v;
   Eigen::MatrixXd reaction;    ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
   Eigen::MatrixXd multiplier;  ///< m x nt: λ
   Eigen::VectorXd drift_position, drift_velocity;  ///< nt, max-norm constraint residuals
   /// nt total energies for a conservative model (MechanicalSystem::energy); empty otherwise.
   Eigen::VectorXd energy;
+  /// nt kinetic energies ½ vᵀM v beside `energy` (the scale of its error); empty otherwise.
+  Eigen::VectorXd kinetic;
   std::vector<StepRecord> steps;  ///< every internal step, when IntegratorOptions::record_steps
 };
 
@@ -63,6 +94,10 @@ class MultiplierRecovery {
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
 /// (T the kinetic energy; the scale is never zero for a moving model). −1 without energies.
 [[nodiscard]] double relative_energy_error(const Model& model, const Trajectory& traj);
+
+/// Appends a row to a trajectory: with its n-sized parts unless `streamed` (then only the time,
+/// drifts and energies).
+void append_row(Trajectory& traj, const TrajectoryRow& row, bool streamed);
 
 /// Builds a trajectory from u, u' and λ at the output times: f_con = −A(t, u)ᵀλ, drifts and
 /// energies from the model.

@@ -3,6 +3,7 @@
 /// quantities in the order the scene lists them.
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -12,6 +13,7 @@
 #include "models/model.hpp"
 #include "src/hdf5_output.hpp"
 #include "src/output_files.hpp"
+#include "src/row_writer.hpp"
 
 namespace condyn {
 
@@ -45,6 +47,21 @@ class RunOutputs {
   [[nodiscard]] std::string write_partial(const Model& model, const RunAttributes& run,
                                           const Trajectory& partial);
 
+  /// True when the result goes to a regular file, whose rows can then be written as the run
+  /// computes them (stream_rows). A stream (standard output, a device, a pipe) gets complete
+  /// results only, at the end (write).
+  [[nodiscard]] bool can_stream() const { return partial_.has_value(); }
+  /// Opens the result file (its temporary file) for the run's rows; the sink to give the run
+  /// (RunHooks::on_row). The model must outlive this object's use of the sink.
+  [[nodiscard]] std::function<void(const TrajectoryRow&)> stream_rows(const Model& model);
+  /// A finished streamed run: completes the file, writes the drift log, commits both.
+  void finish_stream(const RunAttributes& run, const Trajectory& traj);
+  /// A failed streamed run: completes the rows written so far and keeps them in the partial file
+  /// (when there is more than the initial row; else nothing is kept and "" is returned); returns
+  /// the sentence saying where they went, as write_partial.
+  [[nodiscard]] std::string finish_stream_partial(const RunAttributes& run,
+                                                  const Trajectory& partial);
+
  private:
   /// The result into output `id`, in the format its name asks for.
   void write_result(OutputPlan::Id id, const Model& model, const RunAttributes& run,
@@ -52,6 +69,8 @@ class RunOutputs {
 
   OutputSpec output_;
   OutputPlan plan_;
+  std::unique_ptr<RowWriter> rows_;  ///< a streamed run's result file
+  std::string rows_path_;            ///< its temporary file
   OutputPlan::Id csv_ = 0;
   std::optional<OutputPlan::Id> steps_, partial_;
 };

@@ -2,6 +2,8 @@
 
 #include <hdf5.h>
 
+#include "src/hdf5_parts.hpp"
+
 #include <stdexcept>
 #include <vector>
 
@@ -9,25 +11,10 @@ namespace condyn {
 
 namespace {
 
-/// Closes an HDF5 handle with its own close function when it leaves scope.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t), const char* call) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error(std::string("HDF5: ") + call + " failed");
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() { close_(id_); }
-  [[nodiscard]] hid_t id() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-void check(herr_t status, const char* call) {
-  if (status < 0) throw std::runtime_error(std::string("HDF5: ") + call + " failed");
-}
+using hdf5::check;
+using hdf5::Handle;
+using hdf5::put_attribute;
+using hdf5::put_strings;
 
 /// A rows x cols dataset of doubles, row-major (HDF5's order), entry (r, c) = get(r, c); cols = 0
 /// makes a vector of `rows` entries get(r, 0).
@@ -48,40 +35,6 @@ void put_matrix(hid_t file, const char* name, hsize_t rows, hsize_t cols, const 
     check(H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
           "H5Dwrite");
   }
-}
-
-void put_strings(hid_t file, const char* name, const std::vector<std::string>& values) {
-  std::vector<const char*> pointers;
-  pointers.reserve(values.size());
-  for (const auto& v : values) pointers.push_back(v.c_str());
-  const Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
-  check(H5Tset_size(type.id(), H5T_VARIABLE), "H5Tset_size");
-  check(H5Tset_cset(type.id(), H5T_CSET_UTF8), "H5Tset_cset");
-  const hsize_t dims[1] = {values.size()};
-  const Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose, "H5Screate_simple");
-  const Handle set(
-      H5Dcreate2(file, name, type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-      H5Dclose, "H5Dcreate2");
-  if (!values.empty()) {
-    check(H5Dwrite(set.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()),
-          "H5Dwrite");
-  }
-}
-
-void put_attribute(hid_t file, const char* name, double value) {
-  const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate");
-  const Handle attr(H5Acreate2(file, name, H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT),
-                    H5Aclose, "H5Acreate2");
-  check(H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, &value), "H5Awrite");
-}
-
-void put_attribute(hid_t file, const char* name, const std::string& value) {
-  const Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
-  check(H5Tset_size(type.id(), value.empty() ? 1 : value.size()), "H5Tset_size");
-  const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate");
-  const Handle attr(H5Acreate2(file, name, type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
-                    H5Aclose, "H5Acreate2");
-  check(H5Awrite(attr.id(), type.id(), value.c_str()), "H5Awrite");
 }
 
 }  // namespace

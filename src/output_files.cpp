@@ -120,6 +120,17 @@ void OutputPlan::write(Id id, Writer writer) {
   o.written = true;
 }
 
+std::string OutputPlan::write_in_place(Id id) {
+  auto& o = impl_->outputs.at(id);
+  if (!o.checked) check();
+  if (o.kind == Impl::Kind::descriptor || o.kind == Impl::Kind::device) {
+    throw std::logic_error(o.path + ": a stream output cannot be written in place");
+  }
+  if (o.temp.empty()) impl_->create_temp(o, false);
+  o.written = true;
+  return o.temp.string();
+}
+
 void OutputPlan::commit(const std::vector<Id>& ids) {
   auto& outputs = impl_->outputs;
   for (Id id : ids) {

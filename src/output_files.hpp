@@ -59,6 +59,11 @@ class OutputPlan {
   /// (descriptor, device, FIFO) at commit, after every regular output is written, so nothing
   /// reaches a stream before all files are complete. Throws std::runtime_error naming the path.
   void write(Id id, Writer writer);
+  /// For a regular output (not is_stream): the path of its temporary file, for a writer that
+  /// opens it by name and fills it over the run (rows as they are computed, HDF5); the output
+  /// then counts as written. Throws std::logic_error for a stream, std::runtime_error when the
+  /// temporary file cannot be created.
+  [[nodiscard]] std::string write_in_place(Id id);
   /// Commits the outputs `ids` (each written): streams first, then every rename. Outputs not
   /// listed are dropped (their temporary files removed). Throws std::runtime_error.
   void commit(const std::vector<Id>& ids);

@@ -1,0 +1,34 @@
+#pragma once
+/// The CSV of the contract (scene-format.md, "Output"), one line at a time: the header, and a data
+/// row from one output time's values. Used by the whole-trajectory writer and by the row writer
+/// of a streamed run alike, so both write the same bytes.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "models/model.hpp"
+
+namespace condyn {
+
+/// One output time's values, viewed (columns of a trajectory or a streamed row).
+struct CsvRow {
+  double t = 0.0;
+  Eigen::Ref<const Eigen::VectorXd> u, v, reaction, multiplier;
+  double drift_position = 0.0, drift_velocity = 0.0;
+  double energy = 0.0, energy_error = 0.0;  ///< E(t) and E(t) − E(0) (conservative scenes)
+};
+
+/// "t,..." for the [output] quantities over the `shown` DOFs, without the newline.
+[[nodiscard]] std::string csv_header(const Model& model, const OutputSpec& output,
+                                     const std::vector<int>& shown);
+
+/// Appends the data row (without newline) to `line`; numbers in the shortest form that reads back
+/// as the same double.
+void append_csv_row(std::string& line, const OutputSpec& output, const std::vector<int>& shown,
+                    const CsvRow& row);
+
+/// Appends v in the shortest round-trip form (std::to_chars).
+void append_number(std::string& line, double v);
+
+}  // namespace condyn
