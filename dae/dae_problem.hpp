@@ -4,8 +4,10 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <memory>
 #include <vector>
 
+#include "dae/newton_system.hpp"
 #include "dae/unknown_kind.hpp"
 
 namespace condyn {
@@ -50,6 +52,9 @@ class DaeProblem {
   /// The kind of each unknown, for its absolute tolerance (IntegratorOptions::atol_of); empty:
   /// every unknown gets the displacement atol.
   [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
+  /// Its own solver of IDA's Newton systems (∂F/∂y + cj ∂F/∂y') x = b, or nothing: IDA then
+  /// factors the Jacobian jacobian() fills.
+  [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }
   /// Makes (y, y') consistent at time t, where the segment begins (begin_segment(t)): keeps the
   /// differential components of y, recomputes the algebraic ones and y' (used at t = 0 and after
   /// every load step, where accelerations and multipliers jump). Throws std::runtime_error when the

@@ -1,5 +1,6 @@
 #include "dae/ida_integrator.hpp"
 
+#include "dae/newton_linear_solver.hpp"
 #include "dae/step_driver.hpp"
 #include "dae/sundials_raii.hpp"
 #include "dae/sundials_stepper.hpp"
@@ -152,8 +153,18 @@ class Ida final : public sundials::SundialsStepper {
       : SundialsStepper(kIdaApi), n_(problem.size()) {
     data_.problem = &problem;
     data_.report = &report_;
-    data_.jac = problem.jacobian_pattern();
-    data_.jac.makeCompressed();
+    // The problem's own Newton solve (condensed, no Jacobian formed) when it has one and KLU is
+    // asked for; else IDA factors the Jacobian jacobian() fills, KLU or dense. The condensed
+    // matrix is refactored whenever cj changes (cj changes only with the step size or order):
+    // with IDA's way, a stale matrix and scaled solves, index1's λ (out of the error and
+    // convergence tests) drifted away on the chapter truss (1e19 at t = 10).
+    if (options.condensed_newton && !options.dense_linear_solver) {
+      newton_ = problem.newton_system();
+    }
+    if (!newton_) {
+      data_.jac = problem.jacobian_pattern();
+      data_.jac.makeCompressed();
+    }
     SUNContext raw_ctx = nullptr;
     check_raw(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");
     ctx_.reset(raw_ctx);
@@ -163,7 +174,14 @@ class Ida final : public sundials::SundialsStepper {
     work_.reset(N_VNew_Serial(n_, ctx_.get()));
     if (!y_ || !yp_ || !id_ || !work_)
       throw IntegrationError("N_VNew_Serial failed (out of memory?)");
-    if (options.dense_linear_solver) {
+    mem_.reset(IDACreate(ctx_.get()));
+    if (!mem_) throw IntegrationError("IDACreate failed");
+    if (newton_) {
+      void* mem = mem_.get();
+      solver_.reset(sundials::make_newton_solver(
+          *newton_, [mem](double& cj) { return IDAGetCurrentCj(mem, &cj) == IDA_SUCCESS; }, 0.0,
+          ctx_.get()));
+    } else if (options.dense_linear_solver) {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
     } else {
@@ -171,9 +189,9 @@ class Ida final : public sundials::SundialsStepper {
                                     CSC_MAT, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_KLU(y_.get(), matrix_.get(), ctx_.get()));
     }
-    if (!matrix_ || !solver_) throw IntegrationError("could not create the linear solver");
-    mem_.reset(IDACreate(ctx_.get()));
-    if (!mem_) throw IntegrationError("IDACreate failed");
+    if ((!newton_ && !matrix_) || !solver_) {
+      throw IntegrationError("could not create the linear solver");
+    }
     attach(mem_.get(), work_.get());
     check(IDASetErrHandlerFn(mem_.get(), sundials::record_message, &report_), "IDASetErrHandlerFn");
   }
@@ -216,7 +234,13 @@ class Ida final : public sundials::SundialsStepper {
       }
     }
     check(IDASetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "IDASetLinearSolver");
-    check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
+    if (!newton_) check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
+  }
+
+  /// Entries of the matrix the Newton iterations factor: the condensed one, else the Jacobian.
+  [[nodiscard]] long jacobian_nonzeros() const {
+    return newton_ ? newton_->nonzeros()
+                   : static_cast<long>(data_.problem->jacobian_pattern().nonZeros());
   }
 
   void reinit(double t0, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0) {
@@ -254,7 +278,11 @@ class Ida final : public sundials::SundialsStepper {
     sundials::Counters c;
     check(IDAGetNumSteps(mem_.get(), &c.steps), "IDAGetNumSteps");
     check(IDAGetNumResEvals(mem_.get(), &c.evaluations), "IDAGetNumResEvals");
-    check(IDAGetNumJacEvals(mem_.get(), &c.jacobians), "IDAGetNumJacEvals");
+    if (newton_) {
+      c.jacobians = sundials::newton_solver_setups(solver_.get());  // one matrix per setup
+    } else {
+      check(IDAGetNumJacEvals(mem_.get(), &c.jacobians), "IDAGetNumJacEvals");
+    }
     check(IDAGetNumNonlinSolvIters(mem_.get(), &c.newton), "IDAGetNumNonlinSolvIters");
     check(IDAGetNumNonlinSolvConvFails(mem_.get(), &c.newton_failures),
           "IDAGetNumNonlinSolvConvFails");
@@ -271,9 +299,10 @@ class Ida final : public sundials::SundialsStepper {
   // Declared in creation order: destroyed in reverse (IDA memory first, context last).
   ContextPtr ctx_;
   VectorPtr y_, yp_, id_, work_;
+  std::unique_ptr<NewtonSystem> newton_;  ///< outlives solver_, which points to it
   MatrixPtr matrix_;
   SolverPtr solver_;
-  IdaPtr mem_;
+  IdaPtr mem_;  ///< destroyed first
 };
 
 }  // namespace
@@ -291,7 +320,7 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
   ida.init(t0, y_init, yp0, options);
   RawTrajectory out = drive(ida, y_init, yp0, options, summary);
   summary.unknowns = problem.size();
-  summary.jacobian_nonzeros = static_cast<long>(problem.jacobian_pattern().nonZeros());
+  summary.jacobian_nonzeros = ida.jacobian_nonzeros();
   summary.termination = "reached t = " + std::to_string(options.output_times.back());
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

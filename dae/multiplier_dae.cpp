@@ -1,5 +1,7 @@
 #include "dae/multiplier_dae.hpp"
 
+#include "dae/condensed_newton.hpp"
+
 #include "dae/kkt.hpp"
 
 #include <algorithm>
@@ -10,11 +12,12 @@
 namespace condyn {
 
 MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, double alpha,
-                             double beta)
+                             double beta, bool linear)
     : system_(system.clone()),
       scheme_(scheme),
       alpha_(alpha),
       beta_(beta),
+      condensed_(linear && (scheme == Scheme::index1 || scheme == Scheme::ggl)),
       n_(system.dofs()),
       m_(system.constraints()),
       p_(0) {
@@ -259,6 +262,24 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
   yp.segment(n_, n_) = sol.head(n_);
   y.segment(lambda_at(), m_) = sol.tail(m_);
   y.segment(mu_at(), p_).setZero();
+}
+
+}  // namespace condyn
+
+namespace condyn {
+
+std::unique_ptr<NewtonSystem> MultiplierDae::newton_system() const {
+  if (!condensed_) return nullptr;
+  // Constant for a linear system: evaluated anywhere (t = 0, u = v = 0).
+  const auto s = system_->clone();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
+  Eigen::SparseMatrix<double> M = s->mass(0.0, zero);
+  Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, zero, zero);
+  Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, zero, zero);
+  Eigen::SparseMatrix<double> A =
+      m_ > 0 ? s->constraint_jacobian(0.0, zero) : Eigen::SparseMatrix<double>(0, n_);
+  return std::make_unique<CondensedNewton>(scheme_, std::move(M), std::move(C), std::move(K),
+                                           std::move(A), select_p_);
 }
 
 }  // namespace condyn

@@ -31,9 +31,11 @@ namespace condyn {
 class MultiplierDae final : public DaeProblem {
  public:
   /// Evaluates its own clone of `system`. `scheme` is index1, baumgarte, ggl, index2 or index3
-  /// (else std::invalid_argument); alpha and beta are used by Baumgarte only.
+  /// (else std::invalid_argument); alpha and beta are used by Baumgarte only. `linear`: the
+  /// system has constant M, C, K, A, so index1's and GGL's Newton systems can be solved
+  /// condensed (newton_system()).
   MultiplierDae(const MechanicalSystem& system, Scheme scheme, double alpha = 0.0,
-                double beta = 0.0);
+                double beta = 0.0, bool linear = false);
 
   [[nodiscard]] int size() const override { return mu_at() + p_; }
   void begin_segment(double t0) override { system_->begin_segment(t0); }
@@ -48,6 +50,8 @@ class MultiplierDae final : public DaeProblem {
     return condyn::unknown_kinds(n_, m_, p_);
   }
   [[nodiscard]] Eigen::VectorXd variable_index() const override;
+  /// index1 and GGL of a linear model: dae/condensed_newton.hpp; else nothing.
+  [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;
   /// Baumgarte: λ carries the stabilization terms 2αψ + β²φ, which amplify the local errors of
   /// u and v by up to β²; in the error test it would force u's local error below tol/β²
   /// (observed on the pendulum with α = β = 628: a million steps, each with an error-test
@@ -85,6 +89,7 @@ class MultiplierDae final : public DaeProblem {
   std::unique_ptr<MechanicalSystem> system_;  ///< this run's evaluator
   Scheme scheme_;
   double alpha_, beta_;
+  bool condensed_;
   int n_, m_, p_;
   std::vector<int> position_row_;              ///< μ index k -> constraint row
   Eigen::SparseMatrix<double> select_p_;       ///< p x m: picks the position rows (GGL's μ)

@@ -5,22 +5,10 @@
 #include <memory>
 #include <vector>
 
+#include "dae/newton_system.hpp"
 #include "dae/unknown_kind.hpp"
 
 namespace condyn {
-
-/// The Newton systems (I − γ ∂F/∂y) x = b of CVODE's BDF iteration, solved by the problem
-/// itself (sparse, without forming ∂F/∂y).
-class NewtonSystem {
- public:
-  virtual ~NewtonSystem() = default;
-  /// Prepares solves with this γ (a factorization); false when the matrix is singular.
-  virtual bool setup(double gamma) = 0;
-  /// b ← (I − γ ∂F/∂y)⁻¹ b for the γ of the last setup.
-  virtual void solve(Eigen::Ref<Eigen::VectorXd> b) = 0;
-  /// Nonzeros of the matrix factored (for the summary's Jacobian size).
-  [[nodiscard]] virtual long nonzeros() const = 0;
-};
 
 class OdeProblem {
  public:

@@ -1,5 +1,7 @@
 #include "dae/reduced_ode.hpp"
 
+#include "dae/condensed_newton.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -65,6 +67,12 @@ Eigen::VectorXd ReducedOde::acceleration(double t, const Eigen::VectorXd& x,
   Eigen::VectorXd rhs = reduced_.forces(model_, t, t) - reduced_.K * x;
   if (model_.has_damping()) rhs -= reduced_.C * w;
   return mass_.solve(rhs);
+}
+
+std::unique_ptr<NewtonSystem> ReducedOde::newton_system() const {
+  return std::make_unique<CondensedNewton>(Scheme::index1, reduced_.M, reduced_.C, reduced_.K,
+                                           Eigen::SparseMatrix<double>(0, nm_),
+                                           Eigen::SparseMatrix<double>(0, 0));
 }
 
 }  // namespace condyn

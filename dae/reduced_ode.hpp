@@ -37,6 +37,9 @@ class ReducedOde final : public DaeProblem {
     return Eigen::VectorXd::Ones(size());
   }
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
+  /// IDA's Newton systems condensed to û: (K̂ + cj Ĉ + cj² M̂) dû = r2 + (Ĉ + cj M̂) r1,
+  /// dw = cj dû − r1 (dae/condensed_newton.hpp without constraints).
+  [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;
 
   /// û'' = M̂⁻¹ (f̂(t) − Ĉ w − K̂ û), steps on at t (right limit).
   [[nodiscard]] Eigen::VectorXd acceleration(double t, const Eigen::VectorXd& x,

@@ -94,6 +94,7 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
   o.time_scale = atol.time_scale;
   o.first_step = atol.first_step;
   o.dense_linear_solver = settings.dense_linear_solver;
+  o.condensed_newton = settings.condensed_newton;
   o.output_times = settings.output_times();
   o.breakpoints = model.breakpoints(settings.t_end);
   o.max_steps = settings.max_steps;
@@ -121,7 +122,7 @@ void solve_multipliers(const Model& model, Scheme scheme, const SolveSpec& setti
     gains = baumgarte_gains(model, settings);
     summary.notes = gains.rule;
   }
-  MultiplierDae dae(*model.system, scheme, gains.alpha, gains.beta);
+  MultiplierDae dae(*model.system, scheme, gains.alpha, gains.beta, !model.nonlinear);
   summary.scheme = to_string(scheme);
   double max_mu = 0.0;
   Observation observe;
@@ -179,9 +180,12 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
   Scheme scheme = settings.scheme;
   if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
   refuse_inapplicable(model, scheme);
+  // The matrix IDA's Newton iterations factor: the condensed one when asked for.
+  const bool condensed = settings.condensed_newton && !settings.dense_linear_solver;
   if (scheme == Scheme::elimination) {
     const ReducedSystem reduced = reduce(model, settings.slaves);
     const ReducedOde ode(model, reduced);
+    if (condensed) return {ode.size(), ode.newton_system()->nonzeros()};
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
   if (scheme == Scheme::penalty) {
@@ -199,7 +203,10 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
   }
   const BaumgarteGains gains =
       scheme == Scheme::baumgarte ? baumgarte_gains(model, settings) : BaumgarteGains{};
-  const MultiplierDae dae(system, scheme, gains.alpha, gains.beta);
+  const MultiplierDae dae(system, scheme, gains.alpha, gains.beta, !model.nonlinear);
+  if (condensed) {
+    if (const auto newton = dae.newton_system()) return {dae.size(), newton->nonzeros()};
+  }
   return {dae.size(), dae.jacobian_pattern().nonZeros()};
 }
 

@@ -33,7 +33,10 @@ struct IntegratorOptions {
   /// First step of the higher-index schemes (GGL, index2, index3), at most half the first output
   /// interval; unset: 1e-8 of that interval.
   std::optional<double> first_step;
-  bool dense_linear_solver = false;    ///< SUNDIALS dense LU instead of KLU (tiny systems only)
+  bool dense_linear_solver = false;  ///< SUNDIALS dense LU instead of KLU (tiny systems only)
+  /// The problem's own condensed Newton solve (DaeProblem::newton_system), when it has one and
+  /// KLU is used ([solve] newton = "condensed").
+  bool condensed_newton = false;
   std::vector<double> output_times;    ///< ascending, first one is the initial time
   std::vector<double> breakpoints;     ///< load steps inside (t0, t_end): stop and restart there
   long max_steps_per_output = 100000;  ///< between two output times; more is a failure

@@ -11,7 +11,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   solve.where = at(node, path);
   check_keys(t, path,
              {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
-              "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "redundant",
+              "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "newton", "redundant",
               "max_steps", "max_wall_time"});
   solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
   solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
@@ -74,6 +74,13 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
     const std::string s = string(*n, "solve.linear_solver");
     if (s != "klu" && s != "dense") fail(*n, "solve.linear_solver", "expected 'klu' or 'dense'");
     solve.dense_linear_solver = s == "dense";
+  }
+  if (const auto* n = t.get("newton")) {
+    const std::string s = string(*n, "solve.newton");
+    if (s != "condensed" && s != "full") {
+      fail(*n, "solve.newton", "expected 'full' or 'condensed'");
+    }
+    solve.condensed_newton = s == "condensed";
   }
   if (const auto* n = t.get("redundant")) {
     const std::string s = string(*n, "solve.redundant");

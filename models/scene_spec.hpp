@@ -126,6 +126,11 @@ struct SolveSpec {
   std::vector<std::string> slaves;
   /// Dense linear solver instead of KLU (only sensible for tiny systems).
   bool dense_linear_solver = false;
+  /// [solve] newton = "full" (default) or "condensed": for linear models under index1, GGL and
+  /// elimination, IDA's Newton systems condensed to [u; λ (; μ)] (dae/condensed_newton.hpp)
+  /// instead of the full Jacobian factored by KLU. Faster, but not the default: it loses the
+  /// extreme stiffness and near-redundancy cases of the stress suite (README, Benchmark).
+  bool condensed_newton = false;
   /// [solve] redundant = "drop": remove constraints that are linear combinations of others with
   /// compatible right-hand sides (reported), instead of refusing the scene. Linear models only.
   bool drop_redundant = false;

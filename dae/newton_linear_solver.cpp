@@ -1,23 +1,22 @@
-// CVODE's Newton systems solved by the problem (dae/cvode_newton_solver.hpp).
+// Newton systems solved by the problem (dae/newton_linear_solver.hpp).
 
-#include "dae/cvode_newton_solver.hpp"
+#include "dae/newton_linear_solver.hpp"
 
-#include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 
 #include <cmath>
 #include <exception>
 #include <new>
+#include <utility>
 
 namespace condyn::sundials {
 
 namespace {
 
-constexpr double kMaxGammaRatioChange = 0.3;
-
 struct Content {
   NewtonSystem* system = nullptr;
-  void* cvode_mem = nullptr;
+  std::function<bool(double&)> current;
+  double max_change = 0.0;  ///< relative change of the scalar that triggers a new factorization
   double gamma_setup = 0.0;
   long setups = 0;
   int last_flag = 0;
@@ -47,18 +46,17 @@ int factor_at(Content& c, double gamma) {
 int setup(SUNLinearSolver s, SUNMatrix /*a*/) {
   Content& c = content(s);
   double gamma = 0.0;
-  if (CVodeGetCurrentGamma(c.cvode_mem, &gamma) != CV_SUCCESS) return c.last_flag = SUNLS_MEM_NULL;
+  if (!c.current(gamma)) return c.last_flag = SUNLS_MEM_NULL;
   return factor_at(c, gamma);
 }
 
 int solve(SUNLinearSolver s, SUNMatrix /*a*/, N_Vector x, N_Vector b, double /*tol*/) {
   Content& c = content(s);
-  // CVODE 6.4 never calls the setup of a solver without a matrix or a preconditioner (its
-  // cvLsInitialize sets lsetup to NULL): factor here when nothing is factored yet or γ has moved
-  // by more than CVODE's own threshold for a new matrix (dgmax_lsetup, 0.3).
+  // SUNDIALS 6.4 never calls the setup of a solver without a matrix or a preconditioner: factor
+  // here when nothing is factored yet or the scalar has moved by more than max_change.
   double gamma = 0.0;
-  if (CVodeGetCurrentGamma(c.cvode_mem, &gamma) != CV_SUCCESS) return c.last_flag = SUNLS_MEM_NULL;
-  if (c.gamma_setup == 0.0 || std::abs(gamma / c.gamma_setup - 1.0) > kMaxGammaRatioChange) {
+  if (!c.current(gamma)) return c.last_flag = SUNLS_MEM_NULL;
+  if (c.gamma_setup == 0.0 || std::abs(gamma / c.gamma_setup - 1.0) > c.max_change) {
     if (const int flag = factor_at(c, gamma); flag != SUNLS_SUCCESS) return flag;
   }
   N_VScale(1.0, b, x);
@@ -85,10 +83,11 @@ int free_solver(SUNLinearSolver s) {
 
 }  // namespace
 
-SUNLinearSolver make_newton_solver(NewtonSystem& system, void* cvode_mem, SUNContext ctx) {
+SUNLinearSolver make_newton_solver(NewtonSystem& system, std::function<bool(double&)> current,
+                                   double max_change, SUNContext ctx) {
   SUNLinearSolver s = SUNLinSolNewEmpty(ctx);
   if (s == nullptr) return nullptr;
-  s->content = new (std::nothrow) Content{&system, cvode_mem};
+  s->content = new (std::nothrow) Content{&system, std::move(current), max_change};
   if (s->content == nullptr) {
     SUNLinSolFreeEmpty(s);
     return nullptr;

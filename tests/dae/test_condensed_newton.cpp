@@ -1,0 +1,88 @@
+// IDA's index1 and GGL Newton systems of a linear model solved condensed to [u; λ (; μ)]
+// (dae/condensed_newton.hpp) against a sparse LU of the full Jacobian J = ∂F/∂y + cj ∂F/∂y'.
+
+#include <doctest/doctest.h>
+
+#include <Eigen/SparseLU>
+#include <cmath>
+#include <string>
+
+#include "dae/multiplier_dae.hpp"
+#include "models/scene_parser.hpp"
+#include "tests/lattice_scene.hpp"
+#include "tests/solve_helpers.hpp"
+
+using namespace condyn;
+
+TEST_CASE("the condensed Newton solve equals the full Jacobian's, index1 and GGL") {
+  for (const char* scene : {"chapter_5_5_1", "chapter_5_5_3", "chapter_5_6_1", "chapter_5_6_2"}) {
+    const auto built = test::built(
+        parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/validation/scenes/" + scene + ".toml"));
+    for (const Scheme scheme : {Scheme::index1, Scheme::ggl}) {
+      CAPTURE(scene);
+      CAPTURE(to_string(scheme));
+      const MultiplierDae dae(*built.model.system, scheme, 0.0, 0.0, true);
+      const auto newton = dae.newton_system();
+      REQUIRE(newton != nullptr);
+      const int N = dae.size();
+      Eigen::VectorXd y(N), yp(N), b(N);
+      for (int i = 0; i < N; ++i) {
+        y[i] = 0.1 * std::sin(1.3 * i + 0.4);
+        yp[i] = 0.2 * std::cos(0.9 * i);
+        b[i] = std::cos(0.7 * i) - 0.3;
+      }
+      for (const double cj : {1e2, 1e5}) {
+        CAPTURE(cj);
+        Eigen::SparseMatrix<double> J = dae.jacobian_pattern();
+        dae.jacobian(0.5, y, yp, cj, J);
+        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(J);
+        REQUIRE(lu.info() == Eigen::Success);
+        const Eigen::VectorXd expected = lu.solve(b);
+        REQUIRE(newton->setup(cj));
+        Eigen::VectorXd x = b;
+        newton->solve(x);
+        const Eigen::VectorXd residual = J * x - b;
+        // Both are backward stable solves of J x = b: the residual is roundoff of |J| |x|.
+        CHECK(residual.norm() <= 1e-10 * (1.0 + J.norm() * x.norm()));
+        CHECK((x - expected).norm() <= 1e-6 * (1.0 + expected.norm()));
+      }
+    }
+  }
+}
+
+TEST_CASE("[solve] newton = \"condensed\" runs agree with the full Jacobian's, damping included") {
+  // A 20 x 20 tied lattice with Rayleigh damping: index1, GGL and elimination, each solved with
+  // the full Jacobian (default) and condensed; the same solution to the tolerance's size.
+  std::string ties;
+  for (int i = 5; i < 20; i += 5) {
+    ties += "[[constraint]]\nname = \"tie" + std::to_string(i) + "\"\nterms = { uy" +
+            std::to_string(19 * 20 + i + 1) + " = 1.0, uy" + std::to_string(i + 1) + " = -1.0 }\n";
+  }
+  ties += "[[load]]\ndof = \"uy400\"\nvalue = { type = \"step\", amplitude = -1.0 }\n";
+  std::string text = test::lattice(20, 20, ties, "rtol = 1e-8\natol = 1e-10\n");
+  text.replace(text.find("supports = "), 0, "damping = { rayleigh = [0.1, 0.01] }\n");
+  const auto full = test::built(parse_scene_text(text, "lattice.toml"));
+  SolveSpec condensed_settings = full.spec.solve;
+  condensed_settings.condensed_newton = true;
+  for (const Scheme scheme : {Scheme::index1, Scheme::ggl, Scheme::elimination}) {
+    CAPTURE(to_string(scheme));
+    const SolveResult a = test::solved(full.model, test::under(full.spec.solve, scheme));
+    const SolveResult b = test::solved(full.model, test::under(condensed_settings, scheme));
+    const double scale = a.trajectory.u.cwiseAbs().maxCoeff();
+    REQUIRE(scale > 0.0);
+    // Two runs at rtol 1e-8 of the same equations: 100 rtol of the largest displacement.
+    CHECK((a.trajectory.u - b.trajectory.u).cwiseAbs().maxCoeff() <= 100 * 1e-8 * scale);
+    CHECK(b.summary.jacobian_nonzeros < a.summary.jacobian_nonzeros);  // the smaller matrix
+  }
+}
+
+TEST_CASE("[solve] newton accepts full or condensed only") {
+  const std::string scene =
+      "[model]\ntype = \"matrix\"\ndofs = [\"x\"]\nmass = [[1.0]]\n"
+      "stiffness = [[1.0]]\n[solve]\nt_end = 1.0\noutput_step = 0.5\n";
+  CHECK_FALSE(parse_scene_text(scene, "s.toml").solve.condensed_newton);  // default full
+  CHECK(parse_scene_text(scene + "newton = \"condensed\"\n", "s.toml").solve.condensed_newton);
+  CHECK_THROWS_WITH_AS((void)parse_scene_text(scene + "newton = \"sparse\"\n", "s.toml"),
+                       doctest::Contains("solve.newton: expected 'full' or 'condensed'"),
+                       SceneError);
+}
