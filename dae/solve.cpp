@@ -201,9 +201,10 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
     }
     return {ode.size(), static_cast<long>(ode.size()) * ode.size()};
   }
-  const BaumgarteGains gains =
-      scheme == Scheme::baumgarte ? baumgarte_gains(model, settings) : BaumgarteGains{};
-  const MultiplierDae dae(system, scheme, gains.alpha, gains.beta, !model.nonlinear);
+  // The Jacobian's pattern does not depend on the values of Baumgarte's gains, only on their
+  // being nonzero: unit gains size it without the model's frequencies (a Lanczos run at scale).
+  const double gain = scheme == Scheme::baumgarte ? 1.0 : 0.0;
+  const MultiplierDae dae(system, scheme, gain, gain, !model.nonlinear);
   if (condensed) {
     if (const auto newton = dae.newton_system()) return {dae.size(), newton->nonzeros()};
   }
