@@ -14,15 +14,16 @@ struct CondensedNewton::Factor {
 
 CondensedNewton::~CondensedNewton() = default;
 
-CondensedNewton::CondensedNewton(Scheme scheme, Eigen::SparseMatrix<double> M,
-                                 Eigen::SparseMatrix<double> C, Eigen::SparseMatrix<double> K,
-                                 Eigen::SparseMatrix<double> A,
+CondensedNewton::CondensedNewton(Scheme scheme, const Eigen::SparseMatrix<double>& M,
+                                 const Eigen::SparseMatrix<double>& C,
+                                 const Eigen::SparseMatrix<double>& K,
+                                 const Eigen::SparseMatrix<double>& A,
                                  const Eigen::SparseMatrix<double>& select_p)
     : scheme_(scheme),
-      M_(std::move(M)),
-      C_(std::move(C)),
-      K_(std::move(K)),
-      A_(std::move(A)),
+      M_(M),
+      C_(C),
+      K_(K),
+      A_(A),
       n_(static_cast<int>(M_.rows())),
       m_(static_cast<int>(A_.rows())),
       p_(scheme == Scheme::ggl ? static_cast<int>(select_p.rows()) : 0),
@@ -93,7 +94,8 @@ bool CondensedNewton::setup(double cj) {
 
 void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   const double cj = cj_;
-  const Eigen::VectorXd r1 = b.segment(0, n_);
+  const Eigen::Index n = n_, m = m_, p = p_;
+  const Eigen::VectorXd r1 = b.segment(0, n);
   Eigen::VectorXd rhs(n_ + m_ + p_);
   Eigen::VectorXd damped = M_ * r1;
   damped *= cj;
@@ -102,20 +104,20 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   if (m_ > 0) {
     const Eigen::VectorXd ar1 = A_ * r1;
     if (scheme_ == Scheme::index1) {
-      rhs.segment(n_, m_) = (b.segment(2 * n_, m_) + cj * ar1) / (cj * cj);
+      rhs.segment(n_, m_) = (b.segment(2 * n, m) + cj * ar1) / (cj * cj);
     } else {
-      rhs.segment(n_, m_) = b.segment(2 * n_, m_) + ar1;
+      rhs.segment(n_, m_) = b.segment(2 * n, m) + ar1;
     }
   }
-  if (p_ > 0) rhs.tail(p_) = b.segment(2 * n_ + m_, p_);
+  if (p_ > 0) rhs.tail(p_) = b.segment(2 * n + m, p);
   const Eigen::VectorXd x = factor_->klu.solve(rhs);
   const auto du = x.head(n_);
   Eigen::VectorXd dv = cj * du - r1;
   if (p_ > 0) dv += ApT_ * x.tail(p_);
   b.segment(0, n_) = du;
   b.segment(n_, n_) = dv;
-  if (m_ > 0) b.segment(2 * n_, m_) = x.segment(n_, m_);
-  if (p_ > 0) b.segment(2 * n_ + m_, p_) = x.tail(p_);
+  if (m_ > 0) b.segment(2 * n, m) = x.segment(n_, m_);
+  if (p_ > 0) b.segment(2 * n + m, p) = x.tail(p_);
 }
 
 }  // namespace condyn

@@ -27,8 +27,9 @@ class CondensedNewton final : public NewtonSystem {
  public:
   /// scheme index1 or ggl (else std::invalid_argument); select_p (p x m) picks GGL's position
   /// rows. C may be empty (no damping).
-  CondensedNewton(Scheme scheme, Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> C,
-                  Eigen::SparseMatrix<double> K, Eigen::SparseMatrix<double> A,
+  CondensedNewton(Scheme scheme, const Eigen::SparseMatrix<double>& M,
+                  const Eigen::SparseMatrix<double>& C, const Eigen::SparseMatrix<double>& K,
+                  const Eigen::SparseMatrix<double>& A,
                   const Eigen::SparseMatrix<double>& select_p);
   ~CondensedNewton() override;
   CondensedNewton(const CondensedNewton&) = delete;

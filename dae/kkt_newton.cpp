@@ -17,12 +17,12 @@ struct KktNewton::Factor {
 
 KktNewton::~KktNewton() = default;
 
-KktNewton::KktNewton(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> C,
-                     Eigen::SparseMatrix<double> K, Eigen::SparseMatrix<double> A)
-    : M_(std::move(M)),
-      C_(std::move(C)),
-      K_(std::move(K)),
-      A_(std::move(A)),
+KktNewton::KktNewton(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
+                     const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A)
+    : M_(M),
+      C_(C),
+      K_(K),
+      A_(A),
       n_(static_cast<int>(M_.rows())),
       m_(static_cast<int>(A_.rows())),
       factor_(std::make_unique<Factor>()) {
@@ -31,7 +31,8 @@ KktNewton::KktNewton(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> 
     throw std::invalid_argument("KktNewton: the sizes of M, C, K and A disagree");
   }
   if (C_.size() == 0) C_.resize(n_, n_);
-  nonzeros_ = saddle(1.0).nonZeros();
+  const Eigen::SparseMatrix<double> first = saddle(1.0);
+  nonzeros_ = first.nonZeros();
 }
 
 Eigen::SparseMatrix<double> KktNewton::saddle(double gamma) const {

@@ -23,8 +23,8 @@ class KktNewton final : public NewtonSystem {
  public:
   /// Copies the matrices (M, C, K n x n with C possibly empty; A m x n). Throws
   /// std::invalid_argument when their sizes disagree.
-  KktNewton(Eigen::SparseMatrix<double> M, Eigen::SparseMatrix<double> C,
-            Eigen::SparseMatrix<double> K, Eigen::SparseMatrix<double> A);
+  KktNewton(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
+            const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A);
   ~KktNewton() override;
   KktNewton(const KktNewton&) = delete;
   KktNewton& operator=(const KktNewton&) = delete;

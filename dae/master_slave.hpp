@@ -26,8 +26,8 @@ struct MasterSlave {
 /// A group of coupled constraints too large for the dense per-group factorization.
 class CoupledGroupTooLarge : public std::invalid_argument {
  public:
-  CoupledGroupTooLarge(int first_row, int rows, int dofs, const std::string& what)
-      : std::invalid_argument(what), first_row(first_row), rows(rows), dofs(dofs) {}
+  CoupledGroupTooLarge(int first, int row_count, int dof_count, const std::string& what)
+      : std::invalid_argument(what), first_row(first), rows(row_count), dofs(dof_count) {}
   int first_row, rows, dofs;
 };
 

@@ -273,13 +273,12 @@ std::unique_ptr<NewtonSystem> MultiplierDae::newton_system() const {
   // Constant for a linear system: evaluated anywhere (t = 0, u = v = 0).
   const auto s = system_->clone();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  Eigen::SparseMatrix<double> M = s->mass(0.0, zero);
-  Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, zero, zero);
-  Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, zero, zero);
-  Eigen::SparseMatrix<double> A =
+  const Eigen::SparseMatrix<double> M = s->mass(0.0, zero);
+  const Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, zero, zero);
+  const Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, zero, zero);
+  const Eigen::SparseMatrix<double> A =
       m_ > 0 ? s->constraint_jacobian(0.0, zero) : Eigen::SparseMatrix<double>(0, n_);
-  return std::make_unique<CondensedNewton>(scheme_, std::move(M), std::move(C), std::move(K),
-                                           std::move(A), select_p_);
+  return std::make_unique<CondensedNewton>(scheme_, M, C, K, A, select_p_);
 }
 
 }  // namespace condyn

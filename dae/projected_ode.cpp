@@ -137,12 +137,12 @@ std::unique_ptr<NewtonSystem> ProjectedOde::newton_system() const {
   // M u'' = f(t) − K u − C v: K = −∂f/∂u, C = −∂f/∂v, constant, evaluated anywhere.
   const auto s = system_->clone();
   const Eigen::VectorXd v = Eigen::VectorXd::Zero(n_);
-  Eigen::SparseMatrix<double> M = s->mass(0.0, u0_);
-  Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, u0_, v);
-  Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, u0_, v);
-  Eigen::SparseMatrix<double> A =
+  const Eigen::SparseMatrix<double> M = s->mass(0.0, u0_);
+  const Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, u0_, v);
+  const Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, u0_, v);
+  const Eigen::SparseMatrix<double> A =
       m_ > 0 ? s->constraint_jacobian(0.0, u0_) : Eigen::SparseMatrix<double>(0, n_);
-  return std::make_unique<KktNewton>(std::move(M), std::move(C), std::move(K), std::move(A));
+  return std::make_unique<KktNewton>(M, C, K, A);
 }
 
 }  // namespace condyn

@@ -189,9 +189,10 @@ class Projector {
         rhs[k] = 0.0;
       }
     }
-    const Eigen::VectorXd z = static_cast<double>(nr) * static_cast<double>(nf) <= kMaxDenseStepEntries
-                                  ? dense_min_norm(B, rhs)
-                                  : sparse_min_norm(B, rhs);
+    const Eigen::VectorXd z =
+        static_cast<double>(nr) * static_cast<double>(nf) <= kMaxDenseStepEntries
+            ? dense_min_norm(B, rhs)
+            : sparse_min_norm(B, rhs);
     for (Eigen::Index c = 0; c < nf; ++c) {
       const int d = free[static_cast<std::size_t>(c)];
       dx[d] = w_inv_sqrt_[d] * z[c];

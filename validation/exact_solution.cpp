@@ -10,7 +10,8 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
   const int n = model.dofs(), m = model.constraint_count();
   if (n > kMaxExactDofs) {
     throw ExactSolutionUnavailable(
-        std::to_string(n) + " DOFs: the modal solution is dense (a null-space basis and a "
+        std::to_string(n) +
+        " DOFs: the modal solution is dense (a null-space basis and a "
         "generalized eigenproblem of n x n, O(n^3)); it is computed up to " +
         std::to_string(kMaxExactDofs) + " DOFs");
   }
