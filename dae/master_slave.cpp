@@ -136,7 +136,10 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
     smax = std::max(smax, svd.singularValues()(0));
     smin = std::min(smin, svd.singularValues()(svd.singularValues().size() - 1));
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(a_s);
-    const Eigen::MatrixXd s_r = lu.solve(a_r);  // A_S⁻¹ A_R
+    // A_S⁻¹ A_R; a group without masters (a support, say) has none to solve for: Eigen's solve
+    // with an empty right-hand side binds a reference through a null pointer (UBSan).
+    const Eigen::MatrixXd s_r =
+        masters_in.empty() ? Eigen::MatrixXd(a_s.rows(), 0) : Eigen::MatrixXd(lu.solve(a_r));
     const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd::Identity(a_s.rows(), a_s.cols()));
     for (std::size_t i = 0; i < slaves_in.size(); ++i) {
       const auto ii = static_cast<Eigen::Index>(i);
