@@ -2,17 +2,10 @@
 
 #include "dae/condensed_newton.hpp"
 
-#include <Eigen/KLUSupport>
 #include <stdexcept>
 #include <vector>
 
 namespace condyn {
-
-struct CondensedNewton::Factor {
-  Eigen::KLU<Eigen::SparseMatrix<double>> klu;
-};
-
-CondensedNewton::~CondensedNewton() = default;
 
 CondensedNewton::CondensedNewton(Scheme scheme, const Eigen::SparseMatrix<double>& M,
                                  const Eigen::SparseMatrix<double>& C,
@@ -26,8 +19,7 @@ CondensedNewton::CondensedNewton(Scheme scheme, const Eigen::SparseMatrix<double
       A_(A),
       n_(static_cast<int>(M_.rows())),
       m_(static_cast<int>(A_.rows())),
-      p_(scheme == Scheme::ggl ? static_cast<int>(select_p.rows()) : 0),
-      factor_(std::make_unique<Factor>()) {
+      p_(scheme == Scheme::ggl ? static_cast<int>(select_p.rows()) : 0) {
   if (scheme != Scheme::index1 && scheme != Scheme::ggl) {
     throw std::invalid_argument("CondensedNewton: index1 or ggl only");
   }
@@ -80,16 +72,9 @@ Eigen::SparseMatrix<double> CondensedNewton::matrix(double cj, bool magnitudes) 
 }
 
 bool CondensedNewton::setup(double cj) {
-  // On the fixed pattern (a superset of this cj's entries): KLU's analysis stays valid.
-  const Eigen::SparseMatrix<double> z = pattern_ + matrix(cj, false);
-  if (!analysed_) {
-    factor_->klu.analyzePattern(z);
-    if (factor_->klu.info() != Eigen::Success) return false;
-    analysed_ = true;
-  }
-  factor_->klu.factorize(z);
   cj_ = cj;
-  return factor_->klu.info() == Eigen::Success;
+  // On the fixed pattern (a superset of this cj's entries): KLU's analysis stays valid.
+  return klu_.factor(pattern_ + matrix(cj, false));
 }
 
 void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
@@ -110,7 +95,7 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
     }
   }
   if (p_ > 0) rhs.tail(p_) = b.segment(2 * n + m, p);
-  const Eigen::VectorXd x = factor_->klu.solve(rhs);
+  const Eigen::VectorXd x = klu_.solve(rhs);
   const auto du = x.head(n_);
   Eigen::VectorXd dv = cj * du - r1;
   if (p_ > 0) dv += ApT_ * x.tail(p_);

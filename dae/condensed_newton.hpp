@@ -16,8 +16,8 @@
 /// pattern is the union of the blocks' patterns, fixed, analysed once.
 
 #include <Eigen/Sparse>
-#include <memory>
 
+#include "dae/fixed_pattern_klu.hpp"
 #include "dae/newton_system.hpp"
 #include "models/scheme.hpp"
 
@@ -31,9 +31,6 @@ class CondensedNewton final : public NewtonSystem {
                   const Eigen::SparseMatrix<double>& C, const Eigen::SparseMatrix<double>& K,
                   const Eigen::SparseMatrix<double>& A,
                   const Eigen::SparseMatrix<double>& select_p);
-  ~CondensedNewton() override;
-  CondensedNewton(const CondensedNewton&) = delete;
-  CondensedNewton& operator=(const CondensedNewton&) = delete;
 
   bool setup(double cj) override;
   void solve(Eigen::Ref<Eigen::VectorXd> b) override;
@@ -48,9 +45,7 @@ class CondensedNewton final : public NewtonSystem {
   int n_, m_, p_;
   double cj_ = 0.0;
   Eigen::SparseMatrix<double> pattern_;
-  bool analysed_ = false;
-  struct Factor;  ///< KLU (Eigen's KLUSupport), kept out of the header
-  std::unique_ptr<Factor> factor_;
+  FixedPatternKlu klu_;
 };
 
 }  // namespace condyn

@@ -1,31 +1,18 @@
-// The projection scheme's Newton systems as one sparse saddle-point solve (dae/kkt_newton.hpp).
-// Eigen's KLUSupport wraps KLU (SuiteSparse, the solver IDA uses here too): its symbolic analysis
-// is kept across factorizations, since the pattern of M + γC + γ²K does not depend on γ.
+// The projection scheme's Newton systems as one sparse saddle-point solve (dae/kkt_newton.hpp),
+// factored by KLU with its analysis kept (dae/fixed_pattern_klu.hpp): the pattern of
+// M + γC + γ²K does not depend on γ.
 
 #include "dae/kkt_newton.hpp"
 
-#include <Eigen/KLUSupport>
 #include <stdexcept>
 
 #include "dae/kkt.hpp"
 
 namespace condyn {
 
-struct KktNewton::Factor {
-  Eigen::KLU<Eigen::SparseMatrix<double>> klu;
-};
-
-KktNewton::~KktNewton() = default;
-
 KktNewton::KktNewton(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
                      const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A)
-    : M_(M),
-      C_(C),
-      K_(K),
-      A_(A),
-      n_(static_cast<int>(M_.rows())),
-      m_(static_cast<int>(A_.rows())),
-      factor_(std::make_unique<Factor>()) {
+    : M_(M), C_(C), K_(K), A_(A), n_(static_cast<int>(M_.rows())), m_(static_cast<int>(A_.rows())) {
   if (M_.cols() != n_ || K_.rows() != n_ || K_.cols() != n_ || (m_ > 0 && A_.cols() != n_) ||
       (C_.size() > 0 && (C_.rows() != n_ || C_.cols() != n_))) {
     throw std::invalid_argument("KktNewton: the sizes of M, C, K and A disagree");
@@ -42,15 +29,8 @@ Eigen::SparseMatrix<double> KktNewton::saddle(double gamma) const {
 }
 
 bool KktNewton::setup(double gamma) {
-  const Eigen::SparseMatrix<double> matrix = saddle(gamma);
-  if (!analysed_) {
-    factor_->klu.analyzePattern(matrix);
-    if (factor_->klu.info() != Eigen::Success) return false;
-    analysed_ = true;
-  }
-  factor_->klu.factorize(matrix);
   gamma_ = gamma;
-  return factor_->klu.info() == Eigen::Success;
+  return klu_.factor(saddle(gamma));
 }
 
 void KktNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
@@ -59,7 +39,7 @@ void KktNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   Eigen::VectorXd rhs(n_ + m_);
   rhs.head(n_) = M_ * bv - gamma_ * (K_ * bu);
   if (m_ > 0) rhs.tail(m_) = A_ * bv;
-  const Eigen::VectorXd sol = factor_->klu.solve(rhs);
+  const Eigen::VectorXd sol = klu_.solve(rhs);
   const Eigen::VectorXd xv = sol.head(n_);
   b.head(n_) += gamma_ * xv;  // x_u = b_u + γ x_v
   b.segment(n_, n_) = xv;

@@ -13,8 +13,8 @@
 /// nonlinear models.
 
 #include <Eigen/Sparse>
-#include <memory>
 
+#include "dae/fixed_pattern_klu.hpp"
 #include "dae/ode_problem.hpp"
 
 namespace condyn {
@@ -25,9 +25,6 @@ class KktNewton final : public NewtonSystem {
   /// std::invalid_argument when their sizes disagree.
   KktNewton(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
             const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A);
-  ~KktNewton() override;
-  KktNewton(const KktNewton&) = delete;
-  KktNewton& operator=(const KktNewton&) = delete;
 
   /// Factors the saddle-point matrix for γ; false when it is singular.
   bool setup(double gamma) override;
@@ -42,9 +39,7 @@ class KktNewton final : public NewtonSystem {
   int n_, m_;
   double gamma_ = 0.0;
   long nonzeros_ = 0;
-  bool analysed_ = false;
-  struct Factor;  ///< KLU (Eigen's KLUSupport), kept out of the header
-  std::unique_ptr<Factor> factor_;
+  FixedPatternKlu klu_;
 };
 
 }  // namespace condyn

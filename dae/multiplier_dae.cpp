@@ -264,21 +264,10 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
   y.segment(mu_at(), p_).setZero();
 }
 
-}  // namespace condyn
-
-namespace condyn {
-
 std::unique_ptr<NewtonSystem> MultiplierDae::newton_system() const {
   if (!condensed_) return nullptr;
-  // Constant for a linear system: evaluated anywhere (t = 0, u = v = 0).
-  const auto s = system_->clone();
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  const Eigen::SparseMatrix<double> M = s->mass(0.0, zero);
-  const Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, zero, zero);
-  const Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, zero, zero);
-  const Eigen::SparseMatrix<double> A =
-      m_ > 0 ? s->constraint_jacobian(0.0, zero) : Eigen::SparseMatrix<double>(0, n_);
-  return std::make_unique<CondensedNewton>(scheme_, M, C, K, A, select_p_);
+  const LinearMatrices l = linear_matrices(*system_);
+  return std::make_unique<CondensedNewton>(scheme_, l.M, l.C, l.K, l.A, select_p_);
 }
 
 }  // namespace condyn

@@ -50,6 +50,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   // trajectory keeps its times, drifts and energies only.
   const bool streamed = static_cast<bool>(options.on_row);
   std::optional<RowAssembler> rows;
+  RowLog log;
   if (streamed) {
     rows.emplace(model);
     observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
@@ -57,7 +58,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       Eigen::VectorXd lambda = observe.multipliers(t, y, u, v);
       const TrajectoryRow row = (*rows)(t, std::move(u), std::move(v), std::move(lambda));
       options.on_row(row);
-      append_row(result.trajectory, row, true);
+      log.add(row);
     };
   }
   RawTrajectory raw;
@@ -68,6 +69,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     result.summary.max_drift_position = max_dp;
     result.summary.max_drift_velocity = max_dv;
     if (streamed) {
+      result.trajectory = log.trajectory();
       result.trajectory.steps = steps;
       return;
     }
@@ -81,6 +83,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     return;
   }
   if (streamed) {
+    result.trajectory = log.trajectory();
     result.trajectory.steps = steps;
   } else {
     result.trajectory = assemble(raw);

@@ -25,8 +25,7 @@ ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd
       n_(system.dofs()),
       m_(system.constraints()),
       varying_(system.has_curvature()),
-      linear_(linear),
-      u0_(u0) {
+      linear_(linear) {
   for (int i = 0; i < m_; ++i) {
     if (system.position_rows()[static_cast<std::size_t>(i)]) position_rows_.push_back(i);
   }
@@ -128,21 +127,10 @@ void ProjectedOde::project_error(Ref err) const {
   err.tail(n_) += correction(f.kkt, f.A * err.tail(n_));
 }
 
-}  // namespace condyn
-
-namespace condyn {
-
 std::unique_ptr<NewtonSystem> ProjectedOde::newton_system() const {
   if (!linear_) return nullptr;
-  // M u'' = f(t) − K u − C v: K = −∂f/∂u, C = −∂f/∂v, constant, evaluated anywhere.
-  const auto s = system_->clone();
-  const Eigen::VectorXd v = Eigen::VectorXd::Zero(n_);
-  const Eigen::SparseMatrix<double> M = s->mass(0.0, u0_);
-  const Eigen::SparseMatrix<double> K = -s->force_jacobian_u(0.0, u0_, v);
-  const Eigen::SparseMatrix<double> C = -s->force_jacobian_v(0.0, u0_, v);
-  const Eigen::SparseMatrix<double> A =
-      m_ > 0 ? s->constraint_jacobian(0.0, u0_) : Eigen::SparseMatrix<double>(0, n_);
-  return std::make_unique<KktNewton>(M, C, K, A);
+  const LinearMatrices l = linear_matrices(*system_);
+  return std::make_unique<KktNewton>(l.M, l.C, l.K, l.A);
 }
 
 }  // namespace condyn

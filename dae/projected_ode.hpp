@@ -81,7 +81,6 @@ class ProjectedOde final : public OdeProblem {
   int n_, m_;
   bool varying_;
   bool linear_;
-  Eigen::VectorXd u0_;  ///< where a linear model's (constant) matrices are evaluated
   std::vector<int> position_rows_;
   Eigen::SparseMatrix<double> select_p_;
   Factors constant_;

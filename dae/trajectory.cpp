@@ -50,29 +50,39 @@ TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::Vecto
   return row;
 }
 
-void append_row(Trajectory& traj, const TrajectoryRow& row, bool streamed) {
-  const auto k = static_cast<Eigen::Index>(traj.t.size());
-  traj.t.push_back(row.t);
-  const auto grow = [k](Eigen::VectorXd& x, double value) {
-    x.conservativeResize(k + 1);
-    x[k] = value;
-  };
-  grow(traj.drift_position, row.drift_position);
-  grow(traj.drift_velocity, row.drift_velocity);
+void RowLog::add(const TrajectoryRow& row) {
+  t_.push_back(row.t);
+  drift_position_.push_back(row.drift_position);
+  drift_velocity_.push_back(row.drift_velocity);
   if (row.conservative) {
-    grow(traj.energy, row.energy);
-    grow(traj.kinetic, row.kinetic);
+    energy_.push_back(row.energy);
+    kinetic_.push_back(row.kinetic);
   }
-  if (streamed) return;
-  const auto column = [k](Eigen::MatrixXd& m, const Eigen::VectorXd& x) {
-    if (m.cols() == 0) m.resize(x.size(), 0);
-    m.conservativeResize(Eigen::NoChange, k + 1);
-    m.col(k) = x;
+}
+
+Trajectory RowLog::trajectory() const {
+  const auto vector = [](const std::vector<double>& x) {
+    return Eigen::VectorXd(
+        Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())));
   };
-  column(traj.u, row.u);
-  column(traj.v, row.v);
-  column(traj.reaction, row.reaction);
-  column(traj.multiplier, row.multiplier);
+  Trajectory out;
+  out.t = t_;
+  out.drift_position = vector(drift_position_);
+  out.drift_velocity = vector(drift_velocity_);
+  out.energy = vector(energy_);
+  out.kinetic = vector(kinetic_);
+  return out;
+}
+
+Trajectory trajectory_of(const TrajectoryRow& row) {
+  RowLog log;
+  log.add(row);
+  Trajectory out = log.trajectory();
+  out.u = row.u;
+  out.v = row.v;
+  out.reaction = row.reaction;
+  out.multiplier = row.multiplier;
+  return out;
 }
 
 Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
@@ -110,7 +120,7 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
   return out;
 }
 
-double relative_energy_error(const Model& /*model*/, const Trajectory& traj) {
+double relative_energy_error(const Trajectory& traj) {
   if (traj.energy.size() == 0) return -1.0;
   double scale = std::abs(traj.energy[0]);
   if (traj.kinetic.size() > 0) scale = std::max(scale, traj.kinetic.maxCoeff());

@@ -93,11 +93,22 @@ class MultiplierRecovery {
 
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
 /// (T the kinetic energy; the scale is never zero for a moving model). −1 without energies.
-[[nodiscard]] double relative_energy_error(const Model& model, const Trajectory& traj);
+[[nodiscard]] double relative_energy_error(const Trajectory& traj);
 
-/// Appends a row to a trajectory: with its n-sized parts unless `streamed` (then only the time,
-/// drifts and energies).
-void append_row(Trajectory& traj, const TrajectoryRow& row, bool streamed);
+/// What a streamed run keeps of its rows: times, drifts and energies (n-independent), gathered
+/// with amortized growth as the rows come.
+class RowLog {
+ public:
+  void add(const TrajectoryRow& row);
+  /// The rows so far as a trajectory without its n x nt parts.
+  [[nodiscard]] Trajectory trajectory() const;
+
+ private:
+  std::vector<double> t_, drift_position_, drift_velocity_, energy_, kinetic_;
+};
+
+/// A one-row trajectory holding the row whole (the last row of a streamed run, to score it).
+[[nodiscard]] Trajectory trajectory_of(const TrajectoryRow& row);
 
 /// Builds a trajectory from u, u' and λ at the output times: f_con = −A(t, u)ᵀλ, drifts and
 /// energies from the model.

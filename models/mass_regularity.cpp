@@ -87,11 +87,9 @@ void ModelBuilder::check_massless_dofs() {
       return;
     }
   }
-  if (!free.empty()) {
-    // named above
-  } else if (rows.empty()) {
+  if (rows.empty()) {
     for (int d : massless) free.push_back(model_.dof_names[static_cast<std::size_t>(d)]);
-  } else {
+  } else if (free.empty()) {  // within the dense kernel (beyond it, `free` is filled above)
     Eigen::MatrixXd az = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), nz);
     for (std::size_t k = 0; k < rows.size(); ++k) {
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, rows[k]); it; ++it) {

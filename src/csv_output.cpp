@@ -104,6 +104,10 @@ void RunOutputs::write_result(OutputPlan::Id id, const Model& model, const RunAt
 
 void RunOutputs::write(const Model& model, const RunAttributes& run, const Trajectory& traj) {
   write_result(csv_, model, run, traj);
+  commit_result(traj);
+}
+
+void RunOutputs::commit_result(const Trajectory& traj) {
   std::vector<OutputPlan::Id> ids{csv_};
   if (steps_) {
     plan_.write(*steps_, [&](std::ostream& out) { write_steps_csv(out, traj); });
@@ -120,12 +124,7 @@ std::function<void(const TrajectoryRow&)> RunOutputs::stream_rows(const Model& m
 
 void RunOutputs::finish_stream(const RunAttributes& run, const Trajectory& traj) {
   rows_->finish(run);
-  std::vector<OutputPlan::Id> ids{csv_};
-  if (steps_) {
-    plan_.write(*steps_, [&](std::ostream& out) { write_steps_csv(out, traj); });
-    ids.push_back(*steps_);
-  }
-  plan_.commit(ids);
+  commit_result(traj);
 }
 
 std::string RunOutputs::finish_stream_partial(const RunAttributes& run, const Trajectory& partial) {

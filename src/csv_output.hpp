@@ -63,6 +63,8 @@ class RunOutputs {
                                                   const Trajectory& partial);
 
  private:
+  /// Commits the result (written) with the drift log of `traj` when one is asked for.
+  void commit_result(const Trajectory& traj);
   /// The result into output `id`, in the format its name asks for.
   void write_result(OutputPlan::Id id, const Model& model, const RunAttributes& run,
                     const Trajectory& traj);

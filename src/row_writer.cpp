@@ -132,7 +132,7 @@ class Series {
 class Hdf5RowWriter final : public RowWriter {
  public:
   Hdf5RowWriter(const std::string& path, const Model& model, const OutputSpec& output)
-      : output_(output), shown_(selected_dofs(output, model.dof_names)), path_(path) {
+      : shown_(selected_dofs(output, model.dof_names)), path_(path) {
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (file_ < 0) throw std::runtime_error(path + ": HDF5 cannot create the file");
     const auto width = static_cast<hsize_t>(shown_.size());
@@ -216,7 +216,6 @@ class Hdf5RowWriter final : public RowWriter {
     }
   }
 
-  const OutputSpec& output_;
   std::vector<int> shown_;
   std::string path_;
   hid_t file_ = -1;

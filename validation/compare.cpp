@@ -166,7 +166,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
             r.error_v = err.velocity;
             r.error_reaction = err.reaction;
           }
-          if (const double e = relative_energy_error(base, run); e >= 0.0) r.energy_error = e;
+          if (const double e = relative_energy_error(run); e >= 0.0) r.energy_error = e;
           r.max_drift_position = summary.max_drift_position;
           r.max_drift_velocity = summary.max_drift_velocity;
           r.final_drift_position = run.drift_position[run.drift_position.size() - 1];

@@ -94,7 +94,7 @@ StressRecord run_one(const StressCase& c, const SceneSpec& spec, const Reference
       r.max_drift_position = summary.max_drift_position;
       r.max_drift_velocity = summary.max_drift_velocity;
       r.t_reached = run.t.back();
-      if (const double e = relative_energy_error(model, run); e >= 0.0) r.energy_error = e;
+      if (const double e = relative_energy_error(run); e >= 0.0) r.energy_error = e;
       if (ref.trajectory) r.error = relative_error(run, *ref.trajectory).displacement;
       const bool finite = std::isfinite(r.max_drift_position) &&
                           std::isfinite(r.max_drift_velocity) &&

@@ -57,7 +57,7 @@ TEST_CASE("nonlinear scenes under every applicable scheme agree with a tight GGL
       const Trajectory& run = result.trajectory;
       const SolveSummary& summary = result.summary;
       const TrajectoryError err = relative_error(run, ref);
-      const double energy = relative_energy_error(model, run);
+      const double energy = relative_energy_error(run);
       MESSAGE(std::string(to_string(scheme))
               << ": err u " << err.displacement << ", v " << err.velocity << ", energy " << energy
               << ", drift " << summary.max_drift_position << " / " << summary.max_drift_velocity);
