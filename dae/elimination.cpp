@@ -98,8 +98,8 @@ void solve_elimination(const Model& model, const std::vector<std::string>& prefe
   const MultiplierRecovery recover(model);
   Observation observe;
   observe.full_state = full_state;
-  observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& u,
-                            const Eigen::VectorXd& v) {
+  observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
     Eigen::VectorXd a = T * ode.acceleration(t, y.head(nm), y.tail(nm));
     if (reduced.rheonomic) a += G * model.position_rhs(2, t);
     return recover(t, u, v, a);

@@ -38,7 +38,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     std::vector<Eigen::VectorXd> u, v, lambda;
     for (std::size_t k = 0; k < raw.t.size(); ++k) {
       auto [uk, vk] = observe.full_state(raw.t[k], raw.y[k]);
-      lambda.push_back(observe.multipliers(raw.t[k], raw.y[k], uk, vk));
+      lambda.push_back(observe.multipliers(raw.t[k], raw.y[k], raw.yp[k], uk, vk));
       u.push_back(std::move(uk));
       v.push_back(std::move(vk));
     }
@@ -53,9 +53,9 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   RowLog log;
   if (streamed) {
     rows.emplace(model);
-    observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&) {
+    observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
       auto [u, v] = observe.full_state(t, y);
-      Eigen::VectorXd lambda = observe.multipliers(t, y, u, v);
+      Eigen::VectorXd lambda = observe.multipliers(t, y, yp, u, v);
       const TrajectoryRow row = (*rows)(t, std::move(u), std::move(v), std::move(lambda));
       options.on_row(row);
       log.add(row);

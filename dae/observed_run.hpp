@@ -19,9 +19,9 @@ struct Observation {
       double t, const Eigen::VectorXd& y)>;
   /// u and u' in full DOF space at (t, y).
   FullState full_state;
-  /// λ at an output (t, y), whose full-space u and u' are given.
-  std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& u,
-                                const Eigen::VectorXd& v)>
+  /// λ at an output (t, y, y'), whose full-space u and u' are given.
+  std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                const Eigen::VectorXd& u, const Eigen::VectorXd& v)>
       multipliers;
   /// Further per-step observation of y (GGL's μ); optional.
   std::function<void(const Eigen::VectorXd& y)> on_state;

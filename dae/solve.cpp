@@ -8,7 +8,9 @@
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
+#include "dae/constraint_treatment.hpp"
 #include "dae/cvode_integrator.hpp"
+#include "dae/eliminated_system.hpp"
 #include "dae/elimination.hpp"
 #include "dae/failure_advice.hpp"
 #include "dae/ida_integrator.hpp"
@@ -46,18 +48,19 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
   return std::nullopt;
 }
 
-SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings) {
-  if (settings.scheme != Scheme::automatic) return {settings.scheme, "requested"};
-  if (model.is_nonlinear()) {
-    return {Scheme::ggl,
-            "nonlinear model: GGL (stabilized index 2) holds position and velocity constraints "
-            "to the Newton tolerance at every step, and treats nonholonomic rows too"};
-  }
-  if (model.constraint_count() == 0) {
-    return {Scheme::elimination, "no constraints: the model is integrated as it is"};
-  }
-  // Every constraint condyn reads for a linear model is linear with constant coefficients, hence
-  // holonomic or integrable: elimination or GGL, whichever factors the smaller Newton matrix.
+bool uses_mixed_treatment(const Model& model, Scheme resolved, const SolveSpec& settings) {
+  if (resolved == Scheme::automatic || !mixes(resolved) || model.constraint_count() == 0)
+    return false;
+  return settings.treatment == SolveSpec::Treatment::mixed ||
+         (settings.treatment == SolveSpec::Treatment::automatic &&
+          settings.scheme == Scheme::automatic);
+}
+
+namespace {
+
+/// auto on a linear model with every row kept as a multiplier ([solve] constraints =
+/// "multipliers"): elimination or GGL, whichever factors the smaller Newton matrix.
+SchemeChoice cheaper_of_elimination_and_ggl(const Model& model, const SolveSpec& settings) {
   SolveSpec as_ggl = settings, as_elimination = settings;
   as_ggl.scheme = Scheme::ggl;
   as_elimination.scheme = Scheme::elimination;
@@ -81,6 +84,40 @@ SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings) {
   }
   return {Scheme::ggl, "the master-slave transform fills in: GGL solves the smaller system (" +
                            figures.str() + ")"};
+}
+
+}  // namespace
+
+SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings) {
+  if (settings.scheme != Scheme::automatic) return {settings.scheme, "requested"};
+  const bool pure = settings.treatment == SolveSpec::Treatment::multipliers;
+  if (model.is_nonlinear()) {
+    return {Scheme::ggl,
+            std::string("nonlinear model: GGL (stabilized index 2) holds position and velocity "
+                        "constraints to the Newton tolerance at every step, and treats "
+                        "nonholonomic rows too") +
+                (pure ? "" : "; its constant linear rows eliminated where that stays sparse")};
+  }
+  if (model.constraint_count() == 0) {
+    return {Scheme::elimination, "no constraints: the model is integrated as it is"};
+  }
+  if (pure) return cheaper_of_elimination_and_ggl(model, settings);
+  // Every row of a linear model is linear with constant coefficients, hence holonomic or
+  // integrable: each group is eliminated unless its master-slave transform fills in.
+  ConstraintTreatment treatment;
+  try {
+    treatment = treat_constraints(model);
+  } catch (const std::invalid_argument& why) {
+    return {Scheme::ggl, std::string("master-slave elimination cannot treat this model (") +
+                             why.what() + "): GGL with a multiplier for every row"};
+  }
+  if (treatment.kept.empty()) {
+    return {Scheme::elimination,
+            "every constraint is linear and integrable, and its elimination stays sparse"};
+  }
+  return {Scheme::ggl, "GGL with mixed treatment: " + std::to_string(treatment.eliminated.size()) +
+                           " rows eliminated, " + std::to_string(treatment.kept.size()) +
+                           " kept as multipliers (their master-slave transform would fill in)"};
 }
 
 IntegratorOptions integrator_options(const Model& model, const SolveSpec& settings) {
@@ -122,21 +159,48 @@ void solve_multipliers(const Model& model, Scheme scheme, const SolveSpec& setti
     gains = baumgarte_gains(model, settings);
     summary.notes = gains.rule;
   }
-  MultiplierDae dae(*model.system, scheme, gains.alpha, gains.beta, !model.nonlinear);
   summary.scheme = to_string(scheme);
+  std::optional<EliminatedSystem> reduced, observer;
+  if (uses_mixed_treatment(model, scheme, settings)) {
+    const ConstraintTreatment treatment = treat_constraints(model);
+    if (!treatment.eliminated.empty()) {
+      reduced.emplace(model, treatment);
+      observer.emplace(*reduced);  // its own evaluator, for the outputs
+    }
+    const std::string note = "mixed treatment: " + std::to_string(treatment.eliminated.size()) +
+                             " rows eliminated, " + std::to_string(treatment.kept.size()) +
+                             " with multipliers";
+    summary.notes = summary.notes.empty() ? note : summary.notes + "; " + note;
+  }
+  const bool mixed = reduced.has_value();
+  const MechanicalSystem& system =
+      mixed ? static_cast<const MechanicalSystem&>(*reduced) : *model.system;
+  MultiplierDae dae(system, scheme, gains.alpha, gains.beta, !model.nonlinear);
+  const int n = system.dofs();
   double max_mu = 0.0;
   Observation observe;
-  observe.full_state = full_state_prefix(model.dofs());
-  observe.multipliers = [&](double, const Eigen::VectorXd& y, const Eigen::VectorXd&,
-                            const Eigen::VectorXd&) { return Eigen::VectorXd(dae.lambda(y)); };
+  if (mixed) {
+    observe.full_state = [&](double t, const Eigen::VectorXd& y) {
+      return observer->expand(t, y.head(n), y.segment(n, n));
+    };
+    observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                              const Eigen::VectorXd&, const Eigen::VectorXd&) {
+      return observer->multipliers(t, y.head(n), y.segment(n, n), yp.segment(n, n), dae.lambda(y));
+    };
+  } else {
+    observe.full_state = full_state_prefix(n);
+    observe.multipliers = [&](double, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                              const Eigen::VectorXd&,
+                              const Eigen::VectorXd&) { return Eigen::VectorXd(dae.lambda(y)); };
+  }
   observe.on_state = [&](const Eigen::VectorXd& y) {
     if (dae.mu(y).size() > 0) max_mu = std::max(max_mu, dae.mu(y).cwiseAbs().maxCoeff());
   };
+  const Eigen::VectorXd y0 =
+      mixed ? dae.pack(reduced->restrict(model.u0), reduced->restrict(model.v0))
+            : dae.pack(model.u0, model.v0);
   run_observed(
-      model, options,
-      [&](const IntegratorOptions& o) {
-        return integrate(dae, dae.pack(model.u0, model.v0), o, summary);
-      },
+      model, options, [&](const IntegratorOptions& o) { return integrate(dae, y0, o, summary); },
       observe, result);
   if (scheme == Scheme::ggl) summary.max_abs_mu = max_mu;
 }
@@ -151,6 +215,7 @@ void solve_penalty(const Model& model, const SolveSpec& settings, const Integrat
   Observation observe;
   observe.full_state = full_state_prefix(model.dofs());
   observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd&,
                             const Eigen::VectorXd&) { return ode.multipliers(t, y); };
   run_observed(
       model, options,
@@ -165,6 +230,7 @@ void solve_projection(const Model& model, const IntegratorOptions& options, Solv
   Observation observe;
   observe.full_state = full_state_prefix(model.dofs());
   observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd&,
                             const Eigen::VectorXd&) { return ode.multipliers(t, y); };
   run_observed(
       model, options,
@@ -192,7 +258,13 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
     const PenaltyOde ode(*model.system, penalty_weights(model, settings));
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
-  const MechanicalSystem& system = *model.system;
+  std::optional<EliminatedSystem> reduced;
+  if (uses_mixed_treatment(model, scheme, settings)) {
+    const ConstraintTreatment treatment = treat_constraints(model);
+    if (!treatment.eliminated.empty()) reduced.emplace(model, treatment);
+  }
+  const MechanicalSystem& system =
+      reduced ? static_cast<const MechanicalSystem&>(*reduced) : *model.system;
   if (scheme == Scheme::projection) {
     const ProjectedOde ode(system, model.u0, !model.nonlinear);
     // The matrix the Newton iterations factor: the sparse saddle point, else CVODE's dense one.

@@ -27,11 +27,19 @@ class SchemeNotApplicable : public std::invalid_argument {
 /// nothing when it can.
 [[nodiscard]] std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme);
 
-/// Resolves settings.scheme. auto: GGL for a nonlinear model; for a linear one the cheaper by cost
-/// of elimination and GGL, cost being the nonzeros of the Newton matrix each factors at every
-/// Jacobian update (system_size, with settings.slaves): elimination unless its master-slave
-/// transform fills in (or it cannot treat the model, e.g. a massless master DOF).
+/// Resolves settings.scheme. auto: GGL for a nonlinear model (its constant linear rows
+/// eliminated where that stays sparse, unless [solve] constraints = "multipliers"); for a linear
+/// one, elimination when every constraint group's transform stays sparse, else GGL with the
+/// mixed treatment (dae/constraint_treatment.hpp). With constraints = "multipliers", the cheaper
+/// of elimination and GGL by the nonzeros of the Newton matrix each factors at every Jacobian
+/// update (system_size, with settings.slaves).
 [[nodiscard]] SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings);
+
+/// Whether a run under `resolved` (a scheme, not auto) eliminates the constant linear rows whose
+/// transform stays sparse and keeps multipliers for the rest (dae/constraint_treatment.hpp):
+/// [solve] constraints = "mixed", or unset with scheme auto; multiplier schemes only.
+[[nodiscard]] bool uses_mixed_treatment(const Model& model, Scheme resolved,
+                                        const SolveSpec& settings);
 
 /// What a scheme makes the integrator solve for this model.
 struct SystemSize {

@@ -12,7 +12,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   check_keys(t, path,
              {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
               "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "newton", "redundant",
-              "max_steps", "max_wall_time"});
+              "max_steps", "max_wall_time", "constraints"});
   solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
   solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
   if (const auto* n = t.get("max_steps")) {
@@ -81,6 +81,20 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
       fail(*n, "solve.newton", "expected 'full' or 'condensed'");
     }
     solve.condensed_newton = s == "condensed";
+  }
+  if (const auto* n = t.get("constraints")) {
+    const std::string s = string(*n, "solve.constraints");
+    if (s != "mixed" && s != "multipliers") {
+      fail(*n, "solve.constraints", "expected 'mixed' or 'multipliers'");
+    }
+    solve.treatment =
+        s == "mixed" ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
+    if (solve.treatment == SolveSpec::Treatment::mixed && !mixes(solve.scheme)) {
+      fail(*n, "solve.constraints",
+           std::string("'mixed' applies to the multiplier schemes (index1, baumgarte, ggl, "
+                       "index2, index3) and to auto, not to ") +
+               to_string(solve.scheme));
+    }
   }
   if (const auto* n = t.get("redundant")) {
     const std::string s = string(*n, "solve.redundant");

@@ -122,6 +122,12 @@ struct SolveSpec {
   std::optional<double> atol_velocity, atol_multiplier, atol_mu;
   std::optional<double> baumgarte_alpha, baumgarte_beta;
   std::optional<double> penalty_weight;  ///< [solve] penalty = { weight = w }
+  /// [solve] constraints = "mixed" or "multipliers": under a multiplier scheme, eliminate the
+  /// constant linear rows whose transform stays sparse and keep multipliers for the rest
+  /// (dae/constraint_treatment.hpp), or keep a multiplier for every row. Unset: mixed when the
+  /// scheme is auto, multipliers when a scheme is named (the pure formulations, for study).
+  enum class Treatment { automatic, multipliers, mixed };
+  Treatment treatment = Treatment::automatic;
   /// Optional slave DOFs for the master-slave transformation (default: chosen by pivoting).
   std::vector<std::string> slaves;
   /// Dense linear solver instead of KLU (only sensible for tiny systems).

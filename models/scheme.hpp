@@ -28,6 +28,12 @@ inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Sc
                                       Scheme::penalty,     Scheme::projection};
 
 [[nodiscard]] const char* to_string(Scheme s);
+/// The schemes with a multiplier per kept row, which the mixed treatment applies to
+/// ([solve] constraints, dae/constraint_treatment.hpp), and auto.
+[[nodiscard]] constexpr bool mixes(Scheme s) {
+  return s == Scheme::automatic || s == Scheme::index1 || s == Scheme::baumgarte ||
+         s == Scheme::ggl || s == Scheme::index2 || s == Scheme::index3;
+}
 /// The scheme named s ("auto" included), or nothing.
 [[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view s);
 /// "auto, elimination, index1, ..." for messages.

@@ -124,6 +124,13 @@ CLI::Validator whole_check(int lo, int hi) {
           "INTEGER in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]"};
 }
 
+SolveSpec::Treatment parse_treatment_flag(const std::string& s) {
+  if (s == "mixed") return SolveSpec::Treatment::mixed;
+  if (s == "multipliers") return SolveSpec::Treatment::multipliers;
+  throw CLI::ValidationError("--constraints",
+                             "expected 'mixed' or 'multipliers' (got '" + s + "')");
+}
+
 Scheme parse_scheme_flag(const std::string& flag, const std::string& s) {
   if (const auto scheme = scheme_from_string(s)) return *scheme;
   throw CLI::ValidationError(flag, "unknown scheme '" + s + "' (expected " + scheme_names() + ")");

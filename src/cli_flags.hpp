@@ -30,6 +30,8 @@ namespace condyn {
 
 /// A scheme named by `flag`; throws CLI::ValidationError naming the flag and the schemes.
 [[nodiscard]] Scheme parse_scheme_flag(const std::string& flag, const std::string& s);
+/// --constraints: "mixed" or "multipliers"; throws CLI::ValidationError otherwise.
+[[nodiscard]] SolveSpec::Treatment parse_treatment_flag(const std::string& s);
 
 /// Splits "a,b,c" (spaces ignored, empty items dropped).
 [[nodiscard]] std::vector<std::string> split_list(const std::string& s);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "dae/baumgarte_gains.hpp"
+#include "dae/constraint_treatment.hpp"
 #include "dae/elimination.hpp"
 #include "dae/model_scales.hpp"
 #include "dae/solve.hpp"
@@ -162,25 +163,36 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         << wrapped_list("  slaves: ", names_of(model, ms.slaves))
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
+  if (uses_mixed_treatment(model, choice.scheme, settings) && !refusal) {
+    out << "constraint treatment (mixed): " << treatment_report(model, treat_constraints(model));
+  }
   if (choice.scheme == Scheme::baumgarte)
     out << wrapped_text("baumgarte: ", baumgarte_gains(model, settings).rule);
   std::ostringstream rtol;
   rtol << "rtol " << settings.rtol << "; ";
   out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model, settings).rule);
   out << "\nsystem each scheme integrates:\n";
-  out << "  " << std::left << std::setw(13) << "scheme" << std::setw(10) << "unknowns"
+  out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";
+  const bool chose_mixed = uses_mixed_treatment(model, choice.scheme, settings);
+  // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
   for (Scheme s : kSchemes) {
-    out << "  " << std::left << std::setw(13) << to_string(s);
-    try {
-      SolveSpec as_scheme = settings;
-      as_scheme.scheme = s;
-      const SystemSize size = system_size(model, as_scheme);
-      out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
-    } catch (const std::exception& e) {
-      out << "not applicable: " << e.what();
+    for (const bool mixed : {false, true}) {
+      if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
+      out << "  " << std::left << std::setw(17)
+          << (std::string(to_string(s)) + (mixed ? " mixed" : ""));
+      try {
+        SolveSpec as_scheme = settings;
+        as_scheme.scheme = s;
+        as_scheme.treatment =
+            mixed ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
+        const SystemSize size = system_size(model, as_scheme);
+        out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
+      } catch (const std::exception& e) {
+        out << "not applicable: " << e.what();
+      }
+      out << (s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "") << "\n";
     }
-    out << (s == choice.scheme ? "   <- selected" : "") << "\n";
   }
 }
 

@@ -45,7 +45,7 @@ std::string describe_failure(const SolveResult& result, double t_end,
 }
 
 struct RunArgs {
-  std::string scene, scheme, out, steps_out;
+  std::string scene, scheme, constraints, out, steps_out;
   std::optional<double> rtol, atol;
   std::optional<long> max_steps;
   std::optional<double> max_wall_time;
@@ -67,6 +67,7 @@ void print_progress(const Progress& p) {
 int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
   if (!args.scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", args.scheme);
+  if (!args.constraints.empty()) spec.solve.treatment = parse_treatment_flag(args.constraints);
   if (args.rtol) spec.solve.rtol = *args.rtol;
   if (args.rtol && *args.rtol > 1e-2) {
     std::cerr << "warning: --rtol " << *args.rtol << " asks for fewer than 2 correct digits\n";
@@ -220,6 +221,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", run_args.scene, "scene file (TOML)")->required();
   run_cmd->add_option("--scheme", run_args.scheme,
                       "scheme (overrides [solve] scheme): " + scheme_names());
+  run_cmd->add_option("--constraints", run_args.constraints,
+                      "mixed or multipliers (overrides [solve] constraints): eliminate the "
+                      "cheap linear rows under a multiplier scheme, or keep every multiplier");
   run_cmd->add_option("--rtol", run_args.rtol, "relative tolerance (overrides [solve] rtol)")
       ->check(rtol_check());
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
@@ -239,10 +243,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--steps-out", run_args.steps_out,
                       "also write the constraint drift at every internal step to this CSV");
 
-  std::string info_scene, info_scheme;
+  std::string info_scene, info_scheme, info_constraints;
   auto* info_cmd = app.add_subcommand("info", "classify the constraints and size the model");
   info_cmd->add_option("scene", info_scene, "scene file (TOML)")->required();
   info_cmd->add_option("--scheme", info_scheme, "scheme to report on (default: the scene's)");
+  info_cmd->add_option("--constraints", info_constraints,
+                       "mixed or multipliers (default: the scene's [solve] constraints)");
 
   std::string compare_scene, compare_dir, compare_tolerances, compare_schemes;
   bool compare_no_plots = false;
@@ -296,6 +302,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) {
       SceneSpec spec = parse_scene_file(info_scene);
       if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", info_scheme);
+      if (!info_constraints.empty()) spec.solve.treatment = parse_treatment_flag(info_constraints);
       BuildReport report;
       const Model model = build_model(spec, report);
       print_info(std::cout, model, report, spec.solve);

@@ -67,11 +67,18 @@ TEST_CASE("elimination declines a coupled group beyond its dense block, naming t
 
 TEST_CASE("auto picks elimination or GGL by the size of the Newton matrix each factors") {
   // The tied lattice: supports and two-DOF ties leave T as sparse as A; elimination factors the
-  // smaller matrix.
+  // smaller matrix. By default (mixed treatment) each group is found to stay sparse; with every
+  // row kept as a multiplier ([solve] constraints = "multipliers"), auto compares the Newton
+  // matrices of elimination and GGL.
   const auto lattice = test::built(parse_scene_text(test::tied_lattice(""), "lattice.toml"));
   const SchemeChoice tied = choose_scheme(lattice.model, lattice.spec.solve);
   CHECK(tied.scheme == Scheme::elimination);
-  CHECK(tied.reason.find("elimination solves the smaller system") != std::string::npos);
+  CHECK(tied.reason.find("its elimination stays sparse") != std::string::npos);
+  SolveSpec pure = lattice.spec.solve;
+  pure.treatment = SolveSpec::Treatment::multipliers;
+  const SchemeChoice tied_pure = choose_scheme(lattice.model, pure);
+  CHECK(tied_pure.scheme == Scheme::elimination);
+  CHECK(tied_pure.reason.find("elimination solves the smaller system") != std::string::npos);
   // A chain of 100 DOFs whose mean is held: one row over every DOF. Its slave's row of T has 99
   // entries, so T^T K T couples every master with every other (about 99^2 nonzeros) where GGL's
   // matrix keeps the chain's few hundred: GGL.
@@ -101,7 +108,12 @@ TEST_CASE("auto picks elimination or GGL by the size of the Newton matrix each f
       "chain.toml"));
   const SchemeChoice filled = choose_scheme(chain.model, chain.spec.solve);
   CHECK(filled.scheme == Scheme::ggl);
-  CHECK(filled.reason.find("the master-slave transform fills in") != std::string::npos);
+  CHECK(filled.reason.find("0 rows eliminated, 1 kept as multipliers") != std::string::npos);
+  pure = chain.spec.solve;
+  pure.treatment = SolveSpec::Treatment::multipliers;
+  const SchemeChoice filled_pure = choose_scheme(chain.model, pure);
+  CHECK(filled_pure.scheme == Scheme::ggl);
+  CHECK(filled_pure.reason.find("the master-slave transform fills in") != std::string::npos);
   // A request is taken as it is.
   CHECK(choose_scheme(chain.model, test::under(chain.spec.solve, Scheme::elimination)).scheme ==
         Scheme::elimination);
