@@ -50,8 +50,13 @@ EliminatedSystem::EliminatedSystem(const Model& model, const ConstraintTreatment
     d->M = d->Tt * full_->mass(0.0, u_) * d->T;
     d->Fu = d->Tt * full_->force_jacobian_u(0.0, u_, v_) * d->T;
     d->Fv = d->Tt * full_->force_jacobian_v(0.0, u_, v_) * d->T;
-    d->A = rows_times_t(full_->constraint_jacobian(0.0, u_));
+    d->A = d->S * full_->constraint_jacobian(0.0, u_) * d->T;
     d->constant = true;
+  } else {
+    // State-dependent blocks, mapped at every evaluation: product plans made once.
+    mass_ = fu_ = fv_ = mass_jacobian_ = constraint_force_jacobian_ = FixedProduct(d->Tt, d->T);
+    a_ = constraint_product_jacobian_ = velocity_residual_jacobian_ = bias_jacobian_u_ =
+        bias_jacobian_v_ = FixedProduct(d->S, d->T);
   }
 }
 
@@ -62,7 +67,17 @@ EliminatedSystem::EliminatedSystem(const EliminatedSystem& other)
       u_(other.u_),
       v_(other.v_),
       f_(other.f_),
-      rows_(other.rows_) {}
+      rows_(other.rows_),
+      mass_(other.mass_),
+      fu_(other.fu_),
+      fv_(other.fv_),
+      a_(other.a_),
+      mass_jacobian_(other.mass_jacobian_),
+      constraint_force_jacobian_(other.constraint_force_jacobian_),
+      constraint_product_jacobian_(other.constraint_product_jacobian_),
+      velocity_residual_jacobian_(other.velocity_residual_jacobian_),
+      bias_jacobian_u_(other.bias_jacobian_u_),
+      bias_jacobian_v_(other.bias_jacobian_v_) {}
 
 Eigen::VectorXd EliminatedSystem::lifted(int order, double t) const {
   const Data& d = *data_;
@@ -89,10 +104,6 @@ void EliminatedSystem::select(const Eigen::VectorXd& x, Ref out) const {
     out[static_cast<Eigen::Index>(k)] = x[data_->kept[k]];
 }
 
-EliminatedSystem::Sparse EliminatedSystem::rows_times_t(const Sparse& x) const {
-  return data_->S * x * data_->T;
-}
-
 Eigen::VectorXd EliminatedSystem::restrict(const Eigen::VectorXd& x) const {
   Eigen::VectorXd q(static_cast<Eigen::Index>(data_->masters.size()));
   for (std::size_t k = 0; k < data_->masters.size(); ++k)
@@ -113,8 +124,7 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> EliminatedSystem::expand(double t, C
 const EliminatedSystem::Sparse& EliminatedSystem::mass(double t, ConstRef q) {
   if (data_->constant) return data_->M;
   at(t, q);
-  mass_ = data_->Tt * full_->mass(t, u_) * data_->T;
-  return mass_;
+  return mass_(full_->mass(t, u_));
 }
 
 void EliminatedSystem::force(double t, ConstRef q, ConstRef w, Ref f) {
@@ -133,23 +143,20 @@ const EliminatedSystem::Sparse& EliminatedSystem::force_jacobian_u(double t, Con
     const Sparse& mj = full_->mass_jacobian(t, u_, lifted(2, t));
     if (mj.size() > 0) block_ -= mj;
   }
-  fu_ = data_->Tt * block_ * data_->T;
-  return fu_;
+  return fu_(block_);
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::force_jacobian_v(double t, ConstRef q,
                                                                    ConstRef w) {
   if (data_->constant) return data_->Fv;
   at(t, q, w);
-  fv_ = data_->Tt * full_->force_jacobian_v(t, u_, v_) * data_->T;
-  return fv_;
+  return fv_(full_->force_jacobian_v(t, u_, v_));
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::constraint_jacobian(double t, ConstRef q) {
   if (data_->constant) return data_->A;
   at(t, q);
-  a_ = rows_times_t(full_->constraint_jacobian(t, u_));
-  return a_;
+  return a_(full_->constraint_jacobian(t, u_));
 }
 
 void EliminatedSystem::position_residual(double t, ConstRef q, Ref phi) {
@@ -176,8 +183,7 @@ const EliminatedSystem::Sparse& EliminatedSystem::mass_jacobian(double t, ConstR
   const Eigen::VectorXd full_a = data_->T * a;
   const Sparse& mj = full_->mass_jacobian(t, u_, full_a);
   if (mj.size() == 0) return empty();
-  block_ = data_->Tt * mj * data_->T;
-  return block_;
+  return mass_jacobian_(mj);
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::constraint_force_jacobian(double t, ConstRef q,
@@ -186,8 +192,7 @@ const EliminatedSystem::Sparse& EliminatedSystem::constraint_force_jacobian(doub
   const Eigen::VectorXd full_w = data_->S.transpose() * w;
   const Sparse& j = full_->constraint_force_jacobian(t, u_, full_w);
   if (j.size() == 0) return empty();
-  block_ = data_->Tt * j * data_->T;
-  return block_;
+  return constraint_force_jacobian_(j);
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::constraint_product_jacobian(double t, ConstRef q,
@@ -196,8 +201,7 @@ const EliminatedSystem::Sparse& EliminatedSystem::constraint_product_jacobian(do
   const Eigen::VectorXd full_a = data_->T * a;
   const Sparse& j = full_->constraint_product_jacobian(t, u_, full_a);
   if (j.size() == 0) return empty();
-  block_ = rows_times_t(j);
-  return block_;
+  return constraint_product_jacobian_(j);
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::velocity_residual_jacobian(double t, ConstRef q,
@@ -205,8 +209,7 @@ const EliminatedSystem::Sparse& EliminatedSystem::velocity_residual_jacobian(dou
   at(t, q, w);
   const Sparse& j = full_->velocity_residual_jacobian(t, u_, v_);
   if (j.size() == 0) return empty();
-  block_ = rows_times_t(j);
-  return block_;
+  return velocity_residual_jacobian_(j);
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::acceleration_bias_jacobian_u(double t, ConstRef q,
@@ -219,8 +222,7 @@ const EliminatedSystem::Sparse& EliminatedSystem::acceleration_bias_jacobian_u(d
     if (cp.size() > 0) j = j.size() > 0 ? Sparse(j - cp) : Sparse(-cp);
   }
   if (j.size() == 0) return empty();
-  block_ = rows_times_t(j);
-  return block_;
+  return bias_jacobian_u_(j);
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::acceleration_bias_jacobian_v(double t, ConstRef q,
@@ -228,8 +230,7 @@ const EliminatedSystem::Sparse& EliminatedSystem::acceleration_bias_jacobian_v(d
   at(t, q, w);
   const Sparse& j = full_->acceleration_bias_jacobian_v(t, u_, v_);
   if (j.size() == 0) return empty();
-  block_ = rows_times_t(j);
-  return block_;
+  return bias_jacobian_v_(j);
 }
 
 std::optional<double> EliminatedSystem::energy(double t, ConstRef q, ConstRef w) {

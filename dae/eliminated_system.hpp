@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "dae/constraint_treatment.hpp"
+#include "dae/fixed_product.hpp"
 #include "models/mechanical_system.hpp"
 #include "models/model.hpp"
 #include "models/time_function.hpp"
@@ -92,13 +93,14 @@ class EliminatedSystem final : public MechanicalSystem {
   void at(double t, ConstRef q, ConstRef w);
   /// Rows k of `x` (m) for the kept rows.
   void select(const Eigen::VectorXd& x, Ref out) const;
-  /// The kept rows of an m x n matrix, times T: S X T.
-  [[nodiscard]] Sparse rows_times_t(const Sparse& x) const;
 
   std::shared_ptr<const Data> data_;
   std::unique_ptr<MechanicalSystem> full_;
   Eigen::VectorXd u_, v_, f_, rows_;
-  Sparse mass_, fu_, fv_, a_, block_;
+  Sparse block_;
+  /// The state-dependent blocks' maps (nonlinear models only): Tᵀ X T or S X T.
+  FixedProduct mass_, fu_, fv_, a_, mass_jacobian_, constraint_force_jacobian_,
+      constraint_product_jacobian_, velocity_residual_jacobian_, bias_jacobian_u_, bias_jacobian_v_;
 };
 
 }  // namespace condyn
