@@ -87,13 +87,13 @@ Eigen::VectorXd EliminatedSystem::lifted(int order, double t) const {
   return d.G * g;
 }
 
-void EliminatedSystem::at(double t, ConstRef q) {
+void EliminatedSystem::at(double t, const ConstRef& q) {
   full_->begin_segment(steps_at(t));
   u_.noalias() = data_->T * q;
   if (data_->rheonomic) u_ += lifted(0, t);
 }
 
-void EliminatedSystem::at(double t, ConstRef q, ConstRef w) {
+void EliminatedSystem::at(double t, const ConstRef& q, const ConstRef& w) {
   at(t, q);
   v_.noalias() = data_->T * w;
   if (data_->rheonomic) v_ += lifted(1, t);
@@ -111,8 +111,8 @@ Eigen::VectorXd EliminatedSystem::restrict(const Eigen::VectorXd& x) const {
   return q;
 }
 
-std::pair<Eigen::VectorXd, Eigen::VectorXd> EliminatedSystem::expand(double t, ConstRef q,
-                                                                     ConstRef w) const {
+std::pair<Eigen::VectorXd, Eigen::VectorXd> EliminatedSystem::expand(double t, const ConstRef& q,
+                                                                     const ConstRef& w) const {
   Eigen::VectorXd u = data_->T * q, v = data_->T * w;
   if (data_->rheonomic) {
     u += lifted(0, t);
@@ -238,8 +238,8 @@ std::optional<double> EliminatedSystem::energy(double t, ConstRef q, ConstRef w)
   return full_->energy(t, u_, v_);
 }
 
-Eigen::VectorXd EliminatedSystem::multipliers(double t, ConstRef q, ConstRef w, ConstRef qdd,
-                                              ConstRef lambda_kept) {
+Eigen::VectorXd EliminatedSystem::multipliers(double t, const ConstRef& q, const ConstRef& w,
+                                              const ConstRef& qdd, const ConstRef& lambda_kept) {
   const Data& d = *data_;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(d.m);
   for (std::size_t k = 0; k < d.kept.size(); ++k)

@@ -64,12 +64,12 @@ class EliminatedSystem final : public MechanicalSystem {
   /// The masters' values of full-space vectors (the reduced initial state).
   [[nodiscard]] Eigen::VectorXd restrict(const Eigen::VectorXd& x) const;
   /// u and u' in full space at (t, q, q').
-  [[nodiscard]] std::pair<Eigen::VectorXd, Eigen::VectorXd> expand(double t, ConstRef q,
-                                                                   ConstRef w) const;
+  [[nodiscard]] std::pair<Eigen::VectorXd, Eigen::VectorXd> expand(double t, const ConstRef& q,
+                                                                   const ConstRef& w) const;
   /// Every row's multiplier (m, scene order) at an output: the kept rows' λ_k as given, the
   /// eliminated rows' from the full equations with u'' = T q'' + G g_e''.
-  [[nodiscard]] Eigen::VectorXd multipliers(double t, ConstRef q, ConstRef w, ConstRef qdd,
-                                            ConstRef lambda_kept);
+  [[nodiscard]] Eigen::VectorXd multipliers(double t, const ConstRef& q, const ConstRef& w,
+                                            const ConstRef& qdd, const ConstRef& lambda_kept);
 
  private:
   struct Data {
@@ -89,8 +89,8 @@ class EliminatedSystem final : public MechanicalSystem {
   /// g_e^(order)(t) mapped by G (n).
   [[nodiscard]] Eigen::VectorXd lifted(int order, double t) const;
   /// u_, v_ (and the full evaluator's load segment) at (t, q, w).
-  void at(double t, ConstRef q);
-  void at(double t, ConstRef q, ConstRef w);
+  void at(double t, const ConstRef& q);
+  void at(double t, const ConstRef& q, const ConstRef& w);
   /// Rows k of `x` (m) for the kept rows.
   void select(const Eigen::VectorXd& x, Ref out) const;
 
