@@ -95,8 +95,8 @@ FailureKind failure_kind(int flag) {
 }
 
 const sundials::Api kCvodeApi{
-    "CVode",     CVodeGetReturnFlagName, CVodeGetCurrentTime, CVodeGetLastStep, CVodeGetDky,
-    failure_kind};
+    "CVode",     CVodeGetReturnFlagName, CVodeGetCurrentTime, CVodeGetLastStep,
+    CVodeGetDky, CVodeGetLastOrder,      failure_kind};
 
 // CVODE's γ = h β changes with nearly every step: the projection scheme's saddle point is
 // refactored when γ moves by more than CVODE's own threshold for a new matrix (dgmax_lsetup), and
@@ -139,6 +139,7 @@ class Cvode final : public sundials::SundialsStepper {
           "CVodeSetErrHandlerFn");
     check(CVodeInit(mem_.get(), rhs_trampoline, t0, y_.get()), "CVodeInit");
     check(CVodeSetUserData(mem_.get(), &data_), "CVodeSetUserData");
+    check(CVodeSetMaxOrd(mem_.get(), options.max_order), "CVodeSetMaxOrd");
     view(work_.get()) = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
     check(CVodeSVtolerances(mem_.get(), options.rtol, work_.get()),
           "CVodeSVtolerances");  // copies the vector

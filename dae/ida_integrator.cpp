@@ -145,7 +145,7 @@ FailureKind failure_kind(int flag) {
 }
 
 const sundials::Api kIdaApi{"IDASolve", IDAGetReturnFlagName, IDAGetCurrentTime, IDAGetLastStep,
-                            IDAGetDky,  failure_kind};
+                            IDAGetDky,  IDAGetLastOrder,      failure_kind};
 
 class Ida final : public sundials::SundialsStepper {
  public:
@@ -216,6 +216,7 @@ class Ida final : public sundials::SundialsStepper {
                                             : kFirstStepFraction * interval;
     }
     check(IDASetUserData(mem_.get(), &data_), "IDASetUserData");
+    check(IDASetMaxOrd(mem_.get(), options.max_order), "IDASetMaxOrd");
     check(IDASetId(mem_.get(), id_.get()), "IDASetId");
     data_.atol = options.atol_vector(data_.problem->unknown_kinds(), static_cast<int>(n_));
     if (higher_index) {

@@ -131,6 +131,7 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
   o.time_scale = atol.time_scale;
   o.first_step = atol.first_step;
   o.dense_linear_solver = settings.dense_linear_solver;
+  o.max_order = settings.max_order;
   o.condensed_newton = settings.condensed_newton;
   o.output_times = settings.output_times();
   o.breakpoints = model.breakpoints(settings.t_end);
@@ -325,6 +326,13 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     // Outside the loop (the loop's own failures come back as data): the integrator could not be
     // created or initialised.
     result.failure = failure_of(e);
+  }
+  if (settings.max_order < 5) {
+    const std::string note = "BDF order at most " + std::to_string(settings.max_order) +
+                             " (highest used: " + std::to_string(result.summary.max_order_used) +
+                             ")";
+    auto& notes = result.summary.notes;
+    notes = notes.empty() ? note : notes + "; " + note;
   }
   if (result.failure) result.failure->suggestion = failure_suggestion(scheme, *result.failure);
   return result;

@@ -34,6 +34,7 @@ struct IntegratorOptions {
   /// interval; unset: 1e-8 of that interval.
   std::optional<double> first_step;
   bool dense_linear_solver = false;  ///< SUNDIALS dense LU instead of KLU (tiny systems only)
+  int max_order = 5;                 ///< the highest BDF order the integrator may use (1 to 5)
   /// The problem's own condensed Newton solve (DaeProblem::newton_system), when it has one and
   /// KLU is used ([solve] newton = "condensed").
   bool condensed_newton = false;
@@ -74,7 +75,8 @@ struct SolveSummary {
   long newton_iterations = 0;
   long newton_failures = 0;
   long error_test_failures = 0;
-  long restarts = 0;  ///< re-initialisations at load steps
+  long restarts = 0;       ///< re-initialisations at load steps
+  int max_order_used = 0;  ///< the highest BDF order any step used
   double last_step = 0.0;
   double wall_seconds = 0.0;
   double max_drift_position = 0.0;

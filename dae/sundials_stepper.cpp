@@ -1,5 +1,6 @@
 #include "dae/sundials_stepper.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace condyn::sundials {
@@ -19,7 +20,11 @@ void SundialsStepper::check(int flag, const char* call) const {
 
 void SundialsStepper::after_step(int flag) const {
   if (report_.error) std::rethrow_exception(report_.error);
-  if (flag >= 0) return;
+  if (flag >= 0) {
+    int order = 0;
+    if (api_.last_order(mem_, &order) == 0) max_order_used_ = std::max(max_order_used_, order);
+    return;
+  }
   double tcur = 0.0, hlast = 0.0;
   api_.current_time(mem_, &tcur);
   api_.last_step(mem_, &hlast);
@@ -64,6 +69,7 @@ void SundialsStepper::fill_summary(SolveSummary& summary) {
   summary.newton_failures = totals_.newton_failures;
   summary.error_test_failures = totals_.error_tests;
   summary.last_step = last_step_;
+  summary.max_order_used = max_order_used_;
   if (const std::string n = notes(totals_); !n.empty()) summary.notes = n;
 }
 

@@ -47,6 +47,7 @@ struct Api {
   int (*current_time)(void*, sunrealtype*);
   int (*last_step)(void*, sunrealtype*);
   int (*dky)(void*, sunrealtype, int, N_Vector);
+  int (*last_order)(void*, int*);
   FailureKind (*failure_kind)(int);
 };
 
@@ -94,6 +95,7 @@ class SundialsStepper : public Stepper {
   N_Vector work_ = nullptr;
   Counters totals_, baseline_;
   double last_step_ = 0.0;
+  mutable int max_order_used_ = 0;  ///< the highest BDF order of any step
 };
 
 }  // namespace condyn::sundials

@@ -12,7 +12,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   check_keys(t, path,
              {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
               "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "newton", "redundant",
-              "max_steps", "max_wall_time", "constraints"});
+              "max_steps", "max_wall_time", "constraints", "max_order"});
   solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
   solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
   if (const auto* n = t.get("max_steps")) {
@@ -22,6 +22,15 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
       fail(*n, "solve.max_steps", "must be a whole number of steps >= 1 (got " + fmt(v) + ")");
     }
     solve.max_steps = static_cast<long>(v);
+  }
+  if (const auto* n = t.get("max_order")) {
+    const double v = number(*n, "solve.max_order");
+    if (!(v >= 1.0 && v <= 5.0) || v != std::floor(v)) {
+      fail(*n, "solve.max_order",
+           "must be a whole number from 1 to 5, the BDF orders IDA and CVODE offer (got " + fmt(v) +
+               ")");
+    }
+    solve.max_order = static_cast<int>(v);
   }
   if (const auto* n = t.get("max_wall_time"))
     solve.max_wall_time = positive(*n, "solve.max_wall_time");

@@ -132,6 +132,9 @@ struct SolveSpec {
   std::vector<std::string> slaves;
   /// Dense linear solver instead of KLU (only sensible for tiny systems).
   bool dense_linear_solver = false;
+  /// [solve] max_order: the highest BDF order (1 to 5, default 5). BDF2 damps the stiff modes a
+  /// step does not resolve (its amplification tends to 0 as h ω grows), BDF3 to 5 much less.
+  int max_order = 5;
   /// [solve] newton = "full" (default) or "condensed": for linear models under index1, GGL and
   /// elimination, IDA's Newton systems condensed to [u; λ (; μ)] (dae/condensed_newton.hpp)
   /// instead of the full Jacobian factored by KLU. Faster, but not the default: it loses the

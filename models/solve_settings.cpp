@@ -47,6 +47,8 @@ void SolveSpec::validate() const {
   if (baumgarte_alpha) require_positive(*baumgarte_alpha, "baumgarte.alpha");
   if (baumgarte_beta) require_positive(*baumgarte_beta, "baumgarte.beta");
   if (penalty_weight) require_positive(*penalty_weight, "penalty.weight");
+  require(max_order >= 1 && max_order <= 5, "max_order", "must be a whole number from 1 to 5",
+          static_cast<double>(max_order));
   require(max_steps >= 0, "max_steps", "must be >= 0 (0: no budget)",
           static_cast<double>(max_steps));
   require(std::isfinite(max_wall_time) && max_wall_time >= 0.0, "max_wall_time",
