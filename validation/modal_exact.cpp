@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <utility>
@@ -173,6 +174,9 @@ Motion forced_response(const TimeTerm& term, Complex s1, Complex s2, double t) {
       const auto column = exp_divided_difference_column({Complex(term.rate), s1, s2}, t);
       return term.amplitude * real_part(column.row(0));
     }
+    case TimeTerm::Kind::table:
+      // exact_trajectory() refuses tabulated loads before it gets here.
+      throw std::invalid_argument("no closed-form modal response to " + term.describe());
   }
   return {};
 }
