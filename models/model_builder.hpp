@@ -91,8 +91,7 @@ class ModelBuilder {
 
   // constraint_rows.cpp
   void check_coefficients(const ConstraintSpec& cs) const;
-  void refuse_table_rhs(const TimeFunction& f, const SourcePoint& where,
-                        bool velocity_level) const;
+  void refuse_table_rhs(const TimeFunction& f, const SourcePoint& where, bool velocity_level) const;
   void build_constraints();
   // constraint_blocks.cpp
   void append_constraint_blocks(std::vector<Eigen::Triplet<double>>& trip);

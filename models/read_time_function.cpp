@@ -56,8 +56,8 @@ TimeTerm SceneReader::term(const toml::node& node, const std::string& path) cons
 }
 
 std::shared_ptr<const TimeTable> SceneReader::table_file(const toml::node& file_node,
-                                                        const std::string& key,
-                                                        const std::string& column) const {
+                                                         const std::string& key,
+                                                         const std::string& column) const {
   const std::string file = string(file_node, key);
   if (file.empty()) fail(file_node, key, "the file name is empty");
   // Relative to the scene file's folder (a scene given as text: the working directory), as the

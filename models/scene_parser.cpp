@@ -20,10 +20,9 @@ std::string scene_message(const std::string& file, const SourcePoint& where,
 SceneSpec SceneReader::read(const toml::table& root) const {
   SceneSpec spec;
   spec.file = file_;
-  check_keys(
-      root, "",
-      {"name", "model", "load", "ground_motion", "constraint", "constraint_block", "initial",
-       "solve", "output"});
+  check_keys(root, "",
+             {"name", "model", "load", "ground_motion", "constraint", "constraint_block", "initial",
+              "solve", "output"});
   if (const auto* n = root.get("name")) spec.name = string(*n, "name");
   read_model(required(root, "", "model"), spec.model);
 

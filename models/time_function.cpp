@@ -262,8 +262,8 @@ TimeFunction TimeFunction::antiderivative() const {
         }
         break;
       case TimeTerm::Kind::table:
-        throw std::invalid_argument(term.describe() +
-                                    " is not integrated (a table is a load, not a right-hand side)");
+        throw std::invalid_argument(
+            term.describe() + " is not integrated (a table is a load, not a right-hand side)");
     }
   }
   out.push_back(poly);

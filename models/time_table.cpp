@@ -47,16 +47,16 @@ double TimeTable::value(double t) const {
   if (t <= times.front()) return values.front();
   if (t >= times.back()) return values.back();
   // The segment [t_k, t_{k+1}) holding t: t_k is the last time <= t.
-  const auto k = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) -
-                                          times.begin() - 1);
+  const auto k =
+      static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin() - 1);
   const double w = (t - times[k]) / (times[k + 1] - times[k]);
   return values[k] + w * (values[k + 1] - values[k]);
 }
 
 double TimeTable::slope(double t) const {
   if (t < times.front() || t >= times.back()) return 0.0;
-  const auto k = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) -
-                                          times.begin() - 1);
+  const auto k =
+      static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin() - 1);
   return (values[k + 1] - values[k]) / (times[k + 1] - times[k]);
 }
 
@@ -88,8 +88,8 @@ TimeTable parse_time_table(const std::string& text, const std::string& column) {
           if (it == row.end()) {
             std::string names;
             for (std::size_t c = 1; c < row.size(); ++c) names += (c > 1 ? ", " : "") + row[c];
-            throw TimeTableError(line_no, "no column '" + column + "' (the value columns are: " +
-                                              names + ")");
+            throw TimeTableError(
+                line_no, "no column '" + column + "' (the value columns are: " + names + ")");
           }
           value_col = static_cast<std::size_t>(it - row.begin());
           table.column = column;
@@ -111,12 +111,11 @@ TimeTable parse_time_table(const std::string& text, const std::string& column) {
     for (const auto& [cell, out, what] :
          {std::tuple{row[0], &t, "time"}, std::tuple{row[value_col], &v, "value"}}) {
       if (!parse_number(cell, *out)) {
-        throw TimeTableError(line_no, std::string("the ") + what + " '" + cell +
-                                          "' is not a number");
+        throw TimeTableError(line_no,
+                             std::string("the ") + what + " '" + cell + "' is not a number");
       }
       if (!std::isfinite(*out)) {
-        throw TimeTableError(line_no, std::string("the ") + what + " '" + cell +
-                                          "' is not finite");
+        throw TimeTableError(line_no, std::string("the ") + what + " '" + cell + "' is not finite");
       }
     }
     if (!table.times.empty() && !(t > table.times.back())) {
@@ -135,8 +134,8 @@ TimeTable parse_time_table(const std::string& text, const std::string& column) {
     table.max_abs_value = std::max(table.max_abs_value, std::abs(v));
   }
   if (table.times.size() < 2) {
-    throw TimeTableError(0, "has " + std::to_string(table.times.size()) +
-                                " sample(s): a table needs at least 2");
+    throw TimeTableError(
+        0, "has " + std::to_string(table.times.size()) + " sample(s): a table needs at least 2");
   }
   return table;
 }

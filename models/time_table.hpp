@@ -2,8 +2,8 @@
 /// Tabulated time functions (scene-format.md, "Time functions from data"): samples (t_k, v_k) read
 /// from a CSV file, t strictly increasing, at least two samples, all finite. The function is
 ///
-///   f(t) = v_0 for t <= t_0,   v_k + (v_{k+1} − v_k) (t − t_k) / (t_{k+1} − t_k) on [t_k, t_{k+1}],
-///   f(t) = v_last for t >= t_last,
+///   f(t) = v_0 for t <= t_0,   f(t) = v_last for t >= t_last,
+///   f(t) = v_k + (v_{k+1} − v_k) (t − t_k) / (t_{k+1} − t_k) on [t_k, t_{k+1}],
 ///
 /// evaluated by binary search, O(log n). Its first derivative is the slope of the segment that
 /// holds t (right-continuous: at a sample, the slope of the segment that starts there; 0 outside

@@ -1,6 +1,6 @@
-// Issue 13, item 2: [ground_motion] (scene-format.md, "Ground motion"): one pattern load −M r a_g(t)
-// for trusses (r along a direction) and matrix models (r by DOF), and the refusals, each naming
-// its key.
+// Issue 13, item 2: [ground_motion] (scene-format.md, "Ground motion"): one pattern load −M r
+// a_g(t) for trusses (r along a direction) and matrix models (r by DOF), and the refusals, each
+// naming its key.
 #include <doctest/doctest.h>
 
 #include <string>
@@ -109,8 +109,9 @@ TEST_CASE("ground motion: a matrix model's influence vector, unnamed DOFs 0") {
   CHECK(p.coeff(1) == -2.5);
   CHECK(p.coeff(2) == 0.0);
   // Added after the scene's own loads.
-  const Built with_load =
-      build(box, replace(kMatrix, "[ground_motion]", "[[load]]\ndof = \"c\"\nvalue = 1.0\n[ground_motion]"));
+  const Built with_load = build(
+      box,
+      replace(kMatrix, "[ground_motion]", "[[load]]\ndof = \"c\"\nvalue = 1.0\n[ground_motion]"));
   REQUIRE(with_load.error.empty());
   CHECK(with_load.model.loads.size() == 2);
   CHECK(with_load.model.applied_forces(0.0)[2] == 1.0);
@@ -144,8 +145,9 @@ TEST_CASE("ground motion: refusals name the key") {
             "ground_motion.direction: is for truss models"));
   CHECK(has(error(replace(kMatrix, "influence = { a = 1.0, b = 1.0 }\n", "")),
             "ground_motion.influence: missing required key"));
-  CHECK(has(error(replace(kMatrix, "acceleration = { type = \"harmonic\", amplitude = 2.0, "
-                                   "omega = 3.0 }\n",
+  CHECK(has(error(replace(kMatrix,
+                          "acceleration = { type = \"harmonic\", amplitude = 2.0, "
+                          "omega = 3.0 }\n",
                           "")),
             "ground_motion.acceleration: missing required key"));
   // Mass only on DOFs r does not move.

@@ -152,9 +152,8 @@ acceleration = { type = "table", file = "record.csv", column = "acc", scale = 9.
     const SolveResult result =
         condyn::test::solved(built.model, condyn::test::under(built.spec.solve, scheme));
     const auto [worst, peak] = worst_error(result, ux2, exact);
-    MESSAGE("truss oscillator, " << name << ": max |u - exact| = " << worst
-                                 << " (peak " << peak << "), " << result.summary.steps
-                                 << " steps");
+    MESSAGE("truss oscillator, " << name << ": max |u - exact| = " << worst << " (peak " << peak
+                                 << "), " << result.summary.steps << " steps");
     CHECK(peak > 0.01);
     CHECK(worst <= kRelativeTolerance * peak);
   }

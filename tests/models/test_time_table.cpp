@@ -48,7 +48,8 @@ mass = [[1.0]]
 stiffness = [[4.0]]
 [[load]]
 dof = "x"
-value = )" + value +
+value = )" +
+         value +
          R"(
 [solve]
 t_end = 2.0
@@ -124,9 +125,10 @@ TEST_CASE("time table: a time function with a scale, shared samples and no break
   // Without a scale: describe() omits it; a table of equal values is constant, of zeros zero.
   box.write("flat.csv", "t,z,c\n0,0,2\n1,0,2\n");
   const auto flat = [&](const std::string& column) {
-    return parse_scene_file(box.write("f.toml", load_scene(R"({ type = "table", file = "flat.csv", column = ")" +
-                                                           column + "\" }"))
-                                .string())
+    return parse_scene_file(
+               box.write("f.toml", load_scene(R"({ type = "table", file = "flat.csv", column = ")" +
+                                              column + "\" }"))
+                   .string())
         .loads.at(0)
         .value;
   };
@@ -140,8 +142,8 @@ TEST_CASE("time table: a time function with a scale, shared samples and no break
 }
 
 TEST_CASE("time table: the El Centro record, binary search, describe()") {
-  const std::string path = std::string(CONDYN_SOURCE_DIR) +
-                           "/../shared/reference/ground-motion/el_centro_1940_ns.csv";
+  const std::string path =
+      std::string(CONDYN_SOURCE_DIR) + "/../shared/reference/ground-motion/el_centro_1940_ns.csv";
   if (!std::filesystem::exists(path)) {
     MESSAGE("skipped: " << path << " is not beside the repository");
     return;
@@ -165,9 +167,9 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
   const std::string scene = box.path("scene.toml").string();
   const auto error = [&](const std::string& csv, const std::string& column = "") {
     box.write("rec.csv", csv);
-    return scene_error(box, load_scene(R"({ type = "table", file = "rec.csv")" +
-                                       (column.empty() ? "" : ", column = \"" + column + "\"") +
-                                       " }"));
+    return scene_error(box,
+                       load_scene(R"({ type = "table", file = "rec.csv")" +
+                                  (column.empty() ? "" : ", column = \"" + column + "\"") + " }"));
   };
   const std::string file = box.path("rec.csv").string();
   const std::string key = scene + ":8: load[1].value.file: " + file;
@@ -220,8 +222,8 @@ output_step = 0.5
   const std::string position = scene_error(box, base);
   CHECK(has(position, "constraint[1].value: a table cannot be a prescribed displacement"));
   CHECK(has(position, "[ground_motion]"));
-  const std::string velocity = scene_error(
-      box, condyn::test::replace(base, "terms = { x = 1.0 }",
-                                                "terms = { x = 1.0 }\nlevel = \"velocity\""));
+  const std::string velocity =
+      scene_error(box, condyn::test::replace(base, "terms = { x = 1.0 }",
+                                             "terms = { x = 1.0 }\nlevel = \"velocity\""));
   CHECK(has(velocity, "constraint[1].value: a table cannot be a prescribed velocity"));
 }
