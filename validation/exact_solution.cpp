@@ -31,13 +31,6 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
   sys.K = N.transpose() * K * N;
   if (model.has_damping()) sys.C = N.transpose() * C * N;
   for (const auto& load : model.loads) {
-    if (load.value.has_table()) {
-      throw ExactSolutionUnavailable("a load is tabulated (" + load.value.describe() +
-                                     "): the modal solution has closed forms for step, "
-                                     "polynomial, harmonic and exponential terms only");
-    }
-  }
-  for (const auto& load : model.loads) {
     // Nᵀ b for the load's vector b (e_dof or a [[load]] pattern).
     Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
     load.add_to(b, 1.0);
