@@ -31,6 +31,26 @@ void ModelBuilder::check_coefficients(const ConstraintSpec& cs) const {
   }
 }
 
+/// A table is piecewise linear: a constraint right-hand side needs derivatives it does not have
+/// (README, "Tabulated time functions").
+void ModelBuilder::refuse_table_rhs(const TimeFunction& f, const SourcePoint& where,
+                                    bool velocity_level) const {
+  if (!f.has_table()) return;
+  if (velocity_level) {
+    fail(where,
+         "a table cannot be a prescribed velocity: every scheme needs its integral and its "
+         "derivative, and a piecewise linear record has a jumping derivative (an impulsive "
+         "reaction at each sample); drive the structure by its ground acceleration with "
+         "[ground_motion] (motion relative to the ground), or give a smooth function");
+  }
+  fail(where,
+       "a table cannot be a prescribed displacement: it is piecewise linear, so its velocity "
+       "jumps at every sample and its acceleration is a train of impulses, which the constraint "
+       "would pass on as unbounded reaction forces (index-1 and GGL need that second "
+       "derivative); apply a recorded ground acceleration with [ground_motion] (motion relative "
+       "to the ground), or prescribe a smooth function of time");
+}
+
 void ModelBuilder::build_constraints() {
   const int n = model_.dofs();
   std::vector<Eigen::Triplet<double>> trip;
@@ -60,6 +80,7 @@ void ModelBuilder::build_constraints() {
     }
     check_coefficients(cs);
     std::sort(c.coefficients.begin(), c.coefficients.end());
+    refuse_table_rhs(c.value, value_at, c.level == ConstraintSpec::Level::velocity);
     check_time_function(c.value, value_at);
     for (double b : c.value.breakpoints()) {
       fail(value_at,

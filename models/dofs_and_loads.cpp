@@ -52,6 +52,7 @@ void ModelBuilder::build_loads() {
     }
     model_.loads.push_back(Load{d, l.value, {}});
   }
+  add_ground_motion(total);
 }
 
 /// pattern = { file = "f.mtx" }: one Load holding the pattern as a sparse vector.

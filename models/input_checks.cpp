@@ -49,6 +49,10 @@ double magnitude_bound(const TimeTerm& term, int order, double t_end) {
     case TimeTerm::Kind::exponential:
       return std::abs(term.amplitude) * std::pow(std::abs(term.rate), order) *
              std::exp(std::max(term.rate * t_end, 0.0));
+    case TimeTerm::Kind::table:
+      if (order == 2) return 0.0;
+      return std::abs(term.amplitude) *
+             (order == 0 ? term.table->max_abs_value : term.table->max_abs_slope);
   }
   return 0.0;
 }

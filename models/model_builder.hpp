@@ -59,6 +59,8 @@ class ModelBuilder {
   void set_dofs(std::vector<std::string> names);
   void build_loads();
   void add_pattern_load(const LoadSpec& l, double bound, std::vector<double>& total);
+  // ground_motion.cpp
+  void add_ground_motion(std::vector<double>& total);
 
   // input_checks.cpp
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
@@ -89,6 +91,7 @@ class ModelBuilder {
 
   // constraint_rows.cpp
   void check_coefficients(const ConstraintSpec& cs) const;
+  void refuse_table_rhs(const TimeFunction& f, const SourcePoint& where, bool velocity_level) const;
   void build_constraints();
   // constraint_blocks.cpp
   void append_constraint_blocks(std::vector<Eigen::Triplet<double>>& trip);

@@ -1,5 +1,7 @@
 #include "models/scene_readers.hpp"
 
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,12 +37,42 @@ TimeTerm SceneReader::term(const toml::node& node, const std::string& path) cons
     term.kind = TimeTerm::Kind::exponential;
     term.amplitude = opt("amplitude", 1.0);
     term.rate = number(required(t, path, "rate"), join(path, "rate"));
+  } else if (type == "table") {
+    check_keys(t, path, {"type", "file", "column", "scale"});
+    term.kind = TimeTerm::Kind::table;
+    term.amplitude = opt("scale", 1.0);
+    std::string column;
+    if (const auto* c = t.get("column")) {
+      column = string(*c, join(path, "column"));
+      if (column.empty()) fail(*c, join(path, "column"), "must not be empty");
+    }
+    term.table = table_file(required(t, path, "file"), join(path, "file"), column);
   } else {
     fail(*t.get("type"), join(path, "type"),
          "unknown time function '" + type +
-             "' (expected step, polynomial, harmonic or exponential)");
+             "' (expected step, polynomial, harmonic, exponential or table)");
   }
   return term;
+}
+
+std::shared_ptr<const TimeTable> SceneReader::table_file(const toml::node& file_node,
+                                                         const std::string& key,
+                                                         const std::string& column) const {
+  const std::string file = string(file_node, key);
+  if (file.empty()) fail(file_node, key, "the file name is empty");
+  // Relative to the scene file's folder (a scene given as text: the working directory), as the
+  // Matrix Market files (read_matrix_files.cpp).
+  const std::filesystem::path resolved =
+      std::filesystem::path(file_).parent_path() / std::filesystem::path(file);
+  try {
+    auto table = std::make_shared<TimeTable>(read_time_table(resolved.string(), column));
+    table->file = file;
+    return table;
+  } catch (const TimeTableError& e) {
+    const std::string where =
+        resolved.string() + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string());
+    fail(file_node, key, where + ": " + e.what());
+  }
 }
 
 TimeFunction SceneReader::time_function(const toml::node& node, const std::string& path) const {

@@ -20,13 +20,16 @@ std::string scene_message(const std::string& file, const SourcePoint& where,
 SceneSpec SceneReader::read(const toml::table& root) const {
   SceneSpec spec;
   spec.file = file_;
-  check_keys(
-      root, "",
-      {"name", "model", "load", "constraint", "constraint_block", "initial", "solve", "output"});
+  check_keys(root, "",
+             {"name", "model", "load", "ground_motion", "constraint", "constraint_block", "initial",
+              "solve", "output"});
   if (const auto* n = root.get("name")) spec.name = string(*n, "name");
   read_model(required(root, "", "model"), spec.model);
 
   if (const auto* n = root.get("load")) read_loads(*n, spec.loads);
+  if (const auto* n = root.get("ground_motion")) {
+    read_ground_motion(*n, spec.model, spec.ground_motion);
+  }
   if (const auto* n = root.get("constraint")) read_constraints(*n, spec.constraints);
   if (const auto* n = root.get("constraint_block")) {
     read_constraint_blocks(*n, spec.constraint_blocks);

@@ -3,6 +3,8 @@
 /// its part of SceneSpec, through the typed getters of TomlAccess, and is defined in the file
 /// named for what it reads. parse_scene_text() (scene_parser.cpp) calls them in order.
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,9 @@ class SceneReader : public TomlAccess {
   void read_constraint_blocks(const toml::node& node, std::vector<ConstraintBlockSpec>& out) const;
   /// [[load]] (read_loads.cpp).
   void read_loads(const toml::node& node, std::vector<LoadSpec>& out) const;
+  /// [ground_motion] (read_ground_motion.cpp); the model (read first) decides its keys.
+  void read_ground_motion(const toml::node& node, const ModelSpec& model,
+                          std::optional<GroundMotionSpec>& out) const;
   /// [[constraint]] (read_constraints.cpp).
   void read_constraints(const toml::node& node, std::vector<ConstraintSpec>& out) const;
   /// [initial] (read_initial.cpp).
@@ -47,6 +52,11 @@ class SceneReader : public TomlAccess {
   /// (read_time_function.cpp).
   [[nodiscard]] TimeFunction time_function(const toml::node& node, const std::string& path) const;
   [[nodiscard]] TimeTerm term(const toml::node& node, const std::string& path) const;
+  /// A table's CSV file named by the string `file_node` (key path `key`), relative to the scene's
+  /// folder; a bad file is refused naming the key, the file and its line.
+  [[nodiscard]] std::shared_ptr<const TimeTable> table_file(const toml::node& file_node,
+                                                            const std::string& key,
+                                                            const std::string& column) const;
 
   /// DOF and constraint names, which become CSV column names (scene_names.cpp): check_name()
   /// refuses what would break a CSV field; check_columns() refuses two names that give the same

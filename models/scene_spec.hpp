@@ -91,6 +91,16 @@ struct ConstraintBlockSpec {
   SourcePoint where;
 };
 
+/// [ground_motion] (scene-format.md, "Ground motion"): the ground accelerates by a_g(t) along the
+/// influence vector r; in coordinates relative to the ground the equations gain the load
+/// −M r a_g(t), and every output (displacement, velocity) is relative to the ground.
+struct GroundMotionSpec {
+  TimeFunction acceleration;  ///< a_g(t)
+  int direction = -1;         ///< truss: r = 1 on every node's x (0), y (1) or z (2) DOF
+  std::vector<std::pair<std::string, double>> influence;  ///< matrix model: r by DOF name
+  SourcePoint where;
+};
+
 struct InitialSpec {
   std::vector<std::pair<std::string, double>> displacement, velocity;
   /// Project (u0, v0) onto the constraints (minimum-norm Gauss-Newton) instead of refusing an
@@ -181,6 +191,7 @@ struct SceneSpec {
   std::vector<LoadSpec> loads;
   std::vector<ConstraintSpec> constraints;
   std::vector<ConstraintBlockSpec> constraint_blocks;  ///< rows after `constraints`
+  std::optional<GroundMotionSpec> ground_motion;
   InitialSpec initial;
   SolveSpec solve;
   OutputSpec output;

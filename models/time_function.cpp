@@ -47,6 +47,10 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
     }
     case Kind::exponential:
       return amplitude * std::pow(rate, order) * std::exp(rate * t);
+    case Kind::table:
+      // Piecewise linear: the value, the segment's slope, and 0 for the second derivative.
+      if (order == 0) return amplitude * table->value(t);
+      return order == 1 ? amplitude * table->slope(t) : 0.0;
   }
   return 0.0;
 }
@@ -70,6 +74,9 @@ TimeTerm TimeTerm::derivative_term() const {
     case Kind::exponential:
       d.amplitude = amplitude * rate;
       break;
+    case Kind::table:
+      throw std::invalid_argument("the derivative of " + describe() +
+                                  " is piecewise constant: no time-function term represents it");
   }
   return d;
 }
@@ -83,6 +90,8 @@ bool TimeTerm::is_zero() const {
       return true;
     case Kind::harmonic:
       return amplitude == 0.0 || (omega == 0.0 && std::sin(phase) == 0.0);
+    case Kind::table:
+      return amplitude == 0.0 || table->max_abs_value == 0.0;
     default:
       return amplitude == 0.0;
   }
@@ -116,6 +125,11 @@ std::string TimeTerm::describe() const {
     case Kind::exponential:
       s << amplitude << "*exp(" << rate << "*t)";
       break;
+    case Kind::table:
+      s << "table(" << table->file << ":" << table->column << ", " << table->samples()
+        << " samples)";
+      if (amplitude != 1.0) s << "*" << amplitude;
+      break;
   }
   return s.str();
 }
@@ -131,6 +145,7 @@ TimeFunction TimeFunction::scaled(double c) const {
       case TimeTerm::Kind::step:
       case TimeTerm::Kind::harmonic:
       case TimeTerm::Kind::exponential:
+      case TimeTerm::Kind::table:
         term.amplitude *= c;
         break;
     }
@@ -176,9 +191,17 @@ bool TimeFunction::is_constant() const {
       case TimeTerm::Kind::exponential:
         if (term.rate != 0.0) return false;
         break;
+      case TimeTerm::Kind::table:
+        if (term.table->max_abs_slope != 0.0) return false;
+        break;
     }
   }
   return true;
+}
+
+bool TimeFunction::has_table() const {
+  return std::any_of(terms_.begin(), terms_.end(),
+                     [](const TimeTerm& term) { return term.kind == TimeTerm::Kind::table; });
 }
 
 std::vector<double> TimeFunction::breakpoints() const {
@@ -238,6 +261,9 @@ TimeFunction TimeFunction::antiderivative() const {
           add_poly(0, -term.amplitude / term.rate);
         }
         break;
+      case TimeTerm::Kind::table:
+        throw std::invalid_argument(
+            term.describe() + " is not integrated (a table is a load, not a right-hand side)");
     }
   }
   out.push_back(poly);
@@ -331,6 +357,10 @@ ZeroSumVerdict weighted_sum_vanishes(const std::vector<std::pair<double, const T
           c.add(a * sign * std::sin(sign * term.phase), a);
           break;
         }
+        case TimeTerm::Kind::table:
+          // Constraints refuse tables (constraint_rows.cpp): never reached from a scene.
+          return {ZeroSumVerdict::Kind::undecided,
+                  term.describe() + " is tabulated: not decided from its terms"};
       }
     }
   }

@@ -1,23 +1,31 @@
 #pragma once
 /// Scalar functions of time used for loads and constraint right-hand sides (scene-format.md,
 /// "Time functions"): sums of step, polynomial, harmonic and exponential terms, each with exact
-/// first and second derivatives.
+/// first and second derivatives, and tables read from CSV files ("Time functions from data";
+/// models/time_table.hpp), piecewise linear: their first derivative is the segment's slope, their
+/// second is taken as 0, so they serve loads, not position-level right-hand sides.
 
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "models/time_table.hpp"
 
 namespace condyn {
 
 /// One term of a time function.
 struct TimeTerm {
-  enum class Kind { step, polynomial, harmonic, exponential };
+  enum class Kind { step, polynomial, harmonic, exponential, table };
   Kind kind = Kind::polynomial;
-  double amplitude = 1.0;            ///< step, harmonic, exponential
+  double amplitude = 1.0;            ///< step, harmonic, exponential; table: its `scale`
   double start = 0.0;                ///< step: amplitude * H(t - start), H(0) = 1
   std::vector<double> coefficients;  ///< polynomial: sum_k c_k t^k
   double omega = 0.0;                ///< harmonic: amplitude * sin(omega t + phase)
   double phase = 0.0;
   double rate = 0.0;  ///< exponential: amplitude * exp(rate t)
+  /// table: amplitude * f(t) of the samples (piecewise linear); shared and immutable, so copies
+  /// of the term (loads, scaled patterns) cost a pointer.
+  std::shared_ptr<const TimeTable> table;
 
   /// d^order/dt^order of the term at t, order in {0, 1, 2}. A step contributes to order 0 only
   /// (its derivative is an impulse at `start`, which callers handle as a discontinuity).
@@ -29,11 +37,13 @@ struct TimeTerm {
   [[nodiscard]] double value(double t) const { return derivative(0, t, t); }
 
   /// The term whose value is this term's first derivative (smooth kinds only; a step gives an
-  /// all-zero polynomial).
+  /// all-zero polynomial). Throws std::invalid_argument for a table (its slope is piecewise
+  /// constant: no term represents it).
   [[nodiscard]] TimeTerm derivative_term() const;
   /// True when the term is identically zero for t >= 0.
   [[nodiscard]] bool is_zero() const;
-  /// Human-readable form, e.g. "2*H(t-1)" or "3*sin(2*t+0.5)".
+  /// Human-readable form, e.g. "2*H(t-1)", "3*sin(2*t+0.5)" or
+  /// "table(el_centro.csv:acceleration_g, 1559 samples)*9.81".
   [[nodiscard]] std::string describe() const;
 };
 
@@ -51,17 +61,24 @@ class TimeFunction {
 
   /// True when every term is zero for t >= 0 (a homogeneous right-hand side).
   [[nodiscard]] bool is_zero() const;
-  /// True when the function is constant for t >= 0: no time dependence (scleronomic).
+  /// True when the function is constant for t >= 0: no time dependence (scleronomic). A table is
+  /// constant when all its values are equal.
   [[nodiscard]] bool is_constant() const;
-  /// Times t > 0 where a step switches on: the integrator stops and restarts there.
+  /// True when a term is a table (piecewise linear: no exact second derivative).
+  [[nodiscard]] bool has_table() const;
+  /// Times t > 0 where a step switches on: the integrator stops and restarts there. A table's
+  /// samples are not breakpoints: its kinks are continuous in value, and the integrator's error
+  /// control resolves them (README, "Tabulated time functions").
   [[nodiscard]] std::vector<double> breakpoints() const;
   /// The antiderivative F(t) = integral_0^t f, itself a sum of supported terms.
   /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,
-  /// whose derivative jumps: the caller must refuse the constraint).
+  /// whose derivative jumps: the caller must refuse the constraint), and for a table (refused as
+  /// a constraint's right-hand side).
   [[nodiscard]] TimeFunction antiderivative() const;
   [[nodiscard]] std::string describe() const;
-  /// c f(t): every term's amplitude (a polynomial's coefficients) times c; c = 0 gives the zero
-  /// function (a load pattern's or a constraint block's entry times its time function).
+  /// c f(t): every term's amplitude (a polynomial's coefficients, a table's scale) times c; c = 0
+  /// gives the zero function (a load pattern's or a constraint block's entry times its time
+  /// function).
   [[nodiscard]] TimeFunction scaled(double c) const;
 
  private:

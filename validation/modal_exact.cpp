@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <utility>
@@ -173,6 +174,9 @@ Motion forced_response(const TimeTerm& term, Complex s1, Complex s2, double t) {
       const auto column = exp_divided_difference_column({Complex(term.rate), s1, s2}, t);
       return term.amplitude * real_part(column.row(0));
     }
+    case TimeTerm::Kind::table:
+      // ModalSolution::at() carries tables sample by sample (table_response below).
+      throw std::invalid_argument("no closed-form modal response to " + term.describe());
   }
   return {};
 }
@@ -188,6 +192,29 @@ Motion free_response(double x0, double xd0, Complex s1, Complex s2, double t) {
   x.d1 += correction.d1;
   x.d2 += correction.d2;
   return real_part(x);
+}
+
+/// Response of (D - s1)(D - s2) x = c0 + c1 tau over tau = t - t0 >= 0 from the state (x0, xd0)
+/// at t0: one piece of a piecewise linear load.
+Motion piece_response(double x0, double xd0, double c0, double c1, Complex s1, Complex s2,
+                      double tau) {
+  TimeTerm piece;
+  piece.coefficients = {c0, c1};
+  Motion m = free_response(x0, xd0, s1, s2, tau);
+  m += forced_response(piece, s1, s2, tau);
+  return m;
+}
+
+/// The table term's response at t, from the last knot at or before t.
+Motion table_response(const TimeTerm& term, const std::vector<double>& knots,
+                      const Eigen::MatrixXd& knot_x, const Eigen::MatrixXd& knot_v,
+                      Eigen::Index mode, Complex s1, Complex s2, double t) {
+  const auto k =
+      static_cast<Eigen::Index>(std::upper_bound(knots.begin(), knots.end(), t) - knots.begin()) -
+      1;
+  const double t0 = knots[static_cast<std::size_t>(k)];
+  return piece_response(knot_x(mode, k), knot_v(mode, k), term.derivative(0, t0),
+                        term.derivative(1, t0), s1, s2, t - t0);
 }
 
 }  // namespace
@@ -299,6 +326,37 @@ ModalSolution::ModalSolution(const LtiSystem& system) {
     p_.col(j) = phi_.transpose() * forcing.b;
     terms_.push_back(forcing.term);
   }
+  carry_tables();
+}
+
+void ModalSolution::carry_tables() {
+  const Eigen::Index n = phi_.cols();
+  knots_.resize(terms_.size());
+  knot_x_.resize(terms_.size());
+  knot_v_.resize(terms_.size());
+  for (std::size_t j = 0; j < terms_.size(); ++j) {
+    const TimeTerm& term = terms_[j];
+    if (term.kind != TimeTerm::Kind::table) continue;
+    auto& knots = knots_[j];
+    knots.push_back(0.0);
+    for (double tk : term.table->times) {
+      if (tk > 0.0) knots.push_back(tk);
+    }
+    const auto count = static_cast<Eigen::Index>(knots.size());
+    knot_x_[j] = Eigen::MatrixXd::Zero(n, count);  // at rest at t = 0
+    knot_v_[j] = Eigen::MatrixXd::Zero(n, count);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto [s1, s2] = characteristic_roots(c_(i), k_(i));
+      for (Eigen::Index k = 0; k + 1 < count; ++k) {
+        const double t0 = knots[static_cast<std::size_t>(k)];
+        const double t1 = knots[static_cast<std::size_t>(k + 1)];
+        const Motion m = piece_response(knot_x_[j](i, k), knot_v_[j](i, k), term.derivative(0, t0),
+                                        term.derivative(1, t0), s1, s2, t1 - t0);
+        knot_x_[j](i, k + 1) = m.x;
+        knot_v_[j](i, k + 1) = m.v;
+      }
+    }
+  }
 }
 
 LtiState ModalSolution::at(double t) const {
@@ -313,7 +371,11 @@ LtiState ModalSolution::at(double t) const {
     Motion m = free_response(x0_(i), xd0_(i), s1, s2, t);
     for (Eigen::Index j = 0; j < p_.cols(); ++j) {
       if (p_(i, j) == 0.0) continue;
-      m += p_(i, j) * forced_response(terms_[static_cast<std::size_t>(j)], s1, s2, t);
+      const auto jj = static_cast<std::size_t>(j);
+      m += p_(i, j) *
+           (terms_[jj].kind == TimeTerm::Kind::table
+                ? table_response(terms_[jj], knots_[jj], knot_x_[jj], knot_v_[jj], i, s1, s2, t)
+                : forced_response(terms_[jj], s1, s2, t));
     }
     x(i) = m.x;
     xd(i) = m.v;

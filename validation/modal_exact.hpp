@@ -5,13 +5,17 @@
 ///
 /// with M symmetric positive definite, K symmetric positive semi-definite (zero-frequency modes
 /// allowed), C classical (diagonal in the M-orthonormal modes of (K, M); C = 0 included), and each
-/// tau_j a single TimeTerm (step, polynomial, harmonic, exponential). Each modal coordinate obeys
-/// x'' + c x' + k x = p(t), i.e. (D - s1)(D - s2) x = p with s1,2 the roots of s^2 + c s + k.
+/// tau_j a single TimeTerm (step, polynomial, harmonic, exponential, table). Each modal coordinate
+/// obeys x'' + c x' + k x = p(t), i.e. (D - s1)(D - s2) x = p with s1,2 the roots of s^2 + c s + k.
 /// Its response is expressed through divided differences of z -> exp(z t) over the roots and the
 /// forcing exponents (t^k/k! <-> k+1 zeros, exp(r t) <-> r, sin <-> +-i omega, a step at t0 <->
 /// one zero in the shifted time t - t0). The divided differences are evaluated by Opitz' formula
 /// (the exponential of a bidiagonal matrix), which stays exact when points coincide: zero-frequency
-/// modes, critical damping and resonance need no special case.
+/// modes, critical damping and resonance need no special case. A table (piecewise linear) is exact
+/// piece by piece: the state at each sample is carried to the next by the free response plus the
+/// response to the piece's constant and ramp (the classical recurrence for piecewise linear
+/// excitation, Nigam and Jennings 1969), computed once per mode; at(t) then starts from the last
+/// sample before t (binary search).
 
 #include <Eigen/Dense>
 #include <complex>
@@ -62,12 +66,20 @@ class ModalSolution {
   [[nodiscard]] const Eigen::VectorXd& natural_frequencies() const { return omega_; }
 
  private:
+  /// Fills knots_, knot_x_, knot_v_ for the table terms.
+  void carry_tables();
+
   Eigen::MatrixXd phi_;       ///< M-orthonormal modes, columns
   Eigen::VectorXd omega_;     ///< sqrt of modal stiffness (clamped at 0)
   Eigen::VectorXd k_, c_;     ///< modal stiffness and damping
   Eigen::VectorXd x0_, xd0_;  ///< modal initial conditions
   std::vector<TimeTerm> terms_;
   Eigen::MatrixXd p_;  ///< modal load amplitudes: p_(i, j) = phi_i^T b_j
+  /// Table terms j: knot times (0, then the samples after 0) and each mode's response to the term
+  /// alone (unit modal load) at them, x in knot_x_[j](mode, knot), x' in knot_v_[j]; empty for
+  /// other terms.
+  std::vector<std::vector<double>> knots_;
+  std::vector<Eigen::MatrixXd> knot_x_, knot_v_;
 };
 
 /// Divided difference exp(z t)[z_0, ..., z_n] and its first two time derivatives

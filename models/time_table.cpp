@@ -1,0 +1,163 @@
+#include "models/time_table.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <tuple>
+
+namespace condyn {
+
+namespace {
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+std::vector<std::string> cells(const std::string& line) {
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  while (true) {
+    const auto comma = line.find(',', begin);
+    out.push_back(trim(std::string_view(line).substr(
+        begin, comma == std::string::npos ? std::string::npos : comma - begin)));
+    if (comma == std::string::npos) return out;
+    begin = comma + 1;
+  }
+}
+
+/// The shortest text that reads back as v (0.1, not 0.10000000000000001).
+std::string shortest(double v) {
+  std::array<char, 32> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+  return ec == std::errc() ? std::string(buffer.data(), end) : std::to_string(v);
+}
+
+/// The whole cell as a double (a leading '+' allowed), or false.
+bool parse_number(const std::string& cell, double& out) {
+  const char* first = cell.data();
+  const char* last = cell.data() + cell.size();
+  if (first != last && *first == '+') ++first;
+  if (first == last) return false;
+  const auto [end, ec] = std::from_chars(first, last, out);
+  return ec == std::errc() && end == last;
+}
+
+}  // namespace
+
+double TimeTable::value(double t) const {
+  if (t <= times.front()) return values.front();
+  if (t >= times.back()) return values.back();
+  // The segment [t_k, t_{k+1}) holding t: t_k is the last time <= t.
+  const auto k =
+      static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin() - 1);
+  const double w = (t - times[k]) / (times[k + 1] - times[k]);
+  return values[k] + w * (values[k + 1] - values[k]);
+}
+
+double TimeTable::slope(double t) const {
+  if (t < times.front() || t >= times.back()) return 0.0;
+  const auto k =
+      static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin() - 1);
+  return (values[k + 1] - values[k]) / (times[k + 1] - times[k]);
+}
+
+TimeTable parse_time_table(const std::string& text, const std::string& column) {
+  TimeTable table;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  bool first_row = true;
+  std::size_t value_col = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string trimmed = trim(line);
+    if (trimmed.empty() || trimmed.front() == '#') continue;
+    const auto row = cells(trimmed);
+    if (first_row) {
+      first_row = false;
+      double ignored = 0.0;
+      const bool header = !parse_number(row.front(), ignored);
+      if (row.size() < 2) {
+        throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
+                                          " column: a table needs time and a column of values");
+      }
+      if (header) {
+        if (column.empty()) {
+          table.column = row[1];
+        } else {
+          const auto it = std::find(row.begin() + 1, row.end(), column);
+          if (it == row.end()) {
+            std::string names;
+            for (std::size_t c = 1; c < row.size(); ++c) names += (c > 1 ? ", " : "") + row[c];
+            throw TimeTableError(
+                line_no, "no column '" + column + "' (the value columns are: " + names + ")");
+          }
+          value_col = static_cast<std::size_t>(it - row.begin());
+          table.column = column;
+        }
+        continue;
+      }
+      if (!column.empty()) {
+        throw TimeTableError(line_no, "has no header line naming its columns, so no column '" +
+                                          column + "' (omit `column` to take the second one)");
+      }
+      table.column = "column 2";
+    }
+    if (row.size() <= value_col) {
+      throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
+                                        " cell(s) but the values are in column " +
+                                        std::to_string(value_col + 1));
+    }
+    double t = 0.0, v = 0.0;
+    for (const auto& [cell, out, what] :
+         {std::tuple{row[0], &t, "time"}, std::tuple{row[value_col], &v, "value"}}) {
+      if (!parse_number(cell, *out)) {
+        throw TimeTableError(line_no,
+                             std::string("the ") + what + " '" + cell + "' is not a number");
+      }
+      if (!std::isfinite(*out)) {
+        throw TimeTableError(line_no, std::string("the ") + what + " '" + cell + "' is not finite");
+      }
+    }
+    if (!table.times.empty() && !(t > table.times.back())) {
+      throw TimeTableError(line_no,
+                           "the time " + shortest(t) + " is not after the previous sample's " +
+                               shortest(table.times.back()) + " (times must increase strictly)");
+    }
+    if (!table.times.empty()) {
+      const double slope = (v - table.values.back()) / (t - table.times.back());
+      table.max_abs_slope = std::max(table.max_abs_slope, std::abs(slope));
+    }
+    table.times.push_back(t);
+    table.values.push_back(v);
+    table.max_abs_value = std::max(table.max_abs_value, std::abs(v));
+  }
+  if (table.times.size() < 2) {
+    throw TimeTableError(
+        0, "has " + std::to_string(table.times.size()) + " sample(s): a table needs at least 2");
+  }
+  return table;
+}
+
+TimeTable read_time_table(const std::string& path, const std::string& column) {
+  // A device or a pipe would be read forever or block: regular files only.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw TimeTableError(0, "is not a regular file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw TimeTableError(0, "cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw TimeTableError(0, "cannot read the file");
+  return parse_time_table(text.str(), column);
+}
+
+}  // namespace condyn
