@@ -138,6 +138,7 @@ void ModelBuilder::apply_rayleigh() {
          "members, whose system has no damping matrix");
   }
   const auto [a0, a1] = *spec_.model.rayleigh;
+  report_.damping = spec_.model.rayleigh_rule;
   // M and K are positive semi-definite, a0 and a1 >= 0: so is C.
   model_.C = (a0 * model_.M + a1 * model_.K).pruned();
   model_.C.makeCompressed();

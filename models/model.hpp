@@ -117,6 +117,8 @@ struct BuildReport {
   /// The memory integrating is expected to need, and the machine's available memory
   /// ("about 12.3 MB to integrate (3.1 GB available)"); models/memory_estimate.hpp.
   std::string memory_estimate;
+  /// The Rayleigh coefficients derived from (frequency, ratio) pairs, when the scene gave pairs.
+  std::string damping;
 };
 
 /// Builds and checks the model: DOF names, geometry, matrix properties, constraint rank and

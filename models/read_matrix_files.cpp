@@ -67,8 +67,12 @@ void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
   check_keys(t, path, {"rayleigh"});
   const std::string p = join(path, "rayleigh");
   const auto& r = required(t, path, "rayleigh");
+  if (r.is_table()) return read_rayleigh_pairs(r, p, model);
   const auto a = numbers(r, p);
-  if (a.size() != 2) fail(r, p, "expected [a0, a1] (C = a0 M + a1 K)");
+  if (a.size() != 2) {
+    fail(r, p,
+         "expected [a0, a1] (C = a0 M + a1 K) or { frequencies = [f1, f2], ratios = [z1, z2] }");
+  }
   for (std::size_t i = 0; i < 2; ++i) {
     if (a[i] < 0.0) {
       fail(*array(r, p).get(i), index(p, i), "must be >= 0 (a negative one feeds energy in)");
@@ -76,6 +80,56 @@ void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
   }
   model.rayleigh = std::array<double, 2>{a[0], a[1]};
   model.rayleigh_where = at(r, p);
+}
+
+/// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] }: the a0, a1 that give damping ratio
+/// z_i at frequency f_i (cycles per time unit), from z(ω) = a0 / (2ω) + a1 ω / 2 at ω_i = 2π f_i:
+///   a0 = 2 ω1 ω2 (z1 ω2 − z2 ω1) / (ω2² − ω1²),   a1 = 2 (z2 ω2 − z1 ω1) / (ω2² − ω1²).
+void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string& path,
+                                      ModelSpec& model) const {
+  const auto& t = table(node, path);
+  check_keys(t, path, {"frequencies", "ratios"});
+  const auto pair_of = [&](const char* key, const char* what) {
+    const auto& n = required(t, path, key);
+    const auto v = numbers(n, join(path, key));
+    if (v.size() != 2) fail(n, join(path, key), std::string("expected two ") + what);
+    return v;
+  };
+  const auto f = pair_of("frequencies", "frequencies [f1, f2] (cycles per time unit)");
+  const auto z = pair_of("ratios", "damping ratios [z1, z2]");
+  const auto& fn = required(t, path, "frequencies");
+  const auto& zn = required(t, path, "ratios");
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (!(f[i] > 0.0) || !std::isfinite(f[i])) {
+      fail(*array(fn, join(path, "frequencies")).get(i), index(join(path, "frequencies"), i),
+           "must be a finite frequency > 0");
+    }
+    if (!(z[i] >= 0.0 && z[i] < 1.0)) {
+      fail(*array(zn, join(path, "ratios")).get(i), index(join(path, "ratios"), i),
+           "must be a damping ratio in [0, 1) (0.05 is 5 %)");
+    }
+  }
+  if (f[0] == f[1]) {
+    fail(fn, join(path, "frequencies"),
+         "the two frequencies must differ: one (frequency, ratio) pair does not fix a0 and a1");
+  }
+  const double pi = 3.14159265358979323846;
+  const double w1 = 2.0 * pi * f[0], w2 = 2.0 * pi * f[1];
+  const double a0 = 2.0 * w1 * w2 * (z[0] * w2 - z[1] * w1) / (w2 * w2 - w1 * w1);
+  const double a1 = 2.0 * (z[1] * w2 - z[0] * w1) / (w2 * w2 - w1 * w1);
+  if (a0 < 0.0 || a1 < 0.0) {
+    fail(node, path,
+         "these pairs need a negative " + std::string(a0 < 0.0 ? "a0" : "a1") +
+             " (a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +
+             "), which feeds energy in: Rayleigh damping z(ω) = a0/(2ω) + a1 ω/2 cannot have "
+             "those ratios at those frequencies");
+  }
+  model.rayleigh = std::array<double, 2>{a0, a1};
+  model.rayleigh_where = at(node, path);
+  model.rayleigh_rule = "Rayleigh damping C = a0 M + a1 K with a0 = " + fmt(a0) +
+                        ", a1 = " + fmt(a1) + ", from ratio " + fmt(z[0]) + " at frequency " +
+                        fmt(f[0]) + " and ratio " + fmt(z[1]) + " at frequency " + fmt(f[1]) +
+                        " (cycles per time unit)";
 }
 
 void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) const {

@@ -31,6 +31,8 @@ class SceneReader : public TomlAccess {
   [[nodiscard]] FileMatrix read_market(const toml::node& file_node, const std::string& key) const;
   /// damping = { rayleigh = [a0, a1] } at `path`.
   void read_rayleigh(const toml::node& node, const std::string& path, ModelSpec& model) const;
+  /// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] } at `path`: a0, a1 derived.
+  void read_rayleigh_pairs(const toml::node& node, const std::string& path, ModelSpec& model) const;
   /// [[constraint_block]].
   void read_constraint_blocks(const toml::node& node, std::vector<ConstraintBlockSpec>& out) const;
   /// [[load]] (read_loads.cpp).

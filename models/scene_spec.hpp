@@ -62,6 +62,8 @@ struct ModelSpec {
   FileMatrix mass_file, stiffness_file, damping_file;
   /// damping = { rayleigh = [a0, a1] }: C = a0 M + a1 K (any linear model).
   std::optional<std::array<double, 2>> rayleigh;
+  /// What the scene's (frequency, ratio) pairs gave, for the report; empty for [a0, a1].
+  std::string rayleigh_rule;
   SourcePoint rayleigh_where;
   SourcePoint where;
 };

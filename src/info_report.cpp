@@ -114,6 +114,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   for (const auto& d : report.dropped_constraints)
     out << "dropped redundant constraint " << d << "\n";
   if (!report.memory_estimate.empty()) out << "memory: " << report.memory_estimate << "\n";
+  if (!report.damping.empty()) out << "damping: " << report.damping << "\n";
   out << "\n";
   const auto classes = classify_constraints(model, settings.t_end);
   if (classes.empty()) {

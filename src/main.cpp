@@ -119,6 +119,7 @@ int run(const RunArgs& args) {
   }
   if (!report.initial_projection.empty())
     msg << "initial state: " << report.initial_projection << "\n";
+  if (!report.damping.empty()) msg << "damping: " << report.damping << "\n";
   for (const auto& w : report.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";
   for (const auto& d : report.dropped_constraints)
     msg << "dropped redundant constraint " << d << "\n";
