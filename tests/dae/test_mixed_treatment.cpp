@@ -149,7 +149,8 @@ TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimina
       test::solved(scene.model, test::under(scene.spec.solve, Scheme::elimination));
   for (Scheme s :
        {Scheme::index1, Scheme::baumgarte, Scheme::ggl, Scheme::index2, Scheme::index3}) {
-    CAPTURE(to_string(s));
+    const std::string name = to_string(s);
+    CAPTURE(name);
     SolveSpec settings = test::under(scene.spec.solve, s);
     settings.treatment = SolveSpec::Treatment::mixed;
     const SolveResult mixed = test::solved(scene.model, settings);
@@ -170,7 +171,8 @@ TEST_CASE("mixed and pure multipliers agree on a nonlinear model with driven lin
   const auto scene = test::built(
       parse_scene_text(driven_pendulum_scene("rtol = 1e-10\natol = 1e-12\n"), "driven.toml"));
   for (Scheme s : {Scheme::index1, Scheme::ggl}) {
-    CAPTURE(to_string(s));
+    const std::string name = to_string(s);
+    CAPTURE(name);
     SolveSpec pure = test::under(scene.spec.solve, s), mixed = pure;
     pure.treatment = SolveSpec::Treatment::multipliers;
     mixed.treatment = SolveSpec::Treatment::mixed;
