@@ -91,7 +91,7 @@ void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string&
   check_keys(t, path, {"frequencies", "ratios"});
   const auto pair_of = [&](const char* key, const char* what) {
     const auto& n = required(t, path, key);
-    const auto v = numbers(n, join(path, key));
+    auto v = numbers(n, join(path, key));
     if (v.size() != 2) fail(n, join(path, key), std::string("expected two ") + what);
     return v;
   };
