@@ -47,7 +47,7 @@ TEST_CASE("static start: a truss settled by static = true stays at rest under ev
   const Eigen::VectorXd& u0 = at_rest.model.u0;
   REQUIRE(u0.lpNorm<Eigen::Infinity>() > 1e-3);  // it sags: the equilibrium is not u = 0
   for (const Scheme scheme : {Scheme::elimination, Scheme::index1, Scheme::ggl}) {
-    CAPTURE(to_string(scheme));
+    CAPTURE(std::string(to_string(scheme)));
     const SolveResult rest = test::solved(at_rest.model, test::under(at_rest.spec.solve, scheme));
     const auto& tr = rest.trajectory;
     REQUIRE(tr.v.cols() > 50);

@@ -76,7 +76,7 @@ TEST_CASE(
     "static start: a supported spring chain under load starts at its hand-computed equilibrium") {
   const auto scene = test::built(parse_scene_text(chain("0.0", ""), "chain.toml"));
   const Model& m = scene.model;
-  CHECK(m.u0[0] == 0.0);
+  CHECK(std::abs(m.u0[0]) <= kChainTolerance * 5.0);  // the support, to roundoff of |u|
   check_close(m.u0[1], 3.0);
   check_close(m.u0[2], 5.0);
   CHECK(m.v0.lpNorm<Eigen::Infinity>() == 0.0);
