@@ -116,9 +116,11 @@ StaticEquilibrium solve_static_equilibrium(const Eigen::SparseMatrix<double>& K,
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   lu.compute(S);
   if (lu.info() != Eigen::Success) {
-    throw NoStaticEquilibrium("the stiffness is singular on the motions the constraints allow (" +
-                                  lu.lastErrorMessage() + ")",
-                              {});
+    // SparseLU's own message names a column of the permuted matrix: no help to the user.
+    throw NoStaticEquilibrium(
+        "the stiffness is singular on the motions the constraints allow (an exact zero pivot in "
+        "the sparse LU of [K Aᵀ; A 0])",
+        {});
   }
   // Condition estimate from one solve with a generic right-hand side: a near-null direction of S
   // is amplified by 1/(its pivot), so ‖S‖₁ ‖S⁻¹r‖₁ / ‖r‖₁ exposes a mechanism left by roundoff.
