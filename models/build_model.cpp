@@ -27,7 +27,9 @@ namespace condyn {
 // 11. The rank check drops redundant rows (or refuses dependent ones) before the checks that go
 //     through the rows one by one or count them: initial consistency, the mass matrix on the
 //     motions A allows, and [solve] slaves (one per remaining constraint).
-// 12. check_initial_consistency tests the final state (7) against the remaining rows (11).
+// 12. solve_static_initial ([initial] static = true) factors [K Aᵀ; A 0]: after the rank check
+//     (11), whose dropped rows would make it singular; check_initial_consistency then tests the
+//     final state (7 or 12) against the remaining rows (11).
 // 13. The mass checks need M (1, 9) and the final A (11).
 // 14. check_energy_output evaluates the final system at (u0, v0); check_output's slave check
 //     needs the final A and the dropped rows (11).
@@ -65,6 +67,7 @@ Model ModelBuilder::build() {
   check_magnitudes();
   check_degenerate_dofs();
   while (const auto dependent = check_rank()) drop_constraint(*dependent);
+  if (spec_.initial.static_start) solve_static_initial();
   check_initial_consistency();
   if (spec_.solve.scheme == Scheme::penalty) {
     check_penalty_mass();

@@ -107,7 +107,7 @@ struct Model {
 /// What building a model found worth telling, kept apart from the model (run prints it to the
 /// terminal, info to its report).
 struct BuildReport {
-  /// What [initial] project = true changed (empty when nothing was projected).
+  /// What [initial] project = true changed, or what static = true solved (empty when neither).
   std::string initial_projection;
   /// Accepted, but worth a look: magnitudes so far from 1, or so spread, that double precision
   /// loses the physics.

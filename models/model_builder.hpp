@@ -112,6 +112,8 @@ class ModelBuilder {
   void check_nonlinear_consistency() const;
   [[noreturn]] void refuse_given_values(const InconsistentGivenValues& e) const;
   void project_initial();
+  // static_start.cpp
+  void solve_static_initial();
 
   // mass_regularity.cpp
   void check_penalty_mass() const;

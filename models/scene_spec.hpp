@@ -108,6 +108,8 @@ struct InitialSpec {
   /// Project (u0, v0) onto the constraints (minimum-norm Gauss-Newton) instead of refusing an
   /// inconsistent start.
   bool project = false;
+  /// [initial] static: u(0) is the constrained static equilibrium at t = 0 (linear models).
+  bool static_start = false;
   SourcePoint where;
 };
 

@@ -1,0 +1,182 @@
+// [initial] static = true: u(0) is the constrained static equilibrium at t = 0 (sparse KKT solve
+// of a linear model); mechanisms, a wrong type and combinations with other [initial] keys are
+// refused naming initial.static.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "models/model.hpp"
+#include "models/scene_parser.hpp"
+#include "models/static_equilibrium.hpp"
+#include "tests/lattice_scene.hpp"
+#include "tests/scene_text.hpp"
+#include "tests/solve_helpers.hpp"
+
+using namespace condyn;
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// Hand-computed equilibria of a three-DOF chain: a handful of flops per entry, so 1e-12 relative
+// leaves a wide margin over roundoff (a few eps).
+constexpr double kChainTolerance = 1e-12;
+// Equilibrium residual of a large solve relative to |f|: LU with one refinement step leaves a
+// few hundred ulps (cond of the lattice ~1e4 times eps); 1e-10 is far above that and far below
+// any physics.
+constexpr double kResidualTolerance = 1e-10;
+
+/// Springs x1–x2 (k = 2) and x2–x3 (k = 3), x1 held by a constraint to `support`, a load of 6 at
+/// x3: u = (s, s + 3, s + 5).
+std::string chain(const std::string& support, const std::string& initial_extra) {
+  return R"([model]
+type = "matrix"
+dofs = ["x1", "x2", "x3"]
+mass = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+stiffness = [[2.0, -2.0, 0.0], [-2.0, 5.0, -3.0], [0.0, -3.0, 3.0]]
+[[load]]
+dof = "x3"
+value = 6.0
+[[constraint]]
+name = "support"
+terms = { x1 = 1.0 }
+value = )" +
+         support +
+         R"(
+[initial]
+static = true
+)" + initial_extra +
+         R"([solve]
+t_end = 1.0
+output_step = 0.1
+)";
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    (void)build_model(parse_scene_text(text, "bad.toml"));
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+void check_close(double computed, double expected) {
+  CHECK(std::abs(computed - expected) <= kChainTolerance * std::abs(expected));
+}
+
+}  // namespace
+
+TEST_CASE(
+    "static start: a supported spring chain under load starts at its hand-computed equilibrium") {
+  const auto scene = test::built(parse_scene_text(chain("0.0", ""), "chain.toml"));
+  const Model& m = scene.model;
+  CHECK(std::abs(m.u0[0]) <= kChainTolerance * 5.0);  // the support, to roundoff of |u|
+  check_close(m.u0[1], 3.0);
+  check_close(m.u0[2], 5.0);
+  CHECK(m.v0.lpNorm<Eigen::Infinity>() == 0.0);
+  CHECK(contains(scene.report.initial_projection, "static equilibrium"));
+  CHECK(contains(scene.report.initial_projection, "max |u| = 5"));
+}
+
+TEST_CASE("static start: a prescribed support displacement at t = 0 is honored, v(0) kept") {
+  // g(t) = 0.5 + t: the static solve takes g(0) = 0.5; the given velocity meets g'(0) = 1.
+  const auto scene = test::built(parse_scene_text(
+      chain(R"({ type = "polynomial", coefficients = [0.5, 1.0] })", "velocity = { x1 = 1.0 }\n"),
+      "chain.toml"));
+  const Model& m = scene.model;
+  check_close(m.u0[0], 0.5);
+  check_close(m.u0[1], 3.5);
+  check_close(m.u0[2], 5.5);
+  CHECK(m.v0[0] == 1.0);
+}
+
+TEST_CASE("static start: refusals name initial.static") {
+  SUBCASE("a DOF nothing holds") {
+    const std::string e = error_of(R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[1.0, 0.0], [0.0, 0.0]]
+[initial]
+static = true
+[solve]
+t_end = 1.0
+output_step = 0.1
+)");
+    CHECK(contains(e, "initial.static"));
+    CHECK(contains(e, "no static equilibrium"));
+    CHECK(contains(e, "free to move: b"));
+  }
+  SUBCASE("a floating truss (rigid-body modes: K singular though every DOF has stiffness)") {
+    const std::string e = error_of(R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+masses = [1.0, 1.0, 1.0]
+members = [{ nodes = [1, 2], EA = 100.0 }, { nodes = [2, 3], EA = 100.0 }, { nodes = [1, 3], EA = 100.0 }]
+gravity = [0.0, -9.81]
+[initial]
+static = true
+[solve]
+t_end = 1.0
+output_step = 0.1
+)");
+    CHECK(contains(e, "initial.static"));
+    CHECK(contains(e, "no static equilibrium"));
+    CHECK(contains(e, "singular"));
+  }
+  SUBCASE("a wrong type") {
+    const std::string e =
+        error_of(test::replace(chain("0.0", ""), "static = true", "static = \"yes\""));
+    CHECK(contains(e, "initial.static"));
+    CHECK(contains(e, "expected true or false"));
+  }
+  SUBCASE("with given displacements") {
+    const std::string e = error_of(chain("0.0", "displacement = { x2 = 1.0 }\n"));
+    CHECK(contains(e, "initial.static"));
+    CHECK(contains(e, "remove [initial] displacement"));
+  }
+  SUBCASE("with project = true") {
+    const std::string e = error_of(chain("0.0", "project = true\n"));
+    CHECK(contains(e, "initial.static"));
+    CHECK(contains(e, "cannot be combined"));
+  }
+  SUBCASE("a nonlinear model") {
+    const std::string e = error_of(R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[initial]
+static = true
+[solve]
+t_end = 1.0
+output_step = 0.1
+)");
+    CHECK(contains(e, "initial.static"));
+    CHECK(contains(e, "needs a linear model"));
+  }
+}
+
+TEST_CASE("static start: a 10,000-DOF lattice under gravity solves sparse to a small residual") {
+  // 100 x 50 nodes, two DOFs each; the left column supported.
+  const auto scene = test::built(parse_scene_text(
+      test::lattice(100, 50, "gravity = [0.0, -1.0]\n[initial]\nstatic = true\n", ""),
+      "lattice.toml"));
+  const Model& m = scene.model;
+  REQUIRE(m.dofs() == 10000);
+  const Eigen::VectorXd f = m.applied_forces(0.0);
+  const StaticEquilibrium eq = solve_static_equilibrium(m.K, m.A, f, m.position_rhs(0, 0.0));
+  CHECK((eq.u - m.u0).lpNorm<Eigen::Infinity>() <= 4 * kEps * m.u0.lpNorm<Eigen::Infinity>());
+  Eigen::VectorXd r = m.K * m.u0 - f;
+  if (m.constraint_count() > 0) r += m.A.transpose() * eq.lambda;
+  CHECK(r.lpNorm<Eigen::Infinity>() <= kResidualTolerance * f.lpNorm<Eigen::Infinity>());
+  CHECK(m.u0.lpNorm<Eigen::Infinity>() > 0.0);  // the lattice sags: the test can fail
+}
