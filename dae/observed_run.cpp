@@ -42,7 +42,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       u.push_back(std::move(uk));
       v.push_back(std::move(vk));
     }
-    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda);
+    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda, options.accelerations);
     traj.steps = steps;
     return traj;
   };
@@ -52,7 +52,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   std::optional<RowAssembler> rows;
   RowLog log;
   if (streamed) {
-    rows.emplace(model);
+    rows.emplace(model, options.accelerations);
     observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
       auto [u, v] = observe.full_state(t, y);
       Eigen::VectorXd lambda = observe.multipliers(t, y, yp, u, v);

@@ -319,6 +319,7 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
   try {
     IntegratorOptions options = integrator_options(model, settings);
     options.record_steps = hooks.record_steps;
+    options.accelerations = hooks.accelerations;
     options.on_progress = hooks.on_progress;
     options.on_row = hooks.on_row;
     solve_resolved(model, scheme, settings, options, result);

@@ -56,7 +56,8 @@ struct SystemSize {
 
 /// What the caller observes of a run besides its result.
 struct RunHooks {
-  bool record_steps = false;  ///< keep the drift at every internal step (Trajectory::steps)
+  bool record_steps = false;   ///< keep the drift at every internal step (Trajectory::steps)
+  bool accelerations = false;  ///< compute accelerations at the output rows (dae/acceleration.hpp)
   std::function<void(const Progress&)> on_progress;  ///< for long runs (IntegratorOptions)
   /// When set, every output row goes here as it is computed (a failed run's rows included) and
   /// the result's trajectory holds no n x output-times data: its u, v, reaction and multiplier

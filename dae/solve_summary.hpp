@@ -52,6 +52,9 @@ struct IntegratorOptions {
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;
   /// Keep a per-step drift log (Trajectory::steps) for drift plots; off by default.
   bool record_steps = false;
+  /// Compute accelerations at the output rows (Trajectory::acceleration, TrajectoryRow::
+  /// acceleration; dae/acceleration.hpp); off by default: a run pays only for what it outputs.
+  bool accelerations = false;
   /// When set, every output row (t, y, y') goes here as it is computed instead of into the
   /// returned RawTrajectory, which then holds the times only (results streamed, nothing of size
   /// unknowns x output times held).

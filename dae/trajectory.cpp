@@ -21,8 +21,10 @@ Eigen::VectorXd MultiplierRecovery::operator()(double t, const Eigen::VectorXd& 
   return -aat_.solve(model_.A * rho);
 }
 
-RowAssembler::RowAssembler(const Model& model)
-    : model_(model), system_(model.evaluator()), drift_(model) {}
+RowAssembler::RowAssembler(const Model& model, bool accelerations)
+    : model_(model), system_(model.evaluator()), drift_(model) {
+  if (accelerations) acceleration_.emplace(!model.is_nonlinear());
+}
 
 TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::VectorXd v,
                                        Eigen::VectorXd lambda) {
@@ -34,6 +36,7 @@ TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::Vecto
   } else {
     row.reaction = Eigen::VectorXd::Zero(u.size());
   }
+  if (acceleration_) row.acceleration = (*acceleration_)(*system_, t, u, v, row.reaction);
   const auto [dp, dv] = drift_(t, u, v);
   row.drift_position = dp;
   row.drift_velocity = dv;
@@ -82,13 +85,14 @@ Trajectory trajectory_of(const TrajectoryRow& row) {
   out.v = row.v;
   out.reaction = row.reaction;
   out.multiplier = row.multiplier;
+  if (row.acceleration.size() > 0) out.acceleration = row.acceleration;
   return out;
 }
 
 Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                const std::vector<Eigen::VectorXd>& u,
                                const std::vector<Eigen::VectorXd>& v,
-                               const std::vector<Eigen::VectorXd>& lambda) {
+                               const std::vector<Eigen::VectorXd>& lambda, bool accelerations) {
   const int n = model.dofs(), m = model.constraint_count();
   const auto nt = static_cast<Eigen::Index>(times.size());
   Trajectory out;
@@ -96,8 +100,9 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
   out.v.resize(n, nt);
   out.reaction.resize(n, nt);
   out.multiplier.resize(m, nt);
+  if (accelerations) out.acceleration.resize(n, nt);
   out.t.reserve(times.size());
-  RowAssembler assemble(model);
+  RowAssembler assemble(model, accelerations);
   for (Eigen::Index k = 0; k < nt; ++k) {
     const auto i = static_cast<std::size_t>(k);
     const TrajectoryRow row = assemble(times[i], u[i], v[i], m > 0 ? lambda[i] : Eigen::VectorXd());
@@ -105,6 +110,7 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
     out.u.col(k) = row.u;
     out.v.col(k) = row.v;
     out.reaction.col(k) = row.reaction;
+    if (accelerations) out.acceleration.col(k) = row.acceleration;
     if (m > 0) out.multiplier.col(k) = row.multiplier;
     const auto grow = [k](Eigen::VectorXd& x, Eigen::Index size, double value) {
       if (x.size() != size) x.resize(size);

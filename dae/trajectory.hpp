@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "dae/acceleration.hpp"
 #include "dae/step_driver.hpp"
 #include "models/constraint_drift.hpp"
 #include "models/model.hpp"
@@ -40,16 +41,19 @@ class VelocityReversals {
 struct TrajectoryRow {
   double t = 0.0;
   Eigen::VectorXd u, v, reaction, multiplier;
+  /// u'' from the equations at this row (dae/acceleration.hpp); empty unless asked for.
+  Eigen::VectorXd acceleration;
   double drift_position = 0.0, drift_velocity = 0.0;
   bool conservative = false;  ///< energy and kinetic are set
   double energy = 0.0, kinetic = 0.0;
 };
 
 /// The per-row work of a trajectory: reactions f_con = −A(t, u)ᵀλ, drifts, and for a
-/// conservative model the energy and the kinetic energy. One evaluator of the model's own.
+/// conservative model the energy and the kinetic energy; with `accelerations`, u'' from the
+/// equations at the row (AccelerationFromForces). One evaluator of the model's own.
 class RowAssembler {
  public:
-  explicit RowAssembler(const Model& model);
+  explicit RowAssembler(const Model& model, bool accelerations = false);
   [[nodiscard]] TrajectoryRow operator()(double t, Eigen::VectorXd u, Eigen::VectorXd v,
                                          Eigen::VectorXd lambda);
 
@@ -57,7 +61,8 @@ class RowAssembler {
   const Model& model_;
   std::unique_ptr<MechanicalSystem> system_;
   ConstraintDrift drift_;
-  std::optional<bool> conservative_;  ///< decided at the first row
+  std::optional<AccelerationFromForces> acceleration_;  ///< set when accelerations are asked for
+  std::optional<bool> conservative_;                    ///< decided at the first row
 };
 
 struct Trajectory {
@@ -65,8 +70,11 @@ struct Trajectory {
   /// n x nt displacements and velocities; empty (no columns) for a streamed run, whose rows went
   /// to RunHooks::on_row: t, the drifts, energies and kinetic energies below stay.
   Eigen::MatrixXd u, v;
-  Eigen::MatrixXd reaction;    ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
-  Eigen::MatrixXd multiplier;  ///< m x nt: λ
+  Eigen::MatrixXd reaction;  ///< n x nt: f_con = −Aᵀλ, so M u'' + C u' + K u = f + f_con
+  /// n x nt: u'' = M⁻¹(f + f_con) at each row (dae/acceleration.hpp); empty unless asked for
+  /// (IntegratorOptions::accelerations) and for a streamed run.
+  Eigen::MatrixXd acceleration;
+  Eigen::MatrixXd multiplier;                      ///< m x nt: λ
   Eigen::VectorXd drift_position, drift_velocity;  ///< nt, max-norm constraint residuals
   /// nt total energies for a conservative model (MechanicalSystem::energy); empty otherwise.
   Eigen::VectorXd energy;
@@ -111,10 +119,11 @@ class RowLog {
 [[nodiscard]] Trajectory trajectory_of(const TrajectoryRow& row);
 
 /// Builds a trajectory from u, u' and λ at the output times: f_con = −A(t, u)ᵀλ, drifts and
-/// energies from the model.
+/// energies from the model; with `accelerations`, u'' too (RowAssembler).
 [[nodiscard]] Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                              const std::vector<Eigen::VectorXd>& u,
                                              const std::vector<Eigen::VectorXd>& v,
-                                             const std::vector<Eigen::VectorXd>& lambda);
+                                             const std::vector<Eigen::VectorXd>& lambda,
+                                             bool accelerations = false);
 
 }  // namespace condyn

@@ -68,7 +68,7 @@ void SceneReader::check_name(const toml::node& node, const std::string& path,
 }
 
 /// Every column a scene can produce (all quantities, whatever [output] asks now) must be
-/// distinct: the DOFs' columns (u, vel_u, reaction_u), the multipliers' (lambda_c) and the
+/// distinct: the DOFs' columns (u, vel_u, acc_u, reaction_u), the multipliers' (lambda_c) and the
 /// fixed ones. Names are checked here, where they have a line; the message names the later one.
 void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) const {
   std::map<std::string, std::string> owner = {{"t", "the time column"},
@@ -94,6 +94,7 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
       for (const auto& [prefix, quantity] :
            {std::pair<std::string, std::string>{"", "displacement"},
             {"vel_", "velocity"},
+            {"acc_", "acceleration"},
             {"reaction_", "reaction"}}) {
         claim(prefix + d, "the " + quantity + " column of DOF '" + d + "'", *dofs->get(i), p, d,
               "DOF");

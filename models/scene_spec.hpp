@@ -170,13 +170,13 @@ struct SolveSpec {
   [[nodiscard]] std::vector<double> output_times() const;
 };
 
-enum class Quantity { displacement, velocity, reaction, multiplier, drift, energy };
+enum class Quantity { displacement, velocity, acceleration, reaction, multiplier, drift, energy };
 
 struct OutputSpec {
   std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};
   std::string file;  ///< empty: decided by the CLI
-  /// [output] dofs: the DOFs that get displacement, velocity and reaction columns, as names or
-  /// patterns where `*` stands for any run of characters; empty: every DOF.
+  /// [output] dofs: the DOFs that get displacement, velocity, acceleration and reaction columns, as
+  /// names or patterns where `*` stands for any run of characters; empty: every DOF.
   std::vector<std::string> dofs;
   SourcePoint where;
 };

@@ -26,6 +26,9 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
     const CsvRow row{traj.t[k],
                      traj.u.col(col),
                      traj.v.col(col),
+                     traj.acceleration.cols() > col
+                         ? Eigen::Ref<const Eigen::VectorXd>(traj.acceleration.col(col))
+                         : Eigen::Ref<const Eigen::VectorXd>(none),
                      traj.reaction.col(col),
                      traj.multiplier.col(col),
                      traj.drift_position[col],

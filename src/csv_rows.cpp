@@ -30,6 +30,9 @@ std::string csv_header(const Model& model, const OutputSpec& output,
       case Quantity::velocity:
         names("vel_");
         break;
+      case Quantity::acceleration:
+        names("acc_");
+        break;
       case Quantity::reaction:
         names("reaction_");
         break;
@@ -64,6 +67,9 @@ void append_csv_row(std::string& line, const OutputSpec& output, const std::vect
         break;
       case Quantity::velocity:
         dofs(row.v);
+        break;
+      case Quantity::acceleration:
+        dofs(row.acceleration);
         break;
       case Quantity::reaction:
         dofs(row.reaction);

@@ -14,7 +14,8 @@ namespace condyn {
 /// One output time's values, viewed (columns of a trajectory or a streamed row).
 struct CsvRow {
   double t = 0.0;
-  Eigen::Ref<const Eigen::VectorXd> u, v, reaction, multiplier;
+  /// `acceleration` may be empty when the output does not ask for it.
+  Eigen::Ref<const Eigen::VectorXd> u, v, acceleration, reaction, multiplier;
   double drift_position = 0.0, drift_velocity = 0.0;
   double energy = 0.0, energy_error = 0.0;  ///< E(t) and E(t) − E(0) (conservative scenes)
 };

@@ -70,6 +70,9 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
       case Quantity::velocity:
         dofs("velocity", traj.v);
         break;
+      case Quantity::acceleration:
+        dofs("acceleration", traj.acceleration);
+        break;
       case Quantity::reaction:
         dofs("reaction", traj.reaction);
         break;

@@ -2,6 +2,7 @@
 // Commands: run, info, validate, compare, stress. See README.md.
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -84,6 +85,8 @@ int run(const RunArgs& args) {
 
   RunHooks hooks;
   hooks.record_steps = !args.steps_out.empty();
+  hooks.accelerations = std::find(spec.output.quantities.begin(), spec.output.quantities.end(),
+                                  Quantity::acceleration) != spec.output.quantities.end();
   hooks.on_progress = print_progress;
   // Rows go to the result file as they are computed when it is a regular file (nothing of size
   // DOFs x output times is held); a stream gets the whole result at the end. The last row is

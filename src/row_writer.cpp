@@ -27,6 +27,7 @@ class CsvRowWriter final : public RowWriter {
     const CsvRow view{r.t,
                       r.u,
                       r.v,
+                      r.acceleration,
                       r.reaction,
                       r.multiplier,
                       r.drift_position,
@@ -145,6 +146,9 @@ class Hdf5RowWriter final : public RowWriter {
         case Quantity::velocity:
           v_ = std::make_unique<Series>(file_, "velocity", width, false);
           break;
+        case Quantity::acceleration:
+          a_ = std::make_unique<Series>(file_, "acceleration", width, false);
+          break;
         case Quantity::reaction:
           reaction_ = std::make_unique<Series>(file_, "reaction", width, false);
           break;
@@ -178,6 +182,7 @@ class Hdf5RowWriter final : public RowWriter {
     };
     if (u_) dofs(*u_, r.u);
     if (v_) dofs(*v_, r.v);
+    if (a_) dofs(*a_, r.acceleration);
     if (reaction_) dofs(*reaction_, r.reaction);
     if (multiplier_) {
       multiplier_->append([&](hsize_t c) { return r.multiplier[static_cast<Eigen::Index>(c)]; });
@@ -193,7 +198,7 @@ class Hdf5RowWriter final : public RowWriter {
     hdf5::put_attribute(file_, "scheme", run.scheme);
     hdf5::put_attribute(file_, "rtol", run.rtol);
     hdf5::put_attribute(file_, "atol", run.atol);
-    for (Series* s : {t_.get(), u_.get(), v_.get(), reaction_.get(), multiplier_.get(),
+    for (Series* s : {t_.get(), u_.get(), v_.get(), a_.get(), reaction_.get(), multiplier_.get(),
                       drift_.get(), energy_.get()}) {
       if (s != nullptr) s->flush(true);
     }
@@ -206,6 +211,7 @@ class Hdf5RowWriter final : public RowWriter {
     t_.reset();
     u_.reset();
     v_.reset();
+    a_.reset();
     reaction_.reset();
     multiplier_.reset();
     drift_.reset();
@@ -219,7 +225,7 @@ class Hdf5RowWriter final : public RowWriter {
   std::vector<int> shown_;
   std::string path_;
   hid_t file_ = -1;
-  std::unique_ptr<Series> t_, u_, v_, reaction_, multiplier_, drift_, energy_;
+  std::unique_ptr<Series> t_, u_, v_, a_, reaction_, multiplier_, drift_, energy_;
   double energy0_ = 0.0;
   bool failed_ = false;
 };

@@ -133,3 +133,30 @@ TEST_CASE("a failed run with --out FILE.h5 keeps its rows in FILE.partial.h5") {
   CHECK(read_doubles(file, "t").dims == std::vector<hsize_t>{10});  // t = 0 ... 0.9
   H5Fclose(file);
 }
+
+TEST_CASE("run --out FILE.h5 with acceleration: an nt x n dataset over the [output] dofs") {
+  const Sandbox box;
+  box.write("s.toml", replace(kTwoMassesScene, "output_step = 0.25\n",
+                              "output_step = 0.25\n[output]\nquantities = "
+                              "[\"displacement\", \"acceleration\"]\ndofs = [\"b\"]\n"));
+  const Result h5 = box.run("run s.toml --out out.h5");
+  CAPTURE(h5.err);
+  REQUIRE(h5.code == 0);
+  const Result csv = box.run("run s.toml --out out.csv");
+  REQUIRE(csv.code == 0);
+  const std::string text = slurp(box.path("out.csv"));
+  CHECK(text.substr(0, text.find('\n')) == "t,b,acc_b");
+  const auto rows = csv_rows(text);
+  REQUIRE(rows.size() == 5);
+  const hid_t file = H5Fopen(box.path("out.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  const Dataset a = read_doubles(file, "acceleration");
+  CHECK(a.dims == std::vector<hsize_t>{5, 1});
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    CAPTURE(k);
+    CHECK(a.values[k] == rows[k][2]);
+  }
+  // At t = 0 the model is at rest, undisplaced and unloaded (the step starts at 0.25).
+  CHECK(a.values[0] == 0.0);
+  H5Fclose(file);
+}

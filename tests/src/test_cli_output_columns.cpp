@@ -71,6 +71,45 @@ TEST_CASE("[output] dofs selects the DOF columns of every DOF quantity, not the 
         "reaction_ux3,reaction_uy3,lambda_fix_ux1,lambda_fix_uy1,lambda_roll,lambda_roll3");
 }
 
+TEST_CASE("acceleration columns acc_<dof> come where the quantity is listed, over [output] dofs") {
+  test::Sandbox box;
+  box.write("s.toml",
+            replace(kChain,
+                    "quantities = [\"displacement\", \"velocity\", \"reaction\", \"multiplier\"]\n",
+                    "quantities = [\"velocity\", \"acceleration\", \"displacement\"]\n"
+                    "dofs = [\"ux*\"]\n"));
+  const test::Result r = box.run("run s.toml --out out.csv");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  const std::string text = test::slurp(box.path("out.csv"));
+  CHECK(first_line(text) == "t,vel_ux1,vel_ux2,vel_ux3,acc_ux1,acc_ux2,acc_ux3,ux1,ux2,ux3");
+  // ux1 is supported, so it does not accelerate; ux3 is pulled by its load at t = 0: a = f/m = 1.
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  std::getline(in, line);
+  std::vector<double> row;
+  std::istringstream cells(line);
+  for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+  REQUIRE(row.size() == 10);
+  for (std::size_t c : {4, 5}) CHECK(std::abs(row[c]) <= 1e-9);
+  CHECK(row[6] == doctest::Approx(1.0).epsilon(1e-9));
+}
+
+TEST_CASE("a DOF whose acceleration column would repeat another column is refused") {
+  CHECK_THROWS_WITH_AS(parse_scene_text(R"([model]
+type = "matrix"
+dofs = ["x", "acc_x"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[1.0, 0.0], [0.0, 1.0]]
+[solve]
+t_end = 1.0
+output_step = 0.5
+)",
+                                        "s.toml"),
+                       doctest::Contains("acc_x"), SceneError);
+}
+
 TEST_CASE("[output] dofs: a pattern that matches no DOF is refused, naming it") {
   test::Sandbox box;
   box.write("s.toml", replace(kChain, "[output]\n", "[output]\ndofs = [\"ux3\", \"uz*\"]\n"));
