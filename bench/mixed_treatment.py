@@ -26,7 +26,7 @@ ROOT = os.path.dirname(HERE)
 SCENES = ["slider_crank", "four_bar", "double_pendulum", "hanging_chain", "truss_inclined_roller",
           "von_mises_truss", "chain_driven_base", "spherical_pendulum"]
 # The reference of a scene: the first of these that reaches t_end at rtol 1e-11 (GGL at such
-# tolerances fails on some mechanisms near singular configurations: README, schemes).
+# tolerances fails on some mechanisms near singular configurations: docs/schemes.md).
 REFERENCES = [("ggl", "multipliers"), ("ggl", "mixed"), ("index1", "multipliers")]
 SUMMARY = re.compile(
     r"^(?P<scheme>[a-z0-9_]+): reached[^\n]*? (?P<steps>\d+) steps, (?P<res>\d+) residual and "

@@ -60,7 +60,7 @@ class MultiplierDae final : public DaeProblem {
   /// error follows from theirs; in the test its estimate carries the drift index1 lets grow, and
   /// the slider-crank (models/scenes/slider_crank.toml) at rtol 1e-10 took 316,635 steps (40,595
   /// Newton and 39,213 error-test failures) against 4,643 without, and was less accurate (1.9e-4
-  /// against 6.6e-6 from a tight GGL run): README, schemes.
+  /// against 6.6e-6 from a tight GGL run): docs/schemes.md.
   [[nodiscard]] bool suppress_algebraic_error() const override {
     return scheme_ == Scheme::baumgarte || scheme_ == Scheme::index1;
   }

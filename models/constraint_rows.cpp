@@ -32,7 +32,7 @@ void ModelBuilder::check_coefficients(const ConstraintSpec& cs) const {
 }
 
 /// A table is piecewise linear: a constraint right-hand side needs derivatives it does not have
-/// (README, "Tabulated time functions").
+/// (docs/scenes.md, "Tabulated time functions").
 void ModelBuilder::refuse_table_rhs(const TimeFunction& f, const SourcePoint& where,
                                     bool velocity_level) const {
   if (!f.has_table()) return;

@@ -8,7 +8,7 @@
 
 namespace condyn {
 
-/// The formulation used to solve the scene (README "Schemes").
+/// The formulation used to solve the scene (docs/schemes.md).
 enum class Scheme {
   automatic,
   elimination,

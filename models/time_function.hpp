@@ -68,7 +68,7 @@ class TimeFunction {
   [[nodiscard]] bool has_table() const;
   /// Times t > 0 where a step switches on: the integrator stops and restarts there. A table's
   /// samples are not breakpoints: its kinks are continuous in value, and the integrator's error
-  /// control resolves them (README, "Tabulated time functions").
+  /// control resolves them (docs/scenes.md, "Tabulated time functions").
   [[nodiscard]] std::vector<double> breakpoints() const;
   /// The antiderivative F(t) = integral_0^t f, itself a sum of supported terms.
   /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,

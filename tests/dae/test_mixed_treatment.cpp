@@ -141,7 +141,7 @@ TEST_CASE("the reduced system's derivatives agree with central differences") {
 TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimination path") {
   // rtol 1e-10. Displacements are of order 0.09, reactions of order 1.4. The differences
   // observed (2026-11-25) are below 1.2e-9 (u), 2.3e-8 (v) and 2.1e-6 (reactions, multipliers),
-  // the largest under index3, whose multipliers are its least accurate quantity (README,
+  // the largest under index3, whose multipliers are its least accurate quantity (docs/schemes.md,
   // schemes); the others' are below 3.3e-9. The bounds leave a margin of 5 to 100.
   const auto scene =
       test::built(parse_scene_text(chain_scene("rtol = 1e-10\natol = 1e-12\n"), "chain.toml"));

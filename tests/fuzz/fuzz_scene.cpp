@@ -1,4 +1,4 @@
-// libFuzzer harness for the scene parser and model builder (README "Tests", fuzzing).
+// libFuzzer harness for the scene parser and model builder (docs/contributing.md "Tests", fuzzing).
 //
 // Every input is scene text. The parser and the builder must either accept it or refuse it with a
 // condyn::SceneError whose message starts with the file name ("fuzz.toml: ..." or

@@ -147,7 +147,7 @@ atol = 1e-12
     }
     // rtol 1e-10 over 10 s, absolute error with |u| ≤ 8: kGlobalErrorFactor (1e3) × rtol × 8
     // (observed up to 2.2e-8), except under index3, which leaves the velocities out of the error
-    // test (index 2 there) and is the least accurate per tolerance (README "Schemes"): ten times
+    // test (index 2 there) and is the least accurate per tolerance (docs/schemes.md): ten times
     // that (observed 1.3e-6; 2.7e-6 before). The velocity constraint (|v| ≈ 1.5 m/s) is held to
     // the same factors × rtol: observed up to 5.1e-9, index3 1.1e-7.
     CHECK(err < (scheme == Scheme::index3 ? 1e4 : 1e3) * 1e-10 * 8.0);

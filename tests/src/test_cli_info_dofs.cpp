@@ -19,7 +19,7 @@ std::string source(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Report lines stay within this width (README "info").
+// Report lines stay within this width (docs/cli.md, `condyn info`).
 constexpr std::size_t kWidth = 100;
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Output safety (README "Outputs"): every output of a command is checked before any work, none
+// Output safety (docs/cli.md "Outputs"): every output of a command is checked before any work, none
 // may be an input or another output, all are committed together, streams (standard output,
 // devices, FIFOs) are written in place, temporary files never outlive the process.
 #include <doctest/doctest.h>

@@ -22,7 +22,7 @@ TEST_CASE("shear frame under El Centro: every scheme agrees with the exact solut
   // Relative max-norm errors over all DOFs and outputs, observed 2026-11-25 with this scene at
   // rtol 1e-10 (`condyn compare ... --tolerances 1e-10`): u 1.3e-9 to 1.7e-9 for elimination,
   // index1, Baumgarte, GGL and index2, 3.5e-8 for projection, 4.2e-7 for index3 (its positions
-  // are the index-3 DAE's: least accurate per tolerance, README "Schemes"); reactions 1e-8 to
+  // are the index-3 DAE's: least accurate per tolerance, docs/schemes.md); reactions 1e-8 to
   // 1e-7 (6e-6 for index3). The issue asks 1e-7 on displacements at tight tolerance.
   struct Case {
     Scheme scheme;

@@ -1,6 +1,6 @@
 // condyn stress as a test tier: the whole suite runs, no run crashes, hangs or reports a
 // non-finite number as a result, every break and refusal carries its reason, and the findings
-// the README reports still hold (each expectation below names the family's observation).
+// docs/validation.md reports still hold (each expectation below names the family's observation).
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -58,7 +58,7 @@ TEST_CASE("stress: every run ends in a verdict with its reason, never a non-fini
   }
 }
 
-TEST_CASE("stress: the findings the README reports") {
+TEST_CASE("stress: the findings docs/validation.md reports") {
   // Stiffness ratio 1e12: elimination and GGL hold (observed errors 2.4e-7, 1.7e-7).
   CHECK(record("stiffness", "R = 1e+12", Scheme::elimination).status == "holds");
   CHECK(record("stiffness", "R = 1e+12", Scheme::ggl).status == "holds");
