@@ -22,7 +22,7 @@ SceneSpec SceneReader::read(const toml::table& root) const {
   spec.file = file_;
   check_keys(root, "",
              {"name", "model", "load", "ground_motion", "constraint", "constraint_block", "initial",
-              "solve", "output"});
+              "solve", "output", "check"});
   if (const auto* n = root.get("name")) spec.name = string(*n, "name");
   read_model(required(root, "", "model"), spec.model);
 
@@ -42,6 +42,7 @@ SceneSpec SceneReader::read(const toml::table& root) const {
              ")");
   }
   if (const auto* n = root.get("output")) read_output(*n, spec.output);
+  if (const auto* n = root.get("check")) read_checks(*n, spec.solve, spec.checks);
   check_columns(root, spec);
   return spec;
 }

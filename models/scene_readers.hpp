@@ -49,6 +49,9 @@ class SceneReader : public TomlAccess {
   [[nodiscard]] Scheme parse_scheme(const toml::node& node, const std::string& path) const;
   /// [output] (read_output.cpp).
   void read_output(const toml::node& node, OutputSpec& output) const;
+  /// [[check]] (read_checks.cpp), after [solve]: `at` must be one of its output times.
+  void read_checks(const toml::node& node, const SolveSpec& solve,
+                   std::vector<CheckSpec>& out) const;
 
   /// A load's or a constraint's value: a number, one term table or a list of terms
   /// (read_time_function.cpp).

@@ -7,6 +7,7 @@
 #include <Eigen/Sparse>
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,6 +15,7 @@
 
 #include "models/scheme.hpp"
 #include "models/time_function.hpp"
+#include "models/time_table.hpp"
 
 namespace condyn {
 
@@ -188,6 +190,23 @@ struct OutputSpec {
 /// Whether `name` matches `pattern`, where `*` stands for any run of characters (none included).
 [[nodiscard]] bool matches_dof_pattern(const std::string& pattern, const std::string& name);
 
+/// [[check]] (scene-format.md, "Checks for a user's own validation suite"): what a run of the scene
+/// must satisfy, evaluated by `condyn check` (validation/user_checks.hpp). `quantity` is a CSV
+/// column name; which column it is (a DOF's displacement, a reaction, ...) is resolved against
+/// the built model.
+struct CheckSpec {
+  enum class Form {
+    at_value,   ///< |computed(at) − value| <= tolerance, `at` an output time
+    max_abs,    ///< max over output times of |computed| <= bound
+    reference,  ///< max over the reference's rows of |computed − reference| <= tolerance
+  };
+  std::string quantity;
+  Form form = Form::max_abs;
+  double at = 0.0, value = 0.0, tolerance = 0.0, bound = 0.0;
+  std::shared_ptr<const TimeTable> reference;  ///< the reference's samples of `quantity`
+  SourcePoint where;                           ///< "check[2]" and its line
+};
+
 struct SceneSpec {
   std::string file;  ///< path the scene was read from (or "<embedded:NAME>")
   std::string name;
@@ -199,6 +218,7 @@ struct SceneSpec {
   InitialSpec initial;
   SolveSpec solve;
   OutputSpec output;
+  std::vector<CheckSpec> checks;
 };
 
 [[nodiscard]] const char* to_string(Quantity q);

@@ -134,13 +134,14 @@ std::string history_file(Scheme s) { return std::string("history_") + to_string(
 }  // namespace
 
 void plan_compare_files(OutputPlan& plan, const std::string& dir,
-                        const std::vector<Scheme>& schemes) {
+                        const std::vector<Scheme>& schemes, bool baumgarte_study) {
   namespace fs = std::filesystem;
   plan.add_folder(dir, kOutDir);
   const fs::path base(dir);
-  for (const char* name : {"runs.csv", "runs.json", "baumgarte_study.csv", "summary.txt"}) {
+  for (const char* name : {"runs.csv", "runs.json", "summary.txt"}) {
     (void)plan.add_output((base / name).string(), kOutDir);
   }
+  if (baumgarte_study) (void)plan.add_output((base / "baumgarte_study.csv").string(), kOutDir);
   for (Scheme s : schemes) {
     (void)plan.add_output((base / drift_file(s)).string(), kOutDir);
     (void)plan.add_output((base / history_file(s)).string(), kOutDir);
@@ -154,7 +155,7 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
 
 void write_compare_files(OutputPlan& plan, const std::string& dir, const CompareResult& result) {
   namespace fs = std::filesystem;
-  plan_compare_files(plan, dir, result.options.schemes);
+  plan_compare_files(plan, dir, result.options.schemes, result.options.baumgarte_study);
   plan.check();
   plan.create_folders();
   const fs::path base(dir);
@@ -229,25 +230,32 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
     });
   }
 
-  put((base / "baumgarte_study.csv").string(), [&](std::ostream& out) {
-    out.precision(17);
-    out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s\n";
-    for (const auto& p : result.baumgarte_study) {
-      out << p.alpha << "," << p.beta << "," << (p.is_default ? 1 : 0) << ","
-          << (p.ok ? "ok" : "failed") << ",";
-      if (p.ok) {
-        out << p.max_drift_position << "," << p.max_drift_velocity << "," << p.steps << ","
-            << p.wall;
-      } else {
-        out << ",,,";
+  if (result.options.baumgarte_study)
+    put((base / "baumgarte_study.csv").string(), [&](std::ostream& out) {
+      out.precision(17);
+      out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s\n";
+      for (const auto& p : result.baumgarte_study) {
+        out << p.alpha << "," << p.beta << "," << (p.is_default ? 1 : 0) << ","
+            << (p.ok ? "ok" : "failed") << ",";
+        if (p.ok) {
+          out << p.max_drift_position << "," << p.max_drift_velocity << "," << p.steps << ","
+              << p.wall;
+        } else {
+          out << ",,,";
+        }
+        out << "\n";
       }
-      out << "\n";
-    }
-  });
+    });
 
   put((base / "summary.txt").string(),
       [&](std::ostream& out) { print_compare_table(out, result); });
   plan.commit_all();
+  // The folder describes this comparison only: a study an earlier run left there would be drawn
+  // beside runs it does not belong to.
+  if (!result.options.baumgarte_study) {
+    std::error_code ignored;
+    fs::remove(base / "baumgarte_study.csv", ignored);
+  }
 }
 
 std::string draw_compare_plots(const std::string& dir) {

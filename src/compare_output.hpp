@@ -12,10 +12,11 @@ namespace condyn {
 /// The work-precision table, one row per run.
 void print_compare_table(std::ostream& out, const CompareResult& result);
 
-/// Adds to `plan` the folder `dir` and the files compare writes there for `schemes`, so that
-/// plan.check() refuses a bad --out-dir before the runs.
+/// Adds to `plan` the folder `dir` and the files compare writes there for `schemes` (and
+/// baumgarte_study.csv when the study runs), so that plan.check() refuses a bad --out-dir before
+/// the runs.
 void plan_compare_files(OutputPlan& plan, const std::string& dir,
-                        const std::vector<Scheme>& schemes);
+                        const std::vector<Scheme>& schemes, bool baumgarte_study);
 
 /// Writes runs.csv, runs.json, drift_<scheme>.csv, history_<scheme>.csv, baumgarte_study.csv and
 /// summary.txt into `dir` (created if missing), all committed together through `plan`. Throws

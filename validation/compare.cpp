@@ -23,6 +23,8 @@ void CompareOptions::validate() const {
   if (schemes.empty()) bad("no schemes");
   if (!(drift_rtol > 0.0 && drift_rtol < 1.0)) bad("drift rtol must lie in (0, 1)");
   if (atol_ratio < 0.0) bad("atol ratio must be >= 0");
+  if (max_steps < 0) bad("max steps must be >= 0");
+  if (!(max_wall_time >= 0.0)) bad("max wall time must be >= 0");
 }
 
 namespace {
@@ -40,6 +42,13 @@ SolveSpec settings_of(const SolveSpec& scene, Scheme scheme, double rtol, double
   s.scheme = scheme;
   s.rtol = rtol;
   s.atol = atol;
+  return s;
+}
+
+/// The same within the per-run budget of the options (compare --max-steps, --max-wall-time).
+SolveSpec budgeted(SolveSpec s, const CompareOptions& options) {
+  if (options.max_steps > 0) s.max_steps = options.max_steps;
+  if (options.max_wall_time > 0.0) s.max_wall_time = options.max_wall_time;
   return s;
 }
 
@@ -134,7 +143,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
       r.scheme = scheme;
       r.rtol = rtol;
       r.atol = rtol * ratio;
-      const SolveSpec settings = settings_of(spec.solve, scheme, r.rtol, r.atol);
+      const SolveSpec settings = budgeted(settings_of(spec.solve, scheme, r.rtol, r.atol), options);
       std::vector<double> walls;
       try {
         for (int k = 0; k < options.repeats; ++k) {
@@ -204,8 +213,9 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   }
 
   // Drift logs and histories at one tolerance.
-  const SolveSpec drift_settings =
-      settings_of(spec.solve, Scheme::automatic, options.drift_rtol, options.drift_rtol * ratio);
+  const SolveSpec drift_settings = budgeted(
+      settings_of(spec.solve, Scheme::automatic, options.drift_rtol, options.drift_rtol * ratio),
+      options);
   for (Scheme scheme : schemes) {
     SchemeHistory h;
     h.scheme = scheme;
@@ -229,7 +239,8 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   }
 
   // Baumgarte study: the default gains scaled over a grid.
-  if (std::find(schemes.begin(), schemes.end(), Scheme::baumgarte) != schemes.end() &&
+  if (options.baumgarte_study &&
+      std::find(schemes.begin(), schemes.end(), Scheme::baumgarte) != schemes.end() &&
       base.constraint_count() > 0) {
     const BaumgarteGains defaults = baumgarte_gains(base, drift_settings);
     for (double fa : options.baumgarte_factors) {
@@ -262,6 +273,13 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
     }
   }
   return out;
+}
+
+int CompareResult::failed_runs() const {
+  int n = 0;
+  for (const auto& r : runs) n += r.ok ? 0 : 1;
+  for (const auto& h : histories) n += h.ok ? 0 : 1;
+  return n;
 }
 
 }  // namespace condyn

@@ -34,6 +34,14 @@ struct CompareOptions {
   double drift_rtol = 1e-6;  ///< tolerance of the drift, history and Baumgarte-study runs
   /// Gains of the Baumgarte study: default α and β times each factor (a grid).
   std::vector<double> baumgarte_factors = {0.1, 1.0, 10.0, 100.0};
+  /// Run the Baumgarte study at all (compare --baumgarte-study): 16 runs, some of up to a million
+  /// steps on mechanisms, so it is asked for, not done by default.
+  bool baumgarte_study = false;
+  /// Budget of every run of the sweep, the histories and the study (not the reference): internal
+  /// steps and wall seconds (0: none), as [solve] max_steps and max_wall_time. A run beyond it is
+  /// a failed run, recorded with the reason, and the sweep goes on.
+  long max_steps = 0;
+  double max_wall_time = 0.0;
   /// Called after every run with a one-line progress note.
   std::function<void(const std::string&)> progress;
   /// Throws std::invalid_argument naming the bad option.
@@ -94,6 +102,9 @@ struct CompareResult {
   std::vector<std::string> constraint_names;
   /// DOFs some constraint touches (the reaction columns of the histories): name and index.
   std::vector<std::pair<std::string, int>> constrained_dofs;
+  /// Runs of the sweep and histories that failed (the study's points are not counted: extreme
+  /// gains are meant to find where it breaks).
+  [[nodiscard]] int failed_runs() const;
 };
 
 /// Runs the comparison. A failed run is recorded, not thrown; input errors throw SceneError, and

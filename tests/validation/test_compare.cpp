@@ -24,6 +24,7 @@ CompareOptions small_options() {
   o.repeats = 2;
   o.schemes = {Scheme::elimination, Scheme::ggl, Scheme::penalty};
   o.baumgarte_factors = {1.0, 10.0};
+  o.baumgarte_study = true;
   return o;
 }
 

@@ -1,0 +1,143 @@
+// `condyn check` (scene-format.md, "Checks for a user's own validation suite") and compare's exit
+// codes and budgets (issue 14): what a CI job sees.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "tests/cli_sandbox.hpp"
+
+using condyn::test::Result;
+using condyn::test::Sandbox;
+using condyn::test::slurp;
+
+namespace {
+
+/// A unit oscillator released from u = 1 (u = cos t exactly) with the checks given.
+std::string scene(const std::string& checks) {
+  return R"(name = "oscillator"
+[model]
+type = "matrix"
+dofs = ["x"]
+mass = [[1.0]]
+stiffness = [[1.0]]
+[initial]
+displacement = { x = 1.0 }
+[solve]
+t_end = 2.0
+output_step = 0.1
+rtol = 1e-10
+atol = 1e-12
+)" + checks;
+}
+
+// cos(1) = 0.5403023058681398.
+const std::string kHolds =
+    "[[check]]\nquantity = \"x\"\nat = 1.0\nvalue = 0.5403023058681398\ntolerance = 1e-7\n";
+const std::string kFails = "[[check]]\nquantity = \"x\"\nat = 1.0\nvalue = 0.5\ntolerance = 1e-3\n";
+
+/// Counts in the JUnit report, read by Python's XML parser (as a CI system would read it).
+std::string junit_counts(const Sandbox& box, const std::string& file) {
+  box.write("count.py",
+            "import sys, xml.etree.ElementTree as E\n"
+            "r = E.parse(sys.argv[1]).getroot()\n"
+            "print(r.tag, r.get('tests'), r.get('failures'), r.get('errors'),\n"
+            "      len(r.findall('testsuite')), len(r.findall('.//failure')))\n");
+  const std::string cmd = "cd '" + box.path("").string() + "' && /usr/bin/python3 count.py " +
+                          file + " > counts.txt 2>&1";
+  (void)std::system(cmd.c_str());
+  return slurp(box.path("counts.txt"));
+}
+
+}  // namespace
+
+TEST_CASE("cli check: every check holds: exit 0, one line per check, a JUnit report") {
+  Sandbox box;
+  box.write("a.toml", scene(kHolds));
+  box.write("b.toml", scene("[[check]]\nquantity = \"vel_x\"\nmax_abs = 1.0000001\n"));
+  const Result r = box.run("check a.toml b.toml --junit report.xml");
+  CAPTURE(r.out);
+  CAPTURE(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out.find("PASS check[1] x (value): x at t = 1: 0.540302, expected 0.540302") !=
+        std::string::npos);
+  CHECK(r.out.find("PASS check[1] vel_x (max_abs): max |vel_x| = ") != std::string::npos);
+  CHECK(r.out.find("checks: 2 passed, 0 failed (2 scenes)") != std::string::npos);
+  CHECK(junit_counts(box, "report.xml") == "testsuites 2 0 0 2 0\n");
+}
+
+TEST_CASE("cli check: a check that fails: exit 1 and a JUnit failure") {
+  Sandbox box;
+  box.write("a.toml", scene(kHolds + kFails));
+  const Result r = box.run("check a.toml --junit report.xml");
+  CAPTURE(r.out);
+  CHECK(r.code == 1);
+  CHECK(r.out.find("FAIL check[2] x (value): x at t = 1: 0.540302, expected 0.5 +- 0.001 (off "
+                   "by 0.0403023)") != std::string::npos);
+  CHECK(r.out.find("checks: 1 passed, 1 failed") != std::string::npos);
+  CHECK(junit_counts(box, "report.xml") == "testsuites 2 1 0 1 1\n");
+}
+
+TEST_CASE("cli check: bad input is exit 2 naming file, line and key; the other scenes still run") {
+  Sandbox box;
+  box.write("good.toml", scene(kHolds));
+  box.write("typo.toml", scene("[[check]]\nquantity = \"y\"\nmax_abs = 1.0\n"));
+  box.write("none.toml", scene(""));
+  const Result r = box.run("check typo.toml none.toml good.toml --junit report.xml");
+  CAPTURE(r.out);
+  CHECK(r.code == 2);
+  CHECK(r.out.find("ERROR typo.toml:14: check[1].quantity: no output column is named 'y'") !=
+        std::string::npos);
+  CHECK(r.out.find("ERROR none.toml: has no [[check]] table") != std::string::npos);
+  CHECK(r.out.find("PASS check[1] x (value)") != std::string::npos);
+  CHECK(r.out.find("checks: 1 passed, 0 failed, 2 scene(s) not checked (3 scenes)") !=
+        std::string::npos);
+  CHECK(junit_counts(box, "report.xml") == "testsuites 3 0 2 3 0\n");
+
+  const Result missing = box.run("check nowhere.toml");
+  CHECK(missing.code == 2);
+  CHECK(missing.out.find("nowhere.toml: cannot open the scene file") != std::string::npos);
+  // The report path is checked before any run: a folder is refused, exit 2, nothing run.
+  const Result folder = box.run("check good.toml --junit .");
+  CHECK(folder.code == 2);
+  CHECK(folder.out.find("PASS") == std::string::npos);
+}
+
+TEST_CASE("cli check: a run that fails is an error of its scene (exit 1)") {
+  Sandbox box;
+  box.write("a.toml", scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n") + "");
+  const Result r = box.run("check a.toml --scheme index1 --junit report.xml");
+  CHECK(r.code == 0);  // the base case runs
+  std::string tight = scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n");
+  tight.insert(tight.find("rtol"), "max_steps = 3\n");
+  box.write("b.toml", tight);
+  const Result f = box.run("check b.toml --junit report.xml");
+  CAPTURE(f.out);
+  CHECK(f.code == 1);
+  CHECK(f.out.find("ERROR the run failed: step budget exhausted") != std::string::npos);
+  CHECK(junit_counts(box, "report.xml") == "testsuites 1 0 1 1 0\n");
+}
+
+TEST_CASE(
+    "cli compare: a failed run makes the exit 1 unless --allow-failures; no study by default") {
+  Sandbox box;
+  box.write("s.toml", scene(""));
+  const std::string args =
+      "compare s.toml --tolerances 1e-4 --schemes index1,ggl --repeats 1 "
+      "--no-plots --max-steps 5 --out-dir out";
+  const Result r = box.run(args);
+  CAPTURE(r.err);
+  CHECK(r.code == 1);
+  CHECK(r.err.find("error: 4 runs of the comparison failed") != std::string::npos);
+  CHECK(slurp(box.path("out/runs.csv")).find("step budget") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(box.path("out/baumgarte_study.csv")));
+  const Result tolerated = box.run(args + " --allow-failures");
+  CHECK(tolerated.code == 0);
+  CHECK(tolerated.err.find("tolerated by --allow-failures") != std::string::npos);
+
+  const Result study = box.run(
+      "compare s.toml --tolerances 1e-4 --schemes baumgarte --repeats 1 --no-plots "
+      "--baumgarte-study --out-dir out2");
+  CHECK(study.code == 0);
+  // The oscillator has no constraint: the study has nothing to stabilize and writes an empty grid.
+  CHECK(slurp(box.path("out2/baumgarte_study.csv")).rfind("alpha,beta,default,status", 0) == 0);
+}

@@ -1,0 +1,283 @@
+// A user's own checks, evaluated on rows as they are computed (validation/user_checks.hpp).
+
+#include "validation/user_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "dae/solve.hpp"
+#include "models/scene_parser.hpp"
+
+namespace condyn {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+/// Edit distance, for suggesting a column name.
+std::size_t distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// Every column a run of the model can write (under some quantity).
+std::vector<std::string> all_columns(const Model& model) {
+  std::vector<std::string> out = {"drift_position", "drift_velocity", "energy", "energy_error"};
+  for (const auto& d : model.dof_names) {
+    for (const char* prefix : {"", "vel_", "acc_", "reaction_"}) out.push_back(prefix + d);
+  }
+  for (const auto& c : model.constraints) out.push_back("lambda_" + c.name);
+  return out;
+}
+
+/// "unknown column 'uz3'; the nearest are ux3, uy3" (up to five names at the smallest distance).
+std::string unknown_column(const Model& model, const std::string& name) {
+  std::vector<std::pair<std::size_t, std::string>> ranked;
+  for (auto& c : all_columns(model)) ranked.emplace_back(distance(name, c), std::move(c));
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::string near;
+  for (std::size_t k = 0; k < ranked.size() && k < 5; ++k) {
+    near += (k ? ", " : "") + ranked[k].second;
+  }
+  return "no output column is named '" + name +
+         "' (columns are a DOF's name, vel_, acc_ or reaction_ and a DOF, lambda_ and a "
+         "constraint, drift_position, drift_velocity, energy, energy_error); the nearest: " +
+         near;
+}
+
+SourcePoint quantity_key(const CheckSpec& c) { return {c.where.path + ".quantity", c.where.line}; }
+
+}  // namespace
+
+std::optional<CheckColumn> find_column(const Model& model, const std::string& name) {
+  if (name == "drift_position") return CheckColumn{Quantity::drift, 0};
+  if (name == "drift_velocity") return CheckColumn{Quantity::drift, 1};
+  if (name == "energy") return CheckColumn{Quantity::energy, 0};
+  if (name == "energy_error") return CheckColumn{Quantity::energy, 1};
+  const auto dof = [&](const std::string& d) -> int {
+    const auto it = std::find(model.dof_names.begin(), model.dof_names.end(), d);
+    return it == model.dof_names.end() ? -1 : static_cast<int>(it - model.dof_names.begin());
+  };
+  if (const int d = dof(name); d >= 0) return CheckColumn{Quantity::displacement, d};
+  for (const auto& [prefix, quantity] :
+       {std::pair<std::string, Quantity>{"vel_", Quantity::velocity},
+        {"acc_", Quantity::acceleration},
+        {"reaction_", Quantity::reaction}}) {
+    if (name.rfind(prefix, 0) == 0) {
+      if (const int d = dof(name.substr(prefix.size())); d >= 0) return CheckColumn{quantity, d};
+    }
+  }
+  if (name.rfind("lambda_", 0) == 0) {
+    const std::string c = name.substr(7);
+    for (std::size_t i = 0; i < model.constraints.size(); ++i) {
+      if (model.constraints[i].name == c) {
+        return CheckColumn{Quantity::multiplier, static_cast<int>(i)};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>& checks,
+                               const std::string& file)
+    : checks_(checks) {
+  for (const auto& c : checks_) {
+    const auto column = find_column(model, c.quantity);
+    if (!column)
+      throw SceneError(scene_message(file, quantity_key(c), unknown_column(model, c.quantity)));
+    State s;
+    s.column = *column;
+    states_.push_back(s);
+  }
+}
+
+std::vector<Quantity> CheckEvaluator::quantities_needed(const Model& model,
+                                                        const std::vector<CheckSpec>& checks,
+                                                        const std::string& file) {
+  std::vector<Quantity> out;
+  for (const auto& c : checks) {
+    const auto column = find_column(model, c.quantity);
+    if (!column)
+      throw SceneError(scene_message(file, quantity_key(c), unknown_column(model, c.quantity)));
+    if (std::find(out.begin(), out.end(), column->quantity) == out.end()) {
+      out.push_back(column->quantity);
+    }
+  }
+  return out;
+}
+
+double CheckEvaluator::value(const TrajectoryRow& row, const CheckColumn& c) const {
+  const auto at = [&](const Eigen::VectorXd& x) { return c.index < x.size() ? x[c.index] : kNaN; };
+  switch (c.quantity) {
+    case Quantity::displacement:
+      return at(row.u);
+    case Quantity::velocity:
+      return at(row.v);
+    case Quantity::acceleration:
+      return at(row.acceleration);
+    case Quantity::reaction:
+      return at(row.reaction);
+    case Quantity::multiplier:
+      return at(row.multiplier);
+    case Quantity::drift:
+      return c.index == 0 ? row.drift_position : row.drift_velocity;
+    case Quantity::energy:
+      if (!row.conservative) return kNaN;
+      return c.index == 0 ? row.energy : row.energy - energy0_;
+  }
+  return kNaN;
+}
+
+void CheckEvaluator::add(const TrajectoryRow& row) {
+  if (first_row_) {
+    energy0_ = row.energy;
+    first_row_ = false;
+  }
+  for (std::size_t k = 0; k < checks_.size(); ++k) {
+    const CheckSpec& c = checks_[k];
+    State& s = states_[k];
+    const double v = value(row, s.column);
+    switch (c.form) {
+      case CheckSpec::Form::at_value:
+        if (!s.seen && std::abs(row.t - c.at) <= 1e-9 * std::max(1.0, std::abs(c.at))) {
+          s.figure = v;
+          s.seen = true;
+        }
+        break;
+      case CheckSpec::Form::max_abs:
+        // A NaN makes the figure NaN for good (the check then fails).
+        s.figure = (std::isnan(v) || std::isnan(s.figure)) ? kNaN : std::max(s.figure, std::abs(v));
+        s.seen = true;
+        break;
+      case CheckSpec::Form::reference: {
+        const auto& ref = *c.reference;
+        // Reference rows up to this row's time, interpolated linearly between the last row and
+        // this one (or this row's value at its own time).
+        while (s.next < ref.times.size() && ref.times[s.next] <= row.t + 1e-12 * std::abs(row.t)) {
+          const double tr = ref.times[s.next];
+          double computed = v;
+          if (s.has_previous && row.t > s.previous_t && tr < row.t) {
+            computed = s.previous_value +
+                       (v - s.previous_value) * (tr - s.previous_t) / (row.t - s.previous_t);
+          }
+          const double diff = std::abs(computed - ref.values[s.next]);
+          s.figure = (std::isnan(diff) || std::isnan(s.figure)) ? kNaN : std::max(s.figure, diff);
+          s.seen = true;
+          ++s.next;
+        }
+        s.previous_t = row.t;
+        s.previous_value = v;
+        s.has_previous = true;
+        break;
+      }
+    }
+  }
+}
+
+std::vector<CheckOutcome> CheckEvaluator::outcomes() const {
+  std::vector<CheckOutcome> out;
+  for (std::size_t k = 0; k < checks_.size(); ++k) {
+    const CheckSpec& c = checks_[k];
+    const State& s = states_[k];
+    CheckOutcome o;
+    o.quantity = c.quantity;
+    o.form = c.form;
+    o.computed = s.seen ? s.figure : kNaN;
+    o.bound = c.form == CheckSpec::Form::max_abs ? c.bound : c.tolerance;
+    std::string text;
+    switch (c.form) {
+      case CheckSpec::Form::at_value: {
+        const double computed = o.computed;
+        o.computed = std::abs(computed - c.value);
+        text = c.quantity + " at t = " + fmt(c.at) + ": " + fmt(computed) + ", expected " +
+               fmt(c.value) + " +- " + fmt(c.tolerance) + " (off by " + fmt(o.computed) + ")";
+        break;
+      }
+      case CheckSpec::Form::max_abs:
+        text = "max |" + c.quantity + "| = " + fmt(o.computed) + ", bound " + fmt(c.bound);
+        break;
+      case CheckSpec::Form::reference: {
+        const std::size_t rows = c.reference->times.size();
+        text = "max |" + c.quantity + " - reference| over " + std::to_string(rows) + " rows of " +
+               c.reference->file + " = " + fmt(o.computed) + ", tolerance " + fmt(c.tolerance);
+        if (s.next < rows) text += " (" + std::to_string(rows - s.next) + " rows not reached)";
+        break;
+      }
+    }
+    // NaN compares false: a check whose figure could not be formed fails.
+    o.passed = o.computed <= o.bound &&
+               (c.form != CheckSpec::Form::reference || s.next == c.reference->times.size());
+    if (std::isnan(o.computed)) text += " (no finite value: the run wrote NaN or never reached it)";
+    o.text = std::move(text);
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+bool SceneCheckResult::passed() const {
+  return failure.empty() && std::all_of(outcomes.begin(), outcomes.end(),
+                                        [](const CheckOutcome& o) { return o.passed; });
+}
+
+SceneCheckResult run_scene_checks(const std::string& path, const SceneCheckOptions& options) {
+  return run_scene_checks(parse_scene_file(path), options);
+}
+
+SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& options) {
+  if (spec.checks.empty()) {
+    throw SceneError(scene_message(spec.file, {}, "has no [[check]] table: nothing to check"));
+  }
+  if (options.scheme) spec.solve.scheme = *options.scheme;
+  // energy and energy_error are the energy quantity's whatever the model: ask for it before the
+  // build, which refuses it where it has no meaning.
+  auto& quantities = spec.output.quantities;
+  const auto add = [&quantities](Quantity q) {
+    if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) {
+      quantities.push_back(q);
+    }
+  };
+  for (const auto& c : spec.checks) {
+    if (c.quantity == "energy" || c.quantity == "energy_error") add(Quantity::energy);
+  }
+  const Model model = build_model(spec);
+  for (Quantity q : CheckEvaluator::quantities_needed(model, spec.checks, spec.file)) add(q);
+  CheckEvaluator evaluator(model, spec.checks, spec.file);
+  RunHooks hooks;
+  hooks.accelerations =
+      std::find(quantities.begin(), quantities.end(), Quantity::acceleration) != quantities.end();
+  hooks.on_row = [&evaluator](const TrajectoryRow& row) { evaluator.add(row); };
+  const SolveResult result = solve(model, spec.solve, hooks);
+  SceneCheckResult out;
+  out.scene = spec.file;
+  out.scheme = to_string(result.scheme);
+  out.steps = result.summary.steps;
+  out.wall_s = result.summary.wall_seconds;
+  if (!result.ok()) {
+    out.failure = std::string(to_string(result.failure->kind)) + ": " + result.failure->message;
+    return out;
+  }
+  out.outcomes = evaluator.outcomes();
+  return out;
+}
+
+}  // namespace condyn
