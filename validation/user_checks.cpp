@@ -111,16 +111,11 @@ CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>&
   }
 }
 
-std::vector<Quantity> CheckEvaluator::quantities_needed(const Model& model,
-                                                        const std::vector<CheckSpec>& checks,
-                                                        const std::string& file) {
+std::vector<Quantity> CheckEvaluator::quantities() const {
   std::vector<Quantity> out;
-  for (const auto& c : checks) {
-    const auto column = find_column(model, c.quantity);
-    if (!column)
-      throw SceneError(scene_message(file, quantity_key(c), unknown_column(model, c.quantity)));
-    if (std::find(out.begin(), out.end(), column->quantity) == out.end()) {
-      out.push_back(column->quantity);
+  for (const auto& s : states_) {
+    if (std::find(out.begin(), out.end(), s.column.quantity) == out.end()) {
+      out.push_back(s.column.quantity);
     }
   }
   return out;
@@ -159,7 +154,9 @@ void CheckEvaluator::add(const TrajectoryRow& row) {
     const double v = value(row, s.column);
     switch (c.form) {
       case CheckSpec::Form::at_value:
-        if (!s.seen && std::abs(row.t - c.at) <= 1e-9 * std::max(1.0, std::abs(c.at))) {
+        // `at` is an output time (read_checks.cpp): the row nearest to it is that row.
+        if (!s.seen || std::abs(row.t - c.at) < s.distance) {
+          s.distance = std::abs(row.t - c.at);
           s.figure = v;
           s.seen = true;
         }
@@ -260,8 +257,8 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
     if (c.quantity == "energy" || c.quantity == "energy_error") add(Quantity::energy);
   }
   const Model model = build_model(spec);
-  for (Quantity q : CheckEvaluator::quantities_needed(model, spec.checks, spec.file)) add(q);
   CheckEvaluator evaluator(model, spec.checks, spec.file);
+  for (Quantity q : evaluator.quantities()) add(q);
   RunHooks hooks;
   hooks.accelerations =
       std::find(quantities.begin(), quantities.end(), Quantity::acceleration) != quantities.end();

@@ -43,16 +43,15 @@ class CheckEvaluator {
   void add(const TrajectoryRow& row);
   [[nodiscard]] std::vector<CheckOutcome> outcomes() const;
   /// The output quantities the checks read (to switch on in [output] before the run).
-  [[nodiscard]] static std::vector<Quantity> quantities_needed(const Model& model,
-                                                               const std::vector<CheckSpec>& checks,
-                                                               const std::string& file);
+  [[nodiscard]] std::vector<Quantity> quantities() const;
 
  private:
   struct State {
     CheckColumn column;
-    double figure = 0.0;   ///< running max, or the value at `at`
-    bool seen = false;     ///< `at` reached / any row seen
-    std::size_t next = 0;  ///< reference: its next row to compare
+    double figure = 0.0;    ///< running max, or the value at `at`
+    bool seen = false;      ///< `at` reached / any row seen
+    double distance = 0.0;  ///< `at`: |t − at| of the row kept
+    std::size_t next = 0;   ///< reference: its next row to compare
     double previous_t = 0.0, previous_value = 0.0;
     bool has_previous = false;
   };

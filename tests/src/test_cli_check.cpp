@@ -104,7 +104,7 @@ TEST_CASE("cli check: bad input is exit 2 naming file, line and key; the other s
 
 TEST_CASE("cli check: a run that fails is an error of its scene (exit 1)") {
   Sandbox box;
-  box.write("a.toml", scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n") + "");
+  box.write("a.toml", scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n"));
   const Result r = box.run("check a.toml --scheme index1 --junit report.xml");
   CHECK(r.code == 0);  // the base case runs
   std::string tight = scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n");
