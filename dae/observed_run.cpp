@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "dae/energy_balance.hpp"
 #include "models/constraint_drift.hpp"
 
 namespace condyn {
@@ -23,6 +24,17 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   VelocityReversals reversals;
   ConstraintDrift drift(model);
   IntegratorOptions observed = options;
+  // The energy balance's integrals, over every internal step (EnergyTerms::powers at the
+  // quadrature points of the loop).
+  std::optional<EnergyTerms> energy;
+  if (options.energy_balance) {
+    energy.emplace(model);
+    observed.integrand_size = EnergyTerms::kIntegrals;
+    observed.integrand = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
+      const auto [u, v] = observe.full_state(t, y);
+      return energy->powers(t, u, v, observe.multipliers(t, y, yp, u, v));
+    };
+  }
   if (observe.drift_at_every_step || options.record_steps || observe.on_state) {
     observed.on_step = [&](double t, const Eigen::VectorXd& y) {
       if (observe.on_state) observe.on_state(y);
@@ -42,7 +54,8 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       u.push_back(std::move(uk));
       v.push_back(std::move(vk));
     }
-    Trajectory traj = assemble_trajectory(model, raw.t, u, v, lambda, options.accelerations);
+    Trajectory traj =
+        assemble_trajectory(model, raw.t, u, v, lambda, options.accelerations, raw.integrals);
     traj.steps = steps;
     return traj;
   };
@@ -52,11 +65,13 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   std::optional<RowAssembler> rows;
   RowLog log;
   if (streamed) {
-    rows.emplace(model, options.accelerations);
-    observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
+    rows.emplace(model, options.accelerations, options.energy_balance);
+    observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                             const Eigen::VectorXd& integrals) {
       auto [u, v] = observe.full_state(t, y);
       Eigen::VectorXd lambda = observe.multipliers(t, y, yp, u, v);
-      const TrajectoryRow row = (*rows)(t, std::move(u), std::move(v), std::move(lambda));
+      const TrajectoryRow row =
+          (*rows)(t, std::move(u), std::move(v), std::move(lambda), integrals);
       options.on_row(row);
       log.add(row);
     };

@@ -309,6 +309,16 @@ void solve_resolved(const Model& model, Scheme scheme, const SolveSpec& settings
 
 }  // namespace
 
+RunHooks hooks_for(const std::vector<Quantity>& quantities) {
+  const auto has = [&quantities](Quantity q) {
+    return std::find(quantities.begin(), quantities.end(), q) != quantities.end();
+  };
+  RunHooks hooks;
+  hooks.accelerations = has(Quantity::acceleration);
+  hooks.energy_balance = has(Quantity::energy);
+  return hooks;
+}
+
 SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks& hooks) {
   settings.validate();
   Scheme scheme = settings.scheme;
@@ -320,6 +330,7 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     IntegratorOptions options = integrator_options(model, settings);
     options.record_steps = hooks.record_steps;
     options.accelerations = hooks.accelerations;
+    options.energy_balance = hooks.energy_balance;
     options.on_progress = hooks.on_progress;
     options.on_row = hooks.on_row;
     solve_resolved(model, scheme, settings, options, result);

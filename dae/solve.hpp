@@ -63,7 +63,12 @@ struct RunHooks {
   /// the result's trajectory holds no n x output-times data: its u, v, reaction and multiplier
   /// are empty; t, drifts and energies stay.
   std::function<void(const TrajectoryRow&)> on_row;
+  /// The energy balance at the output rows (TrajectoryRow::balance, docs/energy.md).
+  bool energy_balance = false;
 };
+
+/// The hooks output `quantities` call for: accelerations, the energy balance.
+[[nodiscard]] RunHooks hooks_for(const std::vector<Quantity>& quantities);
 
 /// Solves the model under settings.scheme (`automatic` resolves through choose_scheme) with the
 /// run's settings (tolerances, budgets, times, scheme parameters). A run that fails returns its

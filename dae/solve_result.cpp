@@ -1,5 +1,6 @@
 #include "dae/solve_result.hpp"
 
+#include <sstream>
 #include <stdexcept>
 
 namespace condyn {
@@ -21,6 +22,18 @@ RunFailure failure_of(const IntegrationError& e) {
 const SolveResult& succeeded(const SolveResult& result) {
   if (!result.ok()) throw std::runtime_error(result.failure->message);
   return result;
+}
+
+std::string describe_failure(const SolveResult& result, double t_end) {
+  const RunFailure& f = *result.failure;
+  std::ostringstream s;
+  s << "under " << to_string(result.scheme) << " (" << to_string(f.kind) << "): " << f.message;
+  if (f.in_loop) {
+    s << "\n  reached t = " << f.t_reached << " of t_end = " << t_end << ", last successful step "
+      << f.last_step;
+  }
+  if (!f.suggestion.empty()) s << "\n  suggestion: " << f.suggestion;
+  return s.str();
 }
 
 }  // namespace condyn

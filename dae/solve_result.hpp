@@ -43,4 +43,8 @@ struct SolveResult {
 /// returned is the argument.
 const SolveResult& succeeded(const SolveResult& result);
 
+/// A failed run's message: "under SCHEME (KIND): what failed", then, indented on their own lines,
+/// where the loop stopped and what to try. For the CLI's error line and the Python module.
+[[nodiscard]] std::string describe_failure(const SolveResult& result, double t_end);
+
 }  // namespace condyn

@@ -58,7 +58,19 @@ struct IntegratorOptions {
   /// When set, every output row (t, y, y') goes here as it is computed instead of into the
   /// returned RawTrajectory, which then holds the times only (results streamed, nothing of size
   /// unknowns x output times held).
-  std::function<void(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp)> on_output;
+  /// `integrals`: the integrals of `integrand` from the first output time to t (empty without one).
+  std::function<void(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                     const Eigen::VectorXd& integrals)>
+      on_output;
+  /// When set, the loop integrates this function of (t, y, y') over the run, `integrand_size`
+  /// components, by three-point Gauss-Legendre quadrature on the integrator's interpolant in every
+  /// internal step (exact for polynomials of degree 5 in t), and reports the integrals at each
+  /// output (RawTrajectory::integrals, on_output). The energy balance's work terms use it.
+  std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp)>
+      integrand;
+  int integrand_size = 0;
+  /// Compute the energy balance at the output rows (TrajectoryRow::balance; docs/energy.md).
+  bool energy_balance = false;
   /// Set by solve() from RunHooks::on_row: the observed run streams full-space rows there (and
   /// sets on_output itself).
   std::function<void(const TrajectoryRow&)> on_row;

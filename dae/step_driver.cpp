@@ -1,6 +1,7 @@
 #include "dae/step_driver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -102,18 +103,39 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
   const auto& stops = grid.stops;
   const double t0 = times.front(), t_end = times.back();
   RawTrajectory out;
-  auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
-    if (!y.allFinite() || !yp.allFinite()) {
+  // The integrand's integrals from t0 to `from`, the start of the current internal step.
+  Eigen::VectorXd done = Eigen::VectorXd::Zero(options.integrand ? options.integrand_size : 0);
+  double from = t0;
+  Eigen::VectorXd yq, ypq;
+  // ∫ from `from` to b over the last step's interpolant: 3-point Gauss-Legendre.
+  auto integral_to = [&](double b) -> Eigen::VectorXd {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(done.size());
+    if (done.size() == 0 || b <= from) return sum;
+    static constexpr double kNode = 0.7745966692414833770;  // sqrt(3/5)
+    static constexpr std::array<std::pair<double, double>, 3> kRule{
+        {{-kNode, 5.0 / 9.0}, {0.0, 8.0 / 9.0}, {kNode, 5.0 / 9.0}}};
+    const double mid = 0.5 * (from + b), half = 0.5 * (b - from);
+    for (const auto& [x, w] : kRule) {
+      const double tq = mid + half * x;
+      stepper.interpolate(tq, yq, ypq);
+      sum += (half * w) * options.integrand(tq, yq, ypq);
+    }
+    return sum;
+  };
+  auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                    const Eigen::VectorXd& integrals) {
+    if (!y.allFinite() || !yp.allFinite() || !integrals.allFinite()) {
       std::ostringstream s;
       s << "the solution became non-finite (NaN or inf) at t = " << t;
       throw IntegrationError(FailureKind::non_finite, s.str());
     }
     out.t.push_back(t);
     if (options.on_output) {
-      options.on_output(t, y, yp);
+      options.on_output(t, y, yp, integrals);
     } else {
       out.y.push_back(y);
       out.yp.push_back(yp);
+      if (integrals.size() > 0) out.integrals.push_back(integrals);
     }
   };
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -126,15 +148,16 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
   double next_progress = options.progress_after_seconds;
   Eigen::VectorXd yo, ypo;
   try {
-    record(t0, y0, yp0);
+    record(t0, y0, yp0, done);
     // Restarts at a load step's time: the state after it, and the outputs merged into it.
     auto restart_at = [&](double b) {
       stepper.restart(b);
       stepper.set_stop_time(stop_ahead());
       ++summary.restarts;
       reached = b;
+      from = b;
       while (k < times.size() && times[k] <= b) {
-        record(times[k], stepper.y(), stepper.yp());
+        record(times[k], stepper.y(), stepper.yp(), done);
         ++k;
       }
     };
@@ -166,15 +189,18 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
       const bool at_stop = next_stop < stops.size() && t >= stops[next_stop];
       // Outputs inside the step; one at a load step's time waits for the state after the step.
       while (k < times.size() && (times[k] < t || (times[k] == t && !at_stop))) {
+        const Eigen::VectorXd integrals = done + integral_to(times[k]);
         if (times[k] == t) {
-          record(t, stepper.y(), stepper.yp());
+          record(t, stepper.y(), stepper.yp(), integrals);
         } else {
           stepper.interpolate(times[k], yo, ypo);
-          record(times[k], yo, ypo);
+          record(times[k], yo, ypo, integrals);
         }
         ++k;
         steps_since_output = 0;
       }
+      if (done.size() > 0) done += integral_to(t);
+      from = t;
       if (at_stop) {
         restart_at(stops[next_stop++]);
         steps_since_output = 0;

@@ -19,6 +19,8 @@ namespace condyn {
 struct RawTrajectory {
   std::vector<double> t;
   std::vector<Eigen::VectorXd> y, yp;
+  /// IntegratorOptions::integrand integrated from t0 to each output time (empty without one).
+  std::vector<Eigen::VectorXd> integrals;
 };
 
 /// How a run failed: set where the failure arises (SUNDIALS flags mapped by their codes, the

@@ -21,13 +21,14 @@ Eigen::VectorXd MultiplierRecovery::operator()(double t, const Eigen::VectorXd& 
   return -aat_.solve(model_.A * rho);
 }
 
-RowAssembler::RowAssembler(const Model& model, bool accelerations)
+RowAssembler::RowAssembler(const Model& model, bool accelerations, bool energy_balance)
     : model_(model), system_(model.evaluator()), drift_(model) {
   if (accelerations) acceleration_.emplace(!model.is_nonlinear());
+  if (energy_balance) energy_.emplace(model);
 }
 
 TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::VectorXd v,
-                                       Eigen::VectorXd lambda) {
+                                       Eigen::VectorXd lambda, const Eigen::VectorXd& integrals) {
   TrajectoryRow row;
   row.t = t;
   if (model_.constraint_count() > 0) {
@@ -47,6 +48,11 @@ TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::Vecto
     row.energy = *energy;
     row.kinetic = 0.5 * v.dot(system_->mass(t, u) * v);
   }
+  if (energy_) {
+    row.balance = energy_->at(t, u, v, integrals);
+    if (!initial_energy_) initial_energy_ = row.balance->energy();
+    row.balance->initial = *initial_energy_;
+  }
   row.u = std::move(u);
   row.v = std::move(v);
   row.multiplier = std::move(lambda);
@@ -61,6 +67,7 @@ void RowLog::add(const TrajectoryRow& row) {
     energy_.push_back(row.energy);
     kinetic_.push_back(row.kinetic);
   }
+  if (row.balance) balance_.push_back(*row.balance);
 }
 
 Trajectory RowLog::trajectory() const {
@@ -74,6 +81,7 @@ Trajectory RowLog::trajectory() const {
   out.drift_velocity = vector(drift_velocity_);
   out.energy = vector(energy_);
   out.kinetic = vector(kinetic_);
+  out.balance = balance_;
   return out;
 }
 
@@ -92,7 +100,8 @@ Trajectory trajectory_of(const TrajectoryRow& row) {
 Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                const std::vector<Eigen::VectorXd>& u,
                                const std::vector<Eigen::VectorXd>& v,
-                               const std::vector<Eigen::VectorXd>& lambda, bool accelerations) {
+                               const std::vector<Eigen::VectorXd>& lambda, bool accelerations,
+                               const std::vector<Eigen::VectorXd>& integrals) {
   const int n = model.dofs(), m = model.constraint_count();
   const auto nt = static_cast<Eigen::Index>(times.size());
   Trajectory out;
@@ -102,10 +111,12 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
   out.multiplier.resize(m, nt);
   if (accelerations) out.acceleration.resize(n, nt);
   out.t.reserve(times.size());
-  RowAssembler assemble(model, accelerations);
+  const bool balance = !integrals.empty();
+  RowAssembler assemble(model, accelerations, balance);
   for (Eigen::Index k = 0; k < nt; ++k) {
     const auto i = static_cast<std::size_t>(k);
-    const TrajectoryRow row = assemble(times[i], u[i], v[i], m > 0 ? lambda[i] : Eigen::VectorXd());
+    const TrajectoryRow row = assemble(times[i], u[i], v[i], m > 0 ? lambda[i] : Eigen::VectorXd(),
+                                       balance ? integrals[i] : Eigen::VectorXd());
     out.t.push_back(row.t);
     out.u.col(k) = row.u;
     out.v.col(k) = row.v;
@@ -122,6 +133,7 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
       grow(out.energy, nt, row.energy);
       grow(out.kinetic, nt, row.kinetic);
     }
+    if (row.balance) out.balance.push_back(*row.balance);
   }
   return out;
 }

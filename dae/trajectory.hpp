@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dae/acceleration.hpp"
+#include "dae/energy_balance.hpp"
 #include "dae/step_driver.hpp"
 #include "models/constraint_drift.hpp"
 #include "models/model.hpp"
@@ -46,6 +47,8 @@ struct TrajectoryRow {
   double drift_position = 0.0, drift_velocity = 0.0;
   bool conservative = false;  ///< energy and kinetic are set
   double energy = 0.0, kinetic = 0.0;
+  /// The energy balance at this row, when asked for (IntegratorOptions::energy_balance).
+  std::optional<EnergyBalance> balance;
 };
 
 /// The per-row work of a trajectory: reactions f_con = −A(t, u)ᵀλ, drifts, and for a
@@ -53,9 +56,13 @@ struct TrajectoryRow {
 /// equations at the row (AccelerationFromForces). One evaluator of the model's own.
 class RowAssembler {
  public:
-  explicit RowAssembler(const Model& model, bool accelerations = false);
+  /// `energy_balance`: each row gets its balance, from the integrals handed to operator().
+  explicit RowAssembler(const Model& model, bool accelerations = false,
+                        bool energy_balance = false);
+  /// `integrals`: the balance's integrals from t0 to t (EnergyTerms), when it is asked for.
   [[nodiscard]] TrajectoryRow operator()(double t, Eigen::VectorXd u, Eigen::VectorXd v,
-                                         Eigen::VectorXd lambda);
+                                         Eigen::VectorXd lambda,
+                                         const Eigen::VectorXd& integrals = Eigen::VectorXd());
 
  private:
   const Model& model_;
@@ -63,6 +70,8 @@ class RowAssembler {
   ConstraintDrift drift_;
   std::optional<AccelerationFromForces> acceleration_;  ///< set when accelerations are asked for
   std::optional<bool> conservative_;                    ///< decided at the first row
+  std::optional<EnergyTerms> energy_;                   ///< set when the balance is asked for
+  std::optional<double> initial_energy_;                ///< T + V at the first row
 };
 
 struct Trajectory {
@@ -80,6 +89,8 @@ struct Trajectory {
   Eigen::VectorXd energy;
   /// nt kinetic energies ½ vᵀM v beside `energy` (the scale of its error); empty otherwise.
   Eigen::VectorXd kinetic;
+  /// nt energy balances (IntegratorOptions::energy_balance); empty unless asked for.
+  std::vector<EnergyBalance> balance;
   std::vector<StepRecord> steps;  ///< every internal step, when IntegratorOptions::record_steps
 };
 
@@ -113,17 +124,20 @@ class RowLog {
 
  private:
   std::vector<double> t_, drift_position_, drift_velocity_, energy_, kinetic_;
+  std::vector<EnergyBalance> balance_;
 };
 
 /// A one-row trajectory holding the row whole (the last row of a streamed run, to score it).
 [[nodiscard]] Trajectory trajectory_of(const TrajectoryRow& row);
 
 /// Builds a trajectory from u, u' and λ at the output times: f_con = −A(t, u)ᵀλ, drifts and
-/// energies from the model; with `accelerations`, u'' too (RowAssembler).
+/// energies from the model; with `accelerations`, u'' too; with `integrals` (one per time), the
+/// energy balance (RowAssembler).
 [[nodiscard]] Trajectory assemble_trajectory(const Model& model, const std::vector<double>& times,
                                              const std::vector<Eigen::VectorXd>& u,
                                              const std::vector<Eigen::VectorXd>& v,
                                              const std::vector<Eigen::VectorXd>& lambda,
-                                             bool accelerations = false);
+                                             bool accelerations = false,
+                                             const std::vector<Eigen::VectorXd>& integrals = {});
 
 }  // namespace condyn

@@ -34,4 +34,17 @@ std::optional<double> LinearSystem::energy(double t, ConstRef u, ConstRef v) {
   return 0.5 * v.dot(d.M * v) - 0.5 * u.dot(d.minus_K * u) - f.dot(u);
 }
 
+std::optional<MechanicalSystem::EnergyParts> LinearSystem::energy_parts(double t, ConstRef u,
+                                                                        ConstRef v) {
+  const Data& d = *data_;
+  EnergyParts parts;
+  parts.potential = -0.5 * u.dot(d.minus_K * u);
+  if (d.damped) parts.dissipation_power = -v.dot(d.minus_C * v);
+  const double steps = steps_at(t);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(v.size());
+  for (const auto& load : d.loads) load.add_to(f, load.value.derivative(0, t, steps));
+  parts.load_power = f.dot(v);
+  return parts;
+}
+
 }  // namespace condyn

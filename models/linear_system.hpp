@@ -51,6 +51,8 @@ class LinearSystem final : public MechanicalSystem {
   /// ½u'ᵀMu' + ½uᵀKu − f·u when the model is conservative: no damping, constant loads (steps at
   /// t = 0 included) and scleronomic constraints.
   [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) override;
+  /// Strain energy ½uᵀKu, damping power vᵀC v, load power f(t)ᵀv: for every linear model.
+  [[nodiscard]] std::optional<EnergyParts> energy_parts(double t, ConstRef u, ConstRef v) override;
 
   /// Rows whose right-hand side is evaluated at all (the others are homogeneous and scleronomic).
   [[nodiscard]] int rows_with_time_functions() const {

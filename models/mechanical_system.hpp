@@ -114,6 +114,19 @@ class MechanicalSystem {
   [[nodiscard]] virtual std::optional<double> energy(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) {
     return std::nullopt;
   }
+  /// The terms of the energy balance at one state (docs/energy.md): the potential energy V(u)
+  /// (strain energy ½uᵀKu of a linear model), the power vᵀC v the damping dissipates, and the
+  /// power f_ext(t)ᵀv of the applied loads, where f = f_ext − ∂V/∂u − C v. The default serves a
+  /// conservative system: V = energy() − ½vᵀM v, nothing dissipated, no applied load beyond V.
+  /// Nothing when the system cannot split its forces so.
+  struct EnergyParts {
+    double potential = 0.0, dissipation_power = 0.0, load_power = 0.0;
+  };
+  [[nodiscard]] virtual std::optional<EnergyParts> energy_parts(double t, ConstRef u, ConstRef v) {
+    const auto e = energy(t, u, v);
+    if (!e) return std::nullopt;
+    return EnergyParts{*e - 0.5 * v.dot(mass(t, u) * v), 0.0, 0.0};
+  }
   // NOLINTEND(performance-unnecessary-value-param)
 
  protected:

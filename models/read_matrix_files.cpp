@@ -48,6 +48,23 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
   out.file = string(file_node, key);
   out.where = at(file_node, key);
   if (out.file.empty()) fail(file_node, key, "the file name is empty");
+  if (arrays_ != nullptr) {
+    if (const auto it = arrays_->find(out.file); it != arrays_->end()) {
+      // A matrix handed over in memory: the file reader's own check of entries, finiteness.
+      out.matrix = it->second;
+      for (Eigen::Index k = 0; k < out.matrix.outerSize(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator e(out.matrix, k); e; ++e) {
+          if (!std::isfinite(e.value())) {
+            fail(file_node, key,
+                 out.file + ": entry (" + std::to_string(e.row() + 1) + "," +
+                     std::to_string(e.col() + 1) + ") is " + fmt(e.value()) +
+                     ": entries must be finite");
+          }
+        }
+      }
+      return out;
+    }
+  }
   // Relative to the scene file's folder (a scene given as text: the working directory).
   const std::filesystem::path resolved =
       std::filesystem::path(file_).parent_path() / std::filesystem::path(out.file);

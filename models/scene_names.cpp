@@ -73,9 +73,8 @@ void SceneReader::check_name(const toml::node& node, const std::string& path,
 void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) const {
   std::map<std::string, std::string> owner = {{"t", "the time column"},
                                               {"drift_position", "a drift column"},
-                                              {"drift_velocity", "a drift column"},
-                                              {"energy", "an energy column"},
-                                              {"energy_error", "an energy column"}};
+                                              {"drift_velocity", "a drift column"}};
+  for (const auto column : kEnergyColumns) owner[std::string(column)] = "an energy column";
   const auto claim = [&](const std::string& column, const std::string& who, const toml::node& node,
                          const std::string& path, const std::string& name, const char* what) {
     const auto [it, fresh] = owner.emplace(column, who);

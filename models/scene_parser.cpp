@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "models/scene_readers.hpp"
+#include "models/scene_table.hpp"
 
 namespace condyn {
 
@@ -57,6 +58,11 @@ SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
                                    "TOML syntax error: " + std::string(e.description())));
   }
   return SceneReader(file).read(root);
+}
+
+SceneSpec parse_scene_table(const toml::table& root, const std::string& file,
+                            const ArrayMatrices& arrays) {
+  return SceneReader(file, arrays).read(root);
 }
 
 SceneSpec parse_scene_file(const std::string& path) {

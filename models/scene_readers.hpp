@@ -6,9 +6,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "models/scene_spec.hpp"
+#include "models/scene_table.hpp"
 #include "models/toml_access.hpp"
 
 namespace condyn {
@@ -16,6 +18,9 @@ namespace condyn {
 class SceneReader : public TomlAccess {
  public:
   using TomlAccess::TomlAccess;
+  /// A reader whose `{ file = NAME }` keys may name matrices in `arrays` (models/scene_table.hpp).
+  SceneReader(std::string file, const ArrayMatrices& arrays)
+      : TomlAccess(std::move(file)), arrays_(&arrays) {}
 
   /// The whole scene: its top-level keys, then every section in order (scene_parser.cpp).
   [[nodiscard]] SceneSpec read(const toml::table& root) const;
@@ -69,6 +74,9 @@ class SceneReader : public TomlAccess {
   void check_name(const toml::node& node, const std::string& path, const std::string& name,
                   const char* what) const;
   void check_columns(const toml::table& root, const SceneSpec& spec) const;
+
+ private:
+  const ArrayMatrices* arrays_ = nullptr;  ///< matrices given in memory, by name (none: files only)
 };
 
 }  // namespace condyn

@@ -174,6 +174,12 @@ struct SolveSpec {
 
 enum class Quantity { displacement, velocity, acceleration, reaction, multiplier, drift, energy };
 
+/// The columns of the `energy` quantity, in order (docs/energy.md): T + V, the balance's error,
+/// T, V, the energy dissipated, the work of the loads and of the constraint forces.
+inline constexpr std::array<std::string_view, 7> kEnergyColumns = {
+    "energy",     "energy_error",    "energy_kinetic", "energy_potential", "energy_dissipated",
+    "work_loads", "work_constraints"};
+
 struct OutputSpec {
   std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};
   std::string file;  ///< empty: decided by the CLI

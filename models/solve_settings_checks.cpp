@@ -20,10 +20,11 @@ constexpr double kMaxOutputRows = 1e7;
 void ModelBuilder::check_energy_output() const {
   const auto& q = spec_.output.quantities;
   if (std::find(q.begin(), q.end(), Quantity::energy) == q.end()) return;
-  if (!evaluator()->energy(0.0, model_.u0, model_.v0)) {
+  if (!evaluator()->energy_parts(0.0, model_.u0, model_.v0)) {
     fail({"output.quantities", spec_.output.where.line},
-         "'energy' needs a conservative scene (no damping, time-independent loads and "
-         "constraints): the energy of this one is not conserved, so its error means nothing");
+         "'energy' (the energy balance, docs/energy.md) needs a linear model or a conservative "
+         "nonlinear one (no damping, time-independent loads and constraints): this model's "
+         "forces do not split into potential, dissipated and applied parts");
   }
 }
 

@@ -31,6 +31,10 @@ packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev
 [ "$mode" = test ] && packages+=(doctest-dev clang-format clang-tidy clang libclang-rt-14-dev libomp-dev)
 # compare draws its plots with Debian's matplotlib (the main job, and a unit test of the plots).
 packages+=(python3-matplotlib python3-numpy)
+# The Python module condyn (python/, docs/python.md): pybind11 and the Python headers to build it,
+# scipy for sparse models, pytest for its tests.
+packages+=(pybind11-dev python3-dev python3-scipy)
+[ "$mode" = test ] && packages+=(python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -43,12 +47,12 @@ if ((${#missing[@]})); then
 fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
-# The main job builds the program alone; the test command builds every test executable too, with
-# warnings as errors.
+# The main job builds the program and the Python module (build/python/condyn); the test command
+# builds every test executable too, with warnings as errors.
 if [ "$mode" = main ]; then
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=OFF -DCONDYN_TESTS=OFF \
     >/dev/null
-  cmake --build build -j "$jobs" --target condyn
+  cmake --build build -j "$jobs" --target condyn condyn_python
 else
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
     >/dev/null
@@ -62,7 +66,7 @@ if [ "$mode" = main ]; then
 fi
 
 # Lint: .clang-format and .clang-tidy are the project's rules, enforced here.
-sources=$(find src dae models validation tests -name '*.cpp' -o -name '*.hpp' | sort)
+sources=$(find src dae models validation tests python -name '*.cpp' -o -name '*.hpp' | sort)
 clang-format --dry-run -Werror $sources
 lint_sources=$(find src dae models validation -name '*.cpp' | sort)
 run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option $lint_sources \
@@ -79,7 +83,7 @@ echo "bootstrap: clang-format and clang-tidy clean"
 sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS="$sanitize" -DCONDYN_TESTS=ON \
-  -DCONDYN_FUZZ=ON >/dev/null
+  -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF >/dev/null
 cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
 (cd build-asan && ctest -L "unit|e2e" --output-on-failure -j "$jobs")
 

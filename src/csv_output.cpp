@@ -22,7 +22,6 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
   std::string line;
   for (std::size_t k = 0; k < traj.t.size(); ++k) {
     const auto col = static_cast<Eigen::Index>(k);
-    const bool energy = traj.energy.size() > col;
     const CsvRow row{traj.t[k],
                      traj.u.col(col),
                      traj.v.col(col),
@@ -33,8 +32,7 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
                      traj.multiplier.col(col),
                      traj.drift_position[col],
                      traj.drift_velocity[col],
-                     energy ? traj.energy[col] : 0.0,
-                     energy ? traj.energy[col] - traj.energy[0] : 0.0};
+                     traj.balance.size() > k ? &traj.balance[k] : nullptr};
     line.clear();
     append_csv_row(line, output, shown, row);
     out << line << "\n";

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <charconv>
+#include <stdexcept>
 
 namespace condyn {
 
@@ -43,7 +44,7 @@ std::string csv_header(const Model& model, const OutputSpec& output,
         line += ",drift_position,drift_velocity";
         break;
       case Quantity::energy:
-        line += ",energy,energy_error";
+        for (const auto column : kEnergyColumns) line.append(",").append(column);
         break;
     }
   }
@@ -81,9 +82,11 @@ void append_csv_row(std::string& line, const OutputSpec& output, const std::vect
         value(row.drift_position);
         value(row.drift_velocity);
         break;
-      case Quantity::energy:  // build_model refuses 'energy' for nonconservative scenes
-        value(row.energy);
-        value(row.energy_error);
+      case Quantity::energy:  // build_model refuses 'energy' where no balance can be drawn
+        if (row.balance == nullptr) throw std::logic_error("an energy column without a balance");
+        for (std::size_t k = 0; k < kEnergyColumns.size(); ++k) {
+          value(energy_column(*row.balance, k));
+        }
         break;
     }
   }

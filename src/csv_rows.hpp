@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/energy_balance.hpp"
 #include "models/model.hpp"
 
 namespace condyn {
@@ -17,7 +18,8 @@ struct CsvRow {
   /// `acceleration` may be empty when the output does not ask for it.
   Eigen::Ref<const Eigen::VectorXd> u, v, acceleration, reaction, multiplier;
   double drift_position = 0.0, drift_velocity = 0.0;
-  double energy = 0.0, energy_error = 0.0;  ///< E(t) and E(t) − E(0) (conservative scenes)
+  /// The energy balance (docs/energy.md) when the output asks for `energy`.
+  const EnergyBalance* balance = nullptr;
 };
 
 /// "t,..." for the [output] quantities over the `shown` DOFs, without the newline.

@@ -89,11 +89,11 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
           return c == 0 ? traj.drift_position[k] : traj.drift_velocity[k];
         });
         break;
-      case Quantity::energy:  // build_model refuses 'energy' for nonconservative scenes
-        put_matrix(f, "energy", nt, 2, [&](hsize_t r, hsize_t c) {
-          const auto k = static_cast<Eigen::Index>(r);
-          return c == 0 ? traj.energy[k] : traj.energy[k] - traj.energy[0];
-        });
+      case Quantity::energy:  // build_model refuses 'energy' where no balance can be drawn
+        if (traj.balance.size() != nt) throw std::logic_error("energy rows without a balance");
+        put_matrix(f, "energy", nt, kEnergyColumns.size(),
+                   [&](hsize_t r, hsize_t c) { return energy_column(traj.balance[r], c); });
+        put_strings(f, "energy_columns", energy_column_names());
         break;
     }
   }

@@ -31,20 +31,12 @@ namespace {
 
 using namespace condyn;
 
-/// The message for a failed run: what failed where, what to try, and where the rows computed
-/// before the failure went (`partial_note`, from RunOutputs::write_partial).
+/// The message for a failed run (dae/solve_result.hpp) and where the rows computed before the
+/// failure went (`partial_note`, from RunOutputs::write_partial).
 std::string describe_failure(const SolveResult& result, double t_end,
                              const std::string& partial_note) {
-  const RunFailure& f = *result.failure;
-  std::ostringstream s;
-  s << "under " << to_string(result.scheme) << " (" << to_string(f.kind) << "): " << f.message;
-  if (f.in_loop) {
-    s << "\n  reached t = " << f.t_reached << " of t_end = " << t_end << ", last successful step "
-      << f.last_step;
-  }
-  if (!f.suggestion.empty()) s << "\n  suggestion: " << f.suggestion;
-  if (!partial_note.empty()) s << "\n  " << partial_note;
-  return s.str();
+  return condyn::describe_failure(result, t_end) +
+         (partial_note.empty() ? std::string() : "\n  " + partial_note);
 }
 
 struct RunArgs {
@@ -85,10 +77,8 @@ int run(const RunArgs& args) {
   BuildReport report;
   const Model model = build_model(spec, report);
 
-  RunHooks hooks;
+  RunHooks hooks = hooks_for(spec.output.quantities);
   hooks.record_steps = !args.steps_out.empty();
-  hooks.accelerations = std::find(spec.output.quantities.begin(), spec.output.quantities.end(),
-                                  Quantity::acceleration) != spec.output.quantities.end();
   hooks.on_progress = print_progress;
   // Rows go to the result file as they are computed when it is a regular file (nothing of size
   // DOFs x output times is held); a stream gets the whole result at the end. The last row is

@@ -23,7 +23,6 @@ class CsvRowWriter final : public RowWriter {
   }
 
   void row(const TrajectoryRow& r) override {
-    if (rows_ == 0) energy0_ = r.energy;
     const CsvRow view{r.t,
                       r.u,
                       r.v,
@@ -32,8 +31,7 @@ class CsvRowWriter final : public RowWriter {
                       r.multiplier,
                       r.drift_position,
                       r.drift_velocity,
-                      r.energy,
-                      r.energy - energy0_};
+                      r.balance ? &*r.balance : nullptr};
     line_.clear();
     append_csv_row(line_, output_, shown_, view);
     out_ << line_ << "\n";
@@ -51,7 +49,6 @@ class CsvRowWriter final : public RowWriter {
   std::vector<int> shown_;
   std::string path_, line_;
   std::ofstream out_;
-  double energy0_ = 0.0;
 };
 
 /// One dataset of `cols` doubles per row (`vector`: one double per row, a 1-D dataset),
@@ -160,7 +157,7 @@ class Hdf5RowWriter final : public RowWriter {
           drift_ = std::make_unique<Series>(file_, "drift", 2, false);
           break;
         case Quantity::energy:
-          energy_ = std::make_unique<Series>(file_, "energy", 2, false);
+          energy_ = std::make_unique<Series>(file_, "energy", kEnergyColumns.size(), false);
           break;
       }
     }
@@ -169,13 +166,13 @@ class Hdf5RowWriter final : public RowWriter {
     for (const auto& c : model.constraints) constraint_names.push_back(c.name);
     hdf5::put_strings(file_, "dof_names", dof_names);
     hdf5::put_strings(file_, "constraint_names", constraint_names);
+    if (energy_) hdf5::put_strings(file_, "energy_columns", energy_column_names());
   }
   Hdf5RowWriter(const Hdf5RowWriter&) = delete;
   Hdf5RowWriter& operator=(const Hdf5RowWriter&) = delete;
   ~Hdf5RowWriter() override { close(); }
 
   void row(const TrajectoryRow& r) override {
-    if (rows_ == 0) energy0_ = r.energy;
     t_->append([&](hsize_t) { return r.t; });
     const auto dofs = [this](Series& s, const Eigen::VectorXd& x) {
       s.append([&](hsize_t c) { return x[shown_[c]]; });
@@ -189,8 +186,10 @@ class Hdf5RowWriter final : public RowWriter {
     }
     if (drift_)
       drift_->append([&](hsize_t c) { return c == 0 ? r.drift_position : r.drift_velocity; });
-    if (energy_)
-      energy_->append([&](hsize_t c) { return c == 0 ? r.energy : r.energy - energy0_; });
+    if (energy_) {
+      if (!r.balance) throw std::logic_error("an energy row without a balance");
+      energy_->append([&](hsize_t c) { return energy_column(*r.balance, c); });
+    }
     ++rows_;
   }
 
@@ -226,7 +225,6 @@ class Hdf5RowWriter final : public RowWriter {
   std::string path_;
   hid_t file_ = -1;
   std::unique_ptr<Series> t_, u_, v_, a_, reaction_, multiplier_, drift_, energy_;
-  double energy0_ = 0.0;
   bool failed_ = false;
 };
 

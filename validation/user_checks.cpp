@@ -41,7 +41,8 @@ std::size_t distance(const std::string& a, const std::string& b) {
 
 /// Every column a run of the model can write (under some quantity).
 std::vector<std::string> all_columns(const Model& model) {
-  std::vector<std::string> out = {"drift_position", "drift_velocity", "energy", "energy_error"};
+  std::vector<std::string> out = {"drift_position", "drift_velocity"};
+  for (const auto column : kEnergyColumns) out.emplace_back(column);
   for (const auto& d : model.dof_names) {
     for (const char* prefix : {"", "vel_", "acc_", "reaction_"}) out.push_back(prefix + d);
   }
@@ -61,7 +62,8 @@ std::string unknown_column(const Model& model, const std::string& name) {
   }
   return "no output column is named '" + name +
          "' (columns are a DOF's name, vel_, acc_ or reaction_ and a DOF, lambda_ and a "
-         "constraint, drift_position, drift_velocity, energy, energy_error); the nearest: " +
+         "constraint, drift_position, drift_velocity, energy, energy_error and the other "
+         "energy columns); the nearest: " +
          near;
 }
 
@@ -72,8 +74,9 @@ SourcePoint quantity_key(const CheckSpec& c) { return {c.where.path + ".quantity
 std::optional<CheckColumn> find_column(const Model& model, const std::string& name) {
   if (name == "drift_position") return CheckColumn{Quantity::drift, 0};
   if (name == "drift_velocity") return CheckColumn{Quantity::drift, 1};
-  if (name == "energy") return CheckColumn{Quantity::energy, 0};
-  if (name == "energy_error") return CheckColumn{Quantity::energy, 1};
+  for (std::size_t k = 0; k < kEnergyColumns.size(); ++k) {
+    if (name == kEnergyColumns[k]) return CheckColumn{Quantity::energy, static_cast<int>(k)};
+  }
   const auto dof = [&](const std::string& d) -> int {
     const auto it = std::find(model.dof_names.begin(), model.dof_names.end(), d);
     return it == model.dof_names.end() ? -1 : static_cast<int>(it - model.dof_names.begin());
@@ -137,17 +140,13 @@ double CheckEvaluator::value(const TrajectoryRow& row, const CheckColumn& c) con
     case Quantity::drift:
       return c.index == 0 ? row.drift_position : row.drift_velocity;
     case Quantity::energy:
-      if (!row.conservative) return kNaN;
-      return c.index == 0 ? row.energy : row.energy - energy0_;
+      if (!row.balance) return kNaN;
+      return energy_column(*row.balance, static_cast<std::size_t>(c.index));
   }
   return kNaN;
 }
 
 void CheckEvaluator::add(const TrajectoryRow& row) {
-  if (first_row_) {
-    energy0_ = row.energy;
-    first_row_ = false;
-  }
   for (std::size_t k = 0; k < checks_.size(); ++k) {
     const CheckSpec& c = checks_[k];
     State& s = states_[k];
@@ -254,14 +253,14 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
     }
   };
   for (const auto& c : spec.checks) {
-    if (c.quantity == "energy" || c.quantity == "energy_error") add(Quantity::energy);
+    for (const auto column : kEnergyColumns) {
+      if (c.quantity == column) add(Quantity::energy);
+    }
   }
   const Model model = build_model(spec);
   CheckEvaluator evaluator(model, spec.checks, spec.file);
   for (Quantity q : evaluator.quantities()) add(q);
-  RunHooks hooks;
-  hooks.accelerations =
-      std::find(quantities.begin(), quantities.end(), Quantity::acceleration) != quantities.end();
+  RunHooks hooks = hooks_for(quantities);
   hooks.on_row = [&evaluator](const TrajectoryRow& row) { evaluator.add(row); };
   const SolveResult result = solve(model, spec.solve, hooks);
   SceneCheckResult out;

@@ -17,12 +17,12 @@ namespace condyn {
 /// Where a check's column comes from in a row.
 struct CheckColumn {
   Quantity quantity = Quantity::displacement;
-  int index = 0;  ///< the DOF, the constraint, or 0/1 (drift position/velocity, energy/its error)
+  int index = 0;  ///< the DOF, the constraint, drift position/velocity (0/1), kEnergyColumns
 };
 
 /// The column `name` of a run of `model`, or nothing when no quantity gives it. Column names as
 /// the CSV writes them: a DOF's name, vel_, acc_, reaction_ + DOF, lambda_ + constraint,
-/// drift_position, drift_velocity, energy, energy_error.
+/// drift_position, drift_velocity and the energy columns (kEnergyColumns).
 [[nodiscard]] std::optional<CheckColumn> find_column(const Model& model, const std::string& name);
 
 /// The outcome of one check.
@@ -59,8 +59,6 @@ class CheckEvaluator {
 
   std::vector<CheckSpec> checks_;
   std::vector<State> states_;
-  double energy0_ = 0.0;
-  bool first_row_ = true;
 };
 
 struct SceneCheckOptions {

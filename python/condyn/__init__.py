@@ -1,0 +1,94 @@
+"""condyn from Python: run scenes (files or dicts, models from numpy and scipy.sparse arrays) and
+compare schemes, over the same C++ library as the `condyn` command (docs/python.md).
+
+    import condyn
+    r = condyn.run("models/scenes/quickstart.toml", scheme="ggl")
+    r.t, r.u, r.drift, r.summary["steps"]
+"""
+
+from ._condyn import SceneError, scheme_names
+from . import _condyn
+
+__all__ = ["run", "compare", "check", "Result", "SceneError", "IntegrationError", "scheme_names"]
+
+
+class Result:
+    """One run: numpy arrays over the output times and what the integrator did.
+
+    t (nt); u, v, reaction (nt x n); multiplier (nt x m); drift (nt x 2: position, velocity
+    residual, max-norm); a (nt x n) when the scene's [output] asks for accelerations, else None;
+    energy and kinetic (nt) for a conservative model, else None; energy_balance (nt x 7, columns
+    named by energy_columns: energy, energy_error, energy_kinetic, energy_potential,
+    energy_dissipated, work_loads, work_constraints) when [output] asks for "energy", else None
+    (docs/energy.md); dof_names, constraint_names;
+    summary (dict: scheme, steps, wall_s, rtol, atol, residual_evals, jacobian_evals, ...).
+    The arrays are read-only views of the run's memory.
+    """
+
+    __slots__ = ("t", "u", "v", "reaction", "multiplier", "drift", "a", "energy", "kinetic",
+                 "energy_balance", "energy_columns", "dof_names", "constraint_names", "summary")
+
+    def __init__(self, fields):
+        for key in self.__slots__:
+            setattr(self, key, fields[key])
+
+    def dof(self, name):
+        """The column index of DOF `name` (KeyError naming the DOFs otherwise)."""
+        try:
+            return self.dof_names.index(name)
+        except ValueError:
+            raise KeyError(f"no DOF {name!r}; DOFs: {', '.join(self.dof_names)}") from None
+
+    def __repr__(self):
+        s = self.summary
+        return (f"<condyn.Result {s['scheme']}: {len(self.t)} rows, {len(self.dof_names)} DOFs, "
+                f"{len(self.constraint_names)} constraints, {s['steps']} steps, "
+                f"{s['wall_s']:.3g} s>")
+
+
+class IntegrationError(RuntimeError):
+    """The integrator stopped before t_end. `result` holds the rows computed before the failure
+    (a Result, possibly with no rows); the message is the CLI's (scheme, kind, where, what to
+    try)."""
+
+    def __init__(self, message, result):
+        super().__init__(message)
+        self.result = result
+
+
+def run(scene, scheme=None, rtol=None, atol=None):
+    """Runs `scene` (a path to a scene file, or a dict with the TOML's structure) and returns a
+    Result. `scheme`, `rtol` and `atol` override the scene's [solve] keys. Bad input raises
+    SceneError (a ValueError) with the CLI's "FILE:LINE: key.path: problem" message ("<dict>"
+    and no line for a dict); a failed integration raises IntegrationError. The GIL is released
+    while the model is built and integrated."""
+    fields, failure = _condyn.run(scene, scheme, rtol, atol)
+    result = Result(fields)
+    if failure is not None:
+        raise IntegrationError(f"{_name(scene)}: integration failed: {failure}", result)
+    return result
+
+
+def compare(scene, tolerances=None, schemes=None, repeats=1, drift_rtol=None, max_steps=0,
+            max_wall_time=0.0):
+    """`condyn compare`'s sweep without its files: every scheme (or `schemes`, a list of names)
+    at every rtol of `tolerances` (default 1e-3 ... 1e-10), each run `repeats` times for its wall
+    time. Returns one dict per run (scheme, rtol, atol, ok, message, error_u, error_v,
+    error_reaction against `reference`, drifts, steps, evaluations, wall times); a scheme that
+    cannot treat the scene gives one dict with skipped=True and the reason. `max_steps` and
+    `max_wall_time` (seconds) budget each run as the command's --max-steps and --max-wall-time
+    (0: none); a run over budget has ok=False and says so in its message."""
+    return _condyn.compare(scene, tolerances, schemes, repeats, drift_rtol, max_steps,
+                           max_wall_time)
+
+
+def check(scene, scheme=None):
+    """Runs `scene` and evaluates its [[check]] tables as `condyn check` does (docs/checks.md).
+    Returns a dict: scene, scheme, steps, wall_s, failure (the integration failure's message or
+    None), passed (every check held and the run reached t_end) and checks, one dict per check
+    (quantity, computed, bound, passed, text). A scene without [[check]] raises SceneError."""
+    return _condyn.check(scene, scheme)
+
+
+def _name(scene):
+    return "<dict>" if isinstance(scene, dict) else str(scene)

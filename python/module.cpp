@@ -1,0 +1,179 @@
+// The extension module condyn._condyn (python/condyn/__init__.py re-exports it): run and compare
+// over the same libraries as the CLI. Scenes are parsed with the GIL held (they are Python
+// objects); building the model and integrating release it, so threads run scenes side by side.
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dae/solve.hpp"
+#include "models/model.hpp"
+#include "models/scene_parser.hpp"
+#include "python/compare_records.hpp"
+#include "python/run_result.hpp"
+#include "python/scene_from_python.hpp"
+#include "validation/compare.hpp"
+#include "validation/user_checks.hpp"
+
+namespace py = pybind11;
+using namespace condyn;
+
+namespace {
+
+/// An argument of run()/compare() out of range: a SceneError naming the scene and the argument.
+[[noreturn]] void bad_argument(const SceneSpec& spec, const std::string& argument,
+                               const std::string& problem) {
+  throw SceneError(scene_message(spec.file, SourcePoint{argument, 0}, problem));
+}
+
+Scheme scheme_argument(const SceneSpec& spec, const std::string& argument, const std::string& s) {
+  const auto scheme = scheme_from_string(s);
+  if (!scheme) bad_argument(spec, argument, "unknown scheme '" + s + "': " + scheme_names());
+  return *scheme;
+}
+
+/// The scene with run()'s overrides, checked as the parser checks [solve].
+SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& scheme,
+                   std::optional<double> rtol, std::optional<double> atol) {
+  SceneSpec spec = python::parse_python_scene(scene);
+  if (scheme) spec.solve.scheme = scheme_argument(spec, "scheme", *scheme);
+  if (rtol) {
+    if (!(std::isfinite(*rtol) && *rtol >= kMinRtol && *rtol < 1.0)) {
+      bad_argument(spec, "rtol", "must lie in [1e-15, 1) (got " + std::to_string(*rtol) + ")");
+    }
+    spec.solve.rtol = *rtol;
+  }
+  if (atol) {
+    if (!(std::isfinite(*atol) && *atol >= kMinAtol)) {
+      bad_argument(spec, "atol",
+                   "must be a finite number >= 1e-100 (got " + std::to_string(*atol) + ")");
+    }
+    spec.solve.atol = *atol;
+  }
+  try {
+    spec.solve.validate();
+  } catch (const std::invalid_argument& e) {
+    bad_argument(spec, "", e.what());
+  }
+  return spec;
+}
+
+/// (result dict, failure message or None): the Python side raises IntegrationError with the
+/// partial result.
+py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
+              std::optional<double> rtol, std::optional<double> atol) {
+  const SceneSpec spec = run_spec(scene, scheme, rtol, atol);
+  BuildReport report;
+  std::optional<Model> model;
+  SolveResult result;
+  {
+    const py::gil_scoped_release free;
+    try {
+      model.emplace(build_model(spec, report));
+      const RunHooks hooks = hooks_for(spec.output.quantities);
+      result = solve(*model, spec.solve, hooks);
+    } catch (const SchemeNotApplicable& e) {
+      // Bad input, as in the CLI (exit 2): the scene and the scheme do not go together.
+      throw SceneError(scene_message(spec.file, SourcePoint{}, e.what()));
+    }
+  }
+  const py::object failure =
+      result.ok() ? py::object(py::none()) : py::str(describe_failure(result, spec.solve.t_end));
+  return py::make_tuple(python::result_dict(std::move(result), *model, spec.solve, report),
+                        failure);
+}
+
+py::list compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,
+                 const std::optional<std::vector<std::string>>& schemes,
+                 const std::optional<int>& repeats, const std::optional<double>& drift_rtol,
+                 long max_steps, double max_wall_time) {
+  const SceneSpec spec = python::parse_python_scene(scene);
+  CompareOptions options;
+  options.repeats = 1;  // the CLI repeats runs for stable wall times; a script asks for more
+  if (tolerances) options.tolerances = *tolerances;
+  if (schemes) {
+    options.schemes.clear();
+    for (const auto& s : *schemes) {
+      const Scheme scheme = scheme_argument(spec, "schemes", s);
+      if (scheme == Scheme::automatic) bad_argument(spec, "schemes", "name schemes, not 'auto'");
+      options.schemes.push_back(scheme);
+    }
+  }
+  if (repeats) options.repeats = *repeats;
+  if (drift_rtol) options.drift_rtol = *drift_rtol;
+  options.max_steps = max_steps;
+  options.max_wall_time = max_wall_time;
+  try {
+    options.validate();
+  } catch (const std::invalid_argument& e) {
+    bad_argument(spec, "", e.what());
+  }
+  CompareResult result;
+  {
+    const py::gil_scoped_release free;
+    try {
+      result = run_compare(spec, options);
+    } catch (const SchemeNotApplicable& e) {
+      throw SceneError(scene_message(spec.file, SourcePoint{}, e.what()));
+    }
+  }
+  return python::compare_records(result);
+}
+
+/// The scene's [[check]] tables, evaluated on one run: (scene, scheme, steps, wall_s, failure,
+/// one dict per check).
+py::dict check(const py::handle& scene, const std::optional<std::string>& scheme) {
+  SceneSpec spec = python::parse_python_scene(scene);
+  SceneCheckOptions options;
+  if (scheme) options.scheme = scheme_argument(spec, "scheme", *scheme);
+  const std::string file = spec.file;
+  SceneCheckResult result;
+  {
+    const py::gil_scoped_release free;
+    try {
+      result = run_scene_checks(std::move(spec), options);
+    } catch (const SchemeNotApplicable& e) {
+      throw SceneError(scene_message(file, SourcePoint{}, e.what()));
+    }
+  }
+  py::list checks;
+  for (const CheckOutcome& o : result.outcomes) {
+    py::dict d;
+    d["quantity"] = o.quantity;
+    d["computed"] = o.computed;
+    d["bound"] = o.bound;
+    d["passed"] = o.passed;
+    d["text"] = o.text;
+    checks.append(d);
+  }
+  py::dict d;
+  d["scene"] = result.scene;
+  d["scheme"] = result.scheme;
+  d["steps"] = result.steps;
+  d["wall_s"] = result.wall_s;
+  d["failure"] = result.failure.empty() ? py::object(py::none()) : py::str(result.failure);
+  d["checks"] = checks;
+  d["passed"] = result.passed();
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_condyn, m) {
+  m.doc() = "condyn: constrained dynamic systems (C++ core; use the condyn package)";
+  py::register_exception<SceneError>(m, "SceneError", PyExc_ValueError);
+  m.def("run", &run, py::arg("scene"), py::arg("scheme") = py::none(), py::arg("rtol") = py::none(),
+        py::arg("atol") = py::none());
+  m.def("compare", &compare, py::arg("scene"), py::arg("tolerances") = py::none(),
+        py::arg("schemes") = py::none(), py::arg("repeats") = py::none(),
+        py::arg("drift_rtol") = py::none(), py::arg("max_steps") = 0,
+        py::arg("max_wall_time") = 0.0);
+  m.def("check", &check, py::arg("scene"), py::arg("scheme") = py::none());
+  m.def("scheme_names", &scheme_names);
+}

@@ -1,0 +1,129 @@
+#include "python/run_result.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace condyn::python {
+
+namespace {
+
+/// An nt x cols view of a cols x nt column-major matrix held by `owner` (read-only).
+py::object rows_view(const Eigen::MatrixXd& m, Eigen::Index nt, Eigen::Index cols,
+                     const py::object& owner) {
+  if (nt == 0 || cols == 0) {
+    return py::array_t<double>({static_cast<py::ssize_t>(nt), static_cast<py::ssize_t>(cols)});
+  }
+  if (m.cols() != nt || m.rows() != cols) {
+    throw std::logic_error("condyn: a result matrix is " + std::to_string(m.rows()) + " x " +
+                           std::to_string(m.cols()) + ", expected " + std::to_string(cols) + " x " +
+                           std::to_string(nt));
+  }
+  const auto s = static_cast<py::ssize_t>(sizeof(double));
+  py::array_t<double> a({static_cast<py::ssize_t>(nt), static_cast<py::ssize_t>(cols)},
+                        {static_cast<py::ssize_t>(cols) * s, s}, m.data(), owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+py::object vector_view(const Eigen::VectorXd& x, const py::object& owner) {
+  if (x.size() == 0) return py::none();
+  py::array_t<double> a({static_cast<py::ssize_t>(x.size())}, {sizeof(double)}, x.data(), owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const BuildReport& r) {
+  py::dict d;
+  d["scheme"] = s.scheme;
+  d["steps"] = s.steps;
+  d["wall_s"] = s.wall_seconds;
+  d["rtol"] = settings.rtol;
+  d["atol"] = settings.atol;
+  d["residual_evals"] = s.residual_evals;
+  d["jacobian_evals"] = s.jacobian_evals;
+  d["newton_iterations"] = s.newton_iterations;
+  d["newton_failures"] = s.newton_failures;
+  d["error_test_failures"] = s.error_test_failures;
+  d["restarts"] = s.restarts;
+  d["max_order_used"] = s.max_order_used;
+  d["last_step"] = s.last_step;
+  d["max_drift_position"] = s.max_drift_position;
+  d["max_drift_velocity"] = s.max_drift_velocity;
+  d["max_abs_mu"] = s.max_abs_mu < 0.0 ? py::object(py::none()) : py::float_(s.max_abs_mu);
+  d["unknowns"] = s.unknowns;
+  d["jacobian_nonzeros"] = s.jacobian_nonzeros;
+  d["termination"] = s.termination;
+  d["notes"] = s.notes;
+  d["brief"] = s.brief();
+  d["warnings"] = r.warnings;
+  d["initial_state"] = r.initial_projection;
+  d["damping"] = r.damping;
+  d["dropped_constraints"] = r.dropped_constraints;
+  return d;
+}
+
+}  // namespace
+
+py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& settings,
+                     const BuildReport& report) {
+  // The trajectory moves into a capsule that every array keeps alive.
+  auto* held = new Trajectory(std::move(result.trajectory));
+  const py::capsule owner(held, [](void* p) { delete static_cast<Trajectory*>(p); });
+  const Trajectory& traj = *held;
+  const auto nt = static_cast<Eigen::Index>(traj.t.size());
+  const auto n = static_cast<Eigen::Index>(model.dofs());
+  const auto m = static_cast<Eigen::Index>(model.constraint_count());
+
+  py::dict d;
+  d["t"] = py::array_t<double>(static_cast<py::ssize_t>(nt), traj.t.data());
+  d["u"] = rows_view(traj.u, nt, n, owner);
+  d["v"] = rows_view(traj.v, nt, n, owner);
+  d["reaction"] = rows_view(traj.reaction, nt, n, owner);
+  d["multiplier"] = rows_view(traj.multiplier, nt, m, owner);
+  py::array_t<double> drift({static_cast<py::ssize_t>(nt), py::ssize_t{2}});
+  auto w = drift.mutable_unchecked<2>();
+  if (traj.drift_position.size() != nt || traj.drift_velocity.size() != nt) {
+    throw std::logic_error("condyn: the drift has " + std::to_string(traj.drift_position.size()) +
+                           " rows for " + std::to_string(nt) + " output times");
+  }
+  for (Eigen::Index i = 0; i < nt; ++i) {
+    w(i, 0) = traj.drift_position(i);
+    w(i, 1) = traj.drift_velocity(i);
+  }
+  d["drift"] = drift;
+  d["a"] = traj.acceleration.size() == 0 ? py::object(py::none())
+                                         : rows_view(traj.acceleration, nt, n, owner);
+  if (traj.balance.empty()) {
+    d["energy_balance"] = py::none();
+  } else {
+    const auto cols = static_cast<py::ssize_t>(kEnergyColumns.size());
+    py::array_t<double> balance({static_cast<py::ssize_t>(traj.balance.size()), cols});
+    auto b = balance.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < b.shape(0); ++i) {
+      for (py::ssize_t c = 0; c < cols; ++c) {
+        b(i, c) =
+            energy_column(traj.balance[static_cast<std::size_t>(i)], static_cast<std::size_t>(c));
+      }
+    }
+    d["energy_balance"] = balance;
+  }
+  d["energy_columns"] = energy_column_names();
+  d["energy"] = vector_view(traj.energy, owner);
+  d["kinetic"] = vector_view(traj.kinetic, owner);
+  d["dof_names"] = model.dof_names;
+  std::vector<std::string> constraints;
+  constraints.reserve(model.constraints.size());
+  for (const auto& c : model.constraints) constraints.push_back(c.name);
+  d["constraint_names"] = constraints;
+  d["summary"] = summary_dict(result.summary, settings, report);
+  return d;
+}
+
+}  // namespace condyn::python

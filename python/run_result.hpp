@@ -1,0 +1,19 @@
+#pragma once
+/// A finished run (SolveResult) → the dict the Python module returns: numpy arrays over the
+/// trajectory's own memory (moved, not copied: an n x nt column-major Eigen matrix is an nt x n
+/// row-major array), names and the summary. Needs the GIL.
+
+#include <pybind11/pybind11.h>
+
+#include "dae/solve_result.hpp"
+#include "models/model.hpp"
+#include "models/scene_spec.hpp"
+
+namespace condyn::python {
+
+/// Keys t, u, v, reaction, multiplier, drift, a (or None), energy and kinetic (or None),
+/// dof_names, constraint_names, summary. `result` is moved from.
+[[nodiscard]] pybind11::dict result_dict(SolveResult&& result, const Model& model,
+                                         const SolveSpec& settings, const BuildReport& report);
+
+}  // namespace condyn::python

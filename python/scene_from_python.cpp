@@ -1,0 +1,213 @@
+// A Python dict → toml::table (and matrices by name), parsed by the scene parser itself: the
+// dict is read exactly as a file with the same content would be, and refused with the same
+// messages. numpy and scipy.sparse matrices go over as sparse Eigen matrices, never dense and
+// never through a file.
+
+#include "python/scene_from_python.hpp"
+
+#include <pybind11/numpy.h>
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "models/scene_parser.hpp"
+#include "models/scene_table.hpp"
+
+namespace py = pybind11;
+
+namespace condyn::python {
+
+namespace {
+
+/// Nested dicts and lists deeper than this are refused (the parser's own limit for files).
+constexpr int kMaxDepth = 32;
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+  throw SceneError(scene_message(kDictFile, SourcePoint{path, 0}, problem));
+}
+
+std::string type_name(const py::handle& value) {
+  return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
+}
+
+bool is_sparse(const py::handle& value) {
+  return py::hasattr(value, "tocoo") && py::hasattr(value, "shape") && py::hasattr(value, "nnz");
+}
+
+/// Keys whose value is a matrix: a numpy array or scipy.sparse matrix there becomes one.
+bool takes_matrix(const std::string& parent, const std::string& key) {
+  if (parent == "model") return key == "mass" || key == "stiffness" || key == "damping";
+  if (parent.rfind("load[", 0) == 0) return key == "pattern";
+  if (parent.rfind("constraint_block[", 0) == 0) return key == "file" || key == "value";
+  return false;
+}
+
+/// Real entries as float64 (booleans and integers converted); anything else refused.
+py::array_t<double> real_entries(const py::handle& data, const std::string& path) {
+  const auto array = py::array::ensure(data);
+  if (!array) fail(path, "the entries are not an array of numbers");
+  const char kind = array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+    fail(path, "entries must be real numbers (the array's dtype is " +
+                   py::str(array.dtype()).cast<std::string>() + ")");
+  }
+  return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
+}
+
+std::vector<long long> indices(const py::handle& data) {
+  const auto a = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(data);
+  return {a.data(), a.data() + a.size()};
+}
+
+/// A scipy.sparse matrix or a numpy array (1-D: a column) as a sparse matrix; zeros of a dense
+/// array are not stored, duplicates of a sparse one are summed (as a Matrix Market file's are).
+Eigen::SparseMatrix<double> sparse_of(const py::handle& value, const std::string& path) {
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::Index rows = 0, cols = 0;
+  if (is_sparse(value)) {
+    const auto shape = value.attr("shape").cast<py::tuple>();
+    rows = shape[0].cast<Eigen::Index>();
+    cols = shape[1].cast<Eigen::Index>();
+    const py::object coo = value.attr("tocoo")();
+    const auto r = indices(coo.attr("row")), c = indices(coo.attr("col"));
+    const auto v = real_entries(coo.attr("data"), path);
+    entries.reserve(r.size());
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      entries.emplace_back(static_cast<Eigen::Index>(r[k]), static_cast<Eigen::Index>(c[k]),
+                           v.data()[k]);
+    }
+  } else {
+    const auto a = real_entries(value, path);
+    if (a.ndim() != 1 && a.ndim() != 2) {
+      fail(path, "a matrix must have 1 or 2 dimensions (this array has " +
+                     std::to_string(a.ndim()) + ")");
+    }
+    rows = a.shape(0);
+    cols = a.ndim() == 2 ? a.shape(1) : 1;
+    const double* x = a.data();
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      for (Eigen::Index j = 0; j < cols; ++j) {
+        // NaN != 0: kept, so the parser refuses it.
+        if (const double e = x[i * cols + j]; e != 0.0) entries.emplace_back(i, j, e);
+      }
+    }
+  }
+  if (rows < 1 || cols < 1) {
+    fail(path, "the matrix is " + std::to_string(rows) + " x " + std::to_string(cols) +
+                   ": it has no entries");
+  }
+  Eigen::SparseMatrix<double> m(rows, cols);
+  m.setFromTriplets(entries.begin(), entries.end());
+  m.makeCompressed();
+  return m;
+}
+
+class Converter {
+ public:
+  explicit Converter(ArrayMatrices& arrays) : arrays_(arrays) {}
+
+  toml::table table(const py::handle& value, const std::string& path, int depth) {
+    if (!py::isinstance<py::dict>(value)) {
+      fail(path, "expected a dict (a table), got " + type_name(value));
+    }
+    toml::table out;
+    for (const auto& [k, v] : py::reinterpret_borrow<py::dict>(value)) {
+      if (!py::isinstance<py::str>(k)) {
+        fail(path, "keys must be strings (got a " + type_name(k) + " key)");
+      }
+      const auto key = k.cast<std::string>();
+      const std::string p = path.empty() ? key : path + "." + key;
+      if ((py::isinstance<py::array>(v) || is_sparse(v)) && takes_matrix(path, key)) {
+        // Kept by name; the scene gets `file = NAME` (constraint_block.file) or `{ file = NAME }`.
+        const std::string name = "<array " + (key == "file" ? path : p) + ">";
+        arrays_[name] = sparse_of(v, p);
+        if (key == "file") {
+          out.insert(key, name);
+        } else {
+          toml::table file;
+          file.insert("file", name);
+          out.insert(key, std::move(file));
+        }
+      } else {
+        insert_value(out, key, v, p, depth);
+      }
+    }
+    return out;
+  }
+
+ private:
+  /// One scene value; a plain function (no generic sink), so nesting costs no instantiation.
+  using Value = std::variant<bool, std::string, int64_t, double, toml::table, toml::array>;
+
+  Value emit(const py::handle& v, const std::string& p, int depth) {
+    if (depth > kMaxDepth) fail(p, "dicts and lists nest more than 32 deep");
+    if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
+    if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+    if (py::isinstance<py::dict>(v)) return table(v, p, depth + 1);
+    if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) ||
+        py::isinstance<py::array>(v)) {
+      const py::object items =
+          py::isinstance<py::array>(v) ? v.attr("tolist")() : py::reinterpret_borrow<py::object>(v);
+      if (!py::isinstance<py::list>(items) && !py::isinstance<py::tuple>(items)) {
+        return emit(items, p, depth);  // a 0-d array: its scalar
+      }
+      toml::array out;
+      std::size_t i = 0;
+      for (const auto& item : items) {
+        const std::string ip = p + "[" + std::to_string(++i) + "]";
+        std::visit([&out](auto&& x) { out.push_back(std::move(x)); }, emit(item, ip, depth + 1));
+      }
+      return out;
+    }
+    if (py::isinstance<py::int_>(v) || (py::hasattr(v, "__index__") && !is_sparse(v))) {
+      try {
+        return static_cast<int64_t>(
+            py::int_(py::reinterpret_borrow<py::object>(v)).cast<long long>());
+      } catch (const py::cast_error&) {
+        fail(p, "the integer " + py::str(v).cast<std::string>() + " is out of range");
+      }
+    }
+    if (py::isinstance<py::float_>(v) || py::hasattr(v, "__float__")) {
+      return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+    }
+    if (is_sparse(v)) {
+      fail(p,
+           "a scipy.sparse matrix is taken only by model.mass, model.stiffness, "
+           "model.damping, load.pattern, constraint_block.file and constraint_block.value");
+    }
+    fail(p, "a " + type_name(v) +
+                " is not a scene value (numbers, strings, booleans, lists, dicts, numpy arrays)");
+  }
+
+  void insert_value(toml::table& out, const std::string& key, const py::handle& v,
+                    const std::string& p, int depth) {
+    std::visit([&](auto&& x) { out.insert(key, std::move(x)); }, emit(v, p, depth));
+  }
+
+  ArrayMatrices& arrays_;
+};
+
+}  // namespace
+
+SceneSpec parse_python_scene(const py::handle& scene) {
+  if (py::isinstance<py::dict>(scene)) {
+    ArrayMatrices arrays;
+    const toml::table root = Converter(arrays).table(scene, "", 0);
+    return parse_scene_table(root, kDictFile, arrays);
+  }
+  const py::module_ os = py::module_::import("os");
+  py::object path;
+  try {
+    path = os.attr("fspath")(scene);
+  } catch (const py::error_already_set&) {
+    throw py::type_error("condyn: a scene is a path (str or os.PathLike) or a dict, not a " +
+                         type_name(scene));
+  }
+  if (!py::isinstance<py::str>(path)) {
+    throw py::type_error("condyn: a scene path must be text, not bytes");
+  }
+  return parse_scene_file(path.cast<std::string>());
+}
+
+}  // namespace condyn::python

@@ -1,0 +1,20 @@
+#pragma once
+/// A Python scene (a path, or a dict with the TOML's structure) → SceneSpec, through the same
+/// parser as a file (models/scene_table.hpp). Needs the GIL.
+
+#include <pybind11/pybind11.h>
+
+#include "models/scene_spec.hpp"
+
+namespace condyn::python {
+
+/// The name a dict scene has in messages ("<dict>: model.mass: ...").
+inline constexpr const char* kDictFile = "<dict>";
+
+/// Parses `scene`: a str or os.PathLike names a scene file; a dict is converted key by key
+/// (numbers, strings, booleans, lists, dicts; numpy arrays and scipy.sparse matrices where the
+/// scene takes a matrix: model.mass, model.stiffness, model.damping, load.pattern,
+/// constraint_block.file and constraint_block.value). Throws SceneError.
+[[nodiscard]] SceneSpec parse_python_scene(const pybind11::handle& scene);
+
+}  // namespace condyn::python

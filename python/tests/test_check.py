@@ -1,0 +1,52 @@
+"""condyn.check: a scene's [[check]] tables from Python, as `condyn check` evaluates them; and
+compare's per-run budget."""
+
+import copy
+import tomllib
+
+import pytest
+
+import condyn
+from conftest import QUICKSTART, ROOT
+
+OSCILLATOR = ROOT / "models" / "scenes" / "checks" / "oscillator_closed_form.toml"
+
+
+def test_check_passes_and_agrees_with_the_cli(cli):
+    import subprocess
+
+    result = condyn.check(OSCILLATOR)
+    assert result["passed"] and result["failure"] is None
+    assert result["steps"] > 0 and len(result["checks"]) >= 1
+    cli_run = subprocess.run([str(cli), "check", str(OSCILLATOR)], capture_output=True, text=True)
+    assert cli_run.returncode == 0
+    for c in result["checks"]:
+        assert c["passed"] and c["computed"] <= c["bound"], c["text"]
+        assert c["text"] in cli_run.stdout  # the same line as the command prints
+
+
+def test_check_fails_when_a_bound_is_too_tight():
+    with open(OSCILLATOR, "rb") as f:
+        scene = tomllib.load(f)
+    for c in scene["check"]:
+        if "reference" in c:  # a dict's relative paths are taken from the working directory
+            c["reference"]["file"] = str(OSCILLATOR.parent / c["reference"]["file"])
+        for key in ("tolerance", "max_abs"):
+            if key in c:
+                c[key] = 1e-15 if key == "tolerance" else 1e-9
+    result = condyn.check(scene)
+    assert not result["passed"]
+    assert any(not c["passed"] for c in result["checks"])
+
+
+def test_check_refuses_a_scene_without_checks(quickstart_dict):
+    scene = copy.deepcopy(quickstart_dict)
+    scene.pop("check", None)
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: has no \[\[check\]\] table"):
+        condyn.check(scene)
+
+
+def test_compare_budget_marks_runs_over_it():
+    runs = condyn.compare(QUICKSTART, tolerances=[1e-8], schemes=["ggl"], max_steps=5)
+    assert len(runs) == 1 and not runs[0]["ok"]
+    assert "5" in runs[0]["message"]

@@ -1,0 +1,95 @@
+"""Every bad input raises condyn.SceneError (a ValueError) with the CLI's message; a failed
+integration raises condyn.IntegrationError (a RuntimeError) with the partial result."""
+
+import copy
+import re
+import subprocess
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import condyn
+from conftest import QUICKSTART
+
+
+def test_scene_error_is_a_value_error():
+    assert issubclass(condyn.SceneError, ValueError)
+    assert issubclass(condyn.IntegrationError, RuntimeError)
+
+
+def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
+    # The same asymmetric stiffness in a file (through the CLI) and in a dict: the messages differ
+    # only in FILE:LINE, which is "<dict>" for a dict.
+    text = QUICKSTART.read_text().replace("[0.0, -100.0, 100.0]]", "[0.0, -99.0, 100.0]]")
+    (tmp_path / "bad.toml").write_text(text)
+    cli_run = subprocess.run([str(cli), "run", str(tmp_path / "bad.toml")], capture_output=True,
+                             text=True)
+    assert cli_run.returncode == 2
+    cli_message = cli_run.stderr.strip().removeprefix("error: ")
+    scene = copy.deepcopy(quickstart_dict)
+    scene["model"]["stiffness"][2][1] = -99.0
+    with pytest.raises(condyn.SceneError) as e:
+        condyn.run(scene)
+    assert str(e.value).startswith("<dict>: model.stiffness: is not symmetric")
+    assert str(e.value).removeprefix("<dict>") == re.sub(r"^[^:]*:\d+", "", cli_message)
+    # A file scene through Python: exactly the CLI's message.
+    with pytest.raises(condyn.SceneError) as e:
+        condyn.run(tmp_path / "bad.toml")
+    assert str(e.value) == cli_message
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda s: s.pop("solve"), "<dict>: solve: missing required key"),
+    (lambda s: s["solve"].update(t_end=-1.0), "<dict>: solve.t_end: "),
+    (lambda s: s["solve"].update(rtol="tight"), "<dict>: solve.rtol: "),
+    (lambda s: s.update(extra=1), "<dict>: extra: "),
+    (lambda s: s["model"].update(mass=np.diag([2.0, 1.0])),
+     "<dict>: model.mass.file: <array model.mass> is 2 x 2 for 3 DOFs"),
+    (lambda s: s["model"].update(stiffness=sp.csr_matrix(np.triu(np.ones((3, 3))))),
+     "<dict>: model.stiffness.file: <array model.stiffness> is not symmetric: entry (1,2)"),
+    (lambda s: s["model"].update(mass=np.diag([1.0, np.nan, 1.0])),
+     "<dict>: model.mass.file: <array model.mass>: entry (2,2) is nan: entries must be finite"),
+    (lambda s: s["model"].update(mass=np.eye(3, dtype=complex)),
+     "<dict>: model.mass: entries must be real numbers"),
+    (lambda s: s["model"].update(dofs={"u1"}), "<dict>: model.dofs: a set is not a scene value"),
+    (lambda s: s["solve"].update(t_end=None), "<dict>: solve.t_end: a NoneType is not"),
+    (lambda s: s["solve"].update({1: 2}), "<dict>: solve: keys must be strings"),
+    (lambda s: s["initial"].update(velocity=sp.eye(3)),
+     "<dict>: initial.velocity: a scipy.sparse matrix is taken only by"),
+])
+def test_bad_dicts(quickstart_dict, edit, message):
+    edit(quickstart_dict)
+    with pytest.raises(condyn.SceneError) as e:
+        condyn.run(quickstart_dict)
+    assert str(e.value).startswith(message), str(e.value)
+
+
+def test_bad_arguments(quickstart_dict):
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: scheme: unknown scheme 'fast'"):
+        condyn.run(quickstart_dict, scheme="fast")
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: rtol: must lie in \[1e-15, 1\)"):
+        condyn.run(quickstart_dict, rtol=2.0)
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: atol: must be a finite number"):
+        condyn.run(quickstart_dict, atol=float("nan"))
+    with pytest.raises(condyn.SceneError, match=r"no_such\.toml: cannot open the scene file"):
+        condyn.run("no_such.toml")
+    with pytest.raises(TypeError, match="a scene is a path"):
+        condyn.run(42)
+
+
+def test_scheme_that_cannot_treat_the_scene():
+    # Elimination needs a linear model (the CLI answers exit 2: bad input).
+    with pytest.raises(condyn.SceneError, match="pendulum.toml: .*elimination"):
+        condyn.run(QUICKSTART.parent / "pendulum.toml", scheme="elimination")
+
+
+def test_integration_error_carries_the_partial_result(quickstart_dict):
+    # A budget the run exhausts: 250 steps reach t = 1.31 of 2 s (output every 0.5 s).
+    quickstart_dict["solve"]["max_steps"] = 250
+    with pytest.raises(condyn.IntegrationError) as e:
+        condyn.run(quickstart_dict, scheme="ggl")
+    assert str(e.value).startswith("<dict>: integration failed: under ggl")
+    partial = e.value.result
+    np.testing.assert_array_equal(partial.t, [0.0, 0.5, 1.0])
+    assert partial.u.shape == (len(partial.t), 3)

@@ -1,0 +1,114 @@
+"""condyn.run: arrays against the CLI's CSV, dict scenes against file scenes, scipy.sparse and
+numpy matrices against lists and Matrix Market files. Runs are deterministic, so equal inputs
+must give bit-equal arrays; the CSV holds 17 significant digits, so it round-trips exactly."""
+
+import subprocess
+
+import numpy as np
+import scipy.io
+import scipy.sparse as sp
+
+import condyn
+from conftest import QUICKSTART
+
+
+def read_csv(path):
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+    return header, np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+
+
+def test_arrays_equal_the_cli_csv(cli, tmp_path):
+    out = tmp_path / "q.csv"
+    subprocess.run([str(cli), "run", str(QUICKSTART), "--scheme", "ggl", "--out", str(out)],
+                   check=True, capture_output=True)
+    header, table = read_csv(out)
+    r = condyn.run(str(QUICKSTART), scheme="ggl")
+    assert r.dof_names == ["u1", "u2", "u3"]
+    assert r.constraint_names == ["base", "link"]
+    assert r.u.shape == (5, 3) and r.reaction.shape == (5, 3)
+    assert r.multiplier.shape == (5, 2) and r.drift.shape == (5, 2)
+    col = {name: table[:, i] for i, name in enumerate(header)}
+    np.testing.assert_array_equal(r.t, col["t"])
+    for j, name in enumerate(r.dof_names):
+        np.testing.assert_array_equal(r.u[:, j], col[name])
+        np.testing.assert_array_equal(r.reaction[:, j], col["reaction_" + name])
+    np.testing.assert_array_equal(r.drift[:, 0], col["drift_position"])
+    np.testing.assert_array_equal(r.drift[:, 1], col["drift_velocity"])
+    # The link u2 = u3 holds to GGL's tolerance (rtol 1e-8 of a 0.2 m motion).
+    assert np.max(np.abs(r.u[:, 1] - r.u[:, 2])) < 1e-8
+
+
+def test_summary_and_overrides():
+    r = condyn.run(QUICKSTART, scheme="index1", rtol=1e-6, atol=1e-9)
+    s = r.summary
+    assert s["scheme"] == "index1"
+    assert s["rtol"] == 1e-6 and s["atol"] == 1e-9
+    assert s["steps"] > 10 and s["residual_evals"] >= s["steps"]
+    assert s["jacobian_evals"] >= 1 and s["wall_s"] > 0.0
+    assert s["termination"] != "not run"
+    assert r.a is None  # the scene does not ask for accelerations
+    assert not r.u.flags.writeable  # a view of the run's memory
+
+
+def test_dict_scene_equals_file_scene(quickstart_dict):
+    from_file = condyn.run(QUICKSTART, scheme="ggl")
+    from_dict = condyn.run(quickstart_dict, scheme="ggl")
+    for key in ("t", "u", "v", "reaction", "multiplier", "drift"):
+        np.testing.assert_array_equal(getattr(from_dict, key), getattr(from_file, key))
+    assert from_dict.summary["steps"] == from_file.summary["steps"]
+
+
+def test_sparse_and_numpy_matrices_equal_lists(quickstart_dict):
+    lists = condyn.run(quickstart_dict, scheme="baumgarte")
+    model = quickstart_dict["model"]
+    for make in (sp.csr_matrix, sp.coo_matrix, np.array):
+        scene = dict(quickstart_dict)
+        scene["model"] = dict(model, mass=make(np.array(model["mass"])),
+                              stiffness=make(np.array(model["stiffness"])))
+        r = condyn.run(scene, scheme="baumgarte")
+        np.testing.assert_array_equal(r.u, lists.u)
+        np.testing.assert_array_equal(r.reaction, lists.reaction)
+
+
+def chain(n=6):
+    """A chain of n unit masses and springs of 100 N/m, fixed at its left end."""
+    k = sp.diags([np.full(n - 1, -100.0), np.full(n, 200.0), np.full(n - 1, -100.0)], [-1, 0, 1],
+                 format="lil")
+    k[n - 1, n - 1] = 100.0
+    a = sp.csr_matrix(([1.0, -1.0, 1.0, 1.0, -2.0], ([0, 0, 1, 1, 1], [1, 4, 0, 2, 3])),
+                      shape=(2, n))
+    f = np.zeros(n)
+    f[-1] = 1.0
+    return sp.identity(n, format="csr"), k.tocsr(), a, f
+
+
+def chain_scene(mass, stiffness, block, pattern):
+    return {"model": {"type": "matrix", "mass": mass, "stiffness": stiffness},
+            "constraint_block": [{"file": block, "name": "mfc"}],
+            "load": [{"pattern": pattern,
+                      "value": {"type": "harmonic", "amplitude": 5.0, "omega": 3.0}}],
+            "solve": {"t_end": 2.0, "output_step": 0.25, "scheme": "ggl"}}
+
+
+def test_arrays_equal_matrix_market_files(tmp_path):
+    m, k, a, f = chain()
+    for name, x in (("M", m), ("K", k), ("A", a), ("f", sp.csr_matrix(f).T)):
+        scipy.io.mmwrite(tmp_path / f"{name}.mtx", x, precision=17)
+    (tmp_path / "chain.toml").write_text(
+        'model = { type = "matrix", mass = { file = "M.mtx" }, stiffness = { file = "K.mtx" } }\n'
+        '[[constraint_block]]\nfile = "A.mtx"\nname = "mfc"\n'
+        '[[load]]\npattern = { file = "f.mtx" }\n'
+        'value = { type = "harmonic", amplitude = 5.0, omega = 3.0 }\n'
+        '[solve]\nt_end = 2.0\noutput_step = 0.25\nscheme = "ggl"\n')
+    from_files = condyn.run(tmp_path / "chain.toml")
+    from_arrays = condyn.run(chain_scene(m, k, a, f))
+    assert from_arrays.dof_names == [f"u{i}" for i in range(1, 7)]
+    assert from_arrays.constraint_names == ["mfc1", "mfc2"]
+    np.testing.assert_array_equal(from_arrays.u, from_files.u)
+    np.testing.assert_array_equal(from_arrays.multiplier, from_files.multiplier)
+    # The constraints hold: u2 = u5 and u1 + u3 = 2 u4, to GGL's tolerance (rtol 1e-8).
+    u = from_arrays.u
+    assert np.max(np.abs(u[:, 1] - u[:, 4])) < 1e-9
+    assert np.max(np.abs(u[:, 0] + u[:, 2] - 2 * u[:, 3])) < 1e-9
+    assert np.max(np.abs(u)) > 1e-3  # and the chain moves
