@@ -29,8 +29,9 @@ packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev
 # builds with clang for the sanitizers and libFuzzer (libclang-rt-14-dev has their runtimes;
 # SUNDIALS' CMake package wants OpenMP, which clang finds in libomp-dev).
 [ "$mode" = test ] && packages+=(doctest-dev clang-format clang-tidy clang libclang-rt-14-dev libomp-dev)
-# compare draws its plots with Debian's matplotlib (the main job, and a unit test of the plots).
-packages+=(python3-matplotlib python3-numpy)
+# compare and plot draw with Debian's matplotlib (the main job, and tests of the plots); plot reads
+# HDF5 results with h5py.
+packages+=(python3-matplotlib python3-numpy python3-h5py)
 # The Python module condyn (python/, docs/python.md): pybind11 and the Python headers to build it,
 # scipy for sparse models, pytest for its tests.
 packages+=(pybind11-dev python3-dev python3-scipy)

@@ -142,6 +142,7 @@ void plan_compare_files(OutputPlan& plan, const std::string& dir,
     (void)plan.add_output((base / name).string(), kOutDir);
   }
   if (baumgarte_study) (void)plan.add_output((base / "baumgarte_study.csv").string(), kOutDir);
+  (void)plan.add_output((base / "history_reference.csv").string(), kOutDir);
   for (Scheme s : schemes) {
     (void)plan.add_output((base / drift_file(s)).string(), kOutDir);
     (void)plan.add_output((base / history_file(s)).string(), kOutDir);
@@ -191,6 +192,14 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
           << ", \"not_fitted_because\": " << (h.growth.fit ? "null" : json_string(reason)) << "}";
       first_growth = false;
     }
+    out << "},\n  \"histories\": {";
+    for (std::size_t k = 0; k < result.histories.size(); ++k) {
+      const auto& h = result.histories[k];
+      out << (k ? ", " : "") << json_string(to_string(h.scheme))
+          << ": {\"status\": " << (h.ok ? "\"ok\"" : "\"failed\"")
+          << ", \"t_reached\": " << full_precision(h.t_reached)
+          << ", \"message\": " << json_string(h.message) << "}";
+    }
     out << "},\n  \"tolerances\": [";
     for (std::size_t k = 0; k < result.options.tolerances.size(); ++k) {
       out << (k ? ", " : "") << full_precision(result.options.tolerances[k]);
@@ -202,8 +211,9 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
     out << "  ]\n}\n";
   });
 
+  // A failed run's files hold its rows and steps before the failure (runs.json "histories").
   for (const auto& h : result.histories) {
-    if (!h.ok) continue;
+    if (!h.ok && h.trajectory.t.empty()) continue;
     put((base / drift_file(h.scheme)).string(), [&](std::ostream& out) {
       out.precision(17);
       out << "t,drift_position,drift_velocity\n";
@@ -230,18 +240,37 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
     });
   }
 
+  if (!result.reference_t.empty()) {
+    put((base / "history_reference.csv").string(), [&](std::ostream& out) {
+      out.precision(17);
+      out << "t";
+      for (const auto& name : result.constraint_names) out << ",lambda_" << name;
+      out << "\n";
+      const Eigen::MatrixXd& lambda = result.reference_multiplier;
+      for (std::size_t k = 0; k < result.reference_t.size(); ++k) {
+        out << result.reference_t[k];
+        for (Eigen::Index i = 0; i < lambda.rows(); ++i) {
+          out << "," << lambda(i, static_cast<Eigen::Index>(k));
+        }
+        out << "\n";
+      }
+    });
+  }
+
   if (result.options.baumgarte_study)
     put((base / "baumgarte_study.csv").string(), [&](std::ostream& out) {
       out.precision(17);
-      out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s\n";
+      out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s,"
+             "error_u\n";
       for (const auto& p : result.baumgarte_study) {
         out << p.alpha << "," << p.beta << "," << (p.is_default ? 1 : 0) << ","
             << (p.ok ? "ok" : "failed") << ",";
         if (p.ok) {
           out << p.max_drift_position << "," << p.max_drift_velocity << "," << p.steps << ","
-              << p.wall;
+              << p.wall << ",";
+          if (std::isfinite(p.error_u)) out << p.error_u;
         } else {
-          out << ",,,";
+          out << ",,,,";
         }
         out << "\n";
       }
@@ -252,10 +281,9 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
   plan.commit_all();
   // The folder describes this comparison only: a study an earlier run left there would be drawn
   // beside runs it does not belong to.
-  if (!result.options.baumgarte_study) {
-    std::error_code ignored;
-    fs::remove(base / "baumgarte_study.csv", ignored);
-  }
+  std::error_code ignored;
+  if (!result.options.baumgarte_study) fs::remove(base / "baumgarte_study.csv", ignored);
+  if (result.reference_t.empty()) fs::remove(base / "history_reference.csv", ignored);
 }
 
 std::string draw_compare_plots(const std::string& dir) {

@@ -19,6 +19,7 @@
 #include "src/csv_output.hpp"
 #include "src/info_report.hpp"
 #include "src/output_files.hpp"
+#include "src/plot_command.hpp"
 #include "src/report_format.hpp"
 #include "src/stress_output.hpp"
 #include "validation/accuracy.hpp"
@@ -345,6 +346,19 @@ int main(int argc, char** argv) {
                         "scheme for every scene (overrides [solve] scheme): " + scheme_names());
   check_cmd->add_option("--junit", check_junit, "also write a JUnit XML report to this file");
 
+  PlotArgs plot_args;
+  auto* plot_cmd = app.add_subcommand(
+      "plot", "figures of one run's CSV or HDF5: displacements, drift, energy (docs/plots.md)");
+  plot_cmd->add_option("result", plot_args.result, "the .csv or .h5 that condyn run wrote")
+      ->required();
+  plot_cmd->add_option("--dofs", plot_args.dofs,
+                       "DOFs to draw, names or globs, comma-separated (default: the four with the "
+                       "largest peaks)");
+  plot_cmd->add_option("--out-dir", plot_args.out_dir,
+                       "folder for the figures (default: beside RESULT)");
+  plot_cmd->add_option("--format", plot_args.formats,
+                       "comma-separated: png, pdf, svg (default: png,pdf)");
+
   std::string stress_dir, stress_families_list;
   bool stress_no_plots = false;
   auto* stress_cmd = app.add_subcommand(
@@ -389,6 +403,7 @@ int main(int argc, char** argv) {
                      compare_no_plots, compare_allow_failures, compare_options);
     }
     if (*check_cmd) return check(check_scenes, check_scheme, check_junit);
+    if (*plot_cmd) return plot_result(plot_args);
   } catch (const SceneError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

@@ -93,7 +93,7 @@ std::string run_plot_script(const std::string& script, const std::string& dir) {
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   switch (code) {
     case 0:
-      return "plots written to " + dir + " (PNG and SVG)";
+      return "plots written to " + dir + " (PNG, and PDF or SVG)";
     case 3:
       return "plots skipped: matplotlib is not installed (apt-get install python3-matplotlib)";
     case 127:

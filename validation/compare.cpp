@@ -134,6 +134,10 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   const double ratio =
       options.atol_ratio > 0.0 ? options.atol_ratio : spec.solve.atol / spec.solve.rtol;
   const Trajectory ref = reference(base, spec.solve, options, out);
+  if (out.reference_kind != "published") {
+    out.reference_t = ref.t;
+    out.reference_multiplier = ref.multiplier;
+  }
 
   const std::size_t total = schemes.size() * options.tolerances.size();
   std::size_t done = 0;
@@ -225,7 +229,14 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
       SolveSpec settings = drift_settings;
       settings.scheme = scheme;
       const SolveResult run = solve(base, settings, hooks);
-      h.trajectory = succeeded(run).trajectory;
+      h.trajectory = run.trajectory;  // a failed run's rows and steps too (the drift figure)
+      if (!run.ok()) {
+        h.message = describe_failure(run, settings.t_end);
+        h.t_reached = run.failure->t_reached;
+        out.histories.push_back(std::move(h));
+        continue;
+      }
+      h.t_reached = settings.t_end;
       // Roundoff in the drift: a few dozen ulps of the largest displacement (1 when all are 0).
       const double u_scale = h.trajectory.u.size() > 0 ? h.trajectory.u.cwiseAbs().maxCoeff() : 0.0;
       const double roundoff =
@@ -256,6 +267,9 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
         try {
           const SolveResult result = solve(base, s);
           const SolveSummary& summary = succeeded(result).summary;
+          if (out.reference_kind != "published") {
+            p.error_u = relative_error(result.trajectory, ref).displacement;
+          }
           p.ok = true;
           p.max_drift_position = summary.max_drift_position;
           p.max_drift_velocity = summary.max_drift_velocity;

@@ -73,7 +73,8 @@ struct SchemeHistory {
   Scheme scheme = Scheme::elimination;
   bool ok = false;
   std::string message;
-  Trajectory trajectory;
+  double t_reached = 0.0;        ///< where the run stopped (t_end when it succeeded)
+  Trajectory trajectory;         ///< a failed run's rows and steps before the failure
   DriftGrowthAssessment growth;  ///< drift ∝ t^p from the per-step log, where meaningful
 };
 
@@ -83,6 +84,9 @@ struct BaumgarteStudyPoint {
   std::string message;
   double max_drift_position = 0.0, max_drift_velocity = 0.0, wall = 0.0;
   long steps = 0;
+  /// Relative max-norm displacement error against the reference trajectory (NaN against a
+  /// published reference, which has no trajectory).
+  double error_u = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct CompareResult {
@@ -99,6 +103,10 @@ struct CompareResult {
   std::vector<RunRecord> runs;
   std::vector<SchemeHistory> histories;
   std::vector<BaumgarteStudyPoint> baumgarte_study;
+  /// The reference's multipliers (m x nt) at its times, for differences against it; empty for a
+  /// published reference.
+  std::vector<double> reference_t;
+  Eigen::MatrixXd reference_multiplier;
   std::vector<std::string> constraint_names;
   /// DOFs some constraint touches (the reaction columns of the histories): name and index.
   std::vector<std::pair<std::string, int>> constrained_dofs;

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """Plots for the output folder of `condyn compare`.
 
-Draws four figures into DIR, each as PNG and SVG:
-  work_precision   error against median wall time per scheme (log-log), points labelled by rtol;
-                   against a published reference (runs.json reference.kind "published"): the
-                   significant correct digits of the positions (mescd_u) against wall time
-  drift            position-constraint drift against time per scheme (log y)
-  multipliers      Lagrange multiplier histories, one panel per scheme
-  baumgarte_study  max position drift over the Baumgarte (alpha, beta) grid, and step counts
+Draws into DIR, each as PNG and PDF, sized for print (validation/compare-output.md, docs/plots.md):
+  work_precision   error of u, u' and f_con against median wall time, one panel each (log-log);
+                   against a published reference: correct digits (mescd) of u and u'
+  error_steps      the same against integrator steps (no timing noise)
+  drift            running max of the position and velocity residuals; failed runs marked
+  multipliers      max |lambda - lambda_ref| / max |lambda_ref| against t per scheme
+  baumgarte_study  error, drift and steps over the (alpha, beta) grid (log colour)
 
 Run:   /usr/bin/python3 validation/plot_compare.py DIR
 Needs: matplotlib and numpy (Debian: apt-get install python3-matplotlib python3-numpy).
@@ -38,6 +38,8 @@ _extra = {}
 ERROR_COLUMNS = ("error_u", "error_v", "error_reaction")
 # Drift of an exactly satisfied constraint is 0, which a log axis cannot show.
 FLOOR = 1e-18
+# PNG for screens, PDF (vector) for papers.
+FORMATS = ("png", "pdf")
 
 
 def note(msg):
@@ -86,6 +88,7 @@ def column(np, rows, name):
 def per_scheme_files(d, prefix):
     paths = glob.glob(os.path.join(d, f"{prefix}_*.csv"))
     named = {os.path.basename(p)[len(prefix) + 1:-4]: p for p in paths}
+    named.pop("reference", None)  # history_reference.csv: the reference's, not a scheme's
     return [(s, named[s]) for s in sorted(named, key=scheme_key)]
 
 
@@ -103,147 +106,214 @@ def load_meta(d):
 
 
 def save(plt, fig, d, name):
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(d, f"{name}.{ext}"), dpi=150)
+    for ext in FORMATS:
+        fig.savefig(os.path.join(d, f"{name}.{ext}"), dpi=300 if ext == "png" else None)
     plt.close(fig)
-    note(f"wrote {name}.png, {name}.svg")
+    note("wrote " + ", ".join(f"{name}.{ext}" for ext in FORMATS))
 
 
-def plot_work_precision(plt, np, d, meta, scene):
-    runs = read_csv(os.path.join(d, "runs.csv")) or meta.get("runs")
-    if not runs:
-        return note("work_precision skipped: runs.csv absent or empty")
+def paper_style(plt):
+    """8-9 pt text, thin lines: legible when the figure is printed at its own size (3.5 in for a
+    single column, 7.2 in across a page)."""
+    plt.rcParams.update({
+        "font.size": 8, "axes.titlesize": 8, "axes.labelsize": 8, "xtick.labelsize": 7,
+        "ytick.labelsize": 7, "legend.fontsize": 7, "legend.title_fontsize": 7,
+        "lines.linewidth": 1.0, "lines.markersize": 3.5, "axes.linewidth": 0.6,
+        "grid.linewidth": 0.4, "savefig.bbox": "tight", "savefig.pad_inches": 0.02,
+    })
+
+
+def scheme_legend(fig, handles, ncol=4):
+    fig.legend(handles=handles, loc="lower center", ncol=ncol, frameon=False,
+               bbox_to_anchor=(0.5, -0.01))
+
+
+def short_reference(meta):
+    """The reference in a few words (the description's first clause)."""
     ref = meta.get("reference") or {}
-    # Against a published reference state (a test-set benchmark) the figure of merit is the test
-    # set's own: significant correct digits (mescd) of the positions, higher is better.
-    digits = ref.get("kind") == "published"
+    return (ref.get("description") or "an unknown reference").split(" (")[0]
+
+
+def runs_by_scheme(d, meta):
+    runs = read_csv(os.path.join(d, "runs.csv")) or meta.get("runs") or []
     by_scheme = {}
     for r in runs:
         by_scheme.setdefault(str(r.get("scheme") or "?"), []).append(r)
-    fig, ax = plt.subplots(figsize=(10, 6))
-    drawn = dropped = 0
-    for scheme in sorted(by_scheme, key=scheme_key):
-        points, failed = [], 0
-        for r in by_scheme[scheme]:
-            if digits:
-                y = num(r.get("mescd_u"))
-                measures = [] if y is None else [y]
-            else:
-                measures = [e for e in (num(r.get(c)) for c in ERROR_COLUMNS) if e is not None]
-            wall, rtol = num(r.get("wall_median_s")), num(r.get("rtol"))
-            if r.get("status") != "ok" or not measures or wall is None or rtol is None:
-                failed += 1
-            elif wall <= 0 or (not digits and max(measures) <= 0):
-                dropped += 1
-            else:
-                points.append((rtol, wall, max(measures)))
+    return {s: by_scheme[s] for s in sorted(by_scheme, key=scheme_key)}
+
+
+def cost_panels(plt, d, meta, scene, cost, cost_label, name):
+    """Error (or correct digits) of each quantity against a cost, one panel per quantity, one line
+    per scheme from the loosest to the tightest rtol (the two ends labelled)."""
+    from matplotlib.lines import Line2D
+    by_scheme = runs_by_scheme(d, meta)
+    if not by_scheme:
+        return note(f"{name} skipped: runs.csv absent or empty")
+    ref = meta.get("reference") or {}
+    digits = ref.get("kind") == "published"
+    panels = ([("mescd_u", "positions"), ("mescd_v", "velocities")] if digits else
+              [("error_u", "displacements u"), ("error_v", "velocities u'"),
+               ("error_reaction", "reactions f_con")])
+    fig, axes = plt.subplots(1, len(panels), figsize=(7.2, 2.5), sharey=not digits,
+                             squeeze=False)
+    handles, drawn = [], 0
+    for scheme, rows in by_scheme.items():
         style = dict(color=colour(scheme), marker=SCHEME_MARKERS.get(scheme, "o"))
-        if not points:
-            note(f"work_precision: no usable run of {scheme}")
-            ax.plot([], [], ls="none", label=f"{scheme} (all failed)", **style)
-            continue
-        points.sort(reverse=True)  # loose to tight tolerance
-        label = scheme + (f" ({failed} of {len(by_scheme[scheme])} failed)" if failed else "")
-        ax.plot([p[1] for p in points], [p[2] for p in points], label=label, **style)
-        for rtol, wall, err in points:
-            ax.annotate(fmt_tol(rtol), (wall, err), xytext=(5, 4), textcoords="offset points",
-                        fontsize=7, color=style["color"])
-        drawn += 1
-    if dropped:
-        note(f"work_precision: {dropped} run(s) with zero error or wall time dropped (log axes)")
+        failed = sum(1 for r in rows if r.get("status") != "ok")
+        label = scheme + (f" ({failed}/{len(rows)} failed)" if failed else "")
+        any_point = False
+        for ax, (col, _) in zip(axes[0], panels):
+            pts = []
+            for r in rows:
+                x, y, rtol = num(r.get(cost)), num(r.get(col)), num(r.get("rtol"))
+                if r.get("status") == "ok" and None not in (x, y, rtol) and x > 0 and (
+                        digits or y > 0):
+                    pts.append((rtol, x, y))
+            if not pts:
+                continue
+            pts.sort(reverse=True)  # loose to tight
+            ax.plot([p[1] for p in pts], [p[2] for p in pts], **style)
+            any_point = True
+        drawn += any_point
+        handles.append(Line2D([], [], label=label if any_point else f"{scheme} (all failed)",
+                              **style))
     if not drawn:
         plt.close(fig)
-        return note("work_precision skipped: no successful run")
-    ax.set_xscale("log")
-    ax.set_xlabel("wall time per run, median [s]")
-    reference = ref.get("description") or "unknown reference"
-    if digits:
-        trusted = num(ref.get("trusted_digits_u"))
-        if trusted is not None:
-            # Beyond the reference's own accuracy, more digits only mean agreement with its error.
-            ax.axhspan(trusted, max(trusted + 1, ax.get_ylim()[1]), color="lightgray", alpha=0.5,
-                       label=f"beyond the reference's trust ({trusted:g} digits)")
-        ax.set_ylabel("significant correct digits in positions (mescd) [-]")
-        ax.set_title(f"Work-precision: {scene}\ndigits against {reference}", fontsize=11)
-        footer = ("mescd = min_i -log10(|y_i - ref_i| / (atol/rtol + |ref_i|)) at t_end "
-                  "(Test Set for IVP Solvers); point labels = rtol; failed runs omitted")
-    else:
-        ax.set_yscale("log")
-        ax.set_ylabel("error (relative max-norm) [-]")
-        ax.set_title(f"Work-precision: {scene}\nerror against {reference}", fontsize=11)
-        footer = ("error = max(error_u, error_v, error_reaction); point labels = rtol; "
-                  "failed runs omitted")
-    ax.grid(True, which="major", alpha=0.3)
-    ax.legend(title="scheme", fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    fig.text(0.01, 0.01, footer, fontsize=7, color="dimgray")
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    save(plt, fig, d, "work_precision")
+        return note(f"{name} skipped: no successful run")
+    for ax, (col, what) in zip(axes[0], panels):
+        ax.set_xscale("log")
+        ax.set_xlabel(cost_label)
+        ax.grid(True, which="major", alpha=0.3)
+        if digits:
+            ax.set_title(f"{what}: correct digits at t_end")
+            trusted = num(ref.get("trusted_digits_u" if col == "mescd_u" else "trusted_digits_v"))
+            if trusted is not None:
+                top = max(trusted + 1, ax.get_ylim()[1])
+                ax.axhspan(trusted, top, color="lightgray", alpha=0.5, lw=0)
+        else:
+            ax.set_yscale("log")
+            ax.set_title(f"{what}")
+    axes[0][0].set_ylabel("significant correct digits (mescd)" if digits else
+                          "relative max-norm error")
+    reference = short_reference(meta)
+    tolerances = [num(x) for x in meta.get("tolerances") or [] if num(x)]
+    sweep = (f"rtol {fmt_tol(max(tolerances))} (first point) to {fmt_tol(min(tolerances))} "
+             "(last)" if tolerances else "one point per rtol")
+    fig.suptitle(f"{scene}\nerror against {reference}; each line: {sweep}", y=1.04)
+    scheme_legend(fig, handles)
+    fig.tight_layout(rect=(0, 0.12, 1, 1))
+    save(plt, fig, d, name)
 
 
-def plot_drift(plt, np, d, scene, at_rtol):
-    fig, ax = plt.subplots(figsize=(10.5, 5.5))
-    drawn, clipped_any = 0, False
+def plot_work_precision(plt, np, d, meta, scene):
+    cost_panels(plt, d, meta, scene, "wall_median_s", "wall time, median of runs [s]",
+                "work_precision")
+
+
+def plot_error_steps(plt, np, d, meta, scene):
+    cost_panels(plt, d, meta, scene, "steps", "integrator steps (no timing noise)",
+                "error_steps")
+
+
+def running_max(np, y):
+    return np.maximum.accumulate(np.where(np.isfinite(y), y, 0.0))
+
+
+def plot_drift(plt, np, d, meta, scene, at_rtol):
+    """Running maximum of the position and velocity residuals over the internal steps; a failed
+    run ends in a cross where it stopped."""
+    from matplotlib.lines import Line2D
+    histories = meta.get("histories") or {}
+    fig, axes = plt.subplots(1, 2, figsize=(7.2, 2.5), sharex=True)
+    handles, drawn, floor_used = [], 0, False
     for scheme, path in per_scheme_files(d, "drift"):
         rows = read_csv(path) or []
-        pairs = [(num(r.get("t")), num(r.get("drift_position"))) for r in rows]
-        pairs = [p for p in pairs if None not in p]
-        if not pairs:
-            note(f"drift: {os.path.basename(path)} empty, {scheme} left out")
+        t = column(np, rows, "t")
+        if not t.size:
             continue
-        t, y = np.array(pairs).T
-        clipped = y < FLOOR
-        clipped_any |= bool(clipped.any())
-        label = scheme + (" (all below floor)" if clipped.all() else "")
-        ax.plot(t, np.maximum(y, FLOOR), color=colour(scheme), lw=1.2, label=label)
+        h = histories.get(scheme) or {}
+        failed = h.get("status") == "failed"
+        for ax, col in zip(axes, ("drift_position", "drift_velocity")):
+            y = running_max(np, column(np, rows, col))
+            floor_used |= bool((y < FLOOR).any())
+            ax.plot(t, np.maximum(y, FLOOR), color=colour(scheme), lw=1.0)
+            if failed:
+                ax.plot(t[-1], max(y[-1], FLOOR), marker="x", ms=6, mew=1.5, color=colour(scheme))
+        label = scheme
+        if failed:
+            label += f" (failed at t = {num(h.get('t_reached')) or t[-1]:.3g} s)"
+        elif all((running_max(np, column(np, rows, c)) < FLOOR).all()
+                 for c in ("drift_position", "drift_velocity")):
+            label += " (exact: 0)"
+        handles.append(Line2D([], [], color=colour(scheme), marker="x" if failed else None,
+                              label=label))
         drawn += 1
     if not drawn:
         plt.close(fig)
         return note("drift skipped: no drift_<scheme>.csv with data")
-    if clipped_any:
-        ax.axhline(FLOOR, color="gray", ls=":", lw=0.8)
-    ax.set_yscale("log")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("position drift max |A u - g| [length]\n"
-                  f"(values below {FLOOR:g}, e.g. exact 0, drawn at {FLOOR:g})")
-    ax.set_title(f"Position-constraint drift at every internal step: {scene}\n"
-                 f"(runs at rtol = {at_rtol})", fontsize=11)
-    ax.grid(True, which="major", alpha=0.3)
-    ax.legend(title="scheme", fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    fig.tight_layout()
+    axes[0].set_title("position level: max |Φ(u, t)|, running max")
+    axes[1].set_title("velocity level: max |Ψ(u, u', t)|, running max")
+    axes[0].set_ylabel("constraint residual (units of the rows)")
+    for ax in axes:
+        ax.set_yscale("log")
+        ax.set_xlabel("time [s]")
+        ax.grid(True, which="major", alpha=0.3)
+        if floor_used:
+            ax.axhline(FLOOR, color="gray", ls=":", lw=0.6)
+    note_floor = f"; values below {FLOOR:g} drawn at {FLOOR:g}" if floor_used else ""
+    fig.suptitle(f"{scene}\nconstraint drift at every internal step, rtol = {at_rtol}"
+                 f"{note_floor}", y=1.04)
+    scheme_legend(fig, handles)
+    fig.tight_layout(rect=(0, 0.12, 1, 1))
     save(plt, fig, d, "drift")
 
 
-def plot_multipliers(plt, np, d, scene, at_rtol):
-    panels = []
-    for scheme, path in per_scheme_files(d, "history"):
+def plot_multipliers(plt, np, d, meta, scene, at_rtol):
+    """Each scheme's multipliers against the reference's: max over the constraints of
+    |λ − λ_ref|, relative to the reference's largest |λ|, at the output times."""
+    from matplotlib.lines import Line2D
+    ref_rows = read_csv(os.path.join(d, "history_reference.csv"))
+    histories = dict(per_scheme_files(d, "history"))
+    if ref_rows:
+        ref_name = short_reference(meta)
+    else:
+        base = next((s for s in ("elimination", "ggl") if s in histories), None)
+        if base is None:
+            return note("multipliers skipped: no reference multipliers and no elimination or "
+                        "ggl history")
+        ref_rows = read_csv(histories.pop(base)) or []
+        ref_name = f"{base} at the same rtol"
+    ref_cols = [c for c in (ref_rows[0] if ref_rows else {}) if c and c.startswith("lambda_")]
+    if not ref_cols:
+        return note("multipliers skipped: the reference has no multipliers")
+    t_ref = column(np, ref_rows, "t")
+    lam_ref = np.array([column(np, ref_rows, c) for c in ref_cols])
+    scale = np.nanmax(np.abs(lam_ref)) if np.isfinite(lam_ref).any() else 0.0
+    if not scale > 0:
+        return note("multipliers skipped: the reference multipliers are all zero")
+    fig, ax = plt.subplots(figsize=(3.5, 3.0))
+    handles = []
+    for scheme, path in histories.items():
         rows = read_csv(path) or []
-        columns = [c for c in (rows[0] if rows else {}) if c and c.startswith("lambda_")]
-        series = {c: column(np, rows, c) for c in columns}
-        series = {c: y for c, y in series.items() if np.isfinite(y).any()}
+        if not rows or not all(c in rows[0] for c in ref_cols):
+            continue
         t = column(np, rows, "t")
-        if series:
-            panels.append((scheme, t, series))
-        else:
-            note(f"multipliers: no values in {os.path.basename(path)}, {scheme} left out")
-    if not panels:
-        return note("multipliers skipped: no history_<scheme>.csv with lambda_ columns")
-    names = list(dict.fromkeys(c for _, _, s in panels for c in s))
-    cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    line_colour = {c: cycle[i % len(cycle)] for i, c in enumerate(names)}
-    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
-                             figsize=(9, 1.2 + 2.3 * len(panels)))
-    for ax, (scheme, t, series) in zip(axes[:, 0], panels):
-        for c, y in series.items():
-            ax.plot(t, y, color=line_colour[c], lw=1.2, label=c[len("lambda_"):])
-        ax.set_title(f"scheme: {scheme}", color=colour(scheme), loc="left", fontsize=10)
-        ax.set_ylabel("multiplier lambda [force]", fontsize=9)
-        ax.grid(True, alpha=0.3)
-        ax.legend(title="constraint", fontsize=8, title_fontsize=8, loc="upper left",
-                  bbox_to_anchor=(1.01, 1.0), ncol=1 + len(series) // 12)
-    axes[-1, 0].set_xlabel("time [s]")
-    fig.suptitle(f"Constraint multipliers (reaction forces) at the output times: {scene}\n"
-                 f"(runs at rtol = {at_rtol})", fontsize=11)
-    fig.tight_layout()
+        diff = np.zeros_like(t)
+        for k, c in enumerate(ref_cols):
+            diff = np.maximum(diff, np.abs(column(np, rows, c) - np.interp(t, t_ref, lam_ref[k])))
+        y = np.where(diff > 0, diff / scale, np.nan)  # exact agreement (t = 0): not drawn
+        ax.plot(t, y, color=colour(scheme), lw=1.0)
+        handles.append(Line2D([], [], color=colour(scheme), label=scheme))
+    if not handles:
+        plt.close(fig)
+        return note("multipliers skipped: no history_<scheme>.csv with the reference's columns")
+    ax.set_yscale("log")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("max |λ − λ_ref| / max |λ_ref|")
+    ax.grid(True, which="major", alpha=0.3)
+    ax.set_title(f"{scene}: multipliers, rtol = {at_rtol}\nagainst {ref_name}", fontsize=7)
+    scheme_legend(fig, handles)
+    fig.tight_layout(rect=(0, 0.14, 1, 1))
     save(plt, fig, d, "multipliers")
 
 
@@ -258,65 +328,67 @@ def heat_map(plt, np, fig, ax, grid, labels, norm, cmap, bar_label, axes_values,
         for (i, j), v in np.ndenumerate(grid):
             dark = np.isfinite(v) and np.dot(image.to_rgba(v)[:3], (0.299, 0.587, 0.114)) < 0.5
             ax.text(j, i - 0.12 if (j, i) == default else i, labels[i][j], ha="center",
-                    va="center", fontsize=8, color="white" if dark else "black")
+                    va="center", fontsize=5, color="white" if dark else "black")
     if default is not None:
-        ax.plot(*default, marker="*", ms=16, mfc="white", mec="black", mew=1.2, ls="none")
-        ax.annotate("default", default, xytext=(0, 10), textcoords="offset points",
-                    ha="center", fontsize=8, fontweight="bold",
+        ax.plot(*default, marker="*", ms=8, mfc="white", mec="black", mew=0.8, ls="none")
+        ax.annotate("default", default, xytext=(0, 7), textcoords="offset points",
+                    ha="center", fontsize=5.5, fontweight="bold",
                     bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8))
     alphas, betas = axes_values
-    ax.set_xticks(range(len(alphas)), [f"{a:.3g}" for a in alphas])
-    ax.set_yticks(range(len(betas)), [f"{b:.3g}" for b in betas])
-    ax.set_xlabel("alpha (damping gain) [1/s]")
-    ax.set_ylabel("beta (stiffness gain) [1/s]")
+    tick = lambda x: f"{x:.2g}" if x < 100 else f"{x:.0f}"  # noqa: E731
+    ax.set_xticks(range(len(alphas)), [tick(a) for a in alphas], fontsize=6)
+    ax.set_yticks(range(len(betas)), [tick(b) for b in betas], fontsize=6)
+    ax.set_xlabel("α [1/s]")
+    ax.set_ylabel("β [1/s]")
 
 
 def plot_baumgarte(plt, np, d, scene):
-    from matplotlib.colors import LogNorm, Normalize
+    """Error, drift and steps over the (alpha, beta) grid, each on a log colour scale."""
+    from matplotlib.colors import LogNorm
     rows = read_csv(os.path.join(d, "baumgarte_study.csv")) or []
     rows = [r for r in rows if num(r.get("alpha")) is not None and num(r.get("beta")) is not None]
     if not rows:
         return note("baumgarte_study skipped: baumgarte_study.csv absent or without grid points")
     alphas = sorted({num(r["alpha"]) for r in rows})
     betas = sorted({num(r["beta"]) for r in rows})
-    drift = np.full((len(betas), len(alphas)), np.nan)
-    steps = drift.copy()
-    drift_text = [["no run"] * len(alphas) for _ in betas]
-    steps_text = [row[:] for row in drift_text]
+    shape = (len(betas), len(alphas))
+    grids = {k: np.full(shape, np.nan) for k in ("error_u", "max_drift_position", "steps")}
+    texts = {k: [["no run"] * len(alphas) for _ in betas] for k in grids}
     default = None
     for r in rows:
         i, j = betas.index(num(r["beta"])), alphas.index(num(r["alpha"]))
         if num(r.get("default")) == 1:
             default = (j, i)
-        dp, n = num(r.get("max_drift_position")), num(r.get("steps"))
-        if r.get("status") != "ok":
-            drift_text[i][j] = steps_text[i][j] = "failed"
+        for k in grids:
+            if r.get("status") != "ok":
+                texts[k][i][j] = "failed"
+                continue
+            v = num(r.get(k))
+            texts[k][i][j] = "n/a" if v is None else (f"{v:.0f}" if k == "steps" else
+                                                      f"{v:.0e}" if v else "0")
+            if v is not None:
+                grids[k][i, j] = v
+    panels = [(k, title, bar) for k, title, bar in (
+        ("error_u", "displacement error", "relative max-norm error"),
+        ("max_drift_position", "max position drift", "max |Φ| (units of the rows)"),
+        ("steps", "integrator steps", "steps")) if np.isfinite(grids[k]).any()]
+    if not panels:
+        return note("baumgarte_study skipped: no successful grid point")
+    fig, axes = plt.subplots(1, len(panels), figsize=(7.2, 2.6), squeeze=False)
+    for ax, (k, title, bar) in zip(axes[0], panels):
+        grid = grids[k]
+        positive = grid[np.isfinite(grid) & (grid > 0)]
+        if not positive.size:
+            ax.set_axis_off()
+            ax.set_title(f"{title}: all zero")
             continue
-        drift_text[i][j] = steps_text[i][j] = "n/a"  # ok run, value missing unless set below
-        if dp is not None:
-            drift[i, j], drift_text[i][j] = dp, f"{dp:.1e}" if dp else "0"
-        if n is not None:
-            steps[i, j], steps_text[i][j] = n, f"{n:.0f}"
-    positive = drift[np.isfinite(drift) & (drift > 0)]
-    if not positive.size:
-        return note("baumgarte_study skipped: no successful grid point with positive drift")
-    lo, hi = positive.min(), positive.max()
-    if (drift <= 0).any():
-        note("baumgarte_study: zero drift drawn white (below the log colour scale)")
-        drift[drift <= 0] = lo / 10
-    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5.5))
-    heat_map(plt, np, fig, left, drift, drift_text, LogNorm(lo / 2, hi * 2) if lo == hi else
-             LogNorm(lo, hi), "viridis", "max over the run of |A u - g| [length]",
-             (alphas, betas), default)
-    left.set_title("max position drift over the run (log colour)", fontsize=10)
-    finite = steps[np.isfinite(steps)]
-    heat_map(plt, np, fig, right, steps, steps_text,
-             Normalize(finite.min(), finite.max()) if finite.size else None, "cividis",
-             "integrator steps [-]", (alphas, betas), default)
-    right.set_title("integrator steps", fontsize=10)
-    fig.suptitle(f"Baumgarte gain study: {scene}\n"
-                 r"constraint error obeys $e'' + 2\alpha e' + \beta^2 e = 0$;"
-                 " grey = failed run or missing value; star = default gains", fontsize=11)
+        lo, hi = positive.min(), positive.max()
+        grid = np.where(grid <= 0, lo / 10, grid)  # exact zeros: white, below the scale
+        heat_map(plt, np, fig, ax, grid, texts[k], LogNorm(lo / 2, hi * 2) if lo == hi else
+                 LogNorm(lo, hi), "viridis", bar, (alphas, betas), default)
+        ax.set_title(title)
+    fig.suptitle(f"{scene}\nBaumgarte gains: e'' + 2α e' + β² e = 0 on the constraint error; "
+                 "star: default gains; grey: failed", y=1.04)
     fig.tight_layout()
     save(plt, fig, d, "baumgarte_study")
 
@@ -335,6 +407,7 @@ def main(argv):
     except ImportError:
         print("plot_compare: matplotlib not available, plots skipped")
         return 3
+    paper_style(plt)
     d = argv[1]
     meta = load_meta(d)
     scene = meta.get("scene") or "unknown scene"
@@ -342,8 +415,9 @@ def main(argv):
     status = 0
     for name, draw in (
             ("work_precision", lambda: plot_work_precision(plt, np, d, meta, scene)),
-            ("drift", lambda: plot_drift(plt, np, d, scene, at_rtol)),
-            ("multipliers", lambda: plot_multipliers(plt, np, d, scene, at_rtol)),
+            ("error_steps", lambda: plot_error_steps(plt, np, d, meta, scene)),
+            ("drift", lambda: plot_drift(plt, np, d, meta, scene, at_rtol)),
+            ("multipliers", lambda: plot_multipliers(plt, np, d, meta, scene, at_rtol)),
             ("baumgarte_study", lambda: plot_baumgarte(plt, np, d, scene))):
         try:
             draw()

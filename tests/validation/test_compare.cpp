@@ -141,12 +141,32 @@ TEST_CASE("compare: the output files follow validation/compare-output.md") {
   CHECK(json.find("\"drift_rtol\": ") != std::string::npos);
   CHECK(slurp("drift_baumgarte.csv").rfind("t,drift_position,drift_velocity\n", 0) == 0);
   CHECK(slurp("history_elimination.csv").rfind("t,lambda_mfc1,lambda_mfc2,lambda_mfc3,", 0) == 0);
-  CHECK(slurp("baumgarte_study.csv").rfind("alpha,beta,default,status,", 0) == 0);
+  const std::string study = slurp("baumgarte_study.csv");
+  CHECK(study.rfind("alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,"
+                    "wall_s,error_u\n",
+                    0) == 0);
+  // Every study point ran and has its error against the exact reference (the last field).
+  std::istringstream points(study);
+  std::string line;
+  std::getline(points, line);
+  int rows = 0;
+  while (std::getline(points, line)) {
+    CAPTURE(line);
+    const double error = std::stod(line.substr(line.rfind(',') + 1));
+    CHECK(error > 0.0);
+    CHECK(error < 1e-2);
+    ++rows;
+  }
+  CHECK(rows == 4);  // small_options: factors {1, 10} squared
+  // The reference's multipliers at the output times, for the multiplier figure.
+  CHECK(slurp("history_reference.csv").rfind("t,lambda_mfc1,lambda_mfc2,lambda_mfc3", 0) == 0);
+  CHECK(json.find("\"histories\": {\"elimination\": {\"status\": \"ok\", \"t_reached\": ") !=
+        std::string::npos);
   CHECK(slurp("summary.txt").find("reference: exact modal solution") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("plot_compare.py draws the four plots from a compare folder") {
+TEST_CASE("plot_compare.py draws its figures from a compare folder of an older format") {
   namespace fs = std::filesystem;
   const fs::path dir =
       fs::temp_directory_path() / ("condyn_plot_test_" + std::to_string(::getpid()));
@@ -156,11 +176,18 @@ TEST_CASE("plot_compare.py draws the four plots from a compare folder") {
   const std::string note = draw_compare_plots(dir.string());
   CAPTURE(note);
   CHECK(note.rfind("plots written", 0) == 0);
-  for (const char* plot : {"work_precision", "drift", "multipliers", "baumgarte_study"}) {
+  // The sample has no history_reference.csv and no study errors: the multipliers are drawn
+  // against the elimination run, the study without its error panel.
+  for (const char* plot :
+       {"work_precision", "error_steps", "drift", "multipliers", "baumgarte_study"}) {
     CAPTURE(plot);
-    CHECK(fs::file_size(dir / (std::string(plot) + ".png")) > 1000);
-    CHECK(fs::exists(dir / (std::string(plot) + ".svg")));
+    CHECK(fs::file_size(dir / (std::string(plot) + ".png")) > 10000);
+    CHECK(fs::file_size(dir / (std::string(plot) + ".pdf")) > 5000);
   }
+  std::ifstream log(dir / "plots.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  CHECK(text.find("skipped") == std::string::npos);
+  CHECK(text.find("failed") == std::string::npos);
   fs::remove_all(dir);
 }
 

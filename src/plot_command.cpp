@@ -1,0 +1,87 @@
+#include "src/plot_command.hpp"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace condyn {
+
+namespace {
+
+/// `s` as one word for /bin/sh: in single quotes, each ' written as '\''.
+std::string shell_word(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+int bad(const std::string& message) {
+  std::cerr << "error: " << message << "\n";
+  return 2;
+}
+
+}  // namespace
+
+int plot_result(const PlotArgs& args) {
+  namespace fs = std::filesystem;
+  const fs::path result(args.result);
+  std::error_code ec;
+  if (!fs::is_regular_file(result, ec)) {
+    return bad(args.result + ": no such file (condyn plot reads the CSV or HDF5 of condyn run)");
+  }
+  const std::string ext = result.extension().string();
+  if (ext != ".csv" && ext != ".h5") {
+    return bad(args.result +
+               ": not a result file: condyn plot reads the .csv or .h5 that "
+               "condyn run writes");
+  }
+  std::istringstream formats(args.formats);
+  std::string format;
+  while (std::getline(formats, format, ',')) {
+    if (format != "png" && format != "pdf" && format != "svg") {
+      return bad("--format: unknown format '" + format + "' (png, pdf, svg)");
+    }
+  }
+  const fs::path out_dir = args.out_dir.empty() ? result.parent_path() : fs::path(args.out_dir);
+  if (!out_dir.empty()) {
+    fs::create_directories(out_dir, ec);
+    if (!fs::is_directory(out_dir)) {
+      return bad("--out-dir " + out_dir.string() + ": cannot create the folder");
+    }
+  }
+  const fs::path script = fs::path(CONDYN_SOURCE_DIR) / "validation" / "plot_result.py";
+  if (!fs::exists(script)) {
+    std::cerr << "error: " << script.string() << " not found: the plots need the source tree\n";
+    return 1;
+  }
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  std::string cmd = shell_word(python) + " " + shell_word(script.string()) + " " +
+                    shell_word(args.result) + " --out-dir " +
+                    shell_word(out_dir.empty() ? "." : out_dir.string()) + " --format " +
+                    shell_word(args.formats);
+  if (!args.dofs.empty()) cmd += " --dofs " + shell_word(args.dofs);
+  const int status = std::system(cmd.c_str());
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  switch (code) {
+    case 0:
+      return 0;
+    case 2:
+      return 2;  // bad input: the script named the file and what is wrong
+    case 3:
+      std::cerr << "error: plots need Debian's python3-matplotlib, python3-numpy and (for .h5) "
+                   "python3-h5py: apt-get install them\n";
+      return 1;
+    case 127:
+      std::cerr << "error: python3 is not installed (apt-get install python3-matplotlib)\n";
+      return 1;
+    default:
+      std::cerr << "error: the plotting script failed (exit " << code << ")\n";
+      return 1;
+  }
+}
+
+}  // namespace condyn

@@ -1,0 +1,75 @@
+// `condyn plot RESULT` (issue 14, docs/plots.md): figures of one run's CSV or HDF5, and clear
+// refusals (exit 2, the file or DOF named) of what it cannot draw.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
+
+using condyn::test::Result;
+using condyn::test::Sandbox;
+
+namespace {
+
+/// The two-mass scene with displacement, drift and the energy balance written.
+void write_run(const Sandbox& box) {
+  box.write("s.toml", condyn::test::replace(condyn::test::kTwoMassesScene, "output_step = 0.25\n",
+                                            "output_step = 0.05\n[output]\nquantities = "
+                                            "[\"displacement\", \"drift\", \"energy\"]\n"));
+}
+
+/// A PNG (its 8-byte signature) or PDF ("%PDF") file of some size.
+bool is_figure(const Sandbox& box, const std::string& name) {
+  const auto path = box.path(name);
+  if (!std::filesystem::exists(path) || std::filesystem::file_size(path) < 5000) return false;
+  const std::string head = condyn::test::slurp(path).substr(0, 4);
+  return head == "\x89PNG" || head == "%PDF";
+}
+
+}  // namespace
+
+TEST_CASE("condyn plot draws displacements, drift and energy of a CSV and of an HDF5 result") {
+  const Sandbox box;
+  write_run(box);
+  REQUIRE(box.run("run s.toml --out r.csv").code == 0);
+  REQUIRE(box.run("run s.toml --out r.h5").code == 0);
+  const Result csv = box.run("plot r.csv");
+  CAPTURE(csv.err);
+  REQUIRE(csv.code == 0);
+  for (const char* what : {"displacement", "drift", "energy"}) {
+    CAPTURE(what);
+    CHECK(is_figure(box, std::string("r_") + what + ".png"));
+    CHECK(is_figure(box, std::string("r_") + what + ".pdf"));
+  }
+  const Result h5 = box.run("plot r.h5 --dofs b --format svg --out-dir figs");
+  CAPTURE(h5.err);
+  REQUIRE(h5.code == 0);
+  CHECK(h5.out.find("figs/r_displacement.svg") != std::string::npos);
+  CHECK(std::filesystem::exists(box.path("figs/r_energy.svg")));
+  CHECK_FALSE(std::filesystem::exists(box.path("figs/r_energy.png")));
+}
+
+TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF") {
+  const Sandbox box;
+  write_run(box);
+  REQUIRE(box.run("run s.toml --out r.csv").code == 0);
+  const auto refused = [&](const std::string& args, const std::string& expected) {
+    const Result r = box.run(args);
+    CAPTURE(args);
+    CAPTURE(r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.find(expected) != std::string::npos);
+  };
+  refused("plot missing.csv", "missing.csv: no such file");
+  refused("plot s.toml", "s.toml: not a result file");
+  box.write("other.csv", "a,b\n1,2\n");
+  refused("plot other.csv", "other.csv: not a condyn result (its first column is not t)");
+  box.write("torn.csv", "t,a\n0,1\n1\n");
+  refused("plot torn.csv", "torn.csv:");
+  box.write("fake.h5", "not hdf5");
+  refused("plot fake.h5", "fake.h5: not an HDF5 file");
+  refused("plot r.csv --dofs zz", "--dofs: 'zz' matches no DOF of r.csv (DOFs: a, b)");
+  refused("plot r.csv --format gif", "--format: unknown format 'gif'");
+}

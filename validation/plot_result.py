@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""Figures of one run's result file, for `condyn plot RESULT` (docs/plots.md).
+
+    /usr/bin/python3 validation/plot_result.py RESULT [--out-dir DIR] [--dofs a,b*] [--format png,pdf]
+
+RESULT is the CSV or HDF5 that `condyn run` writes (docs/cli.md). Draws into DIR (default:
+beside RESULT), each figure named STEM_<what>.<format>:
+  displacement  the chosen DOFs against t (default: the four with the largest peak |u|)
+  drift         running max of the position and velocity constraint residuals (if written)
+  energy        the energy balance's terms, and its error (if written: docs/energy.md)
+Sized for print: 3.5 in wide (one column), 7-8 pt text.
+
+Exit status: 0 drawn; 2 bad input (the message names the file and what is wrong); 3 matplotlib,
+numpy or h5py missing.
+"""
+import argparse
+import fnmatch
+import os
+import sys
+
+ENERGY_TERMS = (("energy_kinetic", "kinetic T"), ("energy_potential", "potential V"),
+                ("energy_dissipated", "dissipated D"), ("work_loads", "work of loads"),
+                ("work_constraints", "work of constraints"))
+DEFAULT_DOFS = 4
+
+
+class BadInput(Exception):
+    pass
+
+
+def read_csv(np, path):
+    with open(path, newline="") as f:
+        header = f.readline().strip().split(",")
+    if not header or header[0] != "t":
+        raise BadInput(f"{path}: not a condyn result (its first column is not t)")
+    try:
+        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    except ValueError as e:
+        raise BadInput(f"{path}: unreadable row ({e})") from None
+    if data.shape[0] == 0:
+        raise BadInput(f"{path}: no rows")
+    if data.shape[1] != len(header):
+        raise BadInput(f"{path}: {data.shape[1]} values per row for {len(header)} columns")
+    columns = {name: data[:, k] for k, name in enumerate(header)}
+    prefixed = ("vel_", "acc_", "reaction_", "lambda_", "drift_", "energy", "work_")
+    dofs = [n for n in header[1:] if not n.startswith(prefixed)]
+    return columns, dofs
+
+
+def read_h5(np, path):
+    try:
+        import h5py
+    except ImportError:
+        raise SystemExit(3)
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        raise BadInput(f"{path}: not an HDF5 file ({e})") from None
+    with f:
+        if "t" not in f:
+            raise BadInput(f"{path}: not a condyn result (no dataset t)")
+        columns = {"t": np.asarray(f["t"])}
+        dofs = [s.decode() if isinstance(s, bytes) else str(s) for s in f.get("dof_names", [])]
+        if "displacement" in f:
+            u = np.asarray(f["displacement"])
+            for k, name in enumerate(dofs):
+                columns[name] = u[:, k]
+        else:
+            dofs = []
+        if "drift" in f:
+            d = np.asarray(f["drift"])
+            columns["drift_position"], columns["drift_velocity"] = d[:, 0], d[:, 1]
+        if "energy" in f:
+            e = np.asarray(f["energy"])
+            names = [s.decode() if isinstance(s, bytes) else str(s)
+                     for s in f.get("energy_columns", [])]
+            for k, name in enumerate(names):
+                columns[name] = e[:, k]
+    return columns, dofs
+
+
+def chosen_dofs(np, columns, dofs, patterns, path):
+    if patterns:
+        chosen = []
+        for p in patterns:
+            hits = [d for d in dofs if fnmatch.fnmatchcase(d, p)]
+            if not hits:
+                some = ", ".join(dofs[:8]) + (", ..." if len(dofs) > 8 else "")
+                raise BadInput(f"--dofs: '{p}' matches no DOF of {path} (DOFs: {some or 'none'})")
+            chosen += [d for d in hits if d not in chosen]
+        return chosen, "chosen"
+    peaks = sorted(dofs, key=lambda d: -np.nanmax(np.abs(columns[d])))
+    return peaks[:DEFAULT_DOFS], f"the {min(DEFAULT_DOFS, len(dofs))} largest peaks of {len(dofs)}"
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(prog="plot_result.py")
+    parser.add_argument("result")
+    parser.add_argument("--out-dir", default=None)
+    parser.add_argument("--dofs", default="")
+    parser.add_argument("--format", default="png,pdf")
+    args = parser.parse_args(argv[1:])
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        import numpy as np
+    except ImportError:
+        return 3
+    path = args.result
+    out_dir = args.out_dir or os.path.dirname(os.path.abspath(path))
+    stem = os.path.splitext(os.path.basename(path))[0]
+    formats = [f for f in args.format.split(",") if f]
+    try:
+        columns, dofs = read_h5(np, path) if path.endswith(".h5") else read_csv(np, path)
+        patterns = [p for p in args.dofs.split(",") if p]
+        if patterns and not dofs:
+            raise BadInput(f"{path}: has no displacement columns to choose from")
+        chosen, how = chosen_dofs(np, columns, dofs, patterns, path) if dofs else ([], "")
+    except BadInput as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except OSError as e:
+        print(f"error: {path}: {e.strerror}", file=sys.stderr)
+        return 2
+
+    plt.rcParams.update({
+        "font.size": 8, "axes.titlesize": 8, "axes.labelsize": 8, "xtick.labelsize": 7,
+        "ytick.labelsize": 7, "legend.fontsize": 7, "lines.linewidth": 1.0,
+        "axes.linewidth": 0.6, "grid.linewidth": 0.4, "savefig.bbox": "tight"})
+    t = columns["t"]
+    written = []
+
+    def save(fig, what):
+        for ext in formats:
+            name = os.path.join(out_dir, f"{stem}_{what}.{ext}")
+            fig.savefig(name, dpi=300 if ext == "png" else None)
+            written.append(name)
+        plt.close(fig)
+
+    if chosen:
+        fig, ax = plt.subplots(figsize=(3.5, 2.4))
+        for d in chosen:
+            ax.plot(t, columns[d], label=d)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("displacement (model units)")
+        ax.set_title(f"{stem}: displacements ({how})")
+        ax.grid(True, alpha=0.3)
+        ax.legend(ncol=2 if len(chosen) > 3 else 1, frameon=False)
+        fig.tight_layout()
+        save(fig, "displacement")
+    if "drift_position" in columns:
+        fig, ax = plt.subplots(figsize=(3.5, 2.4))
+        drawn = 0
+        for col, label in (("drift_position", "position |Φ(u, t)|"),
+                           ("drift_velocity", "velocity |Ψ(u, u', t)|")):
+            y = np.maximum.accumulate(np.nan_to_num(columns[col], nan=0.0))
+            if (y > 0).any():
+                ax.plot(t, np.where(y > 0, y, np.nan), label=label)
+                drawn += 1
+        if not drawn:  # eliminated constraints hold exactly
+            ax.text(0.5, 0.5, "drift exactly 0 at every output time", ha="center",
+                    transform=ax.transAxes)
+            ax.set_ylim(1e-18, 1e-15)
+        ax.set_yscale("log")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("max residual, running max")
+        ax.set_title(f"{stem}: constraint drift at the output times")
+        ax.grid(True, which="major", alpha=0.3)
+        if drawn:
+            ax.legend(frameon=False)
+        fig.tight_layout()
+        save(fig, "drift")
+    if "energy_error" in columns:
+        fig, (top, bottom) = plt.subplots(2, 1, figsize=(3.5, 3.6), sharex=True,
+                                          gridspec_kw={"height_ratios": [2, 1]})
+        for col, label in ENERGY_TERMS:
+            if col in columns:
+                top.plot(t, columns[col], label=label)
+        top.set_ylabel("energy (model units; J in SI)")
+        top.set_title(f"{stem}: energy balance")
+        top.grid(True, alpha=0.3)
+        top.legend(frameon=False, ncol=2, loc="upper left", fontsize=6)
+        bottom.plot(t, columns["energy_error"], color="black")
+        bottom.set_ylabel("balance error")
+        bottom.set_xlabel("time [s]")
+        bottom.grid(True, alpha=0.3)
+        fig.tight_layout()
+        save(fig, "energy")
+    if not written:
+        print(f"error: {path}: nothing to draw (no displacement, drift or energy columns)",
+              file=sys.stderr)
+        return 2
+    for name in written:
+        print(f"wrote {name}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
