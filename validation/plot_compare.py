@@ -33,6 +33,8 @@ SCHEME_COLOURS = {
     "index2": "#d62728", "index3": "#9467bd", "penalty": "#8c564b", "projection": "#e377c2",
 }
 SCHEME_MARKERS = dict(zip(SCHEME_COLOURS, "osD^v<>P"))
+# Dashes too, so that curves which coincide (index1 and baumgarte on a linear scene) both show.
+SCHEME_DASHES = dict(zip(SCHEME_COLOURS, ["-", "-", "--", "-", "-.", "-", ":", "--"]))
 EXTRA_COLOURS = ["#7f7f7f", "#bcbd22", "#17becf"]
 _extra = {}
 ERROR_COLUMNS = ("error_u", "error_v", "error_reaction")
@@ -50,6 +52,11 @@ def colour(scheme):
     if scheme in SCHEME_COLOURS:
         return SCHEME_COLOURS[scheme]
     return _extra.setdefault(scheme, EXTRA_COLOURS[len(_extra) % len(EXTRA_COLOURS)])
+
+
+def line_style(scheme):
+    """Colour and dash pattern of a scheme's curve over time (drift, multipliers)."""
+    return dict(color=colour(scheme), ls=SCHEME_DASHES.get(scheme, "-"))
 
 
 def scheme_key(scheme):
@@ -236,7 +243,7 @@ def plot_drift(plt, np, d, meta, scene, at_rtol):
         for ax, col in zip(axes, ("drift_position", "drift_velocity")):
             y = running_max(np, column(np, rows, col))
             floor_used |= bool((y < FLOOR).any())
-            ax.plot(t, np.maximum(y, FLOOR), color=colour(scheme), lw=1.0)
+            ax.plot(t, np.maximum(y, FLOOR), lw=1.0, **line_style(scheme))
             if failed:
                 ax.plot(t[-1], max(y[-1], FLOOR), marker="x", ms=6, mew=1.5, color=colour(scheme))
         label = scheme
@@ -245,8 +252,8 @@ def plot_drift(plt, np, d, meta, scene, at_rtol):
         elif all((running_max(np, column(np, rows, c)) < FLOOR).all()
                  for c in ("drift_position", "drift_velocity")):
             label += " (exact: 0)"
-        handles.append(Line2D([], [], color=colour(scheme), marker="x" if failed else None,
-                              label=label))
+        handles.append(Line2D([], [], marker="x" if failed else None, label=label,
+                              **line_style(scheme)))
         drawn += 1
     if not drawn:
         plt.close(fig)
@@ -291,8 +298,8 @@ def plot_multipliers(plt, np, d, meta, scene, at_rtol):
     scale = np.nanmax(np.abs(lam_ref)) if np.isfinite(lam_ref).any() else 0.0
     if not scale > 0:
         return note("multipliers skipped: the reference multipliers are all zero")
-    fig, ax = plt.subplots(figsize=(3.5, 3.0))
-    handles = []
+    fig, ax = plt.subplots(figsize=(3.5, 2.9))
+    handles, top = [], 0.0
     for scheme, path in histories.items():
         rows = read_csv(path) or []
         if not rows or not all(c in rows[0] for c in ref_cols):
@@ -302,18 +309,22 @@ def plot_multipliers(plt, np, d, meta, scene, at_rtol):
         for k, c in enumerate(ref_cols):
             diff = np.maximum(diff, np.abs(column(np, rows, c) - np.interp(t, t_ref, lam_ref[k])))
         y = np.where(diff > 0, diff / scale, np.nan)  # exact agreement (t = 0): not drawn
-        ax.plot(t, y, color=colour(scheme), lw=1.0)
-        handles.append(Line2D([], [], color=colour(scheme), label=scheme))
+        ax.plot(t, y, lw=1.0, **line_style(scheme))
+        handles.append(Line2D([], [], label=scheme, **line_style(scheme)))
+        top = max(top, float(np.nanmax(y)) if np.isfinite(y).any() else 0.0)
     if not handles:
         plt.close(fig)
         return note("multipliers skipped: no history_<scheme>.csv with the reference's columns")
     ax.set_yscale("log")
+    if top > 0:  # seven decades below the largest difference; a roundoff dip at t = 0 is clipped
+        ax.set_ylim(bottom=max(ax.get_ylim()[0], top * 1e-7))
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("max |λ − λ_ref| / max |λ_ref|")
+    ax.set_ylabel("max |λ − λ_ref| / max |λ_ref|  [–]")
     ax.grid(True, which="major", alpha=0.3)
     ax.set_title(f"{scene}: multipliers, rtol = {at_rtol}\nagainst {ref_name}", fontsize=7)
-    scheme_legend(fig, handles)
-    fig.tight_layout(rect=(0, 0.14, 1, 1))
+    fig.legend(handles=handles, loc="lower center", ncol=4, frameon=False,
+               bbox_to_anchor=(0.5, 0.0), handlelength=2.5)
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
     save(plt, fig, d, "multipliers")
 
 
@@ -327,13 +338,13 @@ def heat_map(plt, np, fig, ax, grid, labels, norm, cmap, bar_label, axes_values,
     if grid.size <= 100:  # cell labels stay legible only on small grids
         for (i, j), v in np.ndenumerate(grid):
             dark = np.isfinite(v) and np.dot(image.to_rgba(v)[:3], (0.299, 0.587, 0.114)) < 0.5
-            ax.text(j, i - 0.12 if (j, i) == default else i, labels[i][j], ha="center",
+            ax.text(j, i, labels[i][j], ha="center",
                     va="center", fontsize=5, color="white" if dark else "black")
-    if default is not None:
-        ax.plot(*default, marker="*", ms=8, mfc="white", mec="black", mew=0.8, ls="none")
-        ax.annotate("default", default, xytext=(0, 7), textcoords="offset points",
-                    ha="center", fontsize=5.5, fontweight="bold",
-                    bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8))
+    if default is not None:  # a frame around the cell keeps its value legible
+        from matplotlib.patches import Rectangle
+        for colour_, width in (("black", 2.2), ("white", 1.0)):
+            ax.add_patch(Rectangle((default[0] - 0.46, default[1] - 0.46), 0.92, 0.92,
+                                   fill=False, ec=colour_, lw=width))
     alphas, betas = axes_values
     tick = lambda x: f"{x:.2g}" if x < 100 else f"{x:.0f}"  # noqa: E731
     ax.set_xticks(range(len(alphas)), [tick(a) for a in alphas], fontsize=6)
@@ -388,7 +399,7 @@ def plot_baumgarte(plt, np, d, scene):
                  LogNorm(lo, hi), "viridis", bar, (alphas, betas), default)
         ax.set_title(title)
     fig.suptitle(f"{scene}\nBaumgarte gains: e'' + 2α e' + β² e = 0 on the constraint error; "
-                 "star: default gains; grey: failed", y=1.04)
+                 "framed: default gains; grey: failed", y=1.04)
     fig.tight_layout()
     save(plt, fig, d, "baumgarte_study")
 

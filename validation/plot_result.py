@@ -6,7 +6,7 @@
 RESULT is the CSV or HDF5 that `condyn run` writes (docs/cli.md). Draws into DIR (default:
 beside RESULT), each figure named STEM_<what>.<format>:
   displacement  the chosen DOFs against t (default: the four with the largest peak |u|)
-  drift         running max of the position and velocity constraint residuals (if written)
+  drift         running max of the position and velocity constraint residuals (if written; none when it is 0 throughout)
   energy        the energy balance's terms, and its error (if written: docs/energy.md)
 Sized for print: 3.5 in wide (one column), 7-8 pt text.
 
@@ -20,8 +20,19 @@ import sys
 
 ENERGY_TERMS = (("energy_kinetic", "kinetic T"), ("energy_potential", "potential V"),
                 ("energy_dissipated", "dissipated D"), ("work_loads", "work of loads"),
-                ("work_constraints", "work of constraints"))
+                ("work_constraints", "work of constraints"),
+                ("energy", "total T + V"))
 DEFAULT_DOFS = 4
+
+
+def energy_columns(columns):
+    """The energy terms present, known ones first with their labels, then any other column named
+    energy, energy_* or work_* under its own name (energy_error has its own panel)."""
+    known = [(c, label) for c, label in ENERGY_TERMS if c in columns]
+    names = {c for c, _ in known} | {"energy_error"}
+    other = [(c, c) for c in columns if c not in names and (
+        c == "energy" or c.startswith("energy_") or c.startswith("work_"))]
+    return known + other
 
 
 class BadInput(Exception):
@@ -129,7 +140,7 @@ def main(argv):
         "ytick.labelsize": 7, "legend.fontsize": 7, "lines.linewidth": 1.0,
         "axes.linewidth": 0.6, "grid.linewidth": 0.4, "savefig.bbox": "tight"})
     t = columns["t"]
-    written = []
+    written, notes = [], []
 
     def save(fig, what):
         for ext in formats:
@@ -158,35 +169,44 @@ def main(argv):
             if (y > 0).any():
                 ax.plot(t, np.where(y > 0, y, np.nan), label=label)
                 drawn += 1
-        if not drawn:  # eliminated constraints hold exactly
-            ax.text(0.5, 0.5, "drift exactly 0 at every output time", ha="center",
-                    transform=ax.transAxes)
-            ax.set_ylim(1e-18, 1e-15)
-        ax.set_yscale("log")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("max residual, running max")
-        ax.set_title(f"{stem}: constraint drift at the output times")
-        ax.grid(True, which="major", alpha=0.3)
         if drawn:
+            ax.set_yscale("log")
+            ax.set_xlabel("time [s]")
+            ax.set_ylabel("max residual, running max\n(units of the constraint rows)")
+            ax.set_title(f"{stem}: constraint drift at the output times")
+            ax.grid(True, which="major", alpha=0.3)
             ax.legend(frameon=False)
-        fig.tight_layout()
-        save(fig, "drift")
-    if "energy_error" in columns:
-        fig, (top, bottom) = plt.subplots(2, 1, figsize=(3.5, 3.6), sharex=True,
-                                          gridspec_kw={"height_ratios": [2, 1]})
-        for col, label in ENERGY_TERMS:
-            if col in columns:
-                top.plot(t, columns[col], label=label)
+            fig.tight_layout()
+            save(fig, "drift")
+        else:  # eliminated constraints hold exactly: an empty log axis would say nothing
+            plt.close(fig)
+            notes.append(f"{stem}: drift exactly 0 at every output time (constraints "
+                         "eliminated): no drift figure")
+    terms = energy_columns(columns)
+    if terms:
+        error = "energy_error" in columns
+        fig, axes = plt.subplots(2 if error else 1, 1, figsize=(3.5, 3.6 if error else 2.4),
+                                 sharex=True, squeeze=False,
+                                 gridspec_kw={"height_ratios": [2, 1] if error else [1]})
+        top = axes[0][0]
+        for col, label in terms:
+            top.plot(t, columns[col], label=label)
         top.set_ylabel("energy (model units; J in SI)")
-        top.set_title(f"{stem}: energy balance")
         top.grid(True, alpha=0.3)
-        top.legend(frameon=False, ncol=2, loc="upper left", fontsize=6)
-        bottom.plot(t, columns["energy_error"], color="black")
-        bottom.set_ylabel("balance error")
-        bottom.set_xlabel("time [s]")
-        bottom.grid(True, alpha=0.3)
+        # above the axes, under the title: curves fill the whole panel
+        top.legend(frameon=False, ncol=3, loc="lower center", bbox_to_anchor=(0.5, 1.0),
+                   fontsize=6, title=f"{stem}: energy balance" if error else f"{stem}: energy",
+                   title_fontsize=8, handlelength=1.5, columnspacing=1.0)
+        if error:
+            bottom = axes[1][0]
+            bottom.plot(t, columns["energy_error"], color="black")
+            bottom.set_ylabel("balance error\n(same units)")
+            bottom.grid(True, alpha=0.3)
+        axes[-1][0].set_xlabel("time [s]")
         fig.tight_layout()
         save(fig, "energy")
+    for line in notes:
+        print(f"note: {line}")
     if not written:
         print(f"error: {path}: nothing to draw (no displacement, drift or energy columns)",
               file=sys.stderr)
