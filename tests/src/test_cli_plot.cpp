@@ -33,8 +33,9 @@ bool is_figure(const Sandbox& box, const std::string& name) {
 TEST_CASE("condyn plot draws displacements, drift and energy of a CSV and of an HDF5 result") {
   const Sandbox box;
   write_run(box);
-  REQUIRE(box.run("run s.toml --out r.csv").code == 0);
-  REQUIRE(box.run("run s.toml --out r.h5").code == 0);
+  // index1 lets the constraint drift, so the drift figure has something to show
+  REQUIRE(box.run("run s.toml --scheme index1 --out r.csv").code == 0);
+  REQUIRE(box.run("run s.toml --scheme index1 --out r.h5").code == 0);
   const Result csv = box.run("plot r.csv");
   CAPTURE(csv.err);
   REQUIRE(csv.code == 0);
@@ -49,6 +50,19 @@ TEST_CASE("condyn plot draws displacements, drift and energy of a CSV and of an 
   CHECK(h5.out.find("figs/r_displacement.svg") != std::string::npos);
   CHECK(std::filesystem::exists(box.path("figs/r_energy.svg")));
   CHECK_FALSE(std::filesystem::exists(box.path("figs/r_energy.png")));
+}
+
+TEST_CASE("condyn plot draws no drift figure when the drift is exactly 0, and says so") {
+  const Sandbox box;
+  write_run(box);
+  REQUIRE(box.run("run s.toml --scheme elimination --out e.csv").code == 0);
+  const Result r = box.run("plot e.csv --format png");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("note: e: drift exactly 0 at every output time") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(box.path("e_drift.png")));
+  CHECK(is_figure(box, "e_displacement.png"));
+  CHECK(is_figure(box, "e_energy.png"));
 }
 
 TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF") {
