@@ -123,8 +123,8 @@ def paper_style(plt):
     """8-9 pt text, thin lines: legible when the figure is printed at its own size (3.5 in for a
     single column, 7.2 in across a page)."""
     plt.rcParams.update({
-        "font.size": 8, "axes.titlesize": 8, "axes.labelsize": 8, "xtick.labelsize": 7,
-        "ytick.labelsize": 7, "legend.fontsize": 7, "legend.title_fontsize": 7,
+        "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "xtick.labelsize": 8,
+        "ytick.labelsize": 8, "legend.fontsize": 8, "legend.title_fontsize": 8,
         "lines.linewidth": 1.0, "lines.markersize": 3.5, "axes.linewidth": 0.6,
         "grid.linewidth": 0.4, "savefig.bbox": "tight", "savefig.pad_inches": 0.02,
     })
@@ -260,7 +260,7 @@ def plot_drift(plt, np, d, meta, scene, at_rtol):
         return note("drift skipped: no drift_<scheme>.csv with data")
     axes[0].set_title("position level: max |Φ(u, t)|, running max")
     axes[1].set_title("velocity level: max |Ψ(u, u', t)|, running max")
-    axes[0].set_ylabel("constraint residual (units of the rows)")
+    axes[0].set_ylabel("residual (row units)")
     for ax in axes:
         ax.set_yscale("log")
         ax.set_xlabel("time [s]")
@@ -319,9 +319,10 @@ def plot_multipliers(plt, np, d, meta, scene, at_rtol):
     if top > 0:  # seven decades below the largest difference; a roundoff dip at t = 0 is clipped
         ax.set_ylim(bottom=max(ax.get_ylim()[0], top * 1e-7))
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("max |λ − λ_ref| / max |λ_ref|  [–]")
+    ax.set_ylabel("relative multiplier error [–]")
     ax.grid(True, which="major", alpha=0.3)
-    ax.set_title(f"{scene}: multipliers, rtol = {at_rtol}\nagainst {ref_name}", fontsize=7)
+    ax.set_title(f"{scene}\nmultipliers at rtol = {at_rtol} against {ref_name}\n"
+                 "error: max over the constraints |λ − λ_ref| / max |λ_ref|", fontsize=8)
     fig.legend(handles=handles, loc="lower center", ncol=4, frameon=False,
                bbox_to_anchor=(0.5, 0.0), handlelength=2.5)
     fig.tight_layout(rect=(0, 0.1, 1, 1))
@@ -339,7 +340,7 @@ def heat_map(plt, np, fig, ax, grid, labels, norm, cmap, bar_label, axes_values,
         for (i, j), v in np.ndenumerate(grid):
             dark = np.isfinite(v) and np.dot(image.to_rgba(v)[:3], (0.299, 0.587, 0.114)) < 0.5
             ax.text(j, i, labels[i][j], ha="center",
-                    va="center", fontsize=5, color="white" if dark else "black")
+                    va="center", fontsize=6, color="white" if dark else "black")
     if default is not None:  # a frame around the cell keeps its value legible
         from matplotlib.patches import Rectangle
         for colour_, width in (("black", 2.2), ("white", 1.0)):
@@ -347,8 +348,8 @@ def heat_map(plt, np, fig, ax, grid, labels, norm, cmap, bar_label, axes_values,
                                    fill=False, ec=colour_, lw=width))
     alphas, betas = axes_values
     tick = lambda x: f"{x:.2g}" if x < 100 else f"{x:.0f}"  # noqa: E731
-    ax.set_xticks(range(len(alphas)), [tick(a) for a in alphas], fontsize=6)
-    ax.set_yticks(range(len(betas)), [tick(b) for b in betas], fontsize=6)
+    ax.set_xticks(range(len(alphas)), [tick(a) for a in alphas], fontsize=8)
+    ax.set_yticks(range(len(betas)), [tick(b) for b in betas], fontsize=8)
     ax.set_xlabel("α [1/s]")
     ax.set_ylabel("β [1/s]")
 
@@ -376,7 +377,7 @@ def plot_baumgarte(plt, np, d, scene):
                 continue
             v = num(r.get(k))
             texts[k][i][j] = "n/a" if v is None else (f"{v:.0f}" if k == "steps" else
-                                                      f"{v:.0e}" if v else "0")
+                                                      f"{v:.0e}".replace("e-0", "e-") if v else "0")
             if v is not None:
                 grids[k][i, j] = v
     panels = [(k, title, bar) for k, title, bar in (
@@ -398,8 +399,8 @@ def plot_baumgarte(plt, np, d, scene):
         heat_map(plt, np, fig, ax, grid, texts[k], LogNorm(lo / 2, hi * 2) if lo == hi else
                  LogNorm(lo, hi), "viridis", bar, (alphas, betas), default)
         ax.set_title(title)
-    fig.suptitle(f"{scene}\nBaumgarte gains: e'' + 2α e' + β² e = 0 on the constraint error; "
-                 "framed: default gains; grey: failed", y=1.04)
+    fig.suptitle(f"{scene}\nBaumgarte gains (e'' + 2α e' + β² e = 0 on the constraint error); "
+                 "framed: default; grey: failed", y=1.04)
     fig.tight_layout()
     save(plt, fig, d, "baumgarte_study")
 

@@ -8,7 +8,7 @@ beside RESULT), each figure named STEM_<what>.<format>:
   displacement  the chosen DOFs against t (default: the four with the largest peak |u|)
   drift         running max of the position and velocity constraint residuals (if written; none when it is 0 throughout)
   energy        the energy balance's terms, and its error (if written: docs/energy.md)
-Sized for print: 3.5 in wide (one column), 7-8 pt text.
+Sized for print: 3.5 in wide (one column), 8-9 pt text.
 
 Exit status: 0 drawn; 2 bad input (the message names the file and what is wrong); 3 matplotlib,
 numpy or h5py missing.
@@ -136,8 +136,8 @@ def main(argv):
         return 2
 
     plt.rcParams.update({
-        "font.size": 8, "axes.titlesize": 8, "axes.labelsize": 8, "xtick.labelsize": 7,
-        "ytick.labelsize": 7, "legend.fontsize": 7, "lines.linewidth": 1.0,
+        "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "xtick.labelsize": 8,
+        "ytick.labelsize": 8, "legend.fontsize": 8, "lines.linewidth": 1.0,
         "axes.linewidth": 0.6, "grid.linewidth": 0.4, "savefig.bbox": "tight"})
     t = columns["t"]
     written, notes = [], []
@@ -191,18 +191,19 @@ def main(argv):
         top = axes[0][0]
         for col, label in terms:
             top.plot(t, columns[col], label=label)
-        top.set_ylabel("energy (model units; J in SI)")
+        top.set_ylabel("energy [J in SI]")
         top.grid(True, alpha=0.3)
         # above the axes, under the title: curves fill the whole panel
         top.legend(frameon=False, ncol=3, loc="lower center", bbox_to_anchor=(0.5, 1.0),
-                   fontsize=6, title=f"{stem}: energy balance" if error else f"{stem}: energy",
-                   title_fontsize=8, handlelength=1.5, columnspacing=1.0)
+                   fontsize=7, title=f"{stem}: energy balance" if error else f"{stem}: energy",
+                   title_fontsize=9, handlelength=1.5, columnspacing=1.0)
         if error:
             bottom = axes[1][0]
             bottom.plot(t, columns["energy_error"], color="black")
-            bottom.set_ylabel("balance error\n(same units)")
+            bottom.set_ylabel("balance\nerror [J]")
             bottom.grid(True, alpha=0.3)
         axes[-1][0].set_xlabel("time [s]")
+        fig.align_ylabels(axes[:, 0])
         fig.tight_layout()
         save(fig, "energy")
     for line in notes:
