@@ -176,6 +176,12 @@ TEST_CASE("plot_compare.py draws its figures from a compare folder of an older f
   const std::string note = draw_compare_plots(dir.string());
   CAPTURE(note);
   CHECK(note.rfind("plots written", 0) == 0);
+  const auto head = [](const fs::path& p) {  // a file's first four bytes
+    std::ifstream f(p, std::ios::binary);
+    std::string bytes(4, '\0');
+    f.read(bytes.data(), 4);
+    return bytes;
+  };
   // The sample has no history_reference.csv and no study errors: the multipliers are drawn
   // against the elimination run, the study without its error panel.
   for (const char* plot :
@@ -183,6 +189,9 @@ TEST_CASE("plot_compare.py draws its figures from a compare folder of an older f
     CAPTURE(plot);
     CHECK(fs::file_size(dir / (std::string(plot) + ".png")) > 10000);
     CHECK(fs::file_size(dir / (std::string(plot) + ".pdf")) > 5000);
+    // what the names promise: a PNG's signature, a PDF's header
+    CHECK(head(dir / (std::string(plot) + ".png")) == "\x89PNG");
+    CHECK(head(dir / (std::string(plot) + ".pdf")) == "%PDF");
   }
   std::ifstream log(dir / "plots.log");
   const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
