@@ -1,23 +1,16 @@
 #include "src/plot_command.hpp"
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "src/report_format.hpp"
 
 namespace condyn {
 
 namespace {
-
-/// `s` as one word for /bin/sh: in single quotes, each ' written as '\''.
-std::string shell_word(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 int bad(const std::string& message) {
   std::cerr << "error: " << message << "\n";
@@ -53,19 +46,15 @@ int plot_result(const PlotArgs& args) {
       return bad("--out-dir " + out_dir.string() + ": cannot create the folder");
     }
   }
-  const fs::path script = fs::path(CONDYN_SOURCE_DIR) / "validation" / "plot_result.py";
+  const fs::path script = validation_script("plot_result.py");
   if (!fs::exists(script)) {
     std::cerr << "error: " << script.string() << " not found: the plots need the source tree\n";
     return 1;
   }
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  std::string cmd = shell_word(python) + " " + shell_word(script.string()) + " " +
-                    shell_word(args.result) + " --out-dir " +
-                    shell_word(out_dir.empty() ? "." : out_dir.string()) + " --format " +
-                    shell_word(args.formats);
-  if (!args.dofs.empty()) cmd += " --dofs " + shell_word(args.dofs);
-  const int status = std::system(cmd.c_str());
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::vector<std::string> script_args = {
+      args.result, "--out-dir", out_dir.empty() ? "." : out_dir.string(), "--format", args.formats};
+  if (!args.dofs.empty()) script_args.insert(script_args.end(), {"--dofs", args.dofs});
+  const int code = run_python_script(script, script_args, "");
   switch (code) {
     case 0:
       return 0;

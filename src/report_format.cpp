@@ -82,15 +82,36 @@ void write_json_records(std::ostream& out, const std::vector<ReportFields>& reco
   }
 }
 
-std::string run_plot_script(const std::string& script, const std::string& dir) {
-  namespace fs = std::filesystem;
-  const fs::path path = fs::path(CONDYN_SOURCE_DIR) / "validation" / script;
-  if (!fs::exists(path)) return "plots skipped: " + path.string() + " not found";
-  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string cmd =
-      "'" + python + "' '" + path.string() + "' '" + dir + "' > '" + dir + "/plots.log' 2>&1";
+namespace {
+
+/// `s` as one word for /bin/sh: in single quotes, each ' written as '\''.
+std::string shell_word(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+std::filesystem::path validation_script(const std::string& script) {
+  return std::filesystem::path(CONDYN_SOURCE_DIR) / "validation" / script;
+}
+
+int run_python_script(const std::filesystem::path& path, const std::vector<std::string>& args,
+                      const std::string& log) {
+  const std::string python =
+      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  std::string cmd = shell_word(python) + " " + shell_word(path.string());
+  for (const auto& a : args) cmd += " " + shell_word(a);
+  if (!log.empty()) cmd += " > " + shell_word(log) + " 2>&1";
   const int status = std::system(cmd.c_str());
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string run_plot_script(const std::string& script, const std::string& dir) {
+  const std::filesystem::path path = validation_script(script);
+  if (!std::filesystem::exists(path)) return "plots skipped: " + path.string() + " not found";
+  const int code = run_python_script(path, {dir}, dir + "/plots.log");
   switch (code) {
     case 0:
       return "plots written to " + dir + " (PNG, and PDF or SVG)";

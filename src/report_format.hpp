@@ -2,6 +2,7 @@
 /// Formatting shared by the report writers (compare, stress): numbers at full precision, CSV and
 /// JSON string quoting, and the plotting scripts run with Debian's python3.
 
+#include <filesystem>
 #include <ostream>
 #include <set>
 #include <string>
@@ -28,6 +29,15 @@ void write_csv_table(std::ostream& out, const ReportFields& header,
 /// in `text_fields` as strings, the others as numbers (null when empty).
 void write_json_records(std::ostream& out, const std::vector<ReportFields>& records,
                         const std::set<std::string>& text_fields, const std::string& indent);
+
+/// validation/SCRIPT in the source tree (the plotting scripts live there).
+[[nodiscard]] std::filesystem::path validation_script(const std::string& script);
+
+/// Runs the Python script at `path` with `args` (each quoted for /bin/sh) under Debian's python3
+/// (/usr/bin/python3, else python3 on PATH), its standard output and error written to `log`
+/// unless `log` is empty. Returns the script's exit code (127: no python3), -1 if it did not exit.
+[[nodiscard]] int run_python_script(const std::filesystem::path& path,
+                                    const std::vector<std::string>& args, const std::string& log);
 
 /// Runs validation/SCRIPT DIR with Debian's python3 (/usr/bin/python3, else python3 on PATH),
 /// its output in DIR/plots.log. Returns a one-line note: what was drawn, or why plots were skipped
