@@ -314,7 +314,7 @@ RunHooks hooks_for(const std::vector<Quantity>& quantities) {
     return std::find(quantities.begin(), quantities.end(), q) != quantities.end();
   };
   RunHooks hooks;
-  hooks.accelerations = has(Quantity::acceleration);
+  hooks.accelerations = has(Quantity::acceleration) || has(Quantity::absolute_acceleration);
   hooks.energy_balance = has(Quantity::energy);
   return hooks;
 }

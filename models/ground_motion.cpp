@@ -41,6 +41,7 @@ void ModelBuilder::add_ground_motion(std::vector<double>& total) {
     fail(g.where, "M r is zero: the DOFs the ground moves carry no mass, so it loads nothing");
   }
   model_.loads.push_back(std::move(load));
+  model_.ground = Model::Ground{r, g.acceleration};
 }
 
 }  // namespace condyn

@@ -8,6 +8,11 @@
 
 namespace condyn {
 
+Eigen::VectorXd Model::absolute_acceleration(double t, const Eigen::VectorXd& a) const {
+  if (!ground) return a;
+  return a + ground->r * ground->acceleration.derivative(0, t);
+}
+
 Eigen::VectorXd Model::applied_forces(double t, double step_reference) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
   for (const auto& l : loads) l.add_to(f, l.value.derivative(0, t, step_reference));

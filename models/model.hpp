@@ -69,6 +69,13 @@ struct Model {
   std::map<std::string, int> dof_index;
   Eigen::SparseMatrix<double> M, C, K;  ///< C has no nonzeros when the scene has no damping
   std::vector<Load> loads;
+  /// [ground_motion]: the influence vector r and the ground's acceleration a_g(t) (the load
+  /// −M r a_g is among `loads`); the outputs are relative to the ground.
+  struct Ground {
+    Eigen::VectorXd r;
+    TimeFunction acceleration;
+  };
+  std::optional<Ground> ground;
   std::vector<Constraint> constraints;
   Eigen::SparseMatrix<double> A;  ///< m x n, row i = constraints[i].coefficients
   Eigen::VectorXd u0, v0;
@@ -95,6 +102,9 @@ struct Model {
   /// total energy is a first integral. (Nonlinear systems answer through their energy().)
   [[nodiscard]] bool is_conservative() const;
 
+  /// The acceleration in a fixed frame, a + r a_g(t), of a relative acceleration `a` under ground
+  /// motion; `a` itself without it.
+  [[nodiscard]] Eigen::VectorXd absolute_acceleration(double t, const Eigen::VectorXd& a) const;
   /// Applied loads f(t) (n). Steps are on when start <= step_reference.
   [[nodiscard]] Eigen::VectorXd applied_forces(double t, double step_reference) const;
   [[nodiscard]] Eigen::VectorXd applied_forces(double t) const { return applied_forces(t, t); }

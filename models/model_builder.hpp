@@ -122,6 +122,7 @@ class ModelBuilder {
 
   // solve_settings_checks.cpp
   void check_energy_output() const;
+  void check_absolute_acceleration() const;
   void check_output() const;
   void check_output_dofs() const;
   void check_slaves() const;

@@ -49,7 +49,7 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
   out.where = at(file_node, key);
   if (out.file.empty()) fail(file_node, key, "the file name is empty");
   if (arrays_ != nullptr) {
-    if (const auto it = arrays_->find(out.file); it != arrays_->end()) {
+    if (const auto it = arrays_->matrices.find(out.file); it != arrays_->matrices.end()) {
       // A matrix handed over in memory: the file reader's own check of entries, finiteness.
       out.matrix = it->second;
       for (Eigen::Index k = 0; k < out.matrix.outerSize(); ++k) {

@@ -12,6 +12,8 @@ const char* to_string(Quantity q) {
       return "velocity";
     case Quantity::acceleration:
       return "acceleration";
+    case Quantity::absolute_acceleration:
+      return "absolute_acceleration";
     case Quantity::reaction:
       return "reaction";
     case Quantity::multiplier:
@@ -36,9 +38,9 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
       const std::string p = index("output.quantities", i);
       const std::string s = string(*arr.get(i), p);
       bool found = false;
-      for (Quantity q :
-           {Quantity::displacement, Quantity::velocity, Quantity::acceleration, Quantity::reaction,
-            Quantity::multiplier, Quantity::drift, Quantity::energy}) {
+      for (Quantity q : {Quantity::displacement, Quantity::velocity, Quantity::acceleration,
+                         Quantity::absolute_acceleration, Quantity::reaction, Quantity::multiplier,
+                         Quantity::drift, Quantity::energy}) {
         if (s == to_string(q)) {
           for (Quantity seen : output.quantities) {
             if (seen == q) fail(*arr.get(i), p, "'" + s + "' is listed twice");
@@ -50,8 +52,8 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
       if (!found) {
         fail(*arr.get(i), p,
              "unknown quantity '" + s +
-                 "' (expected displacement, velocity, acceleration, reaction, multiplier, drift "
-                 "or energy)");
+                 "' (expected displacement, velocity, acceleration, absolute_acceleration, "
+                 "reaction, multiplier, drift or energy)");
       }
     }
   }

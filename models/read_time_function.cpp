@@ -60,6 +60,20 @@ std::shared_ptr<const TimeTable> SceneReader::table_file(const toml::node& file_
                                                          const std::string& column) const {
   const std::string file = string(file_node, key);
   if (file.empty()) fail(file_node, key, "the file name is empty");
+  if (arrays_ != nullptr) {
+    if (const auto it = arrays_->tables.find(file); it != arrays_->tables.end()) {
+      // Samples handed over in memory (the Python module's arrays): row k is the text's line k+1.
+      try {
+        auto table = std::make_shared<TimeTable>(parse_time_table(it->second, column));
+        table->file = file;
+        return table;
+      } catch (const TimeTableError& e) {
+        fail(file_node, key,
+             file + (e.line() > 1 ? ": row " + std::to_string(e.line() - 1) : std::string()) +
+                 ": " + e.what());
+      }
+    }
+  }
   // Relative to the scene file's folder (a scene given as text: the working directory), as the
   // Matrix Market files (read_matrix_files.cpp).
   const std::filesystem::path resolved =

@@ -94,6 +94,7 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
            {std::pair<std::string, std::string>{"", "displacement"},
             {"vel_", "velocity"},
             {"acc_", "acceleration"},
+            {"acc_abs_", "absolute acceleration"},
             {"reaction_", "reaction"}}) {
         claim(prefix + d, "the " + quantity + " column of DOF '" + d + "'", *dofs->get(i), p, d,
               "DOF");

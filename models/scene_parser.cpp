@@ -61,7 +61,7 @@ SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
 }
 
 SceneSpec parse_scene_table(const toml::table& root, const std::string& file,
-                            const ArrayMatrices& arrays) {
+                            const ArrayInputs& arrays) {
   return SceneReader(file, arrays).read(root);
 }
 

@@ -19,7 +19,7 @@ class SceneReader : public TomlAccess {
  public:
   using TomlAccess::TomlAccess;
   /// A reader whose `{ file = NAME }` keys may name matrices in `arrays` (models/scene_table.hpp).
-  SceneReader(std::string file, const ArrayMatrices& arrays)
+  SceneReader(std::string file, const ArrayInputs& arrays)
       : TomlAccess(std::move(file)), arrays_(&arrays) {}
 
   /// The whole scene: its top-level keys, then every section in order (scene_parser.cpp).
@@ -76,7 +76,7 @@ class SceneReader : public TomlAccess {
   void check_columns(const toml::table& root, const SceneSpec& spec) const;
 
  private:
-  const ArrayMatrices* arrays_ = nullptr;  ///< matrices given in memory, by name (none: files only)
+  const ArrayInputs* arrays_ = nullptr;  ///< matrices and tables given in memory (none: files only)
 };
 
 }  // namespace condyn

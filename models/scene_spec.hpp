@@ -172,7 +172,16 @@ struct SolveSpec {
   [[nodiscard]] std::vector<double> output_times() const;
 };
 
-enum class Quantity { displacement, velocity, acceleration, reaction, multiplier, drift, energy };
+enum class Quantity {
+  displacement,
+  velocity,
+  acceleration,
+  absolute_acceleration,  ///< u'' + r a_g(t) under [ground_motion] (columns acc_abs_<dof>)
+  reaction,
+  multiplier,
+  drift,
+  energy
+};
 
 /// The columns of the `energy` quantity, in order (docs/energy.md): T + V, the balance's error,
 /// T, V, the energy dissipated, the work of the loads and of the constraint forces.

@@ -19,9 +19,20 @@ namespace condyn {
 /// where the file's are checked). Nothing is densified or written.
 using ArrayMatrices = std::map<std::string, Eigen::SparseMatrix<double>>;
 
+/// Time tables handed over in memory, by the name a table time function's `file` key holds: the
+/// samples as CSV text with the header `t,value` (one row per sample, 17 significant digits),
+/// read by the file reader's own parser, so they get every check a file's samples get.
+using ArrayTables = std::map<std::string, std::string>;
+
+/// What a scene built in memory hands over beside its table.
+struct ArrayInputs {
+  ArrayMatrices matrices;
+  ArrayTables tables;
+};
+
 /// Reads and validates `root` as a scene; `file` names it in messages (nodes built in memory
 /// have no line, so messages read "FILE: key.path: problem"). Throws SceneError.
 [[nodiscard]] SceneSpec parse_scene_table(const toml::table& root, const std::string& file,
-                                          const ArrayMatrices& arrays = {});
+                                          const ArrayInputs& arrays = {});
 
 }  // namespace condyn

@@ -28,6 +28,16 @@ void ModelBuilder::check_energy_output() const {
   }
 }
 
+void ModelBuilder::check_absolute_acceleration() const {
+  const auto& q = spec_.output.quantities;
+  if (std::find(q.begin(), q.end(), Quantity::absolute_acceleration) == q.end()) return;
+  if (!model_.ground) {
+    fail({"output.quantities", spec_.output.where.line},
+         "'absolute_acceleration' needs [ground_motion]: without a moving ground the "
+         "accelerations are absolute already (use 'acceleration')");
+  }
+}
+
 void ModelBuilder::check_output() const {
   const double rows = spec_.solve.t_end / spec_.solve.output_step + 1.0;
   if (rows > kMaxOutputRows) {
@@ -36,6 +46,7 @@ void ModelBuilder::check_output() const {
                                                             "): increase output_step");
   }
   check_output_dofs();
+  check_absolute_acceleration();
   check_slaves();
 }
 

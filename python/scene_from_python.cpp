@@ -7,6 +7,7 @@
 
 #include <pybind11/numpy.h>
 
+#include <cstdio>
 #include <string>
 #include <variant>
 #include <vector>
@@ -103,9 +104,38 @@ Eigen::SparseMatrix<double> sparse_of(const py::handle& value, const std::string
   return m;
 }
 
+/// Whether `value` (a dict) is a tabulated time function: its `file` may then be an array.
+bool is_table_function(const py::handle& value) {
+  const auto d = py::reinterpret_borrow<py::dict>(value);
+  return d.contains("type") && py::isinstance<py::str>(d["type"]) &&
+         d["type"].cast<std::string>() == "table";
+}
+
+/// An nt x 2 array of (time, value) samples as the CSV text a table file would hold (17
+/// significant digits: every double reads back exactly), for the file reader's own parser.
+std::string table_text(const py::handle& data, const std::string& path) {
+  const auto a = real_entries(data, path);
+  if (a.ndim() != 2 || a.shape(1) != 2) {
+    fail(path, "a table's samples as an array must be n x 2 (time, value); this one is " +
+                   std::string(a.ndim() == 2
+                                   ? std::to_string(a.shape(0)) + " x " + std::to_string(a.shape(1))
+                                   : std::to_string(a.ndim()) + "-dimensional"));
+  }
+  std::string text = "t,value\n";
+  char cell[32];
+  for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+    for (py::ssize_t j = 0; j < 2; ++j) {
+      std::snprintf(cell, sizeof cell, "%.17g", a.data()[2 * i + j]);
+      text += cell;
+      text += j == 0 ? ',' : '\n';
+    }
+  }
+  return text;
+}
+
 class Converter {
  public:
-  explicit Converter(ArrayMatrices& arrays) : arrays_(arrays) {}
+  explicit Converter(ArrayInputs& arrays) : arrays_(arrays) {}
 
   toml::table table(const py::handle& value, const std::string& path, int depth) {
     if (!py::isinstance<py::dict>(value)) {
@@ -118,10 +148,15 @@ class Converter {
       }
       const auto key = k.cast<std::string>();
       const std::string p = path.empty() ? key : path + "." + key;
-      if ((py::isinstance<py::array>(v) || is_sparse(v)) && takes_matrix(path, key)) {
+      if (key == "file" && py::isinstance<py::array>(v) && is_table_function(value)) {
+        // A recorded time function's samples, kept by name as a table file's text.
+        const std::string name = "<array " + p + ">";
+        arrays_.tables[name] = table_text(v, p);
+        out.insert(key, name);
+      } else if ((py::isinstance<py::array>(v) || is_sparse(v)) && takes_matrix(path, key)) {
         // Kept by name; the scene gets `file = NAME` (constraint_block.file) or `{ file = NAME }`.
         const std::string name = "<array " + (key == "file" ? path : p) + ">";
-        arrays_[name] = sparse_of(v, p);
+        arrays_.matrices[name] = sparse_of(v, p);
         if (key == "file") {
           out.insert(key, name);
         } else {
@@ -185,14 +220,14 @@ class Converter {
     std::visit([&](auto&& x) { out.insert(key, std::move(x)); }, emit(v, p, depth));
   }
 
-  ArrayMatrices& arrays_;
+  ArrayInputs& arrays_;
 };
 
 }  // namespace
 
 SceneSpec parse_python_scene(const py::handle& scene) {
   if (py::isinstance<py::dict>(scene)) {
-    ArrayMatrices arrays;
+    ArrayInputs arrays;
     const toml::table root = Converter(arrays).table(scene, "", 0);
     return parse_scene_table(root, kDictFile, arrays);
   }

@@ -20,14 +20,19 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
   out << csv_header(model, output, shown) << "\n";
   const Eigen::VectorXd none;
   std::string line;
+  const bool absolute = std::find(output.quantities.begin(), output.quantities.end(),
+                                  Quantity::absolute_acceleration) != output.quantities.end();
   for (std::size_t k = 0; k < traj.t.size(); ++k) {
     const auto col = static_cast<Eigen::Index>(k);
+    const Eigen::VectorXd absolute_acceleration =
+        absolute ? model.absolute_acceleration(traj.t[k], traj.acceleration.col(col)) : none;
     const CsvRow row{traj.t[k],
                      traj.u.col(col),
                      traj.v.col(col),
                      traj.acceleration.cols() > col
                          ? Eigen::Ref<const Eigen::VectorXd>(traj.acceleration.col(col))
                          : Eigen::Ref<const Eigen::VectorXd>(none),
+                     absolute_acceleration,
                      traj.reaction.col(col),
                      traj.multiplier.col(col),
                      traj.drift_position[col],

@@ -34,6 +34,9 @@ std::string csv_header(const Model& model, const OutputSpec& output,
       case Quantity::acceleration:
         names("acc_");
         break;
+      case Quantity::absolute_acceleration:
+        names("acc_abs_");
+        break;
       case Quantity::reaction:
         names("reaction_");
         break;
@@ -71,6 +74,9 @@ void append_csv_row(std::string& line, const OutputSpec& output, const std::vect
         break;
       case Quantity::acceleration:
         dofs(row.acceleration);
+        break;
+      case Quantity::absolute_acceleration:
+        dofs(row.absolute_acceleration);
         break;
       case Quantity::reaction:
         dofs(row.reaction);

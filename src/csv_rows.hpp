@@ -16,7 +16,8 @@ namespace condyn {
 struct CsvRow {
   double t = 0.0;
   /// `acceleration` may be empty when the output does not ask for it.
-  Eigen::Ref<const Eigen::VectorXd> u, v, acceleration, reaction, multiplier;
+  /// `absolute_acceleration` (u'' + r a_g under ground motion) may be empty when not asked for.
+  Eigen::Ref<const Eigen::VectorXd> u, v, acceleration, absolute_acceleration, reaction, multiplier;
   double drift_position = 0.0, drift_velocity = 0.0;
   /// The energy balance (docs/energy.md) when the output asks for `energy`.
   const EnergyBalance* balance = nullptr;

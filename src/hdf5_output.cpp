@@ -73,6 +73,15 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
       case Quantity::acceleration:
         dofs("acceleration", traj.acceleration);
         break;
+      case Quantity::absolute_acceleration: {
+        Eigen::MatrixXd absolute(traj.acceleration.rows(), traj.acceleration.cols());
+        for (Eigen::Index k = 0; k < absolute.cols(); ++k) {
+          absolute.col(k) = model.absolute_acceleration(traj.t[static_cast<std::size_t>(k)],
+                                                        traj.acceleration.col(k));
+        }
+        dofs("absolute_acceleration", absolute);
+        break;
+      }
       case Quantity::reaction:
         dofs("reaction", traj.reaction);
         break;

@@ -16,17 +16,24 @@ namespace {
 class CsvRowWriter final : public RowWriter {
  public:
   CsvRowWriter(const std::string& path, const Model& model, const OutputSpec& output)
-      : output_(output), shown_(selected_dofs(output, model.dof_names)), path_(path) {
+      : model_(model),
+        output_(output),
+        shown_(selected_dofs(output, model.dof_names)),
+        absolute_(std::find(output.quantities.begin(), output.quantities.end(),
+                            Quantity::absolute_acceleration) != output.quantities.end()),
+        path_(path) {
     out_.open(path, std::ios::binary | std::ios::trunc);
     if (!out_) throw std::runtime_error(path + ": cannot open the output for writing");
     out_ << csv_header(model, output, shown_) << "\n";
   }
 
   void row(const TrajectoryRow& r) override {
+    if (absolute_) absolute_acceleration_ = model_.absolute_acceleration(r.t, r.acceleration);
     const CsvRow view{r.t,
                       r.u,
                       r.v,
                       r.acceleration,
+                      absolute_acceleration_,
                       r.reaction,
                       r.multiplier,
                       r.drift_position,
@@ -45,8 +52,11 @@ class CsvRowWriter final : public RowWriter {
   }
 
  private:
+  const Model& model_;
   const OutputSpec& output_;
   std::vector<int> shown_;
+  bool absolute_ = false;
+  Eigen::VectorXd absolute_acceleration_;
   std::string path_, line_;
   std::ofstream out_;
 };
@@ -130,7 +140,7 @@ class Series {
 class Hdf5RowWriter final : public RowWriter {
  public:
   Hdf5RowWriter(const std::string& path, const Model& model, const OutputSpec& output)
-      : shown_(selected_dofs(output, model.dof_names)), path_(path) {
+      : model_(model), shown_(selected_dofs(output, model.dof_names)), path_(path) {
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (file_ < 0) throw std::runtime_error(path + ": HDF5 cannot create the file");
     const auto width = static_cast<hsize_t>(shown_.size());
@@ -145,6 +155,9 @@ class Hdf5RowWriter final : public RowWriter {
           break;
         case Quantity::acceleration:
           a_ = std::make_unique<Series>(file_, "acceleration", width, false);
+          break;
+        case Quantity::absolute_acceleration:
+          a_abs_ = std::make_unique<Series>(file_, "absolute_acceleration", width, false);
           break;
         case Quantity::reaction:
           reaction_ = std::make_unique<Series>(file_, "reaction", width, false);
@@ -180,6 +193,7 @@ class Hdf5RowWriter final : public RowWriter {
     if (u_) dofs(*u_, r.u);
     if (v_) dofs(*v_, r.v);
     if (a_) dofs(*a_, r.acceleration);
+    if (a_abs_) dofs(*a_abs_, model_.absolute_acceleration(r.t, r.acceleration));
     if (reaction_) dofs(*reaction_, r.reaction);
     if (multiplier_) {
       multiplier_->append([&](hsize_t c) { return r.multiplier[static_cast<Eigen::Index>(c)]; });
@@ -197,8 +211,8 @@ class Hdf5RowWriter final : public RowWriter {
     hdf5::put_attribute(file_, "scheme", run.scheme);
     hdf5::put_attribute(file_, "rtol", run.rtol);
     hdf5::put_attribute(file_, "atol", run.atol);
-    for (Series* s : {t_.get(), u_.get(), v_.get(), a_.get(), reaction_.get(), multiplier_.get(),
-                      drift_.get(), energy_.get()}) {
+    for (Series* s : {t_.get(), u_.get(), v_.get(), a_.get(), a_abs_.get(), reaction_.get(),
+                      multiplier_.get(), drift_.get(), energy_.get()}) {
       if (s != nullptr) s->flush(true);
     }
     close();
@@ -211,6 +225,7 @@ class Hdf5RowWriter final : public RowWriter {
     u_.reset();
     v_.reset();
     a_.reset();
+    a_abs_.reset();
     reaction_.reset();
     multiplier_.reset();
     drift_.reset();
@@ -221,10 +236,11 @@ class Hdf5RowWriter final : public RowWriter {
     }
   }
 
+  const Model& model_;
   std::vector<int> shown_;
   std::string path_;
   hid_t file_ = -1;
-  std::unique_ptr<Series> t_, u_, v_, a_, reaction_, multiplier_, drift_, energy_;
+  std::unique_ptr<Series> t_, u_, v_, a_, a_abs_, reaction_, multiplier_, drift_, energy_;
   bool failed_ = false;
 };
 

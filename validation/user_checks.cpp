@@ -44,7 +44,9 @@ std::vector<std::string> all_columns(const Model& model) {
   std::vector<std::string> out = {"drift_position", "drift_velocity"};
   for (const auto column : kEnergyColumns) out.emplace_back(column);
   for (const auto& d : model.dof_names) {
-    for (const char* prefix : {"", "vel_", "acc_", "reaction_"}) out.push_back(prefix + d);
+    for (const char* prefix : {"", "vel_", "acc_", "acc_abs_", "reaction_"}) {
+      out.push_back(prefix + d);
+    }
   }
   for (const auto& c : model.constraints) out.push_back("lambda_" + c.name);
   return out;
@@ -61,7 +63,7 @@ std::string unknown_column(const Model& model, const std::string& name) {
     near += (k ? ", " : "") + ranked[k].second;
   }
   return "no output column is named '" + name +
-         "' (columns are a DOF's name, vel_, acc_ or reaction_ and a DOF, lambda_ and a "
+         "' (columns are a DOF's name, vel_, acc_, acc_abs_ or reaction_ and a DOF, lambda_ and a "
          "constraint, drift_position, drift_velocity, energy, energy_error and the other "
          "energy columns); the nearest: " +
          near;
@@ -84,6 +86,7 @@ std::optional<CheckColumn> find_column(const Model& model, const std::string& na
   if (const int d = dof(name); d >= 0) return CheckColumn{Quantity::displacement, d};
   for (const auto& [prefix, quantity] :
        {std::pair<std::string, Quantity>{"vel_", Quantity::velocity},
+        {"acc_abs_", Quantity::absolute_acceleration},
         {"acc_", Quantity::acceleration},
         {"reaction_", Quantity::reaction}}) {
     if (name.rfind(prefix, 0) == 0) {
@@ -103,7 +106,7 @@ std::optional<CheckColumn> find_column(const Model& model, const std::string& na
 
 CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>& checks,
                                const std::string& file)
-    : checks_(checks) {
+    : model_(&model), checks_(checks) {
   for (const auto& c : checks_) {
     const auto column = find_column(model, c.quantity);
     if (!column)
@@ -133,6 +136,9 @@ double CheckEvaluator::value(const TrajectoryRow& row, const CheckColumn& c) con
       return at(row.v);
     case Quantity::acceleration:
       return at(row.acceleration);
+    case Quantity::absolute_acceleration:
+      if (c.index >= row.acceleration.size()) return kNaN;
+      return model_->absolute_acceleration(row.t, row.acceleration)[c.index];
     case Quantity::reaction:
       return at(row.reaction);
     case Quantity::multiplier:

@@ -57,6 +57,7 @@ class CheckEvaluator {
   };
   [[nodiscard]] double value(const TrajectoryRow& row, const CheckColumn& c) const;
 
+  const Model* model_;
   std::vector<CheckSpec> checks_;
   std::vector<State> states_;
 };

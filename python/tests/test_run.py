@@ -5,6 +5,7 @@ must give bit-equal arrays; the CSV holds 17 significant digits, so it round-tri
 import subprocess
 
 import numpy as np
+import pytest
 import scipy.io
 import scipy.sparse as sp
 
@@ -112,3 +113,36 @@ def test_arrays_equal_matrix_market_files(tmp_path):
     assert np.max(np.abs(u[:, 1] - u[:, 4])) < 1e-9
     assert np.max(np.abs(u[:, 0] + u[:, 2] - 2 * u[:, 3])) < 1e-9
     assert np.max(np.abs(u)) > 1e-3  # and the chain moves
+
+
+def oscillator_with_table(file, column=None):
+    value = {"type": "table", "file": file, "scale": 2.0}
+    if column:
+        value["column"] = column
+    return {"model": {"type": "matrix", "dofs": ["x"], "mass": [[1.0]], "stiffness": [[4.0]]},
+            "load": [{"dof": "x", "value": value}],
+            "solve": {"t_end": 1.0, "output_step": 0.1, "rtol": 1e-10, "atol": 1e-12}}
+
+
+def test_recorded_time_function_from_an_array_equals_its_csv_file(tmp_path):
+    # A record sampled every 0.05 s (as an accelerogram would be), once as an n x 2 array and
+    # once as the CSV file a scene names: the same samples, the same run, bit for bit.
+    t = np.arange(0.0, 1.0001, 0.05)
+    samples = np.column_stack([t, np.sin(7.0 * t) * np.exp(-t)])
+    np.savetxt(tmp_path / "rec.csv", samples, delimiter=",", header="t,ag", comments="",
+               fmt="%.17g")
+    from_file = condyn.run(oscillator_with_table(str(tmp_path / "rec.csv"), "ag"))
+    from_array = condyn.run(oscillator_with_table(samples))
+    np.testing.assert_array_equal(from_array.u, from_file.u)
+    assert np.max(np.abs(from_array.u)) > 1e-3
+
+
+def test_a_bad_recorded_array_names_its_key_and_row():
+    t = np.array([0.0, 0.1, 0.1, 0.2])
+    bad = np.column_stack([t, np.zeros(4)])
+    with pytest.raises(condyn.SceneError,
+                       match=r"^<dict>: load\[1\]\.value\.file: <array load\[1\]\.value\.file>: "
+                             r"row 3: the time 0\.1 is not after"):
+        condyn.run(oscillator_with_table(bad))
+    with pytest.raises(condyn.SceneError, match=r"must be n x 2 \(time, value\); this one is 4 x 3"):
+        condyn.run(oscillator_with_table(np.zeros((4, 3))))
