@@ -32,10 +32,6 @@ double energy_column(const EnergyBalance& b, std::size_t k) {
 
 EnergyTerms::EnergyTerms(const Model& model) : model_(model), system_(model.evaluator()) {}
 
-bool EnergyTerms::available(const Model& model) {
-  return model.evaluator()->energy_parts(0.0, model.u0, model.v0).has_value();
-}
-
 Eigen::VectorXd EnergyTerms::powers(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                                     const Eigen::VectorXd& lambda) {
   const auto parts = system_->energy_parts(t, u, v);

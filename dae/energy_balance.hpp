@@ -45,9 +45,6 @@ class EnergyTerms {
   static constexpr int kIntegrals = 3;
 
   explicit EnergyTerms(const Model& model);
-  /// Whether the model's forces split as the balance needs (MechanicalSystem::energy_parts):
-  /// every linear model, and conservative nonlinear ones.
-  [[nodiscard]] static bool available(const Model& model);
   /// u'ᵀC u', f_extᵀu', f_conᵀu' at (t, u, u') with multipliers λ (f_con = −Aᵀλ).
   [[nodiscard]] Eigen::VectorXd powers(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                                        const Eigen::VectorXd& lambda);
