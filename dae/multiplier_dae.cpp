@@ -59,6 +59,10 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, doub
   jacobian_.declare_identity(0, 0, n_);   // d(u')
   jacobian_.declare_identity(0, n_, n_);  // −I
   jacobian_.finish();
+  if (linear) {
+    auto held = std::make_shared<const HeldMassless>(linear_matrices(system));
+    if (!held->empty()) held_ = std::move(held);
+  }
 }
 
 void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
@@ -123,6 +127,10 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
 Eigen::VectorXd MultiplierDae::differential_id() const {
   Eigen::VectorXd id = Eigen::VectorXd::Zero(size());
   id.head(lambda_at()).setOnes();
+  if (held_) {
+    Eigen::VectorXd index;
+    held_->mark(id, index);
+  }
   return id;
 }
 
@@ -147,6 +155,10 @@ Eigen::VectorXd MultiplierDae::variable_index() const {
     case Scheme::penalty:
     case Scheme::projection:
       break;  // not multiplier schemes: refused by the constructor
+  }
+  if (held_) {
+    Eigen::VectorXd id = Eigen::VectorXd::Ones(size());
+    held_->mark(id, index);
   }
   return index;
 }
@@ -223,6 +235,10 @@ void MultiplierDae::jacobian(double t, ConstRef y, ConstRef yp, double cj,
 }
 
 void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
+  if (held_) {
+    make_consistent_held(t, y, yp);
+    return;
+  }
   const Eigen::VectorXd uu = y.segment(0, n_), vv = y.segment(n_, n_);
   auto& f = force_;
   system_->force(t, uu, vv, f);
@@ -238,14 +254,7 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
     return;
   }
   const auto& A = system_->constraint_jacobian(t, uu);
-  Eigen::VectorXd rhs_l(m_), work(m_);
-  system_->acceleration_bias(t, uu, vv, rhs_l);
-  if (scheme_ == Scheme::baumgarte) {
-    system_->velocity_residual(t, uu, vv, work);
-    rhs_l -= 2.0 * alpha_ * work;
-    system_->position_residual(t, uu, work);
-    rhs_l -= beta_ * beta_ * work;
-  }
+  const Eigen::VectorXd rhs_l = constraint_rhs(t, uu, vv);
   // [M Aᵀ; A 0] [v'; λ] = [f; γ]
   const Eigen::SparseMatrix<double> kkt = kkt_matrix(M, A);
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
@@ -262,6 +271,40 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
   yp.segment(n_, n_) = sol.head(n_);
   y.segment(lambda_at(), m_) = sol.tail(m_);
   y.segment(mu_at(), p_).setZero();
+}
+
+Eigen::VectorXd MultiplierDae::constraint_rhs(double t, const Eigen::VectorXd& uu,
+                                              const Eigen::VectorXd& vv) const {
+  Eigen::VectorXd rhs_l(m_), work(m_);
+  system_->acceleration_bias(t, uu, vv, rhs_l);
+  if (scheme_ == Scheme::baumgarte) {
+    system_->velocity_residual(t, uu, vv, work);
+    rhs_l -= 2.0 * alpha_ * work;
+    system_->position_residual(t, uu, work);
+    rhs_l -= beta_ * beta_ * work;
+  }
+  return rhs_l;
+}
+
+void MultiplierDae::make_consistent_held(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
+  Eigen::VectorXd uu = y.segment(0, n_), vv = y.segment(n_, n_);
+  Eigen::VectorXd rhs(n_ + m_);
+  system_->force(t, uu, vv, force_);
+  rhs.head(n_) = force_;
+  if (m_ > 0) rhs.tail(m_) = constraint_rhs(t, uu, vv);
+  const Eigen::VectorXd fdot = time_derivative(t, force_, [&](double s) {
+    Eigen::VectorXd f(n_);
+    system_->force(s, uu, vv, f);
+    return f;
+  });
+  const Eigen::VectorXd sol = held_->consistent(rhs, fdot, uu, vv);
+  y.segment(0, n_) = uu;
+  y.segment(n_, n_) = vv;
+  y.segment(lambda_at(), m_) = sol.tail(m_);
+  y.segment(mu_at(), p_).setZero();
+  yp = Eigen::VectorXd::Zero(size());
+  yp.segment(0, n_) = vv;
+  yp.segment(n_, n_) = sol.head(n_);
 }
 
 std::unique_ptr<NewtonSystem> MultiplierDae::newton_system() const {

@@ -23,6 +23,7 @@
 
 #include "dae/block_jacobian.hpp"
 #include "dae/dae_problem.hpp"
+#include "dae/held_massless.hpp"
 #include "models/mechanical_system.hpp"
 #include "models/scheme.hpp"
 
@@ -65,6 +66,8 @@ class MultiplierDae final : public DaeProblem {
     return scheme_ == Scheme::baumgarte || scheme_ == Scheme::index1;
   }
   /// Keeps u and v; λ and v' from [M Aᵀ; A 0][v'; λ] = [f; γ − stabilization]; μ = 0, u' = v.
+  /// Massless DOFs held by stiffness: their u (undamped) or v (damped) are recomputed
+  /// (dae/held_massless.hpp).
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
 
   /// y with the given u, v and zero multipliers.
@@ -82,6 +85,13 @@ class MultiplierDae final : public DaeProblem {
   /// Calls visit(row0, col0, S, scale) for every block of J = dF/dy + cj dF/dy' except the two
   /// identities of the u rows: the one list of blocks both the pattern (at construction) and
   /// the values (jacobian()) are made from. Empty blocks (linear systems' curvature) add nothing.
+  /// The constraint rows' right-hand side of the consistency system: γ, less Baumgarte's
+  /// 2αψ + β²φ.
+  [[nodiscard]] Eigen::VectorXd constraint_rhs(double t, const Eigen::VectorXd& uu,
+                                               const Eigen::VectorXd& vv) const;
+  /// make_consistent with massless DOFs held by stiffness (dae/held_massless.hpp).
+  void make_consistent_held(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const;
+
   using BlockVisitor = std::function<void(int, int, const Eigen::SparseMatrix<double>&, double)>;
   void for_each_block(double t, ConstRef y, ConstRef yp, double cj,
                       const BlockVisitor& visit) const;
@@ -96,6 +106,8 @@ class MultiplierDae final : public DaeProblem {
   Eigen::SparseMatrix<double> position_mask_;  ///< m x m diagonal: 1 on position rows
   Eigen::SparseMatrix<double> velocity_mask_;  ///< m x m diagonal: 1 on velocity rows
   BlockJacobian jacobian_;
+  /// Massless DOFs held by stiffness (linear systems; dae/held_massless.hpp), or null.
+  std::shared_ptr<const HeldMassless> held_;
   // Scratch of the residual (the hot path): sized once, no allocation per call. Not
   // thread-safe: one problem object per integration.
   mutable Eigen::VectorXd force_, rows_;

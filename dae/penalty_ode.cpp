@@ -62,9 +62,17 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   jacobian_.declare(n_, n_, f_v);
   jacobian_.declare(n_, n_, M);
   const Eigen::SparseMatrix<double> At = A.transpose();
-  jacobian_.declare(n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A));
-  jacobian_.declare(n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A));
+  const Eigen::SparseMatrix<double> AtPA = At * position_mask_ * A, AtVA = At * velocity_mask_ * A;
+  jacobian_.declare(n_, 0, AtPA);
+  jacobian_.declare(n_, n_, AtVA);
   jacobian_.finish();
+  // The penalized system's matrices (no curvature: constant), and its massless DOFs.
+  const Eigen::SparseMatrix<double> K = -f_u + weights.position * AtPA,
+                                    C = -f_v + weights.velocity * AtVA;
+  auto held = std::make_shared<const HeldMassless>(
+      LinearMatrices{M, C.nonZeros() > 0 ? C : Eigen::SparseMatrix<double>(), K,
+                     Eigen::SparseMatrix<double>(0, n_)});
+  if (!held->empty()) held_ = std::move(held);
 }
 
 Eigen::VectorXd PenaltyOde::multipliers(double t, const Eigen::VectorXd& y) const {
@@ -109,22 +117,35 @@ void PenaltyOde::jacobian(double t, ConstRef y, ConstRef /*yp*/, double cj,
                      weights_.velocity);
 }
 
-void PenaltyOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
-  const Eigen::VectorXd u = y.head(n_), v = y.tail(n_);
-  auto& f = force_;
-  system_->force(t, u, v, f);
-  const auto& M = system_->mass(t, u);
+Eigen::VectorXd PenaltyOde::net_force(double t, const Eigen::VectorXd& y) const {
+  Eigen::VectorXd f(n_);
+  system_->force(t, y.head(n_), y.tail(n_), f);
   if (m_ > 0) {
-    const auto& A = system_->constraint_jacobian(t, u);
+    const auto& A = system_->constraint_jacobian(t, y.head(n_));
     f -= A.transpose() * multipliers(t, y);
   }
+  return f;
+}
+
+void PenaltyOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
+  yp.resize(size());
+  if (held_) {
+    Eigen::VectorXd u = y.head(n_), v = y.tail(n_);
+    const Eigen::VectorXd f = net_force(t, y);
+    const Eigen::VectorXd fdot = time_derivative(t, f, [&](double s) { return net_force(s, y); });
+    const Eigen::VectorXd a = held_->consistent(f, fdot, u, v);
+    y << u, v;
+    yp << v, a;
+    return;
+  }
+  const Eigen::VectorXd f = net_force(t, y);
+  const auto& M = system_->mass(t, y.head(n_));
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M);
   if (lu.info() != Eigen::Success) {
     throw std::runtime_error(
         "the penalty formulation needs mass on every DOF: the mass matrix is singular");
   }
-  yp.resize(size());
-  yp.head(n_) = v;
+  yp.head(n_) = y.tail(n_);
   yp.tail(n_) = lu.solve(f);
 }
 

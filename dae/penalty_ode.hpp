@@ -11,10 +11,12 @@
 /// Reactions are the element forces, f_con = −Aᵀλ, the same meaning as in every other scheme.
 
 #include <Eigen/SparseLU>
+#include <memory>
 #include <string>
 
 #include "dae/block_jacobian.hpp"
 #include "dae/dae_problem.hpp"
+#include "dae/held_massless.hpp"
 #include "models/mechanical_system.hpp"
 #include "models/model.hpp"
 
@@ -48,11 +50,22 @@ class PenaltyOde final : public DaeProblem {
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_);
   }
+  /// All differential, but the velocities of massless DOFs (algebraic: dae/held_massless.hpp).
   [[nodiscard]] Eigen::VectorXd differential_id() const override {
-    return Eigen::VectorXd::Ones(size());
+    return held_differential_id(held_.get(), size());
   }
-  /// y' = [v; M⁻¹(f − Aᵀλ)]. Throws std::runtime_error when M is singular.
+  [[nodiscard]] Eigen::VectorXd variable_index() const override {
+    return held_variable_index(held_.get(), size());
+  }
+  /// The massless DOFs' velocities are left out of the error test, as under elimination
+  /// (dae/reduced_ode.hpp says why).
+  [[nodiscard]] bool suppress_algebraic_error() const override { return held_ != nullptr; }
+  /// y' = [v; M⁻¹(f − Aᵀλ)]. Massless DOFs, which the penalty springs hold when constraints
+  /// touch them, get their u (or v, with damping) from their rows (dae/held_massless.hpp).
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
+
+  /// f(t, u, v) − Aᵀλ(t, u, v): what M v' balances.
+  [[nodiscard]] Eigen::VectorXd net_force(double t, const Eigen::VectorXd& y) const;
 
   /// The penalty element forces λ at a state.
   [[nodiscard]] Eigen::VectorXd multipliers(double t, const Eigen::VectorXd& y) const;
@@ -64,6 +77,9 @@ class PenaltyOde final : public DaeProblem {
   Eigen::VectorXd row_weight_;  ///< w on position rows, c on velocity rows
   Eigen::SparseMatrix<double> position_mask_, velocity_mask_;
   BlockJacobian jacobian_;
+  /// Massless DOFs, held by stiffness, damping or the penalty elements (the penalized K and C:
+  /// K + w A_pᵀA_p, C + c A_vᵀA_v), or null.
+  std::shared_ptr<const HeldMassless> held_;
   // Scratch of the residual (the hot path): sized once, no allocation per call. Not
   // thread-safe: one problem object per integration.
   mutable Eigen::VectorXd force_, rows_;

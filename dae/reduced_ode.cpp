@@ -9,25 +9,24 @@ namespace condyn {
 
 ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
     : model_(model), reduced_(reduced), nm_(static_cast<int>(reduced.M.rows())) {
-  mass_.compute(reduced.M);
-  bool ok = mass_.info() == Eigen::Success;
-  if (ok && nm_ > 0) {
-    const Eigen::VectorXd d = mass_.vectorD();
-    // Positive definite to roundoff of the largest pivot.
-    ok = d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff();
-  }
-  if (!ok) {
-    std::string massless;
-    for (int k = 0; k < nm_; ++k) {
-      if (reduced.M.coeff(k, k) == 0.0) {
-        const auto dof = reduced.transform.masters[static_cast<std::size_t>(k)];
-        massless += (massless.empty() ? "" : ", ") + model.dof_names[static_cast<std::size_t>(dof)];
-      }
+  auto held = std::make_shared<const HeldMassless>(
+      LinearMatrices{reduced.M, model.has_damping() ? reduced.C : Eigen::SparseMatrix<double>(),
+                     reduced.K, Eigen::SparseMatrix<double>(0, nm_)});
+  if (!held->empty()) {
+    held_ = std::move(held);  // its consistency system stands in for M̂ (regular on the rest)
+  } else {
+    mass_.compute(reduced.M);
+    bool ok = mass_.info() == Eigen::Success;
+    if (ok && nm_ > 0) {
+      const Eigen::VectorXd d = mass_.vectorD();
+      // Positive definite to roundoff of the largest pivot.
+      ok = d.minCoeff() > 1e-14 * d.cwiseAbs().maxCoeff();
     }
-    throw std::invalid_argument(
-        "the reduced mass matrix is singular" +
-        (massless.empty() ? std::string() : " (master DOFs without mass: " + massless + ")") +
-        ": the elimination path integrates an ODE and needs mass on every master DOF");
+    if (!ok) {
+      throw std::invalid_argument(
+          "the reduced mass matrix is singular: the elimination path needs inertia on every "
+          "motion of the master DOFs that their stiffness does not hold");
+    }
   }
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(0, 0, nm_);
@@ -58,15 +57,35 @@ void ReducedOde::jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double 
 
 void ReducedOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
   yp.resize(size());
+  if (held_) {
+    Eigen::VectorXd x = y.head(nm_), w = y.tail(nm_);
+    const Eigen::VectorXd f = reduced_.forces(model_, t, t);
+    const Eigen::VectorXd fdot =
+        time_derivative(t, f, [&](double s) { return reduced_.forces(model_, s, t); });
+    const Eigen::VectorXd a = held_->consistent(rhs_at(f, x, w), fdot, x, w);
+    y << x, w;
+    yp << w, a;
+    return;
+  }
   yp.head(nm_) = y.tail(nm_);
   yp.tail(nm_) = acceleration(t, y.head(nm_), y.tail(nm_));
 }
 
+Eigen::VectorXd ReducedOde::rhs_at(const Eigen::VectorXd& f, const Eigen::VectorXd& x,
+                                   const Eigen::VectorXd& w) const {
+  Eigen::VectorXd rhs = f - reduced_.K * x;
+  if (model_.has_damping()) rhs -= reduced_.C * w;
+  return rhs;
+}
+
 Eigen::VectorXd ReducedOde::acceleration(double t, const Eigen::VectorXd& x,
                                          const Eigen::VectorXd& w) const {
-  Eigen::VectorXd rhs = reduced_.forces(model_, t, t) - reduced_.K * x;
-  if (model_.has_damping()) rhs -= reduced_.C * w;
-  return mass_.solve(rhs);
+  const Eigen::VectorXd rhs = rhs_at(reduced_.forces(model_, t, t), x, w);
+  if (!held_) return mass_.solve(rhs);
+  Eigen::VectorXd xs = x, ws = w;  // consistent already: the changes are roundoff
+  Eigen::VectorXd a = held_->consistent(rhs, Eigen::VectorXd::Zero(nm_), xs, ws);
+  for (int h : held_->dofs()) a[h] = 0.0;
+  return a;
 }
 
 std::unique_ptr<NewtonSystem> ReducedOde::newton_system() const {

@@ -1,5 +1,7 @@
 #include "dae/solve.hpp"
 
+#include "models/massless_dofs.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -24,6 +26,12 @@
 namespace condyn {
 
 std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
+  if (scheme == Scheme::projection && !unconstrained_massless_dofs(model.M, model.A).empty()) {
+    return std::string(to_string(scheme)) +
+           " integrates an ODE with the mass matrix factored, and this model has massless DOFs "
+           "held only by stiffness (algebraic unknowns); use index1, baumgarte, ggl, index2, "
+           "index3, penalty or elimination, which integrate them as a DAE";
+  }
   if (!model.is_nonlinear()) return std::nullopt;
   const bool nonholonomic = std::any_of(model.constraints.begin(), model.constraints.end(),
                                         [](const Constraint& c) { return c.nonholonomic; });

@@ -22,8 +22,8 @@ Eigen::VectorXd MultiplierRecovery::operator()(double t, const Eigen::VectorXd& 
 }
 
 RowAssembler::RowAssembler(const Model& model, bool accelerations, bool energy_balance)
-    : model_(model), system_(model.evaluator()), drift_(model) {
-  if (accelerations) acceleration_.emplace(!model.is_nonlinear());
+    : model_(model), system_(model.evaluator()), drift_(model), held_(held_massless_of(model)) {
+  if (accelerations) acceleration_.emplace(model, held_);
   if (energy_balance) energy_.emplace(model);
 }
 
@@ -31,6 +31,7 @@ TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::Vecto
                                        Eigen::VectorXd lambda, const Eigen::VectorXd& integrals) {
   TrajectoryRow row;
   row.t = t;
+  if (held_) held_->settle(model_.applied_forces(t), model_.applied_forces_derivative(1, t), u, v);
   if (model_.constraint_count() > 0) {
     // Aᵀ(−λ) rather than −(Aᵀλ): exactly +0 on DOFs that no constraint touches (no "-0").
     row.reaction = system_->constraint_jacobian(t, u).transpose() * (-lambda);

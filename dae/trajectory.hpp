@@ -51,7 +51,8 @@ struct TrajectoryRow {
   std::optional<EnergyBalance> balance;
 };
 
-/// The per-row work of a trajectory: reactions f_con = −A(t, u)ᵀλ, drifts, and for a
+/// The per-row work of a trajectory: massless DOFs held by stiffness settled on their rows
+/// (dae/held_massless.hpp), reactions f_con = −A(t, u)ᵀλ, drifts, and for a
 /// conservative model the energy and the kinetic energy; with `accelerations`, u'' from the
 /// equations at the row (AccelerationFromForces). One evaluator of the model's own.
 class RowAssembler {
@@ -68,6 +69,9 @@ class RowAssembler {
   const Model& model_;
   std::unique_ptr<MechanicalSystem> system_;
   ConstraintDrift drift_;
+  /// Massless DOFs held by stiffness (linear models), or null: their u and v at a row are
+  /// settled from their rows (HeldMassless::settle).
+  std::shared_ptr<const HeldMassless> held_;
   std::optional<AccelerationFromForces> acceleration_;  ///< set when accelerations are asked for
   std::optional<bool> conservative_;                    ///< decided at the first row
   std::optional<EnergyTerms> energy_;                   ///< set when the balance is asked for

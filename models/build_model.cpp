@@ -69,11 +69,7 @@ Model ModelBuilder::build() {
   while (const auto dependent = check_rank()) drop_constraint(*dependent);
   if (spec_.initial.static_start) solve_static_initial();
   check_initial_consistency();
-  if (spec_.solve.scheme == Scheme::penalty) {
-    check_penalty_mass();
-  } else {
-    check_massless_dofs();
-  }
+  check_massless_dofs();
   check_energy_output();
   check_output();
   // Last: the linear system copies the model's final matrices, constraints and loads.

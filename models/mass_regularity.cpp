@@ -2,45 +2,27 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <string>
 #include <vector>
 
+#include "models/massless_dofs.hpp"
 #include "models/model_builder.hpp"
 
 namespace condyn {
 
-/// The penalty scheme integrates M u'' = f − Aᵀ w (A u − g) with M itself factored: every DOF
-/// needs mass, constrained or not (a massless support included).
-void ModelBuilder::check_penalty_mass() const {
-  std::vector<std::string> massless;
-  for (int i = 0; i < model_.dofs(); ++i) {
-    if (model_.M.coeff(i, i) == 0.0)
-      massless.push_back(model_.dof_names[static_cast<std::size_t>(i)]);
-  }
-  if (massless.empty()) return;
-  std::string names;
-  for (std::size_t k = 0; k < massless.size() && k < 10; ++k)
-    names += (k ? ", " : "") + massless[k];
-  if (massless.size() > 10) names += " ... and " + std::to_string(massless.size() - 10) + " more";
-  const bool truss =
-      spec_.model.type == ModelSpec::Type::truss2d || spec_.model.type == ModelSpec::Type::truss3d;
-  fail({truss ? "model.masses" : "model.mass", spec_.model.where.line},
-       std::to_string(massless.size()) + " DOF" + (massless.size() == 1 ? "" : "s") + " (" + names +
-           ") " + (massless.size() == 1 ? "has" : "have") +
-           " no mass: the penalty scheme factors M itself (its constraints are springs), so it "
-           "needs mass on every DOF, constrained or not; give them mass or use another scheme");
-}
-
 /// Accelerations are defined only when M is regular on the motions the constraints allow:
 /// [M Aᵀ; A 0] (and the elimination's Tᵀ M T) is singular exactly when some motion x has
 /// M x = 0 and A x = 0. With M positive semi-definite, a zero diagonal entry means a zero row:
-/// the massless DOFs Z, and the singular motions are the kernel of A restricted to Z. (Massless
-/// DOFs held by stiffness alone are not yet integrated: README "Known limitations".)
+/// the massless DOFs Z, and the singular motions are the kernel of A restricted to Z. Massless DOFs
+/// that no constraint touches but stiffness (or damping) holds are algebraic unknowns the DAE
+/// formulations integrate (dae/held_massless.hpp): they are left out here, on linear models.
 void ModelBuilder::check_massless_dofs() {
   const int n = model_.dofs();
+  std::vector<bool> held = held_massless();
   std::vector<int> massless, local(static_cast<std::size_t>(n), -1);
   for (int i = 0; i < n; ++i) {
-    if (model_.M.coeff(i, i) == 0.0) {
+    if (model_.M.coeff(i, i) == 0.0 && !held[static_cast<std::size_t>(i)]) {
       local[static_cast<std::size_t>(i)] = static_cast<int>(massless.size());
       massless.push_back(i);
     }
@@ -52,7 +34,7 @@ void ModelBuilder::check_massless_dofs() {
     }
   }
   if (!diagonal) {
-    check_singular_mass();
+    check_singular_mass(held);
     return;
   }
   if (massless.empty()) return;
@@ -122,10 +104,61 @@ void ModelBuilder::check_massless_dofs() {
            ") ha" + (free.size() == 1 ? "s" : "ve") + " no mass and no constraint fixes " +
            (free.size() == 1 ? "it" : "them") +
            ": the mass matrix is singular on the motions the constraints allow, so the "
-           "accelerations are undefined under every scheme (a massless DOF held only by "
-           "stiffness is algebraic, which condyn does not integrate yet); give " +
+           "accelerations are undefined under every scheme (a massless DOF that no constraint "
+           "touches is integrated when its stiffness holds it; one in a constraint must be "
+           "fixed by the constraints); give " +
            (truss ? "the node a mass in model.masses" : "the DOF a mass in model.mass") +
            " or constrain it");
+}
+
+/// The massless DOFs that no constraint touches and whose stiffness or damping holds them (a
+/// nonzero diagonal entry of K or C, and a regular block: models/massless_dofs.hpp), on a linear
+/// model: algebraic unknowns the DAE formulations integrate. Those that nothing holds are left to
+/// check_massless_dofs; the other cases are refused here, DOFs named.
+std::vector<bool> ModelBuilder::held_massless() const {
+  const int n = model_.dofs();
+  std::vector<bool> held(static_cast<std::size_t>(n), false);
+  const Eigen::SparseMatrix<double> none;
+  const HeldDofs dofs =
+      held_massless_dofs(model_.M, model_.has_damping() ? model_.C : none, model_.K, model_.A);
+  const bool truss =
+      spec_.model.type == ModelSpec::Type::truss2d || spec_.model.type == ModelSpec::Type::truss3d;
+  const SourcePoint where{truss ? "model.masses" : "model.mass", spec_.model.where.line};
+  const auto named = [&](std::vector<int> list) {
+    std::sort(list.begin(), list.end());
+    std::string names;
+    for (std::size_t k = 0; k < list.size() && k < 10; ++k)
+      names += (k ? ", " : "") + model_.dof_names[static_cast<std::size_t>(list[k])];
+    if (list.size() > 10) names += " ... and " + std::to_string(list.size() - 10) + " more";
+    return std::to_string(list.size()) + " DOF" + (list.size() == 1 ? " (" : "s (") + names +
+           ") ha" + (list.size() == 1 ? "s" : "ve");
+  };
+  std::vector<int> all = dofs.undamped;
+  all.insert(all.end(), dofs.damped.begin(), dofs.damped.end());
+  all.insert(all.end(), dofs.coupled.begin(), dofs.coupled.end());
+  if (all.empty()) return held;
+  if (model_.is_nonlinear()) {
+    fail(where, named(all) +
+                    " no mass and no constraint: massless DOFs held by stiffness are integrated on "
+                    "linear models only (small displacements), and this model is nonlinear; give "
+                    "them mass or constrain them");
+  }
+  if (!dofs.coupled.empty()) {
+    fail(where, named(dofs.coupled) +
+                    " no mass, no constraint and no damping of their own (c_hh = 0) but damping "
+                    "coupling to other DOFs: their momentum rows are neither algebraic nor first "
+                    "order; give them mass, damping or no damping coupling");
+  }
+  if (const auto why = singular_held_block(dofs, model_.C, model_.K)) {
+    std::vector<int> massless = dofs.undamped;
+    massless.insert(massless.end(), dofs.damped.begin(), dofs.damped.end());
+    fail(where, named(massless) + " no mass and no constraint, and " + *why +
+                    " that neither a mass nor a constraint holds; give them mass or constrain "
+                    "them");
+  }
+  for (int j : dofs.undamped) held[static_cast<std::size_t>(j)] = true;
+  for (int j : dofs.damped) held[static_cast<std::size_t>(j)] = true;
+  return held;
 }
 
 /// A full mass matrix (matrix models, generalized coordinates): its null space N from a dense
@@ -133,10 +166,20 @@ void ModelBuilder::check_massless_dofs() {
 /// the motions N y that A N y = 0 leaves free. Beyond the dense limit, a sparse LDLᵀ of M: pivots
 /// all above 1e-12 of the largest say M is positive definite (nothing to check); otherwise M may
 /// be singular and a warning says the check of the constraints that hold it was not made.
-void ModelBuilder::check_singular_mass() {
+void ModelBuilder::check_singular_mass(const std::vector<bool>& held) {
   const int n = model_.dofs();
+  // The held massless DOFs' rows and columns of M are zero: a unit mass there removes exactly
+  // their null directions, which their stiffness holds.
+  Eigen::SparseMatrix<double> mass = model_.M;
+  {
+    Eigen::SparseMatrix<double> unit(n, n);
+    for (int i = 0; i < n; ++i) {
+      if (held[static_cast<std::size_t>(i)]) unit.insert(i, i) = 1.0;
+    }
+    mass += unit;
+  }
   if (static_cast<double>(n) * n > kMaxDenseEntries) {
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(model_.M);
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(mass);
     const Eigen::VectorXd d = ldlt.vectorD();
     if (ldlt.info() == Eigen::Success && d.size() == n && d.minCoeff() > 1e-12 * d.maxCoeff())
       return;
@@ -149,7 +192,7 @@ void ModelBuilder::check_singular_mass() {
         "a run fails if one exists");
     return;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(model_.M)};
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(mass)};
   const Eigen::VectorXd& lambda = eig.eigenvalues();
   const double largest = lambda.cwiseAbs().maxCoeff();
   std::vector<Eigen::Index> null;

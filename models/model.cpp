@@ -19,6 +19,12 @@ Eigen::VectorXd Model::applied_forces(double t, double step_reference) const {
   return f;
 }
 
+Eigen::VectorXd Model::applied_forces_derivative(int order, double t) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
+  for (const auto& l : loads) l.add_to(f, l.value.derivative(order, t));
+  return f;
+}
+
 Eigen::VectorXd Model::position_rhs(int order, double t) const {
   Eigen::VectorXd g(constraint_count());
   for (int i = 0; i < constraint_count(); ++i) {

@@ -108,6 +108,8 @@ struct Model {
   /// Applied loads f(t) (n). Steps are on when start <= step_reference.
   [[nodiscard]] Eigen::VectorXd applied_forces(double t, double step_reference) const;
   [[nodiscard]] Eigen::VectorXd applied_forces(double t) const { return applied_forces(t, t); }
+  /// The loads' time derivative of order 1 or 2 at t (a step's is 0; a table's second is 0).
+  [[nodiscard]] Eigen::VectorXd applied_forces_derivative(int order, double t) const;
   /// d^order/dt^order of the position-level right-hand sides (m), order in {0, 1, 2}.
   [[nodiscard]] Eigen::VectorXd position_rhs(int order, double t) const;
   /// Times in (0, t_end) where a load step switches on, sorted, unique.

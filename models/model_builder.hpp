@@ -116,9 +116,9 @@ class ModelBuilder {
   void solve_static_initial();
 
   // mass_regularity.cpp
-  void check_penalty_mass() const;
   void check_massless_dofs();
-  void check_singular_mass();
+  [[nodiscard]] std::vector<bool> held_massless() const;
+  void check_singular_mass(const std::vector<bool>& held);
 
   // solve_settings_checks.cpp
   void check_energy_output() const;

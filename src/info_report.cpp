@@ -10,6 +10,7 @@
 #include "dae/model_scales.hpp"
 #include "dae/solve.hpp"
 #include "models/classification.hpp"
+#include "models/massless_dofs.hpp"
 
 namespace condyn {
 
@@ -115,6 +116,24 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
     out << "dropped redundant constraint " << d << "\n";
   if (!report.memory_estimate.empty()) out << "memory: " << report.memory_estimate << "\n";
   if (!report.damping.empty()) out << "damping: " << report.damping << "\n";
+  if (!model.is_nonlinear()) {
+    const HeldDofs held = held_massless_dofs(
+        model.M, model.has_damping() ? model.C : Eigen::SparseMatrix<double>(), model.K, model.A);
+    std::vector<int> dofs = held.undamped;
+    dofs.insert(dofs.end(), held.damped.begin(), held.damped.end());
+    std::sort(dofs.begin(), dofs.end());
+    std::vector<std::string> names;
+    names.reserve(dofs.size());
+    for (int j : dofs) names.push_back(model.dof_names[static_cast<std::size_t>(j)]);
+    if (!names.empty()) {
+      out << wrapped_text("massless DOFs: ",
+                          std::to_string(names.size()) +
+                              " held by stiffness, algebraic unknowns (" +
+                              std::to_string(held.damped.size()) +
+                              " first order through damping of their own): " + short_list(names))
+          << "\n";
+    }
+  }
   out << "\n";
   const auto classes = classify_constraints(model, settings.t_end);
   if (classes.empty()) {
@@ -180,8 +199,9 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   for (Scheme s : kSchemes) {
     for (const bool mixed : {false, true}) {
       if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
-      out << "  " << std::left << std::setw(17)
-          << (std::string(to_string(s)) + (mixed ? " mixed" : ""));
+      std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
+      name.resize(std::max<std::size_t>(name.size(), 17), ' ');
+      out << "  " << name;
       try {
         SolveSpec as_scheme = settings;
         as_scheme.scheme = s;
@@ -190,7 +210,9 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         const SystemSize size = system_size(model, as_scheme);
         out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
       } catch (const std::exception& e) {
-        out << "not applicable: " << e.what();
+        // Continuation lines indented under the reason.
+        const std::string wrapped = wrapped_text("  " + name + "not applicable: ", e.what());
+        out << wrapped.substr(2 + name.size());
       }
       out << (s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "") << "\n";
     }

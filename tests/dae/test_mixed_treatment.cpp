@@ -14,6 +14,7 @@
 #include "dae/eliminated_system.hpp"
 #include "models/scene_parser.hpp"
 #include "src/info_report.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/system_check.hpp"
 
@@ -58,30 +59,6 @@ std::string chain_scene(const std::string& solve_keys) {
   return s.str();
 }
 
-/// A pendulum (unit mass, rigid rod of length 1) hung from a massless node whose x is driven,
-/// ux1 = 0.1 sin(3t), uy1 = 0: a nonlinear model with rheonomic linear rows.
-std::string driven_pendulum_scene(const std::string& solve_keys) {
-  return R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[[constraint]]
-name = "drive"
-terms = { ux1 = 1.0 }
-value = { type = "harmonic", amplitude = 0.1, omega = 3.0 }
-[[constraint]]
-name = "rail"
-terms = { uy1 = 1.0 }
-[initial]
-velocity = { ux1 = 0.3, ux2 = 0.3 }
-[solve]
-t_end = 2.0
-output_step = 0.1
-)" + solve_keys;
-}
-
 double max_abs_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   REQUIRE(a.rows() == b.rows());
   REQUIRE(a.cols() == b.cols());
@@ -112,7 +89,7 @@ TEST_CASE("treatment per row: supports and ties eliminated, a long MFC keeps its
 }
 
 TEST_CASE("nonlinear rows keep multipliers, their model's linear rows are eliminated") {
-  const auto scene = test::built(parse_scene_text(driven_pendulum_scene(""), "driven.toml"));
+  const auto scene = test::built(parse_scene_text(test::driven_pendulum_scene(""), "driven.toml"));
   const ConstraintTreatment t = treat_constraints(scene.model);
   REQUIRE(t.reason.size() == 3);
   CHECK(t.reason[0] == Reason::single_freedom);
@@ -124,7 +101,7 @@ TEST_CASE("nonlinear rows keep multipliers, their model's linear rows are elimin
 TEST_CASE("the reduced system's derivatives agree with central differences") {
   // At a state off the constraints' manifold, with the drive's second derivative nonzero (t =
   // 0.4): the rheonomic terms −M G g'' and −A G g'' are in play.
-  for (const auto& text : {driven_pendulum_scene(""), chain_scene("")}) {
+  for (const auto& text : {test::driven_pendulum_scene(""), chain_scene("")}) {
     const auto scene = test::built(parse_scene_text(text, "scene.toml"));
     const EliminatedSystem reduced(scene.model, treat_constraints(scene.model));
     const int n = reduced.dofs(), m = reduced.constraints();
@@ -169,7 +146,7 @@ TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimina
 
 TEST_CASE("mixed and pure multipliers agree on a nonlinear model with driven linear rows") {
   const auto scene = test::built(
-      parse_scene_text(driven_pendulum_scene("rtol = 1e-10\natol = 1e-12\n"), "driven.toml"));
+      parse_scene_text(test::driven_pendulum_scene("rtol = 1e-10\natol = 1e-12\n"), "driven.toml"));
   for (Scheme s : {Scheme::index1, Scheme::ggl}) {
     const std::string name = to_string(s);
     CAPTURE(name);

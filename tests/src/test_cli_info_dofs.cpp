@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -82,4 +83,16 @@ TEST_CASE("info: DOF lists of nonlinear rows are what the rows use, not the stor
   REQUIRE(car.code == 0);
   const std::string axle = row_of(car.out, "axle");
   CHECK(axle.substr(axle.size() - 15) == " xl, yl, xr, yr");
+}
+
+TEST_CASE("info: massless DOFs held by stiffness are named, within 100 columns") {
+  Sandbox box;
+  box.write("t.toml", condyn::test::kMasslessTriangleScene);
+  const Result r = box.run("info t.toml");
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("massless DOFs: 2 held by stiffness, algebraic unknowns (0 first order") !=
+        std::string::npos);
+  CHECK(r.out.find("ux3, uy3") != std::string::npos);
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) CHECK(line.size() <= kWidth);
 }
