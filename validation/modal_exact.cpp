@@ -9,6 +9,8 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <utility>
 
+#include "validation/static_condensation.hpp"
+
 namespace condyn {
 
 namespace {
@@ -247,6 +249,12 @@ ModalSolution::ModalSolution(const LtiSystem& system) {
   require_symmetric(system.K, "stiffness matrix K");
   require_symmetric(system.C, "damping matrix C");
 
+  if (auto condensed = condense_massless(system)) {
+    condensation_ = std::make_shared<const StaticCondensation>(std::move(*condensed));
+    reduced_ = std::make_shared<const ModalSolution>(condensation_->reduced);
+    omega_ = reduced_->omega_;
+    return;
+  }
   const Eigen::LLT<Eigen::MatrixXd> mass_factor(system.M);
   if (mass_factor.info() != Eigen::Success) {
     throw ExactSolutionUnavailable("mass matrix is not positive definite (Cholesky failed)");
@@ -364,6 +372,7 @@ LtiState ModalSolution::at(double t) const {
     throw std::invalid_argument("modal solution evaluated at t = " + to_text(t) +
                                 ": needs finite t >= 0");
   }
+  if (reduced_) return condensation_->expand(reduced_->at(t), t);
   const Eigen::Index n = phi_.cols();
   Eigen::VectorXd x(n), xd(n), xdd(n);
   for (Eigen::Index i = 0; i < n; ++i) {

@@ -19,6 +19,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -51,21 +52,31 @@ struct LtiState {
   Eigen::VectorXd q, v, a;
 };
 
+struct StaticCondensation;
+
 class ModalSolution {
  public:
-  /// Decomposes the system. Throws ExactSolutionUnavailable when M is not symmetric positive
-  /// definite, K is not symmetric, or C is not diagonal in the modal basis (relative off-diagonal
-  /// size above 1e-9), and std::invalid_argument on inconsistent sizes.
+  /// Decomposes the system. A singular M whose null space stiffness holds and no damping acts on
+  /// is condensed statically first (validation/static_condensation.hpp). Throws
+  /// ExactSolutionUnavailable when M is not symmetric positive (semi-)definite, K is not
+  /// symmetric, C is not diagonal in the modal basis (relative off-diagonal size above 1e-9), or
+  /// the condensation does not apply, and std::invalid_argument on inconsistent sizes.
   explicit ModalSolution(const LtiSystem& system);
 
   /// The exact state at time t >= 0. Steps are on for t >= start (H(0) = 1), so q'' at a step
   /// time is the right limit.
   [[nodiscard]] LtiState at(double t) const;
 
-  /// Undamped natural frequencies sqrt(k_i) in rad/s, ascending (zero-frequency modes give 0).
+  /// Undamped natural frequencies sqrt(k_i) in rad/s, ascending (zero-frequency modes give 0);
+  /// those of the condensed system when M is singular.
   [[nodiscard]] const Eigen::VectorXd& natural_frequencies() const { return omega_; }
 
  private:
+  /// Set when M was singular: the condensation and the solution of the reduced system, which
+  /// at() expands; the members below are then unused.
+  std::shared_ptr<const StaticCondensation> condensation_;
+  std::shared_ptr<const ModalSolution> reduced_;
+
   /// Fills knots_, knot_x_, knot_v_ for the table terms.
   void carry_tables();
 

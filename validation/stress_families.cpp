@@ -148,9 +148,10 @@ const std::vector<StressFamily>& stress_families() {
        "not hold the position constraint, and penalty (its default weight scales with the "
        "stiffest spring), break first"},
       {"mass_ratio", "masses spanning 1 to 1/r (r = 1 ... 1e8), and a massless DOF",
-       "light masses add fast modes: more steps, and error where they ring; a massless DOF that no "
-       "constraint fixes is refused (its acceleration is undetermined at t = 0, so no consistent "
-       "start exists for the multiplier schemes; elimination needs mass on every master DOF)"},
+       "light masses add fast modes: more steps, and error where they ring; a massless DOF that "
+       "its springs hold is algebraic: the multiplier schemes and elimination integrate it as a "
+       "DAE (against the statically condensed exact solution), projection and penalty, which "
+       "factor M, refuse it"},
       {"penalty_weight", "penalty weight w from 1e2 to 1e12 times the largest stiffness",
        "the error falls like 1/w while the penalty springs ring at sqrt(w/m); at large w BDF damps "
        "the ringing and the error settles at the integration error"},
