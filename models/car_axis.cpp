@@ -120,6 +120,24 @@ class CarAxis final : public MechanicalSystem {
     gamma[1] = -2 * (dvx * dvx + dvy * dvy);
   }
 
+  /// The springs' energy and gravity's potential; the road moves the right spring's anchor b(t),
+  /// which works on the system at the rate ∂V/∂t = f_r · b' (f_r the spring's force on the
+  /// wheel): reported as the work of the loads. The road row's own work (it is rheonomic) is the
+  /// constraint forces' (EnergyTerms).
+  [[nodiscard]] std::optional<EnergyParts> energy_parts(double t, ConstRef u,
+                                                        ConstRef /*v*/) override {
+    const Road road(t);
+    const Eigen::Vector2d p = u.tail<2>() - Eigen::Vector2d(road.xb, road.yb);
+    const auto spring = [](const Eigen::Vector2d& d) {
+      const double stretch = d.norm() - par::L0;
+      return 0.5 * stretch * stretch;
+    };
+    EnergyParts parts;
+    parts.potential = spring(u.head<2>()) + spring(p) + par::k * par::g * (u[yl] + u[yr]);
+    parts.load_power = spring_force(p).dot(Eigen::Vector2d(road.dxb, road.dyb));
+    return parts;
+  }
+
   [[nodiscard]] bool has_curvature() const override { return true; }
 
   /// Only the axle row depends on u: d(2 w2 (d, −d))/du = 2 w2 [I −I; −I I].

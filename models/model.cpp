@@ -13,6 +13,18 @@ Eigen::VectorXd Model::absolute_acceleration(double t, const Eigen::VectorXd& a)
   return a + ground->r * ground->acceleration.derivative(0, t);
 }
 
+void add_load_energy(const std::vector<Load>& loads, double t, double steps,
+                     const Eigen::Ref<const Eigen::VectorXd>& u,
+                     const Eigen::Ref<const Eigen::VectorXd>& v, double& potential, double& power) {
+  for (const auto& l : loads) {
+    if (l.value.is_constant()) {
+      potential -= l.value.derivative(0, t) * l.dot(u);
+    } else {
+      power += l.value.derivative(0, t, steps) * l.dot(v);
+    }
+  }
+}
+
 Eigen::VectorXd Model::applied_forces(double t, double step_reference) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs());
   for (const auto& l : loads) l.add_to(f, l.value.derivative(0, t, step_reference));

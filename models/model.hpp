@@ -47,6 +47,13 @@ struct Load {
   }
 };
 
+/// The loads' share of an energy balance at (t, u, v): the constant ones (gravity) as a
+/// potential, −f·u, added to `potential`; the time-dependent ones as power, f(t)·v (steps on as
+/// `steps` says, TimeFunction::derivative), added to `power`.
+void add_load_energy(const std::vector<Load>& loads, double t, double steps,
+                     const Eigen::Ref<const Eigen::VectorXd>& u,
+                     const Eigen::Ref<const Eigen::VectorXd>& v, double& potential, double& power);
+
 struct Constraint {
   std::string name;
   ConstraintSpec::Level level = ConstraintSpec::Level::position;

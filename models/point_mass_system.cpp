@@ -209,14 +209,22 @@ const MechanicalSystem::Sparse& PointMassSystem::acceleration_bias_jacobian_v(do
 
 std::optional<double> PointMassSystem::energy(double t, ConstRef u, ConstRef v) {
   if (!conservative_) return std::nullopt;
-  double e = 0.5 * v.dot(M_ * v);
-  for (const auto& l : layout_.loads) e -= l.value.derivative(0, t) * l.dot(u);
-  if (!layout_.nonlinear_geometry) return e + 0.5 * u.dot(K_linear_ * u);
-  for (const auto& b : layout_.bars) {
-    const double stretch = separation(b, u).norm() - b.length;
-    e += 0.5 * b.EA / b.length * stretch * stretch;
+  return 0.5 * v.dot(M_ * v) + energy_parts(t, u, v)->potential;
+}
+
+std::optional<MechanicalSystem::EnergyParts> PointMassSystem::energy_parts(double t, ConstRef u,
+                                                                           ConstRef v) {
+  EnergyParts parts;
+  if (!layout_.nonlinear_geometry) {
+    parts.potential = 0.5 * u.dot(K_linear_ * u);
+  } else {
+    for (const auto& b : layout_.bars) {
+      const double stretch = separation(b, u).norm() - b.length;
+      parts.potential += 0.5 * b.EA / b.length * stretch * stretch;
+    }
   }
-  return e;
+  add_load_energy(layout_.loads, t, steps_at(t), u, v, parts.potential, parts.load_power);
+  return parts;
 }
 
 }  // namespace condyn

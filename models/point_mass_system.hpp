@@ -69,6 +69,9 @@ class PointMassSystem final : public MechanicalSystem {
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double t, ConstRef u,
                                                            ConstRef v) override;
   [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) override;
+  /// The strain energy of the bars with the potential of the constant loads (gravity), and the
+  /// power of the time-dependent ones: the balance of any loading (no damping here).
+  [[nodiscard]] std::optional<EnergyParts> energy_parts(double t, ConstRef u, ConstRef v) override;
 
  private:
   /// d = x_j + u_j − x_i − u_i for a member (dimension entries).

@@ -100,9 +100,13 @@ class Sleigh final : public MechanicalSystem {
   }
   [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) override {
     if (!conservative_) return std::nullopt;
-    double e = 0.5 * v.dot(M_ * v);
-    for (const auto& l : p_.loads) e -= l.value.derivative(0, t) * l.dot(u);
-    return e;
+    return 0.5 * v.dot(M_ * v) + energy_parts(t, u, v)->potential;
+  }
+  /// No springs: the constant loads' potential and the time-dependent ones' power.
+  [[nodiscard]] std::optional<EnergyParts> energy_parts(double t, ConstRef u, ConstRef v) override {
+    EnergyParts parts;
+    add_load_energy(p_.loads, t, steps_at(t), u, v, parts.potential, parts.load_power);
+    return parts;
   }
 
  private:

@@ -22,9 +22,8 @@ void ModelBuilder::check_energy_output() const {
   if (std::find(q.begin(), q.end(), Quantity::energy) == q.end()) return;
   if (!evaluator()->energy_parts(0.0, model_.u0, model_.v0)) {
     fail({"output.quantities", spec_.output.where.line},
-         "'energy' (the energy balance, docs/energy.md) needs a linear model or a conservative "
-         "nonlinear one (no damping, time-independent loads and constraints): this model's "
-         "forces do not split into potential, dissipated and applied parts");
+         "'energy' (the energy balance, docs/energy.md) needs forces that split into "
+         "potential, dissipated and applied parts, and this model's do not");
   }
 }
 

@@ -233,12 +233,6 @@ members = [{ nodes = [1, 2], rigid = true }]
             .find("fixes its own forces") != std::string::npos);
   CHECK(build_error("[model]\ntype = \"pendulum\"\nmass = 2.0\n" + tail)
             .find("model.mass: unknown key") != std::string::npos);
-  // The energy balance needs forces that split into potential, dissipated and applied parts:
-  // not the car axis's (driven by its road, no potential of its own).
-  CHECK(
-      build_error("[model]\ntype = \"car_axis\"\n" + tail + "[output]\nquantities = [\"energy\"]\n")
-          .find("forces do not split into potential, dissipated and applied parts") !=
-      std::string::npos);
   // An initial displacement that stretches a rigid member.
   CHECK(build_error(head +
                     "members = [{ nodes = [1, 2], rigid = true }]\n[initial]\n"
