@@ -30,7 +30,7 @@ void BlockJacobian::finish() {
 
 namespace {
 
-double& entry(BlockJacobian::Sparse& J, int row, int col) {
+double& entry(JacobianMap& J, int row, int col) {
   const auto* begin = J.innerIndexPtr() + J.outerIndexPtr()[col];
   const auto* end = J.innerIndexPtr() + J.outerIndexPtr()[col + 1];
   const auto* it = std::lower_bound(begin, end, row);
@@ -43,7 +43,7 @@ double& entry(BlockJacobian::Sparse& J, int row, int col) {
 
 }  // namespace
 
-void BlockJacobian::add(Sparse& J, int row0, int col0, const Sparse& S, double scale) {
+void BlockJacobian::add(JacobianMap& J, int row0, int col0, const Sparse& S, double scale) {
   for (int k = 0; k < S.outerSize(); ++k) {
     for (Sparse::InnerIterator it(S, k); it; ++it) {
       entry(J, row0 + static_cast<int>(it.row()), col0 + static_cast<int>(it.col())) +=
@@ -52,7 +52,7 @@ void BlockJacobian::add(Sparse& J, int row0, int col0, const Sparse& S, double s
   }
 }
 
-void BlockJacobian::add_identity(Sparse& J, int row0, int col0, int count, double scale) {
+void BlockJacobian::add_identity(JacobianMap& J, int row0, int col0, int count, double scale) {
   for (int k = 0; k < count; ++k) entry(J, row0 + k, col0 + k) += scale;
 }
 

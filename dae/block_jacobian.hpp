@@ -8,6 +8,15 @@
 
 namespace condyn {
 
+/// A Jacobian's values in a fixed pattern, as a view: the integrator maps its own matrix's value
+/// array over the pattern's index arrays, so no staging copy of the matrix is kept.
+using JacobianMap = Eigen::Map<Eigen::SparseMatrix<double>>;
+
+/// The view of a matrix that has the pattern (tests, the dense solver's staging matrix).
+[[nodiscard]] inline JacobianMap map_of(Eigen::SparseMatrix<double>& J) {
+  return {J.rows(), J.cols(), J.nonZeros(), J.outerIndexPtr(), J.innerIndexPtr(), J.valuePtr()};
+}
+
 class BlockJacobian {
  public:
   using Sparse = Eigen::SparseMatrix<double>;
@@ -25,8 +34,8 @@ class BlockJacobian {
 
   /// Fill phase, on a matrix with pattern(): J(row0 + i, col0 + j) += scale · S(i, j). Throws
   /// std::logic_error when S has an entry outside the declared pattern.
-  static void add(Sparse& J, int row0, int col0, const Sparse& S, double scale = 1.0);
-  static void add_identity(Sparse& J, int row0, int col0, int count, double scale);
+  static void add(JacobianMap& J, int row0, int col0, const Sparse& S, double scale = 1.0);
+  static void add_identity(JacobianMap& J, int row0, int col0, int count, double scale);
 
  private:
   int size_;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "dae/block_jacobian.hpp"
 #include "dae/newton_system.hpp"
 #include "dae/unknown_kind.hpp"
 
@@ -29,9 +30,13 @@ class DaeProblem {
   virtual void residual(double t, ConstRef y, ConstRef yp, Ref r) const = 0;
   /// Sparsity pattern of dF/dy + cj dF/dy' (column-major, compressed), fixed for the whole run.
   [[nodiscard]] virtual const Eigen::SparseMatrix<double>& jacobian_pattern() const = 0;
-  /// Fills the values of J = dF/dy + cj dF/dy' in the pattern (J has exactly that pattern).
-  virtual void jacobian(double t, ConstRef y, ConstRef yp, double cj,
-                        Eigen::SparseMatrix<double>& J) const = 0;
+  /// Fills the values of J = dF/dy + cj dF/dy' in the pattern (J views exactly that pattern).
+  virtual void fill_jacobian(double t, ConstRef y, ConstRef yp, double cj, JacobianMap J) const = 0;
+  /// fill_jacobian on a matrix that has the pattern.
+  void jacobian(double t, const ConstRef& y, const ConstRef& yp, double cj,
+                Eigen::SparseMatrix<double>& J) const {
+    fill_jacobian(t, y, yp, cj, map_of(J));
+  }
   /// 1 for differential components, 0 for algebraic ones (IDASetId).
   [[nodiscard]] virtual Eigen::VectorXd differential_id() const = 0;
   /// The differentiation index of each component: 1 for ordinary differential and index-1

@@ -52,7 +52,9 @@ struct CallbackData {
   /// cost nothing. Also passed to IDASetInitStep.
   double first_step = 1.0;
   Eigen::VectorXd index;  ///< differentiation index per component (DaeProblem::variable_index)
-  Eigen::SparseMatrix<double> jac;  ///< scratch with the problem's pattern
+  /// The dense solver's staging matrix with the problem's pattern (empty for KLU, whose matrix
+  /// takes the values directly: a copy of the Newton matrix less, issue 12).
+  Eigen::SparseMatrix<double> jac;
   sundials::CallbackReport* report = nullptr;
 };
 
@@ -70,18 +72,22 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
                         void* user, N_Vector /*t1*/, N_Vector /*t2*/, N_Vector /*t3*/) {
   auto* data = static_cast<CallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
-    data->problem->jacobian(t, view(y), view(yp), cj, data->jac);
-    const auto& jac = data->jac;
     if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
-      // IDA zeroes the whole sparse matrix (values and index arrays) before each call, so the
-      // fixed pattern is copied back with the values.
-      const auto nnz = static_cast<std::size_t>(jac.nonZeros());
-      std::copy_n(jac.outerIndexPtr(), jac.cols() + 1, SUNSparseMatrix_IndexPointers(J));
-      std::copy_n(jac.innerIndexPtr(), nnz, SUNSparseMatrix_IndexValues(J));
-      std::copy_n(jac.valuePtr(), nnz, SUNSparseMatrix_Data(J));
+      // IDA zeroes the whole sparse matrix (values and index arrays) before each call: the fixed
+      // pattern's indices are copied back, and the values are filled in place, in a view over
+      // the pattern's index arrays (never written) and the matrix's own value array.
+      auto& pattern = const_cast<Eigen::SparseMatrix<double>&>(data->problem->jacobian_pattern());
+      const auto nnz = static_cast<std::size_t>(pattern.nonZeros());
+      std::copy_n(pattern.outerIndexPtr(), pattern.cols() + 1, SUNSparseMatrix_IndexPointers(J));
+      std::copy_n(pattern.innerIndexPtr(), nnz, SUNSparseMatrix_IndexValues(J));
+      data->problem->fill_jacobian(
+          t, view(y), view(yp), cj,
+          JacobianMap(pattern.rows(), pattern.cols(), pattern.nonZeros(), pattern.outerIndexPtr(),
+                      pattern.innerIndexPtr(), SUNSparseMatrix_Data(J)));
     } else {
-      for (int k = 0; k < jac.outerSize(); ++k) {
-        for (Eigen::SparseMatrix<double>::InnerIterator it(jac, k); it; ++it) {
+      data->problem->jacobian(t, view(y), view(yp), cj, data->jac);
+      for (int k = 0; k < data->jac.outerSize(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(data->jac, k); it; ++it) {
           SM_ELEMENT_D(J, it.row(), it.col()) = it.value();
         }
       }
@@ -161,7 +167,7 @@ class Ida final : public sundials::SundialsStepper {
     if (options.condensed_newton && !options.dense_linear_solver) {
       newton_ = problem.newton_system();
     }
-    if (!newton_) {
+    if (!newton_ && options.dense_linear_solver) {
       data_.jac = problem.jacobian_pattern();
       data_.jac.makeCompressed();
     }
@@ -185,8 +191,9 @@ class Ida final : public sundials::SundialsStepper {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
     } else {
-      matrix_.reset(SUNSparseMatrix(n_, n_, std::max<sunindextype>(data_.jac.nonZeros(), 1),
-                                    CSC_MAT, ctx_.get()));
+      matrix_.reset(
+          SUNSparseMatrix(n_, n_, std::max<sunindextype>(problem.jacobian_pattern().nonZeros(), 1),
+                          CSC_MAT, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_KLU(y_.get(), matrix_.get(), ctx_.get()));
     }
     if ((!newton_ && !matrix_) || !solver_) {

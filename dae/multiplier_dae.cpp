@@ -223,8 +223,8 @@ void MultiplierDae::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   }
 }
 
-void MultiplierDae::jacobian(double t, ConstRef y, ConstRef yp, double cj,
-                             Eigen::SparseMatrix<double>& J) const {
+void MultiplierDae::fill_jacobian(double t, ConstRef y, ConstRef yp, double cj,
+                                  JacobianMap J) const {
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, 0, 0, n_, cj);
   BlockJacobian::add_identity(J, 0, n_, n_, -1.0);

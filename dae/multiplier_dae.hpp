@@ -44,8 +44,7 @@ class MultiplierDae final : public DaeProblem {
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
-  void jacobian(double t, ConstRef y, ConstRef yp, double cj,
-                Eigen::SparseMatrix<double>& J) const override;
+  void fill_jacobian(double t, ConstRef y, ConstRef yp, double cj, JacobianMap J) const override;
   [[nodiscard]] Eigen::VectorXd differential_id() const override;
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_, m_, p_);

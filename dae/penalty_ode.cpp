@@ -96,8 +96,8 @@ void PenaltyOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   }
 }
 
-void PenaltyOde::jacobian(double t, ConstRef y, ConstRef /*yp*/, double cj,
-                          Eigen::SparseMatrix<double>& J) const {
+void PenaltyOde::fill_jacobian(double t, ConstRef y, ConstRef /*yp*/, double cj,
+                               JacobianMap J) const {
   const auto u = y.head(n_), v = y.tail(n_);
   const auto& M = system_->mass(t, u);
   const auto& f_u = system_->force_jacobian_u(t, u, v);

@@ -45,8 +45,7 @@ class PenaltyOde final : public DaeProblem {
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
-  void jacobian(double t, ConstRef y, ConstRef yp, double cj,
-                Eigen::SparseMatrix<double>& J) const override;
+  void fill_jacobian(double t, ConstRef y, ConstRef yp, double cj, JacobianMap J) const override;
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_);
   }

@@ -45,8 +45,8 @@ void ReducedOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   if (model_.has_damping()) r.tail(nm_) += reduced_.C * w;
 }
 
-void ReducedOde::jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
-                          Eigen::SparseMatrix<double>& J) const {
+void ReducedOde::fill_jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
+                               JacobianMap J) const {
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, 0, 0, nm_, cj);
   BlockJacobian::add_identity(J, 0, nm_, nm_, -1.0);

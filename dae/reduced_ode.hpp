@@ -29,8 +29,7 @@ class ReducedOde final : public DaeProblem {
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
-  void jacobian(double t, ConstRef y, ConstRef yp, double cj,
-                Eigen::SparseMatrix<double>& J) const override;
+  void fill_jacobian(double t, ConstRef y, ConstRef yp, double cj, JacobianMap J) const override;
   /// û are master displacements, w their velocities.
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(nm_);

@@ -33,8 +33,8 @@ class BreaksAtT : public DaeProblem {
   [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
     return pattern_;
   }
-  void jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
-                Eigen::SparseMatrix<double>& J) const override {
+  void fill_jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
+                     JacobianMap J) const override {
     J.valuePtr()[0] = cj;
   }
   [[nodiscard]] Eigen::VectorXd differential_id() const override {
