@@ -67,6 +67,7 @@ Model ModelBuilder::build() {
   check_magnitudes();
   check_degenerate_dofs();
   while (const auto dependent = check_rank()) drop_constraint(*dependent);
+  apply_modal_damping();  // from the modes of the constrained model: after the rows are final
   if (spec_.initial.static_start) solve_static_initial();
   check_initial_consistency();
   check_massless_dofs();

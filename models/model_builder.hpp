@@ -80,6 +80,7 @@ class ModelBuilder {
   void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where) const;
   void build_matrix();
   void apply_rayleigh();
+  void apply_modal_damping();  // modal_damping.cpp
 
   // nonlinear_systems.cpp
   void build_benchmark();

@@ -81,7 +81,24 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
 void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
                                 ModelSpec& model) const {
   const auto& t = table(node, path);
-  check_keys(t, path, {"rayleigh"});
+  check_keys(t, path, {"rayleigh", "modal"});
+  if (const auto* modal = t.get("modal")) {
+    const std::string p = join(path, "modal");
+    if (t.contains("rayleigh")) fail(*modal, p, "give either rayleigh or modal damping, not both");
+    model.modal_ratios =
+        modal->is_array() ? numbers(*modal, p) : std::vector<double>{number(*modal, p)};
+    if (model.modal_ratios.empty()) fail(*modal, p, "expected a damping ratio or a list of them");
+    for (std::size_t i = 0; i < model.modal_ratios.size(); ++i) {
+      const double z = model.modal_ratios[i];
+      if (!(z >= 0.0) || !std::isfinite(z)) {
+        fail(modal->is_array() ? *array(*modal, p).get(i) : *modal,
+             modal->is_array() ? index(p, i) : p,
+             "a damping ratio must be finite and >= 0 (a negative one feeds energy in)");
+      }
+    }
+    model.modal_where = at(*modal, p);
+    return;
+  }
   const std::string p = join(path, "rayleigh");
   const auto& r = required(t, path, "rayleigh");
   if (r.is_table()) return read_rayleigh_pairs(r, p, model);
@@ -155,7 +172,8 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
   model.type = ModelSpec::Type::matrix;
   const auto is_file = [&](std::string_view key) {
     const auto* n = t.get(key);
-    return n != nullptr && n->is_table() && !n->as_table()->contains("rayleigh");
+    return n != nullptr && n->is_table() && !n->as_table()->contains("rayleigh") &&
+           !n->as_table()->contains("modal");
   };
   // Files first: when `dofs` is omitted their size fixes n.
   const std::pair<std::string_view, FileMatrix*> files[] = {{"mass", &model.mass_file},

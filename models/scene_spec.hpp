@@ -67,6 +67,11 @@ struct ModelSpec {
   /// What the scene's (frequency, ratio) pairs gave, for the report; empty for [a0, a1].
   std::string rayleigh_rule;
   SourcePoint rayleigh_where;
+  /// damping = { modal = z } or { modal = [z1, z2, ...] }: the damping ratio of each mode of the
+  /// constrained model, ascending (the last repeats); C built from the modes (models/
+  /// modal_damping.cpp). Empty when not given.
+  std::vector<double> modal_ratios;
+  SourcePoint modal_where;
   SourcePoint where;
 };
 
