@@ -54,39 +54,42 @@ void AccelerationFromForces::constrained_massless(MechanicalSystem& system, doub
   Eigen::VectorXd gamma(A.rows());
   system.acceleration_bias(t, u, v, gamma);
   const Eigen::VectorXd r = gamma - A * a;  // a_Z = 0 here
-  std::vector<bool> pure(static_cast<std::size_t>(A.rows()), true);
-  for (int j = 0; j < static_cast<int>(A.cols()); ++j) {
-    if (massless_[j] != 0.0) continue;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
-      if (it.value() != 0.0) pure[static_cast<std::size_t>(it.row())] = false;
-    }
-  }
-  const auto columns = [&](bool pure_only) {
-    std::vector<Eigen::Triplet<double>> trip;
-    for (std::size_t k = 0; k < constrained_.size(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, constrained_[k]); it; ++it) {
-        if (!pure_only || pure[static_cast<std::size_t>(it.row())])
-          trip.emplace_back(static_cast<int>(it.row()), static_cast<int>(k), it.value());
+  // A_Z and its normal equations once for a constant A, at every row otherwise.
+  if (!normal_factored_ || !constant_mass_) {
+    std::vector<bool> pure(static_cast<std::size_t>(A.rows()), true);
+    for (int j = 0; j < static_cast<int>(A.cols()); ++j) {
+      if (massless_[j] != 0.0) continue;
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
+        if (it.value() != 0.0) pure[static_cast<std::size_t>(it.row())] = false;
       }
     }
-    Eigen::SparseMatrix<double> AZ(A.rows(), static_cast<Eigen::Index>(constrained_.size()));
-    AZ.setFromTriplets(trip.begin(), trip.end());
-    return AZ;
-  };
-  const auto regular = [&](const Eigen::SparseMatrix<double>& AZ) {
-    normal_.compute(Eigen::SparseMatrix<double>(AZ.transpose() * AZ));
-    if (normal_.info() != Eigen::Success) return false;
-    const Eigen::VectorXd d = normal_.vectorD().cwiseAbs();
-    return d.size() == 0 || d.minCoeff() > 1e-12 * d.maxCoeff();
-  };
-  if (!normal_factored_ || !constant_mass_) {
-    pure_only_ = regular(columns(true));
-    if (!pure_only_ && !regular(columns(false)))
-      throw std::runtime_error("accelerations: the constraints do not fix the massless DOFs");
+    const auto columns = [&](bool pure_only) {
+      std::vector<Eigen::Triplet<double>> trip;
+      for (std::size_t k = 0; k < constrained_.size(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, constrained_[k]); it; ++it) {
+          if (!pure_only || pure[static_cast<std::size_t>(it.row())])
+            trip.emplace_back(static_cast<int>(it.row()), static_cast<int>(k), it.value());
+        }
+      }
+      Eigen::SparseMatrix<double> AZ(A.rows(), static_cast<Eigen::Index>(constrained_.size()));
+      AZ.setFromTriplets(trip.begin(), trip.end());
+      return AZ;
+    };
+    const auto regular = [&](const Eigen::SparseMatrix<double>& AZ) {
+      normal_.compute(Eigen::SparseMatrix<double>(AZ.transpose() * AZ));
+      if (normal_.info() != Eigen::Success) return false;
+      const Eigen::VectorXd d = normal_.vectorD().cwiseAbs();
+      return d.size() == 0 || d.minCoeff() > 1e-12 * d.maxCoeff();
+    };
+    az_ = columns(true);
+    if (!regular(az_)) {
+      az_ = columns(false);
+      if (!regular(az_))
+        throw std::runtime_error("accelerations: the constraints do not fix the massless DOFs");
+    }
     normal_factored_ = true;
   }
-  const Eigen::SparseMatrix<double> AZ = columns(pure_only_);
-  const Eigen::VectorXd aZ = normal_.solve(AZ.transpose() * r);
+  const Eigen::VectorXd aZ = normal_.solve(az_.transpose() * r);
   for (std::size_t k = 0; k < constrained_.size(); ++k)
     a[constrained_[k]] = aZ[static_cast<Eigen::Index>(k)];
 }

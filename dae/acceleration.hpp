@@ -48,7 +48,9 @@ class AccelerationFromForces {
   std::shared_ptr<const HeldMassless> held_;  ///< held massless DOFs (linear models), or null
   std::vector<int> constrained_;              ///< the massless DOFs in a constraint
   bool normal_factored_ = false;              ///< A_Zᵀ A_Z factored (constant A)
-  bool pure_only_ = false;  ///< the rows on massless DOFs alone fix them (and are the ones used)
+  /// A_Z: the constrained massless DOFs' columns of the rows used (those on massless DOFs alone
+  /// when they fix them, else all).
+  Eigen::SparseMatrix<double> az_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> normal_;
 };
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "models/model_builder.hpp"
+#include "models/null_space.hpp"
 
 namespace condyn {
 
@@ -25,7 +26,7 @@ void ModelBuilder::apply_modal_damping() {
          "modal damping needs a linear model: this one has no constant modes (large "
          "displacements, rigid members or a built-in nonlinear model)");
   }
-  const int n = model_.dofs(), m = model_.constraint_count();
+  const int n = model_.dofs();
   if (static_cast<double>(n) * n > kMaxDenseEntries) {
     fail(where, "modal damping is built from the model's modes, dense n x n: " + std::to_string(n) +
                     " DOFs is beyond the dense limit (" +
@@ -33,12 +34,7 @@ void ModelBuilder::apply_modal_damping() {
                     "); use damping = { rayleigh = { frequencies = [...], ratios = [...] } }, "
                     "which stays sparse");
   }
-  Eigen::MatrixXd N = Eigen::MatrixXd::Identity(n, n);
-  if (m > 0) {
-    const Eigen::MatrixXd a(model_.A);
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(a.transpose());
-    N = (qr.householderQ() * Eigen::MatrixXd::Identity(n, n)).rightCols(n - m);
-  }
+  const Eigen::MatrixXd N = null_space_basis(model_.A, n);
   const Eigen::MatrixXd M(model_.M), K(model_.K);
   const Eigen::MatrixXd Mr = N.transpose() * M * N, Kr = N.transpose() * K * N;
   const Eigen::LLT<Eigen::MatrixXd> regular(Mr);

@@ -1,5 +1,7 @@
 #include "validation/exact_solution.hpp"
 
+#include "models/null_space.hpp"
+
 namespace condyn {
 
 Trajectory exact_trajectory(const Model& model, const std::vector<double>& times) {
@@ -15,14 +17,10 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
         "generalized eigenproblem of n x n, O(n^3)); it is computed up to " +
         std::to_string(kMaxExactDofs) + " DOFs");
   }
-  Eigen::MatrixXd N, P(n, m);
-  if (m == 0) {
-    N = Eigen::MatrixXd::Identity(n, n);
-  } else {
+  const Eigen::MatrixXd N = null_space_basis(model.A, n);
+  Eigen::MatrixXd P(n, m);
+  if (m > 0) {
     const Eigen::MatrixXd a(model.A);
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(a.transpose());
-    const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
-    N = q.rightCols(n - m);  // A has full row rank (build_model checked): null(A) = span of these
     P = a.transpose() * (a * a.transpose()).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
   }
   const Eigen::MatrixXd M(model.M), K(model.K), C(model.C);

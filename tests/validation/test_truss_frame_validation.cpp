@@ -10,8 +10,7 @@
 #include <string>
 
 #include "models/scene_parser.hpp"
-#include "tests/solve_helpers.hpp"
-#include "validation/exact_solution.hpp"
+#include "tests/exact_cases.hpp"
 
 using namespace condyn;
 
@@ -55,39 +54,19 @@ atol = 1e-12
 
 TEST_CASE("truss frame under El Centro: every scheme agrees with the exact solution") {
   const auto scene = test::built(parse_scene_text(frame_scene(), "truss_frame.toml"));
-  struct Case {
-    Scheme scheme;
-    double u_bound, reaction_bound;
-  };
   // Bounds: the 1e-7 on displacements at tight tolerance. Measured 2026-11-25 (peak
   // sway 0.103 m, peak reaction 2.9e6 N): u 1.4e-9 to 2.1e-9 (elimination, index1, Baumgarte,
   // GGL, index2), 2.9e-8 projection, 1.3e-6 index3 (its positions are the index-3 DAE's),
   // 5.1e-5 penalty (its weight's error); reactions 1.5e-9 to 3.1e-8, 1.4e-6, 5.7e-5.
-  const Case cases[] = {{Scheme::elimination, 1e-7, 1e-6}, {Scheme::index1, 1e-7, 1e-6},
-                        {Scheme::baumgarte, 1e-7, 1e-6},   {Scheme::ggl, 1e-7, 1e-6},
-                        {Scheme::index2, 1e-7, 1e-6},      {Scheme::projection, 1e-7, 1e-6},
-                        {Scheme::penalty, 1e-3, 1e-1},     {Scheme::index3, 2e-6, 1e-4}};
-  Trajectory exact;
-  double peak_u = 0.0, peak_reaction = 0.0;
-  for (const Case& c : cases) {
-    const std::string name = to_string(c.scheme);
-    CAPTURE(name);
-    const SolveResult run = test::solved(scene.model, test::under(scene.spec.solve, c.scheme));
-    if (exact.t.empty()) {
-      exact = exact_trajectory(scene.model, run.trajectory.t);
-      peak_u = exact.u.cwiseAbs().maxCoeff();
-      peak_reaction = exact.reaction.cwiseAbs().maxCoeff();
-      MESSAGE("peak relative displacement " << peak_u << " m, peak reaction " << peak_reaction
-                                            << " N");
-      CHECK(peak_u > 1e-3);        // the frame sways by millimetres to centimetres
-      CHECK(peak_reaction > 1e4);  // the supports and floors carry force
-    }
-    const double err_u = (run.trajectory.u - exact.u).cwiseAbs().maxCoeff() / peak_u;
-    const double err_r =
-        (run.trajectory.reaction - exact.reaction).cwiseAbs().maxCoeff() / peak_reaction;
-    MESSAGE(name << ": relative error u " << err_u << ", reactions " << err_r << ", "
-                 << run.summary.steps << " steps");
-    CHECK(err_u < c.u_bound);
-    CHECK(err_r < c.reaction_bound);
-  }
+  const test::ExactPeaks peak = test::check_against_exact(scene.model, scene.spec.solve,
+                                                          {{Scheme::elimination, 1e-7, 1e-6},
+                                                           {Scheme::index1, 1e-7, 1e-6},
+                                                           {Scheme::baumgarte, 1e-7, 1e-6},
+                                                           {Scheme::ggl, 1e-7, 1e-6},
+                                                           {Scheme::index2, 1e-7, 1e-6},
+                                                           {Scheme::projection, 1e-7, 1e-6},
+                                                           {Scheme::penalty, 1e-3, 1e-1},
+                                                           {Scheme::index3, 2e-6, 1e-4}});
+  CHECK(peak.u > 1e-3);        // the frame sways by millimetres to centimetres (m)
+  CHECK(peak.reaction > 1e4);  // the supports and floors carry force (N)
 }
