@@ -2,107 +2,101 @@
 
 #include "dae/condensed_newton.hpp"
 
+#include <algorithm>
 #include <stdexcept>
-#include <vector>
 
 namespace condyn {
 
-CondensedNewton::CondensedNewton(Scheme scheme, const Eigen::SparseMatrix<double>& M,
-                                 const Eigen::SparseMatrix<double>& C,
-                                 const Eigen::SparseMatrix<double>& K,
-                                 const Eigen::SparseMatrix<double>& A,
-                                 const Eigen::SparseMatrix<double>& select_p)
+CondensedNewton::CondensedNewton(Scheme scheme, LinearMatrices&& matrices, const Sparse& select_p)
     : scheme_(scheme),
-      M_(M),
-      C_(C),
-      K_(K),
-      A_(A),
-      n_(static_cast<int>(M_.rows())),
-      m_(static_cast<int>(A_.rows())),
+      n_(static_cast<int>(matrices.M.rows())),
+      m_(static_cast<int>(matrices.A.rows())),
       p_(scheme == Scheme::ggl ? static_cast<int>(select_p.rows()) : 0) {
+  // Taken over by swaps: Eigen 3.4's sparse matrices have no move constructor.
+  M_.swap(matrices.M);
+  C_.swap(matrices.C);
+  K_.swap(matrices.K);
+  A_.swap(matrices.A);
   if (scheme != Scheme::index1 && scheme != Scheme::ggl) {
     throw std::invalid_argument("CondensedNewton: index1 or ggl only");
   }
   if (C_.size() == 0) C_.resize(n_, n_);
   if (m_ == 0) A_.resize(0, n_);
+  for (Sparse* x : {&M_, &C_, &K_, &A_}) x->makeCompressed();
+  At_ = A_.transpose();
   if (p_ > 0) {
     Ap_ = select_p * A_;
     ApT_ = Ap_.transpose();
+    CApT_ = C_ * ApT_;
+    MApT_ = M_ * ApT_;
     AApT_ = A_ * ApT_;
   }
-  // The union of every block's pattern: the entries of the magnitudes' sum cannot cancel.
-  pattern_ = matrix(1.0, true);
-  std::fill_n(pattern_.valuePtr(), pattern_.nonZeros(), 0.0);
-}
-
-Eigen::SparseMatrix<double> CondensedNewton::matrix(double cj, bool magnitudes) const {
-  const auto abs = [magnitudes](const Eigen::SparseMatrix<double>& x) {
-    return magnitudes ? Eigen::SparseMatrix<double>(x.cwiseAbs()) : x;
-  };
-  const Eigen::SparseMatrix<double> S = abs(K_) + cj * abs(C_) + (cj * cj) * abs(M_);
-  const int size = n_ + m_ + p_;
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<std::size_t>(S.nonZeros() + 2 * A_.nonZeros() + 2 * Ap_.nonZeros()));
-  const auto place = [&t](const Eigen::SparseMatrix<double>& x, int r0, int c0, double s) {
-    for (int k = 0; k < x.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(x, k); it; ++it) {
-        t.emplace_back(r0 + static_cast<int>(it.row()), c0 + static_cast<int>(it.col()),
-                       s * it.value());
-      }
-    }
-  };
-  const Eigen::SparseMatrix<double> a = abs(A_);
-  const Eigen::SparseMatrix<double> at = a.transpose();
-  place(S, 0, 0, 1.0);
-  place(at, 0, n_, 1.0);
-  if (scheme_ == Scheme::index1) {
-    place(a, n_, 0, 1.0);
-  } else {
-    place(a, n_, 0, cj);
-    if (p_ > 0) {
-      const Eigen::SparseMatrix<double> damping = abs(C_) + cj * abs(M_);
-      place(Eigen::SparseMatrix<double>(damping * abs(ApT_)), 0, n_ + m_, 1.0);
-      place(abs(AApT_), n_, n_ + m_, 1.0);
-      place(abs(Ap_), n_ + m_, 0, 1.0);
-    }
+  // The union of every block's pattern, whatever cj (no cancellation can drop an entry).
+  BlockJacobian blocks(n_ + m_ + p_);
+  for (const Sparse* x : {&K_, &C_, &M_}) blocks.declare(0, 0, *x);
+  blocks.declare(0, n_, At_);
+  blocks.declare(n_, 0, A_);
+  if (p_ > 0) {
+    blocks.declare(0, n_ + m_, CApT_);
+    blocks.declare(0, n_ + m_, MApT_);
+    blocks.declare(n_, n_ + m_, AApT_);
+    blocks.declare(n_ + m_, 0, Ap_);
   }
-  Eigen::SparseMatrix<double> out(size, size);
-  out.setFromTriplets(t.begin(), t.end());
-  return out;
+  blocks.finish();
+  matrix_ = blocks.pattern();
+  rhs_.resize(n_ + m_ + p_);
+  r1_.resize(n_);
+  work_.resize(n_);
 }
 
 bool CondensedNewton::setup(double cj) {
   cj_ = cj;
-  // On the fixed pattern (a superset of this cj's entries): KLU's analysis stays valid.
-  return klu_.factor(pattern_ + matrix(cj, false));
+  JacobianMap J = map_of(matrix_);
+  std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
+  BlockJacobian::add(J, 0, 0, K_);
+  BlockJacobian::add(J, 0, 0, C_, cj);
+  BlockJacobian::add(J, 0, 0, M_, cj * cj);
+  BlockJacobian::add(J, 0, n_, At_);
+  BlockJacobian::add(J, n_, 0, A_, scheme_ == Scheme::index1 ? 1.0 : cj);
+  if (p_ > 0) {
+    BlockJacobian::add(J, 0, n_ + m_, CApT_);
+    BlockJacobian::add(J, 0, n_ + m_, MApT_, cj);
+    BlockJacobian::add(J, n_, n_ + m_, AApT_);
+    BlockJacobian::add(J, n_ + m_, 0, Ap_);
+  }
+  return klu_.factor(matrix_);
 }
 
 void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   const double cj = cj_;
   const Eigen::Index n = n_, m = m_, p = p_;
-  const Eigen::VectorXd r1 = b.segment(0, n);
-  Eigen::VectorXd rhs(n_ + m_ + p_);
-  Eigen::VectorXd damped = M_ * r1;
-  damped *= cj;
-  damped += C_ * r1;  // (C + cj M) r1
-  rhs.head(n_) = b.segment(n_, n_) + damped;
-  if (m_ > 0) {
-    const Eigen::VectorXd ar1 = A_ * r1;
+  r1_ = b.segment(0, n);
+  auto top = rhs_.head(n);
+  top.noalias() = M_ * r1_;
+  top *= cj;
+  top.noalias() += C_ * r1_;  // (C + cj M) r1
+  top += b.segment(n, n);
+  if (m > 0) {
+    auto mid = rhs_.segment(n, m);
+    mid.noalias() = A_ * r1_;
     if (scheme_ == Scheme::index1) {
-      rhs.segment(n_, m_) = (b.segment(2 * n, m) + cj * ar1) / (cj * cj);
+      mid = (b.segment(2 * n, m) + cj * mid) / (cj * cj);
     } else {
-      rhs.segment(n_, m_) = b.segment(2 * n, m) + ar1;
+      mid += b.segment(2 * n, m);
     }
   }
-  if (p_ > 0) rhs.tail(p_) = b.segment(2 * n + m, p);
-  const Eigen::VectorXd x = klu_.solve(rhs);
-  const auto du = x.head(n_);
-  Eigen::VectorXd dv = cj * du - r1;
-  if (p_ > 0) dv += ApT_ * x.tail(p_);
-  b.segment(0, n_) = du;
-  b.segment(n_, n_) = dv;
-  if (m_ > 0) b.segment(2 * n, m) = x.segment(n_, m_);
-  if (p_ > 0) b.segment(2 * n + m, p) = x.tail(p_);
+  if (p > 0) rhs_.tail(p) = b.segment(2 * n + m, p);
+  klu_.solve_in_place(rhs_);
+  const auto du = rhs_.head(n);
+  auto dv = b.segment(n, n);
+  dv = cj * du - r1_;
+  if (p > 0) {
+    work_.noalias() = ApT_ * rhs_.tail(p);
+    dv += work_;
+  }
+  b.segment(0, n) = du;
+  if (m > 0) b.segment(2 * n, m) = rhs_.segment(n, m);
+  if (p > 0) b.segment(2 * n + m, p) = rhs_.tail(p);
 }
 
 }  // namespace condyn

@@ -1,30 +1,79 @@
-// KLU with its analysis kept across factorizations (dae/fixed_pattern_klu.hpp).
+// KLU with its analysis and pivots kept across factorizations (dae/fixed_pattern_klu.hpp).
 
 #include "dae/fixed_pattern_klu.hpp"
 
-#include <Eigen/KLUSupport>
+#include <klu.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace condyn {
 
 struct FixedPatternKlu::Impl {
-  Eigen::KLU<Eigen::SparseMatrix<double>> klu;
+  klu_common common{};
+  klu_symbolic* symbolic = nullptr;
+  klu_numeric* numeric = nullptr;
+  int n = 0;
+
+  Impl() { klu_defaults(&common); }
+  ~Impl() {
+    if (numeric != nullptr) klu_free_numeric(&numeric, &common);
+    if (symbolic != nullptr) klu_free_symbolic(&symbolic, &common);
+  }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
 };
 
 FixedPatternKlu::FixedPatternKlu() : impl_(std::make_unique<Impl>()) {}
 FixedPatternKlu::~FixedPatternKlu() = default;
 
 bool FixedPatternKlu::factor(const Eigen::SparseMatrix<double>& matrix) {
-  if (!analysed_) {
-    impl_->klu.analyzePattern(matrix);
-    if (impl_->klu.info() != Eigen::Success) return false;
-    analysed_ = true;
+  if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
+    throw std::invalid_argument("FixedPatternKlu: a square compressed matrix is expected");
   }
-  impl_->klu.factorize(matrix);
-  return impl_->klu.info() == Eigen::Success;
+  Impl& k = *impl_;
+  // KLU's interface takes non-const index arrays it does not write.
+  auto* p = const_cast<int*>(matrix.outerIndexPtr());
+  auto* i = const_cast<int*>(matrix.innerIndexPtr());
+  auto* x = const_cast<double*>(matrix.valuePtr());
+  if (k.symbolic == nullptr) {
+    k.n = static_cast<int>(matrix.rows());
+    k.symbolic = klu_analyze(k.n, p, i, &k.common);
+    if (k.symbolic == nullptr) return false;
+  } else if (matrix.rows() != k.n) {
+    throw std::invalid_argument("FixedPatternKlu: the matrix changed size");
+  }
+  if (k.numeric != nullptr) {
+    // The tolerance SUNDIALS' SUNLinSol_KLU applies to its refactorizations.
+    static const double kMinRcond = std::pow(std::numeric_limits<double>::epsilon(), 2.0 / 3.0);
+    if (klu_refactor(p, i, x, k.symbolic, k.numeric, &k.common) != 0 &&
+        klu_rcond(k.symbolic, k.numeric, &k.common) != 0 && k.common.rcond >= kMinRcond) {
+      ++refactored_;
+      return true;
+    }
+    klu_free_numeric(&k.numeric, &k.common);
+  }
+  ++pivoting_;
+  k.numeric = klu_factor(p, i, x, k.symbolic, &k.common);
+  return k.numeric != nullptr && k.common.status == KLU_OK;
+}
+
+void FixedPatternKlu::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
+  Impl& k = *impl_;
+  if (k.numeric == nullptr) throw std::logic_error("FixedPatternKlu: solve before a factorization");
+  if (x.size() != k.n)
+    throw std::invalid_argument("FixedPatternKlu: right-hand side of wrong size");
+  if (klu_solve(k.symbolic, k.numeric, k.n, 1, x.data(), &k.common) == 0) {
+    throw std::runtime_error("KLU solve failed (status " + std::to_string(k.common.status) + ")");
+  }
 }
 
 Eigen::VectorXd FixedPatternKlu::solve(const Eigen::VectorXd& rhs) const {
-  return impl_->klu.solve(rhs);
+  Eigen::VectorXd x = rhs;
+  solve_in_place(x);
+  return x;
 }
 
 }  // namespace condyn

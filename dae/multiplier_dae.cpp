@@ -309,8 +309,7 @@ void MultiplierDae::make_consistent_held(double t, Eigen::VectorXd& y, Eigen::Ve
 
 std::unique_ptr<NewtonSystem> MultiplierDae::newton_system() const {
   if (!condensed_) return nullptr;
-  const LinearMatrices l = linear_matrices(*system_);
-  return std::make_unique<CondensedNewton>(scheme_, l.M, l.C, l.K, l.A, select_p_);
+  return std::make_unique<CondensedNewton>(scheme_, linear_matrices(*system_), select_p_);
 }
 
 }  // namespace condyn

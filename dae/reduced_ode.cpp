@@ -89,9 +89,10 @@ Eigen::VectorXd ReducedOde::acceleration(double t, const Eigen::VectorXd& x,
 }
 
 std::unique_ptr<NewtonSystem> ReducedOde::newton_system() const {
-  return std::make_unique<CondensedNewton>(Scheme::index1, reduced_.M, reduced_.C, reduced_.K,
-                                           Eigen::SparseMatrix<double>(0, nm_),
-                                           Eigen::SparseMatrix<double>(0, 0));
+  return std::make_unique<CondensedNewton>(
+      Scheme::index1,
+      LinearMatrices{reduced_.M, reduced_.C, reduced_.K, Eigen::SparseMatrix<double>(0, nm_)},
+      Eigen::SparseMatrix<double>(0, 0));
 }
 
 }  // namespace condyn

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "dae/fixed_pattern_klu.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
@@ -85,4 +86,37 @@ TEST_CASE("[solve] newton accepts full or condensed only") {
   CHECK_THROWS_WITH_AS((void)parse_scene_text(scene + "newton = \"sparse\"\n", "s.toml"),
                        doctest::Contains("solve.newton: expected 'full' or 'condensed'"),
                        SceneError);
+}
+
+TEST_CASE("KLU with kept pivots: refactorizations, and a new pivot order when they fail") {
+  // The first matrix pivots on its diagonal; the second has a zero where that pivot was, so
+  // its refactorization with the old pivots cannot stand and a pivoting factorization follows.
+  Eigen::SparseMatrix<double> A(3, 3);
+  A.insert(0, 0) = 4.0;
+  A.insert(0, 1) = 1.0;
+  A.insert(1, 0) = 1.0;
+  A.insert(1, 1) = 3.0;
+  A.insert(1, 2) = 1.0;
+  A.insert(2, 1) = 1.0;
+  A.insert(2, 2) = 2.0;
+  A.makeCompressed();
+  const Eigen::VectorXd b = Eigen::Vector3d(1.0, -2.0, 0.5);
+  FixedPatternKlu klu;
+  REQUIRE(klu.factor(A));
+  CHECK((A * klu.solve(b) - b).norm() <= 1e-14);
+  A.coeffRef(0, 0) = 5.0;  // same pivots do
+  REQUIRE(klu.factor(A));
+  CHECK((A * klu.solve(b) - b).norm() <= 1e-14);
+  CHECK(klu.pivoting_factorizations() == 1);
+  CHECK(klu.refactorizations() == 1);
+  A.coeffRef(0, 0) = 0.0;  // the kept first pivot is zero: pivot again
+  REQUIRE(klu.factor(A));
+  Eigen::VectorXd x = b;
+  klu.solve_in_place(x);
+  CHECK((A * x - b).norm() <= 1e-14);
+  CHECK(klu.pivoting_factorizations() == 2);
+  Eigen::SparseMatrix<double> singular = A;
+  singular.coeffRef(0, 1) = 0.0;  // column 0 all zero
+  singular.coeffRef(1, 0) = 0.0;
+  CHECK_FALSE(klu.factor(singular));
 }
