@@ -3,6 +3,7 @@
 #include "dae/newton_linear_solver.hpp"
 #include "dae/sundials_raii.hpp"
 #include "dae/sundials_stepper.hpp"
+#include "dae/vector_ops.hpp"
 
 #include <cvode/cvode.h>
 #include <cvode/cvode_proj.h>
@@ -116,6 +117,8 @@ class Cvode final : public sundials::SundialsStepper {
     y_.reset(N_VNew_Serial(n_, ctx_.get()));
     work_.reset(N_VNew_Serial(n_, ctx_.get()));
     if (!y_ || !work_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
+    sundials::use_condyn_vector_ops(y_.get());
+    sundials::use_condyn_vector_ops(work_.get());
     view(y_.get()) = y0;
     mem_.reset(CVodeCreate(CV_BDF, ctx_.get()));
     if (!mem_) throw IntegrationError("CVodeCreate failed");
