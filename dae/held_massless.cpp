@@ -133,13 +133,29 @@ Eigen::VectorXd held_variable_index(const HeldMassless* held, Eigen::Index size)
   return index;
 }
 
+std::shared_ptr<const HeldMassless> held_massless(const Sparse& M, const Sparse& C, const Sparse& K,
+                                                  const Sparse& A, bool consistency) {
+  // Every unconstrained massless DOF is held (damped or undamped), refused (coupled) or found
+  // singular by the factorizations: none of them, no HeldMassless.
+  if (unconstrained_massless_dofs(M, A).empty()) return nullptr;
+  return std::make_shared<const HeldMassless>(LinearMatrices{M, C, K, A}, consistency);
+}
+
+std::shared_ptr<const HeldMassless> held_massless_of(const MechanicalSystem& system) {
+  const auto s = system.clone();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s->dofs());
+  const Sparse& M = s->mass(0.0, zero);
+  const bool none = s->constraints() > 0
+                        ? unconstrained_massless_dofs(M, s->constraint_jacobian(0.0, zero)).empty()
+                        : unconstrained_massless_dofs(M, Sparse(0, s->dofs())).empty();
+  if (none) return nullptr;
+  return std::make_shared<const HeldMassless>(linear_matrices(system));
+}
+
 std::shared_ptr<const HeldMassless> held_massless_of(const Model& model) {
   if (model.is_nonlinear()) return nullptr;
-  auto held = std::make_shared<const HeldMassless>(
-      LinearMatrices{model.M, model.has_damping() ? model.C : Eigen::SparseMatrix<double>(),
-                     model.K, model.A},
-      /*consistency=*/false);
-  return held->empty() ? nullptr : held;
+  return held_massless(model.M, model.has_damping() ? model.C : Sparse(), model.K, model.A,
+                       /*consistency=*/false);
 }
 
 }  // namespace condyn

@@ -81,6 +81,15 @@ class HeldMassless {
 [[nodiscard]] Eigen::VectorXd held_differential_id(const HeldMassless* held, Eigen::Index size);
 [[nodiscard]] Eigen::VectorXd held_variable_index(const HeldMassless* held, Eigen::Index size);
 
+/// The held massless DOFs of constant matrices (C may be 0 x 0), or null when there are none.
+/// Which DOFs are massless and unconstrained is read from M and A as given; the matrices are
+/// copied only when there are some (at a million DOFs a copy of K is tens of megabytes).
+[[nodiscard]] std::shared_ptr<const HeldMassless> held_massless(
+    const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
+    const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A,
+    bool consistency = true);
+/// The same for a linear system's matrices (linear_matrices), read without copying them.
+[[nodiscard]] std::shared_ptr<const HeldMassless> held_massless_of(const MechanicalSystem& system);
 /// The held massless DOFs of a model, or null: none, or a nonlinear model (refused there).
 [[nodiscard]] std::shared_ptr<const HeldMassless> held_massless_of(const Model& model);
 

@@ -59,10 +59,7 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, doub
   jacobian_.declare_identity(0, 0, n_);   // d(u')
   jacobian_.declare_identity(0, n_, n_);  // −I
   jacobian_.finish();
-  if (linear) {
-    auto held = std::make_shared<const HeldMassless>(linear_matrices(system));
-    if (!held->empty()) held_ = std::move(held);
-  }
+  if (linear) held_ = held_massless_of(system);
 }
 
 void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,

@@ -69,10 +69,8 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   // The penalized system's matrices (no curvature: constant), and its massless DOFs.
   const Eigen::SparseMatrix<double> K = -f_u + weights.position * AtPA,
                                     C = -f_v + weights.velocity * AtVA;
-  auto held = std::make_shared<const HeldMassless>(
-      LinearMatrices{M, C.nonZeros() > 0 ? C : Eigen::SparseMatrix<double>(), K,
-                     Eigen::SparseMatrix<double>(0, n_)});
-  if (!held->empty()) held_ = std::move(held);
+  held_ = held_massless(M, C.nonZeros() > 0 ? C : Eigen::SparseMatrix<double>(), K,
+                        Eigen::SparseMatrix<double>(0, n_));
 }
 
 Eigen::VectorXd PenaltyOde::multipliers(double t, const Eigen::VectorXd& y) const {

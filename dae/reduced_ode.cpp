@@ -9,12 +9,10 @@ namespace condyn {
 
 ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
     : model_(model), reduced_(reduced), nm_(static_cast<int>(reduced.M.rows())) {
-  auto held = std::make_shared<const HeldMassless>(
-      LinearMatrices{reduced.M, model.has_damping() ? reduced.C : Eigen::SparseMatrix<double>(),
-                     reduced.K, Eigen::SparseMatrix<double>(0, nm_)});
-  if (!held->empty()) {
-    held_ = std::move(held);  // its consistency system stands in for M̂ (regular on the rest)
-  } else {
+  held_ = held_massless(reduced.M, model.has_damping() ? reduced.C : Eigen::SparseMatrix<double>(),
+                        reduced.K, Eigen::SparseMatrix<double>(0, nm_));
+  // With held DOFs, their consistency system stands in for M̂ (regular on the rest).
+  if (!held_) {
     mass_.compute(reduced.M);
     bool ok = mass_.info() == Eigen::Success;
     if (ok && nm_ > 0) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "dae/held_massless.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/scene_text.hpp"
@@ -77,6 +78,19 @@ RunHooks with_accelerations() {
 double max_abs(const Eigen::MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
 
 }  // namespace
+
+TEST_CASE("held_massless: null without massless DOFs, the held ones found from a system") {
+  const auto chain = test::built(parse_scene_text(kChain, "chain.toml"));
+  const auto held = held_massless_of(*chain.model.system);
+  REQUIRE(held);
+  CHECK(held->dofs() == std::vector<int>{1});
+  CHECK(held_massless_of(chain.model));
+  const auto condensed = test::built(parse_scene_text(kCondensed, "condensed.toml"));
+  CHECK_FALSE(held_massless_of(*condensed.model.system));
+  CHECK_FALSE(held_massless_of(condensed.model));
+  const Model& m = condensed.model;
+  CHECK_FALSE(held_massless(m.M, m.C, m.K, m.A));
+}
 
 TEST_CASE("a massless DOF held by stiffness: every DAE scheme agrees with the hand condensation") {
   const auto ref = test::built(parse_scene_text(kCondensed, "condensed.toml"));
