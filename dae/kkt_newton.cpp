@@ -10,9 +10,14 @@
 
 namespace condyn {
 
-KktNewton::KktNewton(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
-                     const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A)
-    : M_(M), C_(C), K_(K), A_(A), n_(static_cast<int>(M_.rows())), m_(static_cast<int>(A_.rows())) {
+KktNewton::KktNewton(LinearMatrices&& matrices) {
+  // Eigen 3.4's SparseMatrix has no move constructor: swapped in, not copied.
+  M_.swap(matrices.M);
+  C_.swap(matrices.C);
+  K_.swap(matrices.K);
+  A_.swap(matrices.A);
+  n_ = static_cast<int>(M_.rows());
+  m_ = static_cast<int>(A_.rows());
   if (M_.cols() != n_ || K_.rows() != n_ || K_.cols() != n_ || (m_ > 0 && A_.cols() != n_) ||
       (C_.size() > 0 && (C_.rows() != n_ || C_.cols() != n_))) {
     throw std::invalid_argument("KktNewton: the sizes of M, C, K and A disagree");

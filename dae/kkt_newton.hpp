@@ -15,16 +15,16 @@
 #include <Eigen/Sparse>
 
 #include "dae/fixed_pattern_klu.hpp"
+#include "dae/kkt.hpp"
 #include "dae/ode_problem.hpp"
 
 namespace condyn {
 
 class KktNewton final : public NewtonSystem {
  public:
-  /// Copies the matrices (M, C, K n x n with C possibly empty; A m x n). Throws
-  /// std::invalid_argument when their sizes disagree.
-  KktNewton(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
-            const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A);
+  /// Takes the matrices over (M, C, K n x n with C possibly empty; A m x n; swapped, not copied).
+  /// Throws std::invalid_argument when their sizes disagree.
+  explicit KktNewton(LinearMatrices&& matrices);
 
   /// Factors the saddle-point matrix for γ; false when it is singular.
   bool setup(double gamma) override;
@@ -36,7 +36,7 @@ class KktNewton final : public NewtonSystem {
   [[nodiscard]] Eigen::SparseMatrix<double> saddle(double gamma) const;
 
   Eigen::SparseMatrix<double> M_, C_, K_, A_;
-  int n_, m_;
+  int n_ = 0, m_ = 0;
   double gamma_ = 0.0;
   long nonzeros_ = 0;
   FixedPatternKlu klu_;

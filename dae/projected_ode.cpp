@@ -129,8 +129,7 @@ void ProjectedOde::project_error(Ref err) const {
 
 std::unique_ptr<NewtonSystem> ProjectedOde::newton_system() const {
   if (!linear_) return nullptr;
-  const LinearMatrices l = linear_matrices(*system_);
-  return std::make_unique<KktNewton>(l.M, l.C, l.K, l.A);
+  return std::make_unique<KktNewton>(linear_matrices(*system_));
 }
 
 }  // namespace condyn
