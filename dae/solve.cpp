@@ -252,6 +252,11 @@ void solve_projection(const Model& model, const IntegratorOptions& options, Solv
 }  // namespace
 
 SystemSize system_size(const Model& model, const SolveSpec& settings) {
+  return SystemSizer(model)(settings);
+}
+
+SystemSize SystemSizer::operator()(const SolveSpec& settings) {
+  const Model& model = model_;
   Scheme scheme = settings.scheme;
   if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
   refuse_inapplicable(model, scheme);
@@ -267,15 +272,18 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
     const PenaltyOde ode(*model.system, penalty_weights(model, settings));
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }
-  std::optional<EliminatedSystem> reduced;
+  const MechanicalSystem* system = model.system.get();
   if (uses_mixed_treatment(model, scheme, settings)) {
-    const ConstraintTreatment treatment = treat_constraints(model);
-    if (!treatment.eliminated.empty()) reduced.emplace(model, treatment);
+    if (!mixed_) {
+      const ConstraintTreatment treatment = treat_constraints(model);
+      mixed_ = treatment.eliminated.empty()
+                   ? nullptr
+                   : std::make_shared<const EliminatedSystem>(model, treatment);
+    }
+    if (*mixed_) system = mixed_->get();
   }
-  const MechanicalSystem& system =
-      reduced ? static_cast<const MechanicalSystem&>(*reduced) : *model.system;
   if (scheme == Scheme::projection) {
-    const ProjectedOde ode(system, model.u0, !model.nonlinear);
+    const ProjectedOde ode(*system, model.u0, !model.nonlinear);
     // The matrix the Newton iterations factor: the sparse saddle point, else CVODE's dense one.
     if (const auto newton = ode.newton_system()) {
       return {ode.size(), newton->nonzeros()};
@@ -285,7 +293,7 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
   // The Jacobian's pattern does not depend on the values of Baumgarte's gains, only on their
   // being nonzero: unit gains size it without the model's frequencies (a Lanczos run at scale).
   const double gain = scheme == Scheme::baumgarte ? 1.0 : 0.0;
-  const MultiplierDae dae(system, scheme, gain, gain, !model.nonlinear);
+  const MultiplierDae dae(*system, scheme, gain, gain, !model.nonlinear);
   if (condensed) {
     if (const auto newton = dae.newton_system()) return {dae.size(), newton->nonzeros()};
   }

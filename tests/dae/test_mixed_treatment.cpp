@@ -206,6 +206,25 @@ TEST_CASE("info names each row's treatment and sizes the mixed systems") {
   CHECK(text.find("ggl mixed") != std::string::npos);
 }
 
+TEST_CASE("one SystemSizer sizes every scheme as system_size does, pure and mixed") {
+  const auto chain = test::built(parse_scene_text(chain_scene(""), "chain.toml"));
+  SystemSizer sizer(chain.model);  // its mixed system built on first use, then shared
+  for (const Scheme scheme : {Scheme::index1, Scheme::ggl, Scheme::baumgarte, Scheme::index2,
+                              Scheme::index3, Scheme::projection, Scheme::elimination}) {
+    for (const auto treatment : {SolveSpec::Treatment::mixed, SolveSpec::Treatment::multipliers}) {
+      if (treatment == SolveSpec::Treatment::mixed && !mixes(scheme)) continue;
+      CAPTURE(to_string(scheme));
+      SolveSpec settings = test::under(chain.spec.solve, scheme);
+      settings.treatment = treatment;
+      const SystemSize shared = sizer(settings), alone = system_size(chain.model, settings);
+      CHECK(shared.unknowns == alone.unknowns);
+      CHECK(shared.jacobian_nonzeros == alone.jacobian_nonzeros);
+      // Two rows eliminated (28 DOFs left), one kept: the mixed systems are the smaller ones.
+      if (treatment == SolveSpec::Treatment::mixed) CHECK(shared.unknowns < 2 * 30);
+    }
+  }
+}
+
 TEST_CASE("[solve] constraints: 'mixed' only beside a multiplier scheme or auto") {
   CHECK_THROWS_WITH_AS(
       parse_scene_text(chain_scene("scheme = \"elimination\"\nconstraints = \"mixed\"\n"),
