@@ -88,4 +88,15 @@ Model build_model(const SceneSpec& spec) {
   return build_model(spec, ignored);
 }
 
+void release_file_data(SceneSpec& spec) {
+  for (FileMatrix* m :
+       {&spec.model.mass_file, &spec.model.stiffness_file, &spec.model.damping_file})
+    m->release();
+  for (LoadSpec& load : spec.loads) load.pattern.release();
+  for (ConstraintBlockSpec& block : spec.constraint_blocks) {
+    block.A.release();
+    block.g.release();
+  }
+}
+
 }  // namespace condyn

@@ -146,5 +146,9 @@ struct BuildReport {
 [[nodiscard]] Model build_model(const SceneSpec& spec, BuildReport& report);
 /// The same, for callers that do not print the report.
 [[nodiscard]] Model build_model(const SceneSpec& spec);
+/// Frees what build_model copied into the Model from Matrix Market files (M, C, K, load patterns,
+/// constraint blocks and their right-hand sides), so that a run holds the model once, not twice:
+/// at 10⁵ DOFs the scene's copy was 24 of the run's 290 MB. For callers done with building.
+void release_file_data(SceneSpec& spec);
 
 }  // namespace condyn

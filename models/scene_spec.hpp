@@ -32,6 +32,8 @@ struct FileMatrix {
   Eigen::SparseMatrix<double> matrix;
   SourcePoint where;  ///< the key, e.g. "model.stiffness.file"
   [[nodiscard]] bool given() const { return !file.empty(); }
+  /// Frees the matrix (the file name and key stay, for messages).
+  void release() { Eigen::SparseMatrix<double>().swap(matrix); }
 };
 
 struct MemberSpec {

@@ -77,6 +77,7 @@ int run(const RunArgs& args) {
   std::ostream& msg = outputs.messages();
   BuildReport report;
   const Model model = build_model(spec, report);
+  release_file_data(spec);
 
   RunHooks hooks = hooks_for(spec.output.quantities);
   hooks.record_steps = !args.steps_out.empty();
@@ -393,6 +394,7 @@ int main(int argc, char** argv) {
       if (!info_constraints.empty()) spec.solve.treatment = parse_treatment_flag(info_constraints);
       BuildReport report;
       const Model model = build_model(spec, report);
+      release_file_data(spec);
       print_info(std::cout, model, report, spec.solve);
       return 0;
     }
