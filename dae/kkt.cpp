@@ -6,23 +6,33 @@ namespace condyn {
 
 Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
                                        const Eigen::SparseMatrix<double>& A) {
-  const auto n = static_cast<int>(M.rows()), m = static_cast<int>(A.rows());
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(M.nonZeros() + 2 * A.nonZeros()));
-  for (int k = 0; k < M.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) {
-      trip.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+  using Sparse = Eigen::SparseMatrix<double>;
+  const Eigen::Index n = M.rows(), m = A.rows();
+  // Column by column into the compressed arrays (rows ascending: M's below n, A's from n on),
+  // no triplets: at 10^6 DOFs they were 300 MB and a sort. Aᵀ's columns are A's rows.
+  const Sparse At = m > 0 ? Sparse(A.transpose()) : Sparse(n, 0);
+  Sparse kkt(n + m, n + m);
+  kkt.resizeNonZeros(M.nonZeros() + 2 * At.nonZeros());
+  auto* outer = kkt.outerIndexPtr();
+  auto* inner = kkt.innerIndexPtr();
+  double* value = kkt.valuePtr();
+  Eigen::Index k = 0;
+  const auto put = [&](Eigen::Index row, double v) {
+    inner[k] = static_cast<Sparse::StorageIndex>(row);
+    value[k++] = v;
+  };
+  for (Eigen::Index j = 0; j < n; ++j) {
+    outer[j] = static_cast<Sparse::StorageIndex>(k);
+    for (Sparse::InnerIterator it(M, j); it; ++it) put(it.row(), it.value());
+    if (m > 0) {
+      for (Sparse::InnerIterator it(A, j); it; ++it) put(n + it.row(), it.value());
     }
   }
-  for (int k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      trip.emplace_back(n + static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
-      trip.emplace_back(static_cast<int>(it.col()), n + static_cast<int>(it.row()), it.value());
-    }
+  for (Eigen::Index i = 0; i < m; ++i) {
+    outer[n + i] = static_cast<Sparse::StorageIndex>(k);
+    for (Sparse::InnerIterator it(At, i); it; ++it) put(it.row(), it.value());
   }
-  Eigen::SparseMatrix<double> kkt(n + m, n + m);
-  kkt.setFromTriplets(trip.begin(), trip.end());
-  kkt.makeCompressed();
+  outer[n + m] = static_cast<Sparse::StorageIndex>(k);
   return kkt;
 }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "dae/kkt.hpp"
 #include "dae/kkt_newton.hpp"
 #include "dae/projected_ode.hpp"
 #include "models/scene_parser.hpp"
@@ -63,4 +64,32 @@ output_step = 0.1
     // Condition of I − γJ here is below 1e3; the differences carry 1e-10: 1e-8 relative.
     CHECK((x - expected).norm() <= 1e-8 * expected.norm());
   }
+}
+
+TEST_CASE("kkt_matrix: [M Aᵀ; A 0] entry by entry, stored zeros kept, no rows, uncompressed M") {
+  Eigen::MatrixXd Md(3, 3), Ad(2, 3);
+  Md << 2, 0, 0.5, 0, 1, 0, 0.5, 0, 3;
+  Ad << 1, 0, -1, 0, 2, 0;
+  Eigen::SparseMatrix<double> M = Md.sparseView(), A = Ad.sparseView();
+  M.coeffRef(1, 0) = 0.0;  // a stored zero: part of the pattern, as MechanicalSystem's contract
+  M.makeCompressed();
+  const Eigen::SparseMatrix<double> K = kkt_matrix(M, A);
+  REQUIRE(K.isCompressed());
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(5, 5);
+  expected.topLeftCorner(3, 3) = Md;
+  expected.bottomLeftCorner(2, 3) = Ad;
+  expected.topRightCorner(3, 2) = Ad.transpose();
+  CHECK(Eigen::MatrixXd(K) == expected);
+  CHECK(K.nonZeros() == M.nonZeros() + 2 * A.nonZeros());  // the stored zero included
+  // Without rows: M itself; an uncompressed M (inserted entries) gives the same matrix.
+  CHECK(Eigen::MatrixXd(kkt_matrix(M, Eigen::SparseMatrix<double>(0, 3))) == Md);
+  Eigen::SparseMatrix<double> loose(3, 3);
+  loose.insert(2, 2) = 3.0;
+  loose.insert(0, 0) = 2.0;
+  REQUIRE_FALSE(loose.isCompressed());
+  const Eigen::SparseMatrix<double> K2 = kkt_matrix(loose, A);
+  CHECK(K2.coeff(2, 2) == 3.0);
+  CHECK(K2.coeff(4, 1) == 2.0);
+  CHECK(K2.coeff(0, 3) == 1.0);
+  CHECK(K2.nonZeros() == 2 + 2 * A.nonZeros());
 }
