@@ -114,11 +114,9 @@ class Cvode final : public sundials::SundialsStepper {
     SUNContext raw = nullptr;
     if (SUNContext_Create(nullptr, &raw) != 0) throw IntegrationError("SUNContext_Create failed");
     ctx_.reset(raw);
-    y_.reset(N_VNew_Serial(n_, ctx_.get()));
-    work_.reset(N_VNew_Serial(n_, ctx_.get()));
+    y_.reset(sundials::new_vector(n_, ctx_.get()));
+    work_.reset(sundials::new_vector(n_, ctx_.get()));
     if (!y_ || !work_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
-    sundials::use_condyn_vector_ops(y_.get());
-    sundials::use_condyn_vector_ops(work_.get());
     view(y_.get()) = y0;
     mem_.reset(CVodeCreate(CV_BDF, ctx_.get()));
     if (!mem_) throw IntegrationError("CVodeCreate failed");

@@ -188,16 +188,12 @@ class Ida final : public sundials::SundialsStepper {
     SUNContext raw_ctx = nullptr;
     check_raw(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");
     ctx_.reset(raw_ctx);
-    y_.reset(N_VNew_Serial(n_, ctx_.get()));
-    yp_.reset(N_VNew_Serial(n_, ctx_.get()));
-    id_.reset(N_VNew_Serial(n_, ctx_.get()));
-    work_.reset(N_VNew_Serial(n_, ctx_.get()));
+    y_.reset(sundials::new_vector(n_, ctx_.get()));
+    yp_.reset(sundials::new_vector(n_, ctx_.get()));
+    id_.reset(sundials::new_vector(n_, ctx_.get()));
+    work_.reset(sundials::new_vector(n_, ctx_.get()));
     if (!y_ || !yp_ || !id_ || !work_)
       throw IntegrationError("N_VNew_Serial failed (out of memory?)");
-    sundials::use_condyn_vector_ops(y_.get());
-    sundials::use_condyn_vector_ops(yp_.get());
-    sundials::use_condyn_vector_ops(id_.get());
-    sundials::use_condyn_vector_ops(work_.get());
     mem_.reset(IDACreate(ctx_.get()));
     if (!mem_) throw IntegrationError("IDACreate failed");
     if (newton_) {

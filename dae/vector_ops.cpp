@@ -199,6 +199,12 @@ int wrms_norm_mask_array(int nv, N_Vector* X, N_Vector* W, N_Vector id, double* 
 
 }  // namespace
 
+N_Vector new_vector(sunindextype n, SUNContext ctx) {
+  N_Vector v = N_VNew_Serial(n, ctx);
+  if (v != nullptr) use_condyn_vector_ops(v);
+  return v;
+}
+
 void use_condyn_vector_ops(N_Vector v) {
   if (v == nullptr || N_VGetVectorID(v) != SUNDIALS_NVEC_SERIAL) {
     throw std::invalid_argument("use_condyn_vector_ops: a serial N_Vector is expected");

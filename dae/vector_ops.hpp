@@ -22,4 +22,8 @@ namespace condyn::sundials {
 /// Sets the operations of `v`, a serial vector (SUNDIALS_NVEC_SERIAL; else std::invalid_argument).
 void use_condyn_vector_ops(N_Vector v);
 
+/// A new serial vector of length n with these operations (the integrators' y, y', id and work
+/// vectors); null when SUNDIALS cannot allocate it.
+[[nodiscard]] N_Vector new_vector(sunindextype n, SUNContext ctx);
+
 }  // namespace condyn::sundials

@@ -23,8 +23,7 @@ struct Vectors {
     SUNContext_Create(nullptr, &ctx);
     for (int k = 0; k < count; ++k) {
       plain.push_back(N_VNew_Serial(n, ctx));
-      fast.push_back(N_VNew_Serial(n, ctx));
-      condyn::sundials::use_condyn_vector_ops(fast.back());
+      fast.push_back(condyn::sundials::new_vector(n, ctx));  // with condyn's operations
       for (long i = 0; i < n; ++i) {
         const double x = std::sin(0.37 * static_cast<double>(i) + 1.1 * k) + 0.1 * k;
         NV_Ith_S(plain.back(), i) = x;
