@@ -18,6 +18,7 @@ KktNewton::KktNewton(LinearMatrices&& matrices) {
   A_.swap(matrices.A);
   n_ = static_cast<int>(M_.rows());
   m_ = static_cast<int>(A_.rows());
+  work_.resize(n_ + m_);
   if (M_.cols() != n_ || K_.rows() != n_ || K_.cols() != n_ || (m_ > 0 && A_.cols() != n_) ||
       (C_.size() > 0 && (C_.rows() != n_ || C_.cols() != n_))) {
     throw std::invalid_argument("KktNewton: the sizes of M, C, K and A disagree");
@@ -41,11 +42,13 @@ bool KktNewton::setup(double gamma) {
 void KktNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   const auto bu = b.head(n_);
   const auto bv = b.segment(n_, n_);
-  Eigen::VectorXd rhs(n_ + m_);
-  rhs.head(n_) = M_ * bv - gamma_ * (K_ * bu);
-  if (m_ > 0) rhs.tail(m_) = A_ * bv;
-  const Eigen::VectorXd sol = klu_.solve(rhs);
-  const Eigen::VectorXd xv = sol.head(n_);
+  // One buffer for the right-hand side and the solution, sized once: no allocation per solve.
+  Eigen::VectorXd& x = work_;
+  x.head(n_).noalias() = M_ * bv;
+  x.head(n_).noalias() -= gamma_ * (K_ * bu);
+  if (m_ > 0) x.tail(m_).noalias() = A_ * bv;
+  klu_.solve_in_place(x);
+  const auto xv = x.head(n_);
   b.head(n_) += gamma_ * xv;  // x_u = b_u + γ x_v
   b.segment(n_, n_) = xv;
 }

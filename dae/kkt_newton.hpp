@@ -40,6 +40,7 @@ class KktNewton final : public NewtonSystem {
   double gamma_ = 0.0;
   long nonzeros_ = 0;
   FixedPatternKlu klu_;
+  Eigen::VectorXd work_;  ///< n + m: the saddle-point right-hand side, then its solution
 };
 
 }  // namespace condyn
