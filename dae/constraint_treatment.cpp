@@ -30,7 +30,7 @@ RowMajor rows_of(const Model& model, const std::vector<int>& rows) {
 /// deg(s): the nonzeros of column s of M, C or K, the largest (each is symmetric).
 std::vector<long> degrees(const Model& model) {
   std::vector<long> deg(static_cast<std::size_t>(model.dofs()), 0);
-  for (const auto* mat : {&model.M, &model.C, &model.K}) {
+  for (const auto* mat : {&model.M, &model.C, &*model.K}) {
     if (mat->cols() != model.dofs()) continue;
     for (Eigen::Index j = 0; j < mat->outerSize(); ++j) {
       long count = 0;

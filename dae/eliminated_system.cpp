@@ -46,15 +46,16 @@ EliminatedSystem::EliminatedSystem(const Model& model, const ConstraintTreatment
   f_.setZero(n);
   rows_.setZero(d->m);
   if (!model.is_nonlinear()) {
-    // Constant M, f_u, f_v, A: the reduced blocks once, for every clone (at any state: u_ = 0).
+    // Constant M, K, C, A: the reduced blocks once, for every clone (at any state: u_ = 0).
     d->M = d->Tt * full_->mass(0.0, u_) * d->T;
-    d->Fu = d->Tt * full_->force_jacobian_u(0.0, u_, v_) * d->T;
-    d->Fv = d->Tt * full_->force_jacobian_v(0.0, u_, v_) * d->T;
+    d->K = d->Tt * full_->stiffness(0.0, u_, v_) * d->T;
+    d->C = d->Tt * full_->damping(0.0, u_, v_) * d->T;
     d->A = d->S * full_->constraint_jacobian(0.0, u_) * d->T;
     d->constant = true;
   } else {
     // State-dependent blocks, mapped at every evaluation: product plans made once.
-    mass_ = fu_ = fv_ = mass_jacobian_ = constraint_force_jacobian_ = FixedProduct(d->Tt, d->T);
+    mass_ = stiffness_ = damping_ = mass_jacobian_ = constraint_force_jacobian_ =
+        FixedProduct(d->Tt, d->T);
     a_ = constraint_product_jacobian_ = velocity_residual_jacobian_ = bias_jacobian_u_ =
         bias_jacobian_v_ = FixedProduct(d->S, d->T);
   }
@@ -69,8 +70,8 @@ EliminatedSystem::EliminatedSystem(const EliminatedSystem& other)
       f_(other.f_),
       rows_(other.rows_),
       mass_(other.mass_),
-      fu_(other.fu_),
-      fv_(other.fv_),
+      stiffness_(other.stiffness_),
+      damping_(other.damping_),
       a_(other.a_),
       mass_jacobian_(other.mass_jacobian_),
       constraint_force_jacobian_(other.constraint_force_jacobian_),
@@ -134,23 +135,21 @@ void EliminatedSystem::force(double t, ConstRef q, ConstRef w, Ref f) {
   f.noalias() = data_->Tt * f_;
 }
 
-const EliminatedSystem::Sparse& EliminatedSystem::force_jacobian_u(double t, ConstRef q,
-                                                                   ConstRef w) {
-  if (data_->constant) return data_->Fu;
+const EliminatedSystem::Sparse& EliminatedSystem::stiffness(double t, ConstRef q, ConstRef w) {
+  if (data_->constant) return data_->K;
   at(t, q, w);
-  block_ = full_->force_jacobian_u(t, u_, v_);
+  block_ = full_->stiffness(t, u_, v_);
   if (data_->rheonomic) {
     const Sparse& mj = full_->mass_jacobian(t, u_, lifted(2, t));
-    if (mj.size() > 0) block_ -= mj;
+    if (mj.size() > 0) block_ += mj;  // −d(f − M G g'')/du = K + d(M a)/du at a = G g''
   }
-  return fu_(block_);
+  return stiffness_(block_);
 }
 
-const EliminatedSystem::Sparse& EliminatedSystem::force_jacobian_v(double t, ConstRef q,
-                                                                   ConstRef w) {
-  if (data_->constant) return data_->Fv;
+const EliminatedSystem::Sparse& EliminatedSystem::damping(double t, ConstRef q, ConstRef w) {
+  if (data_->constant) return data_->C;
   at(t, q, w);
-  return fv_(full_->force_jacobian_v(t, u_, v_));
+  return damping_(full_->damping(t, u_, v_));
 }
 
 const EliminatedSystem::Sparse& EliminatedSystem::constraint_jacobian(double t, ConstRef q) {

@@ -43,8 +43,8 @@ class EliminatedSystem final : public MechanicalSystem {
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return data_->position; }
   [[nodiscard]] const Sparse& mass(double t, ConstRef q) override;
   void force(double t, ConstRef q, ConstRef w, Ref f) override;
-  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef q, ConstRef w) override;
-  [[nodiscard]] const Sparse& force_jacobian_v(double t, ConstRef q, ConstRef w) override;
+  [[nodiscard]] const Sparse& stiffness(double t, ConstRef q, ConstRef w) override;
+  [[nodiscard]] const Sparse& damping(double t, ConstRef q, ConstRef w) override;
   [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef q) override;
   void position_residual(double t, ConstRef q, Ref phi) override;
   void velocity_residual(double t, ConstRef q, ConstRef w, Ref psi) override;
@@ -80,7 +80,7 @@ class EliminatedSystem final : public MechanicalSystem {
     std::vector<TimeFunction> g;        ///< the eliminated rows' position-level right-hand sides
     bool rheonomic = false;             ///< some g_e is not identically zero
     bool constant = false;              ///< a linear model: the blocks below are formed once
-    Sparse M, Fu, Fv, A;                ///< M̂, Tᵀ f_u T, Tᵀ f_v T, A_k T (constant only)
+    Sparse M, K, C, A;                  ///< M̂, Tᵀ K T, Tᵀ C T, A_k T (constant only)
     Sparse Ae;                          ///< the eliminated rows (constant)
     Eigen::SimplicialLDLT<Sparse> aat;  ///< A_e A_eᵀ
     int m = 0;                          ///< every row
@@ -99,7 +99,7 @@ class EliminatedSystem final : public MechanicalSystem {
   Eigen::VectorXd u_, v_, f_, rows_;
   Sparse block_;
   /// The state-dependent blocks' maps (nonlinear models only): Tᵀ X T or S X T.
-  FixedProduct mass_, fu_, fv_, a_, mass_jacobian_, constraint_force_jacobian_,
+  FixedProduct mass_, stiffness_, damping_, a_, mass_jacobian_, constraint_force_jacobian_,
       constraint_product_jacobian_, velocity_residual_jacobian_, bias_jacobian_u_, bias_jacobian_v_;
 };
 

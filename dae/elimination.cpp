@@ -25,7 +25,7 @@ ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferr
   const auto& G = r.transform.G;
   const Eigen::SparseMatrix<double> Tt = T.transpose();
   r.M = Tt * model.M * T;
-  r.K = Tt * model.K * T;
+  r.K = Tt * *model.K * T;
   const int nm = static_cast<int>(T.cols());
   if (model.has_damping()) {
     r.C = Tt * model.C * T;
@@ -33,7 +33,7 @@ ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferr
     r.C.resize(nm, nm);
   }
   // Products right to left: K G is n x m with the slaves' neighbours only.
-  r.FK = -(Tt * Eigen::SparseMatrix<double>(model.K * G));
+  r.FK = -(Tt * Eigen::SparseMatrix<double>(*model.K * G));
   r.FM = -(Tt * Eigen::SparseMatrix<double>(model.M * G));
   if (model.has_damping()) {
     r.FC = -(Tt * Eigen::SparseMatrix<double>(model.C * G));

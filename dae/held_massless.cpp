@@ -154,7 +154,7 @@ std::shared_ptr<const HeldMassless> held_massless_of(const MechanicalSystem& sys
 
 std::shared_ptr<const HeldMassless> held_massless_of(const Model& model) {
   if (model.is_nonlinear()) return nullptr;
-  return held_massless(model.M, model.has_damping() ? model.C : Sparse(), model.K, model.A,
+  return held_massless(model.M, model.has_damping() ? model.C : Sparse(), *model.K, model.A,
                        /*consistency=*/false);
 }
 

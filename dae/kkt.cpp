@@ -41,8 +41,8 @@ LinearMatrices linear_matrices(const MechanicalSystem& system) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s->dofs());
   LinearMatrices out;
   out.M = s->mass(0.0, zero);
-  out.K = -s->force_jacobian_u(0.0, zero, zero);
-  out.C = -s->force_jacobian_v(0.0, zero, zero);
+  out.K = s->stiffness(0.0, zero, zero);
+  out.C = s->damping(0.0, zero, zero);
   out.A = s->constraints() > 0 ? s->constraint_jacobian(0.0, zero)
                                : Eigen::SparseMatrix<double>(0, s->dofs());
   return out;

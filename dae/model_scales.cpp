@@ -77,7 +77,7 @@ ModelScales model_scales(const Model& model) {
   }
   Eigen::VectorXd f(n);
   system.force(t, model.u0, model.v0, f);
-  Eigen::SparseMatrix<double> K = -system.force_jacobian_u(t, model.u0, model.v0);
+  Eigen::SparseMatrix<double> K = system.stiffness(t, model.u0, model.v0);
   Eigen::SparseMatrix<double> A;
   if (m > 0) {
     A = system.constraint_jacobian(t, model.u0);

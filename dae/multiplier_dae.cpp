@@ -70,8 +70,8 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
   const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
   // Momentum rows: M v' − f + Aᵀλ.
   visit(iv, iv, system_->mass(t, uu), cj);
-  visit(iv, iu, system_->force_jacobian_u(t, uu, vv), -1.0);
-  visit(iv, iv, system_->force_jacobian_v(t, uu, vv), -1.0);
+  visit(iv, iu, system_->stiffness(t, uu, vv), 1.0);
+  visit(iv, iv, system_->damping(t, uu, vv), 1.0);
   visit(iv, iu, system_->mass_jacobian(t, uu, vp), 1.0);
   if (m_ == 0) return;
   const auto& A = system_->constraint_jacobian(t, uu);

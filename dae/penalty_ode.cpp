@@ -17,7 +17,7 @@ PenaltyWeights penalty_weights(const Model& model, const SolveSpec& settings) {
     p.position = *settings.penalty_weight;
     rule << "penalty weight w = " << p.position << " from the scene";
   } else {
-    const double k_max = Eigen::VectorXd(model.K.diagonal()).cwiseAbs().maxCoeff();
+    const double k_max = Eigen::VectorXd(model.K->diagonal()).cwiseAbs().maxCoeff();
     if (k_max > 0.0) {
       p.position = 1e4 * k_max;
       rule << "penalty weight w = " << p.position << " (1e4 x the largest stiffness diagonal)";
@@ -53,13 +53,13 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
   const auto& M = system_->mass(0.0, zero);
   const auto& A = system_->constraint_jacobian(0.0, zero);
-  const auto& f_u = system_->force_jacobian_u(0.0, zero, zero);
-  const auto& f_v = system_->force_jacobian_v(0.0, zero, zero);
+  const auto& K0 = system_->stiffness(0.0, zero, zero);
+  const auto& C0 = system_->damping(0.0, zero, zero);
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(0, 0, n_);
   jacobian_.declare_identity(0, n_, n_);
-  jacobian_.declare(n_, 0, f_u);
-  jacobian_.declare(n_, n_, f_v);
+  jacobian_.declare(n_, 0, K0);
+  jacobian_.declare(n_, n_, C0);
   jacobian_.declare(n_, n_, M);
   const Eigen::SparseMatrix<double> At = A.transpose();
   const Eigen::SparseMatrix<double> AtPA = At * position_mask_ * A, AtVA = At * velocity_mask_ * A;
@@ -67,8 +67,8 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   jacobian_.declare(n_, n_, AtVA);
   jacobian_.finish();
   // The penalized system's matrices (no curvature: constant), and its massless DOFs.
-  const Eigen::SparseMatrix<double> K = -f_u + weights.position * AtPA,
-                                    C = -f_v + weights.velocity * AtVA;
+  const Eigen::SparseMatrix<double> K = K0 + weights.position * AtPA,
+                                    C = C0 + weights.velocity * AtVA;
   held_ = held_massless(M, C.nonZeros() > 0 ? C : Eigen::SparseMatrix<double>(), K,
                         Eigen::SparseMatrix<double>(0, n_));
 }
@@ -98,13 +98,13 @@ void PenaltyOde::fill_jacobian(double t, ConstRef y, ConstRef /*yp*/, double cj,
                                JacobianMap J) const {
   const auto u = y.head(n_), v = y.tail(n_);
   const auto& M = system_->mass(t, u);
-  const auto& f_u = system_->force_jacobian_u(t, u, v);
-  const auto& f_v = system_->force_jacobian_v(t, u, v);
+  const auto& K = system_->stiffness(t, u, v);
+  const auto& C = system_->damping(t, u, v);
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add_identity(J, 0, 0, n_, cj);
   BlockJacobian::add_identity(J, 0, n_, n_, -1.0);
-  BlockJacobian::add(J, n_, 0, f_u, -1.0);
-  BlockJacobian::add(J, n_, n_, f_v, -1.0);
+  BlockJacobian::add(J, n_, 0, K, 1.0);
+  BlockJacobian::add(J, n_, n_, C, 1.0);
   BlockJacobian::add(J, n_, n_, M, cj);
   if (m_ == 0) return;
   const auto& A = system_->constraint_jacobian(t, u);

@@ -16,7 +16,7 @@ Eigen::VectorXd MultiplierRecovery::operator()(double t, const Eigen::VectorXd& 
                                                const Eigen::VectorXd& v,
                                                const Eigen::VectorXd& a) const {
   if (model_.constraint_count() == 0) return {};
-  Eigen::VectorXd rho = model_.M * a + model_.K * u - model_.applied_forces(t);
+  Eigen::VectorXd rho = model_.M * a + *model_.K * u - model_.applied_forces(t);
   if (model_.has_damping()) rho += model_.C * v;
   return -aat_.solve(model_.A * rho);
 }

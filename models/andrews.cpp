@@ -169,7 +169,8 @@ class Andrews final : public MechanicalSystem {
     f[epsilon] = -c6 * v[Omega] * (v[Omega] + 2 * v[epsilon]) * cO;
   }
 
-  [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef q, ConstRef v) override {
+  /// −df/dq (D below is df/dq).
+  [[nodiscard]] const Sparse& stiffness(double /*t*/, ConstRef q, ConstRef v) override {
     using par::c2, par::c4, par::c6;
     const Spring sp(q[gamma_]);
     const double cT = std::cos(q[Theta]), sP = std::sin(q[Phi]), sO = std::sin(q[Omega]);
@@ -183,11 +184,12 @@ class Andrews final : public MechanicalSystem {
     D(delta, Phi) = c4 * v[Phi] * (v[Phi] + 2 * v[delta]) * sP;
     D(Omega, Omega) = -c6 * v[epsilon] * v[epsilon] * sO;
     D(epsilon, Omega) = c6 * v[Omega] * (v[Omega] + 2 * v[epsilon]) * sO;
-    store_dense(f_u_, D);
-    return f_u_;
+    store_dense(stiffness_, -D);
+    return stiffness_;
   }
 
-  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef q, ConstRef v) override {
+  /// −df/dq' (D below is df/dq').
+  [[nodiscard]] const Sparse& damping(double /*t*/, ConstRef q, ConstRef v) override {
     using par::c2, par::c4, par::c6;
     const double sT = std::sin(q[Theta]), cP = std::cos(q[Phi]), cO = std::cos(q[Omega]);
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(kN, kN);
@@ -200,8 +202,8 @@ class Andrews final : public MechanicalSystem {
     D(Omega, epsilon) = 2 * c6 * v[epsilon] * cO;
     D(epsilon, Omega) = -2 * c6 * (v[Omega] + v[epsilon]) * cO;
     D(epsilon, epsilon) = -2 * c6 * v[Omega] * cO;
-    store_dense(f_v_, D);
-    return f_v_;
+    store_dense(damping_, -D);
+    return damping_;
   }
 
   [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef q) override {
@@ -309,7 +311,7 @@ class Andrews final : public MechanicalSystem {
   }
 
   std::vector<bool> position_ = std::vector<bool>(kM, true);
-  Sparse M_, f_u_, f_v_, A_, mass_jac_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_,
+  Sparse M_, stiffness_, damping_, A_, mass_jac_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_,
       gamma_jac_v_;
 };
 

@@ -42,7 +42,7 @@ Eigen::Vector2d spring_force(const Eigen::Vector2d& p) {
 }
 
 /// Its Jacobian: L0 (I/|p| − p pᵀ/|p|³) − I.
-Eigen::Matrix2d spring_stiffness(const Eigen::Vector2d& p) {
+Eigen::Matrix2d spring_force_jacobian(const Eigen::Vector2d& p) {
   const double l = p.norm();
   return par::L0 / l * (Eigen::Matrix2d::Identity() - p * p.transpose() / (l * l)) -
          Eigen::Matrix2d::Identity();
@@ -75,17 +75,18 @@ class CarAxis final : public MechanicalSystem {
     f[yr] -= par::k * par::g;
   }
 
-  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef /*v*/) override {
+  /// −df/du: the springs' Jacobians negated.
+  [[nodiscard]] const Sparse& stiffness(double t, ConstRef u, ConstRef /*v*/) override {
     const Road road(t);
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(4, 4);
-    D.topLeftCorner<2, 2>() = spring_stiffness(u.head<2>());
-    D.bottomRightCorner<2, 2>() = spring_stiffness(u.tail<2>() - Eigen::Vector2d(road.xb, road.yb));
-    store_dense(f_u_, D);
-    return f_u_;
+    D.topLeftCorner<2, 2>() = -spring_force_jacobian(u.head<2>());
+    D.bottomRightCorner<2, 2>() =
+        -spring_force_jacobian(u.tail<2>() - Eigen::Vector2d(road.xb, road.yb));
+    store_dense(stiffness_, D);
+    return stiffness_;
   }
   /// No damping: 4 x 4 without entries.
-  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
+  [[nodiscard]] const Sparse& damping(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
     return no_terms_;
   }
 
@@ -189,7 +190,7 @@ class CarAxis final : public MechanicalSystem {
 
   std::vector<bool> position_ = {true, true};
   Sparse M_, no_terms_;
-  Sparse f_u_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_, gamma_jac_v_;
+  Sparse stiffness_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_u_, gamma_jac_v_;
 };
 
 }  // namespace

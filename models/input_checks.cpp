@@ -97,7 +97,7 @@ void ModelBuilder::check_finite() const {
   const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
       {&model_.M, "mass matrix M"},
       {&model_.C, "damping matrix C"},
-      {&model_.K, "stiffness matrix K"},
+      {&*model_.K, "stiffness matrix K"},
       {&model_.A, "constraint matrix A"}};
   // A nonlinear model's matrices are its linearization at (u0, v0): too large an initial state
   // is the likelier cause there.
@@ -129,7 +129,7 @@ void ModelBuilder::check_magnitudes() {
   const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
       {&model_.M, "mass matrix M"},
       {&model_.C, "damping matrix C"},
-      {&model_.K, "stiffness matrix K"},
+      {&*model_.K, "stiffness matrix K"},
       {&model_.A, "constraint matrix A"}};
   for (const auto& [mat, name] : matrices) {
     double hi = 0.0;
@@ -150,7 +150,7 @@ void ModelBuilder::check_magnitudes() {
       report_.warnings.push_back(std::string("the ") + name + " has entries up to magnitude " +
                                  fmt(hi) + ": beyond 1e-15 ... 1e15, check the units");
     }
-    const bool diagonal_matters = mat == &model_.M || mat == &model_.K;
+    const bool diagonal_matters = mat == &model_.M || mat == &*model_.K;
     if (diagonal_matters && dhi > 0.0 && dhi / dlo > kSpread) {
       report_.warnings.push_back(std::string("the diagonal of the ") + name + " spans " + fmt(dlo) +
                                  " to " + fmt(dhi) + " (ratio " + fmt(dhi / dlo) +
@@ -169,7 +169,7 @@ void ModelBuilder::check_size() {
   sizes.constraints = model_.constraint_count();
   sizes.nnz_mass = static_cast<double>(model_.M.nonZeros());
   sizes.nnz_damping = static_cast<double>(model_.C.nonZeros());
-  sizes.nnz_stiffness = static_cast<double>(model_.K.nonZeros());
+  sizes.nnz_stiffness = static_cast<double>(model_.K->nonZeros());
   sizes.nnz_constraints = static_cast<double>(model_.A.nonZeros());
   const MemoryEstimate estimate = integration_memory_estimate(sizes);
   const std::optional<double> available = available_memory_bytes();
@@ -187,7 +187,7 @@ void ModelBuilder::check_size() {
 void ModelBuilder::check_degenerate_dofs() const {
   const int n = model_.dofs();
   std::vector<bool> has(static_cast<std::size_t>(n), false);
-  for (const auto* mat : {&model_.M, &model_.K, &model_.C, &model_.A}) {
+  for (const auto* mat : {&model_.M, &*model_.K, &model_.C, &model_.A}) {
     for (int k = 0; k < mat->outerSize(); ++k) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(*mat, k); it; ++it) {
         if (it.value() != 0.0) has[static_cast<std::size_t>(it.col())] = true;

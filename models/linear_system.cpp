@@ -5,8 +5,8 @@ namespace condyn {
 LinearSystem::LinearSystem(const Model& model) {
   auto d = std::make_shared<Data>();
   d->M = model.M;
-  d->minus_K = -model.K;
-  d->minus_C = -model.C;
+  d->K = model.K.share();
+  d->C = model.C;
   d->A = model.A;
   d->loads = model.loads;
   d->rows = LinearRows(model.constraints);
@@ -20,8 +20,9 @@ LinearSystem::LinearSystem(const Model& model) {
 
 void LinearSystem::force(double t, ConstRef u, ConstRef v, Ref f) {
   const Data& d = *data_;
-  f.noalias() = d.minus_K * u;
-  if (d.damped) f.noalias() += d.minus_C * v;
+  f.setZero();
+  f.noalias() -= *d.K * u;
+  if (d.damped) f.noalias() -= d.C * v;
   const double steps = steps_at(t);
   for (const auto& load : d.loads) load.add_to(f, load.value.derivative(0, t, steps));
 }
@@ -31,15 +32,15 @@ std::optional<double> LinearSystem::energy(double t, ConstRef u, ConstRef v) {
   const Data& d = *data_;
   Eigen::VectorXd f = Eigen::VectorXd::Zero(u.size());
   for (const auto& load : d.loads) load.add_to(f, load.value.derivative(0, t, t));
-  return 0.5 * v.dot(d.M * v) - 0.5 * u.dot(d.minus_K * u) - f.dot(u);
+  return 0.5 * v.dot(d.M * v) + 0.5 * u.dot(*d.K * u) - f.dot(u);
 }
 
 std::optional<MechanicalSystem::EnergyParts> LinearSystem::energy_parts(double t, ConstRef u,
                                                                         ConstRef v) {
   const Data& d = *data_;
   EnergyParts parts;
-  parts.potential = -0.5 * u.dot(d.minus_K * u);
-  if (d.damped) parts.dissipation_power = -v.dot(d.minus_C * v);
+  parts.potential = 0.5 * u.dot(*d.K * u);
+  if (d.damped) parts.dissipation_power = v.dot(d.C * v);
   const double steps = steps_at(t);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(v.size());
   for (const auto& load : d.loads) load.add_to(f, load.value.derivative(0, t, steps));

@@ -4,8 +4,9 @@
 /// ψ = A u' − g'(t) (position rows) or A u' − h(t) (velocity rows), γ = g'' or h'.
 /// Rows whose right-hand side is identically zero never evaluate a time function.
 ///
-/// It owns what it evaluates (copied from the model once, at build time) in one constant block
-/// that its clones share: a clone for a run costs a pointer, not a copy of the matrices.
+/// It owns what it evaluates (copied from the model once, at build time; K shared with the
+/// model, not copied) in one constant block that its clones share: a clone for a run costs a
+/// pointer, not a copy of the matrices.
 
 #include <memory>
 
@@ -27,14 +28,12 @@ class LinearSystem final : public MechanicalSystem {
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return data_->position; }
   [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return data_->M; }
   void force(double t, ConstRef u, ConstRef v, Ref f) override;
-  [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
-    return data_->minus_K;
+  [[nodiscard]] const Sparse& stiffness(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
+    return *data_->K;
   }
   /// No nonzeros without damping: the block drops out of the pattern.
-  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
-    return data_->minus_C;
+  [[nodiscard]] const Sparse& damping(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
+    return data_->C;
   }
   [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef /*u*/) override {
     return data_->A;
@@ -61,7 +60,8 @@ class LinearSystem final : public MechanicalSystem {
 
  private:
   struct Data {
-    Sparse M, minus_K, minus_C, A;
+    std::shared_ptr<const Sparse> K;  ///< the Model's own (Model::K): shared, not copied
+    Sparse M, C, A;
     std::vector<Load> loads;
     LinearRows rows;
     std::vector<bool> position;

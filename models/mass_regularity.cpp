@@ -120,7 +120,7 @@ std::vector<bool> ModelBuilder::held_massless() const {
   std::vector<bool> held(static_cast<std::size_t>(n), false);
   const Eigen::SparseMatrix<double> none;
   const HeldDofs dofs =
-      held_massless_dofs(model_.M, model_.has_damping() ? model_.C : none, model_.K, model_.A);
+      held_massless_dofs(model_.M, model_.has_damping() ? model_.C : none, *model_.K, model_.A);
   const bool truss =
       spec_.model.type == ModelSpec::Type::truss2d || spec_.model.type == ModelSpec::Type::truss3d;
   const SourcePoint where{truss ? "model.masses" : "model.mass", spec_.model.where.line};
@@ -149,7 +149,7 @@ std::vector<bool> ModelBuilder::held_massless() const {
                     "coupling to other DOFs: their momentum rows are neither algebraic nor first "
                     "order; give them mass, damping or no damping coupling");
   }
-  if (const auto why = singular_held_block(dofs, model_.C, model_.K)) {
+  if (const auto why = singular_held_block(dofs, model_.C, *model_.K)) {
     std::vector<int> massless = dofs.undamped;
     massless.insert(massless.end(), dofs.damped.begin(), dofs.damped.end());
     fail(where, named(massless) + " no mass and no constraint, and " + *why +

@@ -117,8 +117,8 @@ void ModelBuilder::build_matrix() {
   const auto& m = spec_.model;
   set_dofs(m.dofs);
   model_.M = m.mass_file.given() ? file_psd(m.mass_file, "mass") : sparse_psd(m.mass, "mass");
-  model_.K = m.stiffness_file.given() ? file_psd(m.stiffness_file, "stiffness")
-                                      : sparse_psd(m.stiffness, "stiffness");
+  model_.K.edit() = m.stiffness_file.given() ? file_psd(m.stiffness_file, "stiffness")
+                                             : sparse_psd(m.stiffness, "stiffness");
   model_.C.resize(model_.dofs(), model_.dofs());
   if (m.damping_file.given()) {
     model_.C = file_psd(m.damping_file, "damping");
@@ -126,7 +126,7 @@ void ModelBuilder::build_matrix() {
     model_.C = sparse_psd(m.damping, "damping");
   }
   model_.M.makeCompressed();
-  model_.K.makeCompressed();
+  model_.K.edit().makeCompressed();
   model_.C.makeCompressed();
 }
 
@@ -140,7 +140,7 @@ void ModelBuilder::apply_rayleigh() {
   const auto [a0, a1] = *spec_.model.rayleigh;
   report_.damping = spec_.model.rayleigh_rule;
   // M and K are positive semi-definite, a0 and a1 >= 0: so is C.
-  model_.C = (a0 * model_.M + a1 * model_.K).pruned();
+  model_.C = (a0 * model_.M + a1 * *model_.K).pruned();
   model_.C.makeCompressed();
 }
 

@@ -56,9 +56,12 @@ class MechanicalSystem {
   /// f(t, u, u'): applied loads minus internal forces (K u + C u' for a linear model), plus the
   /// velocity-dependent inertia terms of generalized coordinates. Load steps as begin_segment says.
   virtual void force(double t, ConstRef u, ConstRef v, Ref f) = 0;
-  /// df/du and df/du', n x n each, patterns fixed; references valid until the next call.
-  [[nodiscard]] virtual const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) = 0;
-  [[nodiscard]] virtual const Sparse& force_jacobian_v(double t, ConstRef u, ConstRef v) = 0;
+  /// The tangent stiffness −df/du and damping −df/du', n x n each (K and C of a linear model),
+  /// patterns fixed; references valid until the next call. Written with the structural sign so
+  /// that a linear system returns the model's own K and C: one copy of the stiffness in a run
+  /// (at 10⁶ DOFs a copy of K is 200 MB).
+  [[nodiscard]] virtual const Sparse& stiffness(double t, ConstRef u, ConstRef v) = 0;
+  [[nodiscard]] virtual const Sparse& damping(double t, ConstRef u, ConstRef v) = 0;
 
   /// A(t, u), m x n, pattern fixed; the reference stays valid until the next call.
   [[nodiscard]] virtual const Sparse& constraint_jacobian(double t, ConstRef u) = 0;

@@ -35,7 +35,7 @@ void ModelBuilder::apply_modal_damping() {
                     "which stays sparse");
   }
   const Eigen::MatrixXd N = null_space_basis(model_.A, n);
-  const Eigen::MatrixXd M(model_.M), K(model_.K);
+  const Eigen::MatrixXd M(model_.M), K(*model_.K);
   const Eigen::MatrixXd Mr = N.transpose() * M * N, Kr = N.transpose() * K * N;
   const Eigen::LLT<Eigen::MatrixXd> regular(Mr);
   if (regular.info() != Eigen::Success || regular.rcond() < 1e-12) {

@@ -18,6 +18,7 @@
 #include "models/benchmarks.hpp"
 #include "models/mechanical_system.hpp"
 #include "models/scene_spec.hpp"
+#include "models/shared_sparse.hpp"
 
 namespace condyn {
 
@@ -74,7 +75,9 @@ struct Model {
   std::string file, name;
   std::vector<std::string> dof_names;
   std::map<std::string, int> dof_index;
-  Eigen::SparseMatrix<double> M, C, K;  ///< C has no nonzeros when the scene has no damping
+  Eigen::SparseMatrix<double> M, C;  ///< C has no nonzeros when the scene has no damping
+  /// The stiffness, held once for the model and its LinearSystem (read *K, write K.edit()).
+  SharedSparse K;
   std::vector<Load> loads;
   /// [ground_motion]: the influence vector r and the ground's acceleration a_g(t) (the load
   /// −M r a_g is among `loads`); the outputs are relative to the ground.

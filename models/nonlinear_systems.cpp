@@ -102,11 +102,11 @@ void ModelBuilder::linearize() {
   const auto evaluator = model_.evaluator();
   MechanicalSystem& s = *evaluator;
   model_.M = s.mass(0.0, model_.u0);
-  model_.K = -s.force_jacobian_u(0.0, model_.u0, model_.v0);
-  model_.C = -s.force_jacobian_v(0.0, model_.u0, model_.v0);
+  model_.K.edit() = s.stiffness(0.0, model_.u0, model_.v0);
+  model_.C = s.damping(0.0, model_.u0, model_.v0);
   if (model_.C.rows() != model_.dofs()) model_.C.resize(model_.dofs(), model_.dofs());
   model_.A = s.constraint_jacobian(0.0, model_.u0);
-  for (auto* mat : {&model_.M, &model_.K, &model_.C, &model_.A}) mat->prune(0.0);
+  for (auto* mat : {&model_.M, &model_.K.edit(), &model_.C, &model_.A}) mat->prune(0.0);
 }
 
 }  // namespace condyn

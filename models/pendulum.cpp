@@ -49,12 +49,10 @@ class Pendulum final : public MechanicalSystem {
   [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
   void force(double /*t*/, ConstRef /*u*/, ConstRef /*v*/, Ref f) override { f << 0.0, -g_; }
   /// Constant gravity: 2 x 2 without entries.
-  [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
+  [[nodiscard]] const Sparse& stiffness(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
     return no_terms_;
   }
-  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
+  [[nodiscard]] const Sparse& damping(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
     return no_terms_;
   }
 

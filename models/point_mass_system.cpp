@@ -107,11 +107,10 @@ void PointMassSystem::force(double t, ConstRef u, ConstRef /*v*/, Ref f) {
   }
 }
 
-const MechanicalSystem::Sparse& PointMassSystem::force_jacobian_u(double /*t*/, ConstRef u,
-                                                                  ConstRef /*v*/) {
+const MechanicalSystem::Sparse& PointMassSystem::stiffness(double /*t*/, ConstRef u,
+                                                           ConstRef /*v*/) {
   if (!layout_.nonlinear_geometry) {
-    f_u_ = -K_linear_;
-    return f_u_;
+    return K_linear_;
   }
   const int dim = layout_.dimension;
   for (const auto& b : layout_.bars) {
@@ -122,9 +121,9 @@ const MechanicalSystem::Sparse& PointMassSystem::force_jacobian_u(double /*t*/, 
     const Eigen::MatrixXd tangent =
         (b.EA / b.length) * e * e.transpose() +
         (N / l) * (Eigen::MatrixXd::Identity(dim, dim) - e * e.transpose());
-    add_block_pair(trip_, b, -tangent);
+    add_block_pair(trip_, b, tangent);
   }
-  return assemble(f_u_, n_, n_, trip_);
+  return assemble(stiffness_, n_, n_, trip_);
 }
 
 const MechanicalSystem::Sparse& PointMassSystem::constraint_jacobian(double /*t*/, ConstRef u) {

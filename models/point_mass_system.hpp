@@ -51,9 +51,8 @@ class PointMassSystem final : public MechanicalSystem {
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return position_; }
   [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
   void force(double t, ConstRef u, ConstRef v, Ref f) override;
-  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) override;
-  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
+  [[nodiscard]] const Sparse& stiffness(double t, ConstRef u, ConstRef v) override;
+  [[nodiscard]] const Sparse& damping(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
     return no_damping_;
   }
   [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) override;
@@ -95,7 +94,7 @@ class PointMassSystem final : public MechanicalSystem {
   std::vector<bool> position_;
   Sparse M_, K_linear_, no_damping_;
   bool conservative_ = false;
-  Sparse f_u_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
+  Sparse stiffness_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
   std::vector<Eigen::Triplet<double>> trip_;
 };
 

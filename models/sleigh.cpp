@@ -44,12 +44,10 @@ class Sleigh final : public MechanicalSystem {
     f.setZero();
     for (const auto& l : p_.loads) l.add_to(f, l.value.derivative(0, t, steps_at(t)));
   }
-  [[nodiscard]] const Sparse& force_jacobian_u(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
+  [[nodiscard]] const Sparse& stiffness(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
     return zero_;
   }
-  [[nodiscard]] const Sparse& force_jacobian_v(double /*t*/, ConstRef /*u*/,
-                                               ConstRef /*v*/) override {
+  [[nodiscard]] const Sparse& damping(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
     return zero_;
   }
   [[nodiscard]] const Sparse& constraint_jacobian(double /*t*/, ConstRef u) override {

@@ -34,7 +34,7 @@ void ModelBuilder::solve_static_initial() {
   const Eigen::VectorXd g = model_.position_rhs(0, 0.0);
   StaticEquilibrium eq;
   try {
-    eq = solve_static_equilibrium(model_.K, model_.A, f, g);
+    eq = solve_static_equilibrium(*model_.K, model_.A, f, g);
   } catch (const NoStaticEquilibrium& e) {
     std::string dofs;
     for (int d : e.free_dofs)

@@ -86,8 +86,8 @@ void ModelBuilder::build_truss() {
       }
     }
   }
-  model_.K.resize(n, n);
-  model_.K.setFromTriplets(k_trip.begin(), k_trip.end());
+  model_.K.edit().resize(n, n);
+  model_.K.edit().setFromTriplets(k_trip.begin(), k_trip.end());
   model_.M.resize(n, n);
   model_.M.setFromTriplets(m_trip.begin(), m_trip.end());
   model_.C.resize(n, n);

@@ -118,7 +118,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   if (!report.damping.empty()) out << "damping: " << report.damping << "\n";
   if (!model.is_nonlinear()) {
     const HeldDofs held = held_massless_dofs(
-        model.M, model.has_damping() ? model.C : Eigen::SparseMatrix<double>(), model.K, model.A);
+        model.M, model.has_damping() ? model.C : Eigen::SparseMatrix<double>(), *model.K, model.A);
     std::vector<int> dofs = held.undamped;
     dofs.insert(dofs.end(), held.damped.begin(), held.damped.end());
     std::sort(dofs.begin(), dofs.end());
@@ -169,7 +169,8 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   out << "\nmodel: "
       << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
       << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
-      << model.C.nonZeros() << ", K " << model.K.nonZeros() << ", A " << model.A.nonZeros() << "\n";
+      << model.C.nonZeros() << ", K " << model.K->nonZeros() << ", A " << model.A.nonZeros()
+      << "\n";
   const SchemeChoice choice = choose_scheme(model, settings);
   const auto refusal = scheme_refusal(model, choice.scheme);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason

@@ -59,8 +59,8 @@ std::vector<Block> evaluate_blocks(MechanicalSystem& s, double t, const Vector& 
   const int n = s.dofs(), m = s.constraints();
   std::vector<Block> blocks;
   blocks.push_back({"mass", s.mass(t, u), n, n, false});
-  blocks.push_back({"force_jacobian_u", s.force_jacobian_u(t, u, v), n, n, false});
-  blocks.push_back({"force_jacobian_v", s.force_jacobian_v(t, u, v), n, n, false});
+  blocks.push_back({"stiffness", s.stiffness(t, u, v), n, n, false});
+  blocks.push_back({"damping", s.damping(t, u, v), n, n, false});
   blocks.push_back({"constraint_jacobian", s.constraint_jacobian(t, u), m, n, false});
   blocks.push_back({"mass_jacobian", s.mass_jacobian(t, u, a), n, n, true});
   blocks.push_back({"constraint_force_jacobian", s.constraint_force_jacobian(t, u, w), n, n, true});
@@ -149,7 +149,7 @@ std::vector<std::string> check_system_derivatives(const MechanicalSystem& protot
   std::vector<std::optional<Matrix>> D;
   D.reserve(blocks.size());
   for (const auto& b : blocks) D.push_back(report.dense(b));
-  const auto &M = D[0], &f_u = D[1], &f_v = D[2], &A = D[3], &mass_jac = D[4], &force_jac = D[5],
+  const auto &M = D[0], &K = D[1], &C = D[2], &A = D[3], &mass_jac = D[4], &force_jac = D[5],
              &product_jac = D[6], &psi_u = D[7], &gamma_u = D[8],
              &gamma_v = D[9];  // evaluate_blocks' order
 
@@ -177,9 +177,9 @@ std::vector<std::string> check_system_derivatives(const MechanicalSystem& protot
 
   // Forces and the mass matrix.
   Matrix fd = central_jacobian([&](const Vector& x) { return force(t, x, v); }, u, largest);
-  if (f_u) report.compare("force_jacobian_u vs df/du", *f_u, fd, largest);
+  if (K) report.compare("stiffness vs -df/du", *K, -fd, largest);
   fd = central_jacobian([&](const Vector& x) { return force(t, u, x); }, v, largest);
-  if (f_v) report.compare("force_jacobian_v vs df/du'", *f_v, fd, largest);
+  if (C) report.compare("damping vs -df/du'", *C, -fd, largest);
   if (M) {
     const double natural = max_abs(*M) * a.lpNorm<1>();
     fd = central_jacobian([&](const Vector& x) { return Vector(system.mass(t, x) * a); }, u,

@@ -44,7 +44,7 @@ Eigen::MatrixXd rows_of(const Eigen::MatrixXd& m, const std::vector<int>& rows) 
 
 Eigen::MatrixXd computed(ChapterQuantity q, const Model& model, const ReducedSystem& r) {
   Eigen::MatrixXd T(r.transform.T);  // not const: returned by value below
-  const Eigen::MatrixXd G(r.transform.G), M(model.M), K(model.K);
+  const Eigen::MatrixXd G(r.transform.G), M(model.M), K(*model.K);
   const auto& S = r.transform.slaves;
   switch (q) {
     case ChapterQuantity::struck_mass:

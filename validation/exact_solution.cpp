@@ -23,7 +23,7 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
     const Eigen::MatrixXd a(model.A);
     P = a.transpose() * (a * a.transpose()).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
   }
-  const Eigen::MatrixXd M(model.M), K(model.K), C(model.C);
+  const Eigen::MatrixXd M(model.M), K(*model.K), C(model.C);
   LtiSystem sys;
   sys.M = N.transpose() * M * N;
   sys.K = N.transpose() * K * N;

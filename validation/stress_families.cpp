@@ -235,7 +235,7 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
         "[solve]\nt_end = 5.0\noutput_step = 0.1\nrtol = 1e-8\natol = 1e-10\n";
     const Model truss = build_model(parse_scene_text(chapter_truss("", solve), "chapter"));
     double kmax = 0.0;
-    for (int i = 0; i < truss.dofs(); ++i) kmax = std::max(kmax, truss.K.coeff(i, i));
+    for (int i = 0; i < truss.dofs(); ++i) kmax = std::max(kmax, truss.K->coeff(i, i));
     for (double f : {1e2, 1e4, 1e6, 1e8, 1e10, 1e12}) {
       add("penalty_weight", "w = " + sci(f) + " max K_ii", f,
           chapter_truss("", solve + "penalty = { weight = " + num(f * kmax) + " }\n"),

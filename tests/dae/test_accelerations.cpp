@@ -45,7 +45,7 @@ double equation_residual(const Model& model, const Trajectory& traj) {
   double worst = 0.0;
   for (std::size_t k = 0; k < traj.t.size(); ++k) {
     const auto col = static_cast<Eigen::Index>(k);
-    const Eigen::VectorXd ku = model.K * traj.u.col(col);
+    const Eigen::VectorXd ku = *model.K * traj.u.col(col);
     const Eigen::VectorXd f = model.applied_forces(traj.t[k]);
     Eigen::VectorXd r = model.M * traj.acceleration.col(col) + ku - f - traj.reaction.col(col);
     if (model.has_damping()) r += model.C * traj.v.col(col);

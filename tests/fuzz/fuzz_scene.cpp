@@ -51,7 +51,7 @@ bool all_finite(const Eigen::SparseMatrix<double>& m) {
 void check_accepted(const condyn::Model& model, const condyn::SolveSpec& settings) {
   check_finite(all_finite(model.M), "M");
   check_finite(all_finite(model.C), "C");
-  check_finite(all_finite(model.K), "K");
+  check_finite(all_finite(*model.K), "K");
   check_finite(all_finite(model.A), "A");
   check_finite(model.u0.allFinite(), "u(0)");
   check_finite(model.v0.allFinite(), "v(0)");

@@ -108,11 +108,11 @@ class Defective final : public MechanicalSystem {
   }
   [[nodiscard]] const Sparse& mass(double t, ConstRef u) override { return s_->mass(t, u); }
   void force(double t, ConstRef u, ConstRef v, Ref f) override { s_->force(t, u, v, f); }
-  [[nodiscard]] const Sparse& force_jacobian_u(double t, ConstRef u, ConstRef v) override {
-    return s_->force_jacobian_u(t, u, v);
+  [[nodiscard]] const Sparse& stiffness(double t, ConstRef u, ConstRef v) override {
+    return s_->stiffness(t, u, v);
   }
-  [[nodiscard]] const Sparse& force_jacobian_v(double t, ConstRef u, ConstRef v) override {
-    return s_->force_jacobian_v(t, u, v);
+  [[nodiscard]] const Sparse& damping(double t, ConstRef u, ConstRef v) override {
+    return s_->damping(t, u, v);
   }
   [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) override {
     A_ = s_->constraint_jacobian(t, u);

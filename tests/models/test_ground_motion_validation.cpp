@@ -118,7 +118,7 @@ acceleration = { type = "table", file = "record.csv", column = "acc", scale = 9.
 )" + kSolve;
   const auto built = condyn::test::built(parse_scene_file(box.write("s.toml", scene).string()));
   REQUIRE(built.spec.solve.rtol == kRtol);
-  CHECK(built.model.K.coeff(0, 0) == doctest::Approx(kOmega * kOmega).epsilon(1e-15));
+  CHECK(built.model.K->coeff(0, 0) == doctest::Approx(kOmega * kOmega).epsilon(1e-15));
   const TimeTable& table = *built.model.loads.at(0).value.terms().at(0).table;
   const PiecewiseLinearOscillator exact(table, kG);
   const SolveResult result = condyn::test::solved(built.model, built.spec.solve);

@@ -51,7 +51,7 @@ TEST_CASE("modal damping: each mode of the constrained model gets its ratio") {
   Eigen::MatrixXd N = Eigen::MatrixXd::Zero(3, 2);
   N(0, 0) = 1.0;
   N(1, 1) = N(2, 1) = 1.0 / std::sqrt(2.0);
-  const Eigen::MatrixXd M(s.model.M), K(s.model.K), C(s.model.C);
+  const Eigen::MatrixXd M(s.model.M), K(*s.model.K), C(s.model.C);
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(N.transpose() * K * N,
                                                                         N.transpose() * M * N);
   const Eigen::MatrixXd phi = N * modes.eigenvectors();

@@ -32,7 +32,7 @@ TEST_CASE("Rayleigh damping from pairs: the asked ratios at the asked frequencie
       two_modes("{ rayleigh = { frequencies = [1.0, 10.0], ratios = [0.05, 0.02] } }"),
       "modes.toml"));
   const auto& C = scene.model.C;
-  const auto& K = scene.model.K;
+  const auto& K = *scene.model.K;
   // Uncoupled modes: ratio_i = c_ii / (2 ω_i m_i), ω_i = sqrt(k_ii) (K written to 6 decimals
   // by std::to_string: ω to about 1e-8 relative, hence the tolerance).
   const double w1 = std::sqrt(K.coeff(0, 0)), w2 = std::sqrt(K.coeff(1, 1));

@@ -74,7 +74,7 @@ TEST_CASE("the size of a model is judged by a memory estimate against the availa
   sizes.dofs = model.dofs();
   sizes.constraints = model.constraint_count();
   sizes.nnz_mass = static_cast<double>(model.M.nonZeros());
-  sizes.nnz_stiffness = static_cast<double>(model.K.nonZeros());
+  sizes.nnz_stiffness = static_cast<double>(model.K->nonZeros());
   sizes.nnz_constraints = static_cast<double>(model.A.nonZeros());
   const MemoryEstimate e = integration_memory_estimate(sizes);
   // Newton matrix: M (20,000 diagonal entries), K, the 2n identity couplings, A and Aᵀ twice.

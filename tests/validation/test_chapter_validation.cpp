@@ -101,7 +101,7 @@ TEST_CASE("chapter §5.5.1 with damping settles on the static solution and its r
   SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_5_1").text, "case A damped");
   spec.model.type = ModelSpec::Type::matrix;
   const Model undamped = build_model(parse_scene_text(embedded_scene("chapter_5_5_1").text, "A"));
-  const Eigen::MatrixXd M(undamped.M), K(undamped.K);
+  const Eigen::MatrixXd M(undamped.M), K(*undamped.K);
   const Eigen::MatrixXd C = 0.5 * M + 0.1 * K;  // Rayleigh: classical, ζ ≥ 0.2 on every mode
   spec.model.dofs = undamped.dof_names;
   auto rows = [](const Eigen::MatrixXd& m) {

@@ -70,7 +70,7 @@ TEST_CASE("inclined roller: the reaction is normal to the incline and balances m
     // Linear momentum: K has zero net force in x and y, so Σ m ü = Σ f + Σ f_con per direction.
     // ü from the exact solution's equations: M ü = f + f_con − K u.
     const Eigen::VectorXd f = model.applied_forces(t);
-    const Eigen::VectorXd mu = f + f_con - model.K * exact.u.col(k);
+    const Eigen::VectorXd mu = f + f_con - *model.K * exact.u.col(k);
     double fx = 0, fy = 0, mx = 0, my = 0;
     for (int i = 0; i < model.dofs(); i += 2) {
       fx += f[i] + f_con[i];
@@ -81,7 +81,7 @@ TEST_CASE("inclined roller: the reaction is normal to the incline and balances m
     // fx − mx = Σ (K u)_x vanishes up to the roundoff of these sums: 2 n eps times the sum of the
     // terms' sizes, Σ |f| + |f_con| + |K||u| (first-order bound of a sum; observed 1.3e-15 |f|).
     const double terms = (f.cwiseAbs() + f_con.cwiseAbs()).sum() +
-                         (Eigen::MatrixXd(model.K).cwiseAbs() * exact.u.col(k).cwiseAbs()).sum();
+                         (Eigen::MatrixXd(*model.K).cwiseAbs() * exact.u.col(k).cwiseAbs()).sum();
     CHECK(std::abs(fx - mx) <= 2.0 * model.dofs() * kEps * std::max(1.0, terms));
     CHECK(std::abs(fy - my) <= 2.0 * model.dofs() * kEps * std::max(1.0, terms));
     (void)M;

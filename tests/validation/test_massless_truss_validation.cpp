@@ -70,7 +70,7 @@ struct Condensed {
 Condensed condense(const Model& full) {
   Condensed c;
   for (int j = 0; j < full.dofs(); ++j) (full.M.coeff(j, j) == 0.0 ? c.h : c.r).push_back(j);
-  const Eigen::MatrixXd K(full.K), M(full.M);
+  const Eigen::MatrixXd K(*full.K), M(full.M);
   const auto block = [](const Eigen::MatrixXd& S, const std::vector<int>& rows,
                         const std::vector<int>& cols) {
     Eigen::MatrixXd B(rows.size(), cols.size());

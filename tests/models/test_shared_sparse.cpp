@@ -1,0 +1,52 @@
+// One stiffness matrix for the model and its linear system (models/shared_sparse.hpp, issue 12).
+
+#include <doctest/doctest.h>
+
+#include "models/model.hpp"
+#include "models/scene_parser.hpp"
+#include "tests/solve_helpers.hpp"
+
+using namespace condyn;
+
+TEST_CASE("SharedSparse: readers share one matrix, edit() copies a shared one first") {
+  SharedSparse a;
+  a.edit().resize(2, 2);
+  a.edit().insert(0, 0) = 3.0;
+  const auto held = a.share();
+  CHECK(held.get() == &*a);  // the same matrix, not a copy
+  // Editing while another reader holds it changes this object's copy only.
+  a.edit().coeffRef(0, 0) = 5.0;
+  CHECK(held->coeff(0, 0) == 3.0);
+  CHECK(a->coeff(0, 0) == 5.0);
+  CHECK(held.get() != &*a);
+  // A copied holder shares until it edits.
+  const SharedSparse b = a;
+  CHECK(&*b == &*a);
+}
+
+TEST_CASE("a linear model's system evaluates the model's own K, not a copy") {
+  const auto scene = test::built(parse_scene_text(R"([model]
+type = "matrix"
+dofs = ["u1", "u2"]
+mass = [[1.0, 0], [0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 1.0]]
+[[load]]
+dof = "u2"
+value = { type = "step", amplitude = 1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.5
+)",
+                                                  "two.toml"));
+  const Model& model = scene.model;
+  REQUIRE_FALSE(model.is_nonlinear());
+  const auto system = model.evaluator();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(2);
+  const auto& K = system->stiffness(0.0, zero, zero);
+  CHECK(&K == &*model.K);
+  // With the structural sign: f = loads − K u − C u'.
+  Eigen::VectorXd f(2);
+  system->force(1.0, Eigen::Vector2d(1.0, 2.0), zero, f);
+  CHECK(f[0] == -(3.0 * 1.0 - 1.0 * 2.0));
+  CHECK(f[1] == 1.0 - (-1.0 * 1.0 + 1.0 * 2.0));
+}
