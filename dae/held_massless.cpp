@@ -142,14 +142,14 @@ std::shared_ptr<const HeldMassless> held_massless(const Sparse& M, const Sparse&
 }
 
 std::shared_ptr<const HeldMassless> held_massless_of(const MechanicalSystem& system) {
+  // The system's own constant matrices, by reference (each method's result stays valid until
+  // that method is called again).
   const auto s = system.clone();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s->dofs());
-  const Sparse& M = s->mass(0.0, zero);
-  const bool none = s->constraints() > 0
-                        ? unconstrained_massless_dofs(M, s->constraint_jacobian(0.0, zero)).empty()
-                        : unconstrained_massless_dofs(M, Sparse(0, s->dofs())).empty();
-  if (none) return nullptr;
-  return std::make_shared<const HeldMassless>(linear_matrices(system));
+  const Sparse no_rows(0, s->dofs());
+  return held_massless(s->mass(0.0, zero), s->damping(0.0, zero, zero),
+                       s->stiffness(0.0, zero, zero),
+                       s->constraints() > 0 ? s->constraint_jacobian(0.0, zero) : no_rows);
 }
 
 std::shared_ptr<const HeldMassless> held_massless_of(const Model& model) {

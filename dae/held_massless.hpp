@@ -88,7 +88,7 @@ class HeldMassless {
     const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& C,
     const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& A,
     bool consistency = true);
-/// The same for a linear system's matrices (linear_matrices), read without copying them.
+/// The same for a linear system's matrices, read from it without copying them.
 [[nodiscard]] std::shared_ptr<const HeldMassless> held_massless_of(const MechanicalSystem& system);
 /// The held massless DOFs of a model, or null: none, or a nonlinear model (refused there).
 [[nodiscard]] std::shared_ptr<const HeldMassless> held_massless_of(const Model& model);

@@ -196,7 +196,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";
   const bool chose_mixed = uses_mixed_treatment(model, choice.scheme, settings);
-  SystemSizer system_size(model);
+  SystemSizer sizer(model);
   // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
   for (Scheme s : kSchemes) {
     for (const bool mixed : {false, true}) {
@@ -209,7 +209,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         as_scheme.scheme = s;
         as_scheme.treatment =
             mixed ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
-        const SystemSize size = system_size(as_scheme);
+        const SystemSize size = sizer(as_scheme);
         out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
       } catch (const std::exception& e) {
         // Continuation lines indented under the reason.

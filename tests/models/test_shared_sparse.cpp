@@ -4,6 +4,7 @@
 
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
@@ -25,26 +26,15 @@ TEST_CASE("SharedSparse: readers share one matrix, edit() copies a shared one fi
 }
 
 TEST_CASE("a linear model's system evaluates the model's own K, not a copy") {
-  const auto scene = test::built(parse_scene_text(R"([model]
-type = "matrix"
-dofs = ["u1", "u2"]
-mass = [[1.0, 0], [0, 2.0]]
-stiffness = [[3.0, -1.0], [-1.0, 1.0]]
-[[load]]
-dof = "u2"
-value = { type = "step", amplitude = 1.0 }
-[solve]
-t_end = 1.0
-output_step = 0.5
-)",
-                                                  "two.toml"));
+  const auto scene = test::built(parse_scene_text(test::kTwoMassesScene, "two.toml"));
   const Model& model = scene.model;
   REQUIRE_FALSE(model.is_nonlinear());
   const auto system = model.evaluator();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(2);
   const auto& K = system->stiffness(0.0, zero, zero);
   CHECK(&K == &*model.K);
-  // With the structural sign: f = loads − K u − C u'.
+  // With the structural sign: f = loads − K u − C u' (K = [3 −1; −1 1]; the unit step on the
+  // second DOF is on at t = 1).
   Eigen::VectorXd f(2);
   system->force(1.0, Eigen::Vector2d(1.0, 2.0), zero, f);
   CHECK(f[0] == -(3.0 * 1.0 - 1.0 * 2.0));
