@@ -68,11 +68,18 @@ void BlockJacobian::finish() {
     for (auto it = first; it != end; ++it) rows[kept++] = *it;  // moves left: kept <= start[j]
     outer[j + 1] = static_cast<int>(kept);
   }
-  pattern_.resize(size_, size_);
-  pattern_.resizeNonZeros(static_cast<Eigen::Index>(kept));
-  std::copy(outer.begin(), outer.end(), pattern_.outerIndexPtr());
-  std::copy_n(rows.begin(), kept, pattern_.innerIndexPtr());
-  std::fill_n(pattern_.valuePtr(), kept, 0.0);
+  rows.resize(kept);
+  rows.shrink_to_fit();
+  pattern_ = JacobianPattern{size_, std::move(outer), std::move(rows)};
+}
+
+Eigen::SparseMatrix<double> JacobianPattern::matrix() const {
+  Eigen::SparseMatrix<double> J(size, size);
+  J.resizeNonZeros(nonZeros());
+  std::copy(outer.begin(), outer.end(), J.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), J.innerIndexPtr());
+  std::fill_n(J.valuePtr(), nonZeros(), 0.0);
+  return J;
 }
 
 namespace {

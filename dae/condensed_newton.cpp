@@ -43,7 +43,7 @@ CondensedNewton::CondensedNewton(Scheme scheme, LinearMatrices&& matrices, const
     blocks.declare(n_ + m_, 0, Ap_);
   }
   blocks.finish();
-  matrix_ = blocks.pattern();
+  matrix_ = blocks.pattern().matrix();
   rhs_.resize(n_ + m_ + p_);
   r1_.resize(n_);
   work_.resize(n_);

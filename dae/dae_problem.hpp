@@ -29,10 +29,10 @@ class DaeProblem {
   /// r = F(t, y, y') in the current segment.
   virtual void residual(double t, ConstRef y, ConstRef yp, Ref r) const = 0;
   /// Sparsity pattern of dF/dy + cj dF/dy' (column-major, compressed), fixed for the whole run.
-  [[nodiscard]] virtual const Eigen::SparseMatrix<double>& jacobian_pattern() const = 0;
+  [[nodiscard]] virtual const JacobianPattern& jacobian_pattern() const = 0;
   /// Fills the values of J = dF/dy + cj dF/dy' in the pattern (J views exactly that pattern).
   virtual void fill_jacobian(double t, ConstRef y, ConstRef yp, double cj, JacobianMap J) const = 0;
-  /// fill_jacobian on a matrix that has the pattern.
+  /// fill_jacobian on a matrix that has the pattern (jacobian_pattern().matrix()).
   void jacobian(double t, const ConstRef& y, const ConstRef& yp, double cj,
                 Eigen::SparseMatrix<double>& J) const {
     fill_jacobian(t, y, yp, cj, map_of(J));

@@ -81,14 +81,10 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
       // IDA zeroes the whole sparse matrix (values and index arrays) before each call: the fixed
       // pattern's indices are copied back, and the values are filled in place, in a view over
       // the pattern's index arrays (never written) and the matrix's own value array.
-      auto& pattern = const_cast<Eigen::SparseMatrix<double>&>(data->problem->jacobian_pattern());
-      const auto nnz = static_cast<std::size_t>(pattern.nonZeros());
-      std::copy_n(pattern.outerIndexPtr(), pattern.cols() + 1, SUNSparseMatrix_IndexPointers(J));
-      std::copy_n(pattern.innerIndexPtr(), nnz, SUNSparseMatrix_IndexValues(J));
-      data->problem->fill_jacobian(
-          t, view(y), view(yp), cj,
-          JacobianMap(pattern.rows(), pattern.cols(), pattern.nonZeros(), pattern.outerIndexPtr(),
-                      pattern.innerIndexPtr(), SUNSparseMatrix_Data(J)));
+      const JacobianPattern& pattern = data->problem->jacobian_pattern();
+      std::copy(pattern.outer.begin(), pattern.outer.end(), SUNSparseMatrix_IndexPointers(J));
+      std::copy(pattern.inner.begin(), pattern.inner.end(), SUNSparseMatrix_IndexValues(J));
+      data->problem->fill_jacobian(t, view(y), view(yp), cj, pattern.map(SUNSparseMatrix_Data(J)));
     } else {
       data->problem->jacobian(t, view(y), view(yp), cj, data->jac);
       for (int k = 0; k < data->jac.outerSize(); ++k) {
@@ -182,8 +178,7 @@ class Ida final : public sundials::SundialsStepper {
       newton_ = problem.newton_system();
     }
     if (!newton_ && options.dense_linear_solver) {
-      data_.jac = problem.jacobian_pattern();
-      data_.jac.makeCompressed();
+      data_.jac = problem.jacobian_pattern().matrix();
     }
     SUNContext raw_ctx = nullptr;
     check_raw(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");

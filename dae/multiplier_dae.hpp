@@ -41,7 +41,7 @@ class MultiplierDae final : public DaeProblem {
   [[nodiscard]] int size() const override { return mu_at() + p_; }
   void begin_segment(double t0) override { system_->begin_segment(t0); }
   void residual(double t, ConstRef y, ConstRef yp, Ref r) const override;
-  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
+  [[nodiscard]] const JacobianPattern& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
   void fill_jacobian(double t, ConstRef y, ConstRef yp, double cj, JacobianMap J) const override;

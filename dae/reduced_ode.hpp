@@ -26,7 +26,7 @@ class ReducedOde final : public DaeProblem {
   [[nodiscard]] int size() const override { return 2 * nm_; }
   void begin_segment(double t0) override { segment_start_ = t0; }
   void residual(double t, ConstRef y, ConstRef yp, Ref r) const override;
-  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
+  [[nodiscard]] const JacobianPattern& jacobian_pattern() const override {
     return jacobian_.pattern();
   }
   void fill_jacobian(double t, ConstRef y, ConstRef yp, double cj, JacobianMap J) const override;

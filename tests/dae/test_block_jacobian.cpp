@@ -4,6 +4,7 @@
 
 #include <Eigen/Sparse>
 #include <stdexcept>
+#include <vector>
 
 #include "dae/block_jacobian.hpp"
 
@@ -23,7 +24,10 @@ TEST_CASE(
   blocks.declare(1, 2, S);  // overlaps the first at (1,2)
   blocks.declare_identity(3, 0, 2);
   blocks.finish();
-  Sparse J = blocks.pattern();
+  const JacobianPattern& pattern = blocks.pattern();
+  REQUIRE(pattern.outer.size() == 6);
+  CHECK(pattern.nonZeros() == static_cast<Eigen::Index>(pattern.inner.size()));
+  Sparse J = pattern.matrix();
   REQUIRE(J.isCompressed());
   // The expected pattern, from a dense mask.
   Eigen::MatrixXi mask = Eigen::MatrixXi::Zero(5, 5);
@@ -50,6 +54,15 @@ TEST_CASE(
   CHECK(J.coeff(1, 2) == 1.0);  // 2 S(1,2) = 0 from the first block, S(0,0) = 1 from the second
   CHECK(J.coeff(1, 1) == 1.0);  // the identity only
   CHECK(J.coeff(2, 4) == 0.0);
+  // The same fill on values held outside the pattern (the integrator's matrix).
+  std::vector<double> values(static_cast<std::size_t>(pattern.nonZeros()), 0.0);
+  JacobianMap outer_view = pattern.map(values.data());
+  BlockJacobian::add(outer_view, 0, 0, S, 2.0);
+  BlockJacobian::add(outer_view, 1, 2, S, 1.0);
+  BlockJacobian::add_identity(outer_view, 0, 0, 5, 1.0);
+  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) {
+    CHECK(values[static_cast<std::size_t>(k)] == J.valuePtr()[k]);
+  }
   Sparse outside(1, 1);
   outside.insert(0, 0) = 1.0;
   CHECK_THROWS_AS(BlockJacobian::add(view, 4, 3, outside), std::logic_error);  // (4,3) not declared

@@ -34,7 +34,7 @@ TEST_CASE("the condensed Newton solve equals the full Jacobian's, index1 and GGL
       }
       for (const double cj : {1e2, 1e5}) {
         CAPTURE(cj);
-        Eigen::SparseMatrix<double> J = dae.jacobian_pattern();
+        Eigen::SparseMatrix<double> J = dae.jacobian_pattern().matrix();
         dae.jacobian(0.5, y, yp, cj, J);
         Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(J);
         REQUIRE(lu.info() == Eigen::Success);

@@ -104,7 +104,7 @@ output_step = 0.5
   Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.3, -0.7);
   Eigen::VectorXd yp = Eigen::VectorXd::LinSpaced(n, -0.2, 0.9);
   const double t = 0.37, cj = 12.5;
-  Eigen::SparseMatrix<double> J = ode.jacobian_pattern();
+  Eigen::SparseMatrix<double> J = ode.jacobian_pattern().matrix();
   ode.jacobian(t, y, yp, cj, J);
   // The residual is linear: central differences (h = 1e-6) are exact up to their roundoff
   // eps |F| / h, with |F| ≲ n max|J| for states of size ≤ 1: n eps / h (observed 3.7e-12).

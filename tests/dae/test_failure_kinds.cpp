@@ -275,19 +275,12 @@ namespace {
 /// in process and the sanitizer tier could not see the leaked strings.)
 class DaeNanAfterStart : public DaeProblem {
  public:
-  DaeNanAfterStart() {
-    pattern_.resize(1, 1);
-    pattern_.insert(0, 0) = 1.0;
-    pattern_.makeCompressed();
-  }
   [[nodiscard]] int size() const override { return 1; }
   void begin_segment(double /*t0*/) override {}
   void residual(double t, ConstRef /*y*/, ConstRef yp, Ref r) const override {
     r[0] = t <= 0.0 ? yp[0] - 1.0 : std::numeric_limits<double>::quiet_NaN();
   }
-  [[nodiscard]] const Eigen::SparseMatrix<double>& jacobian_pattern() const override {
-    return pattern_;
-  }
+  [[nodiscard]] const JacobianPattern& jacobian_pattern() const override { return pattern_; }
   void fill_jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
                      JacobianMap J) const override {
     J.valuePtr()[0] = cj;
@@ -300,7 +293,7 @@ class DaeNanAfterStart : public DaeProblem {
   }
 
  private:
-  Eigen::SparseMatrix<double> pattern_;
+  JacobianPattern pattern_{1, {0, 1}, {0}};  // the one entry (0, 0)
 };
 
 }  // namespace

@@ -59,7 +59,7 @@ TEST_CASE("multiplier formulations: Jacobian agrees with central differences") {
     const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.3, -0.7);
     const Eigen::VectorXd yp = Eigen::VectorXd::LinSpaced(n, -0.2, 0.9);
     const double t = 0.37, cj = 12.5;
-    Eigen::SparseMatrix<double> J = dae.jacobian_pattern();
+    Eigen::SparseMatrix<double> J = dae.jacobian_pattern().matrix();
     dae.jacobian(t, y, yp, cj, J);
     // The residual is linear in (y, y'): central differences (h = 1e-6) are exact up to their
     // roundoff eps·|F|/h, with |F| ≲ n max|J| for states of size ≤ 1: n eps / h (observed 8e-12).
@@ -195,7 +195,7 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   const int n = ode.size();
   const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(n, 0.3, -0.7);
   const Eigen::VectorXd yp = Eigen::VectorXd::LinSpaced(n, -0.2, 0.9);
-  Eigen::SparseMatrix<double> J = ode.jacobian_pattern();
+  Eigen::SparseMatrix<double> J = ode.jacobian_pattern().matrix();
   ode.jacobian(0.37, y, yp, 12.5, J);
   // Linear residual with entries up to w = 5e4: central differences (h = 1e-6) exact to eps·|F|/h
   // with |F| ≲ n max|J| (states ≤ 1), i.e. n eps / h relative to max|J| (observed 1.6e-11).
