@@ -12,7 +12,7 @@ namespace condyn {
 ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferred_slaves) {
   std::vector<int> preferred;
   preferred.reserve(preferred_slaves.size());
-  for (const auto& name : preferred_slaves) preferred.push_back(model.dof_index.at(name));
+  for (const auto& name : preferred_slaves) preferred.push_back(model.dof_at(name));
   ReducedSystem r;
   try {
     r.transform = master_slave_transform(model.A, preferred);

@@ -12,8 +12,8 @@ void ModelBuilder::fail(const SourcePoint& where, const std::string& problem) co
 }
 
 int ModelBuilder::dof(const std::string& name, const SourcePoint& where) const {
-  auto it = model_.dof_index.find(name);
-  if (it == model_.dof_index.end()) {
+  const auto index = model_.find_dof(name);
+  if (!index) {
     std::string hint;
     if (model_.dofs() <= 12) {
       for (const auto& d : model_.dof_names) hint += (hint.empty() ? "" : ", ") + d;
@@ -21,12 +21,12 @@ int ModelBuilder::dof(const std::string& name, const SourcePoint& where) const {
     }
     fail(where, "no such DOF '" + name + "'" + hint);
   }
-  return it->second;
+  return *index;
 }
 
 void ModelBuilder::set_dofs(std::vector<std::string> names) {
   model_.dof_names = std::move(names);
-  for (int i = 0; i < model_.dofs(); ++i) model_.dof_index[model_.dof_names[i]] = i;
+  model_.index_dofs();
 }
 
 void ModelBuilder::build_loads() {

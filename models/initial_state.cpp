@@ -129,9 +129,9 @@ void ModelBuilder::project_initial() {
   const auto n = static_cast<std::size_t>(model_.dofs());
   std::vector<bool> given_u(n, false), given_v(n, false);
   for (const auto& [name, value] : spec_.initial.displacement)
-    given_u[static_cast<std::size_t>(model_.dof_index.at(name))] = true;
+    given_u[static_cast<std::size_t>(model_.dof_at(name))] = true;
   for (const auto& [name, value] : spec_.initial.velocity)
-    given_v[static_cast<std::size_t>(model_.dof_index.at(name))] = true;
+    given_v[static_cast<std::size_t>(model_.dof_at(name))] = true;
   try {
     report_.initial_projection =
         project_initial_state(*s, 0.0, model_.u0, model_.v0, given_u, given_v, model_.dof_names);

@@ -3,10 +3,32 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <stdexcept>
 
 #include "models/model.hpp"
 
 namespace condyn {
+
+void Model::index_dofs() {
+  dof_order.resize(dof_names.size());
+  for (std::size_t i = 0; i < dof_order.size(); ++i) dof_order[i] = static_cast<int>(i);
+  std::stable_sort(dof_order.begin(), dof_order.end(), [this](int a, int b) {
+    return dof_names[static_cast<std::size_t>(a)] < dof_names[static_cast<std::size_t>(b)];
+  });
+}
+
+std::optional<int> Model::find_dof(std::string_view dof) const {
+  const auto it = std::lower_bound(
+      dof_order.begin(), dof_order.end(), dof,
+      [this](int i, std::string_view key) { return dof_names[static_cast<std::size_t>(i)] < key; });
+  if (it == dof_order.end() || dof_names[static_cast<std::size_t>(*it)] != dof) return {};
+  return *it;
+}
+
+int Model::dof_at(std::string_view dof) const {
+  if (const auto i = find_dof(dof)) return *i;
+  throw std::out_of_range("no DOF named '" + std::string(dof) + "'");
+}
 
 Eigen::VectorXd Model::absolute_acceleration(double t, const Eigen::VectorXd& a) const {
   if (!ground) return a;

@@ -111,7 +111,7 @@ void ModelBuilder::check_slaves() const {
   Eigen::MatrixXd a_s(m, m);
   std::string names;
   for (int k = 0; k < m; ++k) {
-    a_s.col(k) = a.col(model_.dof_index.at(slaves[static_cast<std::size_t>(k)]));
+    a_s.col(k) = a.col(model_.dof_at(slaves[static_cast<std::size_t>(k)]));
     names += (k ? ", " : "") + slaves[static_cast<std::size_t>(k)];
   }
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(a_s);

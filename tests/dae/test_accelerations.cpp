@@ -135,11 +135,11 @@ TEST_CASE("accelerations of massless DOFs in constraints come from the constrain
         test::pendulum_scene("t_end = 0.5\noutput_step = 0.1\nscheme = \"ggl\"\n"), "p.toml"));
     const Trajectory traj = test::solved(s.model, s.spec.solve, with_accelerations()).trajectory;
     for (const char* dof : {"ux1", "uy1"}) {
-      const auto d = static_cast<Eigen::Index>(s.model.dof_index.at(dof));
+      const auto d = static_cast<Eigen::Index>(s.model.dof_at(dof));
       CHECK(traj.acceleration.row(d).cwiseAbs().maxCoeff() == 0.0);
     }
     // The bob starts from rest with the rod horizontal: it falls at g.
-    const auto uy2 = static_cast<Eigen::Index>(s.model.dof_index.at("uy2"));
+    const auto uy2 = static_cast<Eigen::Index>(s.model.dof_at("uy2"));
     CHECK(traj.acceleration(uy2, 0) == doctest::Approx(-9.81).epsilon(1e-6));
   }
   // A massless node driven along x, ux1 = 0.1 sin 3t (a nonlinear model: its rod): its
@@ -149,8 +149,8 @@ TEST_CASE("accelerations of massless DOFs in constraints come from the constrain
     const auto s = test::built(parse_scene_text(
         test::driven_pendulum_scene(std::string("scheme = \"") + scheme + "\"\n"), "d.toml"));
     const Trajectory traj = test::solved(s.model, s.spec.solve, with_accelerations()).trajectory;
-    const auto ux1 = static_cast<Eigen::Index>(s.model.dof_index.at("ux1"));
-    const auto uy1 = static_cast<Eigen::Index>(s.model.dof_index.at("uy1"));
+    const auto ux1 = static_cast<Eigen::Index>(s.model.dof_at("ux1"));
+    const auto uy1 = static_cast<Eigen::Index>(s.model.dof_at("uy1"));
     for (std::size_t k = 0; k < traj.t.size(); ++k) {
       const auto col = static_cast<Eigen::Index>(k);
       CHECK(traj.acceleration(ux1, col) ==

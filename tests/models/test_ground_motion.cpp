@@ -80,21 +80,21 @@ TEST_CASE("ground motion: a truss gets one pattern load −M r a_g along its dir
   CHECK(load.dof == -1);
   // ux2 and ux3 only: the support has no mass, the y DOFs are not along r.
   REQUIRE(load.pattern.nonZeros() == 2);
-  CHECK(load.pattern.coeff(model.dof_index.at("ux2")) == -2.0);
-  CHECK(load.pattern.coeff(model.dof_index.at("ux3")) == -3.0);
+  CHECK(load.pattern.coeff(model.dof_at("ux2")) == -2.0);
+  CHECK(load.pattern.coeff(model.dof_at("ux3")) == -3.0);
   CHECK(load.value.describe() == "table(rec.csv:a, 3 samples)*9.81");
   // f(t) = −M r a_g(t): a_g(0.25) = 0.5 g, a_g(0.75) = 0.25 g.
   for (const auto& [t, ag] : {std::pair{0.25, 0.5 * 9.81}, std::pair{0.75, 0.25 * 9.81}}) {
     const Eigen::VectorXd f = model.applied_forces(t);
-    CHECK(f[model.dof_index.at("ux2")] == doctest::Approx(-2.0 * ag).epsilon(1e-15));
-    CHECK(f[model.dof_index.at("ux3")] == doctest::Approx(-3.0 * ag).epsilon(1e-15));
-    CHECK(f[model.dof_index.at("uy3")] == 0.0);
+    CHECK(f[model.dof_at("ux2")] == doctest::Approx(-2.0 * ag).epsilon(1e-15));
+    CHECK(f[model.dof_at("ux3")] == doctest::Approx(-3.0 * ag).epsilon(1e-15));
+    CHECK(f[model.dof_at("uy3")] == 0.0);
   }
   // y: the y DOFs instead; a 3D truss has z.
   const Built y = build(box, replace(kTruss, "direction = \"x\"", "direction = \"y\""));
   REQUIRE(y.error.empty());
-  CHECK(y.model.loads[0].pattern.coeff(y.model.dof_index.at("uy3")) == -3.0);
-  CHECK(y.model.loads[0].pattern.coeff(y.model.dof_index.at("ux3")) == 0.0);
+  CHECK(y.model.loads[0].pattern.coeff(y.model.dof_at("uy3")) == -3.0);
+  CHECK(y.model.loads[0].pattern.coeff(y.model.dof_at("ux3")) == 0.0);
 }
 
 TEST_CASE("ground motion: a matrix model's influence vector, unnamed DOFs 0") {

@@ -149,7 +149,7 @@ acceleration = { type = "table", file = "record.csv", column = "acc", scale = 9.
   const auto built = condyn::test::built(parse_scene_file(box.write("s.toml", scene).string()));
   const TimeTable& table = *built.model.loads.at(0).value.terms().at(0).table;
   const PiecewiseLinearOscillator exact(table, kG);
-  const int ux2 = built.model.dof_index.at("ux2");
+  const int ux2 = built.model.dof_at("ux2");
   for (Scheme scheme : {Scheme::elimination, Scheme::index1, Scheme::ggl, Scheme::baumgarte}) {
     const std::string name = to_string(scheme);
     CAPTURE(name);

@@ -41,7 +41,7 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
-int dof(const Model& m, const std::string& name) { return m.dof_index.at(name); }
+int dof(const Model& m, const std::string& name) { return m.dof_at(name); }
 
 // A pendulum as a truss: node 1 pinned, node 2 on a rigid unit rod along x.
 const std::string kPendulum = R"([model]

@@ -2,6 +2,7 @@
 // quote, a line break) or give a column twice are refused at the line that names them.
 #include <doctest/doctest.h>
 
+#include <stdexcept>
 #include <string>
 
 #include "models/model.hpp"
@@ -124,4 +125,22 @@ output_step = 0.5
         std::string::npos);
   CHECK(named("rigid_2_3") == "");  // an elastic member adds no row
   CHECK(named("fix_ux2") == "");    // node 2 is not supported
+}
+
+TEST_CASE("Model::find_dof and dof_at look a DOF up by its name, in names sorted once") {
+  Model m;
+  m.dof_names = {"uy2", "ux1", "b", "ux10", "a long DOF name beyond the short-string buffer"};
+  m.index_dofs();
+  for (int i = 0; i < m.dofs(); ++i) {
+    const std::string& name = m.dof_names[static_cast<std::size_t>(i)];
+    REQUIRE(m.find_dof(name).has_value());
+    CHECK(*m.find_dof(name) == i);
+    CHECK(m.dof_at(name) == i);
+  }
+  for (const char* missing : {"", "ux", "ux100", "uy1", "c", "a"}) {
+    CHECK_FALSE(m.find_dof(missing).has_value());
+    CHECK_THROWS_AS((void)m.dof_at(missing), std::out_of_range);
+  }
+  const auto built = build_model(parse_scene_text(scene("[\"p\", \"q\"]", ""), "n.toml"));
+  CHECK(built.dof_at("q") == 1);
 }

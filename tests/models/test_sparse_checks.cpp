@@ -122,7 +122,7 @@ TEST_CASE("[initial] project on a 20,000-DOF lattice: the sparse least-change st
   BuildReport report;
   const Model model =
       build_model(parse_scene_text(lattice(100, 100, extra, ""), "big.toml"), report);
-  const auto at = [&model](const std::string& dof) { return model.u0[model.dof_index.at(dof)]; };
+  const auto at = [&model](const std::string& dof) { return model.u0[model.dof_at(dof)]; };
   CHECK(at("ux10000") == 0.1);  // given: kept exactly
   // One Gauss-Newton step of a linear row, solved through B Bᵀ (condition 1 here): roundoff of 0.1.
   CHECK(at("ux9999") == doctest::Approx(0.1).epsilon(1e-14));

@@ -63,7 +63,7 @@ TEST_CASE("inclined roller: the reaction is normal to the incline and balances m
     const double t = exact.t[static_cast<std::size_t>(k)];
     const Eigen::VectorXd f_con = exact.reaction.col(k);
     // Ideal roller: its force lies along the incline's normal (−sin 30°, cos 30°).
-    const double rx = f_con[model.dof_index.at("ux2")], ry = f_con[model.dof_index.at("uy2")];
+    const double rx = f_con[model.dof_at("ux2")], ry = f_con[model.dof_at("uy2")];
     // f_con = −Aᵀλ along the normal: the products cancel to a few roundings (observed exact).
     CHECK(std::abs(rx * 0.8660254037844386 + ry * 0.5) <=
           4 * kEps * std::max(1.0, std::hypot(rx, ry)));

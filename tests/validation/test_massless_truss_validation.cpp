@@ -84,7 +84,7 @@ Condensed condense(const Model& full) {
   Kt = (0.5 * (Kt + Kt.transpose())).eval();
   const double tiny = 1e-13 * Kt.cwiseAbs().maxCoeff();
   Kt = Kt.unaryExpr([tiny](double x) { return std::abs(x) <= tiny ? 0.0 : x; });
-  const int uy7 = full.dof_index.at("uy7");
+  const int uy7 = full.dof_at("uy7");
   Eigen::VectorXd eh = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(c.h.size()));
   for (std::size_t k = 0; k < c.h.size(); ++k)
     if (c.h[k] == uy7) eh[static_cast<Eigen::Index>(k)] = -20.0;  // the load's amplitude
