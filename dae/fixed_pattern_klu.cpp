@@ -26,32 +26,59 @@ struct FixedPatternKlu::Impl {
   Impl& operator=(const Impl&) = delete;
 };
 
-FixedPatternKlu::FixedPatternKlu() : impl_(std::make_unique<Impl>()) {}
+FixedPatternKlu::FixedPatternKlu(KluSettings settings)
+    : impl_(std::make_unique<Impl>()), settings_(settings) {
+  impl_->common.ordering = settings.ordering;
+}
+
+void FixedPatternKlu::restart() {
+  Impl& k = *impl_;
+  if (k.numeric != nullptr) klu_free_numeric(&k.numeric, &k.common);
+}
 FixedPatternKlu::~FixedPatternKlu() = default;
 
 bool FixedPatternKlu::factor(const Eigen::SparseMatrix<double>& matrix) {
   if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
     throw std::invalid_argument("FixedPatternKlu: a square compressed matrix is expected");
   }
+  return factor(static_cast<int>(matrix.rows()), matrix.outerIndexPtr(), matrix.innerIndexPtr(),
+                matrix.valuePtr());
+}
+
+bool FixedPatternKlu::factor(const Eigen::Map<Eigen::SparseMatrix<double>>& matrix) {
+  if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
+    throw std::invalid_argument("FixedPatternKlu: a square compressed matrix is expected");
+  }
+  return factor(static_cast<int>(matrix.rows()), matrix.outerIndexPtr(), matrix.innerIndexPtr(),
+                matrix.valuePtr());
+}
+
+bool FixedPatternKlu::factor(int n, const int* outer, const int* inner, const double* values) {
   Impl& k = *impl_;
-  // KLU's interface takes non-const index arrays it does not write.
-  auto* p = const_cast<int*>(matrix.outerIndexPtr());
-  auto* i = const_cast<int*>(matrix.innerIndexPtr());
-  auto* x = const_cast<double*>(matrix.valuePtr());
+  // KLU's interface takes non-const arrays it does not write.
+  auto* p = const_cast<int*>(outer);
+  auto* i = const_cast<int*>(inner);
+  auto* x = const_cast<double*>(values);
   if (k.symbolic == nullptr) {
-    k.n = static_cast<int>(matrix.rows());
+    k.n = n;
     k.symbolic = klu_analyze(k.n, p, i, &k.common);
     if (k.symbolic == nullptr) return false;
-  } else if (matrix.rows() != k.n) {
+  } else if (n != k.n) {
     throw std::invalid_argument("FixedPatternKlu: the matrix changed size");
   }
   if (k.numeric != nullptr) {
     // The tolerance SUNDIALS' SUNLinSol_KLU applies to its refactorizations.
     static const double kMinRcond = std::pow(std::numeric_limits<double>::epsilon(), 2.0 / 3.0);
     if (klu_refactor(p, i, x, k.symbolic, k.numeric, &k.common) != 0 &&
-        klu_rcond(k.symbolic, k.numeric, &k.common) != 0 && k.common.rcond >= kMinRcond) {
-      ++refactored_;
-      return true;
+        klu_rcond(k.symbolic, k.numeric, &k.common) != 0) {
+      const bool keep = k.common.rcond >= kMinRcond ||
+                        (settings_.confirm_with_condest &&
+                         klu_condest(p, x, k.symbolic, k.numeric, &k.common) != 0 &&
+                         k.common.condest <= 1.0 / kMinRcond);
+      if (keep) {
+        ++refactored_;
+        return true;
+      }
     }
     klu_free_numeric(&k.numeric, &k.common);
   }

@@ -15,9 +15,20 @@
 
 namespace condyn {
 
+/// KLU's fill-reducing ordering (0 AMD, KLU's default; 1 COLAMD), and whether a refactored
+/// matrix whose rcond estimate is small is kept when KLU's condest (dearer, more accurate) finds
+/// its condition number at most 1/ε^(2/3).
+struct KluSettings {
+  int ordering = 0;
+  bool confirm_with_condest = false;
+};
+/// SUNDIALS' SUNLinSol_KLU's: COLAMD, and a small rcond confirmed by condest before pivoting
+/// afresh.
+inline constexpr KluSettings kSundialsKluSettings{1, true};
+
 class FixedPatternKlu {
  public:
-  FixedPatternKlu();
+  explicit FixedPatternKlu(KluSettings settings = {});
   ~FixedPatternKlu();
   FixedPatternKlu(const FixedPatternKlu&) = delete;
   FixedPatternKlu& operator=(const FixedPatternKlu&) = delete;
@@ -25,6 +36,10 @@ class FixedPatternKlu {
   /// Factors `matrix` (compressed), whose pattern must be that of the first matrix factored;
   /// false when it is singular (or the analysis failed). The matrix is read during the call only.
   bool factor(const Eigen::SparseMatrix<double>& matrix);
+  /// The same on a view (the integrator's values over a fixed pattern, dae/block_jacobian.hpp).
+  bool factor(const Eigen::Map<Eigen::SparseMatrix<double>>& matrix);
+  /// The next factor() pivots afresh (the analysis, which depends on the pattern only, is kept).
+  void restart();
   /// x ← (last matrix factored)⁻¹ x, in place.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
   /// x with (last matrix factored) x = rhs.
@@ -35,7 +50,9 @@ class FixedPatternKlu {
 
  private:
   struct Impl;
+  bool factor(int n, const int* outer, const int* inner, const double* values);
   std::unique_ptr<Impl> impl_;
+  KluSettings settings_;
   long pivoting_ = 0;
   long refactored_ = 0;
 };

@@ -1,5 +1,6 @@
 #include "dae/ida_integrator.hpp"
 
+#include "dae/klu_linear_solver.hpp"
 #include "dae/newton_linear_solver.hpp"
 #include "dae/step_driver.hpp"
 #include "dae/sundials_raii.hpp"
@@ -10,7 +11,6 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
@@ -203,7 +203,7 @@ class Ida final : public sundials::SundialsStepper {
       matrix_.reset(
           SUNSparseMatrix(n_, n_, std::max<sunindextype>(problem.jacobian_pattern().nonZeros(), 1),
                           CSC_MAT, ctx_.get()));
-      if (matrix_) solver_.reset(SUNLinSol_KLU(y_.get(), matrix_.get(), ctx_.get()));
+      if (matrix_) solver_.reset(sundials::make_klu_solver(problem.jacobian_pattern(), ctx_.get()));
     }
     if ((!newton_ && !matrix_) || !solver_) {
       throw IntegrationError("could not create the linear solver");
