@@ -12,7 +12,6 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
-#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
 #include <chrono>
@@ -77,14 +76,10 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
                         void* user, N_Vector /*t1*/, N_Vector /*t2*/, N_Vector /*t3*/) {
   auto* data = static_cast<CallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
-    if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
-      // IDA zeroes the whole sparse matrix (values and index arrays) before each call: the fixed
-      // pattern's indices are copied back, and the values are filled in place, in a view over
-      // the pattern's index arrays (never written) and the matrix's own value array.
-      const JacobianPattern& pattern = data->problem->jacobian_pattern();
-      std::copy(pattern.outer.begin(), pattern.outer.end(), SUNSparseMatrix_IndexPointers(J));
-      std::copy(pattern.inner.begin(), pattern.inner.end(), SUNSparseMatrix_IndexValues(J));
-      data->problem->fill_jacobian(t, view(y), view(yp), cj, pattern.map(SUNSparseMatrix_Data(J)));
+    if (double* values = sundials::pattern_matrix_values(J)) {
+      // The KLU solver's matrix: the values in the problem's fixed pattern, zeroed by IDA.
+      data->problem->fill_jacobian(t, view(y), view(yp), cj,
+                                   data->problem->jacobian_pattern().map(values));
     } else {
       data->problem->jacobian(t, view(y), view(yp), cj, data->jac);
       for (int k = 0; k < data->jac.outerSize(); ++k) {
@@ -200,9 +195,7 @@ class Ida final : public sundials::SundialsStepper {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
     } else {
-      matrix_.reset(
-          SUNSparseMatrix(n_, n_, std::max<sunindextype>(problem.jacobian_pattern().nonZeros(), 1),
-                          CSC_MAT, ctx_.get()));
+      matrix_.reset(sundials::make_pattern_matrix(problem.jacobian_pattern(), ctx_.get()));
       if (matrix_) solver_.reset(sundials::make_klu_solver(problem.jacobian_pattern(), ctx_.get()));
     }
     if ((!newton_ && !matrix_) || !solver_) {

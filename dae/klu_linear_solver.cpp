@@ -3,16 +3,48 @@
 #include "dae/klu_linear_solver.hpp"
 
 #include <nvector/nvector_serial.h>
-#include <sunmatrix/sunmatrix_sparse.h>
 
+#include <algorithm>
 #include <exception>
 #include <new>
+#include <vector>
 
 #include "dae/fixed_pattern_klu.hpp"
 
 namespace condyn::sundials {
 
 namespace {
+
+// The matrix: a value array sized to the pattern.
+
+struct MatrixContent {
+  std::vector<double> values;
+};
+
+MatrixContent& matrix_content(SUNMatrix a) { return *static_cast<MatrixContent*>(a->content); }
+
+SUNMatrix_ID matrix_id(SUNMatrix /*a*/) { return SUNMATRIX_CUSTOM; }
+
+int matrix_zero(SUNMatrix a) {
+  auto& values = matrix_content(a).values;
+  std::fill(values.begin(), values.end(), 0.0);
+  return SUNMAT_SUCCESS;
+}
+
+int matrix_space(SUNMatrix a, long* lenrw, long* leniw) {
+  *lenrw = static_cast<long>(matrix_content(a).values.size());
+  *leniw = 0;
+  return SUNMAT_SUCCESS;
+}
+
+void matrix_destroy(SUNMatrix a) {
+  if (a == nullptr) return;
+  delete static_cast<MatrixContent*>(a->content);
+  a->content = nullptr;
+  SUNMatFreeEmpty(a);
+}
+
+// The solver.
 
 struct Content {
   const JacobianPattern* pattern = nullptr;
@@ -32,13 +64,14 @@ int initialize(SUNLinearSolver s) {
 
 int setup(SUNLinearSolver s, SUNMatrix a) {
   Content& c = content(s);
-  if (a == nullptr || SUNMatGetID(a) != SUNMATRIX_SPARSE ||
-      SUNSparseMatrix_NNZ(a) < c.pattern->nonZeros()) {
+  double* values = pattern_matrix_values(a);
+  if (values == nullptr ||
+      matrix_content(a).values.size() != static_cast<std::size_t>(c.pattern->nonZeros())) {
     return c.last_flag = SUNLS_ILL_INPUT;
   }
   try {
     // A singular matrix is recoverable: IDA retries the step with a smaller one (another cj).
-    if (!c.klu.factor(c.pattern->map(SUNSparseMatrix_Data(a)))) {
+    if (!c.klu.factor(c.pattern->map(values))) {
       return c.last_flag = SUNLS_PACKAGE_FAIL_REC;
     }
   } catch (const std::bad_alloc&) {
@@ -73,6 +106,28 @@ int free_solver(SUNLinearSolver s) {
 }
 
 }  // namespace
+
+SUNMatrix make_pattern_matrix(const JacobianPattern& pattern, SUNContext ctx) {
+  SUNMatrix a = SUNMatNewEmpty(ctx);
+  if (a == nullptr) return nullptr;
+  try {
+    a->content =
+        new MatrixContent{std::vector<double>(static_cast<std::size_t>(pattern.nonZeros()))};
+  } catch (const std::bad_alloc&) {
+    SUNMatFreeEmpty(a);
+    return nullptr;
+  }
+  a->ops->getid = matrix_id;
+  a->ops->zero = matrix_zero;
+  a->ops->space = matrix_space;
+  a->ops->destroy = matrix_destroy;
+  return a;
+}
+
+double* pattern_matrix_values(SUNMatrix a) {
+  if (a == nullptr || a->ops == nullptr || a->ops->getid != matrix_id) return nullptr;
+  return matrix_content(a).values.data();
+}
 
 SUNLinearSolver make_klu_solver(const JacobianPattern& pattern, SUNContext ctx) {
   SUNLinearSolver s = SUNLinSolNewEmpty(ctx);

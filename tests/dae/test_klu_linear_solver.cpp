@@ -18,10 +18,12 @@ using namespace condyn;
 
 namespace {
 
-/// The values of `dense` on `pattern`, written into the SUNSparseMatrix as the Jacobian callback
-/// writes them (values only: the solver reads the indices from the pattern).
+/// The values of `dense` on `pattern`, written into the matrix as IDA and the Jacobian callback
+/// write them: zeroed, then filled in the pattern.
 void fill(const JacobianPattern& pattern, const Eigen::MatrixXd& dense, SUNMatrix a) {
-  JacobianMap J = pattern.map(SUNSparseMatrix_Data(a));
+  REQUIRE(SUNMatZero(a) == SUNMAT_SUCCESS);
+  JacobianMap J = pattern.map(condyn::sundials::pattern_matrix_values(a));
+  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) REQUIRE(J.valuePtr()[k] == 0.0);
   for (int c = 0; c < pattern.size; ++c) {
     for (JacobianMap::InnerIterator it(J, c); it; ++it) it.valueRef() = dense(it.row(), c);
   }
@@ -47,11 +49,16 @@ TEST_CASE("make_klu_solver: solves with the values IDA's matrix holds, refactore
   SUNContext raw = nullptr;
   REQUIRE(SUNContext_Create(nullptr, &raw) == 0);
   condyn::sundials::ContextPtr ctx(raw);
-  condyn::sundials::MatrixPtr a(SUNSparseMatrix(4, 4, pattern.nonZeros(), CSC_MAT, ctx.get()));
+  condyn::sundials::MatrixPtr a(condyn::sundials::make_pattern_matrix(pattern, ctx.get()));
   condyn::sundials::SolverPtr solver(condyn::sundials::make_klu_solver(pattern, ctx.get()));
   condyn::sundials::VectorPtr b(N_VNew_Serial(4, ctx.get()));
   condyn::sundials::VectorPtr x(N_VNew_Serial(4, ctx.get()));
   REQUIRE(a);
+  CHECK(SUNMatGetID(a.get()) == SUNMATRIX_CUSTOM);
+  long lenrw = 0, leniw = 0;
+  CHECK(SUNMatSpace(a.get(), &lenrw, &leniw) == SUNMAT_SUCCESS);
+  CHECK(lenrw == pattern.nonZeros());  // values only
+  CHECK(leniw == 0);
   REQUIRE(solver);
   CHECK(SUNLinSolGetType(solver.get()) == SUNLINEARSOLVER_DIRECT);
   REQUIRE(SUNLinSolInitialize(solver.get()) == SUNLS_SUCCESS);
@@ -90,7 +97,14 @@ TEST_CASE("make_klu_solver: solves with the values IDA's matrix holds, refactore
   REQUIRE(SUNLinSolInitialize(solver.get()) == SUNLS_SUCCESS);
   solve_and_check(first);
 
-  // A matrix that is not sparse, or too small for the pattern, is refused.
-  condyn::sundials::MatrixPtr small(SUNSparseMatrix(4, 4, 1, CSC_MAT, ctx.get()));
-  CHECK(SUNLinSolSetup(solver.get(), small.get()) == SUNLS_ILL_INPUT);
+  // Any other matrix, or one made for another pattern, is refused.
+  condyn::sundials::MatrixPtr sparse(SUNSparseMatrix(4, 4, pattern.nonZeros(), CSC_MAT, ctx.get()));
+  CHECK(condyn::sundials::pattern_matrix_values(sparse.get()) == nullptr);
+  CHECK(condyn::sundials::pattern_matrix_values(nullptr) == nullptr);
+  CHECK(SUNLinSolSetup(solver.get(), sparse.get()) == SUNLS_ILL_INPUT);
+  BlockJacobian diagonal(4);
+  diagonal.finish();
+  condyn::sundials::MatrixPtr other(
+      condyn::sundials::make_pattern_matrix(diagonal.pattern(), ctx.get()));
+  CHECK(SUNLinSolSetup(solver.get(), other.get()) == SUNLS_ILL_INPUT);
 }
