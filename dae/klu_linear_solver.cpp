@@ -132,8 +132,9 @@ double* pattern_matrix_values(SUNMatrix a) {
 SUNLinearSolver make_klu_solver(const JacobianPattern& pattern, SUNContext ctx) {
   SUNLinearSolver s = SUNLinSolNewEmpty(ctx);
   if (s == nullptr) return nullptr;
-  s->content = new (std::nothrow) Content{&pattern};
-  if (s->content == nullptr) {
+  try {
+    s->content = new Content{&pattern};  // FixedPatternKlu allocates too
+  } catch (const std::bad_alloc&) {
     SUNLinSolFreeEmpty(s);
     return nullptr;
   }
