@@ -10,7 +10,14 @@
 // defaults; bench/run_bench.py passes the scene's) and prints one line of key=value figures:
 //   steps, residual and Jacobian evaluations, Newton iterations, failures, the wall time of the
 //   solver loop (IDACalcIC to t_end), of the whole process, and the peak RSS (getrusage).
+//
+//   condyn_bare_driver DIR --klu-index-width SOLVES
+// integrates nothing: it fills the same Newton matrix at cj = 1000, factors it with KLU as
+// SUNLinSol_KLU does (COLAMD) in 64-bit indices (klu_l_*, what Debian's SUNDIALS calls) and in
+// 32-bit ones (klu_*, what condyn calls), and prints the factors' entries and the median time of
+// SOLVES triangular solves of each (why condyn has its own KLU solver, dae/klu_linear_solver.hpp).
 #include <ida/ida.h>
+#include <klu.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
@@ -238,17 +245,79 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/// Median of `solves` solves of the factored matrix, in seconds (b = 1 before each).
+template <class Solve>
+double median_solve(long size, long solves, Solve solve) {
+  std::vector<double> b(static_cast<std::size_t>(size)), times;
+  for (long r = 0; r < solves; ++r) {
+    std::fill(b.begin(), b.end(), 1.0);
+    const auto t0 = Clock::now();
+    solve(b.data());
+    times.push_back(seconds_since(t0));
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+/// --klu-index-width: the Newton matrix at cj = 1000 factored and solved by KLU in 64-bit and in
+/// 32-bit indices, the same ordering (COLAMD, SUNLinSol_KLU's) and the same values.
+void compare_klu_index_width(Problem& p, long nnz, long solves) {
+  const long size = 2 * p.n + p.m;
+  SUNContext ctx = nullptr;
+  check(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
+  SUNMatrix J = SUNSparseMatrix(size, size, nnz, CSC_MAT, ctx);
+  if (!J) throw std::runtime_error("SUNSparseMatrix failed");
+  jacobian(0.0, 1000.0, nullptr, nullptr, nullptr, J, &p, nullptr, nullptr, nullptr);
+  // Debian's sunindextype is KLU's SuiteSparse_long (both long): SUNLinSol_KLU passes them as is.
+  SuiteSparse_long* lp = SUNSparseMatrix_IndexPointers(J);
+  SuiteSparse_long* li = SUNSparseMatrix_IndexValues(J);
+  double* x = SUNSparseMatrix_Data(J);
+  const std::vector<int> ip(lp, lp + size + 1), ii(li, li + lp[size]);
+
+  klu_l_common cl;
+  klu_l_defaults(&cl);
+  cl.ordering = 1;
+  klu_l_symbolic* sl = klu_l_analyze(size, lp, li, &cl);
+  klu_l_numeric* nl = sl ? klu_l_factor(lp, li, x, sl, &cl) : nullptr;
+  klu_common ci;
+  klu_defaults(&ci);
+  ci.ordering = 1;
+  klu_symbolic* si = klu_analyze(static_cast<int>(size), const_cast<int*>(ip.data()),
+                                 const_cast<int*>(ii.data()), &ci);
+  klu_numeric* ni =
+      si ? klu_factor(const_cast<int*>(ip.data()), const_cast<int*>(ii.data()), x, si, &ci)
+         : nullptr;
+  if (!nl || !ni) throw std::runtime_error("KLU could not factor the Newton matrix");
+  const double t64 =
+      median_solve(size, solves, [&](double* b) { klu_l_solve(sl, nl, size, 1, b, &cl); });
+  const double t32 = median_solve(
+      size, solves, [&](double* b) { klu_solve(si, ni, static_cast<int>(size), 1, b, &ci); });
+  std::printf(
+      "klu_index_width: unknowns=%ld nnz_jac=%ld lu_entries_64=%ld lu_entries_32=%ld solves=%ld "
+      "solve_ms_64=%.4g solve_ms_32=%.4g ratio_32_to_64=%.3f\n",
+      size, nnz, static_cast<long>(nl->lnz + nl->unz), static_cast<long>(ni->lnz + ni->unz), solves,
+      1e3 * t64, 1e3 * t32, t32 / t64);
+  klu_l_free_numeric(&nl, &cl);
+  klu_l_free_symbolic(&sl, &cl);
+  klu_free_numeric(&ni, &ci);
+  klu_free_symbolic(&si, &ci);
+  SUNMatDestroy(J);
+  SUNContext_Free(&ctx);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const auto process_start = Clock::now();
   if (argc < 2) {
     std::cerr
-        << "usage: condyn_bare_driver DIR [--t-end T] [--output-step H] [--rtol R] [--atol A]\n";
+        << "usage: condyn_bare_driver DIR [--t-end T] [--output-step H] [--rtol R] [--atol A]\n"
+           "       condyn_bare_driver DIR --klu-index-width SOLVES\n";
     return 2;
   }
   const std::string dir = argv[1];
   double t_end = 1.0, output_step = 0.01, rtol = 1e-6, atol = 1e-8;
+  long klu_solves = 0;
   for (int i = 2; i < argc; ++i) {
     const std::string flag = argv[i];
     if (i + 1 >= argc) {
@@ -269,6 +338,8 @@ int main(int argc, char** argv) {
       rtol = v;
     else if (flag == "--atol")
       atol = v;
+    else if (flag == "--klu-index-width")
+      klu_solves = std::lround(v);
     else {
       std::cerr << "error: unknown flag " << flag << "\n";
       return 2;
@@ -291,6 +362,10 @@ int main(int argc, char** argv) {
     const long n = p.n, m = p.m, size = 2 * n + m;
     const long nnz = n + static_cast<long>(p.K.idx.size()) + n + static_cast<long>(p.M.idx.size()) +
                      2 * static_cast<long>(p.A.idx.size());
+    if (klu_solves > 0) {
+      compare_klu_index_width(p, nnz, klu_solves);
+      return 0;
+    }
 
     const auto solver_start = Clock::now();
     const double solver_cpu_start = cpu_seconds();
