@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dae/fixed_pattern_klu.hpp"
+#include "dae/linear_solver_parts.hpp"
 
 namespace condyn::sundials {
 
@@ -52,7 +53,7 @@ struct Content {
   int last_flag = 0;
 };
 
-Content& content(SUNLinearSolver s) { return *static_cast<Content*>(s->content); }
+Content& content(SUNLinearSolver s) { return content_of<Content>(s); }
 
 SUNLinearSolver_Type get_type(SUNLinearSolver /*s*/) { return SUNLINEARSOLVER_DIRECT; }
 
@@ -84,25 +85,7 @@ int setup(SUNLinearSolver s, SUNMatrix a) {
 
 int solve(SUNLinearSolver s, SUNMatrix /*a*/, N_Vector x, N_Vector b, double /*tol*/) {
   Content& c = content(s);
-  N_VScale(1.0, b, x);
-  Eigen::Map<Eigen::VectorXd> view(N_VGetArrayPointer(x),
-                                   static_cast<Eigen::Index>(N_VGetLength(x)));
-  try {
-    c.klu.solve_in_place(view);
-  } catch (const std::exception&) {
-    return c.last_flag = SUNLS_PACKAGE_FAIL_UNREC;
-  }
-  return c.last_flag = view.allFinite() ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_REC;
-}
-
-sunindextype last_flag(SUNLinearSolver s) { return content(s).last_flag; }
-
-int free_solver(SUNLinearSolver s) {
-  if (s == nullptr) return SUNLS_SUCCESS;
-  delete static_cast<Content*>(s->content);
-  s->content = nullptr;
-  SUNLinSolFreeEmpty(s);
-  return SUNLS_SUCCESS;
+  return c.last_flag = solve_into(x, b, [&c](auto& values) { c.klu.solve_in_place(values); });
 }
 
 }  // namespace
@@ -130,20 +113,12 @@ double* pattern_matrix_values(SUNMatrix a) {
 }
 
 SUNLinearSolver make_klu_solver(const JacobianPattern& pattern, SUNContext ctx) {
-  SUNLinearSolver s = SUNLinSolNewEmpty(ctx);
+  SUNLinearSolver s = new_solver_with<Content>(ctx, &pattern);
   if (s == nullptr) return nullptr;
-  try {
-    s->content = new Content{&pattern};  // FixedPatternKlu allocates too
-  } catch (const std::bad_alloc&) {
-    SUNLinSolFreeEmpty(s);
-    return nullptr;
-  }
   s->ops->gettype = get_type;
   s->ops->initialize = initialize;
   s->ops->setup = setup;
   s->ops->solve = solve;
-  s->ops->lastflag = last_flag;
-  s->ops->free = free_solver;
   return s;
 }
 

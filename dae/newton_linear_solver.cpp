@@ -2,6 +2,8 @@
 
 #include "dae/newton_linear_solver.hpp"
 
+#include "dae/linear_solver_parts.hpp"
+
 #include <nvector/nvector_serial.h>
 
 #include <cmath>
@@ -22,7 +24,7 @@ struct Content {
   int last_flag = 0;
 };
 
-Content& content(SUNLinearSolver s) { return *static_cast<Content*>(s->content); }
+Content& content(SUNLinearSolver s) { return content_of<Content>(s); }
 
 SUNLinearSolver_Type get_type(SUNLinearSolver /*s*/) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
 
@@ -59,45 +61,22 @@ int solve(SUNLinearSolver s, SUNMatrix /*a*/, N_Vector x, N_Vector b, double /*t
   if (c.gamma_setup == 0.0 || std::abs(gamma / c.gamma_setup - 1.0) > c.max_change) {
     if (const int flag = factor_at(c, gamma); flag != SUNLS_SUCCESS) return flag;
   }
-  N_VScale(1.0, b, x);
-  Eigen::Map<Eigen::VectorXd> view(N_VGetArrayPointer(x),
-                                   static_cast<Eigen::Index>(N_VGetLength(x)));
-  try {
-    c.system->solve(view);
-  } catch (const std::exception&) {
-    return c.last_flag = SUNLS_PACKAGE_FAIL_UNREC;
-  }
-  if (gamma != c.gamma_setup) view *= 2.0 / (1.0 + gamma / c.gamma_setup);
-  return c.last_flag = view.allFinite() ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_REC;
-}
-
-sunindextype last_flag(SUNLinearSolver s) { return content(s).last_flag; }
-
-int free_solver(SUNLinearSolver s) {
-  if (s == nullptr) return SUNLS_SUCCESS;
-  delete static_cast<Content*>(s->content);
-  s->content = nullptr;
-  SUNLinSolFreeEmpty(s);
-  return SUNLS_SUCCESS;
+  return c.last_flag = solve_into(x, b, [&c, gamma](auto& values) {
+           c.system->solve(values);
+           if (gamma != c.gamma_setup) values *= 2.0 / (1.0 + gamma / c.gamma_setup);
+         });
 }
 
 }  // namespace
 
 SUNLinearSolver make_newton_solver(NewtonSystem& system, std::function<bool(double&)> current,
                                    double max_change, SUNContext ctx) {
-  SUNLinearSolver s = SUNLinSolNewEmpty(ctx);
+  SUNLinearSolver s = new_solver_with<Content>(ctx, &system, std::move(current), max_change);
   if (s == nullptr) return nullptr;
-  s->content = new (std::nothrow) Content{&system, std::move(current), max_change};
-  if (s->content == nullptr) {
-    SUNLinSolFreeEmpty(s);
-    return nullptr;
-  }
   s->ops->gettype = get_type;
   s->ops->initialize = initialize;
   s->ops->setup = setup;
   s->ops->solve = solve;
-  s->ops->lastflag = last_flag;
-  s->ops->free = free_solver;
   return s;
 }
 
