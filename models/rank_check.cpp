@@ -1,13 +1,14 @@
 // The rank and redundancy check of the constraints (kRankTolerance), and dropping a redundant one.
 
 #include <Eigen/Dense>
-#include <Eigen/SPQRSupport>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "models/constraint_groups.hpp"
 #include "models/model_builder.hpp"
+#include "models/sparse_qr.hpp"
 #include "models/zero_sum.hpp"
 
 namespace condyn {
@@ -64,19 +65,12 @@ GroupRank dense_group_rank(const Eigen::SparseMatrix<double>& at_sparse) {
 /// (Heath's) can miss a dependency that column pivoting would find, never invent one that the
 /// least-squares residual below does not confirm.
 GroupRank sparse_group_rank(const Eigen::SparseMatrix<double>& at) {
-  using Spqr = Eigen::SPQR<Eigen::SparseMatrix<double>>;
-  Spqr qr;
-  qr.setPivotThreshold(kRankTolerance);
-  qr.compute(at);
-  if (qr.info() != Eigen::Success) throw std::runtime_error("SuiteSparseQR failed on A^T");
+  const SparseQrRank qr = sparse_qr_rank(at, kRankTolerance);
   GroupRank g;
-  g.rank = static_cast<int>(qr.rank());
+  g.rank = qr.rank;
   const auto cols = static_cast<int>(at.cols());
   if (g.rank == cols) return g;
-  const auto perm = qr.colsPermutation();  // column perm.indices()[k] of A^T is the k-th
-  std::vector<int> order(static_cast<std::size_t>(cols));
-  for (int k = 0; k < cols; ++k)
-    order[static_cast<std::size_t>(k)] = static_cast<int>(perm.indices()[k]);
+  const auto& order = qr.order;  // column order[k] of A^T is the k-th
   // The independent columns, and the first dependent one expressed in them (least squares).
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < g.rank; ++k) {
@@ -86,17 +80,13 @@ GroupRank sparse_group_rank(const Eigen::SparseMatrix<double>& at) {
   }
   Eigen::SparseMatrix<double> basis(at.rows(), g.rank);
   basis.setFromTriplets(t.begin(), t.end());
-  Spqr ls;
-  if (g.rank > 0) {
-    ls.setPivotThreshold(kRankTolerance);
-    ls.compute(basis);
-    if (ls.info() != Eigen::Success) throw std::runtime_error("SuiteSparseQR failed on a basis");
-  }
+  std::optional<SparseLeastSquares> ls;
+  if (g.rank > 0) ls.emplace(basis, kRankTolerance);
   for (int k = g.rank; k < cols; ++k) {
     const int c = order[static_cast<std::size_t>(k)];
     const Eigen::VectorXd target = at.col(c);
     Eigen::VectorXd y = Eigen::VectorXd::Zero(g.rank);
-    if (g.rank > 0) y = ls.solve(target);
+    if (ls) y = ls->solve(target);
     if ((basis * y - target).norm() > kRankTolerance) continue;  // not confirmed
     g.dep = c;
     for (int j = 0; j < g.rank; ++j) g.combo.emplace_back(order[static_cast<std::size_t>(j)], y[j]);
