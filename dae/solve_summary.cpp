@@ -64,8 +64,16 @@ std::string SolveSummary::brief() const {
   s << scheme << ": " << termination << ", " << steps << " steps, " << residual_evals
     << " residual and " << jacobian_evals << " Jacobian evaluations, " << newton_failures
     << " Newton and " << error_test_failures << " error-test failures, " << unknowns
-    << " unknowns, wall " << wall_seconds * 1e3 << " ms, max drift position " << max_drift_position
-    << " velocity " << max_drift_velocity;
+    << " unknowns, wall ";
+  // Three significant digits below 100 ms; whole milliseconds above, never an exponent (a run of
+  // minutes printed as 1.7e+05 ms would hide its last three digits).
+  const double wall_ms = wall_seconds * 1e3;
+  if (wall_ms >= 100.0) {
+    s << std::llround(wall_ms);
+  } else {
+    s << wall_ms;
+  }
+  s << " ms, max drift position " << max_drift_position << " velocity " << max_drift_velocity;
   if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
   if (!notes.empty()) s << "; " << notes;
   return s.str();

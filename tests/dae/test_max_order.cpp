@@ -59,7 +59,7 @@ TEST_CASE("max_order outside 1..5 is refused naming the key") {
   for (const char* bad : {"0", "6", "2.5", "\"two\""}) {
     CAPTURE(bad);
     CHECK_THROWS_WITH_AS(
-        parse_scene_text(stiff_pair(std::string("max_order = ") + bad + "\n"), "pair.toml"),
+        (void)parse_scene_text(stiff_pair(std::string("max_order = ") + bad + "\n"), "pair.toml"),
         doctest::Contains("solve.max_order"), SceneError);
   }
 }

@@ -227,13 +227,13 @@ TEST_CASE("one SystemSizer sizes every scheme as system_size does, pure and mixe
 
 TEST_CASE("[solve] constraints: 'mixed' only beside a multiplier scheme or auto") {
   CHECK_THROWS_WITH_AS(
-      parse_scene_text(chain_scene("scheme = \"elimination\"\nconstraints = \"mixed\"\n"),
-                       "chain.toml"),
+      (void)parse_scene_text(chain_scene("scheme = \"elimination\"\nconstraints = \"mixed\"\n"),
+                             "chain.toml"),
       doctest::Contains("solve.constraints: 'mixed' applies to the multiplier schemes"),
       SceneError);
-  CHECK_THROWS_WITH_AS(parse_scene_text(chain_scene("constraints = \"some\"\n"), "chain.toml"),
-                       doctest::Contains("solve.constraints: expected 'mixed' or 'multipliers'"),
-                       SceneError);
+  CHECK_THROWS_WITH_AS(
+      (void)parse_scene_text(chain_scene("constraints = \"some\"\n"), "chain.toml"),
+      doctest::Contains("solve.constraints: expected 'mixed' or 'multipliers'"), SceneError);
   const SceneSpec spec =
       parse_scene_text(chain_scene("scheme = \"index1\"\nconstraints = \"mixed\"\n"), "c.toml");
   CHECK(spec.solve.treatment == SolveSpec::Treatment::mixed);

@@ -115,3 +115,20 @@ TEST_CASE("one nonlinear model, two threads: each run evaluates its own system")
   CHECK(a.trajectory.u == alone_ggl.u);
   CHECK(b.trajectory.u == alone_projection.u);
 }
+
+TEST_CASE("the run summary prints its wall time without an exponent") {
+  SolveSummary s;
+  s.scheme = "ggl";
+  const auto wall = [&s](double seconds) {
+    s.wall_seconds = seconds;
+    const std::string line = s.brief();
+    const auto at = line.find(", wall ");
+    REQUIRE(at != std::string::npos);
+    return line.substr(at + 7, line.find(" ms", at) - at - 7);
+  };
+  CHECK(wall(0.00184) == "1.84");
+  CHECK(wall(0.0758) == "75.8");
+  CHECK(wall(0.7584) == "758");
+  // Four minutes: every millisecond shown (it was "2.5e+05").
+  CHECK(wall(250.1234) == "250123");
+}

@@ -340,7 +340,7 @@ TEST_CASE("matrix model from files: large matrices are checked without a dense c
   // LDLt's inertia refuses it; the same pattern with 0.5 (eigenvalues >= 1 - cos(pi/601) > 0)
   // passes, and so does the free-free spring chain (diagonal 1, 2, ..., 2, 1 and -1 beside it:
   // positive semi-definite with the rigid motion as an exact zero eigenvalue).
-  const auto tridiagonal = [n](double end, double middle, double off) {
+  const auto tridiagonal = [](double end, double middle, double off) {
     std::string t = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) + " " +
                     std::to_string(n) + " " + std::to_string(2 * n - 1) + "\n";
     for (int i = 1; i <= n; ++i) {
