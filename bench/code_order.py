@@ -51,7 +51,9 @@ def executed(profile, binary):
             if kind == "ob":
                 current = objects[key]
             elif current and os.path.realpath(current) == binary:
-                names.append(functions[key].split("'")[0])  # callgrind's 'N recursion suffix
+                name = functions[key].split("'")[0]  # callgrind's 'N recursion suffix
+                if not name.startswith("0x"):  # code without a symbol (PLT stubs): no section
+                    names.append(name)
     return names
 
 
@@ -91,11 +93,6 @@ def main():
         lattice = os.path.join(tmp, "lattice")
         subprocess.run([sys.executable, os.path.join(ROOT, "bench", "lattice.py"), "--dofs", "1e3",
                         "--out", lattice], check=True, stdout=subprocess.DEVNULL)
-        # The same scene with [solve] newton = "condensed", as bench/run_bench.py writes it.
-        with open(os.path.join(lattice, "lattice.toml")) as src:
-            text = src.read().replace("[solve]\n", '[solve]\nnewton = "condensed"\n', 1)
-        with open(os.path.join(lattice, "condensed.toml"), "w") as dst:
-            dst.write(text)
         runs = [(os.path.join(lattice, scene), scheme)
                 for scene in ("lattice.toml", "condensed.toml", "inline.toml")
                 for scheme in ("index1", "ggl", "elimination")]
@@ -117,6 +114,9 @@ def main():
         for symbol in [name] + [name.replace(a, b) for a, b in ALIASES if a in name]:
             # GCC puts main and static initializers in .text.startup.NAME, the rest in .text.NAME
             sections += [".text." + symbol, ".text.startup." + symbol]
+    # In the order the profiles first name them, which callgrind does not keep stable: lists
+    # written twice differ in order, and their placements in the resident peak at 10³ DOFs (by
+    # 0.2 MB between the committed list and the same list sorted by name).
     sections = list(dict.fromkeys(sections))
     with open(args.out, "w") as f:
         f.write("\n".join(sections) + "\n")

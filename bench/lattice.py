@@ -15,6 +15,7 @@ Writes into OUT:
   A.mtx         constraint rows (m x n, coordinate real general): supports first, then the ties
   f.mtx         load pattern (n x 1, coordinate real general)
   lattice.toml  the scene with the contract keys of scene-format.md "Matrices and vectors from files"
+  condensed.toml  the same with [solve] newton = "condensed"
   inline.toml   (only when N <= --inline-max) the same system as a truss2d scene today's condyn reads
   lattice.json  sizes (n, m, supports, ties, loaded DOFs, nnz) for the benchmark runner
 """
@@ -190,8 +191,12 @@ def main(argv=None):
     # Watched DOFs: the free end's top and bottom nodes (a handful of columns in the output).
     last = (cols - 1) * args.rows
     watch = [2 * last, 2 * last + 1, 2 * (last + args.rows - 1), 2 * (last + args.rows - 1) + 1]
+    scene = matrix_scene(args, n, watch)
     with open(path("lattice.toml"), "w") as fh:
-        fh.write(matrix_scene(args, n, watch))
+        fh.write(scene)
+    # The same scene with IDA's Newton systems condensed (dae/condensed_newton.hpp).
+    with open(path("condensed.toml"), "w") as fh:
+        fh.write(scene.replace("[solve]\n", '[solve]\nnewton = "condensed"\n', 1))
     inline = n <= args.inline_max and A.shape[0] <= args.inline_max
     if inline:
         with open(path("inline.toml"), "w") as fh:
