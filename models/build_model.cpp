@@ -88,15 +88,13 @@ Model build_model(const SceneSpec& spec) {
   return build_model(spec, ignored);
 }
 
-void release_file_data(SceneSpec& spec) {
-  for (FileMatrix* m :
-       {&spec.model.mass_file, &spec.model.stiffness_file, &spec.model.damping_file})
-    m->release();
-  for (LoadSpec& load : spec.loads) load.pattern.release();
-  for (ConstraintBlockSpec& block : spec.constraint_blocks) {
-    block.A.release();
-    block.g.release();
-  }
+void release_model_input(SceneSpec& spec) {
+  spec.model = ModelSpec{};
+  std::vector<LoadSpec>().swap(spec.loads);
+  std::vector<ConstraintSpec>().swap(spec.constraints);
+  std::vector<ConstraintBlockSpec>().swap(spec.constraint_blocks);
+  spec.ground_motion.reset();
+  spec.initial = InitialSpec{};
 }
 
 }  // namespace condyn

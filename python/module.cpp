@@ -68,7 +68,7 @@ SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& sc
 /// partial result.
 py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
               std::optional<double> rtol, std::optional<double> atol) {
-  const SceneSpec spec = run_spec(scene, scheme, rtol, atol);
+  SceneSpec spec = run_spec(scene, scheme, rtol, atol);
   BuildReport report;
   std::optional<Model> model;
   SolveResult result;
@@ -76,6 +76,7 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
     const py::gil_scoped_release free;
     try {
       model.emplace(build_model(spec, report));
+      release_model_input(spec);
       const RunHooks hooks = hooks_for(spec.output.quantities);
       result = solve(*model, spec.solve, hooks);
     } catch (const SchemeNotApplicable& e) {

@@ -88,7 +88,11 @@ int run(const RunArgs& args) {
   std::ostream& msg = outputs.messages();
   BuildReport report;
   const Model model = build_model(spec, report);
-  release_file_data(spec);
+  release_model_input(spec);
+  // The scene's parse tree and its copy of the model are freed in the middle of the heap, where
+  // glibc keeps their pages: on the 10³-DOF inline lattice the heap stayed 2.36 MB resident to the
+  // end, 1.88 MB when they are returned (smaps at exit).
+  malloc_trim(0);
 
   RunHooks hooks = hooks_for(spec.output.quantities);
   hooks.record_steps = !args.steps_out.empty();
@@ -406,7 +410,7 @@ int main(int argc, char** argv) {
       if (!info_constraints.empty()) spec.solve.treatment = parse_treatment_flag(info_constraints);
       BuildReport report;
       const Model model = build_model(spec, report);
-      release_file_data(spec);
+      release_model_input(spec);
       print_info(std::cout, model, report, spec.solve);
       return 0;
     }
