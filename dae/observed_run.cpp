@@ -88,7 +88,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       result.trajectory.steps = steps;
       return;
     }
-    if (!e.raw_partial || e.raw_partial->t.size() < 2) return;
+    if (!e.raw_partial || e.raw_partial->t.empty()) return;
     try {
       result.trajectory = assemble(*e.raw_partial);
     } catch (const std::exception&) {

@@ -68,6 +68,7 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
   // Relative to the scene file's folder (a scene given as text: the working directory).
   const std::filesystem::path resolved =
       std::filesystem::path(file_).parent_path() / std::filesystem::path(out.file);
+  input_files_.push_back(resolved.string());
   try {
     out.matrix = read_matrix_market(resolved.string()).matrix;
   } catch (const MatrixMarketError& e) {

@@ -78,6 +78,7 @@ std::shared_ptr<const TimeTable> SceneReader::table_file(const toml::node& file_
   // Matrix Market files (read_matrix_files.cpp).
   const std::filesystem::path resolved =
       std::filesystem::path(file_).parent_path() / std::filesystem::path(file);
+  input_files_.push_back(resolved.string());
   try {
     auto table = std::make_shared<TimeTable>(read_time_table(resolved.string(), column));
     table->file = file;

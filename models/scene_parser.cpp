@@ -1,6 +1,7 @@
 #include "models/scene_parser.hpp"
 
 #include <toml++/toml.h>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -45,6 +46,7 @@ SceneSpec SceneReader::read(const toml::table& root) const {
   if (const auto* n = root.get("output")) read_output(*n, spec.output);
   if (const auto* n = root.get("check")) read_checks(*n, spec.solve, spec.checks);
   check_columns(root, spec);
+  spec.input_files = input_files_;
   return spec;
 }
 
@@ -66,6 +68,10 @@ SceneSpec parse_scene_table(const toml::table& root, const std::string& file,
 }
 
 SceneSpec parse_scene_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw SceneError(path + ": is a folder (name a scene file)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the scene file");
   std::ostringstream text;

@@ -77,6 +77,8 @@ class SceneReader : public TomlAccess {
 
  private:
   const ArrayInputs* arrays_ = nullptr;  ///< matrices and tables given in memory (none: files only)
+  /// The files read so far (SceneSpec::input_files), noted by the readers of files.
+  mutable std::vector<std::string> input_files_;
 };
 
 }  // namespace condyn

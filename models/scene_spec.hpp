@@ -241,6 +241,9 @@ struct SceneSpec {
   SolveSpec solve;
   OutputSpec output;
   std::vector<CheckSpec> checks;
+  /// Every file the scene names and the reader read (Matrix Market matrices, tables, check
+  /// references), as opened (relative to the scene's folder): outputs must not replace them.
+  std::vector<std::string> input_files;
 };
 
 [[nodiscard]] const char* to_string(Quantity q);

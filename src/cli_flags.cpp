@@ -98,6 +98,15 @@ CLI::Validator positive_check() {
           "NUMBER > 0"};
 }
 
+CLI::Validator file_name_check() {
+  return {[](std::string& text) {
+            return text.empty()
+                       ? std::string("an empty name: name a file (or - for standard output)")
+                       : std::string();
+          },
+          "FILE"};
+}
+
 CLI::Validator decimal_range_check(double lo, double hi) {
   return {[lo, hi](std::string& text) {
             const auto v = parse_decimal(text);

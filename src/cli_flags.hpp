@@ -28,6 +28,9 @@ namespace condyn {
 /// A tolerance for a side run (compare --drift-rtol): like rtol_check, bounded by [lo, hi].
 [[nodiscard]] CLI::Validator decimal_range_check(double lo, double hi);
 
+/// A file name for an output: not empty.
+[[nodiscard]] CLI::Validator file_name_check();
+
 /// A scheme named by `flag`; throws CLI::ValidationError naming the flag and the schemes.
 [[nodiscard]] Scheme parse_scheme_flag(const std::string& flag, const std::string& s);
 /// --constraints: "mixed" or "multipliers"; throws CLI::ValidationError otherwise.

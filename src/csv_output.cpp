@@ -51,6 +51,17 @@ std::string partial_path(const std::string& out) {
   return (p.parent_path() / (p.stem().string() + ".partial" + p.extension().string())).string();
 }
 
+/// "the output row at t = 0" or "the 12 output rows up to t = 0.11".
+std::string rows_phrase(long rows, double t_last) {
+  std::ostringstream s;
+  if (rows == 1) {
+    s << "the output row at t = " << t_last;
+  } else {
+    s << "the " << rows << " output rows up to t = " << t_last;
+  }
+  return s.str();
+}
+
 }  // namespace
 
 void write_steps_csv(std::ostream& out, const Trajectory& traj) {
@@ -68,14 +79,20 @@ void write_steps_csv(std::ostream& out, const Trajectory& traj) {
 }
 
 RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
-                       const OutputSpec& output, const std::string& steps_out)
+                       const OutputSpec& output, const std::string& steps_out,
+                       const std::vector<std::string>& inputs)
     : output_(output) {
   const std::string& output_file = output.file;
   plan_.add_input(scene);
+  for (const auto& in : inputs) plan_.add_input(in);
   if (!out_flag.empty()) {
     csv_ = plan_.add_output(out_flag, "--out");
   } else if (!output_file.empty()) {
-    csv_ = plan_.add_output(output_file, scene + ": [output] file");
+    const std::filesystem::path file(output_file);
+    const std::string path = file.is_absolute()
+                                 ? output_file
+                                 : (std::filesystem::path(scene).parent_path() / file).string();
+    csv_ = plan_.add_output(path, scene + ": [output] file");
   } else {
     const std::string name = std::filesystem::path(scene).stem().string() + ".csv";
     csv_ = plan_.add_output(name, "the default output (SCENE-STEM.csv)");
@@ -134,9 +151,12 @@ void RunOutputs::finish_stream(const RunAttributes& run, const Trajectory& traj)
 }
 
 std::string RunOutputs::finish_stream_partial(const RunAttributes& run, const Trajectory& partial) {
-  if (!rows_ || rows_->rows() < 2) return "";
+  // Every row computed is kept, the initial state alone too (a run that failed before its second
+  // output time): a partial file left by an earlier failure would otherwise look current.
+  if (!rows_ || rows_->rows() < 1) return "";
   std::ostringstream s;
-  s << "partial result: the " << rows_->rows() << " output rows up to t = " << partial.t.back();
+  const bool one = rows_->rows() == 1;
+  s << "partial result: " << rows_phrase(rows_->rows(), partial.t.back());
   try {
     rows_->finish(run);
     // The rows are complete in the result's temporary file: copied to the partial file, and the
@@ -147,8 +167,8 @@ std::string RunOutputs::finish_stream_partial(const RunAttributes& run, const Tr
       if (!in) throw std::runtime_error(rows_path_ + ": cannot read the rows back");
     });
     plan_.commit({*partial_});
-    s << " are in " << plan_.display_name(*partial_) << " (the run did not reach t_end; "
-      << csv_name() << " was not written)";
+    s << (one ? " is in " : " are in ") << plan_.display_name(*partial_)
+      << " (the run did not reach t_end; " << csv_name() << " was not written)";
   } catch (const std::exception& e) {
     s << " could not be written: " << e.what();
   }
@@ -158,9 +178,10 @@ std::string RunOutputs::finish_stream_partial(const RunAttributes& run, const Tr
 std::string RunOutputs::write_partial(const Model& model, const RunAttributes& run,
                                       const Trajectory& partial) {
   std::ostringstream s;
-  s << "partial result: the " << partial.t.size() << " output rows up to t = " << partial.t.back();
+  const bool one = partial.t.size() == 1;
+  s << "partial result: " << rows_phrase(static_cast<long>(partial.t.size()), partial.t.back());
   if (!partial_) {
-    s << " were not written (" << csv_name()
+    s << (one ? " was" : " were") << " not written (" << csv_name()
       << " is not a file: a stream, such as standard output, a device or a pipe, gets complete "
          "results only; give --out FILE to keep them)";
     return s.str();
@@ -168,8 +189,8 @@ std::string RunOutputs::write_partial(const Model& model, const RunAttributes& r
   try {
     write_result(*partial_, model, run, partial);
     plan_.commit({*partial_});
-    s << " are in " << plan_.display_name(*partial_) << " (the run did not reach t_end; "
-      << csv_name() << " was not written)";
+    s << (one ? " is in " : " are in ") << plan_.display_name(*partial_)
+      << " (the run did not reach t_end; " << csv_name() << " was not written)";
   } catch (const std::exception& e) {
     s << " could not be written: " << e.what();
   }

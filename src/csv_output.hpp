@@ -24,13 +24,14 @@ void write_steps_csv(std::ostream& out, const Trajectory& traj);
 /// The files of `condyn run`, checked before the integration (OutputPlan): the CSV of the
 /// [output] quantities (to --out, else [output] file, else SCENE-STEM.csv in the current folder),
 /// the drift log (--steps-out) and, for a failed run, FILE.partial.csv beside the CSV. None may be
-/// the scene or another output. A CSV going to a stream (standard output, a device, a FIFO) gets
-/// complete results only: a failed run writes nothing there and no partial file. Throws OutputError
-/// (bad paths).
+/// the scene, a file it names (`inputs`: SceneSpec::input_files) or another output. `[output]
+/// file` is relative to the scene's folder, as every path a scene names. A CSV going to a stream
+/// (standard output, a device, a FIFO) gets complete results only: a failed run writes nothing
+/// there and no partial file. Throws OutputError (bad paths).
 class RunOutputs {
  public:
   RunOutputs(const std::string& scene, const std::string& out_flag, const OutputSpec& output,
-             const std::string& steps_out);
+             const std::string& steps_out, const std::vector<std::string>& inputs = {});
 
   /// Where every line but the data goes: standard error when an output is standard output.
   [[nodiscard]] std::ostream& messages() const;

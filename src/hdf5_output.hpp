@@ -20,7 +20,7 @@ struct RunAttributes {
   double rtol = 0.0, atol = 0.0;
 };
 
-/// True for a path ending in `.h5` (the contract's choice of format).
+/// True for a path ending in `.h5` (the contract's choice of format), or `.hdf5`, in any case.
 [[nodiscard]] bool is_hdf5_path(const std::string& path);
 
 /// Writes the HDF5 file of `traj` to `out`. Throws std::runtime_error when the HDF5 library

@@ -84,7 +84,7 @@ int run(const RunArgs& args) {
   if (args.max_wall_time) spec.solve.max_wall_time = *args.max_wall_time;
   // Every output is checked before the work; with data on standard output, the rest goes to
   // standard error.
-  RunOutputs outputs(args.scene, args.out, spec.output, args.steps_out);
+  RunOutputs outputs(args.scene, args.out, spec.output, args.steps_out, spec.input_files);
   std::ostream& msg = outputs.messages();
   BuildReport report;
   const Model model = build_model(spec, report);
@@ -305,11 +305,15 @@ int main(int argc, char** argv) {
                    "wall-time budget in seconds (overrides [solve] max_wall_time); more is a "
                    "failure")
       ->check(decimal_range_check(1e-9, 1e12));
-  run_cmd->add_option("--out", run_args.out,
-                      "CSV file, or - for standard output (default: [output] file, else "
-                      "SCENE-STEM.csv here)");
-  run_cmd->add_option("--steps-out", run_args.steps_out,
-                      "also write the constraint drift at every internal step to this CSV");
+  run_cmd
+      ->add_option("--out", run_args.out,
+                   "CSV file, or - for standard output (default: [output] file, else "
+                   "SCENE-STEM.csv here)")
+      ->check(file_name_check());
+  run_cmd
+      ->add_option("--steps-out", run_args.steps_out,
+                   "also write the constraint drift at every internal step to this CSV")
+      ->check(file_name_check());
 
   std::string info_scene, info_scheme, info_constraints;
   auto* info_cmd = app.add_subcommand("info", "classify the constraints and size the model");

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "src/hdf5_output.hpp"
 #include "src/report_format.hpp"
 
 namespace condyn {
@@ -26,8 +27,7 @@ int plot_result(const PlotArgs& args) {
   if (!fs::is_regular_file(result, ec)) {
     return bad(args.result + ": no such file (condyn plot reads the CSV or HDF5 of condyn run)");
   }
-  const std::string ext = result.extension().string();
-  if (ext != ".csv" && ext != ".h5") {
+  if (result.extension() != ".csv" && !is_hdf5_path(args.result)) {
     return bad(args.result +
                ": not a result file: condyn plot reads the .csv or .h5 that "
                "condyn run writes");

@@ -54,6 +54,16 @@ TEST_CASE("run: a step budget ends a long run with its kind, advice and partial 
   const Result flag = box.run("run p.toml --max-steps 300 --out out.csv");
   CHECK(flag.code == 1);
   CHECK(contains(flag.err, "took more than 300 steps in all"));
+
+  // A budget spent before the second output time: the row at t = 0 is kept all the same, and
+  // replaces the partial file of the failure before.
+  box.write("q.toml", pendulum("t_end = 10.0\noutput_step = 5.0\n"));
+  const Result early = box.run("run q.toml --max-steps 5 --out out.csv");
+  CHECK(early.code == 1);
+  CHECK(contains(early.err, "partial result: the output row at t = 0 is in out.partial.csv"));
+  const std::string one_row = slurp(box.path("out.partial.csv"));
+  CHECK(std::count(one_row.begin(), one_row.end(), '\n') == 2);  // header and t = 0
+  CHECK(one_row.find("\n0,") != std::string::npos);
 }
 
 TEST_CASE("run: a wall-time budget ends the run as a failure with its kind") {

@@ -108,6 +108,74 @@ TEST_CASE("no output may be an input: the scene is never overwritten") {
   CHECK(hidden_files(box.path(".")).empty());
 }
 
+TEST_CASE("no output may be a file the scene names: its matrices, tables and references") {
+  const Sandbox box;
+  const std::string k =
+      "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 1 3\n2 1 -1\n2 2 1\n";
+  const std::string record = "t,a\n0,0\n1,1\n";
+  box.write("K.mtx", k);
+  box.write("record.csv", record);
+  std::string scene = kScene;
+  scene.replace(scene.find("stiffness = [[3.0, -1.0], [-1.0, 1.0]]"),
+                std::string("stiffness = [[3.0, -1.0], [-1.0, 1.0]]").size(),
+                "stiffness = { file = \"K.mtx\" }");
+  scene.replace(scene.find("value = { type = \"step\""), std::string::npos,
+                "value = { type = \"table\", file = \"record.csv\" }\n"
+                "[[constraint]]\nname = \"tie\"\nterms = { a = 1.0 }\n"
+                "[solve]\nt_end = 1.0\noutput_step = 0.25\n");
+  box.write("m.toml", scene);
+  REQUIRE(box.run("run m.toml --out ok.csv").code == 0);
+  for (const std::string input : {"K.mtx", "record.csv", "./K.mtx"}) {
+    CAPTURE(input);
+    const Result r = box.run("run m.toml --out " + input);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "an input of this command"));
+  }
+  CHECK(box.run("run m.toml --out ok.csv --steps-out record.csv").code == 2);
+  CHECK(slurp(box.path("K.mtx")) == k);
+  CHECK(slurp(box.path("record.csv")) == record);
+}
+
+TEST_CASE("[output] file is relative to the scene's folder; --out is relative to here") {
+  const Sandbox box;
+  fs::create_directory(box.path("sub"));
+  box.write("sub/s.toml", kScene + "[output]\nfile = \"r.csv\"\n");
+  const Result r = box.run("run sub/s.toml");
+  CHECK(r.code == 0);
+  CHECK(fs::exists(box.path("sub/r.csv")));
+  CHECK(!fs::exists(box.path("r.csv")));
+  CHECK(contains(r.out, "sub/r.csv"));
+  CHECK(box.run("run sub/s.toml --out here.csv").code == 0);
+  CHECK(fs::exists(box.path("here.csv")));
+}
+
+TEST_CASE("an HDF5 result: .h5 in any case, or .hdf5") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  for (const std::string name : {"r.H5", "r.hdf5", "r.h5"}) {
+    CAPTURE(name);
+    CHECK(box.run("run s.toml --out " + name).code == 0);
+    CHECK(slurp(box.path(name)).substr(0, 4) == "\x89HDF");  // HDF5's signature
+  }
+}
+
+TEST_CASE("bad names: an empty --out, a folder for the scene") {
+  const Sandbox box;
+  box.write("s.toml", kScene);
+  const Result empty = box.run("run s.toml --out ''");
+  CHECK(empty.code == 2);
+  CHECK(contains(empty.err, "--out: an empty name"));
+  CHECK(box.run("run s.toml --steps-out ''").code == 2);
+  CHECK(!fs::exists(box.path("s.csv")));
+  fs::create_directory(box.path("d"));
+  for (const std::string command : {"run d", "info d", "check d"}) {
+    CAPTURE(command);
+    const Result r = box.run(command);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err + r.out, "d: is a folder (name a scene file)"));
+  }
+}
+
 TEST_CASE("--out and --steps-out: checked together before the run, committed together") {
   const Sandbox box;
   box.write("f.toml", kFailing);
