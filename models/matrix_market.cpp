@@ -2,6 +2,8 @@
 
 #include "models/matrix_market.hpp"
 
+#include "models/memory_estimate.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -143,6 +145,20 @@ MarketMatrix parse_market_stream(std::istream& in) {
     throw MatrixMarketError(line_no, "a symmetric matrix must be square (the file says " +
                                          std::to_string(rows) + " x " + std::to_string(cols) + ")");
   }
+  // What holding it takes, before anything is allocated: a size line of 2·10⁹ (a typo, or
+  // another file's) had the kernel kill the process while the index arrays were filled.
+  // setFromTriplets holds a row-major copy beside the column-major result: 4 + 4 bytes per row
+  // and per column, and per entry the triplet (16) and two copies of index and value (24).
+  const double needed = 8.0 * (static_cast<double>(rows) + static_cast<double>(cols)) +
+                        40.0 * static_cast<double>(entries) * (out.symmetric ? 2.0 : 1.0);
+  if (const auto available = available_memory_bytes(); available && needed > *available) {
+    throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
+                                         std::to_string(cols) + " with " + std::to_string(entries) +
+                                         " entries: holding it needs " + format_bytes(needed) +
+                                         ", more than the " + format_bytes(*available) +
+                                         " this machine has available (MemAvailable in "
+                                         "/proc/meminfo); is the size line right?");
+  }
   // No upper bound from rows x cols: duplicate entries are allowed (and summed).
   if (entries < 0) {
     throw MatrixMarketError(line_no, "the entry count " + std::to_string(entries) + " is negative");
@@ -170,7 +186,8 @@ MarketMatrix parse_market_stream(std::istream& in) {
       throw MatrixMarketError(line_no, "the index (" + std::to_string(i) + ", " +
                                            std::to_string(j) + ") lies outside the " +
                                            std::to_string(rows) + " x " + std::to_string(cols) +
-                                           " matrix (indices are 1-based)");
+                                           " matrix of the size line, line " +
+                                           std::to_string(size_line) + " (indices are 1-based)");
     }
     if (out.symmetric && j > i) {
       throw MatrixMarketError(line_no, "the entry (" + std::to_string(i) + ", " +

@@ -212,11 +212,12 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
     const std::string p = join(join(path, std::string(key)), "file");
     const auto& a = out->matrix;
     if (a.rows() != n || a.cols() != n) {
+      const std::string size =
+          out->file + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols());
+      if (t.contains("dofs")) fail(node, p, size + " for " + std::to_string(n) + " DOFs");
+      if (out == first) fail(node, p, size + ": a square matrix is needed");
       fail(node, p,
-           out->file + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols()) +
-               (t.contains("dofs") ? " for " + std::to_string(n) + " DOFs"
-                                   : " but " + first->file + " is " + std::to_string(n) + " x " +
-                                         std::to_string(n)));
+           size + " but " + first->file + " is " + std::to_string(n) + " x " + std::to_string(n));
     }
     if (const auto ij = asymmetry(a)) {
       const auto [i, j] = *ij;

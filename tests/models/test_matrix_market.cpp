@@ -9,6 +9,7 @@
 
 #include "dae/solve.hpp"
 #include "models/matrix_market.hpp"
+#include "models/memory_estimate.hpp"
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
@@ -155,7 +156,7 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
       {general + "2 2 -1\n", 2, "entry count -1 is negative"},
       {general + "2 2 5\n", 2, "ends after 0 of the 5"},
       {general + "2 x 1\n", 2, "not an integer"},
-      {general + "2 2 1\n3 1 1.0\n", 3, "outside the 2 x 2"},
+      {general + "2 2 1\n3 1 1.0\n", 3, "outside the 2 x 2 matrix of the size line, line 2"},
       {general + "2 2 1\n1 0 1.0\n", 3, "outside the 2 x 2"},
       {general + "2 2 1\n1 1 nan\n", 3, "not finite"},
       {general + "2 2 1\n1 1 inf\n", 3, "not finite"},
@@ -175,6 +176,22 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
     CHECK(error.first == c.line);
     CHECK_MESSAGE(has(what, c.says), what);
   }
+}
+
+TEST_CASE("matrix market: a size line beyond the memory available is refused before allocating") {
+  // A size line of another file, or a typo: 2·10⁹ columns took the process down while Eigen
+  // filled its index arrays. 2^31 - 1 rows and columns need 34 GB of index arrays (8 bytes a row
+  // and a column); where that much is available the case cannot be shown without using it.
+  const auto available = condyn::available_memory_bytes();
+  if (!available || *available > 3.0e10) {
+    MESSAGE("not shown: this machine has the 34 GB available");
+    return;
+  }
+  const auto error = market_error(
+      "%%MatrixMarket matrix coordinate real general\n2147483647 2147483647 1\n1 1 1.0\n");
+  CHECK(error.first == 2);
+  CHECK_MESSAGE(has(error.second, "needs 34.4 GB, more than the"), error.second);
+  CHECK_MESSAGE(has(error.second, "is the size line right?"), error.second);
 }
 
 TEST_CASE("matrix market: a file that cannot be opened, or is no regular file") {
@@ -293,6 +310,14 @@ stiffness = { file = ")" +
   box.write("three.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 1\n1 1 1.0\n");
   CHECK(has(scene_error(box, with_stiffness("three.mtx")),
             "model.stiffness.file: three.mtx is 3 x 3 but M.mtx is 4 x 4"));
+  box.write("wide.mtx", "%%MatrixMarket matrix coordinate real general\n4 5 1\n1 1 1.0\n");
+  const std::string wide = R"([model]
+type = "matrix"
+mass = { file = "wide.mtx" }
+stiffness = { file = "three.mtx" }
+)" + kSolve;
+  CHECK(
+      has(scene_error(box, wide), "model.mass.file: wide.mtx is 4 x 5: a square matrix is needed"));
 
   // General storage that is not symmetric: refused (M, K and C must be), sparse check.
   box.write("asym.mtx",
