@@ -192,3 +192,57 @@ TEST_CASE("the dense linear solver gives the KLU answer") {
   // steps at most linearly (1417 steps: 3e-13; observed 1.2e-14).
   CONDYN_CHECK_CLOSE(dense.u, klu.trajectory.u, static_cast<double>(klu.summary.steps) * kEps);
 }
+
+TEST_CASE("elimination of a model whose every DOF is prescribed: no unknowns, exact rows") {
+  // Two DOFs held by a harmonic drive and a tie: master-slave elimination leaves no unknowns,
+  // which IDA refuses ("initial ewt component = 0.0"); the rows follow from the time alone:
+  // u = 0.5 sin 2t on both DOFs, and the reactions close M u'' + C u' + K u = f + f_con.
+  const SceneSpec spec = parse_scene_text(R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 1.0]]
+damping = { rayleigh = [0.1, 0.01] }
+[[load]]
+dof = "b"
+value = 1.0
+[[constraint]]
+name = "drive"
+terms = { a = 1.0 }
+value = { type = "harmonic", amplitude = 0.5, omega = 2.0 }
+[[constraint]]
+name = "hold"
+terms = { a = 1.0, b = -1.0 }
+[initial]
+velocity = { a = 1.0, b = 1.0 }
+[solve]
+scheme = "elimination"
+t_end = 2.0
+output_step = 0.25
+)",
+                                          "prescribed.toml");
+  const Model model = build_model(spec);
+  RunHooks hooks;
+  hooks.accelerations = true;
+  const SolveResult r = test::solved(model, spec.solve, hooks);
+  CHECK(r.summary.unknowns == 0);
+  CHECK(r.summary.steps == 0);
+  REQUIRE(r.trajectory.t.size() == 9);
+  Eigen::MatrixXd M(2, 2), K(2, 2);
+  M << 1, 0, 0, 2;
+  K << 3, -1, -1, 1;
+  const Eigen::MatrixXd C = 0.1 * M + 0.01 * K;
+  const Eigen::Vector2d f(0.0, 1.0), ones(1.0, 1.0);
+  for (std::size_t k = 0; k < r.trajectory.t.size(); ++k) {
+    const double t = r.trajectory.t[k];
+    CAPTURE(t);
+    const Eigen::Vector2d u = 0.5 * std::sin(2 * t) * ones, v = std::cos(2 * t) * ones,
+                          a = -2.0 * std::sin(2 * t) * ones;
+    // Time functions evaluated and a 2 x 2 system: a few ulps of O(1) values, 16 eps.
+    CHECK((r.trajectory.u.col(static_cast<Eigen::Index>(k)) - u).norm() <= 16 * kEps);
+    CHECK((r.trajectory.v.col(static_cast<Eigen::Index>(k)) - v).norm() <= 16 * kEps);
+    CHECK((r.trajectory.acceleration.col(static_cast<Eigen::Index>(k)) - a).norm() <= 16 * kEps);
+    const Eigen::Vector2d reaction = M * a + C * v + K * u - f;
+    CHECK((r.trajectory.reaction.col(static_cast<Eigen::Index>(k)) - reaction).norm() <= 64 * kEps);
+  }
+}
