@@ -8,9 +8,44 @@ namespace condyn {
 
 namespace {
 
+/// The length of the well-formed UTF-8 sequence at s[i] that is an XML character (Unicode's
+/// Table 3-7; U+FFFE and U+FFFF are no XML characters), 0 when there is none.
+std::size_t utf8_sequence(const std::string& s, std::size_t i) {
+  const auto at = [&](std::size_t k) {
+    return i + k < s.size() ? static_cast<unsigned char>(s[i + k]) : 0u;
+  };
+  const unsigned b0 = at(0);
+  const auto cont = [&](std::size_t k, unsigned lo = 0x80, unsigned hi = 0xBF) {
+    return at(k) >= lo && at(k) <= hi;
+  };
+  if (b0 >= 0xC2 && b0 <= 0xDF) return cont(1) ? 2 : 0;
+  if (b0 >= 0xE0 && b0 <= 0xEF) {
+    const bool ok = cont(1, b0 == 0xE0 ? 0xA0 : 0x80, b0 == 0xED ? 0x9F : 0xBF) && cont(2);
+    const bool non_character = b0 == 0xEF && at(1) == 0xBF && (at(2) == 0xBE || at(2) == 0xBF);
+    return ok && !non_character ? 3 : 0;
+  }
+  if (b0 >= 0xF0 && b0 <= 0xF4) {
+    return cont(1, b0 == 0xF0 ? 0x90 : 0x80, b0 == 0xF4 ? 0x8F : 0xBF) && cont(2) && cont(3) ? 4
+                                                                                             : 0;
+  }
+  return 0;
+}
+
 std::string xml_escape(const std::string& s) {
   std::string out;
-  for (const char c : s) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (static_cast<unsigned char>(c) >= 0x80) {
+      // Bytes a message copied from a file (a Latin-1 degree sign, a path): XML is UTF-8 here,
+      // so what is not well-formed UTF-8 becomes U+FFFD, the replacement character.
+      if (const std::size_t len = utf8_sequence(s, i); len > 0) {
+        out.append(s, i, len);
+        i += len - 1;
+      } else {
+        out += "\xEF\xBF\xBD";
+      }
+      continue;
+    }
     switch (c) {
       case '&':
         out += "&amp;";

@@ -55,13 +55,17 @@ inline void put_attribute(hid_t file, const char* name, double value) {
   check(H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, &value), "H5Awrite");
 }
 
+/// A variable-length UTF-8 string, as the name datasets: h5py reads it as str (a fixed-length
+/// ASCII one came back as bytes, b'ggl', unequal to 'ggl').
 inline void put_attribute(hid_t file, const char* name, const std::string& value) {
   const Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
-  check(H5Tset_size(type.id(), value.empty() ? 1 : value.size()), "H5Tset_size");
+  check(H5Tset_size(type.id(), H5T_VARIABLE), "H5Tset_size");
+  check(H5Tset_cset(type.id(), H5T_CSET_UTF8), "H5Tset_cset");
   const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate");
   const Handle attr(H5Acreate2(file, name, type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
                     H5Aclose, "H5Acreate2");
-  check(H5Awrite(attr.id(), type.id(), value.c_str()), "H5Awrite");
+  const char* text = value.c_str();
+  check(H5Awrite(attr.id(), type.id(), static_cast<const void*>(&text)), "H5Awrite");
 }
 
 }  // namespace condyn::hdf5

@@ -102,6 +102,20 @@ TEST_CASE("cli check: bad input is exit 2 naming file, line and key; the other s
   CHECK(folder.out.find("PASS") == std::string::npos);
 }
 
+TEST_CASE("cli check: the JUnit report is well-formed UTF-8 whatever bytes a message quotes") {
+  Sandbox box;
+  // A reference file with a Latin-1 degree sign (0xB0): the refusal quotes the value.
+  box.write("ref.csv", "t,x\n0,1\n1,0.54\xb0\n");
+  box.write("latin.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"ref.csv\" }\n"
+                                "tolerance = 1e-6\n"));
+  const Result r = box.run("check latin.toml --junit report.xml");
+  CAPTURE(r.out);
+  CHECK(r.code == 2);
+  CHECK(junit_counts(box, "report.xml") == "testsuites 1 0 1 1 0\n");
+  const std::string xml = slurp(box.path("report.xml"));
+  CHECK(xml.find("0.54\xef\xbf\xbd") != std::string::npos);  // U+FFFD in its place
+}
+
 TEST_CASE("cli check: a run that fails is an error of its scene (exit 1)") {
   Sandbox box;
   box.write("a.toml", scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n"));
