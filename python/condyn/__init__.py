@@ -6,6 +6,8 @@ compare schemes, over the same C++ library as the `condyn` command (docs/python.
     r.t, r.u, r.drift, r.summary["steps"]
 """
 
+import numbers
+
 from ._condyn import SceneError, scheme_names
 from . import _condyn
 
@@ -30,7 +32,10 @@ class Result:
 
     def __init__(self, fields):
         for key in self.__slots__:
-            setattr(self, key, fields[key])
+            value = fields[key]
+            if hasattr(value, "flags"):  # a numpy array: read-only, as documented
+                value.flags.writeable = False
+            setattr(self, key, value)
 
     def dof(self, name):
         """The column index of DOF `name` (KeyError naming the DOFs otherwise)."""
@@ -62,7 +67,8 @@ def run(scene, scheme=None, rtol=None, atol=None):
     SceneError (a ValueError) with the CLI's "FILE:LINE: key.path: problem" message ("<dict>"
     and no line for a dict); a failed integration raises IntegrationError. The GIL is released
     while the model is built and integrated."""
-    fields, failure = _condyn.run(scene, scheme, rtol, atol)
+    fields, failure = _condyn.run(scene, _text(scene, "scheme", scheme),
+                                  _number(scene, "rtol", rtol), _number(scene, "atol", atol))
     result = Result(fields)
     if failure is not None:
         raise IntegrationError(f"{_name(scene)}: integration failed: {failure}", result)
@@ -87,8 +93,26 @@ def check(scene, scheme=None):
     Returns a dict: scene, scheme, steps, wall_s, failure (the integration failure's message or
     None), passed (every check held and the run reached t_end) and checks, one dict per check
     (quantity, computed, bound, passed, text). A scene without [[check]] raises SceneError."""
-    return _condyn.check(scene, scheme)
+    return _condyn.check(scene, _text(scene, "scheme", scheme))
 
 
 def _name(scene):
     return "<dict>" if isinstance(scene, dict) else str(scene)
+
+
+def _number(scene, argument, value):
+    """An override that must be a real number (None: not given), else SceneError naming it."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise SceneError(f"{_name(scene)}: {argument}: expected a number "
+                         f"(got {type(value).__name__} {value!r})")
+    return float(value)
+
+
+def _text(scene, argument, value):
+    """An override that must be a string (None: not given), else SceneError naming it."""
+    if value is None or isinstance(value, str):
+        return value
+    raise SceneError(f"{_name(scene)}: {argument}: expected a string "
+                     f"(got {type(value).__name__} {value!r})")

@@ -72,6 +72,16 @@ def test_bad_arguments(quickstart_dict):
         condyn.run(quickstart_dict, rtol=2.0)
     with pytest.raises(condyn.SceneError, match=r"^<dict>: atol: must be a finite number"):
         condyn.run(quickstart_dict, atol=float("nan"))
+    # Out of range values are printed as numbers, the tiny ones too.
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: rtol: .*\(got 1e-20\)$"):
+        condyn.run(quickstart_dict, rtol=1e-20)
+    # Wrong types are bad input too, named like the others (not pybind11's TypeError).
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: rtol: expected a number \(got str"):
+        condyn.run(quickstart_dict, rtol="1e-6")
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: atol: expected a number \(got bool"):
+        condyn.run(quickstart_dict, atol=True)
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: scheme: expected a string \(got int"):
+        condyn.run(quickstart_dict, scheme=3)
     with pytest.raises(condyn.SceneError, match=r"no_such\.toml: cannot open the scene file"):
         condyn.run("no_such.toml")
     with pytest.raises(TypeError, match="a scene is a path"):

@@ -67,7 +67,9 @@ def test_summary_and_overrides():
     assert s["jacobian_evals"] >= 1 and s["wall_s"] > 0.0
     assert s["termination"] != "not run"
     assert r.a is None  # the scene does not ask for accelerations
-    assert not r.u.flags.writeable  # a view of the run's memory
+    # Every array is read-only (docs/python.md), t and drift included.
+    for name in ("t", "u", "v", "reaction", "multiplier", "drift"):
+        assert not getattr(r, name).flags.writeable, name
 
 
 def test_dict_scene_equals_file_scene(quickstart_dict):
