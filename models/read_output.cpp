@@ -65,6 +65,7 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
       const std::string s = string(*arr.get(i), p);
       if (s.empty()) fail(*arr.get(i), p, "must not be empty");
       output.dofs.push_back(s);
+      output.dofs_lines.push_back(static_cast<int>(arr.get(i)->source().begin.line));
     }
   }
   if (const auto* n = t.get("file")) {

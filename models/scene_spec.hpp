@@ -202,6 +202,7 @@ struct OutputSpec {
   /// [output] dofs: the DOFs that get displacement, velocity, acceleration and reaction columns, as
   /// names or patterns where `*` stands for any run of characters; empty: every DOF.
   std::vector<std::string> dofs;
+  std::vector<int> dofs_lines;  ///< the line of each `dofs` entry (0: not from a file)
   SourcePoint where;
 };
 

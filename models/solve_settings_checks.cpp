@@ -61,7 +61,9 @@ void ModelBuilder::check_output_dofs() const {
       some += (d ? ", " : "") + model_.dof_names[d];
     }
     if (model_.dof_names.size() > 6) some += ", ...";
-    fail({"output.dofs[" + std::to_string(k + 1) + "]", spec_.output.where.line},
+    const auto& lines = spec_.output.dofs_lines;
+    const int line = k < lines.size() && lines[k] > 0 ? lines[k] : spec_.output.where.line;
+    fail({"output.dofs[" + std::to_string(k + 1) + "]", line},
          "'" + patterns[k] + "' matches no DOF (the model's DOFs: " + some +
              "; `*` stands for any run of characters)");
   }

@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -112,10 +114,17 @@ output_step = 0.5
 
 TEST_CASE("[output] dofs: a pattern that matches no DOF is refused, naming it") {
   test::Sandbox box;
-  box.write("s.toml", replace(kChain, "[output]\n", "[output]\ndofs = [\"ux3\", \"uz*\"]\n"));
+  // The entry on its own line: the message gives that line, not the [output] header's.
+  const std::string scene =
+      replace(kChain, "[output]\n", "[output]\ndofs = [\n  \"ux3\",\n  \"uz*\",\n]\n");
+  box.write("s.toml", scene);
   const test::Result r = box.run("run s.toml --out out.csv");
   CHECK(r.code == 2);
-  CHECK(r.err.find("output.dofs[2]") != std::string::npos);
+  const auto line_of = [&](const std::string& text) {
+    return 1 + std::count(scene.begin(), scene.begin() + static_cast<long>(scene.find(text)), '\n');
+  };
+  CHECK(r.err.find("s.toml:" + std::to_string(line_of("\"uz*\"")) + ": output.dofs[2]") !=
+        std::string::npos);
   CHECK(r.err.find("'uz*' matches no DOF") != std::string::npos);
   box.write("e.toml", replace(kChain, "[output]\n", "[output]\ndofs = []\n"));
   CHECK(box.run("run e.toml --out out.csv").err.find("output.dofs") != std::string::npos);
