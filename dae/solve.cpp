@@ -342,14 +342,36 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
   if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
   SolveResult result;
   result.scheme = scheme;
-  try {
-    IntegratorOptions options = integrator_options(model, settings);
+  const auto options_for = [&](const SolveSpec& s) {
+    IntegratorOptions options = integrator_options(model, s);
     options.record_steps = hooks.record_steps;
     options.accelerations = hooks.accelerations;
     options.energy_balance = hooks.energy_balance;
     options.on_progress = hooks.on_progress;
     options.on_row = hooks.on_row;
-    solve_resolved(model, scheme, settings, options, result);
+    return options;
+  };
+  try {
+    try {
+      solve_resolved(model, scheme, settings, options_for(settings), result);
+    } catch (const std::invalid_argument& why) {
+      // auto chose elimination for its cost. A model its reduction cannot integrate (a reduced
+      // mass matrix singular to roundoff: a mass of 1e-20 beside 2) goes to GGL with a multiplier
+      // for every row, which integrates it; the reason is in the summary. Nothing was integrated
+      // yet: the reduction is built before the first step.
+      if (settings.scheme != Scheme::automatic || scheme != Scheme::elimination) throw;
+      SolveSpec ggl = settings;
+      ggl.scheme = Scheme::ggl;
+      ggl.treatment = SolveSpec::Treatment::multipliers;
+      scheme = Scheme::ggl;
+      result = SolveResult{};
+      result.scheme = scheme;
+      solve_resolved(model, scheme, ggl, options_for(ggl), result);
+      const std::string note =
+          std::string("auto: elimination refused (") + why.what() + "), GGL instead";
+      auto& notes = result.summary.notes;
+      notes = notes.empty() ? note : note + "; " + notes;
+    }
   } catch (const IntegrationError& e) {
     // Outside the loop (the loop's own failures come back as data): the integrator could not be
     // created or initialised.

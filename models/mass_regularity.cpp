@@ -103,10 +103,10 @@ void ModelBuilder::check_massless_dofs() {
        std::to_string(free.size()) + " DOF" + (free.size() == 1 ? "" : "s") + " (" + names +
            ") ha" + (free.size() == 1 ? "s" : "ve") + " no mass and no constraint fixes " +
            (free.size() == 1 ? "it" : "them") +
-           ": the mass matrix is singular on the motions the constraints allow, so the "
-           "accelerations are undefined under every scheme (a massless DOF that no constraint "
-           "touches is integrated when its stiffness holds it; one in a constraint must be "
-           "fixed by the constraints); give " +
+           ": the mass matrix is singular on the motions the constraints allow, which condyn's "
+           "schemes cannot integrate (a massless DOF that no constraint touches is integrated "
+           "when its stiffness holds it; one in a constraint must be fixed by the constraints: "
+           "docs/limitations.md); give " +
            (truss ? "the node a mass in model.masses" : "the DOF a mass in model.mass") +
            " or constrain it");
 }

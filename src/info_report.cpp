@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/constraint_treatment.hpp"
@@ -171,7 +173,27 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
       << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
       << model.C.nonZeros() << ", K " << model.K->nonZeros() << ", A " << model.A.nonZeros()
       << "\n";
-  const SchemeChoice choice = choose_scheme(model, settings);
+  SchemeChoice choice = choose_scheme(model, settings);
+  SystemSizer sizer(model);
+  // Elimination sized once, before the choice is printed: auto falls back to GGL when the
+  // reduction cannot be integrated (dae/solve.cpp), and says so here as run does.
+  std::optional<SystemSize> elimination_size;
+  std::string elimination_refused;
+  {
+    SolveSpec as_elimination = settings;
+    as_elimination.scheme = Scheme::elimination;
+    as_elimination.treatment = SolveSpec::Treatment::multipliers;
+    try {
+      if (!scheme_refusal(model, Scheme::elimination)) elimination_size = sizer(as_elimination);
+    } catch (const std::exception& e) {
+      elimination_refused = e.what();
+    }
+  }
+  const bool fell_back = settings.scheme == Scheme::automatic &&
+                         choice.scheme == Scheme::elimination && !elimination_refused.empty();
+  if (fell_back) {
+    choice = {Scheme::ggl, "auto: elimination refused (" + elimination_refused + "), GGL instead"};
+  }
   const auto refusal = scheme_refusal(model, choice.scheme);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
       << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";
@@ -184,7 +206,8 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         << wrapped_list("  slaves: ", names_of(model, ms.slaves))
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
-  if (uses_mixed_treatment(model, choice.scheme, settings) && !refusal) {
+  const bool chose_mixed = !fell_back && uses_mixed_treatment(model, choice.scheme, settings);
+  if (chose_mixed && !refusal) {
     out << "constraint treatment (mixed): " << treatment_report(model, treat_constraints(model));
   }
   if (choice.scheme == Scheme::baumgarte)
@@ -195,8 +218,6 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   out << "\nsystem each scheme integrates:\n";
   out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
       << "Jacobian nonzeros\n";
-  const bool chose_mixed = uses_mixed_treatment(model, choice.scheme, settings);
-  SystemSizer sizer(model);
   // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
   for (Scheme s : kSchemes) {
     for (const bool mixed : {false, true}) {
@@ -209,7 +230,11 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         as_scheme.scheme = s;
         as_scheme.treatment =
             mixed ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
-        const SystemSize size = sizer(as_scheme);
+        if (s == Scheme::elimination && !elimination_refused.empty()) {
+          throw std::invalid_argument(elimination_refused);
+        }
+        const SystemSize size =
+            s == Scheme::elimination && elimination_size ? *elimination_size : sizer(as_scheme);
         out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
       } catch (const std::exception& e) {
         // Continuation lines indented under the reason.
