@@ -7,8 +7,23 @@ namespace condyn {
 
 MultiplierRecovery::MultiplierRecovery(const Model& model) : model_(model) {
   if (model.constraint_count() > 0) {
-    const Eigen::SparseMatrix<double> At = model.A.transpose();
-    aat_.compute(model.A * At);  // m x m, sparse; positive definite (A has full row rank)
+    // Each row scaled by a power of two near 1/max|a_ij| (exact): A Aᵀ of a row with a
+    // coefficient of 1e155 overflowed, and elimination reported zero reactions.
+    scale_ = Eigen::VectorXd::Ones(model.A.rows());
+    Eigen::VectorXd largest = Eigen::VectorXd::Zero(model.A.rows());
+    for (int k = 0; k < model.A.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(model.A, k); it; ++it) {
+        largest[it.row()] = std::max(largest[it.row()], std::abs(it.value()));
+      }
+    }
+    for (Eigen::Index i = 0; i < largest.size(); ++i) {
+      int exponent = 0;
+      if (largest[i] > 0.0) (void)std::frexp(largest[i], &exponent);
+      scale_[i] = std::ldexp(1.0, -exponent);
+    }
+    scaled_ = scale_.asDiagonal() * model.A;
+    const Eigen::SparseMatrix<double> At = scaled_.transpose();
+    aat_.compute(scaled_ * At);  // m x m, sparse; positive definite (A has full row rank)
   }
 }
 
@@ -18,7 +33,8 @@ Eigen::VectorXd MultiplierRecovery::operator()(double t, const Eigen::VectorXd& 
   if (model_.constraint_count() == 0) return {};
   Eigen::VectorXd rho = model_.M * a + *model_.K * u - model_.applied_forces(t);
   if (model_.has_damping()) rho += model_.C * v;
-  return -aat_.solve(model_.A * rho);
+  // λ = −(A Aᵀ)⁻¹ A ρ with A = D⁻¹ Â: λ = −D (Â Âᵀ)⁻¹ Â ρ.
+  return -(scale_.asDiagonal() * aat_.solve(scaled_ * rho)).eval();
 }
 
 RowAssembler::RowAssembler(const Model& model, bool accelerations, bool energy_balance)

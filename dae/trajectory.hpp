@@ -111,7 +111,9 @@ class MultiplierRecovery {
 
  private:
   const Model& model_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> aat_;
+  Eigen::VectorXd scale_;                                   ///< D: a power of two per row
+  Eigen::SparseMatrix<double> scaled_;                      ///< Â = D A
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> aat_;  ///< of Â Âᵀ
 };
 
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
