@@ -284,6 +284,14 @@ class Ida final : public sundials::SundialsStepper {
     }
     check(IDASetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "IDASetLinearSolver");
     if (!newton_) check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
+    // IDA's own first step is at most 1e-3 of the way to the first output; a table's first kink
+    // closer than that caps it (IntegratorOptions::first_kink).
+    const double kink_step = 0.5 * (options.first_kink - t0);
+    if (options.output_times.size() > 1 && kink_step > 0.0 &&
+        kink_step < 1e-3 * (options.output_times[1] - t0)) {
+      data_.first_step = std::min(data_.first_step, kink_step);
+      check(IDASetInitStep(mem_.get(), data_.first_step), "IDASetInitStep");
+    }
   }
 
   /// Entries of the matrix the Newton iterations factor: the condensed one, else the Jacobian.

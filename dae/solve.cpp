@@ -138,6 +138,7 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
   o.atol_mu = atol.mu;
   o.time_scale = atol.time_scale;
   o.first_step = atol.first_step;
+  o.first_kink = model.first_kink(0.0);
   o.dense_linear_solver = settings.dense_linear_solver;
   o.max_order = settings.max_order;
   o.condensed_newton = settings.condensed_newton;

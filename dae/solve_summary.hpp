@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,10 @@ struct IntegratorOptions {
   /// First step of the higher-index schemes (GGL, index2, index3), at most half the first output
   /// interval; unset: 1e-8 of that interval.
   std::optional<double> first_step;
+  /// The first sample time of a tabulated load or right-hand side after t0 (infinity: none).
+  /// Every scheme's first step stays below half of it: with no history, IDA's error test could
+  /// not shrink a first step across a ramp of 1e-9 s at t = 0 (ten failures from 5e-4).
+  double first_kink = std::numeric_limits<double>::infinity();
   bool dense_linear_solver = false;  ///< SUNDIALS dense LU instead of KLU (tiny systems only)
   int max_order = 5;                 ///< the highest BDF order the integrator may use (1 to 5)
   /// The problem's own condensed Newton solve (DaeProblem::newton_system), when it has one and

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -86,6 +87,13 @@ std::vector<double> Model::breakpoints(double t_end) const {
     }
   }
   return {times.begin(), times.end()};
+}
+
+double Model::first_kink(double t) const {
+  double first = std::numeric_limits<double>::infinity();
+  // Loads only: a table is refused as a constraint's right-hand side (it needs two derivatives).
+  for (const auto& l : loads) first = std::min(first, l.value.first_kink_after(t));
+  return first;
 }
 
 }  // namespace condyn

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -212,6 +213,17 @@ std::vector<double> TimeFunction::breakpoints() const {
     }
   }
   return times;
+}
+
+double TimeFunction::first_kink_after(double t) const {
+  double first = std::numeric_limits<double>::infinity();
+  for (const auto& term : terms_) {
+    if (term.kind != TimeTerm::Kind::table || !term.table) continue;
+    const auto& times = term.table->times;
+    const auto after = std::upper_bound(times.begin(), times.end(), t);
+    if (after != times.end()) first = std::min(first, *after);
+  }
+  return first;
 }
 
 TimeFunction TimeFunction::antiderivative() const {

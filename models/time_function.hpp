@@ -70,6 +70,9 @@ class TimeFunction {
   /// samples are not breakpoints: its kinks are continuous in value, and the integrator's error
   /// control resolves them (docs/scenes.md, "Tabulated time functions").
   [[nodiscard]] std::vector<double> breakpoints() const;
+  /// The first sample time of a table term after t (infinity when none): the integrator's first
+  /// step stays short of it (Model::first_kink).
+  [[nodiscard]] double first_kink_after(double t) const;
   /// The antiderivative F(t) = integral_0^t f, itself a sum of supported terms.
   /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,
   /// whose derivative jumps: the caller must refuse the constraint), and for a table (refused as
