@@ -3,6 +3,7 @@
 #include "models/matrix_market.hpp"
 
 #include "models/memory_estimate.hpp"
+#include "models/number_cell.hpp"
 
 #include <algorithm>
 #include <array>
@@ -58,8 +59,12 @@ Tokens tokens(std::string_view line) {
 
 long long to_integer(std::string_view s, int line, const char* what) {
   long long v = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) {
+  // A leading '+' is a sign, as C's strtoll takes it (from_chars does not).
+  const bool plus = !s.empty() && s.front() == '+';
+  const std::string_view digits = plus ? s.substr(1) : s;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+  if (digits.empty() || (plus && (digits.front() == '+' || digits.front() == '-')) ||
+      ec != std::errc() || end != digits.data() + digits.size()) {
     throw MatrixMarketError(line,
                             std::string(what) + " '" + std::string(s) + "' is not an integer");
   }
@@ -68,9 +73,9 @@ long long to_integer(std::string_view s, int line, const char* what) {
 
 double to_double(std::string_view s, int line) {
   double v = 0.0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) {
-    throw MatrixMarketError(line, "the value '" + std::string(s) + "' is not a number");
+  if (const NumberCell kind = parse_number_cell(s, v); kind != NumberCell::ok) {
+    throw MatrixMarketError(line,
+                            "the value '" + std::string(s) + "' " + number_cell_problem(kind));
   }
   if (!std::isfinite(v)) {
     throw MatrixMarketError(line, "the value '" + std::string(s) + "' is not finite");
@@ -113,6 +118,7 @@ MarketMatrix parse_market_stream(std::istream& in) {
     throw MatrixMarketError(1,
                             "field '" + field + "' is not supported: only 'real' (or 'integer')");
   }
+  const bool integer = field == "integer";
   if (symmetry != "general" && symmetry != "symmetric") {
     throw MatrixMarketError(
         1, "symmetry '" + symmetry + "' is not supported: only 'general' or 'symmetric'");
@@ -196,6 +202,11 @@ MarketMatrix parse_market_stream(std::istream& in) {
                                            "lower triangle only");
     }
     const double v = to_double(tok[2], line_no);
+    if (integer && v != std::trunc(v)) {
+      throw MatrixMarketError(line_no, "the value '" + std::string(tok[2]) +
+                                           "' is not an integer, as the header's field "
+                                           "'integer' says every value is");
+    }
     const auto r = static_cast<int>(i - 1), c = static_cast<int>(j - 1);
     trip.emplace_back(r, c, v);
     if (out.symmetric && r != c) trip.emplace_back(c, r, v);

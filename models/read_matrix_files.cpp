@@ -45,9 +45,8 @@ FileMatrix SceneReader::matrix_file(const toml::node& node, const std::string& p
 
 FileMatrix SceneReader::read_market(const toml::node& file_node, const std::string& key) const {
   FileMatrix out;
-  out.file = string(file_node, key);
+  out.file = file_name(file_node, key);
   out.where = at(file_node, key);
-  if (out.file.empty()) fail(file_node, key, "the file name is empty");
   if (arrays_ != nullptr) {
     if (const auto it = arrays_->matrices.find(out.file); it != arrays_->matrices.end()) {
       // A matrix handed over in memory: the file reader's own check of entries, finiteness.

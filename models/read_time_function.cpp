@@ -55,11 +55,20 @@ TimeTerm SceneReader::term(const toml::node& node, const std::string& path) cons
   return term;
 }
 
+std::string SceneReader::file_name(const toml::node& node, const std::string& key) const {
+  std::string file = string(node, key);
+  if (file.empty()) fail(node, key, "the file name is empty");
+  // The system would read the name only up to the NUL (\u0000 in TOML): another file.
+  if (file.find('\0') != std::string::npos) {
+    fail(node, key, "the file name holds a NUL character (\\u0000)");
+  }
+  return file;
+}
+
 std::shared_ptr<const TimeTable> SceneReader::table_file(const toml::node& file_node,
                                                          const std::string& key,
                                                          const std::string& column) const {
-  const std::string file = string(file_node, key);
-  if (file.empty()) fail(file_node, key, "the file name is empty");
+  const std::string file = file_name(file_node, key);
   if (arrays_ != nullptr) {
     if (const auto it = arrays_->tables.find(file); it != arrays_->tables.end()) {
       // Samples handed over in memory (the Python module's arrays): row k is the text's line k+1.

@@ -32,6 +32,9 @@ class SceneReader : public TomlAccess {
   void read_matrix_model(const toml::table& t, ModelSpec& model) const;
   /// `{ file = "K.mtx" }` at `path`, read (relative to the scene's folder) and held sparse.
   [[nodiscard]] FileMatrix matrix_file(const toml::node& node, const std::string& path) const;
+  /// The string at `node` (key path `key`) as a file name: not empty, no NUL character
+  /// (read_time_function.cpp).
+  [[nodiscard]] std::string file_name(const toml::node& node, const std::string& key) const;
   /// The Matrix Market file named by the string `file_node` (key path `key`).
   [[nodiscard]] FileMatrix read_market(const toml::node& file_node, const std::string& key) const;
   /// damping = { rayleigh = [a0, a1] } at `path`.

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "models/number_cell.hpp"
+
 namespace condyn {
 
 namespace {
@@ -41,12 +43,7 @@ std::string shortest(double v) {
 
 /// The whole cell as a double (a leading '+' allowed), or false.
 bool parse_number(const std::string& cell, double& out) {
-  const char* first = cell.data();
-  const char* last = cell.data() + cell.size();
-  if (first != last && *first == '+') ++first;
-  if (first == last) return false;
-  const auto [end, ec] = std::from_chars(first, last, out);
-  return ec == std::errc() && end == last;
+  return parse_number_cell(cell, out) == NumberCell::ok;
 }
 
 }  // namespace
@@ -99,6 +96,10 @@ TimeTable parse_time_table(const std::string& text, const std::string& column) {
             throw TimeTableError(
                 line_no, "no column '" + column + "' (the value columns are: " + names + ")");
           }
+          if (std::find(it + 1, row.end(), column) != row.end()) {
+            throw TimeTableError(line_no, "two columns are named '" + column +
+                                              "': rename one (which is meant is not clear)");
+          }
           value_col = static_cast<std::size_t>(it - row.begin());
           table.column = column;
         }
@@ -118,9 +119,9 @@ TimeTable parse_time_table(const std::string& text, const std::string& column) {
     double t = 0.0, v = 0.0;
     for (const auto& [cell, out, what] :
          {std::tuple{row[0], &t, "time"}, std::tuple{row[value_col], &v, "value"}}) {
-      if (!parse_number(cell, *out)) {
-        throw TimeTableError(line_no,
-                             std::string("the ") + what + " '" + cell + "' is not a number");
+      if (const NumberCell kind = parse_number_cell(cell, *out); kind != NumberCell::ok) {
+        throw TimeTableError(
+            line_no, std::string("the ") + what + " '" + cell + "' " + number_cell_problem(kind));
       }
       if (!std::isfinite(*out)) {
         throw TimeTableError(line_no, std::string("the ") + what + " '" + cell + "' is not finite");

@@ -133,6 +133,9 @@ TEST_CASE("matrix market: general and symmetric storage, comments, duplicates su
   // Header words are case-insensitive (some writers capitalize them).
   CHECK(parse_matrix_market("%%MatrixMarket MATRIX Coordinate Real General\n1 1 1\n1 1 4\n")
             .matrix.coeff(0, 0) == 4.0);
+  // A leading '+' is a sign, as C's readers and SciPy take it.
+  CHECK(parse_matrix_market("%%MatrixMarket matrix coordinate real general\n+2 2 1\n+1 2 +4.5\n")
+            .matrix.coeff(0, 1) == 4.5);
 }
 
 TEST_CASE("matrix market: malformed files are refused with their line") {
@@ -161,6 +164,12 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
       {general + "2 2 1\n1 1 nan\n", 3, "not finite"},
       {general + "2 2 1\n1 1 inf\n", 3, "not finite"},
       {general + "2 2 1\n1 1 1.0x\n", 3, "not a number"},
+      {general + "2 2 1\n1 1 1e400\n", 3, "'1e400' is out of the double range"},
+      {general + "2 2 1\n1 1 -1e-400\n", 3, "'-1e-400' is out of the double range"},
+      {general + "2 2 1\n1 1 ++1\n", 3, "not a number"},
+      {general + "2 2 1\n+-1 1 1\n", 3, "not an integer"},
+      {"%%MatrixMarket matrix coordinate integer general\n2 2 1\n1 1 100.9\n", 3,
+       "'100.9' is not an integer"},
       {general + "2 2 1\n1 1\n", 3, "found 2 fields"},
       {general + "2 2 2\n1 1 1.0\n", 3, "ends after 1 of the 2"},
       {general + "2 2 1\n1 1 1.0\n2 2 1.0\n", 4, "more entries"},

@@ -178,10 +178,13 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
 
   CHECK(error(kRecord).empty());
   CHECK(has(error(kRecord, "c"), key + ":2: no column 'c' (the value columns are: a, b)"));
+  CHECK(has(error("t,a,a\n0,1,2\n1,2,3\n", "a"), key + ":1: two columns are named 'a'"));
   CHECK(has(error("t,a\n0,1\n0,2\n"), key + ":3: the time 0 is not after the previous"));
   CHECK(has(error("t,a\n0,1\n1,2\n0.5,3\n"), key + ":4: the time 0.5 is not after"));
   CHECK(has(error("t,a\n0,1\n1,x2\n"), key + ":3: the value 'x2' is not a number"));
   CHECK(has(error("t,a\n0,1\n1 s,2\n"), key + ":3: the time '1 s' is not a number"));
+  CHECK(
+      has(error("t,a\n0,1\n1,1e400\n"), key + ":3: the value '1e400' is out of the double range"));
   CHECK(has(error("t,a\n0,1\n1,nan\n"), key + ":3: the value 'nan' is not finite"));
   CHECK(has(error("t,a\n0,1\ninf,2\n"), key + ":3: the time 'inf' is not finite"));
   CHECK(has(error("t,a\n0,1\n1\n"), key + ":3: has 1 cell(s) but the values are in column 2"));
@@ -194,6 +197,9 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
             "load[1].value.file: " + box.path("none.csv").string() + ": cannot open the file"));
   CHECK(has(scene_error(box, load_scene(R"({ type = "table", file = "/dev/zero" })")),
             "/dev/zero: is not a regular file"));
+  // A NUL in the name (\u0000 in TOML) would open the file named by what precedes it.
+  CHECK(has(scene_error(box, load_scene(R"({ type = "table", file = "ok.csv\u0000x" })")),
+            "load[1].value.file: the file name holds a NUL character"));
   // Keys: unknown, missing, empty.
   box.write("ok.csv", kRecord);
   CHECK(has(scene_error(box, load_scene(R"({ type = "table", file = "ok.csv", scal = 2 })")),
