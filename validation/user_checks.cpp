@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
@@ -45,6 +46,7 @@ std::vector<std::string> all_columns(const Model& model) {
   for (const auto column : kEnergyColumns) out.emplace_back(column);
   for (const auto& d : model.dof_names) {
     for (const char* prefix : {"", "vel_", "acc_", "acc_abs_", "reaction_"}) {
+      if (std::string_view(prefix) == "acc_abs_" && !model.ground) continue;
       out.push_back(prefix + d);
     }
   }
@@ -111,6 +113,15 @@ CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>&
     const auto column = find_column(model, c.quantity);
     if (!column)
       throw SceneError(scene_message(file, quantity_key(c), unknown_column(model, c.quantity)));
+    // As [output] quantities refuses absolute_acceleration without a moving ground.
+    if (column->quantity == Quantity::absolute_acceleration && !model.ground) {
+      throw SceneError(scene_message(
+          file, quantity_key(c),
+          "'" + c.quantity +
+              "' needs [ground_motion]: without a moving ground the absolute acceleration is the "
+              "acceleration (check acc_" +
+              c.quantity.substr(8) + ")"));
+    }
     State s;
     s.column = *column;
     states_.push_back(s);

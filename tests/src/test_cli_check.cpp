@@ -116,6 +116,23 @@ TEST_CASE("cli check: the JUnit report is well-formed UTF-8 whatever bytes a mes
   CHECK(xml.find("0.54\xef\xbf\xbd") != std::string::npos);  // U+FFFD in its place
 }
 
+TEST_CASE("cli check and run: a check's column must exist in this model's output") {
+  Sandbox box;
+  // acc_abs_ columns exist under [ground_motion] only, as [output] quantities says.
+  box.write("abs.toml", scene("[[check]]\nquantity = \"acc_abs_x\"\nmax_abs = 1.0\n"));
+  const Result abs = box.run("check abs.toml");
+  CHECK(abs.code == 2);
+  CHECK(abs.out.find("check[1].quantity: 'acc_abs_x' needs [ground_motion]") != std::string::npos);
+  // run refuses a bad check as check does (it refused a missing reference file already).
+  box.write("typo.toml", scene("[[check]]\nquantity = \"y\"\nmax_abs = 1.0\n"));
+  const Result run = box.run("run typo.toml --out r.csv");
+  CHECK(run.code == 2);
+  CHECK(run.err.find("check[1].quantity: no output column is named 'y'") != std::string::npos);
+  CHECK(box.run("run abs.toml --out r.csv").code == 2);
+  box.write("good.toml", scene(kHolds));
+  CHECK(box.run("run good.toml --out r.csv").code == 0);
+}
+
 TEST_CASE("cli check: a run that fails is an error of its scene (exit 1)") {
   Sandbox box;
   box.write("a.toml", scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n"));
