@@ -85,7 +85,8 @@ void SceneReader::read_checks(const toml::node& node, const SolveSpec& solve,
       const std::string p = join(path, "reference");
       const auto& ref = table(*t.get("reference"), p);
       check_keys(ref, p, {"file"});
-      c.reference = table_file(required(ref, p, "file"), join(p, "file"), c.quantity);
+      // One row is a reference too: the run is compared at its times.
+      c.reference = table_file(required(ref, p, "file"), join(p, "file"), c.quantity, 1);
       const auto& times = c.reference->times;
       if (times.front() < -1e-12 * solve.t_end || times.back() > solve.t_end * (1.0 + 1e-12)) {
         fail(*ref.get("file"), join(p, "file"),

@@ -67,13 +67,14 @@ std::string SceneReader::file_name(const toml::node& node, const std::string& ke
 
 std::shared_ptr<const TimeTable> SceneReader::table_file(const toml::node& file_node,
                                                          const std::string& key,
-                                                         const std::string& column) const {
+                                                         const std::string& column,
+                                                         std::size_t min_samples) const {
   const std::string file = file_name(file_node, key);
   if (arrays_ != nullptr) {
     if (const auto it = arrays_->tables.find(file); it != arrays_->tables.end()) {
       // Samples handed over in memory (the Python module's arrays): row k is the text's line k+1.
       try {
-        auto table = std::make_shared<TimeTable>(parse_time_table(it->second, column));
+        auto table = std::make_shared<TimeTable>(parse_time_table(it->second, column, min_samples));
         table->file = file;
         return table;
       } catch (const TimeTableError& e) {
@@ -89,7 +90,8 @@ std::shared_ptr<const TimeTable> SceneReader::table_file(const toml::node& file_
       std::filesystem::path(file_).parent_path() / std::filesystem::path(file);
   input_files_.push_back(resolved.string());
   try {
-    auto table = std::make_shared<TimeTable>(read_time_table(resolved.string(), column));
+    auto table =
+        std::make_shared<TimeTable>(read_time_table(resolved.string(), column, min_samples));
     table->file = file;
     return table;
   } catch (const TimeTableError& e) {

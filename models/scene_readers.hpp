@@ -66,10 +66,12 @@ class SceneReader : public TomlAccess {
   [[nodiscard]] TimeFunction time_function(const toml::node& node, const std::string& path) const;
   [[nodiscard]] TimeTerm term(const toml::node& node, const std::string& path) const;
   /// A table's CSV file named by the string `file_node` (key path `key`), relative to the scene's
-  /// folder; a bad file is refused naming the key, the file and its line.
+  /// folder; a bad file is refused naming the key, the file and its line. At least `min_samples`
+  /// rows (models/time_table.hpp).
   [[nodiscard]] std::shared_ptr<const TimeTable> table_file(const toml::node& file_node,
                                                             const std::string& key,
-                                                            const std::string& column) const;
+                                                            const std::string& column,
+                                                            std::size_t min_samples = 2) const;
 
   /// DOF and constraint names, which become CSV column names (scene_names.cpp): check_name()
   /// refuses what would break a CSV field; check_columns() refuses two names that give the same

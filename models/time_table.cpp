@@ -65,7 +65,8 @@ double TimeTable::slope(double t) const {
   return (values[k + 1] - values[k]) / (times[k + 1] - times[k]);
 }
 
-TimeTable parse_time_table(const std::string& text, const std::string& column) {
+TimeTable parse_time_table(const std::string& text, const std::string& column,
+                           std::size_t min_samples) {
   TimeTable table;
   std::istringstream in(text);
   std::string line;
@@ -140,14 +141,16 @@ TimeTable parse_time_table(const std::string& text, const std::string& column) {
     table.values.push_back(v);
     table.max_abs_value = std::max(table.max_abs_value, std::abs(v));
   }
-  if (table.times.size() < 2) {
-    throw TimeTableError(
-        0, "has " + std::to_string(table.times.size()) + " sample(s): a table needs at least 2");
+  if (table.times.size() < min_samples) {
+    throw TimeTableError(0, "has " + std::to_string(table.times.size()) +
+                                " sample(s): a table needs at least " +
+                                std::to_string(min_samples));
   }
   return table;
 }
 
-TimeTable read_time_table(const std::string& path, const std::string& column) {
+TimeTable read_time_table(const std::string& path, const std::string& column,
+                          std::size_t min_samples) {
   // A device or a pipe would be read forever or block: regular files only.
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
@@ -158,7 +161,7 @@ TimeTable read_time_table(const std::string& path, const std::string& column) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw TimeTableError(0, "cannot read the file");
-  return parse_time_table(text.str(), column);
+  return parse_time_table(text.str(), column, min_samples);
 }
 
 }  // namespace condyn

@@ -47,9 +47,12 @@ struct TimeTable {
 /// values' column (empty: the second column). Only the time and value cells are read as numbers.
 /// Throws TimeTableError naming the line of the first problem: an unknown column (or a column
 /// asked of a file without header), a row too short, a cell that is not a number or not finite,
-/// a time not after the previous one, fewer than two samples.
-[[nodiscard]] TimeTable parse_time_table(const std::string& text, const std::string& column);
+/// a time not after the previous one, fewer than `min_samples` samples (2 for a time function,
+/// which interpolates; 1 for a check's reference, compared at its own times).
+[[nodiscard]] TimeTable parse_time_table(const std::string& text, const std::string& column,
+                                         std::size_t min_samples = 2);
 /// The same, from a file (regular files only); `file` of the result is left to the caller.
-[[nodiscard]] TimeTable read_time_table(const std::string& path, const std::string& column);
+[[nodiscard]] TimeTable read_time_table(const std::string& path, const std::string& column,
+                                        std::size_t min_samples = 2);
 
 }  // namespace condyn

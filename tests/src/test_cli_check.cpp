@@ -133,6 +133,20 @@ TEST_CASE("cli check and run: a check's column must exist in this model's output
   CHECK(box.run("run good.toml --out r.csv").code == 0);
 }
 
+TEST_CASE("cli check: a reference of one row is compared at its time") {
+  Sandbox box;
+  box.write("one.csv", "t,x\n1,0.5403023058681398\n");  // cos(1)
+  box.write("one.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"one.csv\" }\n"
+                              "tolerance = 1e-7\n"));
+  const Result r = box.run("check one.toml");
+  CAPTURE(r.out);
+  CHECK(r.code == 0);
+  box.write("off.csv", "t,x\n1,0.54\n");
+  box.write("off.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"off.csv\" }\n"
+                              "tolerance = 1e-7\n"));
+  CHECK(box.run("check off.toml").code == 1);
+}
+
 TEST_CASE("cli check: a run that fails is an error of its scene (exit 1)") {
   Sandbox box;
   box.write("a.toml", scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n"));
