@@ -124,9 +124,18 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
   };
   auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
                     const Eigen::VectorXd& integrals) {
-    if (!y.allFinite() || !yp.allFinite() || !integrals.allFinite()) {
+    if (!y.allFinite() || !yp.allFinite()) {
       std::ostringstream s;
       s << "the solution became non-finite (NaN or inf) at t = " << t;
+      throw IntegrationError(FailureKind::non_finite, s.str());
+    }
+    if (!integrals.allFinite()) {
+      // The solution is finite; what it feeds (the energy balance's work integrals) is not.
+      std::ostringstream s;
+      s << "the energy balance's integrals (the work of the loads, constraints and damping) "
+           "overflow the double range at t = "
+        << t << ", while the solution is finite: the energy quantity cannot be reported "
+        << "for this run (leave it out of [output] quantities)";
       throw IntegrationError(FailureKind::non_finite, s.str());
     }
     out.t.push_back(t);
