@@ -36,16 +36,18 @@ Eigen::SparseMatrix<double> ModelBuilder::sparse_psd(const std::vector<std::vect
   return dense.sparseView();
 }
 
-void ModelBuilder::check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where) const {
+void ModelBuilder::check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where,
+                             const std::string& file) const {
+  const std::string name = file.empty() ? "" : file + " ";
   // Positive semi-definite up to roundoff of the largest eigenvalue.
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense, Eigen::EigenvaluesOnly);
   const double lo = eig.eigenvalues().minCoeff();
   const double hi = eig.eigenvalues().cwiseAbs().maxCoeff();
   if (!std::isfinite(lo) || !std::isfinite(hi)) {
-    fail(where, "has eigenvalues beyond the double range: the entries are too large");
+    fail(where, name + "has eigenvalues beyond the double range: the entries are too large");
   }
   if (lo < -1e-12 * std::max(hi, 1e-300)) {
-    fail(where, "is not positive semi-definite (smallest eigenvalue " + fmt(lo) + ")");
+    fail(where, name + "is not positive semi-definite (smallest eigenvalue " + fmt(lo) + ")");
   }
 }
 
@@ -59,7 +61,7 @@ Eigen::SparseMatrix<double> ModelBuilder::file_psd(const FileMatrix& m,
   const SourcePoint where{m.where.path, m.where.line};
   const Eigen::SparseMatrix<double>& a = m.matrix;
   if (a.rows() <= kDensePsdCheck) {
-    check_psd(Eigen::MatrixXd(a), where);
+    check_psd(Eigen::MatrixXd(a), where, m.file);
     return a;
   }
   const Eigen::VectorXd d = a.diagonal();

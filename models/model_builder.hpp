@@ -77,7 +77,8 @@ class ModelBuilder {
                                          const std::string& key) const;
   Eigen::SparseMatrix<double> file_psd(const FileMatrix& m, const std::string& key) const;
   void check_sparse_inertia(const FileMatrix& m, const std::string& key) const;
-  void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where) const;
+  void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where,
+                 const std::string& file = "") const;
   void build_matrix();
   void apply_rayleigh();
   void apply_modal_damping();  // modal_damping.cpp

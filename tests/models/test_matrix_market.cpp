@@ -340,7 +340,7 @@ stiffness = { file = "three.mtx" }
             "%%MatrixMarket matrix coordinate real symmetric\n4 4 4\n1 1 1\n2 2 -1\n3 3 1\n4 4 "
             "1\n");
   CHECK(has(scene_error(box, with_stiffness("indef.mtx")),
-            "model.stiffness.file: is not positive semi-definite"));
+            "model.stiffness.file: indef.mtx is not positive semi-definite"));
 
   // Without files, dofs stays required.
   CHECK(has(scene_error(
