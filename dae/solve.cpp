@@ -355,11 +355,11 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
   try {
     try {
       solve_resolved(model, scheme, settings, options_for(settings), result);
-    } catch (const std::invalid_argument& why) {
+    } catch (const SchemeNotApplicable& why) {
       // auto chose elimination for its cost. A model its reduction cannot integrate (a reduced
       // mass matrix singular to roundoff: a mass of 1e-20 beside 2) goes to GGL with a multiplier
       // for every row, which integrates it; the reason is in the summary. Nothing was integrated
-      // yet: the reduction is built before the first step.
+      // or written yet: ReducedOde refuses when it is built, before the first step.
       if (settings.scheme != Scheme::automatic || scheme != Scheme::elimination) throw;
       SolveSpec ggl = settings;
       ggl.scheme = Scheme::ggl;

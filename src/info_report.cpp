@@ -179,18 +179,22 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   // reduction cannot be integrated (dae/solve.cpp), and says so here as run does.
   std::optional<SystemSize> elimination_size;
   std::string elimination_refused;
+  bool elimination_inapplicable = false;  // SchemeNotApplicable: what auto falls back on
   {
     SolveSpec as_elimination = settings;
     as_elimination.scheme = Scheme::elimination;
     as_elimination.treatment = SolveSpec::Treatment::multipliers;
     try {
       if (!scheme_refusal(model, Scheme::elimination)) elimination_size = sizer(as_elimination);
+    } catch (const SchemeNotApplicable& e) {
+      elimination_refused = e.what();
+      elimination_inapplicable = true;
     } catch (const std::exception& e) {
       elimination_refused = e.what();
     }
   }
   const bool fell_back = settings.scheme == Scheme::automatic &&
-                         choice.scheme == Scheme::elimination && !elimination_refused.empty();
+                         choice.scheme == Scheme::elimination && elimination_inapplicable;
   if (fell_back) {
     choice = {Scheme::ggl, "auto: elimination refused (" + elimination_refused + "), GGL instead"};
   }
