@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +15,7 @@
 #include "dae/solve.hpp"
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
+#include "models/toml_access.hpp"
 #include "python/compare_records.hpp"
 #include "python/run_result.hpp"
 #include "python/scene_from_python.hpp"
@@ -39,13 +39,6 @@ Scheme scheme_argument(const SceneSpec& spec, const std::string& argument, const
   return *scheme;
 }
 
-/// `x` as the CLI prints numbers in messages: 1e-20, not 0.000000.
-std::string number_text(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
 /// The scene with run()'s overrides, checked as the parser checks [solve].
 SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& scheme,
                    std::optional<double> rtol, std::optional<double> atol) {
@@ -53,14 +46,14 @@ SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& sc
   if (scheme) spec.solve.scheme = scheme_argument(spec, "scheme", *scheme);
   if (rtol) {
     if (!(std::isfinite(*rtol) && *rtol >= kMinRtol && *rtol < 1.0)) {
-      bad_argument(spec, "rtol", "must lie in [1e-15, 1) (got " + number_text(*rtol) + ")");
+      bad_argument(spec, "rtol", "must lie in [1e-15, 1) (got " + TomlAccess::fmt(*rtol) + ")");
     }
     spec.solve.rtol = *rtol;
   }
   if (atol) {
     if (!(std::isfinite(*atol) && *atol >= kMinAtol)) {
       bad_argument(spec, "atol",
-                   "must be a finite number >= 1e-100 (got " + number_text(*atol) + ")");
+                   "must be a finite number >= 1e-100 (got " + TomlAccess::fmt(*atol) + ")");
     }
     spec.solve.atol = *atol;
   }

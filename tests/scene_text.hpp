@@ -8,6 +8,15 @@
 
 namespace condyn::test {
 
+/// A wall, spring 200, mass 2 (u1), spring 200, mass 1 (u2): the [model] table alone, for tests
+/// that add their own loads, constraints and [solve].
+inline const std::string kTwoMassChainModel = R"([model]
+type = "matrix"
+dofs = ["u1", "u2"]
+mass = [[2.0, 0.0], [0.0, 1.0]]
+stiffness = [[400.0, -200.0], [-200.0, 200.0]]
+)";
+
 /// Two masses on springs, one tied by a constraint, a step load at t = 0.25; four output
 /// intervals to t = 1 (the CLI tests' model).
 inline const std::string kTwoMassesScene = R"(name = "two masses"

@@ -8,6 +8,7 @@
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/embedded_scenes.hpp"
 
@@ -293,12 +294,7 @@ TEST_CASE("elimination's reactions do not depend on the scale of a constraint ro
   // f_con = −Aᵀλ is the same for a row a·u = 0 and (s a)·u = 0; λ scales by 1/s. With s = 1e155
   // A Aᵀ overflowed in the multiplier recovery and elimination reported zero reactions.
   const auto run = [](const std::string& coefficient) {
-    const SceneSpec spec = parse_scene_text(R"([model]
-type = "matrix"
-dofs = ["u1", "u2"]
-mass = [[2.0, 0.0], [0.0, 1.0]]
-stiffness = [[400.0, -200.0], [-200.0, 200.0]]
-[[load]]
+    const SceneSpec spec = parse_scene_text(test::kTwoMassChainModel + R"([[load]]
 dof = "u2"
 value = 10.0
 [[constraint]]

@@ -243,12 +243,7 @@ TEST_CASE("time table: a ramp of 1e-12 s at t = 0 runs as the step it approximat
   Sandbox box;
   box.write("ramp.csv", "t,a\n0,0\n1e-12,1\n2,1\n");
   const auto scene = [](const std::string& value) {
-    return R"([model]
-type = "matrix"
-dofs = ["u1", "u2"]
-mass = [[2.0, 0.0], [0.0, 1.0]]
-stiffness = [[400.0, -200.0], [-200.0, 200.0]]
-[[load]]
+    return test::kTwoMassChainModel + R"([[load]]
 dof = "u2"
 value = )" +
            value + R"(
