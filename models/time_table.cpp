@@ -73,6 +73,11 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
   int line_no = 0;
   bool first_row = true;
   std::size_t value_col = 1;
+  // The first row's cells (the header's, else the first sample's) and its line: every sample
+  // has as many. A longer row is a shifted one as often as a short one is (a decimal comma,
+  // 0,5 for 0.5, splits a value in two), and its cells would be read from the wrong columns.
+  std::size_t width = 0;
+  int width_line = 0;
   while (std::getline(in, line)) {
     ++line_no;
     const std::string trimmed = trim(line);
@@ -80,6 +85,8 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
     const auto row = cells(trimmed);
     if (first_row) {
       first_row = false;
+      width = row.size();
+      width_line = line_no;
       double ignored = 0.0;
       const bool header = !parse_number(row.front(), ignored);
       if (row.size() < 2) {
@@ -116,6 +123,13 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
       throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
                                         " cell(s) but the values are in column " +
                                         std::to_string(value_col + 1));
+    }
+    if (row.size() != width) {
+      throw TimeTableError(line_no, "has " + std::to_string(row.size()) + " cells, line " +
+                                        std::to_string(width_line) + " has " +
+                                        std::to_string(width) +
+                                        ": every row needs one cell per column (a decimal "
+                                        "comma, as in 0,5, splits a value in two)");
     }
     double t = 0.0, v = 0.0;
     for (const auto& [cell, out, what] :

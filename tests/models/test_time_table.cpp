@@ -188,6 +188,12 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
   CHECK(has(error("t,a\n0,1\n1,nan\n"), key + ":3: the value 'nan' is not finite"));
   CHECK(has(error("t,a\n0,1\ninf,2\n"), key + ":3: the time 'inf' is not finite"));
   CHECK(has(error("t,a\n0,1\n1\n"), key + ":3: has 1 cell(s) but the values are in column 2"));
+  // A row longer (or, past the value column, shorter) than the first: a decimal comma shifts
+  // the cells, and 1,0,5 would have read as the value 0 at t = 1.
+  CHECK(has(error("t,a\n0,1\n1,0,5\n"), key + ":3: has 3 cells, line 1 has 2: every row needs"));
+  CHECK(has(error("0,1\n1,0,5\n"), key + ":2: has 3 cells, line 1 has 2"));
+  CHECK(has(error("t,a,b\n0,1,2\n1,2\n"), key + ":3: has 2 cells, line 1 has 3"));
+  CHECK(has(error("t,a\n0,1\n1,2,\n"), key + ":3: has 3 cells, line 1 has 2"));
   CHECK(has(error("t,a\n0,1\n"), key + ": has 1 sample(s): a table needs at least 2"));
   CHECK(has(error("# only comments\n"), key + ": has 0 sample(s)"));
   CHECK(has(error("t\n0\n"), key + ":1: has 1 column: a table needs time and a column"));
