@@ -65,6 +65,7 @@ Model ModelBuilder::build() {
   if (model_.is_nonlinear()) linearize();
   check_finite();
   check_magnitudes();
+  check_tolerance();
   check_degenerate_dofs();
   while (const auto dependent = check_rank()) drop_constraint(*dependent);
   apply_modal_damping();  // from the modes of the constrained model: after the rows are final

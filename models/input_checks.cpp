@@ -124,6 +124,13 @@ void ModelBuilder::check_finite() const {
 /// A whose largest entry lies beyond 1e±15 (a unit mistake, most likely), and diagonals of M or
 /// K whose largest and smallest positive entries differ by more than 1/eps ≈ 4.5e15 (the soft
 /// or light DOFs are then lost in the roundoff of the stiff or heavy ones).
+void ModelBuilder::check_tolerance() {
+  if (spec_.solve.rtol > 1e-2) {
+    report_.warnings.push_back("rtol " + fmt(spec_.solve.rtol) +
+                               " asks for fewer than 2 correct digits");
+  }
+}
+
 void ModelBuilder::check_magnitudes() {
   constexpr double kFar = 1e15, kSpread = 4.5e15;
   const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {

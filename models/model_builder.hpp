@@ -66,6 +66,9 @@ class ModelBuilder {
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
   void check_finite() const;
   void check_magnitudes();
+  /// Warns of an rtol above 1e-2 (fewer than two correct digits), wherever it was set: the
+  /// scene, `--rtol` or Python's rtol.
+  void check_tolerance();
   void check_size();
   void check_degenerate_dofs() const;
 

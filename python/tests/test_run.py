@@ -72,6 +72,12 @@ def test_summary_and_overrides():
         assert not getattr(r, name).flags.writeable, name
 
 
+def test_a_loose_rtol_is_warned_of_as_the_cli_warns():
+    assert not any("correct digits" in w for w in condyn.run(QUICKSTART).summary["warnings"])
+    loose = condyn.run(QUICKSTART, rtol=0.5).summary["warnings"]
+    assert "rtol 0.5 asks for fewer than 2 correct digits" in loose
+
+
 def test_dict_scene_equals_file_scene(quickstart_dict):
     from_file = condyn.run(QUICKSTART, scheme="ggl")
     from_dict = condyn.run(quickstart_dict, scheme="ggl")

@@ -76,7 +76,7 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
   CHECK(box.run("run s.toml --rtol .001 --atol 2 --out r.csv").code == 0);
   const Result loose = box.run("run s.toml --rtol 0.5 --out r.csv");
   CHECK(loose.code == 0);
-  CHECK(contains(loose.err, "warning: --rtol 0.5 asks for fewer than 2 correct digits"));
+  CHECK(contains(loose.err, "warning: s.toml: rtol 0.5 asks for fewer than 2 correct digits"));
 }
 
 TEST_CASE("[solve] rtol has the command line's range") {
@@ -87,6 +87,11 @@ TEST_CASE("[solve] rtol has the command line's range") {
   CHECK(contains(r.err, "one.toml:9: solve.rtol: is out of range: a relative tolerance lies in"));
   box.write("tiny.toml", kScene + "rtol = 1e-300\n");
   CHECK(box.run("run tiny.toml --out r.csv").code == 2);
+  // A loose one from the scene is warned of as one from --rtol is.
+  box.write("loose.toml", kScene + "rtol = 0.05\n");
+  const Result loose = box.run("run loose.toml --out r.csv");
+  CHECK(loose.code == 0);
+  CHECK(contains(loose.err, "warning: loose.toml: rtol 0.05 asks for fewer than 2 correct digits"));
 }
 
 TEST_CASE("--version prints the program's version") {
