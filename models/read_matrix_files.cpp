@@ -49,13 +49,20 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
   out.where = at(file_node, key);
   if (arrays_ != nullptr) {
     if (const auto it = arrays_->matrices.find(out.file); it != arrays_->matrices.end()) {
-      // A matrix handed over in memory: the file reader's own check of entries, finiteness.
+      // A matrix handed over in memory: the file reader's own check of entries, finiteness,
+      // reported under the key the array was given for (its name is "<array KEY>"), not the
+      // `file` key the module put in its place.
       out.matrix = it->second;
+      const std::string prefix = "<array ";
+      const std::string array_key =
+          out.file.starts_with(prefix) && out.file.ends_with('>')
+              ? out.file.substr(prefix.size(), out.file.size() - prefix.size() - 1)
+              : key;
       for (Eigen::Index k = 0; k < out.matrix.outerSize(); ++k) {
         for (Eigen::SparseMatrix<double>::InnerIterator e(out.matrix, k); e; ++e) {
           if (!std::isfinite(e.value())) {
-            fail(file_node, key,
-                 out.file + ": entry (" + std::to_string(e.row() + 1) + "," +
+            fail(file_node, array_key,
+                 "entry (" + std::to_string(e.row() + 1) + "," +
                      std::to_string(e.col() + 1) + ") is " + fmt(e.value()) +
                      ": entries must be finite");
           }

@@ -49,7 +49,7 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
     (lambda s: s["model"].update(stiffness=sp.csr_matrix(np.triu(np.ones((3, 3))))),
      "<dict>: model.stiffness.file: <array model.stiffness> is not symmetric: entry (1,2)"),
     (lambda s: s["model"].update(mass=np.diag([1.0, np.nan, 1.0])),
-     "<dict>: model.mass.file: <array model.mass>: entry (2,2) is nan: entries must be finite"),
+     "<dict>: model.mass: entry (2,2) is nan: entries must be finite"),
     (lambda s: s["model"].update(mass=np.eye(3, dtype=complex)),
      "<dict>: model.mass: entries must be real numbers"),
     (lambda s: s["model"].update(dofs={"u1"}), "<dict>: model.dofs: a set is not a scene value"),
