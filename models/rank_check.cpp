@@ -162,6 +162,12 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
     }
   }
   if (dep < 0) return std::nullopt;
+  // "rank r < m", and when more than one row depends on others, that these are the first found.
+  const std::string rank_text =
+      "constraint matrix rank " + std::to_string(rank) + " < " + std::to_string(m) +
+      (m - rank > 1 ? ": " + std::to_string(m - rank) +
+                          " constraints depend on others, these are the first found"
+                    : std::string());
   std::string names;
   for (const auto& [j, w] : combo) {
     names += (names.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
@@ -177,8 +183,7 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   const ZeroSumVerdict verdict = weighted_sum_vanishes(sum, spec_.solve.t_end);
   if (verdict.kind == ZeroSumVerdict::Kind::undecided) {
     fail(constraints[static_cast<std::size_t>(dep)].where,
-         "the constraints " + names + " are linearly dependent (constraint matrix rank " +
-             std::to_string(rank) + " < " + std::to_string(m) +
+         "the constraints " + names + " are linearly dependent (" + rank_text +
              "), and condyn cannot decide whether their right-hand sides are compatible: " +
              verdict.detail +
              "; write the same numbers where the functions are meant to be equal, or remove "
@@ -195,12 +200,15 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
     return Dependent{dep, others};
   }
   fail(constraints[static_cast<std::size_t>(dep)].where,
-       "the constraints " + names + " are linearly dependent (constraint matrix rank " +
-           std::to_string(rank) + " < " + std::to_string(m) + "); their right-hand sides are " +
+       "the constraints " + names + " are linearly dependent (" + rank_text +
+           "); their right-hand sides are " +
            (compatible
                 ? std::string("compatible, so the set is redundant: remove one of them") +
-                      (model_.is_nonlinear() ? ""
-                                             : ", or set [solve] redundant = \"drop\" to drop it")
+                      (model_.is_nonlinear()
+                           ? ""
+                           : m - rank > 1 ? ", or set [solve] redundant = \"drop\" to drop it "
+                                            "(a run then lists each redundant constraint it drops)"
+                                          : ", or set [solve] redundant = \"drop\" to drop it")
                 : "incompatible (the combination that vanishes on the left leaves " +
                       verdict.detail +
                       " on the right), so the set is conflicting: no motion "

@@ -309,6 +309,14 @@ TEST_CASE("constraints with coefficients or initial values near the double range
                       "[[constraint]]\nname = \"again\"\nterms = { ux1 = 1e200 }\n\n[solve]"),
               "the constraints 'again', 'pin_x' are linearly dependent (constraint matrix rank 3 < "
               "4); their right-hand sides are compatible");
+  // Two dependent rows: the refusal names the first pair and says there are more.
+  check_error(replace(kBase, "[solve]",
+                      "[[constraint]]\nname = \"again\"\nterms = { ux1 = 2.0 }\n\n"
+                      "[[constraint]]\nname = \"twice\"\nterms = { ux1 = -3.0 }\n\n[solve]"),
+              "(constraint matrix rank 3 < 5: 2 constraints depend on others, these are the "
+              "first found); their right-hand sides are compatible, so the set is redundant: "
+              "remove one of them, or set [solve] redundant = \"drop\" to drop it (a run then "
+              "lists each redundant constraint it drops)");
   // a·u(0) = 1e150 * 1e300 overflowed to inf and inf > tolerance * inf is false: the start passed
   // as consistent.
   check_error(replace(kBase, "terms = { uy2 = 1.0 }", "terms = { uy2 = 1e150 }") +
