@@ -256,6 +256,11 @@ SystemSize system_size(const Model& model, const SolveSpec& settings) {
   return SystemSizer(model)(settings);
 }
 
+const ReducedSystem& SystemSizer::reduced(const std::vector<std::string>& slaves) {
+  if (!reduced_) reduced_ = std::make_shared<const ReducedSystem>(reduce(model_, slaves));
+  return *reduced_;
+}
+
 SystemSize SystemSizer::operator()(const SolveSpec& settings) {
   const Model& model = model_;
   Scheme scheme = settings.scheme;
@@ -264,8 +269,7 @@ SystemSize SystemSizer::operator()(const SolveSpec& settings) {
   // The matrix IDA's Newton iterations factor: the condensed one when asked for.
   const bool condensed = settings.condensed_newton && !settings.dense_linear_solver;
   if (scheme == Scheme::elimination) {
-    const ReducedSystem reduced = reduce(model, settings.slaves);
-    const ReducedOde ode(model, reduced);
+    const ReducedOde ode(model, reduced(settings.slaves));
     if (condensed) return {ode.size(), ode.newton_system()->nonzeros()};
     return {ode.size(), ode.jacobian_pattern().nonZeros()};
   }

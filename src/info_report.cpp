@@ -202,7 +202,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
       << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";
   if (choice.scheme == Scheme::elimination && !refusal) {
-    const ReducedSystem reduced = reduce(model, settings.slaves);
+    const ReducedSystem& reduced = sizer.reduced(settings.slaves);
     const auto& ms = reduced.transform;
     out << "elimination: " << ms.slaves.size() << (ms.slaves.size() == 1 ? " slave (" : " slaves (")
         << (settings.slaves.empty() ? "chosen by column pivoting on A" : "named in [solve] slaves")
@@ -210,6 +210,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         << wrapped_list("  slaves: ", names_of(model, ms.slaves))
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
+  sizer.release_reduced();  // elimination is sized already: the other schemes' peak without it
   const bool chose_mixed = !fell_back && uses_mixed_treatment(model, choice.scheme, settings);
   if (chose_mixed && !refusal) {
     out << "constraint treatment (mixed): " << treatment_report(model, treat_constraints(model));
