@@ -42,9 +42,9 @@ class SchemeNotApplicable : public std::invalid_argument {
 [[nodiscard]] bool uses_mixed_treatment(const Model& model, Scheme resolved,
                                         const SolveSpec& settings);
 
-/// What a scheme makes the integrator solve for this model.
 struct ReducedSystem;  // dae/elimination.hpp
 
+/// What a scheme makes the integrator solve for this model.
 struct SystemSize {
   int unknowns = 0;
   long jacobian_nonzeros = 0;

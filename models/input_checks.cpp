@@ -93,6 +93,8 @@ void ModelBuilder::check_time_function(const TimeFunction& f, const SourcePoint&
   }
 }
 
+/// The last line of defence against a silent inf or NaN: whatever the checks above let through,
+/// the matrices and the initial state handed to the solvers are finite.
 void ModelBuilder::check_finite() const {
   const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
       {&model_.M, "mass matrix M"},
@@ -118,19 +120,10 @@ void ModelBuilder::check_finite() const {
   }
 }
 
-/// The last line of defence against a silent inf or NaN: whatever the checks above let through,
-/// the matrices and the initial state handed to the solvers are finite.
 /// Warns (does not refuse) about magnitudes that double precision cannot carry well: M, C, K or
 /// A whose largest entry lies beyond 1e±15 (a unit mistake, most likely), and diagonals of M or
 /// K whose largest and smallest positive entries differ by more than 1/eps ≈ 4.5e15 (the soft
 /// or light DOFs are then lost in the roundoff of the stiff or heavy ones).
-void ModelBuilder::check_tolerance() {
-  if (spec_.solve.rtol > 1e-2) {
-    report_.warnings.push_back("rtol " + fmt(spec_.solve.rtol) +
-                               " asks for fewer than 2 correct digits");
-  }
-}
-
 void ModelBuilder::check_magnitudes() {
   constexpr double kFar = 1e15, kSpread = 4.5e15;
   const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
@@ -207,6 +200,13 @@ void ModelBuilder::check_degenerate_dofs() const {
                                   "' has neither mass nor stiffness nor damping nor a "
                                   "constraint: its motion is undefined");
     }
+  }
+}
+
+void ModelBuilder::check_tolerance() {
+  if (spec_.solve.rtol > 1e-2) {
+    report_.warnings.push_back("rtol " + fmt(spec_.solve.rtol) +
+                               " asks for fewer than 2 correct digits");
   }
 }
 

@@ -199,16 +199,16 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
     }
     return Dependent{dep, others};
   }
+  std::string drop_hint;
+  if (!model_.is_nonlinear()) {
+    drop_hint = ", or set [solve] redundant = \"drop\" to drop it";
+    if (m - rank > 1) drop_hint += " (a run then lists each redundant constraint it drops)";
+  }
   fail(constraints[static_cast<std::size_t>(dep)].where,
        "the constraints " + names + " are linearly dependent (" + rank_text +
            "); their right-hand sides are " +
            (compatible
-                ? std::string("compatible, so the set is redundant: remove one of them") +
-                      (model_.is_nonlinear()
-                           ? ""
-                           : m - rank > 1 ? ", or set [solve] redundant = \"drop\" to drop it "
-                                            "(a run then lists each redundant constraint it drops)"
-                                          : ", or set [solve] redundant = \"drop\" to drop it")
+                ? std::string("compatible, so the set is redundant: remove one of them") + drop_hint
                 : "incompatible (the combination that vanishes on the left leaves " +
                       verdict.detail +
                       " on the right), so the set is conflicting: no motion "

@@ -62,9 +62,8 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
         for (Eigen::SparseMatrix<double>::InnerIterator e(out.matrix, k); e; ++e) {
           if (!std::isfinite(e.value())) {
             fail(file_node, array_key,
-                 "entry (" + std::to_string(e.row() + 1) + "," +
-                     std::to_string(e.col() + 1) + ") is " + fmt(e.value()) +
-                     ": entries must be finite");
+                 "entry (" + std::to_string(e.row() + 1) + "," + std::to_string(e.col() + 1) +
+                     ") is " + fmt(e.value()) + ": entries must be finite");
           }
         }
       }
