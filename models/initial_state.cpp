@@ -52,16 +52,21 @@ void ModelBuilder::check_initial_consistency() const {
                " overflows the double range (coefficients times initial values)");
     }
     // Negated comparisons: a NaN residual is a violation, never a pass.
+    // Judged against the sizes of what is compared: a·u's terms and the right-hand side's
+    // (TimeFunction::magnitude: a cosine drive's sin(π/2)-phase velocity is 1e-17, not 0).
     if (position) {
       const double g = c.value.value(0.0);
-      if (!(std::abs(au - g) <= kConsistencyTolerance * std::max({su, std::abs(g), 1e-300}))) {
+      const double size = std::max({su, std::abs(g), c.value.magnitude(0, 0.0), 1e-300});
+      if (!(std::abs(au - g) <= kConsistencyTolerance * size)) {
         fail(spec_.initial.where.line ? spec_.initial.where : c.where,
              "initial displacements violate " + where + ": a·u(0) = " + fmt(au) +
                  " but the constraint requires " + fmt(g) + " (residual " + fmt(au - g) + ")");
       }
     }
     const double gv = position ? c.value.derivative(1, 0.0) : c.value.value(0.0);
-    if (!(std::abs(av - gv) <= kConsistencyTolerance * std::max({sv, std::abs(gv), 1e-300}))) {
+    const double gv_size = c.value.magnitude(position ? 1 : 0, 0.0);
+    if (!(std::abs(av - gv) <=
+          kConsistencyTolerance * std::max({sv, std::abs(gv), gv_size, 1e-300}))) {
       fail(spec_.initial.where.line ? spec_.initial.where : c.where,
            "initial velocities violate " + where + ": a·v(0) = " + fmt(av) +
                " but the constraint requires " + fmt(gv) + " (residual " + fmt(av - gv) +

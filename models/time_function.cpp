@@ -56,6 +56,26 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
   return 0.0;
 }
 
+double TimeTerm::magnitude(int order, double t) const {
+  switch (kind) {
+    case Kind::harmonic:
+      return std::abs(amplitude) * std::pow(std::abs(omega), order);
+    case Kind::polynomial: {
+      double sum = 0.0;
+      for (std::size_t k = static_cast<std::size_t>(order); k < coefficients.size(); ++k) {
+        double factor = 1.0;
+        for (int j = 0; j < order; ++j)
+          factor *= static_cast<double>(k - static_cast<std::size_t>(j));
+        sum += std::abs(factor * coefficients[k] *
+                        std::pow(t, static_cast<double>(k - static_cast<std::size_t>(order))));
+      }
+      return sum;
+    }
+    default:
+      return std::abs(derivative(order, t));
+  }
+}
+
 TimeTerm TimeTerm::derivative_term() const {
   TimeTerm d = *this;
   switch (kind) {
@@ -164,6 +184,12 @@ TimeFunction TimeFunction::constant(double c) {
 double TimeFunction::derivative(int order, double t, double step_reference) const {
   double sum = 0.0;
   for (const auto& term : terms_) sum += term.derivative(order, t, step_reference);
+  return sum;
+}
+
+double TimeFunction::magnitude(int order, double t) const {
+  double sum = 0.0;
+  for (const auto& term : terms_) sum += term.magnitude(order, t);
   return sum;
 }
 

@@ -35,6 +35,10 @@ struct TimeTerm {
   [[nodiscard]] double derivative(int order, double t, double step_reference) const;
   [[nodiscard]] double derivative(int order, double t) const { return derivative(order, t, t); }
   [[nodiscard]] double value(double t) const { return derivative(0, t, t); }
+  /// The size against which derivative(order, t)'s roundoff is judged: |amplitude| ω^order for a
+  /// harmonic (whatever the phase: at sin(π) the value is roundoff of the amplitude), the sum of
+  /// the polynomial's terms' sizes, else |derivative(order, t)|.
+  [[nodiscard]] double magnitude(int order, double t) const;
 
   /// The term whose value is this term's first derivative (smooth kinds only; a step gives an
   /// all-zero polynomial). Throws std::invalid_argument for a table (its slope is piecewise
@@ -59,6 +63,10 @@ class TimeFunction {
   [[nodiscard]] double derivative(int order, double t) const { return derivative(order, t, t); }
   [[nodiscard]] double value(double t) const { return derivative(0, t, t); }
 
+  /// Σ of the terms' magnitude(order, t): the size of derivative(order, t)'s summands, so that
+  /// a sum that cancels (0.1 + 0.2 − 0.3) or a harmonic at a zero (sin(π)) is judged against its
+  /// parts, not against its roundoff.
+  [[nodiscard]] double magnitude(int order, double t) const;
   /// True when every term is zero for t >= 0 (a homogeneous right-hand side).
   [[nodiscard]] bool is_zero() const;
   /// True when the function is constant for t >= 0: no time dependence (scleronomic). A table is
