@@ -222,7 +222,17 @@ int check(const std::vector<std::string>& scenes, const std::string& scheme,
   OutputPlan plan;  // the JUnit report, checked before the runs
   for (const auto& s : scenes) plan.add_input(s);
   std::optional<OutputPlan::Id> report;
-  if (!junit.empty()) report = plan.add_output(junit, "--junit");
+  if (!junit.empty()) {
+    // Nor may it be a file a scene reads (a matrix, a table, a check's reference): each scene is
+    // parsed for their names first (a scene that does not parse is reported by its run below).
+    for (const auto& s : scenes) {
+      try {
+        for (const auto& input : parse_scene_file(s).input_files) plan.add_input(input);
+      } catch (const std::exception&) {  // the run below reports it
+      }
+    }
+    report = plan.add_output(junit, "--junit");
+  }
   plan.check();
   std::vector<CheckedScene> checked;
   int code = 0;

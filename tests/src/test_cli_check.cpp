@@ -102,6 +102,19 @@ TEST_CASE("cli check: bad input is exit 2 naming file, line and key; the other s
   CHECK(folder.out.find("PASS") == std::string::npos);
 }
 
+TEST_CASE("cli check: the JUnit report may not overwrite a file a scene reads") {
+  Sandbox box;
+  const std::string reference = "t,x\n0,1\n1,0.5403023058681398\n";
+  box.write("ref.csv", reference);
+  box.write("ref.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"ref.csv\" }\n"
+                              "tolerance = 1e-3\n"));
+  const Result r = box.run("check ref.toml --junit ref.csv");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("--junit ref.csv: is ref.csv, an input of this command") != std::string::npos);
+  CHECK(r.out.find("PASS") == std::string::npos);  // refused before the run
+  CHECK(slurp(box.path("ref.csv")) == reference);
+}
+
 TEST_CASE("cli check: the JUnit report is well-formed UTF-8 whatever bytes a message quotes") {
   Sandbox box;
   // A reference file with a Latin-1 degree sign (0xB0): the refusal quotes the value.
