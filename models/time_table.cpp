@@ -34,6 +34,39 @@ std::vector<std::string> cells(const std::string& line) {
   }
 }
 
+/// A header cell without the double quotes some writers put around names (R's write.csv).
+std::string unquoted(const std::string& cell) {
+  return cell.size() >= 2 && cell.front() == '"' && cell.back() == '"'
+             ? cell.substr(1, cell.size() - 2)
+             : cell;
+}
+
+/// A cell as a message quotes it: control bytes (a NUL would end the message) as '?', and at
+/// most 40 characters.
+std::string shown(const std::string& cell) {
+  constexpr std::size_t kMax = 40;
+  std::string out = cell.size() > kMax ? cell.substr(0, kMax) + "..." : cell;
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  }
+  return out;
+}
+
+/// Lines ended by LF, CRLF or a lone CR (the classic Mac ending some spreadsheets still write).
+std::string with_lf_endings(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\r') {
+      out += '\n';
+      if (i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
 /// The shortest text that reads back as v (0.1, not 0.10000000000000001).
 std::string shortest(double v) {
   std::array<char, 32> buffer{};
@@ -68,7 +101,7 @@ double TimeTable::slope(double t) const {
 TimeTable parse_time_table(const std::string& text, const std::string& column,
                            std::size_t min_samples) {
   TimeTable table;
-  std::istringstream in(text);
+  std::istringstream in(with_lf_endings(text));
   std::string line;
   int line_no = 0;
   bool first_row = true;
@@ -82,7 +115,7 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
     ++line_no;
     const std::string trimmed = trim(line);
     if (trimmed.empty() || trimmed.front() == '#') continue;
-    const auto row = cells(trimmed);
+    auto row = cells(trimmed);
     if (first_row) {
       first_row = false;
       width = row.size();
@@ -94,13 +127,15 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
                                           " column: a table needs time and a column of values");
       }
       if (header) {
+        for (auto& cell : row) cell = unquoted(cell);
         if (column.empty()) {
           table.column = row[1];
         } else {
           const auto it = std::find(row.begin() + 1, row.end(), column);
           if (it == row.end()) {
             std::string names;
-            for (std::size_t c = 1; c < row.size(); ++c) names += (c > 1 ? ", " : "") + row[c];
+            for (std::size_t c = 1; c < row.size(); ++c)
+              names += (c > 1 ? ", " : "") + shown(row[c]);
             throw TimeTableError(
                 line_no, "no column '" + column + "' (the value columns are: " + names + ")");
           }
@@ -135,11 +170,12 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
     for (const auto& [cell, out, what] :
          {std::tuple{row[0], &t, "time"}, std::tuple{row[value_col], &v, "value"}}) {
       if (const NumberCell kind = parse_number_cell(cell, *out); kind != NumberCell::ok) {
-        throw TimeTableError(
-            line_no, std::string("the ") + what + " '" + cell + "' " + number_cell_problem(kind));
+        throw TimeTableError(line_no, std::string("the ") + what + " '" + shown(cell) + "' " +
+                                          number_cell_problem(kind));
       }
       if (!std::isfinite(*out)) {
-        throw TimeTableError(line_no, std::string("the ") + what + " '" + cell + "' is not finite");
+        throw TimeTableError(line_no,
+                             std::string("the ") + what + " '" + shown(cell) + "' is not finite");
       }
     }
     if (!table.times.empty() && !(t > table.times.back())) {

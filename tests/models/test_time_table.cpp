@@ -99,6 +99,14 @@ TEST_CASE("time table: piecewise linear between samples, held outside, columns b
   const TimeTable bare = parse_time_table("0, 2\r\n1, +4\r\n", "");
   CHECK(bare.column == "column 2");
   CHECK(bare.value(0.5) == 3.0);
+  // Lone CR line ends (a spreadsheet's "CSV (Macintosh)") and quoted header names (R's
+  // write.csv) read as the plain file does.
+  const TimeTable mac = parse_time_table("t,a,b\r0,1,10\r1,2,20\r", "b");
+  CHECK(mac.times.size() == 2);
+  CHECK(mac.value(0.5) == 15.0);
+  const TimeTable quoted = parse_time_table("\"t\",\"a\"\n0,1\n1,3\n", "a");
+  CHECK(quoted.column == "a");
+  CHECK(quoted.value(0.5) == 2.0);
 }
 
 TEST_CASE("time table: a time function with a scale, shared samples and no breakpoints") {
@@ -182,6 +190,11 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
   CHECK(has(error("t,a\n0,1\n0,2\n"), key + ":3: the time 0 is not after the previous"));
   CHECK(has(error("t,a\n0,1\n1,2\n0.5,3\n"), key + ":4: the time 0.5 is not after"));
   CHECK(has(error("t,a\n0,1\n1,x2\n"), key + ":3: the value 'x2' is not a number"));
+  // A cell is quoted short and without control bytes (a NUL cut the message off).
+  CHECK(has(error("t,a\n0,1\n1," + std::string(100000, 'x') + "\n"),
+            key + ":3: the value '" + std::string(40, 'x') + "...' is not a number"));
+  CHECK(has(error(std::string("t,a\n0,1\n1,x\0y\n", 13)),
+            key + ":3: the value 'x?y' is not a number"));
   CHECK(has(error("t,a\n0,1\n1 s,2\n"), key + ":3: the time '1 s' is not a number"));
   CHECK(
       has(error("t,a\n0,1\n1,1e400\n"), key + ":3: the value '1e400' is out of the double range"));
