@@ -67,6 +67,12 @@ void ModelBuilder::apply_modal_damping() {
        << " ... " << std::sqrt(std::max(modes.eigenvalues()[count - 1], 0.0))
        << " rad/s); C dense in those DOFs";
   report_.damping = rule.str();
+  if (ratios.size() > static_cast<std::size_t>(count)) {
+    report_.warnings.push_back(
+        "damping.modal gives " + std::to_string(ratios.size()) + " ratios for the " +
+        std::to_string(count) + " modes of the constrained model: the last " +
+        std::to_string(ratios.size() - static_cast<std::size_t>(count)) + " are unused");
+  }
 }
 
 }  // namespace condyn

@@ -101,6 +101,12 @@ void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
              modal->is_array() ? index(p, i) : p,
              "a damping ratio must be finite and >= 0 (a negative one feeds energy in)");
       }
+      // As Rayleigh's ratios: 5 for 5 % is the likelier meaning of a ratio of 1 or more.
+      if (z >= 1.0) {
+        fail(modal->is_array() ? *array(*modal, p).get(i) : *modal,
+             modal->is_array() ? index(p, i) : p,
+             "must be a damping ratio in [0, 1) (0.05 is 5 %)");
+      }
     }
     model.modal_where = at(*modal, p);
     return;

@@ -86,6 +86,17 @@ TEST_CASE("modal damping: classical, so the exact reference applies; every schem
   }
 }
 
+TEST_CASE("modal damping: more ratios than modes are warned of") {
+  const auto s =
+      test::built(parse_scene_text(chain("{ modal = [0.02, 0.07, 0.1, 0.2] }"), "m.toml"));
+  REQUIRE(s.report.warnings.size() == 1);
+  CHECK(s.report.warnings[0] ==
+        "damping.modal gives 4 ratios for the 2 modes of the constrained model: the last 2 are "
+        "unused");
+  const auto exact = test::built(parse_scene_text(chain("{ modal = [0.02, 0.07] }"), "m.toml"));
+  CHECK(exact.report.warnings.empty());
+}
+
 TEST_CASE("modal damping: refusals name the key") {
   const auto refused = [](const std::string& text, const std::string& words) {
     CAPTURE(text);
@@ -95,6 +106,11 @@ TEST_CASE("modal damping: refusals name the key") {
   refused(chain("{ modal = -0.1 }"), "model.damping.modal: a damping ratio must be finite");
   refused(chain("{ modal = [0.02, -0.1] }"), "model.damping.modal[2]: a damping ratio");
   refused(chain("{ modal = [] }"), "model.damping.modal: expected a damping ratio");
+  // 5 for 5 %: refused as Rayleigh's ratios are.
+  refused(chain("{ modal = 5 }"),
+          "model.damping.modal: must be a damping ratio in [0, 1) (0.05 is 5 %)");
+  refused(chain("{ modal = [0.02, 1.0] }"),
+          "model.damping.modal[2]: must be a damping ratio in [0, 1)");
   refused(chain("{ modal = 0.05, rayleigh = [0.1, 0.0] }"), "not both");
   // A massless DOF has no mode of its own.
   refused(test::replace(chain("{ modal = 0.05 }"), "mass = [[1.0", "mass = [[0.0"),
