@@ -89,6 +89,28 @@ std::string wrapped_list(const std::string& label, const std::vector<std::string
   return out;
 }
 
+/// The loads and their time functions (the first kMaxListedLoads; a table as
+/// table(FILE:COLUMN, N samples)*scale), and the ground motion's acceleration.
+void print_loads(std::ostream& out, const Model& model) {
+  constexpr std::size_t kMaxListedLoads = 10;
+  if (model.ground) {
+    out << wrapped_text("ground motion: ", "a_g(t) = " + model.ground->acceleration.describe() +
+                                               " (its load −M r a_g(t) is among the loads)");
+  }
+  if (model.loads.empty()) return;
+  out << "loads: " << model.loads.size() << "\n";
+  for (std::size_t i = 0; i < std::min(model.loads.size(), kMaxListedLoads); ++i) {
+    const Load& load = model.loads[i];
+    const std::string target =
+        load.dof >= 0 ? model.dof_names[static_cast<std::size_t>(load.dof)]
+                      : "pattern (" + std::to_string(load.pattern.nonZeros()) + " DOFs)";
+    out << wrapped_text("  " + target + ": ", load.value.describe());
+  }
+  if (model.loads.size() > kMaxListedLoads) {
+    out << "  ... and " << model.loads.size() - kMaxListedLoads << " more\n";
+  }
+}
+
 std::vector<std::string> names_of(const Model& model, const std::vector<int>& dofs) {
   std::vector<std::string> out;
   out.reserve(dofs.size());
@@ -173,6 +195,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
       << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
       << model.C.nonZeros() << ", K " << model.K->nonZeros() << ", A " << model.A.nonZeros()
       << "\n";
+  print_loads(out, model);
   SchemeChoice choice = choose_scheme(model, settings);
   SystemSizer sizer(model);
   // Elimination sized once, before the choice is printed: auto falls back to GGL when the

@@ -51,6 +51,17 @@ TEST_CASE("cli ground motion: a tabulated record shakes a truss, paths from the 
   CHECK(csv.rfind("t,ux1,uy1,ux2,uy2,ux3,uy3,ux4,uy4,drift_position,drift_velocity\n", 0) == 0);
 }
 
+TEST_CASE("cli ground motion: info shows the record and the loads' time functions") {
+  const Sandbox box;
+  write_case(box, "t,ag\n0,0\n0.1,0.2\n0.2,-0.1\n");
+  const Result r = box.run("info case/s.toml");
+  CAPTURE(r.out);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("ground motion: a_g(t) = table(records/quake.csv:ag, 3 samples)*9.81") !=
+        std::string::npos);
+  CHECK(r.out.find("loads: 1\n  pattern (") != std::string::npos);
+}
+
 TEST_CASE("cli ground motion: a bad record is refused with exit 2, the key, the file and line") {
   const Sandbox box;
   write_case(box, "t,ag\n0,0\n0.1,0.2\n0.1,0.3\n");
