@@ -101,8 +101,12 @@ RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
   plan_.check();  // the stream test below needs the CSV resolved
   if (!plan_.is_stream(csv_)) {
     partial_ = plan_.add_output(partial_path(plan_.display_name(csv_)), "the partial-result file");
-    plan_.check();
   }
+  if (steps_ && !plan_.is_stream(*steps_)) {
+    steps_partial_ =
+        plan_.add_output(partial_path(plan_.display_name(*steps_)), "the partial drift log");
+  }
+  plan_.check();
 }
 
 std::ostream& RunOutputs::messages() const { return plan_.any_to_stdout() ? std::cerr : std::cout; }
@@ -150,6 +154,32 @@ void RunOutputs::finish_stream(const RunAttributes& run, const Trajectory& traj)
   commit_result(traj);
 }
 
+std::string RunOutputs::commit_partial(std::optional<OutputPlan::Id> rows,
+                                       const Trajectory& partial) {
+  std::vector<OutputPlan::Id> ids;
+  if (rows) ids.push_back(*rows);
+  std::string steps;
+  if (steps_ && !partial.steps.empty()) {
+    const std::string count = std::to_string(partial.steps.size());
+    if (!steps_partial_) {
+      steps = "; the drift at its " + count + " internal steps was not written (" + steps_name() +
+              " is a stream)";
+    } else {
+      try {
+        plan_.write(*steps_partial_,
+                    [&partial](std::ostream& out) { write_steps_csv(out, partial); });
+        ids.push_back(*steps_partial_);
+        steps = "; the drift at its " + count + " internal steps is in " +
+                plan_.display_name(*steps_partial_);
+      } catch (const std::exception& e) {
+        steps = "; the drift at its internal steps could not be written: " + std::string(e.what());
+      }
+    }
+  }
+  if (!ids.empty()) plan_.commit(ids);  // together: a commit removes the temporaries it leaves
+  return steps;
+}
+
 std::string RunOutputs::finish_stream_partial(const RunAttributes& run, const Trajectory& partial) {
   // Every row computed is kept, the initial state alone too (a run that failed before its second
   // output time): a partial file left by an earlier failure would otherwise look current.
@@ -166,9 +196,9 @@ std::string RunOutputs::finish_stream_partial(const RunAttributes& run, const Tr
       out << in.rdbuf();
       if (!in) throw std::runtime_error(rows_path_ + ": cannot read the rows back");
     });
-    plan_.commit({*partial_});
+    const std::string steps = commit_partial(*partial_, partial);
     s << (one ? " is in " : " are in ") << plan_.display_name(*partial_)
-      << " (the run did not reach t_end; " << csv_name() << " was not written)";
+      << " (the run did not reach t_end; " << csv_name() << " was not written)" << steps;
   } catch (const std::exception& e) {
     s << " could not be written: " << e.what();
   }
@@ -184,13 +214,13 @@ std::string RunOutputs::write_partial(const Model& model, const RunAttributes& r
     s << (one ? " was" : " were") << " not written (" << csv_name()
       << " is not a file: a stream, such as standard output, a device or a pipe, gets complete "
          "results only; give --out FILE to keep them)";
-    return s.str();
+    return s.str() + commit_partial(std::nullopt, partial);
   }
   try {
     write_result(*partial_, model, run, partial);
-    plan_.commit({*partial_});
+    const std::string steps = commit_partial(*partial_, partial);
     s << (one ? " is in " : " are in ") << plan_.display_name(*partial_)
-      << " (the run did not reach t_end; " << csv_name() << " was not written)";
+      << " (the run did not reach t_end; " << csv_name() << " was not written)" << steps;
   } catch (const std::exception& e) {
     s << " could not be written: " << e.what();
   }

@@ -23,7 +23,8 @@ void write_steps_csv(std::ostream& out, const Trajectory& traj);
 
 /// The files of `condyn run`, checked before the integration (OutputPlan): the CSV of the
 /// [output] quantities (to --out, else [output] file, else SCENE-STEM.csv in the current folder),
-/// the drift log (--steps-out) and, for a failed run, FILE.partial.csv beside the CSV. None may be
+/// the drift log (--steps-out) and, for a failed run, FILE.partial.csv beside the CSV (and
+/// STEPS.partial.csv beside the drift log, with the steps before the failure). None may be
 /// the scene, a file it names (`inputs`: SceneSpec::input_files) or another output. `[output]
 /// file` is relative to the scene's folder, as every path a scene names. A CSV going to a stream
 /// (standard output, a device, a FIFO) gets complete results only: a failed run writes nothing
@@ -64,6 +65,11 @@ class RunOutputs {
                                                   const Trajectory& partial);
 
  private:
+  /// Commits a failed run's partial rows (`rows`, written) together with its drift log
+  /// (--steps-out) in STEPS.partial.csv; returns "; the drift at its N internal steps is in …"
+  /// for the partial result's sentence, or "" without a log.
+  [[nodiscard]] std::string commit_partial(std::optional<OutputPlan::Id> rows,
+                                           const Trajectory& partial);
   /// Commits the result (written) with the drift log of `traj` when one is asked for.
   void commit_result(const Trajectory& traj);
   /// The result into output `id`, in the format its name asks for.
@@ -75,7 +81,7 @@ class RunOutputs {
   std::unique_ptr<RowWriter> rows_;  ///< a streamed run's result file
   std::string rows_path_;            ///< its temporary file
   OutputPlan::Id csv_ = 0;
-  std::optional<OutputPlan::Id> steps_, partial_;
+  std::optional<OutputPlan::Id> steps_, partial_, steps_partial_;
 };
 
 }  // namespace condyn

@@ -208,6 +208,21 @@ TEST_CASE("--out and --steps-out: checked together before the run, committed tog
   CHECK(slurp(box.path("keep.csv")).rfind(kHeader, 0) == 0);
   CHECK(slurp(box.path("steps.csv")).rfind("t,drift_position,drift_velocity\n", 0) == 0);
   CHECK(hidden_files(box.path(".")).empty());
+
+  // A failed run keeps its drift log too, beside the partial rows: the steps before the failure
+  // are what tells why it failed. steps.csv keeps what it had.
+  const std::string finished = slurp(box.path("steps.csv"));
+  const Result failed = box.run("run f.toml --out keep.csv --steps-out steps.csv");
+  CHECK(failed.code == 1);
+  CHECK(contains(failed.err, "are in keep.partial.csv"));
+  CHECK(contains(failed.err, "internal steps is in steps.partial.csv"));
+  CHECK(slurp(box.path("steps.partial.csv")).rfind("t,drift_position,drift_velocity\n1", 0) == 0);
+  CHECK(slurp(box.path("steps.csv")) == finished);
+  CHECK(hidden_files(box.path(".")).empty());
+  // Its partial name is checked before the run as well.
+  const Result clash = box.run("run f.toml --out steps.partial.csv --steps-out steps.csv");
+  CHECK(clash.code == 2);
+  CHECK(!contains(clash.err, "integration failed"));
 }
 
 TEST_CASE("a path that cannot be written is refused before any work") {
