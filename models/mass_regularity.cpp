@@ -17,9 +17,37 @@ namespace condyn {
 /// the massless DOFs Z, and the singular motions are the kernel of A restricted to Z. Massless DOFs
 /// that no constraint touches but stiffness (or damping) holds are algebraic unknowns the DAE
 /// formulations integrate (dae/held_massless.hpp): they are left out here, on linear models.
+/// A value [initial] gives a massless DOF held by stiffness is not kept where the DOF has no
+/// state of its own: without damping, its displacement and velocity are set at every instant,
+/// t = 0 included, by its stiffness rows; with damping (first order), its velocity is.
+void ModelBuilder::warn_given_held_values(const std::vector<bool>& held) {
+  for (const auto* given : {&spec_.initial.displacement, &spec_.initial.velocity}) {
+    const bool displacement = given == &spec_.initial.displacement;
+    for (const auto& [name, value] : *given) {
+      const auto it = std::find(model_.dof_names.begin(), model_.dof_names.end(), name);
+      if (it == model_.dof_names.end()) continue;
+      const auto d = static_cast<std::size_t>(it - model_.dof_names.begin());
+      if (!held[d]) continue;
+      // First order (c_hh != 0, models/massless_dofs.hpp): its displacement is a state.
+      const bool damped =
+          model_.has_damping() &&
+          model_.C.coeff(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(d)) != 0.0;
+      if (displacement && damped) continue;
+      report_.warnings.push_back(
+          std::string("[initial] ") + (displacement ? "displacement" : "velocity") + " gives " +
+          name + " = " + fmt(value) + ", but " + name + " has no mass" +
+          (damped ? ": its damping and stiffness rows set its velocity"
+                  : " nor damping: its stiffness rows set it") +
+          " at every instant, t = 0 included, so the value given is not kept (the output's first "
+          "row shows the one used)");
+    }
+  }
+}
+
 void ModelBuilder::check_massless_dofs() {
   const int n = model_.dofs();
   std::vector<bool> held = held_massless();
+  warn_given_held_values(held);
   std::vector<int> massless, local(static_cast<std::size_t>(n), -1);
   for (int i = 0; i < n; ++i) {
     if (model_.M.coeff(i, i) == 0.0 && !held[static_cast<std::size_t>(i)]) {

@@ -122,6 +122,7 @@ class ModelBuilder {
 
   // mass_regularity.cpp
   void check_massless_dofs();
+  void warn_given_held_values(const std::vector<bool>& held);
   [[nodiscard]] std::vector<bool> held_massless() const;
   void check_singular_mass(const std::vector<bool>& held);
 

@@ -201,6 +201,32 @@ TEST_CASE("a damped massless DOF: first order in u, every DAE scheme agrees, ene
   }
 }
 
+TEST_CASE("values [initial] gives a massless DOF that it does not keep are warned of") {
+  // u2 has no mass: without damping its u and v follow its stiffness row, with damping its v
+  // does (its u is a first-order state and is kept).
+  const std::string given =
+      "[initial]\ndisplacement = { u2 = 0.5, u3 = 0.1 }\nvelocity = { u2 = 3.0 }\n";
+  const auto plain = test::built(parse_scene_text(kChain + given, "c.toml"));
+  REQUIRE(plain.report.warnings.size() == 2);
+  CHECK(plain.report.warnings[0] ==
+        "[initial] displacement gives u2 = 0.5, but u2 has no mass nor damping: its stiffness rows "
+        "set it at every instant, t = 0 included, so the value given is not kept (the output's "
+        "first row shows the one used)");
+  CHECK(plain.report.warnings[1].rfind("[initial] velocity gives u2 = 3, but u2 has no mass nor",
+                                       0) == 0);
+  const std::string damped =
+      test::replace(kChain, "[[load]]", "damping = { rayleigh = [0.1, 0.002] }\n[[load]]");
+  const auto first_order = test::built(parse_scene_text(damped + given, "d.toml"));
+  REQUIRE(first_order.report.warnings.size() == 1);
+  CHECK(first_order.report.warnings[0].rfind(
+            "[initial] velocity gives u2 = 3, but u2 has no mass: its damping and stiffness rows "
+            "set its velocity",
+            0) == 0);
+  // A massive DOF's values are kept: no warning.
+  CHECK(test::built(parse_scene_text(kChain + "[initial]\nvelocity = { u3 = 1.0 }\n", "m.toml"))
+            .report.warnings.empty());
+}
+
 TEST_CASE("projection, which factors M, refuses massless DOFs held by stiffness, naming others") {
   const auto s = test::built(parse_scene_text(kChain, "chain.toml"));
   const auto why = scheme_refusal(s.model, Scheme::projection);
