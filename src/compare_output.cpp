@@ -284,6 +284,16 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
   std::error_code ignored;
   if (!result.options.baumgarte_study) fs::remove(base / "baumgarte_study.csv", ignored);
   if (result.reference_t.empty()) fs::remove(base / "history_reference.csv", ignored);
+  // Nor a scheme's drift and history files that this comparison did not write (a scheme not
+  // asked for, not applicable, or whose run left nothing).
+  for (Scheme s : kSchemes) {
+    const bool written = std::any_of(
+        result.histories.begin(), result.histories.end(),
+        [s](const auto& h) { return h.scheme == s && (h.ok || !h.trajectory.t.empty()); });
+    if (written) continue;
+    fs::remove(base / drift_file(s), ignored);
+    fs::remove(base / history_file(s), ignored);
+  }
 }
 
 std::string draw_compare_plots(const std::string& dir) {

@@ -1,9 +1,11 @@
 #include "src/stress_output.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "src/report_format.hpp"
 
@@ -186,6 +188,21 @@ void write_stress_files(OutputPlan& plan, const std::string& dir, const StressRe
   put((base / "summary.txt").string(),
       [&](std::ostream& out) { print_stress_report(out, result); });
   plan.commit_all();
+  // The folder describes this run only: a generated scene an earlier run of other families left
+  // in scenes/ (FAMILY_K.toml) goes, the user's other files stay.
+  std::vector<std::filesystem::path> stale;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(base / "scenes", ec)) {
+    const std::string stem = entry.path().stem().string();
+    const bool generated =
+        entry.path().extension() == ".toml" &&
+        std::any_of(stress_families().begin(), stress_families().end(),
+                    [&](const auto& f) { return stem.rfind(f.name + "_", 0) == 0; });
+    const bool current = std::any_of(result.cases.begin(), result.cases.end(),
+                                     [&](const auto& c) { return c.id == stem; });
+    if (generated && !current) stale.push_back(entry.path());
+  }
+  for (const auto& path : stale) std::filesystem::remove(path, ec);
 }
 
 }  // namespace condyn

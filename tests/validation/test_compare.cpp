@@ -163,6 +163,22 @@ TEST_CASE("compare: the output files follow validation/compare-output.md") {
   CHECK(json.find("\"histories\": {\"elimination\": {\"status\": \"ok\", \"t_reached\": ") !=
         std::string::npos);
   CHECK(slurp("summary.txt").find("reference: exact modal solution") != std::string::npos);
+
+  // A second comparison into the same folder leaves none of the first's files its figures would
+  // draw: only GGL's drift and history now, the user's own files kept.
+  { std::ofstream(dir / "notes.txt") << "mine\n"; }
+  CompareOptions g = small_options();
+  g.schemes = {Scheme::ggl};
+  g.baumgarte_study = false;
+  write_compare_files(dir.string(), run_compare(spec, g));
+  for (const char* gone : {"drift_baumgarte.csv", "history_baumgarte.csv", "drift_elimination.csv",
+                           "history_elimination.csv", "baumgarte_study.csv"}) {
+    CAPTURE(gone);
+    CHECK_FALSE(std::filesystem::exists(dir / gone));
+  }
+  CHECK(std::filesystem::exists(dir / "drift_ggl.csv"));
+  CHECK(std::filesystem::exists(dir / "history_ggl.csv"));
+  CHECK(slurp("notes.txt") == "mine\n");
   std::filesystem::remove_all(dir);
 }
 

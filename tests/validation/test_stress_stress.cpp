@@ -133,7 +133,13 @@ TEST_CASE("stress: the output folder and the map") {
   const fs::path dir =
       fs::temp_directory_path() / ("condyn_stress_test_" + std::to_string(::getpid()));
   fs::remove_all(dir);
+  // A scene an earlier run of other families left, and a file of the user's: the first goes.
+  fs::create_directories(dir / "scenes");
+  { std::ofstream(dir / "scenes" / "stiffness_99.toml") << "# stale\n"; }
+  { std::ofstream(dir / "scenes" / "mine.toml") << "# mine\n"; }
   write_stress_files(dir.string(), suite());
+  CHECK_FALSE(fs::exists(dir / "scenes" / "stiffness_99.toml"));
+  CHECK(fs::exists(dir / "scenes" / "mine.toml"));
   std::ifstream csv(dir / "stress.csv");
   std::string header;
   std::getline(csv, header);
