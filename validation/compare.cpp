@@ -78,6 +78,7 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
   } catch (const ExactSolutionUnavailable& e) {
     const double tight = std::max(
         1e-13, *std::min_element(options.tolerances.begin(), options.tolerances.end()) / 100.0);
+    std::string elimination_failure;
     for (Scheme scheme : {Scheme::elimination, Scheme::ggl}) {
       try {
         const SolveResult run = solve(model, settings_of(settings, scheme, tight, tight * 1e-2));
@@ -87,9 +88,20 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
                                     " (no exact solution: " + e.what() + ")";
         return ref;
       } catch (const std::exception& why) {
-        if (scheme == Scheme::ggl) {
-          throw std::runtime_error(std::string("no reference solution: ") + why.what());
+        if (scheme == Scheme::elimination) {
+          elimination_failure = why.what();
+          continue;
         }
+        // Without a reference no run can be scored: say which runs failed and what to change.
+        throw std::runtime_error(
+            "no reference solution: there is no exact one (" + std::string(e.what()) +
+            "), and the tight reference runs failed at rtol " + sci(tight) +
+            " (1/100 of the smallest --tolerances value): " +
+            (model.nonlinear ? std::string() : "elimination: " + elimination_failure + "; ") +
+            "ggl: " + why.what() +
+            "; a looser smallest tolerance, or a t_end the scene reaches, gives compare a "
+            "reference (`condyn run` with --scheme ggl --rtol " +
+            sci(tight) + " shows the same)");
       }
     }
     throw std::logic_error("unreachable");

@@ -286,6 +286,20 @@ TEST_CASE("info on a nonlinear scene: classes, and a requested scheme that does 
   CHECK(r.out.find("classed by their integrated form") == std::string::npos);
 }
 
+TEST_CASE("compare without a reference says which runs failed, at what rtol, and what to try") {
+  const Sandbox box;
+  box.write("s.toml", condyn::test::kPulledPendulumScene);
+  const Result r = box.run("compare s.toml --tolerances 1e-4 --schemes ggl --no-plots");
+  CAPTURE(r.err);
+  CHECK(r.code == 1);
+  CHECK(r.err.find("no reference solution: there is no exact one (the model is nonlinear") !=
+        std::string::npos);
+  CHECK(r.err.find("the tight reference runs failed at rtol 1.0e-06 (1/100 of the smallest "
+                   "--tolerances value): ggl: IDASolve failed") != std::string::npos);
+  CHECK(r.err.find("a looser smallest tolerance, or a t_end the scene reaches") !=
+        std::string::npos);
+}
+
 TEST_CASE("a run that fails midway keeps its rows in FILE.partial.csv and says what to try") {
   const Sandbox box;
   // A rheonomic row pulls the pendulum's mass straight down at unit speed: at t = 1 the rod is
