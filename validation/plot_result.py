@@ -25,14 +25,15 @@ ENERGY_TERMS = (("energy_kinetic", "kinetic T"), ("energy_potential", "potential
 DEFAULT_DOFS = 4
 
 
+# Every energy column condyn writes (kEnergyColumns in models/scene_spec.hpp): matched by name,
+# not by prefix, since a DOF may be named energy_top or work_1 (it is then a displacement).
+ENERGY_NAMES = {c for c, _ in ENERGY_TERMS} | {"energy_error"}
+DRIFT_NAMES = {"drift_position", "drift_velocity"}
+
+
 def energy_columns(columns):
-    """The energy terms present, known ones first with their labels, then any other column named
-    energy, energy_* or work_* under its own name (energy_error has its own panel)."""
-    known = [(c, label) for c, label in ENERGY_TERMS if c in columns]
-    names = {c for c, _ in known} | {"energy_error"}
-    other = [(c, c) for c in columns if c not in names and (
-        c == "energy" or c.startswith("energy_") or c.startswith("work_"))]
-    return known + other
+    """The energy terms present, with their labels (energy_error has its own panel)."""
+    return [(c, label) for c, label in ENERGY_TERMS if c in columns]
 
 
 class BadInput(Exception):
@@ -53,8 +54,9 @@ def read_csv(np, path):
     if data.shape[1] != len(header):
         raise BadInput(f"{path}: {data.shape[1]} values per row for {len(header)} columns")
     columns = {name: data[:, k] for k, name in enumerate(header)}
-    prefixed = ("vel_", "acc_", "reaction_", "lambda_", "drift_", "energy", "work_")
-    dofs = [n for n in header[1:] if not n.startswith(prefixed)]
+    prefixed = ("vel_", "acc_", "reaction_", "lambda_")
+    dofs = [n for n in header[1:]
+            if not n.startswith(prefixed) and n not in ENERGY_NAMES and n not in DRIFT_NAMES]
     return columns, dofs
 
 

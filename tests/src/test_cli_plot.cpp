@@ -52,6 +52,29 @@ TEST_CASE("condyn plot draws displacements, drift and energy of a CSV and of an 
   CHECK_FALSE(std::filesystem::exists(box.path("figs/r_energy.png")));
 }
 
+TEST_CASE("condyn plot: DOFs named energy_* or work_* are displacements, not energy terms") {
+  const Sandbox box;
+  std::string scene = condyn::test::kTwoMassesScene;
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\"a\", \"b\"", "\"energy_top\", \"work_1\""},
+        {"dof = \"b\"", "dof = \"work_1\""},
+        {"terms = { a = 1.0 }", "terms = { energy_top = 1.0 }"}}) {
+    scene = condyn::test::replace(scene, from, to);
+  }
+  box.write("e.toml", scene);
+  REQUIRE(box.run("run e.toml --scheme ggl --out e.csv").code == 0);
+  REQUIRE(box.run("run e.toml --scheme ggl --out e.h5").code == 0);
+  for (const char* result : {"e.csv", "e.h5"}) {
+    CAPTURE(result);
+    const Result r = box.run(std::string("plot ") + result + " --format png --dofs work_1");
+    CAPTURE(r.err);
+    REQUIRE(r.code == 0);
+    CHECK(is_figure(box, "e_displacement.png"));
+    CHECK_FALSE(std::filesystem::exists(box.path("e_energy.png")));  // no energy written
+    std::filesystem::remove(box.path("e_displacement.png"));
+  }
+}
+
 TEST_CASE("condyn plot draws no drift figure when the drift is exactly 0, and says so") {
   const Sandbox box;
   write_run(box);
