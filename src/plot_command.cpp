@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "src/hdf5_output.hpp"
+#include "src/output_files.hpp"
 #include "src/report_format.hpp"
 
 namespace condyn {
@@ -34,17 +35,36 @@ int plot_result(const PlotArgs& args) {
   }
   std::istringstream formats(args.formats);
   std::string format;
+  std::vector<std::string> format_list;
   while (std::getline(formats, format, ',')) {
     if (format != "png" && format != "pdf" && format != "svg") {
       return bad("--format: unknown format '" + format + "' (png, pdf, svg)");
     }
+    format_list.push_back(format);
   }
+  if (format_list.empty()) return bad("--format: empty (png, pdf, svg, or a list of them)");
   const fs::path out_dir = args.out_dir.empty() ? result.parent_path() : fs::path(args.out_dir);
   if (!out_dir.empty()) {
     fs::create_directories(out_dir, ec);
     if (!fs::is_directory(out_dir)) {
       return bad("--out-dir " + out_dir.string() + ": cannot create the folder");
     }
+  }
+  // Every figure the script may write is checked as run checks its files, before any is drawn:
+  // a folder in the way, a file without write permission (protected), a folder that takes no
+  // new file, the result itself. The script then writes them (the plan's temporaries go).
+  try {
+    OutputPlan plan;
+    plan.add_input(args.result);
+    const std::string stem = result.stem().string();
+    for (const char* kind : {"displacement", "drift", "energy"}) {
+      for (const auto& f : format_list) {
+        (void)plan.add_output((out_dir / (stem + "_" + kind + "." + f)).string(), "the figure");
+      }
+    }
+    plan.check();
+  } catch (const OutputError& e) {
+    return bad(e.what());
   }
   const fs::path script = validation_script("plot_result.py");
   if (!fs::exists(script)) {

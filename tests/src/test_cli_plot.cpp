@@ -109,4 +109,17 @@ TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF")
   refused("plot fake.h5", "fake.h5: not an HDF5 file");
   refused("plot r.csv --dofs zz", "--dofs: 'zz' matches no DOF of r.csv (DOFs: a, b)");
   refused("plot r.csv --format gif", "--format: unknown format 'gif'");
+  refused("plot r.csv --format ''", "--format: empty");
+  // The figures are checked before any is drawn, as run's files are: a folder in the way, a
+  // protected (read-only) file.
+  std::filesystem::create_directories(box.path("r_energy.pdf"));
+  refused("plot r.csv", "the figure r_energy.pdf: is a folder");
+  CHECK_FALSE(std::filesystem::exists(box.path("r_displacement.png")));
+  std::filesystem::remove(box.path("r_energy.pdf"));
+  box.write("r_drift.png", "old");
+  std::filesystem::permissions(box.path("r_drift.png"), std::filesystem::perms::owner_read |
+                                                            std::filesystem::perms::group_read |
+                                                            std::filesystem::perms::others_read);
+  refused("plot r.csv", "the figure r_drift.png: is read-only");
+  CHECK(condyn::test::slurp(box.path("r_drift.png")) == "old");
 }
