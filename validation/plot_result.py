@@ -14,8 +14,8 @@ Exit status: 0 drawn; 2 bad input (the message names the file and what is wrong)
 numpy or h5py missing.
 """
 import argparse
-import fnmatch
 import os
+import re
 import sys
 
 ENERGY_TERMS = (("energy_kinetic", "kinetic T"), ("energy_potential", "potential V"),
@@ -92,11 +92,17 @@ def read_h5(np, path):
     return columns, dofs
 
 
+def star_match(name, pattern):
+    """`*` as any run of characters, every other character as itself: the globs of [output]
+    dofs (a DOF named n[1] is matched by 'n[1]', not read as a character class)."""
+    return re.fullmatch(".*".join(re.escape(part) for part in pattern.split("*")), name) is not None
+
+
 def chosen_dofs(np, columns, dofs, patterns, path):
     if patterns:
         chosen = []
         for p in patterns:
-            hits = [d for d in dofs if fnmatch.fnmatchcase(d, p)]
+            hits = [d for d in dofs if star_match(d, p)]
             if not hits:
                 some = ", ".join(dofs[:8]) + (", ..." if len(dofs) > 8 else "")
                 raise BadInput(f"--dofs: '{p}' matches no DOF of {path} (DOFs: {some or 'none'})")

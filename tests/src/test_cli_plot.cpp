@@ -108,6 +108,8 @@ TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF")
   box.write("fake.h5", "not hdf5");
   refused("plot fake.h5", "fake.h5: not an HDF5 file");
   refused("plot r.csv --dofs zz", "--dofs: 'zz' matches no DOF of r.csv (DOFs: a, b)");
+  // Only * is a wildcard, as in [output] dofs: ? is a character of a name.
+  refused("plot r.csv --dofs '?'", "--dofs: '?' matches no DOF of r.csv");
   refused("plot r.csv --format gif", "--format: unknown format 'gif'");
   refused("plot r.csv --format ''", "--format: empty");
   // The figures are checked before any is drawn, as run's files are: a folder in the way, a
