@@ -97,7 +97,15 @@ RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
     const std::string name = std::filesystem::path(scene).stem().string() + ".csv";
     csv_ = plan_.add_output(name, "the default output (SCENE-STEM.csv)");
   }
-  if (!steps_out.empty()) steps_ = plan_.add_output(steps_out, "--steps-out");
+  if (!steps_out.empty()) {
+    // The drift log is CSV only: CSV text in a .h5 file is a file no HDF5 reader opens.
+    if (is_hdf5_path(steps_out)) {
+      throw OutputError("--steps-out " + steps_out +
+                        ": the drift log is written as CSV; name it .csv (only the result, --out, "
+                        "is written as HDF5)");
+    }
+    steps_ = plan_.add_output(steps_out, "--steps-out");
+  }
   plan_.check();  // the stream test below needs the CSV resolved
   if (!plan_.is_stream(csv_)) {
     partial_ = plan_.add_output(partial_path(plan_.display_name(csv_)), "the partial-result file");

@@ -219,6 +219,10 @@ TEST_CASE("--out and --steps-out: checked together before the run, committed tog
   CHECK(slurp(box.path("steps.partial.csv")).rfind("t,drift_position,drift_velocity\n1", 0) == 0);
   CHECK(slurp(box.path("steps.csv")) == finished);
   CHECK(hidden_files(box.path(".")).empty());
+  // The drift log is CSV: a .h5 name is refused before the run.
+  const Result h5 = box.run("run s.toml --out o.csv --steps-out steps.h5");
+  CHECK(h5.code == 2);
+  CHECK(contains(h5.err, "--steps-out steps.h5: the drift log is written as CSV; name it .csv"));
   // Its partial name is checked before the run as well.
   const Result clash = box.run("run f.toml --out steps.partial.csv --steps-out steps.csv");
   CHECK(clash.code == 2);
