@@ -1,5 +1,6 @@
 #include "src/cli_flags.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -107,6 +108,15 @@ CLI::Validator file_name_check() {
           "FILE"};
 }
 
+CLI::Validator non_empty_check() {
+  return {[](std::string& text) {
+            return text.find_first_not_of(' ') == std::string::npos
+                       ? std::string("is empty (leave the flag out instead)")
+                       : std::string();
+          },
+          "TEXT"};
+}
+
 CLI::Validator decimal_range_check(double lo, double hi) {
   return {[lo, hi](std::string& text) {
             const auto v = parse_decimal(text);
@@ -145,12 +155,18 @@ Scheme parse_scheme_flag(const std::string& flag, const std::string& s) {
   throw CLI::ValidationError(flag, "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
 }
 
-std::vector<std::string> split_list(const std::string& s) {
+std::vector<std::string> split_list(const std::string& flag, const std::string& s) {
   std::vector<std::string> out;
   std::string item;
   for (char c : s + ",") {
     if (c == ',') {
-      if (!item.empty()) out.push_back(item);
+      if (item.empty()) {
+        throw CLI::ValidationError(flag, "an empty item in '" + s + "' (a stray comma?)");
+      }
+      if (std::find(out.begin(), out.end(), item) != out.end()) {
+        throw CLI::ValidationError(flag, "'" + item + "' is listed twice in '" + s + "'");
+      }
+      out.push_back(item);
       item.clear();
     } else if (c != ' ') {
       item += c;

@@ -30,13 +30,16 @@ namespace condyn {
 
 /// A file name for an output: not empty.
 [[nodiscard]] CLI::Validator file_name_check();
+/// Refuses an empty value: a flag given as '' is a mistake, not a request for the default.
+[[nodiscard]] CLI::Validator non_empty_check();
 
 /// A scheme named by `flag`; throws CLI::ValidationError naming the flag and the schemes.
 [[nodiscard]] Scheme parse_scheme_flag(const std::string& flag, const std::string& s);
 /// --constraints: "mixed" or "multipliers"; throws CLI::ValidationError otherwise.
 [[nodiscard]] SolveSpec::Treatment parse_treatment_flag(const std::string& s);
 
-/// Splits "a,b,c" (spaces ignored, empty items dropped).
-[[nodiscard]] std::vector<std::string> split_list(const std::string& s);
+/// Splits "a,b,c" (spaces ignored); an empty item (a stray comma) or one listed twice is refused
+/// with CLI::ValidationError naming `flag`.
+[[nodiscard]] std::vector<std::string> split_list(const std::string& flag, const std::string& s);
 
 }  // namespace condyn

@@ -169,13 +169,13 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   if (dir.empty()) dir = "condyn-out/compare-" + stem;
   if (!tolerances.empty()) {
     options.tolerances.clear();
-    for (const auto& t : split_list(tolerances)) {
+    for (const auto& t : split_list("--tolerances", tolerances)) {
       options.tolerances.push_back(parse_rtol_flag("--tolerances", t));
     }
   }
   if (!schemes.empty()) {
     options.schemes.clear();
-    for (const auto& s : split_list(schemes)) {
+    for (const auto& s : split_list("--schemes", schemes)) {
       const Scheme scheme = parse_scheme_flag("--schemes", s);
       if (scheme == Scheme::automatic) {
         throw CLI::ValidationError("--schemes", "name schemes, not 'auto'");
@@ -269,7 +269,7 @@ int check(const std::vector<std::string>& scenes, const std::string& scheme,
 
 int stress(std::string dir, const std::string& families, bool no_plots) {
   StressOptions options;
-  for (const auto& f : split_list(families)) options.families.push_back(f);
+  for (const auto& f : split_list("--families", families)) options.families.push_back(f);
   try {
     (void)stress_cases(options.families);  // unknown family names are usage errors
   } catch (const std::invalid_argument& e) {
@@ -340,12 +340,17 @@ int main(int argc, char** argv) {
       "compare", "every scheme across a tolerance sweep: errors, drift, cost, plots");
   compare_cmd->add_option("scene", compare_scene,
                           "scene file (default: the chapter truss, §5.5.1, built in)");
-  compare_cmd->add_option("--out-dir", compare_dir,
-                          "output folder (default: condyn-out/compare-SCENE-STEM)");
-  compare_cmd->add_option("--tolerances", compare_tolerances,
-                          "comma-separated rtol values (default 1e-3,1e-4,...,1e-10)");
-  compare_cmd->add_option("--schemes", compare_schemes,
-                          "comma-separated schemes (default: all of them)");
+  compare_cmd
+      ->add_option("--out-dir", compare_dir,
+                   "output folder (default: condyn-out/compare-SCENE-STEM)")
+      ->check(non_empty_check());
+  compare_cmd
+      ->add_option("--tolerances", compare_tolerances,
+                   "comma-separated rtol values (default 1e-3,1e-4,...,1e-10)")
+      ->check(non_empty_check());
+  compare_cmd
+      ->add_option("--schemes", compare_schemes, "comma-separated schemes (default: all of them)")
+      ->check(non_empty_check());
   compare_cmd->add_option("--repeats", compare_options.repeats, "runs per point for the wall time")
       ->check(whole_check(1, 100));
   compare_cmd
@@ -375,18 +380,23 @@ int main(int argc, char** argv) {
       ->required();
   check_cmd->add_option("--scheme", check_scheme,
                         "scheme for every scene (overrides [solve] scheme): " + scheme_names());
-  check_cmd->add_option("--junit", check_junit, "also write a JUnit XML report to this file");
+  check_cmd->add_option("--junit", check_junit, "also write a JUnit XML report to this file")
+      ->check(non_empty_check());
 
   PlotArgs plot_args;
   auto* plot_cmd = app.add_subcommand(
       "plot", "figures of one run's CSV or HDF5: displacements, drift, energy (docs/plots.md)");
   plot_cmd->add_option("result", plot_args.result, "the .csv or .h5 that condyn run wrote")
       ->required();
-  plot_cmd->add_option("--dofs", plot_args.dofs,
-                       "DOFs to draw, names or globs, comma-separated (default: the four with the "
-                       "largest peaks)");
-  plot_cmd->add_option("--out-dir", plot_args.out_dir,
-                       "folder for the figures (default: beside RESULT)");
+  plot_cmd
+      ->add_option("--dofs", plot_args.dofs,
+                   "DOFs to draw, names or globs, comma-separated (default: the four with the "
+                   "largest peaks)")
+      ->check(non_empty_check());
+  plot_cmd
+      ->add_option("--out-dir", plot_args.out_dir,
+                   "folder for the figures (default: beside RESULT)")
+      ->check(non_empty_check());
   plot_cmd->add_option("--format", plot_args.formats,
                        "comma-separated: png, pdf, svg (default: png,pdf)");
 
@@ -394,11 +404,14 @@ int main(int argc, char** argv) {
   bool stress_no_plots = false;
   auto* stress_cmd = app.add_subcommand(
       "stress", "stiff and extreme generated scenes under every scheme: where each holds, breaks");
-  stress_cmd->add_option("--out-dir", stress_dir, "output folder (default: condyn-out/stress)");
-  stress_cmd->add_option("--families", stress_families_list,
-                         "comma-separated families (default: all): stiffness, mass_ratio, "
-                         "penalty_weight, baumgarte_gains, long_horizon, redundancy, dead_point, "
-                         "high_frequency");
+  stress_cmd->add_option("--out-dir", stress_dir, "output folder (default: condyn-out/stress)")
+      ->check(non_empty_check());
+  stress_cmd
+      ->add_option("--families", stress_families_list,
+                   "comma-separated families (default: all): stiffness, mass_ratio, "
+                   "penalty_weight, baumgarte_gains, long_horizon, redundancy, dead_point, "
+                   "high_frequency")
+      ->check(non_empty_check());
   stress_cmd->add_flag("--no-plots", stress_no_plots, "do not call the plotting script");
 
   ValidationOptions validate_options;

@@ -60,6 +60,16 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       {"compare --repeats 0", "--repeats", "not a whole number in [1, 100]"},
       {"compare --schemes ggl,foo", "--schemes", "unknown scheme 'foo'"},
       {"info s.toml --scheme foo", "--scheme", "unknown scheme 'foo'"},
+      // Lists: a stray comma, an item twice, an empty value are mistakes, not the default.
+      {"compare --tolerances 1e-3,,1e-4", "--tolerances", "an empty item in '1e-3,,1e-4'"},
+      {"compare --tolerances 1e-3,1e-3", "--tolerances", "'1e-3' is listed twice"},
+      {"compare --tolerances ''", "--tolerances", "is empty (leave the flag out instead)"},
+      {"compare --schemes ggl,ggl", "--schemes", "'ggl' is listed twice"},
+      {"compare --out-dir ''", "--out-dir", "is empty"},
+      {"stress --families ''", "--families", "is empty"},
+      {"stress --families stiffness,", "--families", "an empty item"},
+      {"plot r.csv --dofs ''", "--dofs", "is empty"},
+      {"check s.toml --junit ''", "--junit", "is empty"},
   };
   for (const auto& c : cases) {
     CAPTURE(c.args);
