@@ -179,11 +179,8 @@ void write_stress_files(OutputPlan& plan, const std::string& dir, const StressRe
   });
   for (std::size_t i = 0; i < result.cases.size(); ++i) {
     const auto& c = result.cases[i];
-    put((base / "scenes" / (c.id + ".toml")).string(), [&](std::ostream& out) {
-      out << "# condyn stress, family " << c.family << ", " << c.label
-          << ": run it with build/condyn run FILE --scheme S\n"
-          << c.scene_text;
-    });
+    put((base / "scenes" / (c.id + ".toml")).string(),
+        [&](std::ostream& out) { out << c.scene_text; });
   }
   put((base / "summary.txt").string(),
       [&](std::ostream& out) { print_stress_report(out, result); });

@@ -209,7 +209,9 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
                           }));
     c.label = label;
     c.parameter = parameter;
-    c.scene_text = text;
+    // The file stress writes is this text: the lines its messages name are the file's.
+    c.scene_text = "# condyn stress, family " + family + ", " + label +
+                   ": run it with build/condyn run FILE --scheme S\n" + text;
     c.schemes = std::move(schemes);
     c.max_steps = max_steps;
     out.push_back(std::move(c));
