@@ -118,6 +118,21 @@ void ModelBuilder::check_finite() const {
     fail(spec_.initial.where.line ? spec_.initial.where : spec_.model.where,
          "the initial state is not finite (it overflows the double range)");
   }
+  // Finite values whose forces are not (K u(0) with u(0) = 1e308): the run would fail at t = 0
+  // with "the solution became non-finite", a message about the integration, not the input.
+  if (!model_.is_nonlinear() && spec_.initial.where.line > 0) {
+    const Eigen::VectorXd ku = *model_.K * model_.u0;
+    const Eigen::VectorXd cv = model_.C * model_.v0;
+    const Eigen::VectorXd mv = model_.M * model_.v0;
+    if (!ku.allFinite() || !cv.allFinite() || !mv.allFinite()) {
+      fail(spec_.initial.where, std::string("the initial ") +
+                                    (ku.allFinite() ? "velocities" : "displacements") +
+                                    " times the model's " +
+                                    (ku.allFinite() ? (cv.allFinite() ? "mass" : "damping")
+                                                    : "stiffness") +
+                                    " overflow the double range (about 1.8e308): check the units");
+    }
+  }
 }
 
 /// Warns (does not refuse) about magnitudes that double precision cannot carry well: M, C, K or

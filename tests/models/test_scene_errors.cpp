@@ -196,6 +196,14 @@ TEST_CASE("inconsistent initial conditions name the constraint and the residual"
       "a·v(0) = 0 but the constraint requires 0.2");
 }
 
+TEST_CASE("finite initial values whose forces overflow are refused at [initial]") {
+  // K u(0) = 10 x 1e308: the run failed at t = 0 with "the solution became non-finite".
+  check_error(kBase + "[initial]\ndisplacement = { ux2 = 1e308 }\n",
+              "bad.toml:27: initial: the initial displacements times the model's stiffness overflow "
+              "the double range");
+  CHECK(error_of(kBase + "[initial]\ndisplacement = { ux2 = 1e300 }\n") == "");
+}
+
 TEST_CASE("a right-hand side that is zero up to roundoff at t = 0 is met by zero initial values") {
   // A cosine drive (sin at phase π/2) needs a·v(0) = 0.2 cos(π/2) = 1.2e-17, a sin at phase π
   // a·u(0) = 1.2e-17, and 0.1 + 0.2 − 0.3 is 5.6e-17: each is roundoff of its own terms, and a
