@@ -161,8 +161,17 @@ void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string&
   }
   const double pi = 3.14159265358979323846;
   const double w1 = 2.0 * pi * f[0], w2 = 2.0 * pi * f[1];
-  const double a0 = 2.0 * w1 * w2 * (z[0] * w2 - z[1] * w1) / (w2 * w2 - w1 * w1);
-  const double a1 = 2.0 * (z[1] * w2 - z[0] * w1) / (w2 * w2 - w1 * w1);
+  // a0 = 2 w1 w2 (z1 w2 - z2 w1) / (w2² - w1²), a1 = 2 (z2 w2 - z1 w1) / (w2² - w1²), divided
+  // through by w2² (r = w1/w2): no square of a frequency, which overflowed from 1e154 and
+  // underflowed below 1e-154 where a0 and a1 themselves are representable.
+  const double r = w1 / w2;
+  const double a0 = 2.0 * w1 * (z[0] - z[1] * r) / (1.0 - r * r);
+  const double a1 = 2.0 * (z[1] - z[0] * r) / (w2 * (1.0 - r * r));
+  if (!std::isfinite(a0) || !std::isfinite(a1)) {
+    fail(fn, join(path, "frequencies"),
+         "these frequencies give a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +
+             ", beyond the double range: check their unit (cycles per time unit)");
+  }
   if (a0 < 0.0 || a1 < 0.0) {
     fail(node, path,
          "these pairs need a negative " + std::string(a0 < 0.0 ? "a0" : "a1") +

@@ -62,4 +62,19 @@ TEST_CASE("Rayleigh damping from pairs: refusals name the key") {
           "model.damping.rayleigh.frequencies: expected two frequencies");
   refused("{ rayleigh = { frequencies = [1.0, 2.0], ratio = [0.01, 0.02] } }",
           "model.damping.rayleigh");
+  // a1 = 2 (z2 - z1 w1/w2) / (w2 (1 - (w1/w2)²)) beyond the double range: named at the
+  // frequencies, not as "the damping matrix C has entries beyond the double range".
+  refused("{ rayleigh = { frequencies = [1e-320, 2e-320], ratios = [0.05, 0.05] } }",
+          "model.damping.rayleigh.frequencies: these frequencies give a0 = ");
+}
+
+TEST_CASE("Rayleigh damping from pairs: frequencies far apart, where their squares overflow") {
+  // w2² overflowed from f = 1e154 on (and w1² underflowed below 1e-154), though a0 and a1 are
+  // representable: here a0 = 4π f1 z = 0.2π and a1 = z / (π f2) = 0.05 / (π 1e155).
+  const SceneSpec spec = parse_scene_text(
+      two_modes("{ rayleigh = { frequencies = [1.0, 1e155], ratios = [0.05, 0.05] } }"), "m.toml");
+  REQUIRE(spec.model.rayleigh);
+  CHECK((*spec.model.rayleigh)[0] == doctest::Approx(0.2 * 3.14159265358979323846).epsilon(1e-15));
+  CHECK((*spec.model.rayleigh)[1] ==
+        doctest::Approx(0.05 / (3.14159265358979323846 * 1e155)).epsilon(1e-15));
 }
