@@ -113,21 +113,33 @@ StaticEquilibrium solve_static_equilibrium(const Eigen::SparseMatrix<double>& K,
   S.setFromTriplets(trip.begin(), trip.end());
   S.makeCompressed();
 
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  lu.compute(S);
-  if (lu.info() != Eigen::Success) {
-    // SparseLU's own message names a column of the permuted matrix: no help to the user.
-    throw NoStaticEquilibrium(
-        "the stiffness is singular on the motions the constraints allow (an exact zero pivot in "
-        "the sparse LU of [K Aᵀ; A 0])",
-        {});
-  }
-  // Condition estimate from one solve with a generic right-hand side: a near-null direction of S
-  // is amplified by 1/(its pivot), so ‖S‖₁ ‖S⁻¹r‖₁ / ‖r‖₁ exposes a mechanism left by roundoff.
+  // A generic right-hand side: a near-null direction of a matrix is amplified by 1/(its pivot)
+  // in the solve, so the solution shows the mechanism (and ‖S‖₁ ‖S⁻¹r‖₁ / ‖r‖₁ estimates S's
+  // condition).
   std::mt19937 gen(20261125U);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   Eigen::VectorXd probe(n + m);
   for (Eigen::Index i = 0; i < n + m; ++i) probe[i] = uniform(gen);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(S);
+  if (lu.info() != Eigen::Success) {
+    // SparseLU's own message names a column of the permuted matrix: no help to the user. The
+    // DOFs of the mechanism are those of the null direction, which K's block shifted by 1e-10
+    // of its largest entry makes solvable and dominant.
+    Eigen::SparseMatrix<double> shift(n + m, n + m);  // a sparse sum: O(nnz) at any size
+    std::vector<Eigen::Triplet<double>> diagonal;
+    for (Eigen::Index i = 0; i < n; ++i) diagonal.emplace_back(i, i, 1e-10 * k_max);
+    shift.setFromTriplets(diagonal.begin(), diagonal.end());
+    const Eigen::SparseMatrix<double> shifted = S + shift;
+    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> near;
+    near.compute(shifted);
+    std::vector<int> dofs;
+    if (near.info() == Eigen::Success) dofs = mode_dofs(near.solve(probe).head(n));
+    throw NoStaticEquilibrium(
+        "the stiffness is singular on the motions the constraints allow (an exact zero pivot in "
+        "the sparse LU of [K Aᵀ; A 0])",
+        dofs);
+  }
   const Eigen::VectorXd x = lu.solve(probe);
   StaticEquilibrium out;
   out.condition = norm1(S) * x.lpNorm<1>() / probe.lpNorm<1>();

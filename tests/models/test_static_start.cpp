@@ -130,6 +130,21 @@ output_step = 0.1
     CHECK(contains(e, "no static equilibrium"));
     CHECK(contains(e, "singular"));
   }
+  SUBCASE("an exact zero pivot: two DOFs free to move together, named") {
+    const std::string e = error_of(R"([model]
+type = "matrix"
+dofs = ["a", "b", "c"]
+mass = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+stiffness = [[1.0, -1.0, 0.0], [-1.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+[initial]
+static = true
+[solve]
+t_end = 1.0
+output_step = 0.1
+)");
+    CHECK(contains(e, "an exact zero pivot"));
+    CHECK((contains(e, "free to move: a, b (") || contains(e, "free to move: b, a (")));
+  }
   SUBCASE("a wrong type") {
     const std::string e =
         error_of(test::replace(chain("0.0", ""), "static = true", "static = \"yes\""));
