@@ -438,6 +438,8 @@ int main(int argc, char** argv) {
       if (!info_constraints.empty()) spec.solve.treatment = parse_treatment_flag(info_constraints);
       BuildReport report;
       const Model model = build_model(spec, report);
+      // A bad [[check]] is bad input here as in run and check.
+      if (!spec.checks.empty()) (void)CheckEvaluator(model, spec.checks, info_scene);
       release_model_input(spec);
       print_info(std::cout, model, report, spec.solve);
       return 0;

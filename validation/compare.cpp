@@ -10,6 +10,7 @@
 #include "dae/solve.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/exact_solution.hpp"
+#include "validation/user_checks.hpp"
 
 namespace condyn {
 
@@ -124,6 +125,8 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   out.options = options;
   out.scene_name = spec.name.empty() ? spec.file : spec.name;
   const Model base = build_model(spec);    // once: the runs differ only in their settings
+  // A bad [[check]] is bad input here as in run and check.
+  if (!spec.checks.empty()) (void)CheckEvaluator(base, spec.checks, spec.file);
   for (int d = 0; d < base.dofs(); ++d) {  // A holds the linearization of nonlinear models
     if (base.A.col(d).nonZeros() > 0) {
       out.constrained_dofs.emplace_back(base.dof_names[static_cast<std::size_t>(d)], d);

@@ -142,6 +142,13 @@ TEST_CASE("cli check and run: a check's column must exist in this model's output
   CHECK(run.code == 2);
   CHECK(run.err.find("check[1].quantity: no output column is named 'y'") != std::string::npos);
   CHECK(box.run("run abs.toml --out r.csv").code == 2);
+  // So do info and compare.
+  const Result info = box.run("info typo.toml");
+  CHECK(info.code == 2);
+  CHECK(info.err.find("check[1].quantity: no output column is named 'y'") != std::string::npos);
+  const Result compare = box.run("compare typo.toml --tolerances 1e-4 --no-plots");
+  CHECK(compare.code == 2);
+  CHECK(compare.err.find("check[1].quantity: no output column is named 'y'") != std::string::npos);
   box.write("good.toml", scene(kHolds));
   CHECK(box.run("run good.toml --out r.csv").code == 0);
 }
