@@ -1,9 +1,11 @@
 #include "models/scene_parser.hpp"
 
 #include <toml++/toml.h>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "models/scene_readers.hpp"
 #include "models/scene_table.hpp"
@@ -73,7 +75,14 @@ SceneSpec parse_scene_file(const std::string& path) {
     throw SceneError(path + ": is a folder (name a scene file)");
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open the scene file");
+  if (!in) {
+    // Why, as the system says it: missing, permission denied, ...
+    const int error = errno;
+    throw SceneError(path + ": cannot open the scene file" +
+                     (error != 0
+                          ? " (" + std::error_code(error, std::generic_category()).message() + ")"
+                          : std::string()));
+  }
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path + ": cannot read the scene file");
