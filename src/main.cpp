@@ -418,6 +418,20 @@ int main(int argc, char** argv) {
   auto* validate_cmd = app.add_subcommand("validate", "run the built-in validation suite");
   validate_cmd->add_flag("--quiet", validate_options.quiet, "print only the summary tables");
 
+  // A first word that names no command: CLI11 would say only "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const auto* sub : app.get_subcommands({})) {
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+      known = known || sub->get_name() == argv[1];
+    }
+    if (!known) {
+      std::cerr << "error: '" << argv[1] << "' is not a command (the commands: " << names
+                << "; condyn --help says what each does)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

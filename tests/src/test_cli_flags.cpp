@@ -104,6 +104,15 @@ TEST_CASE("[solve] rtol has the command line's range") {
   CHECK(contains(loose.err, "warning: loose.toml: rtol 0.05 asks for fewer than 2 correct digits"));
 }
 
+TEST_CASE("a word that is no command is named, with the commands") {
+  const Sandbox box;
+  const Result r = box.run("bogus s.toml");
+  CHECK(r.code == 2);
+  CHECK(contains(r.err,
+                 "error: 'bogus' is not a command (the commands: run, info, compare, check, "
+                 "plot, stress, validate;"));
+}
+
 TEST_CASE("--version prints the program's version") {
   const Sandbox box;
   const Result r = box.run("--version");
