@@ -122,15 +122,16 @@ void ModelBuilder::check_finite() const {
   // with "the solution became non-finite", a message about the integration, not the input.
   if (!model_.is_nonlinear() && spec_.initial.where.line > 0) {
     const Eigen::VectorXd ku = *model_.K * model_.u0;
-    const Eigen::VectorXd cv = model_.C * model_.v0;
+    const Eigen::VectorXd cv = model_.has_damping() ? Eigen::VectorXd(model_.C * model_.v0)
+                                                    : Eigen::VectorXd::Zero(model_.dofs());
     const Eigen::VectorXd mv = model_.M * model_.v0;
     if (!ku.allFinite() || !cv.allFinite() || !mv.allFinite()) {
-      fail(spec_.initial.where, std::string("the initial ") +
-                                    (ku.allFinite() ? "velocities" : "displacements") +
-                                    " times the model's " +
-                                    (ku.allFinite() ? (cv.allFinite() ? "mass" : "damping")
-                                                    : "stiffness") +
-                                    " overflow the double range (about 1.8e308): check the units");
+      std::string what = "displacements times the model's stiffness";
+      if (ku.allFinite()) {
+        what = std::string("velocities times the model's ") + (cv.allFinite() ? "mass" : "damping");
+      }
+      fail(spec_.initial.where,
+           "the initial " + what + " overflow the double range (about 1.8e308): check the units");
     }
   }
 }

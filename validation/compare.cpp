@@ -124,7 +124,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   CompareResult out;
   out.options = options;
   out.scene_name = spec.name.empty() ? spec.file : spec.name;
-  const Model base = build_model(spec);    // once: the runs differ only in their settings
+  const Model base = build_model(spec);  // once: the runs differ only in their settings
   // A bad [[check]] is bad input here as in run and check.
   if (!spec.checks.empty()) (void)CheckEvaluator(base, spec.checks, spec.file);
   for (int d = 0; d < base.dofs(); ++d) {  // A holds the linearization of nonlinear models

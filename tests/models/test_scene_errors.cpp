@@ -198,9 +198,10 @@ TEST_CASE("inconsistent initial conditions name the constraint and the residual"
 
 TEST_CASE("finite initial values whose forces overflow are refused at [initial]") {
   // K u(0) = 10 x 1e308: the run failed at t = 0 with "the solution became non-finite".
-  check_error(kBase + "[initial]\ndisplacement = { ux2 = 1e308 }\n",
-              "bad.toml:27: initial: the initial displacements times the model's stiffness overflow "
-              "the double range");
+  check_error(
+      kBase + "[initial]\ndisplacement = { ux2 = 1e308 }\n",
+      "bad.toml:27: initial: the initial displacements times the model's stiffness overflow "
+      "the double range");
   CHECK(error_of(kBase + "[initial]\ndisplacement = { ux2 = 1e300 }\n") == "");
 }
 
