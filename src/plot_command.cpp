@@ -25,6 +25,9 @@ int plot_result(const PlotArgs& args) {
   namespace fs = std::filesystem;
   const fs::path result(args.result);
   std::error_code ec;
+  if (fs::is_directory(result, ec)) {
+    return bad(args.result + ": is a folder (condyn plot reads the CSV or HDF5 of condyn run)");
+  }
   if (!fs::is_regular_file(result, ec)) {
     return bad(args.result + ": no such file (condyn plot reads the CSV or HDF5 of condyn run)");
   }

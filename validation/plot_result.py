@@ -45,19 +45,39 @@ def read_csv(np, path):
         header = f.readline().strip().split(",")
     if not header or header[0] != "t":
         raise BadInput(f"{path}: not a condyn result (its first column is not t)")
+    import warnings
     try:
-        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except ValueError as e:
-        raise BadInput(f"{path}: unreadable row ({e})") from None
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # an empty file's warning: "no rows" below says it
+            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    except ValueError:
+        raise BadInput(first_bad_line(path, len(header))) from None
     if data.shape[0] == 0:
         raise BadInput(f"{path}: no rows")
     if data.shape[1] != len(header):
-        raise BadInput(f"{path}: {data.shape[1]} values per row for {len(header)} columns")
+        raise BadInput(first_bad_line(path, len(header)))
     columns = {name: data[:, k] for k, name in enumerate(header)}
     prefixed = ("vel_", "acc_", "reaction_", "lambda_")
     dofs = [n for n in header[1:]
             if not n.startswith(prefixed) and n not in ENERGY_NAMES and n not in DRIFT_NAMES]
     return columns, dofs
+
+
+def first_bad_line(path, width):
+    """FILE:LINE: what is wrong with the first row that is not `width` numbers."""
+    with open(path, newline="") as f:
+        for number, line in enumerate(f, start=1):
+            if number == 1 or not line.strip():
+                continue
+            cells = line.rstrip("\r\n").split(",")
+            if len(cells) != width:
+                return f"{path}:{number}: {len(cells)} cells for the header's {width} columns"
+            for cell in cells:
+                try:
+                    float(cell)
+                except ValueError:
+                    return f"{path}:{number}: '{cell[:40]}' is not a number"
+    return f"{path}: rows of different lengths"
 
 
 def read_h5(np, path):

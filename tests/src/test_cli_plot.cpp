@@ -104,7 +104,13 @@ TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF")
   box.write("other.csv", "a,b\n1,2\n");
   refused("plot other.csv", "other.csv: not a condyn result (its first column is not t)");
   box.write("torn.csv", "t,a\n0,1\n1\n");
-  refused("plot torn.csv", "torn.csv:");
+  refused("plot torn.csv", "torn.csv:3: 1 cells for the header's 2 columns");
+  box.write("word.csv", "t,a\n0,1\n1,x\n");
+  refused("plot word.csv", "word.csv:3: 'x' is not a number");
+  box.write("header.csv", "t,a\n");
+  refused("plot header.csv", "header.csv: no rows");
+  std::filesystem::create_directories(box.path("dir.csv"));
+  refused("plot dir.csv", "dir.csv: is a folder");
   box.write("fake.h5", "not hdf5");
   refused("plot fake.h5", "fake.h5: not an HDF5 file");
   refused("plot r.csv --dofs zz", "--dofs: 'zz' matches no DOF of r.csv (DOFs: a, b)");
