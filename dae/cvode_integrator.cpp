@@ -12,7 +12,6 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include <chrono>
 #include <exception>
 #include <memory>
 #include <sstream>
@@ -219,7 +218,7 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
                             const IntegratorOptions& options, SolveSummary& summary) {
   options.validate();
   if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
-  const auto start = std::chrono::steady_clock::now();
+  const WallTimer timer(summary);
   const double t0 = options.output_times.front();
   problem.begin_segment(t0);
   Cvode cvode(problem, y0, t0, options);
@@ -229,8 +228,6 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
   summary.unknowns = problem.size();
   summary.jacobian_nonzeros = cvode.jacobian_nonzeros();
   summary.termination = "reached t = " + std::to_string(options.output_times.back());
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

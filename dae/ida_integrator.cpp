@@ -14,7 +14,6 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -368,7 +367,7 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
                         const IntegratorOptions& options, SolveSummary& summary) {
   options.validate();
   if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
-  const auto start = std::chrono::steady_clock::now();
+  const WallTimer timer(summary);
   const double t0 = options.output_times.front();
   if (problem.size() == 0) {
     NoUnknowns none(problem, options.output_times);
@@ -376,8 +375,6 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
     RawTrajectory out = drive(none, y0, y0, options, summary);
     summary.unknowns = 0;
     summary.termination = "reached t = " + std::to_string(options.output_times.back());
-    summary.wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
   }
   Ida ida(problem, options);
@@ -389,8 +386,6 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
   summary.unknowns = problem.size();
   summary.jacobian_nonzeros = ida.jacobian_nonzeros();
   summary.termination = "reached t = " + std::to_string(options.output_times.back());
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

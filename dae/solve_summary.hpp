@@ -2,6 +2,7 @@
 /// Options in, summary out: what the integrator is asked to do and what it did.
 
 #include <Eigen/Dense>
+#include <chrono>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -109,6 +110,24 @@ struct SolveSummary {
   std::string termination = "not run";
   /// One line for the terminal.
   [[nodiscard]] std::string brief() const;
+};
+
+/// Sets `summary.wall_seconds` to the time since its construction when it goes out of scope: on
+/// every exit of an integration, a failed one's too (a failed run reported 0 s).
+class WallTimer {
+ public:
+  explicit WallTimer(SolveSummary& summary)
+      : summary_(summary), start_(std::chrono::steady_clock::now()) {}
+  ~WallTimer() {
+    summary_.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  WallTimer(const WallTimer&) = delete;
+  WallTimer& operator=(const WallTimer&) = delete;
+
+ private:
+  SolveSummary& summary_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 }  // namespace condyn

@@ -39,6 +39,18 @@ def test_check_fails_when_a_bound_is_too_tight():
     assert any(not c["passed"] for c in result["checks"])
 
 
+def test_a_run_that_fails_reports_its_failure_and_the_time_it_took():
+    with open(OSCILLATOR, "rb") as f:
+        scene = tomllib.load(f)
+    scene["check"] = [{"quantity": "x", "max_abs": 2.0}]
+    scene["solve"]["max_steps"] = 50  # the budget ends the run: a failure, as the CLI's
+    result = condyn.check(scene)
+    assert not result["passed"]
+    assert result["failure"] and "budget" in result["failure"]
+    assert result["checks"] == []  # nothing evaluated on a run that did not finish
+    assert result["wall_s"] > 0.0  # it was 0 for a failed run
+
+
 def test_check_refuses_a_scene_without_checks(quickstart_dict):
     scene = copy.deepcopy(quickstart_dict)
     scene.pop("check", None)
