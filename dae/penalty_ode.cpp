@@ -45,14 +45,32 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   row_weight_.resize(m_);
   position_mask_.resize(m_, m_);
   velocity_mask_.resize(m_, m_);
-  for (int i = 0; i < m_; ++i) {
-    const bool position = system.position_rows()[static_cast<std::size_t>(i)];
-    row_weight_[i] = position ? weights.position : weights.velocity;
-    (position ? position_mask_ : velocity_mask_).insert(i, i) = 1.0;
-  }
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
   const auto& M = system_->mass(0.0, zero);
   const auto& A = system_->constraint_jacobian(0.0, zero);
+  // Row i's spring acts along a_i with stiffness w |a_i|² when its residual a_i·u enters
+  // unscaled: a row written as 0.001 u1 = 0.001 u2 got a millionth of the weight and was not
+  // held. Each row is weighted by 1/|a_i|², so w is a stiffness whatever the row's scale.
+  // |a_i|² as max² Σ (a/max)², so that coefficients near the double range neither overflow nor
+  // underflow it.
+  Eigen::VectorXd top = Eigen::VectorXd::Zero(m_), sum = Eigen::VectorXd::Zero(m_);
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      top[it.row()] = std::max(top[it.row()], std::abs(it.value()));
+    }
+  }
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      const double r = it.value() / top[it.row()];
+      sum[it.row()] += r * r;
+    }
+  }
+  for (int i = 0; i < m_; ++i) {
+    const bool position = system.position_rows()[static_cast<std::size_t>(i)];
+    row_weight_[i] = position ? weights.position : weights.velocity;
+    const double scale = top[i] > 0.0 ? 1.0 / (sum[i] * top[i]) / top[i] : 1.0;
+    (position ? position_mask_ : velocity_mask_).insert(i, i) = scale;
+  }
   const auto& K0 = system_->stiffness(0.0, zero, zero);
   const auto& C0 = system_->damping(0.0, zero, zero);
   jacobian_ = BlockJacobian(size());
@@ -78,7 +96,7 @@ Eigen::VectorXd PenaltyOde::multipliers(double t, const Eigen::VectorXd& y) cons
   Eigen::VectorXd phi(m_), psi(m_);
   system_->position_residual(t, y.head(n_), phi);  // zero on velocity rows
   system_->velocity_residual(t, y.head(n_), y.tail(n_), psi);
-  return row_weight_.asDiagonal() * (phi + velocity_mask_ * psi);
+  return row_weight_.asDiagonal() * (position_mask_ * phi + velocity_mask_ * psi);
 }
 
 void PenaltyOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {

@@ -74,6 +74,7 @@ class PenaltyOde final : public DaeProblem {
   PenaltyWeights weights_;
   int n_, m_;
   Eigen::VectorXd row_weight_;  ///< w on position rows, c on velocity rows
+  /// Diagonal: 1/|a_i|² on the position rows (velocity rows), 0 elsewhere.
   Eigen::SparseMatrix<double> position_mask_, velocity_mask_;
   BlockJacobian jacobian_;
   /// Massless DOFs, held by stiffness, damping or the penalty elements (the penalized K and C:

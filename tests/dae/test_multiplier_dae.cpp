@@ -232,6 +232,39 @@ TEST_CASE("index2 and index3 follow the exact solution at their own accuracy") {
   }
 }
 
+TEST_CASE("penalty: a row's scale does not change what it holds") {
+  // 2 q'' + 200 q = 1 for the tied pair (u1 = u2 = q, unit load on u1): q(1) = (1 - cos 10)/200.
+  // Written as 0.001 u1 = 0.001 u2 the row got a millionth of the weight: u1 = 0.0179, u2 =
+  // 0.00047 at t = 1 (review of 2026-11-26).
+  for (const double a : {1.0, 1e-3, 1e3}) {
+    CAPTURE(a);
+    const std::string text = R"([model]
+type = "matrix"
+dofs = ["u1", "u2"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[100.0, 0.0], [0.0, 100.0]]
+[[constraint]]
+name = "tie"
+terms = { u1 = )" + std::to_string(a) + ", u2 = -" + std::to_string(a) + R"( }
+[[load]]
+dof = "u1"
+value = 1.0
+[solve]
+t_end = 1.0
+output_step = 0.5
+rtol = 1e-10
+atol = 1e-12
+)";
+    const SceneSpec spec = parse_scene_text(text, "tie.toml");
+    const Model model = build_model(spec);
+    const SolveResult r = test::solved(model, test::under(spec.solve, Scheme::penalty));
+    const double q = (1.0 - std::cos(10.0)) / 200.0;
+    // The default w = 1e4 max K_ii = 1e6 lets the tie stretch by |f_con| / w ~ 0.5e-6.
+    CHECK(std::abs(r.trajectory.u(0, 2) - q) < 1e-6);
+    CHECK(std::abs(r.trajectory.u(1, 2) - q) < 1e-6);
+  }
+}
+
 TEST_CASE("penalty: the constraint error shrinks like 1/w") {
   SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
   spec.solve.rtol = 1e-8;  // well below the penalty error, so the penalty error dominates
