@@ -34,8 +34,12 @@ struct MarketMatrix {
 
 /// Reads `path`. Throws MatrixMarketError for anything but a well-formed coordinate real (or
 /// integer) general or symmetric file with finite values and indices inside the declared size.
-[[nodiscard]] MarketMatrix read_matrix_market(const std::string& path);
+/// `rows_need_entries` (constraint blocks): a size line declaring more rows than entries is
+/// refused at once, since some row would be empty.
+[[nodiscard]] MarketMatrix read_matrix_market(const std::string& path,
+                                              bool rows_need_entries = false);
 /// The same, from the file's text (tests).
-[[nodiscard]] MarketMatrix parse_matrix_market(const std::string& text);
+[[nodiscard]] MarketMatrix parse_matrix_market(const std::string& text,
+                                               bool rows_need_entries = false);
 
 }  // namespace condyn

@@ -43,7 +43,8 @@ FileMatrix SceneReader::matrix_file(const toml::node& node, const std::string& p
   return read_market(file_node, join(path, "file"));
 }
 
-FileMatrix SceneReader::read_market(const toml::node& file_node, const std::string& key) const {
+FileMatrix SceneReader::read_market(const toml::node& file_node, const std::string& key,
+                                    bool rows_need_entries) const {
   FileMatrix out;
   out.file = file_name(file_node, key);
   out.where = at(file_node, key);
@@ -58,6 +59,12 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
           out.file.starts_with(prefix) && out.file.ends_with('>')
               ? out.file.substr(prefix.size(), out.file.size() - prefix.size() - 1)
               : key;
+      if (rows_need_entries && out.matrix.nonZeros() < out.matrix.rows()) {
+        fail(file_node, array_key,
+             "has " + std::to_string(out.matrix.rows()) + " rows but " +
+                 std::to_string(out.matrix.nonZeros()) +
+                 " stored entries, so some row has none: every constraint row needs a coefficient");
+      }
       for (Eigen::Index k = 0; k < out.matrix.outerSize(); ++k) {
         for (Eigen::SparseMatrix<double>::InnerIterator e(out.matrix, k); e; ++e) {
           if (!std::isfinite(e.value())) {
@@ -75,7 +82,7 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
       std::filesystem::path(file_).parent_path() / std::filesystem::path(out.file);
   input_files_.push_back(resolved.string());
   try {
-    out.matrix = read_matrix_market(resolved.string()).matrix;
+    out.matrix = read_matrix_market(resolved.string(), rows_need_entries).matrix;
   } catch (const MatrixMarketError& e) {
     const std::string where =
         resolved.string() + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string());
@@ -306,7 +313,7 @@ void SceneReader::read_constraint_blocks(const toml::node& node,
     if (!prefixes.insert(b.prefix).second) {
       fail(*blocks.get(i), p, "duplicate constraint block name '" + b.prefix + "'");
     }
-    b.A = read_market(required(t, p, "file"), join(p, "file"));
+    b.A = read_market(required(t, p, "file"), join(p, "file"), /*rows_need_entries=*/true);
     if (const auto* v = t.get("value")) {
       b.g = matrix_file(*v, join(p, "value"));
       if (b.g.matrix.cols() != 1 || b.g.matrix.rows() != b.A.matrix.rows()) {

@@ -36,7 +36,9 @@ class SceneReader : public TomlAccess {
   /// (read_time_function.cpp).
   [[nodiscard]] std::string file_name(const toml::node& node, const std::string& key) const;
   /// The Matrix Market file named by the string `file_node` (key path `key`).
-  [[nodiscard]] FileMatrix read_market(const toml::node& file_node, const std::string& key) const;
+  /// `rows_need_entries`: as read_matrix_market's (a constraint block).
+  [[nodiscard]] FileMatrix read_market(const toml::node& file_node, const std::string& key,
+                                       bool rows_need_entries = false) const;
   /// damping = { rayleigh = [a0, a1] } at `path`.
   void read_rayleigh(const toml::node& node, const std::string& path, ModelSpec& model) const;
   /// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] } at `path`: a0, a1 derived.

@@ -50,6 +50,9 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
      "<dict>: model.stiffness.file: <array model.stiffness> is not symmetric: entry (1,2)"),
     (lambda s: s["model"].update(mass=np.diag([1.0, np.nan, 1.0])),
      "<dict>: model.mass: entry (2,2) is nan: entries must be finite"),
+    (lambda s: s.update(constraint_block=[{"file": sp.coo_matrix(
+        ([1.0], ([0], [0])), shape=(2000000, 3))}]),
+     "<dict>: constraint_block[1]: has 2000000 rows but 1 stored entries, so some row has none"),
     (lambda s: s["model"].update(mass=np.eye(3, dtype=complex)),
      "<dict>: model.mass: entries must be real numbers"),
     (lambda s: s["model"].update(dofs={"u1"}), "<dict>: model.dofs: a set is not a scene value"),

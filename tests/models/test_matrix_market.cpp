@@ -203,6 +203,25 @@ TEST_CASE("matrix market: a size line beyond the memory available is refused bef
   CHECK_MESSAGE(has(error.second, "is the size line right?"), error.second);
 }
 
+TEST_CASE(
+    "matrix market: a constraint block with fewer entries than rows is refused at its size "
+    "line") {
+  // 2·10⁹ rows and 2 entries fit the memory estimate (16 GB here) and ran for minutes.
+  const std::string text =
+      "%%MatrixMarket matrix coordinate real general\n2000000000 3 2\n"
+      "1 1 1.0\n2 2 1.0\n";
+  try {
+    (void)parse_matrix_market(text, /*rows_need_entries=*/true);
+    FAIL("accepted");
+  } catch (const MatrixMarketError& e) {
+    CHECK(e.line() == 2);
+    CHECK(has(e.what(), "declares 2000000000 rows but 2 entries, so some row has none"));
+  }
+  // M, C and K may have empty rows (massless, unsprung DOFs): not refused there.
+  CHECK(parse_matrix_market("%%MatrixMarket matrix coordinate real general\n3 3 1\n1 1 1.0\n")
+            .matrix.rows() == 3);
+}
+
 TEST_CASE("matrix market: a file that cannot be opened, or is no regular file") {
   CHECK_THROWS_AS((void)read_matrix_market("/nonexistent/K.mtx"), MatrixMarketError);
   // A device is read forever: refused before reading.
@@ -459,6 +478,10 @@ file = "A2.mtx"
             "constraint_block[2].file: wide.mtx is 1 x 5: a constraint block needs one column "
             "per DOF (4)"));
   box.write("empty.mtx", "%%MatrixMarket matrix coordinate real general\n2 4 1\n1 1 1.0\n");
+  CHECK(has(scene_error(box, condyn::test::replace(base, "A2.mtx", "empty.mtx")),
+            "empty.mtx:2: the size line declares 2 rows but 1 entries, so some row has none"));
+  box.write("empty.mtx",
+            "%%MatrixMarket matrix coordinate real general\n2 4 2\n1 1 1.0\n1 2 1.0\n");
   CHECK(has(scene_error(box, condyn::test::replace(base, "A2.mtx", "empty.mtx")),
             "row 2 has no nonzero entry: constraint 'block2_2' constrains nothing"));
   box.write("g2.mtx", "%%MatrixMarket matrix coordinate real general\n2 1 0\n");
