@@ -286,7 +286,10 @@ TimeFunction TimeFunction::antiderivative() const {
           h.amplitude = term.amplitude / term.omega;
           h.phase = term.phase - std::numbers::pi / 2;
           out.push_back(h);
-          add_poly(0, term.amplitude / term.omega * std::cos(term.phase));
+          // cos of the double nearest π/2 is 6e-17, not 0: that constant is roundoff of the
+          // phase, and kept it made a cosine drive's integral incompatible with its sine.
+          const double c = std::cos(term.phase);
+          add_poly(0, term.amplitude / term.omega * (std::abs(c) < 1e-15 ? 0.0 : c));
         }
         break;
       case TimeTerm::Kind::exponential:

@@ -196,6 +196,34 @@ TEST_CASE("inconsistent initial conditions name the constraint and the residual"
       "a·v(0) = 0 but the constraint requires 0.2");
 }
 
+TEST_CASE("a position row and the velocity row of its derivative are redundant, not conflicting") {
+  // ∫ 0.2 sin(2s + π/2) ds = 0.1 sin 2t: the integral's constant 0.1 cos(π/2) is 6e-18 in
+  // doubles, and the pair was refused as conflicting ("leaves 6.123233996e-18 on the right").
+  const std::string pair = R"([model]
+type = "matrix"
+dofs = ["u1", "u2"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[2.0, -1.0], [-1.0, 1.0]]
+[[constraint]]
+name = "p"
+terms = { u1 = 1.0 }
+value = { type = "harmonic", amplitude = 0.1, omega = 2.0 }
+[[constraint]]
+name = "v"
+level = "velocity"
+terms = { u1 = 1.0 }
+value = { type = "harmonic", amplitude = 0.2, omega = 2.0, phase = 1.5707963267948966 }
+[initial]
+velocity = { u1 = 0.2 }
+[solve]
+t_end = 1.0
+output_step = 0.1
+)";
+  check_error(pair, "their right-hand sides are compatible, so the set is redundant");
+  CHECK(error_of(replace(pair, "output_step = 0.1", "output_step = 0.1\nredundant = \"drop\"")) ==
+        "");
+}
+
 TEST_CASE("finite initial values whose forces overflow are refused at [initial]") {
   // K u(0) = 10 x 1e308: the run failed at t = 0 with "the solution became non-finite".
   check_error(
