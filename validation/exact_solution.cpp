@@ -18,6 +18,10 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
         std::to_string(kMaxExactDofs) + " DOFs");
   }
   const Eigen::MatrixXd N = null_space_basis(model.A, n);
+  if (N.cols() == 0) {
+    throw ExactSolutionUnavailable(
+        "the constraints fix every DOF: no modes (the tight reference run follows the rows)");
+  }
   Eigen::MatrixXd P(n, m);
   if (m > 0) {
     const Eigen::MatrixXd a(model.A);

@@ -30,6 +30,42 @@ CompareOptions small_options() {
 
 }  // namespace
 
+TEST_CASE("compare: a model whose constraints fix every DOF has a run as its reference") {
+  // No modes: the exact modal solution refused it as "the system has no coordinates (M is
+  // empty)", and compare failed (a ValueError in Python).
+  const SceneSpec spec = parse_scene_text(R"([model]
+type = "matrix"
+dofs = ["u1", "u2"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[2.0, -1.0], [-1.0, 1.0]]
+[[constraint]]
+name = "a"
+terms = { u1 = 1.0 }
+[[constraint]]
+name = "b"
+terms = { u2 = 1.0 }
+value = { type = "harmonic", amplitude = 0.1, omega = 2.0 }
+[initial]
+velocity = { u2 = 0.2 }
+[solve]
+t_end = 1.0
+output_step = 0.25
+)",
+                                          "fixed.toml");
+  CompareOptions o;
+  o.tolerances = {1e-6};
+  o.repeats = 1;
+  o.schemes = {Scheme::elimination, Scheme::ggl};
+  const CompareResult r = run_compare(spec, o);
+  CHECK(r.reference_kind == "elimination");
+  REQUIRE(r.runs.size() == 2);
+  for (const auto& run : r.runs) {
+    CAPTURE(std::string(to_string(run.scheme)));
+    CHECK(run.ok);
+    CHECK(run.error_u < 1e-4);
+  }
+}
+
 TEST_CASE("compare: wall-time statistics of repeated runs") {
   const WallStatistics odd = wall_statistics({3.0, 1.0, 2.0});
   CHECK(odd.median == 2.0);
