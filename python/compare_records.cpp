@@ -25,18 +25,25 @@ py::list compare_records(const CompareResult& result) {
     d["skipped"] = false;
     d["message"] = r.message;
     d["reference"] = result.reference_kind;
-    d["error_u"] = r.error_u;
-    d["error_v"] = r.error_v;
-    d["error_reaction"] = r.error_reaction;
-    d["max_drift_position"] = r.max_drift_position;
-    d["max_drift_velocity"] = r.max_drift_velocity;
-    d["final_drift_position"] = r.final_drift_position;
-    d["final_drift_velocity"] = r.final_drift_velocity;
-    d["steps"] = r.steps;
-    d["residual_evals"] = r.residual_evals;
-    d["jacobian_evals"] = r.jacobian_evals;
-    d["newton_failures"] = r.newton_failures;
-    d["error_test_failures"] = r.error_test_failures;
+    // A failed run has no figures (None), as runs.csv leaves them empty: 0 read as a perfect run.
+    const auto figure = [&r](double v) {
+      return r.ok ? number_or_none(v) : py::object(py::none());
+    };
+    const auto count = [&r](long v) {
+      return r.ok ? py::object(py::int_(v)) : py::object(py::none());
+    };
+    d["error_u"] = figure(r.error_u);
+    d["error_v"] = figure(r.error_v);
+    d["error_reaction"] = figure(r.error_reaction);
+    d["max_drift_position"] = figure(r.max_drift_position);
+    d["max_drift_velocity"] = figure(r.max_drift_velocity);
+    d["final_drift_position"] = figure(r.final_drift_position);
+    d["final_drift_velocity"] = figure(r.final_drift_velocity);
+    d["steps"] = count(r.steps);
+    d["residual_evals"] = count(r.residual_evals);
+    d["jacobian_evals"] = count(r.jacobian_evals);
+    d["newton_failures"] = count(r.newton_failures);
+    d["error_test_failures"] = count(r.error_test_failures);
     d["wall_median"] = r.wall_median;
     d["wall_min"] = r.wall_min;
     d["wall_max"] = r.wall_max;

@@ -62,3 +62,5 @@ def test_compare_budget_marks_runs_over_it():
     runs = condyn.compare(QUICKSTART, tolerances=[1e-8], schemes=["ggl"], max_steps=5)
     assert len(runs) == 1 and not runs[0]["ok"]
     assert "5" in runs[0]["message"]
+    # No figures for a failed run: 0 read as a perfect one.
+    assert runs[0]["error_u"] is None and runs[0]["steps"] is None
