@@ -245,7 +245,8 @@ mass = [[1.0, 0.0], [0.0, 1.0]]
 stiffness = [[100.0, 0.0], [0.0, 100.0]]
 [[constraint]]
 name = "tie"
-terms = { u1 = )" + std::to_string(a) + ", u2 = -" + std::to_string(a) + R"( }
+terms = { u1 = )" + std::to_string(a) +
+                             ", u2 = -" + std::to_string(a) + R"( }
 [[load]]
 dof = "u1"
 value = 1.0
