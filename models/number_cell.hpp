@@ -1,9 +1,12 @@
 #pragma once
 /// A number written in a data file (a Matrix Market entry, a table's cell): what is wrong with
-/// it, if anything. Shared by models/matrix_market.cpp and models/time_table.cpp.
+/// it, if anything, and the shortest text of a double. Shared by models/matrix_market.cpp,
+/// models/time_table.cpp and validation/user_checks.cpp.
 
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <string>
 #include <string_view>
 #include <system_error>
 
@@ -31,6 +34,14 @@ inline const char* number_cell_problem(NumberCell kind) {
   return kind == NumberCell::out_of_range
              ? "is out of the double range (beyond about 1.8e308, or nonzero below 4.9e-324)"
              : "is not a number";
+}
+
+/// The shortest text that reads back as v (0.1, not 0.10000000000000001): a number in a message
+/// shown exactly, so that it is never rounded onto the figure it is compared with.
+inline std::string shortest_number(double v) {
+  std::array<char, 32> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
+  return ec == std::errc() ? std::string(buffer.data(), end) : std::to_string(v);
 }
 
 }  // namespace condyn

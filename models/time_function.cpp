@@ -61,15 +61,10 @@ double TimeTerm::magnitude(int order, double t) const {
     case Kind::harmonic:
       return std::abs(amplitude) * std::pow(std::abs(omega), order);
     case Kind::polynomial: {
-      double sum = 0.0;
-      for (std::size_t k = static_cast<std::size_t>(order); k < coefficients.size(); ++k) {
-        double factor = 1.0;
-        for (int j = 0; j < order; ++j)
-          factor *= static_cast<double>(k - static_cast<std::size_t>(j));
-        sum += std::abs(factor * coefficients[k] *
-                        std::pow(t, static_cast<double>(k - static_cast<std::size_t>(order))));
-      }
-      return sum;
+      // Σ |c_k| k!/(k−order)! |t|^(k−order): the derivative of |c| at |t|, every term positive.
+      std::vector<double> sizes(coefficients.size());
+      for (std::size_t k = 0; k < sizes.size(); ++k) sizes[k] = std::abs(coefficients[k]);
+      return polynomial_derivative(sizes, order, std::abs(t));
     }
     default:
       return std::abs(derivative(order, t));

@@ -1,8 +1,6 @@
 #include "models/time_table.hpp"
 
 #include <algorithm>
-#include <array>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -65,13 +63,6 @@ std::string with_lf_endings(const std::string& text) {
     }
   }
   return out;
-}
-
-/// The shortest text that reads back as v (0.1, not 0.10000000000000001).
-std::string shortest(double v) {
-  std::array<char, 32> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
-  return ec == std::errc() ? std::string(buffer.data(), end) : std::to_string(v);
 }
 
 /// The whole cell as a double (a leading '+' allowed), or false.
@@ -179,9 +170,9 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
       }
     }
     if (!table.times.empty() && !(t > table.times.back())) {
-      throw TimeTableError(line_no,
-                           "the time " + shortest(t) + " is not after the previous sample's " +
-                               shortest(table.times.back()) + " (times must increase strictly)");
+      throw TimeTableError(
+          line_no, "the time " + shortest_number(t) + " is not after the previous sample's " +
+                       shortest_number(table.times.back()) + " (times must increase strictly)");
     }
     if (!table.times.empty()) {
       const double slope = (v - table.values.back()) / (t - table.times.back());
