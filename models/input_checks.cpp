@@ -44,8 +44,9 @@ double magnitude_bound(const TimeTerm& term, int order, double t_end) {
       }
       return sum;
     }
-    case TimeTerm::Kind::harmonic:
-      return std::abs(term.amplitude) * std::pow(std::abs(term.omega), order);
+    case TimeTerm::Kind::harmonic:  // from zero (an antiderivative): |sin(ωt + φ) − sin φ| <= 2
+      return (order == 0 && term.from_zero ? 2.0 : 1.0) * std::abs(term.amplitude) *
+             std::pow(std::abs(term.omega), order);
     case TimeTerm::Kind::exponential:
       return std::abs(term.amplitude) * std::pow(std::abs(term.rate), order) *
              std::exp(std::max(term.rate * t_end, 0.0));

@@ -39,6 +39,10 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
       const double arg = omega * t + phase;
       switch (order) {
         case 0:
+          if (from_zero) {
+            const double half = 0.5 * omega * t;
+            return amplitude * (2.0 * std::sin(half) * std::cos(half + phase));
+          }
           return amplitude * std::sin(arg);
         case 1:
           return amplitude * omega * std::cos(arg);
@@ -47,6 +51,7 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
       }
     }
     case Kind::exponential:
+      if (order == 0 && from_zero) return amplitude * std::expm1(rate * t);
       return amplitude * std::pow(rate, order) * std::exp(rate * t);
     case Kind::table:
       // Piecewise linear: the value, the segment's slope, and 0 for the second derivative.
@@ -59,6 +64,8 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
 double TimeTerm::magnitude(int order, double t) const {
   switch (kind) {
     case Kind::harmonic:
+      // From zero, the value's size 2|A sin(ωt/2)| (its cos factor may pass through 0).
+      if (order == 0 && from_zero) return 2.0 * std::abs(amplitude * std::sin(0.5 * omega * t));
       return std::abs(amplitude) * std::pow(std::abs(omega), order);
     case Kind::polynomial: {
       // Σ |c_k| k!/(k−order)! |t|^(k−order): the derivative of |c| at |t|, every term positive.
@@ -73,6 +80,7 @@ double TimeTerm::magnitude(int order, double t) const {
 
 TimeTerm TimeTerm::derivative_term() const {
   TimeTerm d = *this;
+  d.from_zero = false;  // the constant it subtracts differentiates to 0
   switch (kind) {
     case Kind::step:
       d = TimeTerm{};
@@ -105,13 +113,23 @@ bool TimeTerm::is_zero() const {
       }
       return true;
     case Kind::harmonic:
-      return amplitude == 0.0 || (omega == 0.0 && std::sin(phase) == 0.0);
+      return amplitude == 0.0 || (omega == 0.0 && (from_zero || std::sin(phase) == 0.0));
+    case Kind::exponential:
+      return amplitude == 0.0 || (from_zero && rate == 0.0);
     case Kind::table:
       return amplitude == 0.0 || table->max_abs_value == 0.0;
     default:
       return amplitude == 0.0;
   }
 }
+
+TimeTerm TimeTerm::plain() const {
+  TimeTerm p = *this;
+  p.from_zero = false;
+  return p;
+}
+
+double TimeTerm::offset() const { return from_zero ? plain().value(0.0) : 0.0; }
 
 std::string TimeTerm::describe() const {
   std::ostringstream s;
@@ -135,11 +153,13 @@ std::string TimeTerm::describe() const {
       break;
     }
     case Kind::harmonic:
-      s << amplitude << "*sin(" << omega << "*t" << (phase < 0 ? "-" : "+") << std::abs(phase)
-        << ")";
+      s << amplitude << (from_zero ? "*(sin(" : "*sin(") << omega << "*t" << (phase < 0 ? "-" : "+")
+        << std::abs(phase) << ")";
+      if (from_zero) s << " - sin(" << phase << "))";
       break;
     case Kind::exponential:
-      s << amplitude << "*exp(" << rate << "*t)";
+      s << amplitude << (from_zero ? "*(exp(" : "*exp(") << rate << "*t)";
+      if (from_zero) s << " - 1)";
       break;
     case Kind::table:
       s << "table(" << table->file << ":" << table->column << ", " << table->samples()
@@ -258,6 +278,11 @@ TimeFunction TimeFunction::antiderivative() const {
     poly.coefficients[k] += c;
   };
   for (const auto& term : terms_) {
+    if (term.is_zero()) continue;
+    if (term.from_zero) {
+      // ∫ (f − f(0)) = ∫ f − f(0) t cancels again for a small ωt; no caller integrates twice.
+      throw std::invalid_argument(term.describe() + " is an antiderivative: not integrated again");
+    }
     switch (term.kind) {
       case TimeTerm::Kind::step:
         if (term.start > 0.0) {
@@ -275,26 +300,26 @@ TimeFunction TimeFunction::antiderivative() const {
         if (term.omega == 0.0) {
           add_poly(1, term.amplitude * std::sin(term.phase));
         } else {
-          // integral of A sin(w t + p) = -A/w cos(w t + p) + A/w cos p = A/w sin(w t + p - pi/2) +
-          // ...
-          TimeTerm h = term;
+          // ∫₀ᵗ A sin(ωs + φ) ds = A/ω (sin(ωt + φ − π/2) − sin(φ − π/2)), one from_zero term:
+          // as two, a small ωt cancels them. sin(φ − π/2) of the double nearest π/2 is 6e-17,
+          // not 0: the phase is kept as written and the term subtracts its own value at 0, so
+          // a cosine drive's integral stays compatible with its sine.
+          TimeTerm h = term.plain();
           h.amplitude = term.amplitude / term.omega;
           h.phase = term.phase - std::numbers::pi / 2;
+          h.from_zero = true;
           out.push_back(h);
-          // cos of the double nearest π/2 is 6e-17, not 0: that constant is roundoff of the
-          // phase, and kept it made a cosine drive's integral incompatible with its sine.
-          const double c = std::cos(term.phase);
-          add_poly(0, term.amplitude / term.omega * (std::abs(c) < 1e-15 ? 0.0 : c));
         }
         break;
       case TimeTerm::Kind::exponential:
         if (term.rate == 0.0) {
           add_poly(1, term.amplitude);
         } else {
-          TimeTerm e = term;
+          // ∫₀ᵗ A exp(rs) ds = A/r expm1(rt)
+          TimeTerm e = term.plain();
           e.amplitude = term.amplitude / term.rate;
+          e.from_zero = true;
           out.push_back(e);
-          add_poly(0, -term.amplitude / term.rate);
         }
         break;
       case TimeTerm::Kind::table:
@@ -360,6 +385,7 @@ ZeroSumVerdict weighted_sum_vanishes(const std::vector<std::pair<double, const T
   std::map<double, Coefficient> exponential, step;                 // rate, start
   for (const auto& [w, f] : sum) {
     for (const auto& term : f->terms()) {
+      if (term.from_zero) poly[0].add(-w * term.offset(), w * term.offset());
       switch (term.kind) {
         case TimeTerm::Kind::polynomial:
           for (std::size_t k = 0; k < term.coefficients.size(); ++k) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "models/time_function.hpp"
@@ -96,6 +97,35 @@ TEST_CASE("time functions: antiderivative is zero at 0 and differentiates back")
   const TimeFunction g = TimeFunction({polynomial({1, 1})}).antiderivative();
   CHECK(g.value(2.0) == doctest::Approx(4.0).epsilon(8 * kEps));
   CHECK_THROWS_AS((void)TimeFunction({step(1.0, 2.0)}).antiderivative(), std::invalid_argument);
+}
+
+TEST_CASE("time functions: antiderivatives of slow harmonics and exponentials keep their digits") {
+  // ∫₀ᵗ A sin(ωs + φ) ds and ∫₀ᵗ A exp(rs) ds for ωt, rt ≪ 1 against their Taylor series (three
+  // terms: the next is below 1e-30 relative here). As A/ω (cos φ − cos(ωt + φ)) written with two
+  // terms, ω = 1e-12 kept 4 digits (6e-5 absolute at t = 0 after a velocity row's constant).
+  const double t = 2.0, phase = 0.3;
+  for (double w : {1e-6, 1e-12, 1e-14, -1e-12}) {
+    CAPTURE(w);
+    const TimeFunction F = TimeFunction({harmonic(1.5, w, phase)}).antiderivative();
+    const double series =
+        1.5 * (std::sin(phase) * (t - w * w * t * t * t / 6) + std::cos(phase) * w * t * t / 2);
+    CHECK(F.value(0.0) == 0.0);
+    CHECK(F.value(t) == doctest::Approx(series).epsilon(8 * kEps));
+    CHECK(F.derivative(1, t) == doctest::Approx(1.5 * std::sin(w * t + phase)).epsilon(8 * kEps));
+    const TimeFunction E = TimeFunction({exponential(0.7, w)}).antiderivative();
+    CHECK(E.value(0.0) == 0.0);
+    CHECK(E.value(t) ==
+          doctest::Approx(0.7 * (t + w * t * t / 2 + w * w * t * t * t / 6)).epsilon(8 * kEps));
+    // Not integrated again: ∫ (f − f(0)) = ∫ f − f(0) t would cancel as before.
+    CHECK_THROWS_AS((void)F.antiderivative(), std::invalid_argument);
+    CHECK_THROWS_AS((void)E.antiderivative(), std::invalid_argument);
+  }
+  // A cosine drive (phase π/2) integrates to sin ωt / ω exactly: no constant is left at t = 0.
+  const TimeFunction C =
+      TimeFunction({harmonic(1.0, 1e-12, std::numbers::pi / 2)}).antiderivative();
+  CHECK(C.value(0.0) == 0.0);
+  CHECK(C.value(t) == doctest::Approx(t).epsilon(8 * kEps));
+  CHECK(C.describe().find("(sin(") != std::string::npos);
 }
 
 TEST_CASE("time functions: zero and constant detection") {
