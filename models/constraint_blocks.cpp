@@ -24,12 +24,13 @@ void ModelBuilder::append_constraint_blocks(std::vector<Eigen::Triplet<double>>&
     const SourcePoint scale_at{b.where.path + ".scale", b.where.line};
     refuse_table_rhs(b.scale, scale_at, false);
     check_time_function(b.scale, scale_at);
-    for (double t : b.scale.breakpoints()) {
+    const TimeFunction scale = acting_in_run(b.scale, scale_at);
+    for (double t : scale.breakpoints()) {
       fail(scale_at, "a step at t = " + fmt(t) +
                          " > 0 would make the prescribed displacements jump (an infinite "
                          "velocity); use a smooth function or a step at t = 0");
     }
-    const double scale_bound = magnitude_bound(b.scale, spec_.solve.t_end);
+    const double scale_bound = magnitude_bound(scale, spec_.solve.t_end);
     const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = b.A.matrix;
     Eigen::VectorXd g = Eigen::VectorXd::Zero(rows.rows());
     if (b.g.given()) {
@@ -67,7 +68,7 @@ void ModelBuilder::append_constraint_blocks(std::vector<Eigen::Triplet<double>>&
         fail(scale_at, "times the right-hand side " + fmt(g[i]) + " of row " +
                            std::to_string(i + 1) + " overflows the double range");
       }
-      c.value = b.scale.scaled(g[i]);
+      c.value = scale.scaled(g[i]);
       c.position_value = c.value;
       const int row = static_cast<int>(model_.constraints.size());
       for (const auto& [d, a] : c.coefficients) trip.emplace_back(row, d, a);

@@ -82,6 +82,7 @@ void ModelBuilder::build_constraints() {
     std::sort(c.coefficients.begin(), c.coefficients.end());
     refuse_table_rhs(c.value, value_at, c.level == ConstraintSpec::Level::velocity);
     check_time_function(c.value, value_at);
+    c.value = acting_in_run(c.value, value_at);
     for (double b : c.value.breakpoints()) {
       fail(value_at,
            std::string("a step at t = ") + fmt(b) + " > 0 would make the prescribed " +

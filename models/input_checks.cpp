@@ -78,6 +78,17 @@ bool all_finite(const Eigen::SparseMatrix<double>& m) {
 
 /// f, f' and f'' must stay finite over [0, t_end]: an overflowing load or right-hand side would
 /// reach the solver as inf or NaN.
+TimeFunction ModelBuilder::acting_in_run(const TimeFunction& f, const SourcePoint& where) {
+  std::vector<double> late;
+  TimeFunction acting = f.acting_until(spec_.solve.t_end, late);
+  for (double t : late) {
+    report_.warnings.push_back(where.path + ": the step at t = " + fmt(t) +
+                               " starts after t_end = " + fmt(spec_.solve.t_end) +
+                               " and has no effect on this run");
+  }
+  return acting;
+}
+
 void ModelBuilder::check_time_function(const TimeFunction& f, const SourcePoint& where) const {
   for (const auto& term : f.terms()) {
     if (term.kind == TimeTerm::Kind::exponential &&

@@ -64,6 +64,9 @@ class ModelBuilder {
 
   // input_checks.cpp
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
+  /// A constraint's right-hand side as the run sees it: steps after t_end left out, with a
+  /// warning naming `where` (a step inside the run makes the prescribed motion jump: refused).
+  TimeFunction acting_in_run(const TimeFunction& f, const SourcePoint& where);
   void check_finite() const;
   void check_magnitudes();
   /// Warns of an rtol above 1e-2 (fewer than two correct digits), wherever it was set: the

@@ -256,6 +256,18 @@ std::vector<double> TimeFunction::breakpoints() const {
   return times;
 }
 
+TimeFunction TimeFunction::acting_until(double t_end, std::vector<double>& dropped) const {
+  std::vector<TimeTerm> kept;
+  for (const auto& term : terms_) {
+    if (term.kind == TimeTerm::Kind::step && term.start > t_end) {
+      dropped.push_back(term.start);
+    } else {
+      kept.push_back(term);
+    }
+  }
+  return TimeFunction(std::move(kept));
+}
+
 double TimeFunction::first_kink_after(double t) const {
   double first = std::numeric_limits<double>::infinity();
   for (const auto& term : terms_) {

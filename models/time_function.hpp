@@ -87,6 +87,9 @@ class TimeFunction {
   /// samples are not breakpoints: its kinks are continuous in value, and the integrator's error
   /// control resolves them (docs/scenes.md, "Tabulated time functions").
   [[nodiscard]] std::vector<double> breakpoints() const;
+  /// The function as it acts on [0, t_end]: steps that switch on after t_end left out (a run
+  /// never reaches them). `dropped` receives their start times.
+  [[nodiscard]] TimeFunction acting_until(double t_end, std::vector<double>& dropped) const;
   /// The first sample time of a table term after t (infinity when none): the integrator's first
   /// step stays short of it (Model::first_kink).
   [[nodiscard]] double first_kink_after(double t) const;

@@ -501,6 +501,20 @@ file = "A2.mtx"
                                                    "file = \"A2.mtx\"\nscale = { type = \"step\", "
                                                    "start = 0.5 }")),
             "constraint_block[2].scale: a step at t = 0.5"));
+  // After t_end (2) the run never reaches it: accepted with a warning.
+  BuildReport report;
+  const Model late =
+      build_model(parse_scene_file(
+                      box.write("late.toml", condyn::test::replace(base, "file = \"A2.mtx\"",
+                                                                   "file = \"A2.mtx\"\nscale = "
+                                                                   "[{ type = \"step\", start "
+                                                                   "= 2.5 }, { type = \"step\" }]"))
+                          .string()),
+                  report);
+  REQUIRE(report.warnings.size() == 1);
+  CHECK(report.warnings[0] ==
+        "constraint_block[2].scale: the step at t = 2.5 starts after t_end "
+        "= 2 and has no effect on this run");
 }
 
 TEST_CASE("load patterns: size checked, dof or pattern") {

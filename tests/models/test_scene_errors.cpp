@@ -268,6 +268,27 @@ TEST_CASE("constraint right-hand sides may not jump after t = 0") {
           kBase, "terms = { uy2 = 1.0 }",
           "terms = { uy2 = 1.0 }\nlevel = \"velocity\"\nvalue = { type = \"step\", start = 0.5 }"),
       "prescribed velocity jump");
+  // At t_end itself the last row would jump: refused too.
+  check_error(replace(kBase, "terms = { uy2 = 1.0 }",
+                      "terms = { uy2 = 1.0 }\nvalue = { type = \"step\", start = 1.0 }"),
+              "a step at t = 1 > 0 would make the prescribed displacement jump");
+  // After t_end the run never reaches it: accepted with a warning, at both levels (a velocity
+  // row's integral would have been a ramp).
+  for (const std::string level : {"", "level = \"velocity\"\n"}) {
+    CAPTURE(level);
+    BuildReport report;
+    const Model model = build_model(
+        parse_scene_text(
+            replace(kBase, "terms = { uy2 = 1.0 }",
+                    "terms = { uy2 = 1.0 }\n" + level + "value = { type = \"step\", start = 1.5 }"),
+            "s.toml"),
+        report);
+    REQUIRE(report.warnings.size() == 1);
+    CHECK(report.warnings[0] ==
+          "constraint[3].value: the step at t = 1.5 starts after t_end = 1 "
+          "and has no effect on this run");
+    CHECK(model.constraints[2].position_value.is_zero());
+  }
 }
 
 TEST_CASE("duplicate names and bad output settings") {
