@@ -1,5 +1,7 @@
 #include "dae/step_driver.hpp"
 
+#include "dae/interrupt.hpp"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -214,6 +216,7 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
         restart_at(stops[next_stop++]);
         steps_since_output = 0;
       }
+      check_interrupt();
       if (options.max_wall_seconds > 0.0 || options.on_progress) {
         const double seconds = elapsed();
         if (options.on_progress && seconds >= next_progress && k < times.size()) {

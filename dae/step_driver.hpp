@@ -117,7 +117,8 @@ inline constexpr double kTimeMergeUlps = 256.0;
 /// Fills the summary's counters, restarts, unknowns-independent fields and wall time is left to
 /// the caller. Reports progress through options.on_progress. Throws IntegrationError when more
 /// than max_steps_per_output steps pass between two outputs, a budget (max_steps,
-/// max_wall_seconds) is exhausted or the solution becomes non-finite; every IntegrationError
+/// max_wall_seconds) is exhausted or the solution becomes non-finite; throws Interrupted when the
+/// interrupt poll asks to stop (dae/interrupt.hpp); every IntegrationError
 /// leaving the loop carries its kind, the time reached, the last step, the steps taken and the
 /// rows recorded so far.
 [[nodiscard]] RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0,
