@@ -178,7 +178,18 @@ class Converter {
   Value emit(const py::handle& v, const std::string& p, int depth) {
     if (depth > kMaxDepth) fail(p, "dicts and lists nest more than 32 deep");
     if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
+    // numpy's bool scalar is no Python bool, and its __float__ would make True a coefficient of 1.
+    if (py::hasattr(v, "dtype") && !py::isinstance<py::array>(v) &&
+        py::str(v.attr("dtype").attr("kind")).cast<std::string>() == "b") {
+      return v.attr("item")().cast<bool>();
+    }
     if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+    if (py::hasattr(v, "__fspath__")) {
+      // A pathlib.Path (any os.PathLike) for a file key, as the scene argument itself takes one.
+      const py::object path = py::module_::import("os").attr("fspath")(v);
+      if (!py::isinstance<py::str>(path)) fail(p, "a file path must be text, not bytes");
+      return path.cast<std::string>();
+    }
     if (py::isinstance<py::dict>(v)) return table(v, p, depth + 1);
     if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) ||
         py::isinstance<py::array>(v)) {

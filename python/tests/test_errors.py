@@ -2,6 +2,7 @@
 integration raises condyn.IntegrationError (a RuntimeError) with the partial result."""
 
 import copy
+import pathlib
 import re
 import subprocess
 
@@ -60,6 +61,12 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
     (lambda s: s["solve"].update({1: 2}), "<dict>: solve: keys must be strings"),
     (lambda s: s["initial"].update(velocity=sp.eye(3)),
      "<dict>: initial.velocity: a scipy.sparse matrix is taken only by"),
+    # numpy's bool is a bool, not the coefficient 1.0 its __float__ gives.
+    (lambda s: s["constraint"][0]["terms"].update(u1=np.bool_(True)),
+     "<dict>: constraint[1].terms.u1: expected a number"),
+    (lambda s: s["solve"].update(t_end=np.bool_(False)), "<dict>: solve.t_end: "),
+    (lambda s: s["model"].update(mass={"file": pathlib.PurePosixPath("no/such.mtx")}),
+     "<dict>: model.mass.file: no/such.mtx: cannot open the file"),
 ])
 def test_bad_dicts(quickstart_dict, edit, message):
     edit(quickstart_dict)

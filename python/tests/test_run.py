@@ -139,6 +139,14 @@ def test_arrays_equal_matrix_market_files(tmp_path):
     assert np.max(np.abs(u[:, 1] - u[:, 4])) < 1e-9
     assert np.max(np.abs(u[:, 0] + u[:, 2] - 2 * u[:, 3])) < 1e-9
     assert np.max(np.abs(u)) > 1e-3  # and the chain moves
+    # File keys take a pathlib.Path (any os.PathLike), as the scene argument does.
+    paths = {"model": {"type": "matrix", "mass": {"file": tmp_path / "M.mtx"},
+                       "stiffness": {"file": tmp_path / "K.mtx"}},
+             "constraint_block": [{"file": tmp_path / "A.mtx", "name": "mfc"}],
+             "load": [{"pattern": {"file": tmp_path / "f.mtx"},
+                       "value": {"type": "harmonic", "amplitude": 5.0, "omega": 3.0}}],
+             "solve": {"t_end": 2.0, "output_step": 0.25, "scheme": "ggl"}}
+    np.testing.assert_array_equal(condyn.run(paths).u, from_files.u)
 
 
 def oscillator_with_table(file, column=None):
