@@ -75,6 +75,11 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   }
   if (const auto* n = t.get("slaves")) {
     const auto& arr = array(*n, "solve.slaves");
+    if (arr.empty()) {
+      fail(*n, "solve.slaves",
+           "the list is empty; name one slave DOF per constraint, or leave the key out for the "
+           "automatic choice");
+    }
     for (std::size_t i = 0; i < arr.size(); ++i) {
       solve.slaves.push_back(string(*arr.get(i), index("solve.slaves", i)));
     }

@@ -301,6 +301,8 @@ TEST_CASE("duplicate names and bad output settings") {
               "unknown scheme 'rk4'");
   check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\nslaves = [\"uq1\"]"),
               "solve.slaves");
+  check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\nslaves = []"),
+              "solve.slaves: the list is empty; name one slave DOF per constraint");
   check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\npenalty = { weight = -5.0 }"),
               "solve.penalty.weight: must be > 0");
   check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\npenalty = { wieght = 5.0 }"),
