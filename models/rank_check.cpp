@@ -203,6 +203,11 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   if (!model_.is_nonlinear()) {
     drop_hint = ", or set [solve] redundant = \"drop\" to drop it";
     if (m - rank > 1) drop_hint += " (a run then lists each redundant constraint it drops)";
+  } else if (spec_.solve.drop_redundant) {
+    // A nonlinear model's rows are dependent here, at t = 0, and may not be elsewhere.
+    drop_hint =
+        " ([solve] redundant = \"drop\" drops rows of linear models only: a nonlinear "
+        "model's rows may depend on each other at t = 0 and not later)";
   }
   fail(constraints[static_cast<std::size_t>(dep)].where,
        "the constraints " + names + " are linearly dependent (" + rank_text +

@@ -492,6 +492,11 @@ TEST_CASE("redundant constraints are dropped with a report when the scene asks")
             .find("incompatible") != std::string::npos);
   CHECK(error_of(replace(kBase, "t_end = 1.0", "t_end = 1.0\nredundant = \"maybe\""))
             .find("solve.redundant: expected 'refuse' or 'drop'") != std::string::npos);
+  // A nonlinear model (a rigid member) keeps the refusal, and says why drop did not apply.
+  const std::string nonlinear = replace(replace(twice, "EA = 10.0", "rigid = true"), "t_end = 1.0",
+                                        "t_end = 1.0\nredundant = \"drop\"");
+  CHECK(error_of(nonlinear).find("remove one of them ([solve] redundant = \"drop\" drops rows of "
+                                 "linear models only") != std::string::npos);
 }
 
 TEST_CASE("absurd magnitudes are accepted with a warning") {
