@@ -89,6 +89,9 @@ struct Model {
   };
   std::optional<Ground> ground;
   std::vector<Constraint> constraints;
+  /// Names of the scene's constraints that [solve] redundant = "drop" removed (no row, no
+  /// multiplier column; a check naming one is told why).
+  std::vector<std::string> dropped_constraints;
   Eigen::SparseMatrix<double> A;  ///< m x n, row i = constraints[i].coefficients
   Eigen::VectorXd u0, v0;
   /// The system every formulation integrates, decided once by the builder: a LinearSystem (owning

@@ -18,6 +18,7 @@ void ModelBuilder::drop_constraint(const Dependent& d) {
   const auto row = static_cast<std::size_t>(d.row);
   report_.dropped_constraints.push_back("'" + model_.constraints[row].name +
                                         "' (a combination of " + d.others + ")");
+  model_.dropped_constraints.push_back(model_.constraints[row].name);
   model_.constraints.erase(model_.constraints.begin() + d.row);
   // Row d.row moves to the end (the others keep their order) and is cut off.
   const auto m = static_cast<int>(model_.A.rows());

@@ -54,6 +54,13 @@ std::vector<std::string> all_columns(const Model& model) {
 
 /// "unknown column 'uz3'; the nearest are ux3, uy3" (up to five names at the smallest distance).
 std::string unknown_column(const Model& model, const std::string& name) {
+  for (const auto& c : model.dropped_constraints) {
+    if (name == "lambda_" + c) {
+      return "constraint '" + c +
+             "' was dropped as redundant ([solve] redundant = \"drop\"): it has no multiplier, "
+             "and its reaction is carried by the constraints it combines";
+    }
+  }
   std::vector<std::pair<std::size_t, std::string>> ranked;
   for (auto& c : all_columns(model)) ranked.emplace_back(distance(name, c), std::move(c));
   std::stable_sort(ranked.begin(), ranked.end(),

@@ -91,6 +91,26 @@ TEST_CASE("checks: an unknown column is refused with the nearest names") {
   spec.checks.clear();
   CHECK_THROWS_WITH_AS((void)run_scene_checks(spec), doctest::Contains("has no [[check]] table"),
                        SceneError);
+  // The multiplier of a constraint that redundant = "drop" removed: named as dropped.
+  const std::string pair = R"(
+[[constraint]]
+name = "hold"
+terms = { x = 1.0 }
+[[constraint]]
+name = "again"
+terms = { x = 2.0 }
+[[check]]
+quantity = "lambda_again"
+max_abs = 1.0
+)";
+  std::string text = oscillator(pair);
+  text.replace(text.find("displacement = { x = 1.0 }"), 26, "displacement = { x = 0.0 }");
+  text.replace(text.find("[solve]\n"), 8, "[solve]\nredundant = \"drop\"\n");
+  SceneSpec dropped = parse_scene_text(text, "s.toml");
+  CHECK_THROWS_WITH_AS((void)run_scene_checks(dropped),
+                       doctest::Contains("check[1].quantity: constraint 'again' was dropped as "
+                                         "redundant ([solve] redundant = \"drop\")"),
+                       SceneError);
 }
 
 TEST_CASE("checks: evaluated against the oscillator's closed form, u = cos t") {
