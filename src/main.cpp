@@ -434,6 +434,16 @@ int main(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ArgumentMismatch& e) {
+    // CLI11 says "--rtol: At Most 1 required but received 2" of an option given twice.
+    const std::string what = e.what();
+    const std::string said = ": At Most 1 required but received ";
+    if (const auto at = what.find(said); at != std::string::npos) {
+      std::cerr << "error: " << what.substr(0, at) << " is given " << what.substr(at + said.size())
+                << " times; give it once\n";
+      return 2;
+    }
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const CLI::ParseError& e) {
     // --help prints and succeeds; every other command-line error is a usage error: exit 2, as the
     // contract says (CLI11's own codes are 100+).

@@ -2,6 +2,7 @@
 // every message is short and names the flag, and `--version` answers.
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <regex>
 #include <string>
 
@@ -111,6 +112,23 @@ TEST_CASE("a word that is no command is named, with the commands") {
   CHECK(contains(r.err,
                  "error: 'bogus' is not a command (the commands: run, info, compare, check, "
                  "plot, stress, validate;"));
+}
+
+TEST_CASE("an option given twice is named, with the count") {
+  Sandbox box;
+  box.write("s.toml", kScene);
+  for (const char* args :
+       {"run s.toml --rtol 1e-6 --rtol 1e-7", "run s.toml --out a.csv --out b.csv",
+        "compare s.toml --tolerances 1e-6 --tolerances 1e-7"}) {
+    CAPTURE(args);
+    const Result r = box.run(args);
+    CHECK(r.code == 2);
+    const std::string flag = std::string(args).substr(std::string(args).find("--"));
+    CHECK(contains(r.err,
+                   "error: " + flag.substr(0, flag.find(' ')) + " is given 2 times; give it once"));
+  }
+  CHECK_FALSE(std::filesystem::exists(box.path("a.csv")));
+  CHECK_FALSE(std::filesystem::exists(box.path("b.csv")));
 }
 
 TEST_CASE("--version prints the program's version") {
