@@ -99,8 +99,9 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
       throw SceneError(scene_message(spec.file, SourcePoint{}, e.what()));
     }
   });
-  const py::object failure =
-      result.ok() ? py::object(py::none()) : py::str(describe_failure(result, spec.solve.t_end));
+  const py::object failure = result.ok()
+                                 ? py::object(py::none())
+                                 : python::system_text(describe_failure(result, spec.solve.t_end));
   return py::make_tuple(python::result_dict(std::move(result), *model, spec.solve, report),
                         failure);
 }
@@ -167,11 +168,12 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
     checks.append(d);
   }
   py::dict d;
-  d["scene"] = result.scene;
+  d["scene"] = python::system_text(result.scene);
   d["scheme"] = result.scheme;
   d["steps"] = result.steps;
   d["wall_s"] = result.wall_s;
-  d["failure"] = result.failure.empty() ? py::object(py::none()) : py::str(result.failure);
+  d["failure"] =
+      result.failure.empty() ? py::object(py::none()) : python::system_text(result.failure);
   d["checks"] = checks;
   d["passed"] = result.passed();
   return d;
@@ -181,7 +183,16 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
 
 PYBIND11_MODULE(_condyn, m) {
   m.doc() = "condyn: constrained dynamic systems (C++ core; use the condyn package)";
-  py::register_exception<SceneError>(m, "SceneError", PyExc_ValueError);
+  // Messages quote file names as the system gave them: bytes that are not UTF-8 come back as
+  // Python's surrogateescape, the str that names the same file.
+  static py::exception<SceneError> scene_error(m, "SceneError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const SceneError& e) {
+      PyErr_SetObject(scene_error.ptr(), python::system_text(e.what()).ptr());
+    }
+  });
   // Ctrl-C during a run: Python's handler runs (with the GIL, from the running thread; only the
   // main thread's handlers run) and its exception, KeyboardInterrupt, stays set for without_gil.
   set_interrupt_poll([] {

@@ -32,6 +32,31 @@ std::string type_name(const py::handle& value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
+/// A str as UTF-8. A lone surrogate (U+D800 to U+DFFF) has no UTF-8 form: refused naming `path`
+/// and, before the problem, `subject` ("a key ").
+std::string text_of(const py::handle& s, const std::string& path, const std::string& subject = "") {
+  try {
+    return s.cast<std::string>();
+  } catch (const py::cast_error&) {
+    fail(path, subject +
+                   "is not valid text: it holds a lone surrogate (U+D800 to U+DFFF), which "
+                   "has no UTF-8 form");
+  }
+}
+
+/// A file name (a str or an os.PathLike) as the system's bytes: os.fsencode, so that a name read
+/// from the system with undecodable bytes (Python's surrogateescape) opens the same file.
+std::string file_name_of(const py::handle& name, const std::string& path) {
+  py::object bytes;
+  try {
+    bytes = py::module_::import("os").attr("fsencode")(name);
+  } catch (const py::error_already_set&) {
+    fail(path, "is not a file name this system can encode (a lone surrogate?)");
+  }
+  if (!py::isinstance<py::bytes>(bytes)) fail(path, "is not a file name");
+  return bytes.cast<std::string>();
+}
+
 bool is_sparse(const py::handle& value) {
   return py::hasattr(value, "tocoo") && py::hasattr(value, "shape") && py::hasattr(value, "nnz");
 }
@@ -108,7 +133,7 @@ Eigen::SparseMatrix<double> sparse_of(const py::handle& value, const std::string
 bool is_table_function(const py::handle& value) {
   const auto d = py::reinterpret_borrow<py::dict>(value);
   return d.contains("type") && py::isinstance<py::str>(d["type"]) &&
-         d["type"].cast<std::string>() == "table";
+         py::str(d["type"]).equal(py::str("table"));
 }
 
 /// An nt x 2 array of (time, value) samples as the CSV text a table file would hold (17
@@ -146,7 +171,7 @@ class Converter {
       if (!py::isinstance<py::str>(k)) {
         fail(path, "keys must be strings (got a " + type_name(k) + " key)");
       }
-      const auto key = k.cast<std::string>();
+      const auto key = text_of(k, path, "a key ");
       const std::string p = path.empty() ? key : path + "." + key;
       if (key == "file" && py::isinstance<py::array>(v) && is_table_function(value)) {
         // A recorded time function's samples, kept by name as a table file's text.
@@ -183,12 +208,14 @@ class Converter {
         py::str(v.attr("dtype").attr("kind")).cast<std::string>() == "b") {
       return v.attr("item")().cast<bool>();
     }
-    if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+    const bool file_key = p.size() > 5 && p.compare(p.size() - 5, 5, ".file") == 0;
+    if (py::isinstance<py::str>(v)) return file_key ? file_name_of(v, p) : text_of(v, p);
     if (py::hasattr(v, "__fspath__")) {
       // A pathlib.Path (any os.PathLike) for a file key, as the scene argument itself takes one.
-      const py::object path = py::module_::import("os").attr("fspath")(v);
-      if (!py::isinstance<py::str>(path)) fail(p, "a file path must be text, not bytes");
-      return path.cast<std::string>();
+      if (!py::isinstance<py::str>(py::module_::import("os").attr("fspath")(v))) {
+        fail(p, "a file path must be text, not bytes");
+      }
+      return file_name_of(v, p);
     }
     if (py::isinstance<py::dict>(v)) return table(v, p, depth + 1);
     if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) ||
@@ -236,6 +263,13 @@ class Converter {
 
 }  // namespace
 
+py::str system_text(const std::string& text) {
+  PyObject* decoded =
+      PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "surrogateescape");
+  if (decoded == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(decoded);
+}
+
 SceneSpec parse_python_scene(const py::handle& scene) {
   if (py::isinstance<py::dict>(scene)) {
     ArrayInputs arrays;
@@ -253,7 +287,15 @@ SceneSpec parse_python_scene(const py::handle& scene) {
   if (!py::isinstance<py::str>(path)) {
     throw py::type_error("condyn: a scene path must be text, not bytes");
   }
-  return parse_scene_file(path.cast<std::string>());
+  py::object bytes;
+  try {
+    bytes = os.attr("fsencode")(path);
+  } catch (const py::error_already_set&) {
+    throw SceneError(
+        "condyn: the scene path is not a file name this system can encode (a lone "
+        "surrogate?)");
+  }
+  return parse_scene_file(bytes.cast<std::string>());
 }
 
 }  // namespace condyn::python

@@ -4,6 +4,8 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 #include "models/scene_spec.hpp"
 
 namespace condyn::python {
@@ -16,5 +18,10 @@ inline constexpr const char* kDictFile = "<dict>";
 /// scene takes a matrix: model.mass, model.stiffness, model.damping, load.pattern,
 /// constraint_block.file and constraint_block.value). Throws SceneError.
 [[nodiscard]] SceneSpec parse_python_scene(const pybind11::handle& scene);
+
+/// Text the program wrote (a message, a file name) as a Python str: UTF-8, with bytes that are
+/// not (a file name as the system gave it) as Python's surrogateescape, the str os.fsencode
+/// turns back into the same bytes.
+[[nodiscard]] pybind11::str system_text(const std::string& text);
 
 }  // namespace condyn::python

@@ -2,6 +2,7 @@
 integration raises condyn.IntegrationError (a RuntimeError) with the partial result."""
 
 import copy
+import os
 import pathlib
 import re
 import subprocess
@@ -67,6 +68,15 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
     (lambda s: s["solve"].update(t_end=np.bool_(False)), "<dict>: solve.t_end: "),
     (lambda s: s["model"].update(mass={"file": pathlib.PurePosixPath("no/such.mtx")}),
      "<dict>: model.mass.file: no/such.mtx: cannot open the file"),
+    # A lone surrogate has no UTF-8 form: refused by key, never pybind11's cast RuntimeError.
+    (lambda s: s.update(name="a\udcffb"), "<dict>: name: is not valid text: it holds a lone"),
+    (lambda s: s["solve"].update({"rt\ud800ol": 1e-6}), "<dict>: solve: a key is not valid text"),
+    (lambda s: s["model"].update(mass={"file": "m\ud800.mtx"}),
+     "<dict>: model.mass.file: is not a file name this system can encode"),
+    # A file name with a byte that is not UTF-8 (surrogateescape) is the system's name, and the
+    # message gives it back as the same str.
+    (lambda s: s["model"].update(mass={"file": "m\udcff.mtx"}),
+     "<dict>: model.mass.file: m\udcff.mtx: cannot open the file"),
 ])
 def test_bad_dicts(quickstart_dict, edit, message):
     edit(quickstart_dict)
@@ -113,3 +123,15 @@ def test_integration_error_carries_the_partial_result(quickstart_dict):
     partial = e.value.result
     np.testing.assert_array_equal(partial.t, [0.0, 0.5, 1.0])
     assert partial.u.shape == (len(partial.t), 3)
+
+
+def test_scene_paths_are_the_systems_bytes(tmp_path, quickstart_dict):
+    # A scene file whose name holds the byte 0xff (not UTF-8): Python names it with
+    # surrogateescape, and condyn opens that file.
+    name = os.fsdecode(b"q\xff.toml")
+    (tmp_path / name).write_bytes(QUICKSTART.read_bytes())
+    assert condyn.run(tmp_path / name).t[-1] == quickstart_dict["solve"]["t_end"]
+    with pytest.raises(condyn.SceneError, match="cannot open the scene file"):
+        condyn.run(tmp_path / os.fsdecode(b"missing\xff.toml"))
+    with pytest.raises(condyn.SceneError, match="the scene path is not a file name"):
+        condyn.run("q\ud800.toml")
