@@ -151,7 +151,8 @@ void ModelBuilder::check_finite() const {
 /// Warns (does not refuse) about magnitudes that double precision cannot carry well: M, C, K or
 /// A whose largest entry lies beyond 1e±15 (a unit mistake, most likely), and diagonals of M or
 /// K whose largest and smallest positive entries differ by more than 1/eps ≈ 4.5e15 (the soft
-/// or light DOFs are then lost in the roundoff of the stiff or heavy ones).
+/// or light DOFs are then lost in the roundoff of the stiff or heavy ones); initial values beyond
+/// 1e15 likewise.
 void ModelBuilder::check_magnitudes() {
   constexpr double kFar = 1e15, kSpread = 4.5e15;
   const std::pair<const Eigen::SparseMatrix<double>*, const char*> matrices[] = {
@@ -184,6 +185,17 @@ void ModelBuilder::check_magnitudes() {
                                  " to " + fmt(dhi) + " (ratio " + fmt(dhi / dlo) +
                                  "): beyond 1/eps of double precision (4.5e15), the smallest "
                                  "entries are lost in roundoff");
+    }
+  }
+  // Initial values beyond 1e15: the motion about them is below their roundoff unless it is as
+  // large (a body moved by 1e30 and loaded to move by 0.01 stays at exactly 1e30).
+  for (const auto& [values, name] :
+       {std::pair{&model_.u0, "displacements"}, std::pair{&model_.v0, "velocities"}}) {
+    const double hi = values->size() > 0 ? values->cwiseAbs().maxCoeff() : 0.0;
+    if (hi > kFar) {
+      report_.warnings.push_back(std::string("[initial] ") + name + " up to magnitude " + fmt(hi) +
+                                 ": beyond 1e15, motion smaller than 1e-16 of them is lost in "
+                                 "roundoff; check the units");
     }
   }
 }

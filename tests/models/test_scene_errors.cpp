@@ -517,4 +517,12 @@ TEST_CASE("absurd magnitudes are accepted with a warning") {
     spread = spread || w.find("diagonal of the mass matrix M spans") != std::string::npos;
   }
   CHECK(spread);
+  // Initial values of 1e30: the run's motion is below their roundoff.
+  const auto far = warnings(kBase + "[initial]\ndisplacement = { ux2 = 1e30 }\n");
+  REQUIRE(far.size() == 1);
+  CHECK(far[0] ==
+        "[initial] displacements up to magnitude 1e+30: beyond 1e15, motion smaller than "
+        "1e-16 of them is lost in roundoff; check the units");
+  CHECK(warnings(kBase + "[initial]\nvelocity = { ux2 = -2e16 }\n").size() == 1);
+  CHECK(warnings(kBase + "[initial]\nvelocity = { ux2 = 1e15 }\n").empty());
 }
