@@ -192,13 +192,26 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   }
   const bool compatible = verdict.kind == ZeroSumVerdict::Kind::zero;
   if (compatible && spec_.solve.drop_redundant && !model_.is_nonlinear()) {
+    // Any member of the combination may go: the others span it. A velocity-level row goes before
+    // a position-level one, whatever their order in the scene: a position row holds the motion
+    // at position level under every scheme, and its drift stays measured. A member of small
+    // weight stays (the rest would span it only by that margin).
+    constexpr double kSwapWeight = 1e-3;
+    const auto level = [&](int j) { return constraints[static_cast<std::size_t>(j)].level; };
+    int drop = dep;
+    for (const auto& [j, w] : combo) {
+      if (level(drop) == ConstraintSpec::Level::position &&
+          level(j) == ConstraintSpec::Level::velocity && std::abs(w) >= kSwapWeight) {
+        drop = j;
+      }
+    }
     std::string others;
     for (const auto& [j, w] : combo) {
-      if (j == dep) continue;
+      if (j == drop) continue;
       others +=
           (others.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
     }
-    return Dependent{dep, others};
+    return Dependent{drop, others};
   }
   std::string drop_hint;
   if (!model_.is_nonlinear()) {

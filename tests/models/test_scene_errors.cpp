@@ -492,6 +492,25 @@ TEST_CASE("redundant constraints are dropped with a report when the scene asks")
             .find("incompatible") != std::string::npos);
   CHECK(error_of(replace(kBase, "t_end = 1.0", "t_end = 1.0\nredundant = \"maybe\""))
             .find("solve.redundant: expected 'refuse' or 'drop'") != std::string::npos);
+  // A velocity row and the position row it integrates to: the velocity row goes, in either
+  // order (dropping the position row left index1 drifting 0.6 from it, unmeasured).
+  const std::string vel =
+      "[[constraint]]\nname = \"vel\"\nlevel = \"velocity\"\nterms = { uy2 = 2.0 }\n";
+  const std::string pos = "[[constraint]]\nname = \"pos\"\nterms = { uy2 = 1.0 }\n";
+  for (const auto& [first, second] : {std::pair{vel, pos}, std::pair{pos, vel}}) {
+    BuildReport both;
+    const Model kept = build_model(
+        parse_scene_text(replace(replace(kBase,
+                                         "[[constraint]]\nname = \"roll\"\nterms = { uy2 = "
+                                         "1.0 }\n",
+                                         first + second),
+                                 "t_end = 1.0", "t_end = 1.0\nredundant = \"drop\""),
+                         "s"),
+        both);
+    REQUIRE(both.dropped_constraints.size() == 1);
+    CHECK(both.dropped_constraints[0] == "'vel' (a combination of 'pos')");
+    CHECK(kept.constraints.back().name == "pos");
+  }
   // A nonlinear model (a rigid member) keeps the refusal, and says why drop did not apply.
   const std::string nonlinear = replace(replace(twice, "EA = 10.0", "rigid = true"), "t_end = 1.0",
                                         "t_end = 1.0\nredundant = \"drop\"");
