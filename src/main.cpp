@@ -298,11 +298,15 @@ int main(int argc, char** argv) {
   RunArgs run_args;
   auto* run_cmd = app.add_subcommand("run", "solve a scene and write its CSV");
   run_cmd->add_option("scene", run_args.scene, "scene file (TOML)")->required();
-  run_cmd->add_option("--scheme", run_args.scheme,
-                      "scheme (overrides [solve] scheme): " + scheme_names());
-  run_cmd->add_option("--constraints", run_args.constraints,
-                      "mixed or multipliers (overrides [solve] constraints): eliminate the "
-                      "cheap linear rows under a multiplier scheme, or keep every multiplier");
+  run_cmd
+      ->add_option("--scheme", run_args.scheme,
+                   "scheme (overrides [solve] scheme): " + scheme_names())
+      ->check(non_empty_check());
+  run_cmd
+      ->add_option("--constraints", run_args.constraints,
+                   "mixed or multipliers (overrides [solve] constraints): eliminate the "
+                   "cheap linear rows under a multiplier scheme, or keep every multiplier")
+      ->check(non_empty_check());
   run_cmd->add_option("--rtol", run_args.rtol, "relative tolerance (overrides [solve] rtol)")
       ->check(rtol_check());
   run_cmd->add_option("--atol", run_args.atol, "absolute tolerance (overrides [solve] atol)")
@@ -329,9 +333,12 @@ int main(int argc, char** argv) {
   std::string info_scene, info_scheme, info_constraints;
   auto* info_cmd = app.add_subcommand("info", "classify the constraints and size the model");
   info_cmd->add_option("scene", info_scene, "scene file (TOML)")->required();
-  info_cmd->add_option("--scheme", info_scheme, "scheme to report on (default: the scene's)");
-  info_cmd->add_option("--constraints", info_constraints,
-                       "mixed or multipliers (default: the scene's [solve] constraints)");
+  info_cmd->add_option("--scheme", info_scheme, "scheme to report on (default: the scene's)")
+      ->check(non_empty_check());
+  info_cmd
+      ->add_option("--constraints", info_constraints,
+                   "mixed or multipliers (default: the scene's [solve] constraints)")
+      ->check(non_empty_check());
 
   std::string compare_scene, compare_dir, compare_tolerances, compare_schemes;
   bool compare_no_plots = false;
@@ -378,8 +385,10 @@ int main(int argc, char** argv) {
       "check", "run scenes and evaluate their [[check]] tables: exit 0 only if every check holds");
   check_cmd->add_option("scenes", check_scenes, "scene files (TOML) with [[check]] tables")
       ->required();
-  check_cmd->add_option("--scheme", check_scheme,
-                        "scheme for every scene (overrides [solve] scheme): " + scheme_names());
+  check_cmd
+      ->add_option("--scheme", check_scheme,
+                   "scheme for every scene (overrides [solve] scheme): " + scheme_names())
+      ->check(non_empty_check());
   check_cmd->add_option("--junit", check_junit, "also write a JUnit XML report to this file")
       ->check(non_empty_check());
 

@@ -71,6 +71,11 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       {"stress --families stiffness,", "--families", "an empty item"},
       {"plot r.csv --dofs ''", "--dofs", "is empty"},
       {"check s.toml --junit ''", "--junit", "is empty"},
+      {"run s.toml --scheme '' --out r.csv", "--scheme", "is empty"},
+      {"run s.toml --constraints '' --out r.csv", "--constraints", "is empty"},
+      {"info s.toml --scheme ''", "--scheme", "is empty"},
+      {"info s.toml --constraints ''", "--constraints", "is empty"},
+      {"check s.toml --scheme ''", "--scheme", "is empty"},
   };
   for (const auto& c : cases) {
     CAPTURE(c.args);
