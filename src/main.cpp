@@ -234,6 +234,9 @@ int check(const std::vector<std::string>& scenes, const std::string& scheme,
     report = plan.add_output(junit, "--junit");
   }
   plan.check();
+  // A report on standard output (`--junit -`) keeps it a well-formed XML stream: the lines go to
+  // stderr, as run's do with `--out -`.
+  std::ostream& msg = report && plan.to_stdout(*report) ? std::cerr : std::cout;
   std::vector<CheckedScene> checked;
   int code = 0;
   for (const auto& path : scenes) {
@@ -254,15 +257,15 @@ int check(const std::vector<std::string>& scenes, const std::string& scheme,
       c.exit_code = 1;
     }
     c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    print_checked_scene(std::cout, c);
+    print_checked_scene(msg, c);
     code = std::max(code, c.exit_code);
     checked.push_back(std::move(c));
   }
-  print_check_summary(std::cout, checked);
+  print_check_summary(msg, checked);
   if (report) {
     plan.write(*report, [&checked](std::ostream& out) { out << junit_xml(checked); });
     plan.commit_all();
-    std::cout << "wrote the JUnit report to " << plan.display_name(*report) << "\n";
+    msg << "wrote the JUnit report to " << plan.display_name(*report) << "\n";
   }
   return code;
 }

@@ -65,6 +65,19 @@ TEST_CASE("cli check: every check holds: exit 0, one line per check, a JUnit rep
   CHECK(junit_counts(box, "report.xml") == "testsuites 2 0 0 2 0\n");
 }
 
+TEST_CASE("cli check: a JUnit report on standard output is the whole of it, the lines on stderr") {
+  Sandbox box;
+  box.write("a.toml", scene(kHolds));
+  box.write("b.toml", scene(kFails));
+  // Sandbox::run sends stdout to out.txt: what a CI step piping `--junit -` would parse.
+  const Result r = box.run("check a.toml b.toml --junit -");
+  CAPTURE(r.err);
+  CHECK(r.code == 1);
+  CHECK(junit_counts(box, "out.txt") == "testsuites 2 1 0 2 1\n");
+  CHECK(r.err.find("FAIL check[1] x (value)") != std::string::npos);
+  CHECK(r.err.find("wrote the JUnit report to standard output") != std::string::npos);
+}
+
 TEST_CASE("cli check: a check that fails: exit 1 and a JUnit failure") {
   Sandbox box;
   box.write("a.toml", scene(kHolds + kFails));
