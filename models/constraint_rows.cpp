@@ -107,13 +107,13 @@ void ModelBuilder::build_constraints() {
       std::vector<TimeTerm> terms = c.value.antiderivative().terms();
       terms.push_back(TimeFunction::constant(a_u0).terms().front());
       c.position_value = TimeFunction(std::move(terms));
-      // h(t) = A sin(omega t) integrates to A/omega (1 - cos(omega t)): a tiny omega or rate
-      // overflows there even when h itself is small.
+      // |∫₀ᵗ h| <= |A| t_end for a harmonic, |A| t_end exp(r t_end) for an exponential: an
+      // amplitude near the double range overflows there.
       if (!std::isfinite(magnitude_bound(c.position_value, spec_.solve.t_end))) {
-        fail(value_at, "integrating this velocity constraint's right-hand side from t = 0 gives " +
-                           c.position_value.describe() +
-                           ", which overflows the double range before t_end = " +
-                           fmt(spec_.solve.t_end) + " (is an omega or rate almost 0?)");
+        fail(value_at,
+             "integrating this velocity constraint's right-hand side from t = 0 gives " +
+                 c.position_value.describe() +
+                 ", which overflows the double range before t_end = " + fmt(spec_.solve.t_end));
       }
     }
     const int row = static_cast<int>(model_.constraints.size());

@@ -44,12 +44,20 @@ double magnitude_bound(const TimeTerm& term, int order, double t_end) {
       }
       return sum;
     }
-    case TimeTerm::Kind::harmonic:  // from zero (an antiderivative): |sin(ωt + φ) − sin φ| <= 2
-      return (order == 0 && term.from_zero ? 2.0 : 1.0) * std::abs(term.amplitude) *
-             std::pow(std::abs(term.omega), order);
-    case TimeTerm::Kind::exponential:
-      return std::abs(term.amplitude) * std::pow(std::abs(term.rate), order) *
-             std::exp(std::max(term.rate * t_end, 0.0));
+    case TimeTerm::Kind::harmonic:
+      // Integrated (an antiderivative): |∫₀ᵗ A sin| <= |A| t, its derivatives the integrand's.
+      if (term.integrated) {
+        return order == 0 ? std::abs(term.amplitude) * t_end
+                          : std::abs(term.amplitude) * std::pow(std::abs(term.omega), order - 1);
+      }
+      return std::abs(term.amplitude) * std::pow(std::abs(term.omega), order);
+    case TimeTerm::Kind::exponential: {
+      const double grown = std::abs(term.amplitude) * std::exp(std::max(term.rate * t_end, 0.0));
+      if (term.integrated) {
+        return order == 0 ? grown * t_end : grown * std::pow(std::abs(term.rate), order - 1);
+      }
+      return grown * std::pow(std::abs(term.rate), order);
+    }
     case TimeTerm::Kind::table:
       if (order == 2) return 0.0;
       return std::abs(term.amplitude) *

@@ -14,6 +14,11 @@ namespace condyn {
 
 namespace {
 
+/// sin(x)/x, 1 at 0 (and for x so small that sin x is x).
+double sinc(double x) { return x == 0.0 ? 1.0 : std::sin(x) / x; }
+/// (exp(x) − 1)/x, 1 at 0.
+double expm1_ratio(double x) { return x == 0.0 ? 1.0 : std::expm1(x) / x; }
+
 double polynomial_derivative(const std::vector<double>& c, int order, double t) {
   // Horner on the differentiated coefficients: d^order/dt^order sum_k c_k t^k.
   double result = 0.0;
@@ -30,6 +35,15 @@ double polynomial_derivative(const std::vector<double>& c, int order, double t) 
 double TimeTerm::derivative(int order, double t, double step_reference) const {
   if (order < 0 || order > 2)
     throw std::invalid_argument("time derivative order must be 0, 1 or 2");
+  if (integrated && order == 0) {
+    // ∫₀ᵗ of the plain term; its derivatives are the plain term's of one order less.
+    if (kind == Kind::harmonic) {
+      const double half = 0.5 * omega * t;
+      return amplitude * t * sinc(half) * std::sin(half + phase);
+    }
+    return amplitude * t * expm1_ratio(rate * t);
+  }
+  if (integrated) return plain().derivative(order - 1, t, step_reference);
   switch (kind) {
     case Kind::step:
       return (order == 0 && start <= step_reference) ? amplitude : 0.0;
@@ -39,10 +53,6 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
       const double arg = omega * t + phase;
       switch (order) {
         case 0:
-          if (from_zero) {
-            const double half = 0.5 * omega * t;
-            return amplitude * (2.0 * std::sin(half) * std::cos(half + phase));
-          }
           return amplitude * std::sin(arg);
         case 1:
           return amplitude * omega * std::cos(arg);
@@ -51,7 +61,6 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
       }
     }
     case Kind::exponential:
-      if (order == 0 && from_zero) return amplitude * std::expm1(rate * t);
       return amplitude * std::pow(rate, order) * std::exp(rate * t);
     case Kind::table:
       // Piecewise linear: the value, the segment's slope, and 0 for the second derivative.
@@ -62,10 +71,15 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
 }
 
 double TimeTerm::magnitude(int order, double t) const {
+  if (integrated) {
+    // The integral's size |A t sinc(ωt/2)| (its sin factor may pass through 0), or |A t φ₁(rt)|;
+    // its derivatives are the plain term's.
+    if (order > 0) return plain().magnitude(order - 1, t);
+    if (kind == Kind::harmonic) return std::abs(amplitude * t * sinc(0.5 * omega * t));
+    return std::abs(derivative(0, t));
+  }
   switch (kind) {
     case Kind::harmonic:
-      // From zero, the value's size 2|A sin(ωt/2)| (its cos factor may pass through 0).
-      if (order == 0 && from_zero) return 2.0 * std::abs(amplitude * std::sin(0.5 * omega * t));
       return std::abs(amplitude) * std::pow(std::abs(omega), order);
     case Kind::polynomial: {
       // Σ |c_k| k!/(k−order)! |t|^(k−order): the derivative of |c| at |t|, every term positive.
@@ -79,8 +93,8 @@ double TimeTerm::magnitude(int order, double t) const {
 }
 
 TimeTerm TimeTerm::derivative_term() const {
+  if (integrated) return plain();  // d/dt ∫₀ᵗ f = f
   TimeTerm d = *this;
-  d.from_zero = false;  // the constant it subtracts differentiates to 0
   switch (kind) {
     case Kind::step:
       d = TimeTerm{};
@@ -112,10 +126,8 @@ bool TimeTerm::is_zero() const {
         if (c != 0.0) return false;
       }
       return true;
-    case Kind::harmonic:
-      return amplitude == 0.0 || (omega == 0.0 && (from_zero || std::sin(phase) == 0.0));
-    case Kind::exponential:
-      return amplitude == 0.0 || (from_zero && rate == 0.0);
+    case Kind::harmonic:  // integrated or not: zero with its integrand
+      return amplitude == 0.0 || (omega == 0.0 && std::sin(phase) == 0.0);
     case Kind::table:
       return amplitude == 0.0 || table->max_abs_value == 0.0;
     default:
@@ -125,11 +137,9 @@ bool TimeTerm::is_zero() const {
 
 TimeTerm TimeTerm::plain() const {
   TimeTerm p = *this;
-  p.from_zero = false;
+  p.integrated = false;
   return p;
 }
-
-double TimeTerm::offset() const { return from_zero ? plain().value(0.0) : 0.0; }
 
 std::string TimeTerm::describe() const {
   std::ostringstream s;
@@ -152,14 +162,15 @@ std::string TimeTerm::describe() const {
       if (first) s << "0";
       break;
     }
-    case Kind::harmonic:
-      s << amplitude << (from_zero ? "*(sin(" : "*sin(") << omega << "*t" << (phase < 0 ? "-" : "+")
-        << std::abs(phase) << ")";
-      if (from_zero) s << " - sin(" << phase << "))";
+    case Kind::harmonic: {
+      const char* x = integrated ? "*s" : "*t";
+      s << amplitude << (integrated ? "*int_0^t sin(" : "*sin(") << omega << x
+        << (phase < 0 ? "-" : "+") << std::abs(phase) << ")" << (integrated ? " ds" : "");
       break;
+    }
     case Kind::exponential:
-      s << amplitude << (from_zero ? "*(exp(" : "*exp(") << rate << "*t)";
-      if (from_zero) s << " - 1)";
+      s << amplitude << (integrated ? "*int_0^t exp(" : "*exp(") << rate
+        << (integrated ? "*s) ds" : "*t)");
       break;
     case Kind::table:
       s << "table(" << table->file << ":" << table->column << ", " << table->samples()
@@ -227,11 +238,11 @@ bool TimeFunction::is_constant() const {
           if (term.coefficients[k] != 0.0) return false;
         }
         break;
-      case TimeTerm::Kind::harmonic:
-        if (term.omega != 0.0) return false;
+      case TimeTerm::Kind::harmonic:  // integrated and nonzero: grows with t
+        if (term.omega != 0.0 || term.integrated) return false;
         break;
       case TimeTerm::Kind::exponential:
-        if (term.rate != 0.0) return false;
+        if (term.rate != 0.0 || term.integrated) return false;
         break;
       case TimeTerm::Kind::table:
         if (term.table->max_abs_slope != 0.0) return false;
@@ -291,8 +302,7 @@ TimeFunction TimeFunction::antiderivative() const {
   };
   for (const auto& term : terms_) {
     if (term.is_zero()) continue;
-    if (term.from_zero) {
-      // ∫ (f − f(0)) = ∫ f − f(0) t cancels again for a small ωt; no caller integrates twice.
+    if (term.integrated) {
       throw std::invalid_argument(term.describe() + " is an antiderivative: not integrated again");
     }
     switch (term.kind) {
@@ -312,14 +322,10 @@ TimeFunction TimeFunction::antiderivative() const {
         if (term.omega == 0.0) {
           add_poly(1, term.amplitude * std::sin(term.phase));
         } else {
-          // ∫₀ᵗ A sin(ωs + φ) ds = A/ω (sin(ωt + φ − π/2) − sin(φ − π/2)), one from_zero term:
-          // as two, a small ωt cancels them. sin(φ − π/2) of the double nearest π/2 is 6e-17,
-          // not 0: the phase is kept as written and the term subtracts its own value at 0, so
-          // a cosine drive's integral stays compatible with its sine.
-          TimeTerm h = term.plain();
-          h.amplitude = term.amplitude / term.omega;
-          h.phase = term.phase - std::numbers::pi / 2;
-          h.from_zero = true;
+          // One integrated term, its phase as written: as A/ω (cos φ − cos(ωt + φ)) a small ωt
+          // cancels, and a phase shifted by π/2 is rounded (sin(ωt/2 + φ − π/2) near a zero).
+          TimeTerm h = term;
+          h.integrated = true;
           out.push_back(h);
         }
         break;
@@ -327,10 +333,8 @@ TimeFunction TimeFunction::antiderivative() const {
         if (term.rate == 0.0) {
           add_poly(1, term.amplitude);
         } else {
-          // ∫₀ᵗ A exp(rs) ds = A/r expm1(rt)
-          TimeTerm e = term.plain();
-          e.amplitude = term.amplitude / term.rate;
-          e.from_zero = true;
+          TimeTerm e = term;  // ∫₀ᵗ A exp(rs) ds = A t expm1(rt)/(rt)
+          e.integrated = true;
           out.push_back(e);
         }
         break;
@@ -388,16 +392,49 @@ std::string near_duplicate(const std::vector<double>& keys, const std::string& w
   return "";
 }
 
+using HarmonicCoefficients = std::map<double, std::pair<Coefficient, Coefficient>>;
+
+/// w ∫₀ᵗ term: a harmonic's A/ω (cos φ − cos(ωt + φ)), an exponential's A/r (exp(rt) − 1), or
+/// A t sin φ and A t at zero frequency and rate, added to the coefficients of t^k, sin, cos and
+/// exp.
+void add_integrated(double w, const TimeTerm& term, std::map<std::size_t, Coefficient>& poly,
+                    HarmonicCoefficients& harmonic, std::map<double, Coefficient>& exponential) {
+  const double a = w * term.amplitude;
+  if (term.kind == TimeTerm::Kind::harmonic) {
+    if (term.omega == 0.0) {
+      poly[1].add(a * std::sin(term.phase), a);
+      return;
+    }
+    const double scale = a / term.omega;
+    poly[0].add(scale * std::cos(term.phase), scale);
+    // −cos(ωt + φ) = −cos(|ω| t + σφ) = sin(σφ) sin(|ω| t) − cos(σφ) cos(|ω| t), σ = sign ω.
+    const double sign = term.omega < 0.0 ? -1.0 : 1.0;
+    auto& [sc, cc] = harmonic[std::abs(term.omega)];
+    sc.add(scale * std::sin(sign * term.phase), scale);
+    cc.add(-scale * std::cos(sign * term.phase), scale);
+    return;
+  }
+  if (term.rate == 0.0) {
+    poly[1].add(a, a);
+    return;
+  }
+  exponential[term.rate].add(a / term.rate, a / term.rate);
+  poly[0].add(-a / term.rate, a / term.rate);
+}
+
 }  // namespace
 
 ZeroSumVerdict weighted_sum_vanishes(const std::vector<std::pair<double, const TimeFunction*>>& sum,
                                      double t_end) {
   std::map<std::size_t, Coefficient> poly;
-  std::map<double, std::pair<Coefficient, Coefficient>> harmonic;  // ω -> (sin ω t, cos ω t)
-  std::map<double, Coefficient> exponential, step;                 // rate, start
+  HarmonicCoefficients harmonic;                    // ω -> (sin ω t, cos ω t)
+  std::map<double, Coefficient> exponential, step;  // rate, start
   for (const auto& [w, f] : sum) {
     for (const auto& term : f->terms()) {
-      if (term.from_zero) poly[0].add(-w * term.offset(), w * term.offset());
+      if (term.integrated) {
+        add_integrated(w, term, poly, harmonic, exponential);
+        continue;
+      }
       switch (term.kind) {
         case TimeTerm::Kind::polynomial:
           for (std::size_t k = 0; k < term.coefficients.size(); ++k) {

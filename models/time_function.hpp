@@ -23,11 +23,12 @@ struct TimeTerm {
   double omega = 0.0;                ///< harmonic: amplitude * sin(omega t + phase)
   double phase = 0.0;
   double rate = 0.0;  ///< exponential: amplitude * exp(rate t)
-  /// harmonic, exponential: the term minus its value at t = 0, the form of an antiderivative,
-  /// evaluated without cancellation: A (sin(ωt + φ) − sin φ) = 2A sin(ωt/2) cos(ωt/2 + φ) and
-  /// A (exp(rt) − 1) = A expm1(rt). Written as two terms, ∫ sin(10⁻¹² s) ds from 0 to t is the
-  /// difference of two numbers of 10¹² and keeps 4 digits. Never set from a scene.
-  bool from_zero = false;
+  /// harmonic, exponential: the term is the integral from 0 to t of the term without this flag,
+  /// the form of an antiderivative, evaluated without cancellation and without dividing by ω or r:
+  /// ∫₀ᵗ A sin(ωs + φ) ds = A t sinc(ωt/2) sin(ωt/2 + φ) and ∫₀ᵗ A exp(rs) ds = A t expm1(rt)/(rt).
+  /// Written as A/ω (cos φ − cos(ωt + φ)), ∫₀ᵗ sin(10⁻¹² s) ds is the difference of two numbers of
+  /// 10¹² and keeps 4 digits; ω = 1e-310 overflows A/ω. Never set from a scene.
+  bool integrated = false;
   /// table: amplitude * f(t) of the samples (piecewise linear); shared and immutable, so copies
   /// of the term (loads, scaled patterns) cost a pointer.
   std::shared_ptr<const TimeTable> table;
@@ -51,10 +52,8 @@ struct TimeTerm {
   [[nodiscard]] TimeTerm derivative_term() const;
   /// True when the term is identically zero for t >= 0.
   [[nodiscard]] bool is_zero() const;
-  /// A from_zero term as the plain term minus a constant: this term without from_zero, and the
-  /// constant (its value at t = 0). Other terms: themselves and 0.
+  /// The term without `integrated`: the integrand of an integrated term.
   [[nodiscard]] TimeTerm plain() const;
-  [[nodiscard]] double offset() const;
   /// Human-readable form, e.g. "2*H(t-1)", "3*sin(2*t+0.5)" or
   /// "table(el_centro.csv:acceleration_g, 1559 samples)*9.81".
   [[nodiscard]] std::string describe() const;
@@ -96,8 +95,8 @@ class TimeFunction {
   /// The antiderivative F(t) = integral_0^t f, itself a sum of supported terms.
   /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,
   /// whose derivative jumps: the caller must refuse the constraint), and for a table (refused as
-  /// a constraint's right-hand side), and for an antiderivative's own terms (TimeTerm::from_zero:
-  /// integrated again, they would cancel).
+  /// a constraint's right-hand side), and for an antiderivative's own terms (TimeTerm::integrated:
+  /// no caller integrates twice).
   [[nodiscard]] TimeFunction antiderivative() const;
   [[nodiscard]] std::string describe() const;
   /// c f(t): every term's amplitude (a polynomial's coefficients, a table's scale) times c; c = 0

@@ -46,13 +46,7 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
     for (const auto& term : model.constraints[static_cast<std::size_t>(j)].position_value.terms()) {
       if (term.is_zero()) continue;
       const TimeTerm d1 = term.derivative_term(), d2 = d1.derivative_term();
-      // The modal responses are to plain terms: a from_zero one is its plain term minus a
-      // constant.
-      sys.forcing.push_back({-(N.transpose() * (K * p)), term.plain()});
-      if (term.from_zero) {
-        sys.forcing.push_back(
-            {N.transpose() * (K * p), TimeFunction::constant(term.offset()).terms().front()});
-      }
+      sys.forcing.push_back({-(N.transpose() * (K * p)), term});
       sys.forcing.push_back({-(N.transpose() * (M * p)), d2});
       if (model.has_damping()) sys.forcing.push_back({-(N.transpose() * (C * p)), d1});
     }

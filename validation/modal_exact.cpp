@@ -167,13 +167,19 @@ Motion forced_response(const TimeTerm& term, Complex s1, Complex s2, double t) {
     }
     case TimeTerm::Kind::harmonic: {
       // sin(w t + phi) = Im(e^{i phi} e^{i w t}); real coefficients let Im pass through the
-      // equation.
-      const auto column = exp_divided_difference_column({Complex(0.0, term.omega), s1, s2}, t);
+      // equation. Integrated (∫₀ᵗ e^{iws} ds = e^{t·}[0, iw]), the response is e^{t·}[0, iw, s1,
+      // s2]: exact for any w, with no cancellation of terms of size 1/w.
+      const auto column =
+          term.integrated
+              ? exp_divided_difference_column({0.0, Complex(0.0, term.omega), s1, s2}, t)
+              : exp_divided_difference_column({Complex(0.0, term.omega), s1, s2}, t);
       const Complex rotation = std::polar(1.0, term.phase);
       return term.amplitude * imag_part(rotation * column.row(0));
     }
     case TimeTerm::Kind::exponential: {
-      const auto column = exp_divided_difference_column({Complex(term.rate), s1, s2}, t);
+      const auto column = term.integrated
+                              ? exp_divided_difference_column({0.0, Complex(term.rate), s1, s2}, t)
+                              : exp_divided_difference_column({Complex(term.rate), s1, s2}, t);
       return term.amplitude * real_part(column.row(0));
     }
     case TimeTerm::Kind::table:

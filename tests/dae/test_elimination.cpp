@@ -290,6 +290,32 @@ output_step = 0.5
       CHECK(std::abs(r.trajectory.u(1, col) - u) <= 16 * kEps * std::abs(u));
     }
   }
+  // Phase 0, u' = 1e10 sin(1e-10 t) ≈ t: u = t²/2 (to 1e-20 relative). With the π/2-shifted phase
+  // the rows moved in steps of 2e-5 and the run failed ('too many steps between two outputs').
+  const SceneSpec spec = parse_scene_text(R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 1.0]]
+[[constraint]]
+name = "drive"
+level = "velocity"
+terms = { a = 1.0 }
+value = { type = "harmonic", amplitude = 1e10, omega = 1e-10 }
+[solve]
+t_end = 10.0
+output_step = 1.0
+rtol = 1e-10
+atol = 1e-12
+)",
+                                          "slow_ramp.toml");
+  const SolveResult ramp = test::solved(build_model(spec), spec.solve);
+  REQUIRE(ramp.ok());
+  for (std::size_t k = 0; k < ramp.trajectory.t.size(); ++k) {
+    const double t = ramp.trajectory.t[k];
+    CHECK(std::abs(ramp.trajectory.u(0, static_cast<Eigen::Index>(k)) - t * t / 2) <=
+          16 * kEps * t * t / 2);
+  }
 }
 
 TEST_CASE("elimination of a nearly massless DOF, and auto's fallback when it is singular") {

@@ -413,12 +413,21 @@ TEST_CASE("constraints with coefficients or initial values near the double range
       replace(kBase, "terms = { uy2 = 1.0 }", "terms = { uy2 = 1e150 }\nlevel = \"velocity\"") +
           "[initial]\ndisplacement = { uy2 = 1e300 }\n",
       "initial: a·u(0) of constraint 'roll' overflows the double range");
-  // h = sin(1e-310 t) integrates to (1/1e-310) (sin(1e-310 t - π/2) - sin(-π/2)): 1/ω overflows.
-  check_error(replace(kBase, "terms = { uy2 = 1.0 }",
-                      "terms = { uy2 = 1.0 }\nlevel = \"velocity\"\nvalue = { type = "
-                      "\"harmonic\", omega = 1e-310 }"),
+  // h = sin(1e-310 t) integrates to 1e-310 t²/2: in range, and computed without 1/ω (which
+  // overflows), as A t sinc(ωt/2) sin(ωt/2).
+  const std::string slow = replace(kBase, "terms = { uy2 = 1.0 }",
+                                   "terms = { uy2 = 1.0 }\nlevel = \"velocity\"\nvalue = { type = "
+                                   "\"harmonic\", omega = 1e-310 }");
+  CHECK(error_of(slow) == "");
+  const Model slow_model = build_model(parse_scene_text(slow, "slow.toml"));
+  CHECK(slow_model.constraints[2].position_value.value(1.0) == 0.5e-310);
+  // An integral beyond the double range is refused: |A| t_end = 1e308 x 10.
+  check_error(replace(replace(kBase, "terms = { uy2 = 1.0 }",
+                              "terms = { uy2 = 1.0 }\nlevel = \"velocity\"\nvalue = { type = "
+                              "\"harmonic\", amplitude = 1e308, omega = 0.5 }"),
+                      "t_end = 1.0", "t_end = 10.0"),
               "constraint[3].value: integrating this velocity constraint's right-hand side from "
-              "t = 0 gives inf*(sin");
+              "t = 0 gives 1e+308*int_0^t sin(0.5*s+0) ds, which overflows the double range");
 }
 
 TEST_CASE("a nonlinear model linearized at an initial state near the double range") {
