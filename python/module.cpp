@@ -175,6 +175,9 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
   d["failure"] =
       result.failure.empty() ? py::object(py::none()) : python::system_text(result.failure);
   d["checks"] = checks;
+  py::list warnings;
+  for (const auto& w : result.warnings) warnings.append(python::system_text(w));
+  d["warnings"] = warnings;
   d["passed"] = result.passed();
   return d;
 }

@@ -101,6 +101,7 @@ void print_checked_scene(std::ostream& out, const CheckedScene& scene) {
   const SceneCheckResult& r = *scene.result;
   out << scene.scene << " (" << r.scheme << ", " << r.steps << " steps, " << seconds(scene.seconds)
       << " s)\n";
+  for (const auto& w : r.warnings) out << "  warning: " << w << "\n";
   if (!r.failure.empty()) {
     out << "  ERROR the run failed: " << r.failure << "\n";
     return;
@@ -164,10 +165,18 @@ std::string junit_xml(const std::vector<CheckedScene>& scenes) {
     tests += t;
     failures += f;
     errors += e;
+    // The scene's warnings (a loose rtol, a unit mistake) beside its verdicts, as the terminal
+    // shows them.
+    std::string warned;
+    if (s.result) {
+      for (const auto& w : s.result->warnings) warned += "warning: " + w + "\n";
+    }
     suites << "  <testsuite name=\"" << xml_escape(s.scene) << "\" tests=\"" << t
            << "\" failures=\"" << f << "\" errors=\"" << e << "\" time=\"" << seconds(s.seconds)
            << "\">\n"
-           << cases.str() << "  </testsuite>\n";
+           << cases.str()
+           << (warned.empty() ? "" : "    <system-err>" + xml_escape(warned) + "</system-err>\n")
+           << "  </testsuite>\n";
   }
   x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"condyn check\" tests=\""
     << tests << "\" failures=\"" << failures << "\" errors=\"" << errors << "\">\n"

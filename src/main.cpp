@@ -194,6 +194,7 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   plan.check();
   options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const CompareResult result = run_compare(spec, options);
+  for (const auto& w : result.warnings) std::cerr << "warning: " << spec.file << ": " << w << "\n";
   print_compare_table(std::cout, result);
   write_compare_files(plan, dir, result);
   std::cout << "\nwrote runs.csv, runs.json, drift_*.csv, history_*.csv, "

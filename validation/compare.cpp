@@ -124,7 +124,13 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   CompareResult out;
   out.options = options;
   out.scene_name = spec.name.empty() ? spec.file : spec.name;
-  const Model base = build_model(spec);  // once: the runs differ only in their settings
+  BuildReport report;
+  const Model base = build_model(spec, report);  // once: the runs differ only in their settings
+  // The scene's rtol is not compare's (its tolerances are): a warning of a loose one is not
+  // about this comparison.
+  for (auto& w : report.warnings) {
+    if (w.rfind("rtol ", 0) != 0) out.warnings.push_back(std::move(w));
+  }
   // A bad [[check]] is bad input here as in run and check.
   if (!spec.checks.empty()) (void)CheckEvaluator(base, spec.checks, spec.file);
   for (int d = 0; d < base.dofs(); ++d) {  // A holds the linearization of nonlinear models

@@ -100,6 +100,8 @@ struct CompareResult {
   /// Requested schemes that cannot treat the scene (elimination and penalty on nonlinear
   /// models), with the reason: not run, and not counted as failures.
   std::vector<std::pair<Scheme, std::string>> skipped;
+  /// What building the model warned of (BuildReport::warnings), as run prints it.
+  std::vector<std::string> warnings;
   std::vector<RunRecord> runs;
   std::vector<SchemeHistory> histories;
   std::vector<BaumgarteStudyPoint> baumgarte_study;

@@ -279,7 +279,8 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
       if (c.quantity == column) add(Quantity::energy);
     }
   }
-  const Model model = build_model(spec);
+  BuildReport report;
+  const Model model = build_model(spec, report);
   CheckEvaluator evaluator(model, spec.checks, spec.file);
   for (Quantity q : evaluator.quantities()) add(q);
   RunHooks hooks = hooks_for(quantities);
@@ -287,6 +288,7 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
   const SolveResult result = solve(model, spec.solve, hooks);
   SceneCheckResult out;
   out.scene = spec.file;
+  out.warnings = std::move(report.warnings);
   out.scheme = to_string(result.scheme);
   out.steps = result.summary.steps;
   out.wall_s = result.summary.wall_seconds;

@@ -73,6 +73,7 @@ struct SceneCheckResult {
   long steps = 0;
   double wall_s = 0.0;  ///< the solver's wall time
   std::string failure;  ///< the integration failure's message, empty when the run reached t_end
+  std::vector<std::string> warnings;   ///< what building the model warned of, as run prints it
   std::vector<CheckOutcome> outcomes;  ///< empty when the run failed
   [[nodiscard]] bool passed() const;
 };

@@ -51,6 +51,17 @@ def test_a_run_that_fails_reports_its_failure_and_the_time_it_took():
     assert result["wall_s"] > 0.0  # it was 0 for a failed run
 
 
+def test_check_lists_the_scenes_warnings_as_run_does():
+    with open(OSCILLATOR, "rb") as f:
+        scene = tomllib.load(f)
+    scene["check"] = [{"quantity": "x", "max_abs": 2.0}]
+    assert condyn.check(scene)["warnings"] == []
+    scene["solve"]["rtol"] = 0.5
+    warned = condyn.check(scene)["warnings"]
+    assert warned == condyn.run(scene).summary["warnings"]
+    assert warned == ["rtol 0.5 asks for fewer than 2 correct digits"]
+
+
 def test_check_refuses_a_scene_without_checks(quickstart_dict):
     scene = copy.deepcopy(quickstart_dict)
     scene.pop("check", None)

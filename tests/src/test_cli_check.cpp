@@ -78,6 +78,31 @@ TEST_CASE("cli check: a JUnit report on standard output is the whole of it, the 
   CHECK(r.err.find("wrote the JUnit report to standard output") != std::string::npos);
 }
 
+TEST_CASE("cli check and compare: the scene's warnings are shown, as run shows them") {
+  Sandbox box;
+  std::string text = scene("[[check]]\nquantity = \"x\"\nmax_abs = 2.0\n");
+  text.replace(text.find("displacement = { x = 1.0 }"), 26, "displacement = { x = 1.0, y = 2e16 }");
+  text.replace(text.find("dofs = [\"x\"]"), 12, "dofs = [\"x\", \"y\"]");
+  text.replace(text.find("mass = [[1.0]]"), 14, "mass = [[1.0, 0.0], [0.0, 1.0]]");
+  text.replace(text.find("stiffness = [[1.0]]"), 19, "stiffness = [[1.0, 0.0], [0.0, 1.0]]");
+  text.replace(text.find("rtol = 1e-10"), 12, "rtol = 0.5");
+  box.write("w.toml", text);
+  const std::string far = "warning: [initial] displacements up to magnitude 2e+16";
+  const Result r = box.run("check w.toml --junit report.xml");
+  CAPTURE(r.out);
+  CHECK(r.code == 0);
+  CHECK(r.out.find("  " + far) != std::string::npos);
+  CHECK(r.out.find("  warning: rtol 0.5 asks for fewer than 2 correct digits") !=
+        std::string::npos);
+  CHECK(slurp(box.path("report.xml")).find("<system-err>" + far) != std::string::npos);
+  // compare: on stderr, without the scene's rtol (compare runs its own tolerances).
+  const Result c = box.run("compare w.toml --tolerances 1e-6 --schemes ggl --no-plots");
+  CAPTURE(c.err);
+  CHECK(c.err.find("warning: w.toml: [initial] displacements up to magnitude 2e+16") !=
+        std::string::npos);
+  CHECK(c.err.find("rtol 0.5") == std::string::npos);
+}
+
 TEST_CASE("cli check: a check that fails: exit 1 and a JUnit failure") {
   Sandbox box;
   box.write("a.toml", scene(kHolds + kFails));
