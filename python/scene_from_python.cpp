@@ -69,12 +69,13 @@ bool takes_matrix(const std::string& parent, const std::string& key) {
   return false;
 }
 
-/// Real entries as float64 (booleans and integers converted); anything else refused.
+/// Real entries as float64 (integers converted); anything else refused, booleans included: a
+/// mask passed by mistake would be a matrix of ones and zeros.
 py::array_t<double> real_entries(const py::handle& data, const std::string& path) {
   const auto array = py::array::ensure(data);
   if (!array) fail(path, "the entries are not an array of numbers");
   const char kind = array.dtype().kind();
-  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+  if (kind != 'f' && kind != 'i' && kind != 'u') {
     fail(path, "entries must be real numbers (the array's dtype is " +
                    py::str(array.dtype()).cast<std::string>() + ")");
   }

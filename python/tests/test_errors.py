@@ -57,6 +57,11 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
      "<dict>: constraint_block[1]: has 2000000 rows but 1 stored entries, so some row has none"),
     (lambda s: s["model"].update(mass=np.eye(3, dtype=complex)),
      "<dict>: model.mass: entries must be real numbers"),
+    # A boolean array (a mask by mistake) is no matrix of ones, dense or sparse.
+    (lambda s: s["model"].update(mass=np.eye(3, dtype=bool)),
+     "<dict>: model.mass: entries must be real numbers (the array's dtype is bool)"),
+    (lambda s: s["model"].update(stiffness=sp.csr_matrix(np.eye(3, dtype=bool))),
+     "<dict>: model.stiffness: entries must be real numbers (the array's dtype is bool)"),
     (lambda s: s["model"].update(dofs={"u1"}), "<dict>: model.dofs: a set is not a scene value"),
     (lambda s: s["solve"].update(t_end=None), "<dict>: solve.t_end: a NoneType is not"),
     (lambda s: s["solve"].update({1: 2}), "<dict>: solve: keys must be strings"),
