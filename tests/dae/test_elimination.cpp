@@ -163,6 +163,14 @@ atol = 1e-12
     // Right limit F/2, from one solve of O(1) numbers at the restart (observed exact).
     CHECK(run.reaction(1, 2) == doctest::Approx(1.5).epsilon(64 * kEps));
   }
+  // Projection: every accepted step is projected, in both segments (CVODE's own count restarts
+  // after the re-initialisation, and the first segment's projections were lost).
+  const SolveResult projected = test::solved(model, test::under(spec.solve, Scheme::projection));
+  CHECK(projected.summary.restarts == 1);
+  const std::string& notes = projected.summary.notes;
+  CAPTURE(notes);
+  REQUIRE(notes.find(" projections onto the constraints") != std::string::npos);
+  CHECK(std::stol(notes) >= projected.summary.steps);
 }
 
 TEST_CASE("the elimination path refuses massless master DOFs nothing holds, by name") {
