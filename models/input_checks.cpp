@@ -9,6 +9,7 @@
 
 #include "models/memory_estimate.hpp"
 #include "models/model_builder.hpp"
+#include "models/number_cell.hpp"
 
 namespace condyn {
 
@@ -19,12 +20,9 @@ constexpr double kMaxExponent = 700.0;
 
 }  // namespace
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
+// The shortest text that reads back as v: a figure in a message is the value itself, so a step
+// at 2.0000000000000004 is never shown as "2" beside a t_end of 2.
+std::string fmt(double v) { return shortest_number(v); }
 
 /// An upper bound of |d^order/dt^order term(t)| over [0, t_end], order in {0, 1, 2}; infinite when
 /// the term leaves the double range there.

@@ -289,6 +289,16 @@ TEST_CASE("constraint right-hand sides may not jump after t = 0") {
           "and has no effect on this run");
     CHECK(model.constraints[2].position_value.is_zero());
   }
+  // One ulp after t_end: warned with the figures that show why (10 digits printed "t = 1").
+  BuildReport ulp;
+  (void)build_model(parse_scene_text(replace(kBase, "terms = { uy2 = 1.0 }",
+                                             "terms = { uy2 = 1.0 }\nvalue = { type = \"step\", "
+                                             "start = 1.0000000000000002 }"),
+                                     "s.toml"),
+                    ulp);
+  REQUIRE(ulp.warnings.size() == 1);
+  CHECK(ulp.warnings[0].find("the step at t = 1.0000000000000002 starts after t_end = 1 ") !=
+        std::string::npos);
 }
 
 TEST_CASE("duplicate names and bad output settings") {
