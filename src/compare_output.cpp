@@ -283,6 +283,13 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
   // beside runs it does not belong to.
   std::error_code ignored;
   if (!result.options.baumgarte_study) fs::remove(base / "baumgarte_study.csv", ignored);
+  // Figures are drawn after this from these files (validation/plot_compare.py), or not at all
+  // (--no-plots): one an earlier comparison drew would show its schemes and tolerances.
+  for (const char* figure :
+       {"work_precision", "error_steps", "drift", "multipliers", "baumgarte_study"}) {
+    for (const char* ext : {".png", ".pdf"})
+      fs::remove(base / (std::string(figure) + ext), ignored);
+  }
   if (result.reference_t.empty()) fs::remove(base / "history_reference.csv", ignored);
   // Nor a scheme's drift and history files that this comparison did not write (a scheme not
   // asked for, not applicable, or whose run left nothing).

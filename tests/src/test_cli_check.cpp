@@ -244,4 +244,18 @@ TEST_CASE(
   CHECK(study.code == 0);
   // The oscillator has no constraint: the study has nothing to stabilize and writes an empty grid.
   CHECK(slurp(box.path("out2/baumgarte_study.csv")).rfind("alpha,beta,default,status", 0) == 0);
+
+  // Figures an earlier comparison drew describe other runs: gone once this one writes its files
+  // (drawn again from them, or not at all under --no-plots); the user's own files stay.
+  for (const char* old : {"out2/drift.png", "out2/work_precision.pdf", "out2/baumgarte_study.png",
+                          "out2/notes.png"}) {
+    box.write(old, "an earlier figure");
+  }
+  CHECK(box.run("compare s.toml --tolerances 1e-4 --schemes ggl --repeats 1 --no-plots "
+                "--out-dir out2")
+            .code == 0);
+  CHECK_FALSE(std::filesystem::exists(box.path("out2/drift.png")));
+  CHECK_FALSE(std::filesystem::exists(box.path("out2/work_precision.pdf")));
+  CHECK_FALSE(std::filesystem::exists(box.path("out2/baumgarte_study.png")));
+  CHECK(std::filesystem::exists(box.path("out2/notes.png")));
 }
