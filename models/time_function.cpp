@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace condyn {
 
@@ -18,6 +19,15 @@ namespace {
 double sinc(double x) { return x == 0.0 ? 1.0 : std::sin(x) / x; }
 /// (exp(x) − 1)/x, 1 at 0.
 double expm1_ratio(double x) { return x == 0.0 ? 1.0 : std::expm1(x) / x; }
+
+/// (sin(x + φ), cos(x + φ)) by the angle sum, never rounding x + φ: with φ = π and x = 1e-4 t the
+/// sum moved in steps of ulp(π) = 4.4e-16, a staircase a slow drive of amplitude 1e4 showed at
+/// 4e-12, where sin x cos φ + cos x sin φ is a few ulps of the value.
+std::pair<double, double> sin_cos_sum(double x, double phase) {
+  if (phase == 0.0) return {std::sin(x), std::cos(x)};
+  const double s = std::sin(x), c = std::cos(x), sp = std::sin(phase), cp = std::cos(phase);
+  return {s * cp + c * sp, c * cp - s * sp};
+}
 
 double polynomial_derivative(const std::vector<double>& c, int order, double t) {
   // Horner on the differentiated coefficients: d^order/dt^order sum_k c_k t^k.
@@ -39,7 +49,7 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
     // ∫₀ᵗ of the plain term; its derivatives are the plain term's of one order less.
     if (kind == Kind::harmonic) {
       const double half = 0.5 * omega * t;
-      return amplitude * t * sinc(half) * std::sin(half + phase);
+      return amplitude * t * sinc(half) * sin_cos_sum(half, phase).first;
     }
     return amplitude * t * expm1_ratio(rate * t);
   }
@@ -50,14 +60,14 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
     case Kind::polynomial:
       return polynomial_derivative(coefficients, order, t);
     case Kind::harmonic: {
-      const double arg = omega * t + phase;
+      const auto [sin_arg, cos_arg] = sin_cos_sum(omega * t, phase);
       switch (order) {
         case 0:
-          return amplitude * std::sin(arg);
+          return amplitude * sin_arg;
         case 1:
-          return amplitude * omega * std::cos(arg);
+          return amplitude * omega * cos_arg;
         default:
-          return -amplitude * omega * omega * std::sin(arg);
+          return -amplitude * omega * omega * sin_arg;
       }
     }
     case Kind::exponential:

@@ -141,6 +141,22 @@ TEST_CASE("time functions: antiderivatives of slow harmonics and exponentials ke
   CHECK(C.describe() == "1*int_0^t sin(1e-12*s+1.5708) ds");
 }
 
+TEST_CASE("time functions: a harmonic's phase is never added to omega t") {
+  // 1e4 sin(1e-4 t + π): ωt + π moves in steps of ulp(π) = 4.4e-16, so the drive was a staircase
+  // of 4e-12 (GGL then failed to start on such a drive of amplitude 1e6). By the angle sum the
+  // value is a few ulps of its size; the reference sums in long double (64-bit mantissa: the sum's
+  // rounding is 2e-19 of π).
+  const TimeFunction f({harmonic(1e4, 1e-4, std::numbers::pi)});
+  for (double t : {0.3, 1.0, 7.77}) {
+    CAPTURE(t);
+    const long double arg = static_cast<long double>(1e-4 * t) + std::numbers::pi;
+    const auto exact = static_cast<double>(1e4L * std::sin(arg));
+    const auto slope = static_cast<double>(1e4L * 1e-4L * std::cos(arg));
+    CHECK(std::abs(f.value(t) - exact) <= 16 * kEps * std::abs(exact));  // observed 3.5 ulps
+    CHECK(std::abs(f.derivative(1, t) - slope) <= 16 * kEps * std::abs(slope));
+  }
+}
+
 TEST_CASE("time functions: zero and constant detection") {
   CHECK(TimeFunction().is_zero());
   CHECK(TimeFunction::constant(0.0).is_zero());
