@@ -1,7 +1,6 @@
 #include "src/cli_flags.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -20,7 +19,7 @@ std::string shortest(double v) {
 
 /// The message for a value that is not a number: what was given, what is expected.
 std::string not_a_number(const std::string& text) {
-  return "'" + text + "' is not a decimal number (write e.g. 1e-6 or 0.5)";
+  return "'" + text + "' is not a decimal number within the double range (write e.g. 1e-6 or 0.5)";
 }
 
 }  // namespace
@@ -47,9 +46,10 @@ std::optional<double> parse_decimal(const std::string& text) {
     if (digits() == 0) return std::nullopt;
   }
   if (i != n) return std::nullopt;
-  errno = 0;
+  // Beyond the double range: no value. Below it (1e-320, subnormal or 0) the number is kept,
+  // and the flag's range names what is wrong with it.
   const double v = std::strtod(text.c_str(), nullptr);
-  if (!std::isfinite(v) || (errno == ERANGE && v != 0.0)) return std::nullopt;
+  if (!std::isfinite(v)) return std::nullopt;
   return v;
 }
 

@@ -64,6 +64,11 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       // Lists: a stray comma, an item twice, an empty value are mistakes, not the default.
       {"compare --tolerances 1e-3,,1e-4", "--tolerances", "an empty item in '1e-3,,1e-4'"},
       {"compare --tolerances 1e-3,1e-3", "--tolerances", "'1e-3' is listed twice"},
+      // Below the double range a number is still one: its range is what is wrong.
+      {"run s.toml --atol 1e-320 --out r.csv", "--atol",
+       "1e-320 is out of range: an absolute tolerance is at least 1e-100"},
+      {"run s.toml --atol 1e400 --out r.csv", "--atol",
+       "'1e400' is not a decimal number within the double range"},
       {"compare --tolerances ''", "--tolerances", "is empty (leave the flag out instead)"},
       {"compare --schemes ggl,ggl", "--schemes", "'ggl' is listed twice"},
       {"compare --out-dir ''", "--out-dir", "is empty"},
