@@ -140,8 +140,11 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
         continue;
       }
       if (!column.empty()) {
+        // A check's reference names its column by the check's quantity, a time function by
+        // `column`: the remedy that serves both is the header.
         throw TimeTableError(line_no, "has no header line naming its columns, so no column '" +
-                                          column + "' (omit `column` to take the second one)");
+                                          column + "' (add a header line such as t," + column +
+                                          ")");
       }
       table.column = "column 2";
     }

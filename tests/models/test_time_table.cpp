@@ -210,7 +210,9 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
   CHECK(has(error("t,a\n0,1\n"), key + ": has 1 sample(s): a table needs at least 2"));
   CHECK(has(error("# only comments\n"), key + ": has 0 sample(s)"));
   CHECK(has(error("t\n0\n"), key + ":1: has 1 column: a table needs time and a column"));
-  CHECK(has(error("0,1\n1,2\n", "a"), key + ":1: has no header line naming its columns"));
+  CHECK(has(error("0,1\n1,2\n", "a"),
+            key + ":1: has no header line naming its columns, so no column 'a' (add a header "
+                  "line such as t,a)"));
   // A file that is not there, or no regular file.
   CHECK(has(scene_error(box, load_scene(R"({ type = "table", file = "none.csv" })")),
             "load[1].value.file: " + box.path("none.csv").string() + ": cannot open the file"));
