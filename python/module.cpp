@@ -189,13 +189,15 @@ PYBIND11_MODULE(_condyn, m) {
   // Messages quote file names as the system gave them: bytes that are not UTF-8 come back as
   // Python's surrogateescape, the str that names the same file.
   static py::exception<SceneError> scene_error(m, "SceneError", PyExc_ValueError);
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const SceneError& e) {
-      PyErr_SetObject(scene_error.ptr(), python::system_text(e.what()).ptr());
-    }
-  });
+  // By value: pybind11 takes a plain function pointer void (*)(std::exception_ptr).
+  py::register_exception_translator(
+      [](std::exception_ptr p) {  // NOLINT(performance-unnecessary-value-param)
+        try {
+          if (p) std::rethrow_exception(p);
+        } catch (const SceneError& e) {
+          PyErr_SetObject(scene_error.ptr(), python::system_text(e.what()).ptr());
+        }
+      });
   // Ctrl-C during a run: Python's handler runs (with the GIL, from the running thread; only the
   // main thread's handlers run) and its exception, KeyboardInterrupt, stays set for without_gil.
   set_interrupt_poll([] {

@@ -230,7 +230,8 @@ class Converter {
       std::size_t i = 0;
       for (const auto& item : items) {
         const std::string ip = p + "[" + std::to_string(++i) + "]";
-        std::visit([&out](auto&& x) { out.push_back(std::move(x)); }, emit(item, ip, depth + 1));
+        std::visit([&out](auto&& x) { out.push_back(std::forward<decltype(x)>(x)); },
+                   emit(item, ip, depth + 1));
       }
       return out;
     }
@@ -256,7 +257,7 @@ class Converter {
 
   void insert_value(toml::table& out, const std::string& key, const py::handle& v,
                     const std::string& p, int depth) {
-    std::visit([&](auto&& x) { out.insert(key, std::move(x)); }, emit(v, p, depth));
+    std::visit([&](auto&& x) { out.insert(key, std::forward<decltype(x)>(x)); }, emit(v, p, depth));
   }
 
   ArrayInputs& arrays_;
