@@ -85,14 +85,14 @@ ConstraintTreatment treat_constraints(const Model& model) {
   // groups whose transform fills in are handed back to multipliers.
   std::vector<bool> eliminate(candidates.size(), false);
   for (const auto& g : groups) {
-    const double entries = static_cast<double>(g.rows.size()) * static_cast<double>(g.dofs.size());
+    const bool within = group_within_dense_limits(g.rows.size(), g.dofs.size());
     const bool single = g.rows.size() == 1 && g.dofs.size() == 1;
     for (int r : g.rows) {
       const auto row = static_cast<std::size_t>(candidates[static_cast<std::size_t>(r)]);
-      out.reason[row] = entries > kMaxDenseGroupEntries ? Reason::group_too_large
-                        : single                        ? Reason::single_freedom
-                                                        : Reason::sparse_group;
-      eliminate[static_cast<std::size_t>(r)] = entries <= kMaxDenseGroupEntries;
+      out.reason[row] = !within  ? Reason::group_too_large
+                        : single ? Reason::single_freedom
+                                 : Reason::sparse_group;
+      eliminate[static_cast<std::size_t>(r)] = within;
     }
   }
   const auto selected = [&] {

@@ -17,9 +17,11 @@ ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferr
   try {
     r.transform = master_slave_transform(model.A, preferred);
   } catch (const CoupledGroupTooLarge& e) {
-    throw std::invalid_argument("elimination: constraint '" +
-                                model.constraints[static_cast<std::size_t>(e.first_row)].name +
-                                "' and " + std::to_string(e.rows - 1) + " others are " + e.what());
+    throw std::invalid_argument(
+        "elimination: constraint '" +
+        model.constraints[static_cast<std::size_t>(e.first_row)].name + "'" +
+        (e.rows > 1 ? " and " + std::to_string(e.rows - 1) + " others" : std::string()) + ": " +
+        e.what());
   }
   const auto& T = r.transform.T;
   const auto& G = r.transform.G;

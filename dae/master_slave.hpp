@@ -35,6 +35,15 @@ class CoupledGroupTooLarge : public std::invalid_argument {
 /// coupled groups (ties, rigid links, a floor's MFCs) are far smaller.
 inline constexpr double kMaxDenseGroupEntries = 4e6;
 
+/// Whether a coupled group of `rows` constraints over `dofs` DOFs can be eliminated: its dense
+/// block (rows × dofs) and the dense coupling its elimination leaves among its masters in the
+/// reduced M, C and K ((dofs − rows)²: a row over 3,000 DOFs couples 2,999 masters) each within
+/// kMaxDenseGroupEntries.
+[[nodiscard]] inline bool group_within_dense_limits(std::size_t rows, std::size_t dofs) {
+  const double r = static_cast<double>(rows), d = static_cast<double>(dofs);
+  return r * d <= kMaxDenseGroupEntries && (d - r) * (d - r) <= kMaxDenseGroupEntries;
+}
+
 /// Builds the transformation. `preferred_slaves` (DOF indices, size m) overrides the pivoting
 /// choice. Throws std::invalid_argument when A is rank deficient or the named slaves do not form
 /// an invertible block (naming the condition number), CoupledGroupTooLarge beyond the dense limit.

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
+#include "dae/constraint_treatment.hpp"
 #include "dae/elimination.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
@@ -59,10 +61,28 @@ TEST_CASE("elimination declines a coupled group beyond its dense block, naming t
   }
   const auto scene = test::built(parse_scene_text(test::lattice(2200, 1, chain, ""), "chain.toml"));
   CHECK_THROWS_WITH_AS((void)reduce(scene.model),
-                       doctest::Contains("elimination: constraint 'fix_ux1' and 2100 others are "
+                       doctest::Contains("elimination: constraint 'fix_ux1' and 2100 others: "
                                          "2101 constraints coupled through shared DOFs over "
                                          "2101 DOFs"),
                        std::invalid_argument);
+  // One row over 2,101 DOFs (their mean is 0): few rows, but its elimination would couple 2,100
+  // masters densely (4.4e6 entries in the reduced matrices).
+  std::string mean = "[[constraint]]\nname = \"mean\"\nterms = { ";
+  for (int k = 2; k <= 2102; ++k) mean += (k > 2 ? ", uy" : "uy") + std::to_string(k) + " = 1.0";
+  mean += " }\n";
+  const auto wide = test::built(parse_scene_text(test::lattice(2200, 1, mean, ""), "mean.toml"));
+  CHECK_THROWS_WITH_AS(
+      (void)reduce(wide.model),
+      doctest::Contains("elimination: constraint 'mean': 1 constraint(s) over 2101 "
+                        "DOFs; eliminating their slaves couples the 2100 masters"),
+      std::invalid_argument);
+  // The mixed treatment keeps that row as a multiplier (it threw while building the transform).
+  const ConstraintTreatment mixed = treat_constraints(wide.model);
+  const int mean_row = wide.model.constraint_count() - 1;
+  CHECK(wide.model.constraints.back().name == "mean");
+  CHECK(mixed.reason[static_cast<std::size_t>(mean_row)] ==
+        ConstraintTreatment::Reason::group_too_large);
+  CHECK(mixed.kept == std::vector<int>{mean_row});
 }
 
 TEST_CASE("auto picks elimination or GGL by the size of the Newton matrix each factors") {
