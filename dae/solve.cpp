@@ -32,6 +32,11 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
            "held only by stiffness (algebraic unknowns); use index1, baumgarte, ggl, index2, "
            "index3, penalty or elimination, which integrate them as a DAE";
   }
+  if (scheme == Scheme::penalty && model.static_start && model.constraint_count() > 0) {
+    return "[initial] static = true gives the equilibrium under exact constraints, where "
+           "penalty's springs carry no force: under penalty the structure would not start at rest "
+           "(its supports unloaded). Use another scheme, or give the displacements";
+  }
   if (!model.is_nonlinear()) return std::nullopt;
   const bool nonholonomic = std::any_of(model.constraints.begin(), model.constraints.end(),
                                         [](const Constraint& c) { return c.nonholonomic; });
@@ -50,8 +55,9 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
            "baumgarte, ggl, index2, index3 or projection";
   }
   if (scheme == Scheme::penalty) {
-    return "penalty is implemented for linear constraints only; use index1, baumgarte, ggl, "
-           "index2, index3 or projection";
+    return "penalty is implemented for linear models only (constant constraints, linear "
+           "forces); this model is nonlinear (state-dependent constraints or forces). Use index1, "
+           "baumgarte, ggl, index2, index3 or projection";
   }
   return std::nullopt;
 }

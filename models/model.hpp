@@ -92,6 +92,9 @@ struct Model {
   /// Names of the scene's constraints that [solve] redundant = "drop" removed (no row, no
   /// multiplier column; a check naming one is told why).
   std::vector<std::string> dropped_constraints;
+  /// u(0) is the static equilibrium under exact constraints ([initial] static = true): at rest
+  /// only where the constraints hold exactly (not under penalty).
+  bool static_start = false;
   Eigen::SparseMatrix<double> A;  ///< m x n, row i = constraints[i].coefficients
   Eigen::VectorXd u0, v0;
   /// The system every formulation integrates, decided once by the builder: a LinearSystem (owning

@@ -30,6 +30,7 @@ void ModelBuilder::solve_static_initial() {
          "constraints depend on the state (nonlinear), and a static Newton iteration is not "
          "implemented: give the equilibrium in [initial] displacement instead");
   }
+  model_.static_start = true;
   const Eigen::VectorXd f = model_.applied_forces(0.0);
   const Eigen::VectorXd g = model_.position_rhs(0, 0.0);
   StaticEquilibrium eq;
