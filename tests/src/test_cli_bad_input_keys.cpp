@@ -103,6 +103,12 @@ TEST_CASE("a massless DOF nothing holds is bad input under every scheme, DOFs na
   check_refused(run_scene(replace(one_bar, "[0.0, 1.0]]", "[2.0, 0.0]]")),
                 "bad.toml:1: model: DOF 'uy3' has neither mass nor stiffness nor damping nor a "
                 "constraint");
+  // The same line of nodes with rigid members: they do pass through uy3, but their gradient along
+  // it is zero at the straight start, and the message says so rather than 'no constraint'.
+  check_refused(run_scene(replace(replace(one_bar, "[0.0, 1.0]]", "[2.0, 0.0]]"), "EA = 10.0",
+                                  "rigid = true")),
+                "a constraint acting on it at the initial state (a nonlinear constraint through "
+                "it, such as straight rigid members, can have a zero gradient there");
   // An all-massless triangle pinned at one node, under gravity: it turns about the pin, and no
   // mass resists (its weight is zero too).
   check_refused(
