@@ -104,17 +104,13 @@ TEST_CASE("time functions: antiderivatives of slow harmonics and exponentials ke
   // terms: the next is below 1e-30 relative here). As A/ω (cos φ − cos(ωt + φ)) written with two
   // terms, ω = 1e-12 kept 4 digits (6e-5 absolute at t = 0 after a velocity row's constant).
   const double t = 2.0;
-  for (const auto& [w, phase] :
-       std::initializer_list<std::pair<double, double>>{{1e-6, 0.3},
-                                                        {1e-12, 0.3},
-                                                        {1e-14, 0.3},
-                                                        {-1e-12, 0.3},
-                                                        {1e-300, 0.3},
-                                                        {-1e-300, 0.3},
-                                                        {5e-324, 0.3},
-                                                        {1e-10, 0.0},
-                                                        {-1e-300, 0.0},
-                                                        {1e-8, std::numbers::pi}}) {
+  struct Case {
+    double w, phase;
+  };
+  for (const Case c : {Case{1e-6, 0.3}, Case{1e-12, 0.3}, Case{1e-14, 0.3}, Case{-1e-12, 0.3},
+                       Case{1e-300, 0.3}, Case{-1e-300, 0.3}, Case{5e-324, 0.3}, Case{1e-10, 0.0},
+                       Case{-1e-300, 0.0}, Case{1e-8, std::numbers::pi}}) {
+    const double w = c.w, phase = c.phase;  // plain variables: clang 14 cannot capture bindings
     CAPTURE(w);
     CAPTURE(phase);
     const TimeFunction F = TimeFunction({harmonic(1.5, w, phase)}).antiderivative();
