@@ -268,8 +268,7 @@ TEST_CASE("a scheme that cannot treat the scene is bad input: exit 2 with the re
   const Result c = box.run("compare '" + sleigh + "' --schemes elimination,penalty --no-plots");
   CHECK(c.code == 2);
   CHECK(c.err.find("no requested scheme applies to this scene") != std::string::npos);
-  CHECK(c.err.find("penalty: penalty is implemented for linear models only") !=
-        std::string::npos);
+  CHECK(c.err.find("penalty: penalty is implemented for linear models only") != std::string::npos);
 }
 
 TEST_CASE("info on a nonlinear scene: classes, and a requested scheme that does not apply") {
