@@ -249,6 +249,7 @@ TEST_CASE("a path that cannot be written is refused before any work") {
        {std::string("compare --no-plots --repeats 1 --tolerances 1e-4 --out-dir afile"),
         std::string("compare --no-plots --repeats 1 --tolerances 1e-4 --out-dir afile/sub"),
         std::string("stress --no-plots --families stiffness --out-dir afile"),
+        std::string("stress --no-plots --out-dir afile"),  // every family, the default
         std::string("compare --no-plots --repeats 1 --tolerances 1e-4 --out-dir /dev/null/x")}) {
     CAPTURE(cmd);
     const Result r = box.run(cmd);
