@@ -106,7 +106,7 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
                         failure);
 }
 
-py::list compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,
+py::tuple compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,
                  const std::optional<std::vector<std::string>>& schemes,
                  const std::optional<int>& repeats, const std::optional<double>& drift_rtol,
                  long max_steps, double max_wall_time) {
@@ -139,7 +139,9 @@ py::list compare(const py::handle& scene, const std::optional<std::vector<double
       throw SceneError(scene_message(spec.file, SourcePoint{}, e.what()));
     }
   });
-  return python::compare_records(result);
+  py::list warnings;
+  for (const auto& w : result.warnings) warnings.append(python::system_text(w));
+  return py::make_tuple(python::compare_records(result), warnings);
 }
 
 /// The scene's [[check]] tables, evaluated on one run: (scene, scheme, steps, wall_s, failure,

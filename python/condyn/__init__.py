@@ -6,7 +6,9 @@ compare schemes, over the same C++ library as the `condyn` command (docs/python.
     r.t, r.u, r.drift, r.summary["steps"]
 """
 
+import collections.abc
 import numbers
+import warnings
 
 from ._condyn import SceneError, scheme_names
 from . import _condyn
@@ -83,9 +85,17 @@ def compare(scene, tolerances=None, schemes=None, repeats=1, drift_rtol=None, ma
     error_reaction against `reference`, drifts, steps, evaluations, wall times); a scheme that
     cannot treat the scene gives one dict with skipped=True and the reason. `max_steps` and
     `max_wall_time` (seconds) budget each run as the command's --max-steps and --max-wall-time
-    (0: none); a run over budget has ok=False and says so in its message."""
-    return _condyn.compare(scene, tolerances, schemes, repeats, drift_rtol, max_steps,
-                           max_wall_time)
+    (0 or None: none); a run over budget has ok=False and says so in its message. An argument
+    of another type raises SceneError naming it. The scene's warnings are issued as
+    UserWarning."""
+    records, scene_warnings = _condyn.compare(
+        scene, _list(scene, "tolerances", tolerances, _number),
+        _list(scene, "schemes", schemes, _text), _integer(scene, "repeats", repeats),
+        _number(scene, "drift_rtol", drift_rtol), _integer(scene, "max_steps", max_steps) or 0,
+        _number(scene, "max_wall_time", max_wall_time) or 0.0)
+    for w in scene_warnings:
+        warnings.warn(f"{_name(scene)}: {w}", UserWarning, stacklevel=2)
+    return records
 
 
 def check(scene, scheme=None):
@@ -108,6 +118,43 @@ def _number(scene, argument, value):
         raise SceneError(f"{_name(scene)}: {argument}: expected a number "
                          f"(got {type(value).__name__} {value!r})")
     return float(value)
+
+
+def _integer(scene, argument, value):
+    """An argument that must be an integer of 64 bits (None: not given), else SceneError."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise SceneError(f"{_name(scene)}: {argument}: expected an integer "
+                         f"(got {type(value).__name__} {value!r})")
+    if not -2**31 <= int(value) < 2**31:
+        raise SceneError(f"{_name(scene)}: {argument}: {int(value)} is out of range")
+    return int(value)
+
+
+def _list(scene, argument, value, item):
+    """An argument that must be a list (or tuple, or 1-d array) of values `item` accepts, none
+    twice (None: not given), else SceneError naming it, as the command refuses its flags."""
+    if value is None:
+        return None
+    if isinstance(value, (str, bytes, collections.abc.Mapping, collections.abc.Set)) or \
+            not isinstance(value, collections.abc.Iterable):
+        raise SceneError(f"{_name(scene)}: {argument}: expected a list "
+                         f"(got {type(value).__name__} {value!r}); give [{value!r}] for one")
+    try:
+        values = list(value)
+    except TypeError:  # a 0-d array
+        raise SceneError(f"{_name(scene)}: {argument}: expected a list "
+                         f"(got {type(value).__name__} {value!r})") from None
+    items = []
+    for k, v in enumerate(values):
+        checked = item(scene, f"{argument}[{k}]", v)
+        if checked is None:
+            raise SceneError(f"{_name(scene)}: {argument}[{k}]: None is not a value")
+        if checked in items:
+            raise SceneError(f"{_name(scene)}: {argument}: {checked!r} is listed twice")
+        items.append(checked)
+    return items
 
 
 def _text(scene, argument, value):

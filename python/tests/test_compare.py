@@ -1,5 +1,6 @@
 """condyn.compare: the sweep of `condyn compare` as a list of dicts."""
 
+import numpy as np
 import pytest
 
 import condyn
@@ -24,3 +25,35 @@ def test_compare_refuses_bad_arguments():
         condyn.compare(QUICKSTART, schemes=["auto"])
     with pytest.raises(condyn.SceneError, match="tolerances must lie in"):
         condyn.compare(QUICKSTART, tolerances=[2.0])
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"schemes": "ggl"}, r"schemes: expected a list \(got str 'ggl'\); give \['ggl'\] for one"),
+    ({"tolerances": 1e-4}, r"tolerances: expected a list \(got float 0.0001\)"),
+    ({"tolerances": ["1e-4"]}, r"tolerances\[0\]: expected a number \(got str '1e-4'\)"),
+    ({"tolerances": [1e-4, None]}, r"tolerances\[1\]: None is not a value"),
+    ({"tolerances": [1e-4, 1e-4]}, r"tolerances: 0.0001 is listed twice"),
+    ({"schemes": ["ggl", "ggl"]}, r"schemes: 'ggl' is listed twice"),
+    ({"repeats": 2.0}, r"repeats: expected an integer \(got float 2.0\)"),
+    ({"repeats": True}, r"repeats: expected an integer \(got bool True\)"),
+    ({"drift_rtol": "1e-6"}, r"drift_rtol: expected a number \(got str '1e-6'\)"),
+    ({"max_steps": 10**20}, r"max_steps: 100000000000000000000 is out of range"),
+])
+def test_compare_names_a_badly_typed_argument(kwargs, message):
+    # Each would reach pybind11 as an argument of the wrong type: its TypeError lists the
+    # signature and every argument given, the whole scene for a dict.
+    with pytest.raises(condyn.SceneError, match=message):
+        condyn.compare(QUICKSTART, **kwargs)
+
+
+def test_compare_accepts_tuples_arrays_and_numpy_integers():
+    runs = condyn.compare(QUICKSTART, tolerances=np.array([1e-4]), schemes=("ggl",),
+                          repeats=np.int64(1), max_steps=None, max_wall_time=None)
+    assert [(r["scheme"], r["rtol"], r["ok"]) for r in runs] == [("ggl", 1e-4, True)]
+
+
+def test_compare_issues_the_scenes_warnings(quickstart_dict):
+    # As the command prints them: a displacement beyond 1e15 is warned of (units).
+    quickstart_dict.setdefault("initial", {})["displacement"] = {"u2": 2e15, "u3": 2e15}
+    with pytest.warns(UserWarning, match=r"<dict>: \[initial\] displacements up to magnitude"):
+        condyn.compare(quickstart_dict, tolerances=[1e-4], schemes=["ggl"])
