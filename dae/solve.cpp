@@ -70,6 +70,12 @@ bool uses_mixed_treatment(const Model& model, Scheme resolved, const SolveSpec& 
           settings.scheme == Scheme::automatic);
 }
 
+const char* treatment_name(const Model& model, Scheme resolved, const SolveSpec& settings) {
+  if (resolved == Scheme::automatic || !mixes(resolved) || model.constraint_count() == 0)
+    return nullptr;
+  return uses_mixed_treatment(model, resolved, settings) ? "mixed" : "multipliers";
+}
+
 namespace {
 
 /// auto on a linear model with every row kept as a multiplier ([solve] constraints =

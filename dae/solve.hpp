@@ -41,6 +41,11 @@ class SchemeNotApplicable : public std::invalid_argument {
 /// [solve] constraints = "mixed", or unset with scheme auto; multiplier schemes only.
 [[nodiscard]] bool uses_mixed_treatment(const Model& model, Scheme resolved,
                                         const SolveSpec& settings);
+/// The treatment of the constraints in a run under `resolved`, by [solve] constraints' names:
+/// "mixed" or "multipliers" for a multiplier scheme on a model with constraints, else nullptr
+/// (the HDF5 attribute `constraints`, the Python summary's "constraints").
+[[nodiscard]] const char* treatment_name(const Model& model, Scheme resolved,
+                                         const SolveSpec& settings);
 
 struct ReducedSystem;  // dae/elimination.hpp
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "dae/solve.hpp"
+
 namespace py = pybind11;
 
 namespace condyn::python {
@@ -39,9 +41,11 @@ py::object vector_view(const Eigen::VectorXd& x, const py::object& owner) {
   return a;
 }
 
-py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const BuildReport& r) {
+py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const BuildReport& r,
+                      const char* treatment) {
   py::dict d;
   d["scheme"] = s.scheme;
+  d["constraints"] = treatment != nullptr ? py::object(py::str(treatment)) : py::none();
   d["steps"] = s.steps;
   d["wall_s"] = s.wall_seconds;
   d["rtol"] = settings.rtol;
@@ -122,7 +126,8 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
   constraints.reserve(model.constraints.size());
   for (const auto& c : model.constraints) constraints.push_back(c.name);
   d["constraint_names"] = constraints;
-  d["summary"] = summary_dict(result.summary, settings, report);
+  d["summary"] = summary_dict(result.summary, settings, report,
+                              treatment_name(model, result.scheme, settings));
   return d;
 }
 

@@ -112,9 +112,7 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
   }
   put_strings(f, "dof_names", dof_names);
   put_strings(f, "constraint_names", constraint_names);
-  put_attribute(f, "scheme", run.scheme);
-  put_attribute(f, "rtol", run.rtol);
-  put_attribute(f, "atol", run.atol);
+  hdf5::put_run_attributes(f, run);
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "H5Fflush");
   const ssize_t size = H5Fget_file_image(f, nullptr, 0);
   if (size < 0) throw std::runtime_error("HDF5: H5Fget_file_image failed");

@@ -18,6 +18,8 @@ namespace condyn {
 struct RunAttributes {
   std::string scheme;
   double rtol = 0.0, atol = 0.0;
+  /// "mixed" or "multipliers" (treatment_name); empty: no attribute (not a multiplier scheme).
+  std::string constraints;
 };
 
 /// True for a path ending in `.h5` (the contract's choice of format), or `.hdf5`, in any case.

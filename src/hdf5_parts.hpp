@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "src/hdf5_output.hpp"
+
 namespace condyn::hdf5 {
 
 /// Closes an HDF5 handle with its own close function when it leaves scope.
@@ -66,6 +68,14 @@ inline void put_attribute(hid_t file, const char* name, const std::string& value
                     H5Aclose, "H5Acreate2");
   const char* text = value.c_str();
   check(H5Awrite(attr.id(), type.id(), static_cast<const void*>(&text)), "H5Awrite");
+}
+
+/// The root attributes of a result file: scheme, rtol, atol, and constraints when it is set.
+inline void put_run_attributes(hid_t file, const RunAttributes& run) {
+  put_attribute(file, "scheme", run.scheme);
+  put_attribute(file, "rtol", run.rtol);
+  put_attribute(file, "atol", run.atol);
+  if (!run.constraints.empty()) put_attribute(file, "constraints", run.constraints);
 }
 
 }  // namespace condyn::hdf5

@@ -114,7 +114,9 @@ int run(const RunArgs& args) {
   const SolveResult result = solve(model, spec.solve, hooks);
   const Trajectory& traj = result.trajectory;
   const SolveSummary& summary = result.summary;
-  const RunAttributes attributes{to_string(result.scheme), spec.solve.rtol, spec.solve.atol};
+  const char* treatment = treatment_name(model, result.scheme, spec.solve);
+  const RunAttributes attributes{to_string(result.scheme), spec.solve.rtol, spec.solve.atol,
+                                 treatment != nullptr ? treatment : ""};
   if (!result.ok()) {
     // Nothing computed is lost: the rows before the failure go to FILE.partial.csv.
     const std::string partial =

@@ -208,9 +208,7 @@ class Hdf5RowWriter final : public RowWriter {
   }
 
   void finish(const RunAttributes& run) override {
-    hdf5::put_attribute(file_, "scheme", run.scheme);
-    hdf5::put_attribute(file_, "rtol", run.rtol);
-    hdf5::put_attribute(file_, "atol", run.atol);
+    hdf5::put_run_attributes(file_, run);
     for (Series* s : {t_.get(), u_.get(), v_.get(), a_.get(), a_abs_.get(), reaction_.get(),
                       multiplier_.get(), drift_.get(), energy_.get()}) {
       if (s != nullptr) s->flush(true);

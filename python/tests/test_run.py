@@ -4,6 +4,7 @@ must give bit-equal arrays; the CSV holds each double's shortest round-trip form
 exactly."""
 
 import subprocess
+import tomllib
 
 import numpy as np
 import pytest
@@ -56,6 +57,27 @@ def test_hdf5_of_the_cli_equals_the_module_and_reads_as_text(cli, tmp_path):
         np.testing.assert_array_equal(f["displacement"][...], r.u)
         np.testing.assert_array_equal(f["reaction"][...], r.reaction)
         np.testing.assert_array_equal(f["drift"][...], r.drift)
+
+
+@pytest.mark.parametrize("scheme, constraints, expected", [
+    ("ggl", "mixed", "mixed"), ("ggl", "multipliers", "multipliers"),
+    ("index1", None, "multipliers"), ("elimination", None, None)])
+def test_the_constraint_treatment_is_recorded(cli, tmp_path, scheme, constraints, expected):
+    # The HDF5 root attribute `constraints` and summary["constraints"]: how a multiplier scheme
+    # treated the rows ([solve] constraints); absent (None) for the other schemes.
+    h5py = pytest.importorskip("h5py")
+    out = tmp_path / "q.h5"
+    flags = ["--constraints", constraints] if constraints else []
+    subprocess.run([str(cli), "run", str(QUICKSTART), "--scheme", scheme, *flags, "--out",
+                    str(out)], check=True, capture_output=True)
+    with h5py.File(out, "r") as f:
+        assert f.attrs.get("constraints") == expected
+    with open(QUICKSTART, "rb") as f:
+        scene = tomllib.load(f)
+    scene["solve"]["scheme"] = scheme
+    if constraints:
+        scene["solve"]["constraints"] = constraints
+    assert condyn.run(scene).summary["constraints"] == expected
 
 
 def test_summary_and_overrides():
