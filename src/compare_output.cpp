@@ -281,16 +281,15 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
   plan.commit_all();
   // The folder describes this comparison only: a study an earlier run left there would be drawn
   // beside runs it does not belong to.
-  std::error_code ignored;
-  if (!result.options.baumgarte_study) fs::remove(base / "baumgarte_study.csv", ignored);
+  if (!result.options.baumgarte_study) plan.remove_stale(base / "baumgarte_study.csv");
   // Figures are drawn after this from these files (validation/plot_compare.py), or not at all
   // (--no-plots): one an earlier comparison drew would show its schemes and tolerances.
   for (const char* figure :
        {"work_precision", "error_steps", "drift", "multipliers", "baumgarte_study"}) {
     for (const char* ext : {".png", ".pdf"})
-      fs::remove(base / (std::string(figure) + ext), ignored);
+      plan.remove_stale(base / (std::string(figure) + ext));
   }
-  if (result.reference_t.empty()) fs::remove(base / "history_reference.csv", ignored);
+  if (result.reference_t.empty()) plan.remove_stale(base / "history_reference.csv");
   // Nor a scheme's drift and history files that this comparison did not write (a scheme not
   // asked for, not applicable, or whose run left nothing).
   for (Scheme s : kSchemes) {
@@ -298,8 +297,8 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
         result.histories.begin(), result.histories.end(),
         [s](const auto& h) { return h.scheme == s && (h.ok || !h.trajectory.t.empty()); });
     if (written) continue;
-    fs::remove(base / drift_file(s), ignored);
-    fs::remove(base / history_file(s), ignored);
+    plan.remove_stale(base / drift_file(s));
+    plan.remove_stale(base / history_file(s));
   }
 }
 

@@ -192,6 +192,7 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   }
   OutputPlan plan;  // the folder and its files, checked before the runs
   if (!scene.empty()) plan.add_input(scene);
+  for (const auto& input : spec.input_files) plan.add_input(input);  // a table, a matrix
   plan_compare_files(plan, dir, options.schemes, options.baumgarte_study);
   plan.check();
   options.progress = [](const std::string& line) { std::cerr << line << std::endl; };

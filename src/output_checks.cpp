@@ -175,6 +175,17 @@ bool OutputPlan::Impl::same_target(const Output& a, const Output& b) {
   return (a.exists && b.exists && a.dev == b.dev && a.ino == b.ino) || a.target == b.target;
 }
 
+bool OutputPlan::remove_stale(const std::filesystem::path& path) const {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) return false;  // protected
+  for (const auto& in : impl_->inputs) {
+    if (in.exists && in.dev == st.st_dev && in.ino == st.st_ino) return false;
+  }
+  std::error_code ignored;
+  return std::filesystem::remove(path, ignored);
+}
+
 void OutputPlan::add_input(const std::string& path) {
   Impl::Input in;
   in.path = path;

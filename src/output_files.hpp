@@ -17,6 +17,7 @@
 /// Temporary files are removed on every exit path, SIGTERM, SIGINT, SIGHUP and SIGPIPE included.
 
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <ostream>
@@ -69,6 +70,11 @@ class OutputPlan {
   void commit(const std::vector<Id>& ids);
   /// Commits every written output.
   void commit_all();
+  /// Removes a file an earlier run of the command left in its folder and this one did not
+  /// write (compare's figures, stress's generated scenes), as the outputs are protected: not
+  /// an input of the command (by any name or link), not a file without any write permission,
+  /// only a regular file. Returns whether it was removed.
+  bool remove_stale(const std::filesystem::path& path) const;
 
   /// True when output `id` goes to standard output: then every other line goes to stderr.
   [[nodiscard]] bool to_stdout(Id id) const;

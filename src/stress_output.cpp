@@ -199,7 +199,7 @@ void write_stress_files(OutputPlan& plan, const std::string& dir, const StressRe
                                      [&](const auto& c) { return c.id == stem; });
     if (generated && !current) stale.push_back(entry.path());
   }
-  for (const auto& path : stale) std::filesystem::remove(path, ec);
+  for (const auto& path : stale) plan.remove_stale(path);
 }
 
 }  // namespace condyn

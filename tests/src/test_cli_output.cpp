@@ -136,6 +136,49 @@ TEST_CASE("no output may be a file the scene names: its matrices, tables and ref
   CHECK(slurp(box.path("record.csv")) == record);
 }
 
+TEST_CASE("compare and stress: their files never overwrite or remove an input or a protected file") {
+  const Sandbox box;
+  const std::string record = "t,a\n0,0\n1,1\n";
+  std::string scene = kScene;
+  scene.replace(scene.find("value = { type = \"step\""), std::string::npos,
+                "value = { type = \"table\", file = \"TABLE\" }\n"
+                "[solve]\nt_end = 1.0\noutput_step = 0.25\n");
+  auto with_table = [&](const std::string& name) {
+    std::string s = scene;
+    s.replace(s.find("TABLE"), 5, name);
+    return s;
+  };
+  const std::string compare = "--no-plots --repeats 1 --tolerances 1e-4 --schemes ggl --out-dir .";
+  // A table named as a file compare writes: refused before any run, the table intact.
+  box.write("runs.csv", record);
+  box.write("a.toml", with_table("runs.csv"));
+  const Result written = box.run("compare a.toml " + compare);
+  CHECK(written.code == 2);
+  CHECK(contains(written.err, "an input of this command"));
+  CHECK(slurp(box.path("runs.csv")) == record);
+  // A table named as a file a comparison of other schemes would have left: not removed.
+  box.write("drift_index1.csv", record);
+  box.write("b.toml", with_table("drift_index1.csv"));
+  // A read-only figure of an earlier comparison: protected, kept.
+  box.write("drift.png", "not a figure\n");
+  fs::permissions(box.path("drift.png"), fs::perms::owner_read);
+  // A writable stale file goes (history_index2.csv, from a comparison with index2).
+  box.write("history_index2.csv", "stale\n");
+  const Result ok = box.run("compare b.toml " + compare);
+  CHECK(ok.code == 0);
+  CHECK(slurp(box.path("drift_index1.csv")) == record);
+  CHECK(fs::exists(box.path("drift.png")));
+  CHECK(!fs::exists(box.path("history_index2.csv")));
+  // stress keeps a read-only scene of another family in scenes/ and removes a writable one.
+  fs::create_directories(box.path("st/scenes"));
+  box.write("st/scenes/stiffness_1.toml", "kept\n");
+  fs::permissions(box.path("st/scenes/stiffness_1.toml"), fs::perms::owner_read);
+  box.write("st/scenes/stiffness_2.toml", "stale\n");
+  CHECK(box.run("stress --no-plots --families dead_point --out-dir st").code == 0);
+  CHECK(slurp(box.path("st/scenes/stiffness_1.toml")) == "kept\n");
+  CHECK(!fs::exists(box.path("st/scenes/stiffness_2.toml")));
+}
+
 TEST_CASE("[output] file is relative to the scene's folder; --out is relative to here") {
   const Sandbox box;
   fs::create_directory(box.path("sub"));
