@@ -245,9 +245,9 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
   Cvode cvode(problem, y0, t0, options);
   Eigen::VectorXd yp0(problem.size());
   problem.rhs(t0, y0, yp0);
-  RawTrajectory out = drive(cvode, y0, yp0, options, summary);
-  summary.unknowns = problem.size();
+  summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
   summary.jacobian_nonzeros = cvode.jacobian_nonzeros();
+  RawTrajectory out = drive(cvode, y0, yp0, options, summary);
   summary.termination = "reached t = " + std::to_string(options.output_times.back());
   return out;
 }

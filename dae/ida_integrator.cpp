@@ -382,9 +382,9 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
   Eigen::VectorXd y_init = y0, yp0;
   problem.make_consistent(t0, y_init, yp0);
   ida.init(t0, y_init, yp0, options);
-  RawTrajectory out = drive(ida, y_init, yp0, options, summary);
-  summary.unknowns = problem.size();
+  summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
   summary.jacobian_nonzeros = ida.jacobian_nonzeros();
+  RawTrajectory out = drive(ida, y_init, yp0, options, summary);
   summary.termination = "reached t = " + std::to_string(options.output_times.back());
   return out;
 }

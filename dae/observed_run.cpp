@@ -2,13 +2,27 @@
 
 #include <algorithm>
 #include <exception>
+#include <iomanip>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 #include "dae/energy_balance.hpp"
 #include "models/constraint_drift.hpp"
 
 namespace condyn {
+
+namespace {
+
+/// The summary's drifts: the largest over the internal steps and the output rows, after a
+/// failure as after a whole run.
+void summarize_drift(SolveResult& result, double max_dp, double max_dv) {
+  const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
+  result.summary.max_drift_position = std::max(max_dp, max_of(result.trajectory.drift_position));
+  result.summary.max_drift_velocity = std::max(max_dv, max_of(result.trajectory.drift_velocity));
+}
+
+}  // namespace
 
 Observation::FullState full_state_prefix(int n) {
   return [n](double, const Eigen::VectorXd& y) {
@@ -81,20 +95,23 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     raw = run(observed);
   } catch (const IntegrationError& e) {
     result.failure = failure_of(e);
-    result.summary.max_drift_position = max_dp;
-    result.summary.max_drift_velocity = max_dv;
+    if (e.in_loop) {
+      std::ostringstream s;
+      s << "stopped at t = " << std::fixed << std::setprecision(6) << e.t_reached;
+      result.summary.termination = s.str();
+    }
     if (streamed) {
       result.trajectory = log.trajectory();
       result.trajectory.steps = steps;
-      return;
+    } else if (e.raw_partial && !e.raw_partial->t.empty()) {
+      try {
+        result.trajectory = assemble(*e.raw_partial);
+      } catch (const std::exception&) {
+        // Best effort: a partial result that cannot be assembled (a singular KKT matrix at the
+        // last row, say) is dropped; the failure reported is the integrator's, not this one.
+      }
     }
-    if (!e.raw_partial || e.raw_partial->t.empty()) return;
-    try {
-      result.trajectory = assemble(*e.raw_partial);
-    } catch (const std::exception&) {
-      // Best effort: a partial result that cannot be assembled (a singular KKT matrix at the
-      // last row, say) is dropped; the failure being reported is the integrator's, not this one.
-    }
+    summarize_drift(result, max_dp, max_dv);
     return;
   }
   if (streamed) {
@@ -103,9 +120,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   } else {
     result.trajectory = assemble(raw);
   }
-  const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
-  result.summary.max_drift_position = std::max(max_dp, max_of(result.trajectory.drift_position));
-  result.summary.max_drift_velocity = std::max(max_dv, max_of(result.trajectory.drift_velocity));
+  summarize_drift(result, max_dp, max_dv);
 }
 
 }  // namespace condyn

@@ -58,9 +58,12 @@ class IntegrationError(RuntimeError):
     (a Result, possibly with no rows); the message is the CLI's (scheme, kind, where, what to
     try)."""
 
-    def __init__(self, message, result):
+    def __init__(self, message, result=None):
         super().__init__(message)
         self.result = result
+
+    def __reduce__(self):  # pickled with its result (a failed run in a process pool)
+        return (type(self), (str(self), self.result))
 
 
 def run(scene, scheme=None, rtol=None, atol=None):

@@ -4,6 +4,7 @@ integration raises condyn.IntegrationError (a RuntimeError) with the partial res
 import copy
 import os
 import pathlib
+import pickle
 import re
 import subprocess
 
@@ -128,6 +129,17 @@ def test_integration_error_carries_the_partial_result(quickstart_dict):
     partial = e.value.result
     np.testing.assert_array_equal(partial.t, [0.0, 0.5, 1.0])
     assert partial.u.shape == (len(partial.t), 3)
+    # The summary describes the run that stopped: where, its system, its drift (at least the
+    # rows' own).
+    s = partial.summary
+    assert s["termination"].startswith("stopped at t = 1.") and s["steps"] == 251
+    assert s["unknowns"] > 0 and s["jacobian_nonzeros"] > 0
+    assert s["max_drift_position"] >= partial.drift[:, 0].max()
+    assert s["max_drift_velocity"] >= partial.drift[:, 1].max()
+    # It pickles (a failed run in a process pool): message and partial result survive.
+    back = pickle.loads(pickle.dumps(e.value))
+    assert str(back) == str(e.value)
+    np.testing.assert_array_equal(back.result.u, partial.u)
 
 
 def test_scene_paths_are_the_systems_bytes(tmp_path, quickstart_dict):
