@@ -102,8 +102,11 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
   const py::object failure = result.ok()
                                  ? py::object(py::none())
                                  : python::system_text(describe_failure(result, spec.solve.t_end));
-  return py::make_tuple(python::result_dict(std::move(result), *model, spec.solve, report),
-                        failure);
+  const auto& asked = spec.output.quantities;
+  const bool absolute = std::find(asked.begin(), asked.end(), Quantity::absolute_acceleration) !=
+                        asked.end();
+  return py::make_tuple(
+      python::result_dict(std::move(result), *model, spec.solve, report, absolute), failure);
 }
 
 py::tuple compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,

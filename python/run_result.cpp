@@ -34,11 +34,18 @@ py::object rows_view(const Eigen::MatrixXd& m, Eigen::Index nt, Eigen::Index col
   return a;
 }
 
-py::object vector_view(const Eigen::VectorXd& x, const py::object& owner) {
-  if (x.size() == 0) return py::none();
-  py::array_t<double> a({static_cast<py::ssize_t>(x.size())}, {sizeof(double)}, x.data(), owner);
+/// A read-only view of `size` doubles at `data`, held by `owner`.
+py::array_t<double> read_only_view(const double* data, Eigen::Index size, const py::object& owner) {
+  if (size == 0) return py::array_t<double>(0);
+  py::array_t<double> a({static_cast<py::ssize_t>(size)}, {sizeof(double)}, data, owner);
   py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return a;
+}
+
+/// A read-only view of `x` held by `owner`, or None when it is empty.
+py::object vector_view(const Eigen::VectorXd& x, const py::object& owner) {
+  if (x.size() == 0) return py::none();
+  return read_only_view(x.data(), x.size(), owner);
 }
 
 py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const BuildReport& r,
@@ -76,7 +83,7 @@ py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const Bu
 }  // namespace
 
 py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& settings,
-                     const BuildReport& report) {
+                     const BuildReport& report, bool absolute_acceleration) {
   // The trajectory moves into a capsule that every array keeps alive.
   auto* held = new Trajectory(std::move(result.trajectory));
   const py::capsule owner(held, [](void* p) { delete static_cast<Trajectory*>(p); });
@@ -86,7 +93,7 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
   const auto m = static_cast<Eigen::Index>(model.constraint_count());
 
   py::dict d;
-  d["t"] = py::array_t<double>(static_cast<py::ssize_t>(nt), traj.t.data());
+  d["t"] = read_only_view(traj.t.data(), nt, owner);
   d["u"] = rows_view(traj.u, nt, n, owner);
   d["v"] = rows_view(traj.v, nt, n, owner);
   d["reaction"] = rows_view(traj.reaction, nt, n, owner);
@@ -104,6 +111,17 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
   d["drift"] = drift;
   d["a"] = traj.acceleration.size() == 0 ? py::object(py::none())
                                          : rows_view(traj.acceleration, nt, n, owner);
+  d["a_abs"] = py::none();
+  if (absolute_acceleration && traj.acceleration.size() > 0) {
+    py::array_t<double> a_abs({static_cast<py::ssize_t>(nt), static_cast<py::ssize_t>(n)});
+    auto out = a_abs.mutable_unchecked<2>();
+    for (Eigen::Index i = 0; i < nt; ++i) {
+      const Eigen::VectorXd row = model.absolute_acceleration(
+          traj.t[static_cast<std::size_t>(i)], traj.acceleration.col(i));
+      for (Eigen::Index j = 0; j < n; ++j) out(i, j) = row(j);
+    }
+    d["a_abs"] = a_abs;
+  }
   if (traj.balance.empty()) {
     d["energy_balance"] = py::none();
   } else {

@@ -11,9 +11,11 @@
 
 namespace condyn::python {
 
-/// Keys t, u, v, reaction, multiplier, drift, a (or None), energy and kinetic (or None),
-/// dof_names, constraint_names, summary. `result` is moved from.
+/// Keys t, u, v, reaction, multiplier, drift, a (or None), a_abs (u'' + r a_g(t) when
+/// `absolute_acceleration`, else None), energy and kinetic (or None), dof_names,
+/// constraint_names, summary. `result` is moved from.
 [[nodiscard]] pybind11::dict result_dict(SolveResult&& result, const Model& model,
-                                         const SolveSpec& settings, const BuildReport& report);
+                                         const SolveSpec& settings, const BuildReport& report,
+                                         bool absolute_acceleration);
 
 }  // namespace condyn::python

@@ -20,17 +20,21 @@ class Result:
     """One run: numpy arrays over the output times and what the integrator did.
 
     t (nt); u, v, reaction (nt x n); multiplier (nt x m); drift (nt x 2: position, velocity
-    residual, max-norm); a (nt x n) when the scene's [output] asks for accelerations, else None;
+    residual, max-norm); a (nt x n, u'', relative to the ground under [ground_motion]) when the
+    scene's [output] asks for acceleration or absolute_acceleration, else None; a_abs (nt x n,
+    u'' + r a_g(t)) when it asks for absolute_acceleration, else None;
     energy and kinetic (nt) for a conservative model, else None; energy_balance (nt x 7, columns
     named by energy_columns: energy, energy_error, energy_kinetic, energy_potential,
     energy_dissipated, work_loads, work_constraints) when [output] asks for "energy", else None
     (docs/energy.md); dof_names, constraint_names;
     summary (dict: scheme, steps, wall_s, rtol, atol, residual_evals, jacobian_evals, ...).
-    The arrays are read-only views of the run's memory.
+    The arrays are read-only: views of the run's memory, except drift, a_abs and energy_balance
+    (copies gathered from the rows).
     """
 
-    __slots__ = ("t", "u", "v", "reaction", "multiplier", "drift", "a", "energy", "kinetic",
-                 "energy_balance", "energy_columns", "dof_names", "constraint_names", "summary")
+    __slots__ = ("t", "u", "v", "reaction", "multiplier", "drift", "a", "a_abs", "energy",
+                 "kinetic", "energy_balance", "energy_columns", "dof_names", "constraint_names",
+                 "summary")
 
     def __init__(self, fields):
         for key in self.__slots__:

@@ -202,3 +202,47 @@ def test_a_bad_recorded_array_names_its_key_and_row():
         condyn.run(oscillator_with_table(bad))
     with pytest.raises(condyn.SceneError, match=r"must be n x 2 \(time, value\); this one is 4 x 3"):
         condyn.run(oscillator_with_table(np.zeros((4, 3))))
+
+
+GROUND_SCENE = """
+[model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[2.0, -1.0], [-1.0, 1.0]]
+[[constraint]]
+terms = { a = 1.0 }
+[ground_motion]
+acceleration = { type = "harmonic", omega = 3.0 }
+influence = { a = 1.0, b = 1.0 }
+[solve]
+t_end = 0.3
+output_step = 0.1
+[output]
+quantities = ["QUANTITIES"]
+"""
+
+
+def test_absolute_accelerations_are_their_own_array(cli, tmp_path):
+    # Asked for alone, absolute accelerations were returned in `a`, which holds the relative
+    # ones: a_abs = a + r a_g(t) is its own array, the CLI's acc_abs_ columns bit for bit.
+    scene = tmp_path / "g.toml"
+    scene.write_text(GROUND_SCENE.replace('"QUANTITIES"', '"absolute_acceleration"'))
+    r = condyn.run(scene)
+    np.testing.assert_allclose(r.a_abs, r.a + np.sin(3.0 * r.t)[:, None], rtol=0, atol=1e-15)
+    assert r.a[1, 0] == 0.0 and r.a_abs[1, 0] == np.sin(0.3)  # the support moves with the ground
+    out = tmp_path / "g.csv"
+    subprocess.run([str(cli), "run", str(scene), "--out", str(out)], check=True,
+                   capture_output=True)
+    col = np.genfromtxt(out, delimiter=",", names=True)
+    for j, name in enumerate(r.dof_names):
+        np.testing.assert_array_equal(r.a_abs[:, j], col["acc_abs_" + name])
+    scene.write_text(GROUND_SCENE.replace('"QUANTITIES"', '"acceleration"'))
+    assert condyn.run(scene).a_abs is None
+
+
+def test_times_are_a_read_only_view():
+    r = condyn.run(QUICKSTART)
+    assert r.t.base is not None  # the run's own memory
+    with pytest.raises(ValueError):
+        r.t.flags.writeable = True
