@@ -205,10 +205,18 @@ class Converter {
     if (depth > kMaxDepth) fail(p, "dicts and lists nest more than 32 deep");
     if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
     // numpy's bool scalar is no Python bool, and its __float__ would make True a coefficient of 1.
-    if (py::hasattr(v, "dtype") && !py::isinstance<py::array>(v) &&
-        py::str(v.attr("dtype").attr("kind")).cast<std::string>() == "b") {
-      return v.attr("item")().cast<bool>();
+    if (py::hasattr(v, "dtype") && !py::isinstance<py::array>(v)) {
+      const std::string kind = py::str(v.attr("dtype").attr("kind")).cast<std::string>();
+      if (kind == "b") return v.attr("item")().cast<bool>();
+      // Only numbers: a complex one's __float__ drops the imaginary part (with a warning only),
+      // a timedelta64's or datetime64's would be a duration or a date.
+      if (kind != "i" && kind != "u" && kind != "f") {
+        fail(p, "a numpy " + py::str(v.attr("dtype")).cast<std::string>() +
+                    " is not a scene value (numbers, strings, booleans, lists, dicts, numpy "
+                    "arrays)");
+      }
     }
+    if (PyComplex_Check(v.ptr())) fail(p, "a complex number is not a scene value");
     const bool file_key = p.size() > 5 && p.compare(p.size() - 5, 5, ".file") == 0;
     if (py::isinstance<py::str>(v)) return file_key ? file_name_of(v, p) : text_of(v, p);
     if (py::hasattr(v, "__fspath__")) {
@@ -244,7 +252,11 @@ class Converter {
       }
     }
     if (py::isinstance<py::float_>(v) || py::hasattr(v, "__float__")) {
-      return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+      try {
+        return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+      } catch (const py::error_already_set& e) {  // its __float__ raised (an overflow, a type)
+        fail(p, "a " + type_name(v) + " that is not a number: " + std::string(e.what()));
+      }
     }
     if (is_sparse(v)) {
       fail(p,

@@ -124,7 +124,11 @@ def _number(scene, argument, value):
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise SceneError(f"{_name(scene)}: {argument}: expected a number "
                          f"(got {type(value).__name__} {value!r})")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:
+        raise SceneError(f"{_name(scene)}: {argument}: an integer of {int(value).bit_length()} "
+                         "bits is out of the double range") from None
 
 
 def _integer(scene, argument, value):

@@ -72,6 +72,16 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
     (lambda s: s["constraint"][0]["terms"].update(u1=np.bool_(True)),
      "<dict>: constraint[1].terms.u1: expected a number"),
     (lambda s: s["solve"].update(t_end=np.bool_(False)), "<dict>: solve.t_end: "),
+    # numpy's complex scalar is no load of its real part (its __float__ dropped the imaginary
+    # one with a warning only), nor a duration or a date a number.
+    (lambda s: s["load"][0].update(value=np.complex128(1 + 5j)),
+     "<dict>: load[1].value: a numpy complex128 is not a scene value"),
+    (lambda s: s["load"][0].update(value=1 + 5j),
+     "<dict>: load[1].value: a complex number is not a scene value"),
+    (lambda s: s["solve"].update(t_end=np.timedelta64(1, "s")),
+     "<dict>: solve.t_end: a numpy timedelta64[s] is not a scene value"),
+    (lambda s: s["solve"].update(t_end=np.datetime64("2020-01-01")),
+     "<dict>: solve.t_end: a numpy datetime64[D] is not a scene value"),
     (lambda s: s["model"].update(mass={"file": pathlib.PurePosixPath("no/such.mtx")}),
      "<dict>: model.mass.file: no/such.mtx: cannot open the file"),
     # A lone surrogate has no UTF-8 form: refused by key, never pybind11's cast RuntimeError.
@@ -106,6 +116,8 @@ def test_bad_arguments(quickstart_dict):
         condyn.run(quickstart_dict, rtol="1e-6")
     with pytest.raises(condyn.SceneError, match=r"^<dict>: atol: expected a number \(got bool"):
         condyn.run(quickstart_dict, atol=True)
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: rtol: an integer of 2001 bits is out"):
+        condyn.run(quickstart_dict, rtol=2**2000)
     with pytest.raises(condyn.SceneError, match=r"^<dict>: scheme: expected a string \(got int"):
         condyn.run(quickstart_dict, scheme=3)
     with pytest.raises(condyn.SceneError, match=r"no_such\.toml: cannot open the scene file"):
