@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "models/scene_parser.hpp"
@@ -101,7 +102,7 @@ CLI::Validator positive_check() {
 
 CLI::Validator file_name_check() {
   return {[](std::string& text) {
-            return text.empty()
+            return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos
                        ? std::string("an empty name: name a file (or - for standard output)")
                        : std::string();
           },
@@ -110,7 +111,7 @@ CLI::Validator file_name_check() {
 
 CLI::Validator non_empty_check() {
   return {[](std::string& text) {
-            return text.find_first_not_of(' ') == std::string::npos
+            return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos
                        ? std::string("is empty (leave the flag out instead)")
                        : std::string();
           },
@@ -131,9 +132,16 @@ CLI::Validator decimal_range_check(double lo, double hi) {
 
 CLI::Validator whole_check(int lo, int hi) {
   return {[lo, hi](std::string& text) {
-            const bool whole = !text.empty() && text.size() <= 9 &&
-                               text.find_first_not_of("0123456789") == std::string::npos;
-            const long v = whole ? std::stol(text) : 0;
+            const std::string digits = !text.empty() && text[0] == '+' ? text.substr(1) : text;
+            const bool whole = !digits.empty() &&
+                               digits.find_first_not_of("0123456789") == std::string::npos;
+            const auto first = digits.find_first_not_of('0');
+            const std::string significant =
+                first == std::string::npos ? "0" : digits.substr(first);
+            // More than 18 digits is beyond any bound here (and beyond long long).
+            const long long v = !whole                   ? 0
+                                : significant.size() > 18 ? std::numeric_limits<long long>::max()
+                                                          : std::stoll(significant);
             if (!whole || v < lo || v > hi) {
               return "'" + text + "' is not a whole number in [" + std::to_string(lo) + ", " +
                      std::to_string(hi) + "]";

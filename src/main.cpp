@@ -172,7 +172,13 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   if (!tolerances.empty()) {
     options.tolerances.clear();
     for (const auto& t : split_list("--tolerances", tolerances)) {
-      options.tolerances.push_back(parse_rtol_flag("--tolerances", t));
+      const double rtol = parse_rtol_flag("--tolerances", t);
+      const auto& listed = options.tolerances;
+      if (std::find(listed.begin(), listed.end(), rtol) != listed.end()) {
+        throw CLI::ValidationError("--tolerances", "'" + t + "' is listed twice in '" +
+                                                       tolerances + "' (the same number)");
+      }
+      options.tolerances.push_back(rtol);
     }
   }
   if (!schemes.empty()) {
@@ -354,8 +360,17 @@ int main(int argc, char** argv) {
   CompareOptions compare_options;
   auto* compare_cmd = app.add_subcommand(
       "compare", "every scheme across a tolerance sweep: errors, drift, cost, plots");
-  compare_cmd->add_option("scene", compare_scene,
-                          "scene file (default: the chapter truss, §5.5.1, built in)");
+  compare_cmd
+      ->add_option("scene", compare_scene,
+                   "scene file (default: the chapter truss, §5.5.1, built in)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos
+                       ? std::string("is empty: name a scene file, or leave it out for the "
+                                     "built-in truss")
+                       : std::string();
+          },
+          "FILE"));
   compare_cmd
       ->add_option("--out-dir", compare_dir,
                    "output folder (default: condyn-out/compare-SCENE-STEM)")
@@ -367,11 +382,13 @@ int main(int argc, char** argv) {
   compare_cmd
       ->add_option("--schemes", compare_schemes, "comma-separated schemes (default: all of them)")
       ->check(non_empty_check());
-  compare_cmd->add_option("--repeats", compare_options.repeats, "runs per point for the wall time")
+  compare_cmd
+      ->add_option("--repeats", compare_options.repeats,
+                   "runs per point for the wall time (default 3)")
       ->check(whole_check(1, 100));
   compare_cmd
       ->add_option("--drift-rtol", compare_options.drift_rtol,
-                   "tolerance of the drift, history and Baumgarte-study runs")
+                   "tolerance of the drift, history and Baumgarte-study runs (default 1e-6)")
       ->check(decimal_range_check(1e-14, 0.5));
   compare_cmd->add_flag("--no-plots", compare_no_plots, "do not call the plotting script");
   bool compare_allow_failures = false;

@@ -64,6 +64,15 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       // Lists: a stray comma, an item twice, an empty value are mistakes, not the default.
       {"compare --tolerances 1e-3,,1e-4", "--tolerances", "an empty item in '1e-3,,1e-4'"},
       {"compare --tolerances 1e-3,1e-3", "--tolerances", "'1e-3' is listed twice"},
+      {"compare --tolerances 1e-3,0.001", "--tolerances", "'0.001' is listed twice"},
+      // Whole numbers up to the bound the help gives; beyond it, and blanks, refused.
+      {"run s.toml --max-steps 2147483648 --out r.csv", "--max-steps",
+       "'2147483648' is not a whole number in [1, 2147483647]"},
+      {"run s.toml --max-steps 99999999999999999999999 --out r.csv", "--max-steps",
+       "not a whole number in [1, 2147483647]"},
+      {"run s.toml --scheme '\t' --out r.csv", "--scheme", "is empty"},  // a tab
+      {"run s.toml --out ' '", "--out", "an empty name"},
+      {"compare ''", "scene", "is empty: name a scene file, or leave it out"},
       // Below the double range a number is still one: its range is what is wrong.
       {"run s.toml --atol 1e-320 --out r.csv", "--atol",
        "1e-320 is out of range: an absolute tolerance is at least 1e-100"},
@@ -93,6 +102,8 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
     CHECK(!contains(r.err, "[1/"));            // compare refused before its first run
   }
   // What stays accepted.
+  CHECK(box.run("run s.toml --max-steps 2147483647 --out r.csv").code == 0);
+  CHECK(box.run("run s.toml --max-steps +01000000000 --out r.csv").code == 0);
   CHECK(box.run("run s.toml --rtol 1e-6 --atol 1E-9 --out r.csv").code == 0);
   CHECK(box.run("run s.toml --rtol .001 --atol 2 --out r.csv").code == 0);
   const Result loose = box.run("run s.toml --rtol 0.5 --out r.csv");
