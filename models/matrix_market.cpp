@@ -89,7 +89,7 @@ namespace {
 
 /// Reads the file line by line from `in`: never more than one line of it in memory (a stiffness
 /// file of a million DOFs is 300 MB of text).
-MarketMatrix parse_market_stream(std::istream& in, bool rows_need_entries) {
+MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expect) {
   int line_no = 0;
   std::string buffer;
   const auto next_line = [&](std::string_view& line) {
@@ -151,6 +151,11 @@ MarketMatrix parse_market_stream(std::istream& in, bool rows_need_entries) {
     throw MatrixMarketError(line_no, "a symmetric matrix must be square (the file says " +
                                          std::to_string(rows) + " x " + std::to_string(cols) + ")");
   }
+  if ((expect.rows > 0 && rows != expect.rows) || (expect.cols > 0 && cols != expect.cols)) {
+    throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
+                                         std::to_string(cols) + " but " + expect.because +
+                                         ": is the size line right?");
+  }
   // What holding it takes, before anything is allocated: a size line of 2·10⁹ (a typo, or
   // another file's) had the kernel kill the process while the index arrays were filled.
   // setFromTriplets holds a row-major copy beside the column-major result: 4 + 4 bytes per row
@@ -171,7 +176,7 @@ MarketMatrix parse_market_stream(std::istream& in, bool rows_need_entries) {
   }
   // Fewer entries than rows leaves a row empty: refused here, before rows of index arrays are
   // filled (2·10⁹ rows with 2 entries ran for minutes in 16 GB before "row 3 has no entry").
-  if (rows_need_entries && entries < rows) {
+  if (expect.rows_need_entries && entries < rows) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) +
                                          " rows but " + std::to_string(entries) +
                                          " entries, so some row has none: every constraint row "
@@ -239,12 +244,12 @@ MarketMatrix parse_market_stream(std::istream& in, bool rows_need_entries) {
 
 }  // namespace
 
-MarketMatrix parse_matrix_market(const std::string& text, bool rows_need_entries) {
+MarketMatrix parse_matrix_market(const std::string& text, const MarketExpectation& expect) {
   std::istringstream in(text);
-  return parse_market_stream(in, rows_need_entries);
+  return parse_market_stream(in, expect);
 }
 
-MarketMatrix read_matrix_market(const std::string& path, bool rows_need_entries) {
+MarketMatrix read_matrix_market(const std::string& path, const MarketExpectation& expect) {
   // A device or a pipe (/dev/zero, a FIFO) would be read forever or block: regular files only.
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
@@ -252,7 +257,7 @@ MarketMatrix read_matrix_market(const std::string& path, bool rows_need_entries)
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw MatrixMarketError(0, "cannot open the file");
-  return parse_market_stream(in, rows_need_entries);
+  return parse_market_stream(in, expect);
 }
 
 }  // namespace condyn

@@ -32,14 +32,24 @@ struct MarketMatrix {
   bool symmetric = false;              ///< the header said `symmetric`
 };
 
+/// What the caller knows of a file before reading it, checked at its size line, before anything
+/// is allocated: a size line that disagrees with the model (a typo of 3·10⁸ for 3) was
+/// refused only after its index arrays were filled, gigabytes and seconds later.
+struct MarketExpectation {
+  /// Constraint blocks: a size line declaring more rows than entries is refused at once,
+  /// since some row would be empty.
+  bool rows_need_entries = false;
+  long long rows = 0, cols = 0;  ///< the size the file must declare; 0: any
+  std::string because;           ///< why, for the message ("M.mtx is 3 x 3")
+};
+
 /// Reads `path`. Throws MatrixMarketError for anything but a well-formed coordinate real (or
-/// integer) general or symmetric file with finite values and indices inside the declared size.
-/// `rows_need_entries` (constraint blocks): a size line declaring more rows than entries is
-/// refused at once, since some row would be empty.
+/// integer) general or symmetric file with finite values and indices inside the declared size,
+/// and for a size line `expect` refuses.
 [[nodiscard]] MarketMatrix read_matrix_market(const std::string& path,
-                                              bool rows_need_entries = false);
+                                              const MarketExpectation& expect = {});
 /// The same, from the file's text (tests).
 [[nodiscard]] MarketMatrix parse_matrix_market(const std::string& text,
-                                               bool rows_need_entries = false);
+                                               const MarketExpectation& expect = {});
 
 }  // namespace condyn

@@ -16,7 +16,7 @@ void SceneReader::read_loads(const toml::node& node, std::vector<LoadSpec>& out)
     load.where = at(*loads.get(i), p);
     if (const auto* pat = t.get("pattern")) {
       if (t.contains("dof")) fail(*pat, join(p, "pattern"), "give either dof or pattern, not both");
-      load.pattern = matrix_file(*pat, join(p, "pattern"));
+      load.pattern = matrix_file(*pat, join(p, "pattern"), pattern_size());
     } else {
       load.dof = string(required(t, p, "dof"), join(p, "dof"));
     }

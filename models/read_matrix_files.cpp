@@ -36,15 +36,36 @@ std::optional<std::array<Eigen::Index, 2>> asymmetry(const Eigen::SparseMatrix<d
 
 }  // namespace
 
-FileMatrix SceneReader::matrix_file(const toml::node& node, const std::string& path) const {
+FileMatrix SceneReader::matrix_file(const toml::node& node, const std::string& path,
+                                    const MarketExpectation& expect) const {
   const auto& t = table(node, path);
   check_keys(t, path, {"file"});
   const auto& file_node = required(t, path, "file");
-  return read_market(file_node, join(path, "file"));
+  return read_market(file_node, join(path, "file"), expect);
+}
+
+MarketExpectation SceneReader::pattern_size() const {
+  MarketExpectation e;
+  if (matrix_dofs_ == 0) return e;
+  e.rows = matrix_dofs_;
+  e.cols = 1;
+  e.because = "a load pattern is n x 1 (n = " + std::to_string(matrix_dofs_) + " DOFs)";
+  return e;
+}
+
+MarketExpectation SceneReader::block_size() const {
+  MarketExpectation e;
+  e.rows_need_entries = true;
+  if (matrix_dofs_ == 0) return e;
+  e.cols = matrix_dofs_;
+  e.because =
+      "a constraint block needs one column per DOF (" + std::to_string(matrix_dofs_) + ")";
+  return e;
 }
 
 FileMatrix SceneReader::read_market(const toml::node& file_node, const std::string& key,
-                                    bool rows_need_entries) const {
+                                    const MarketExpectation& expect) const {
+  const bool rows_need_entries = expect.rows_need_entries;
   FileMatrix out;
   out.file = file_name(file_node, key);
   out.where = at(file_node, key);
@@ -82,7 +103,7 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
       std::filesystem::path(file_).parent_path() / std::filesystem::path(out.file);
   input_files_.push_back(resolved.string());
   try {
-    out.matrix = read_matrix_market(resolved.string(), rows_need_entries).matrix;
+    out.matrix = read_matrix_market(resolved.string(), expect).matrix;
   } catch (const MatrixMarketError& e) {
     const std::string where =
         resolved.string() + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string());
@@ -208,11 +229,24 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
                                                             {"stiffness", &model.stiffness_file},
                                                             {"damping", &model.damping_file}};
   const FileMatrix* first = nullptr;
+  // The size each must declare, checked at its size line: the names' count, else the first's.
+  MarketExpectation expected;
+  if (const auto* d = t.get("dofs"); d != nullptr && d->is_array() && !d->as_array()->empty()) {
+    expected.rows = expected.cols = static_cast<long long>(d->as_array()->size());
+    expected.because = "model.dofs names " + std::to_string(expected.rows) + " DOFs";
+  }
   for (const auto& [key, out] : files) {
     if (key != "damping") (void)required(t, path, key);
     if (!is_file(key)) continue;
-    *out = matrix_file(*t.get(key), join(path, std::string(key)));
-    if (first == nullptr) first = out;
+    *out = matrix_file(*t.get(key), join(path, std::string(key)), expected);
+    if (first == nullptr) {
+      first = out;
+      if (expected.rows == 0 && out->matrix.rows() == out->matrix.cols()) {
+        expected.rows = expected.cols = out->matrix.rows();
+        expected.because = out->file + " is " + std::to_string(expected.rows) + " x " +
+                         std::to_string(expected.rows);
+      }
+    }
   }
   if (const auto* d = t.get("dofs"); d != nullptr || first == nullptr) {
     const auto& dofs = array(required(t, path, "dofs"), "model.dofs");
@@ -233,6 +267,7 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
     for (std::size_t i = 1; i <= n; ++i) model.dofs.push_back("u" + std::to_string(i));
   }
   const auto n = static_cast<Eigen::Index>(model.dofs.size());
+  matrix_dofs_ = n;  // load patterns and constraint blocks are checked against it as read
   for (const auto& [key, out] : files) {
     if (!out->given()) continue;
     const auto& node = *t.get(key)->as_table()->get("file");
@@ -313,9 +348,15 @@ void SceneReader::read_constraint_blocks(const toml::node& node,
     if (!prefixes.insert(b.prefix).second) {
       fail(*blocks.get(i), p, "duplicate constraint block name '" + b.prefix + "'");
     }
-    b.A = read_market(required(t, p, "file"), join(p, "file"), /*rows_need_entries=*/true);
+    b.A = read_market(required(t, p, "file"), join(p, "file"), block_size());
     if (const auto* v = t.get("value")) {
-      b.g = matrix_file(*v, join(p, "value"));
+      MarketExpectation value;
+      value.rows = b.A.matrix.rows();
+      value.cols = 1;
+      value.because = "the right-hand side of " + b.A.file + " (" +
+                      std::to_string(b.A.matrix.rows()) + " rows) must be " +
+                      std::to_string(b.A.matrix.rows()) + " x 1";
+      b.g = matrix_file(*v, join(p, "value"), value);
       if (b.g.matrix.cols() != 1 || b.g.matrix.rows() != b.A.matrix.rows()) {
         fail(*v->as_table()->get("file"), join(join(p, "value"), "file"),
              b.g.file + " is " + std::to_string(b.g.matrix.rows()) + " x " +

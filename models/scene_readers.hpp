@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "models/matrix_market.hpp"
 #include "models/scene_spec.hpp"
 #include "models/scene_table.hpp"
 #include "models/toml_access.hpp"
@@ -31,14 +32,20 @@ class SceneReader : public TomlAccess {
   /// The matrix model, Matrix Market files and Rayleigh damping (read_matrix_files.cpp).
   void read_matrix_model(const toml::table& t, ModelSpec& model) const;
   /// `{ file = "K.mtx" }` at `path`, read (relative to the scene's folder) and held sparse.
-  [[nodiscard]] FileMatrix matrix_file(const toml::node& node, const std::string& path) const;
+  /// `expect`: the size it must declare (checked at its size line, before it is read).
+  [[nodiscard]] FileMatrix matrix_file(const toml::node& node, const std::string& path,
+                                       const MarketExpectation& expect = {}) const;
   /// The string at `node` (key path `key`) as a file name: not empty, no NUL character
   /// (read_time_function.cpp).
   [[nodiscard]] std::string file_name(const toml::node& node, const std::string& key) const;
   /// The Matrix Market file named by the string `file_node` (key path `key`).
-  /// `rows_need_entries`: as read_matrix_market's (a constraint block).
+  /// `expect`: as read_matrix_market's (a constraint block's rows need entries, a size known).
   [[nodiscard]] FileMatrix read_market(const toml::node& file_node, const std::string& key,
-                                       bool rows_need_entries = false) const;
+                                       const MarketExpectation& expect = {}) const;
+  /// What a file sized by the matrix model's n DOFs must declare: a load pattern n x 1, a
+  /// constraint block n columns; {} (any size) for other models.
+  [[nodiscard]] MarketExpectation pattern_size() const;
+  [[nodiscard]] MarketExpectation block_size() const;
   /// damping = { rayleigh = [a0, a1] } at `path`.
   void read_rayleigh(const toml::node& node, const std::string& path, ModelSpec& model) const;
   /// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] } at `path`: a0, a1 derived.
@@ -86,6 +93,8 @@ class SceneReader : public TomlAccess {
   const ArrayInputs* arrays_ = nullptr;  ///< matrices and tables given in memory (none: files only)
   /// The files read so far (SceneSpec::input_files), noted by the readers of files.
   mutable std::vector<std::string> input_files_;
+  /// The matrix model's DOF count once [model] is read (0: not a matrix model, or not yet).
+  mutable long long matrix_dofs_ = 0;
 };
 
 }  // namespace condyn

@@ -211,7 +211,9 @@ TEST_CASE(
       "%%MatrixMarket matrix coordinate real general\n2000000000 3 2\n"
       "1 1 1.0\n2 2 1.0\n";
   try {
-    (void)parse_matrix_market(text, /*rows_need_entries=*/true);
+    MarketExpectation block;
+    block.rows_need_entries = true;
+    (void)parse_matrix_market(text, block);
     FAIL("accepted");
   } catch (const MatrixMarketError& e) {
     CHECK(e.line() == 2);
@@ -220,6 +222,37 @@ TEST_CASE(
   // M, C and K may have empty rows (massless, unsprung DOFs): not refused there.
   CHECK(parse_matrix_market("%%MatrixMarket matrix coordinate real general\n3 3 1\n1 1 1.0\n")
             .matrix.rows() == 3);
+}
+
+TEST_CASE("matrix market: a size the caller knows is checked at the size line") {
+  // 3·10⁸ for 3 (the model's size known from M) was allocated in full, 4.7 GB and 8 s, before
+  // the size was compared with M's.
+  MarketExpectation three;
+  three.rows = three.cols = 3;
+  three.because = "M.mtx is 3 x 3";
+  const std::string text =
+      "%%MatrixMarket matrix coordinate real symmetric\n300000000 300000000 1\n1 1 2.0\n";
+  try {
+    (void)parse_matrix_market(text, three);
+    FAIL("accepted");
+  } catch (const MatrixMarketError& e) {
+    CHECK(e.line() == 2);
+    CHECK(std::string(e.what()) ==
+          "the size line declares 300000000 x 300000000 but M.mtx is 3 x 3: is the size line "
+          "right?");
+  }
+  CHECK(parse_matrix_market("%%MatrixMarket matrix coordinate real symmetric\n3 3 1\n1 1 2.0\n",
+                            three)
+            .matrix.rows() == 3);
+  // Only what is known is checked: a load pattern's columns (1), a block's columns (n).
+  MarketExpectation column;
+  column.cols = 1;
+  column.because = "a load pattern is one column";
+  CHECK_THROWS_WITH_AS(
+      (void)parse_matrix_market("%%MatrixMarket matrix coordinate real general\n3 2 1\n1 1 1\n",
+                                column),
+      "the size line declares 3 x 2 but a load pattern is one column: is the size line right?",
+      MatrixMarketError);
 }
 
 TEST_CASE("matrix market: a file that cannot be opened, or is no regular file") {
@@ -339,7 +372,8 @@ stiffness = { file = ")" +
 
   box.write("three.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 1\n1 1 1.0\n");
   CHECK(has(scene_error(box, with_stiffness("three.mtx")),
-            "model.stiffness.file: three.mtx is 3 x 3 but M.mtx is 4 x 4"));
+            "model.stiffness.file: " + box.path("three.mtx").string() +
+                ":2: the size line declares 3 x 3 but M.mtx is 4 x 4: is the size line right?"));
   box.write("wide.mtx", "%%MatrixMarket matrix coordinate real general\n4 5 1\n1 1 1.0\n");
   const std::string wide = R"([model]
 type = "matrix"
@@ -475,8 +509,8 @@ file = "A2.mtx"
 
   box.write("wide.mtx", "%%MatrixMarket matrix coordinate real general\n1 5 1\n1 1 1.0\n");
   CHECK(has(scene_error(box, condyn::test::replace(base, "A2.mtx", "wide.mtx")),
-            "constraint_block[2].file: wide.mtx is 1 x 5: a constraint block needs one column "
-            "per DOF (4)"));
+            "wide.mtx:2: the size line declares 1 x 5 but a constraint block needs one column "
+            "per DOF (4): is the size line right?"));
   box.write("empty.mtx", "%%MatrixMarket matrix coordinate real general\n2 4 1\n1 1 1.0\n");
   CHECK(has(scene_error(box, condyn::test::replace(base, "A2.mtx", "empty.mtx")),
             "empty.mtx:2: the size line declares 2 rows but 1 entries, so some row has none"));
@@ -488,7 +522,8 @@ file = "A2.mtx"
   CHECK(has(scene_error(box, condyn::test::replace(base, "file = \"A2.mtx\"",
                                                    "file = \"A2.mtx\"\nvalue = { file = "
                                                    "\"g2.mtx\" }")),
-            "constraint_block[2].value.file: g2.mtx is 2 x 1"));
+            "g2.mtx:2: the size line declares 2 x 1 but the right-hand side of A2.mtx (1 rows) "
+            "must be 1 x 1"));
   CHECK(has(scene_error(box, condyn::test::replace(base, "file = \"A2.mtx\"",
                                                    "file = \"A2.mtx\"\nname = \"block1_\"")),
             "duplicate constraint block name 'block1_'"));
@@ -531,7 +566,8 @@ pattern = { file = "f3.mtx" }
 value = 1.0
 )" + kSolve;
   CHECK(has(scene_error(box, base),
-            "load[1].pattern.file: f3.mtx is 3 x 1: a load pattern is n x 1 (n = 4 DOFs)"));
+            "f3.mtx:2: the size line declares 3 x 1 but a load pattern is n x 1 (n = 4 DOFs): is "
+            "the size line right?"));
   CHECK(has(scene_error(box, condyn::test::replace(base, "value = 1.0", "dof = \"u1\"\nvalue = 1")),
             "load[1].pattern: give either dof or pattern, not both"));
 }
