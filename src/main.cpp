@@ -4,6 +4,7 @@
 #include <malloc.h>
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <new>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -523,6 +524,13 @@ int main(int argc, char** argv) {
   } catch (const SchemeNotApplicable& e) {
     std::cerr << "error: " << scene << ": " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    // What() is "std::bad_alloc": say what it means (a memory limit, ulimit -v, or a model
+    // beyond the machine's memory).
+    std::cerr << "error: " << (scene.empty() ? "" : scene + ": ")
+              << "out of memory: the process could not allocate what this run needs (the "
+                 "machine's memory, or a limit such as ulimit -v)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << (scene.empty() ? "" : scene + ": ") << e.what() << "\n";
     return 1;
