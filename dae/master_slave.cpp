@@ -38,6 +38,12 @@ Eigen::MatrixXd block(const RowMajor& a, const std::vector<int>& rows, const std
   return b;
 }
 
+/// The Euclidean norm of row r of `a` (compressed), without overflow or underflow.
+double row_norm(const RowMajor& a, int r) {
+  const auto begin = a.outerIndexPtr()[r], end = a.outerIndexPtr()[r + 1];
+  return Eigen::Map<const Eigen::VectorXd>(a.valuePtr() + begin, end - begin).stableNorm();
+}
+
 }  // namespace
 
 MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
@@ -126,15 +132,17 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
       out.masters.push_back(i);
     }
   }
-  // Per group: A_S (its rows, its slaves) and A_R (its rows, its masters); the slave block of A is
-  // block diagonal over the groups, so its singular values are the union of the groups'. A group
-  // with fewer slaves than rows leaves the block singular (and one with more leaves another short).
+  // Per group: A_S (its rows, its slaves) and A_R (its rows, its masters). Each group's slaves are
+  // solved from its own rows, so what roundoff does to them is that group's condition number,
+  // of its rows normalised (a row's scale is the user's choice of units: 1e12 u1 = 0 beside
+  // u2 = 0 is two well-posed supports, not a condition of 1e12). A group with fewer slaves than
+  // rows leaves its block singular (and one with more leaves another short).
   std::vector<Eigen::Triplet<double>> t, gt;
   t.reserve(out.masters.size());
   for (std::size_t k = 0; k < out.masters.size(); ++k) {
     t.emplace_back(out.masters[k], static_cast<int>(k), 1.0);
   }
-  double smax = 0.0, smin = INFINITY;
+  double worst = 1.0;  // the largest condition number of a group's row-normalised slave block
   std::vector<int> slaves_in, masters_in;
   for (const auto& g : groups) {
     slaves_in.clear();
@@ -142,14 +150,20 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
     for (int d : g.dofs)
       (slave_at[static_cast<std::size_t>(d)] >= 0 ? slaves_in : masters_in).push_back(d);
     if (slaves_in.size() != g.rows.size()) {
-      smin = 0.0;
+      worst = INFINITY;
       continue;
     }
     const Eigen::MatrixXd a_s = block(a, g.rows, slaves_in, local);
     const Eigen::MatrixXd a_r = block(a, g.rows, masters_in, local);
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a_s);
-    smax = std::max(smax, svd.singularValues()(0));
-    smin = std::min(smin, svd.singularValues()(svd.singularValues().size() - 1));
+    Eigen::MatrixXd normalised = a_s;
+    for (Eigen::Index i = 0; i < normalised.rows(); ++i) {
+      const double norm = row_norm(a, g.rows[static_cast<std::size_t>(i)]);
+      if (norm > 0.0) normalised.row(i) /= norm;
+    }
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(normalised);
+    const auto& sv = svd.singularValues();
+    const double smin = sv(sv.size() - 1);
+    worst = std::max(worst, smin > 0.0 ? sv(0) / smin : INFINITY);
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(a_s);
     // A_S⁻¹ A_R; a group without masters (a support, say) has none to solve for: Eigen's solve
     // with an empty right-hand side binds a reference through a null pointer (UBSan).
@@ -169,10 +183,10 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
       }
     }
   }
-  if (!(smin > smax / kMaxSlaveCondition)) {
+  if (!(worst <= kMaxSlaveCondition)) {
     std::ostringstream s;
     s << "the slave DOFs do not determine the constraints (slave block condition number "
-      << (smin > 0 ? smax / smin : INFINITY) << "): choose other slaves";
+      << worst << ", rows normalised): choose other slaves";
     throw std::invalid_argument(s.str());
   }
   out.T.resize(n, static_cast<Eigen::Index>(out.masters.size()));

@@ -82,6 +82,26 @@ TEST_CASE("master-slave transform refuses slaves that cannot carry the constrain
   CHECK_THROWS_AS((void)master_slave_transform(A, {1, 1}), std::invalid_argument);
 }
 
+TEST_CASE("master-slave transform: a row's scale is no ill-conditioning") {
+  // 1e12 u1 = 0 beside u2 = 0 (a 'big number' support, as some FE exports write one): two
+  // independent, well-posed groups, refused before as a slave block of condition 1e12.
+  Eigen::MatrixXd a(2, 3);
+  a << 1e12, 0, 0,  //
+      0, 1, 0;
+  const Eigen::SparseMatrix<double> A = a.sparseView();
+  const MasterSlave ms = master_slave_transform(A);
+  CHECK(ms.slaves == std::vector<int>{0, 1});
+  CHECK(Eigen::MatrixXd(A * ms.T).isZero(0.0));
+  CHECK(Eigen::MatrixXd(A * ms.G).isApprox(Eigen::MatrixXd::Identity(2, 2), 1e-15));
+  // Within one group too: rows scaled by 1e12 and 1 of a well-conditioned pair.
+  Eigen::MatrixXd b(2, 3);
+  b << 1e12, -1e12, 0,  //
+      0, 1, -1;
+  const MasterSlave scaled = master_slave_transform(b.sparseView());
+  CHECK(Eigen::MatrixXd(b * Eigen::MatrixXd(scaled.G)).isApprox(Eigen::MatrixXd::Identity(2, 2),
+                                                                1e-15));
+}
+
 TEST_CASE("reduced ODE Jacobian agrees with central differences of the residual") {
   // A damped, rheonomic case so that every block (K̂, Ĉ, M̂) is present.
   const std::string text = R"([model]
