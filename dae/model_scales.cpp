@@ -32,7 +32,7 @@ std::optional<Eigen::VectorXd> constrained_eigenvalues(const Eigen::MatrixXd& M,
   if (N.cols() == 0) return Eigen::VectorXd();
   const Eigen::MatrixXd Mr = N.transpose() * M * N;
   const Eigen::MatrixXd Kt = N.transpose() * K * N;
-  const Eigen::MatrixXd Kr = 0.5 * (Kt + Kt.transpose());
+  const Eigen::MatrixXd Kr = 0.5 * Kt + 0.5 * Kt.transpose();  // no overflow at 1e308
   const Eigen::LLT<Eigen::MatrixXd> llt(Mr);
   if (llt.info() != Eigen::Success) return std::nullopt;
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Kr, Mr,
@@ -142,6 +142,13 @@ ModelScales model_scales(const Model& model) {
   return s;
 }
 
+namespace {
+
+/// The largest derived absolute tolerance: its error weight, 1e-300, still a normal double.
+constexpr double kMaxDerivedAtol = 1e300;
+
+}  // namespace
+
 AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& settings) {
   const ModelScales s = model_scales(model);
   const double t_end = settings.t_end > 0.0 ? settings.t_end : 1.0;
@@ -160,11 +167,16 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   a.velocity = settings.atol_velocity.value_or(
       std::max({a.displacement / sustained, v_roundoff, 1e-30 * a.displacement}));
   // The derived ones never below kMinAtol, where error weights stop fitting in a double's
-  // error norm (a tiny mass or a huge coefficient could take them there).
-  a.velocity = std::max(a.velocity, kMinAtol);
+  // error norm (a tiny mass or a huge coefficient could take them there), nor above
+  // kMaxDerivedAtol: masses of 1e308 or an atol of 1e307 made them infinite, and the run
+  // stopped on 'atol_multiplier must be > 0 and finite', a key nobody set.
+  const auto usable = [](double atol) {
+    return std::isnan(atol) ? kMaxDerivedAtol : std::clamp(atol, kMinAtol, kMaxDerivedAtol);
+  };
+  a.velocity = usable(a.velocity);
   a.multiplier = settings.atol_multiplier.value_or(
-      std::max(a.displacement * s.mass / (T * T * s.coefficient), kMinAtol));
-  a.mu = settings.atol_mu.value_or(std::max(a.velocity / s.coefficient, kMinAtol));
+      usable(a.displacement * s.mass / (T * T * s.coefficient)));
+  a.mu = settings.atol_mu.value_or(usable(a.velocity / s.coefficient));
   a.time_scale = T;
   const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;
   a.first_step = std::sqrt(settings.rtol) * fast;

@@ -55,7 +55,7 @@ void ModelBuilder::apply_modal_damping() {
     c[i] = 2.0 * z * omega;
   }
   const Eigen::MatrixXd C = Mphi * c.asDiagonal() * Mphi.transpose();
-  const Eigen::MatrixXd symmetric = 0.5 * (C + C.transpose());
+  const Eigen::MatrixXd symmetric = 0.5 * C + 0.5 * C.transpose();  // no overflow at 1e308
   model_.C = symmetric.sparseView(1.0, 1e-14 * symmetric.cwiseAbs().maxCoeff());
   model_.C.makeCompressed();
   std::ostringstream rule;

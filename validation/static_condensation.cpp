@@ -23,7 +23,8 @@ std::string text(double x) {
   return s.str();
 }
 
-Eigen::MatrixXd symmetric(const Eigen::MatrixXd& S) { return 0.5 * (S + S.transpose()); }
+// Halves first: S + Sᵀ overflows for entries beyond 9e307 (a mass of 1e308 read as none).
+Eigen::MatrixXd symmetric(const Eigen::MatrixXd& S) { return 0.5 * S + 0.5 * S.transpose(); }
 
 }  // namespace
 

@@ -169,6 +169,16 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
   CHECK(v[4] == 1e-3);
   CHECK(v[5] == 2e-9);
 
+  // A huge atol (accepted: the user's unit) derives no infinite one: atol 1e307 made the
+  // multipliers' overflow, and the run stopped on 'atol_multiplier must be > 0 and finite'.
+  SolveSpec huge = scene.spec.solve;
+  huge.atol = 1e307;
+  const AbsoluteTolerances h = absolute_tolerances(model, huge);
+  CHECK(h.velocity <= 1e300);
+  CHECK(h.multiplier == 1e300);
+  CHECK(h.mu <= 1e300);
+  CHECK_NOTHROW(integrator_options(model, huge).validate());
+
   for (const char* key : {"atol_velocity", "atol_multiplier", "atol_mu"}) {
     CAPTURE(std::string(key));
     for (const char* bad : {"0.0", "-1e-6", "nan", "inf", "\"small\""}) {
