@@ -166,3 +166,23 @@ TEST_CASE("condyn's N_Vector operations give SUNDIALS' results") {
     check_same(p[5], f[5]);
   }
 }
+
+TEST_CASE("weighted norms do not overflow where their squares would") {
+  // |x w| = 1e160 squares to inf: SUNDIALS' norm is inf, and IDA's first step (0.5 over the
+  // norm of y') was 0, refused as 'tstop is behind current t' for a load of 1e150.
+  const Vectors v(4, 3);
+  N_Vector x = v.fast[0], w = v.fast[1], id = v.fast[2];
+  const double entries[4] = {1e160, -2e160, 0.0, 3e159};
+  for (long i = 0; i < 4; ++i) {
+    NV_Ith_S(x, i) = entries[i];
+    NV_Ith_S(w, i) = 1.0;
+    NV_Ith_S(id, i) = i == 1 ? 0.0 : 1.0;  // the largest entry masked out
+  }
+  const double sum = 1.0 + 4.0 + 0.0 + 0.09;  // of (x / 1e160)², exact enough at 1e-15
+  CHECK(N_VWrmsNorm(x, w) == doctest::Approx(1e160 * std::sqrt(sum / 4.0)).epsilon(1e-15));
+  CHECK(N_VWL2Norm(x, w) == doctest::Approx(1e160 * std::sqrt(sum)).epsilon(1e-15));
+  CHECK(N_VWrmsNormMask(x, w, id) ==
+        doctest::Approx(1e160 * std::sqrt((sum - 4.0) / 4.0)).epsilon(1e-15));
+  NV_Ith_S(x, 0) = INFINITY;  // an infinite entry stays infinite
+  CHECK(std::isinf(N_VWrmsNorm(x, w)));
+}
