@@ -1,5 +1,7 @@
 #include "python/compare_records.hpp"
 
+#include "python/scene_from_python.hpp"
+
 #include <cmath>
 
 namespace py = pybind11;
@@ -23,7 +25,7 @@ py::list compare_records(const CompareResult& result) {
     d["atol"] = r.atol;
     d["ok"] = r.ok;
     d["skipped"] = false;
-    d["message"] = r.message;
+    d["message"] = system_text(r.message);
     d["reference"] = result.reference_kind;
     // A failed run has no figures (None), as runs.csv leaves them empty: 0 read as a perfect run.
     const auto figure = [&r](double v) {
@@ -58,7 +60,7 @@ py::list compare_records(const CompareResult& result) {
     d["scheme"] = to_string(scheme);
     d["ok"] = false;
     d["skipped"] = true;
-    d["message"] = reason;
+    d["message"] = system_text(reason);
     d["reference"] = result.reference_kind;
     out.append(d);
   }

@@ -91,6 +91,8 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
   without_gil([&] {
     try {
       model.emplace(build_model(spec, report));
+      // A bad [[check]] is bad input here as in the command's run (which refuses it, exit 2).
+      if (!spec.checks.empty()) (void)CheckEvaluator(*model, spec.checks, spec.file);
       release_model_input(spec);
       const RunHooks hooks = hooks_for(spec.output.quantities);
       result = solve(*model, spec.solve, hooks);
@@ -135,16 +137,22 @@ py::tuple compare(const py::handle& scene, const std::optional<std::vector<doubl
     bad_argument(spec, "", e.what());
   }
   CompareResult result;
+  std::string no_reference;
   without_gil([&] {
     try {
       result = run_compare(spec, options);
     } catch (const SchemeNotApplicable& e) {
       throw SceneError(scene_message(spec.file, SourcePoint{}, e.what()));
+    } catch (const NoReferenceError& e) {
+      no_reference = e.what();  // raised as IntegrationError, as a run's failure
     }
   });
+  if (!no_reference.empty()) {
+    return py::make_tuple(py::list(), py::list(), python::system_text(no_reference));
+  }
   py::list warnings;
   for (const auto& w : result.warnings) warnings.append(python::system_text(w));
-  return py::make_tuple(python::compare_records(result), warnings);
+  return py::make_tuple(python::compare_records(result), warnings, py::none());
 }
 
 /// The scene's [[check]] tables, evaluated on one run: (scene, scheme, steps, wall_s, failure,
@@ -165,11 +173,11 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
   py::list checks;
   for (const CheckOutcome& o : result.outcomes) {
     py::dict d;
-    d["quantity"] = o.quantity;
+    d["quantity"] = python::system_text(o.quantity);
     d["computed"] = o.computed;
     d["bound"] = o.bound;
     d["passed"] = o.passed;
-    d["text"] = o.text;
+    d["text"] = python::system_text(o.text);
     checks.append(d);
   }
   py::dict d;

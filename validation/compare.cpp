@@ -94,7 +94,7 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
           continue;
         }
         // Without a reference no run can be scored: say which runs failed and what to change.
-        throw std::runtime_error(
+        throw NoReferenceError(
             "no reference solution: there is no exact one (" + std::string(e.what()) +
             "), and the tight reference runs failed at rtol " + sci(tight) +
             " (1/100 of the smallest --tolerances value): " +

@@ -5,6 +5,7 @@
 /// and validation/compare-output.md.
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,13 @@ struct BaumgarteStudyPoint {
   /// Relative max-norm displacement error against the reference trajectory (NaN against a
   /// published reference, which has no trajectory).
   double error_u = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// No run of the sweep can be scored: no exact or published solution, and the tight reference
+/// runs failed (what() says which and why, and what to change).
+class NoReferenceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct CompareResult {

@@ -94,12 +94,15 @@ def compare(scene, tolerances=None, schemes=None, repeats=1, drift_rtol=None, ma
     `max_wall_time` (seconds) budget each run as the command's --max-steps and --max-wall-time
     (0 or None: none); a run over budget has ok=False and says so in its message. An argument
     of another type raises SceneError naming it. The scene's warnings are issued as
-    UserWarning."""
-    records, scene_warnings = _condyn.compare(
+    UserWarning. When no run can be scored (no exact solution, and the tight reference runs
+    failed) it raises IntegrationError, whose result is None."""
+    records, scene_warnings, no_reference = _condyn.compare(
         scene, _list(scene, "tolerances", tolerances, _number),
         _list(scene, "schemes", schemes, _text), _integer(scene, "repeats", repeats),
         _number(scene, "drift_rtol", drift_rtol), _integer(scene, "max_steps", max_steps) or 0,
         _number(scene, "max_wall_time", max_wall_time) or 0.0)
+    if no_reference is not None:
+        raise IntegrationError(f"{_name(scene)}: {no_reference}", None)
     for w in scene_warnings:
         warnings.warn(f"{_name(scene)}: {w}", UserWarning, stacklevel=2)
     return records

@@ -2,6 +2,7 @@
 compare's per-run budget."""
 
 import copy
+import os
 import tomllib
 
 import pytest
@@ -60,6 +61,26 @@ def test_check_lists_the_scenes_warnings_as_run_does():
     warned = condyn.check(scene)["warnings"]
     assert warned == condyn.run(scene).summary["warnings"]
     assert warned == ["rtol 0.5 asks for fewer than 2 correct digits"]
+
+
+def test_run_refuses_a_bad_check_as_the_cli_run_does(quickstart_dict):
+    # docs/checks.md: `condyn run` refuses the checks `condyn check` would (exit 2).
+    quickstart_dict["check"] = [{"quantity": "u9", "max_abs": 1.0}]
+    with pytest.raises(condyn.SceneError, match=r"<dict>: check\[1\]\.quantity: no output column"):
+        condyn.run(quickstart_dict)
+
+
+def test_check_quotes_a_reference_path_that_is_not_utf8(tmp_path, quickstart_dict):
+    # A folder named with the byte 0xff (surrogateescape): the check's text quotes the path as
+    # the same str; it raised UnicodeDecodeError after the run, and the result was lost.
+    folder = tmp_path / os.fsdecode(b"ref\xff")
+    folder.mkdir()
+    ref = folder / "ref.csv"
+    ref.write_text("t,u3\n0,0\n2,0\n")
+    quickstart_dict["check"] = [{"quantity": "u3", "reference": {"file": str(ref)},
+                                 "tolerance": 10.0}]
+    result = condyn.check(quickstart_dict)
+    assert str(ref) in result["checks"][0]["text"]
 
 
 def test_check_refuses_a_scene_without_checks(quickstart_dict):

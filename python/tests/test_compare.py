@@ -57,3 +57,14 @@ def test_compare_issues_the_scenes_warnings(quickstart_dict):
     quickstart_dict.setdefault("initial", {})["displacement"] = {"u2": 2e15, "u3": 2e15}
     with pytest.warns(UserWarning, match=r"<dict>: \[initial\] displacements up to magnitude"):
         condyn.compare(quickstart_dict, tolerances=[1e-4], schemes=["ggl"])
+
+
+def test_compare_without_a_reference_raises_integration_error():
+    # A nonlinear scene (no exact solution) whose tight reference runs exhaust its step budget:
+    # no run can be scored. It was a bare RuntimeError, documented nowhere.
+    scene = {"model": {"type": "sleigh", "mass": 1.0, "inertia": 0.5, "contact_offset": 0.3},
+             "initial": {"velocity": {"x": 1.0, "y": -0.3, "theta": 1.0}},
+             "solve": {"t_end": 0.5, "output_step": 0.05, "max_steps": 5}}
+    with pytest.raises(condyn.IntegrationError, match=r"^<dict>: no reference solution") as e:
+        condyn.compare(scene, tolerances=[1e-4], schemes=["ggl"])
+    assert e.value.result is None
