@@ -213,9 +213,18 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
             << "\n";
   if (!no_plots) std::cout << draw_compare_plots(dir) << "\n";
   if (const int failed = result.failed_runs(); failed > 0) {
+    // The sweep's runs are rows of runs.csv; the drift-history runs are in runs.json.
+    const int history = failed - static_cast<int>(std::count_if(
+                                     result.runs.begin(), result.runs.end(),
+                                     [](const auto& r) { return !r.ok; }));
     std::cerr << (allow_failures ? "warning: " : "error: ") << failed << " run"
               << (failed == 1 ? "" : "s") << " of the comparison failed (see FAILED above and "
-              << dir << "/runs.csv)"
+              << dir << "/runs.csv"
+              << (history > 0 ? ", and for the " + std::to_string(history) +
+                                    " drift-history run" + (history == 1 ? "" : "s") + " " +
+                                    dir + "/runs.json"
+                              : std::string())
+              << ")"
               << (allow_failures ? "; tolerated by --allow-failures"
                                  : "; --allow-failures tolerates them")
               << "\n";

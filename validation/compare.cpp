@@ -270,10 +270,12 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
     out.histories.push_back(std::move(h));
   }
 
-  // Baumgarte study: the default gains scaled over a grid.
-  if (options.baumgarte_study &&
-      std::find(schemes.begin(), schemes.end(), Scheme::baumgarte) != schemes.end() &&
-      base.constraint_count() > 0) {
+  // Baumgarte study: the default gains scaled over a grid. Asked for, it runs whatever
+  // --schemes lists (it wrote a header-only file when baumgarte was not among them).
+  if (options.baumgarte_study && base.constraint_count() == 0 && options.progress) {
+    options.progress("Baumgarte study: not run (the scene has no constraints to stabilise)");
+  }
+  if (options.baumgarte_study && base.constraint_count() > 0) {
     const BaumgarteGains defaults = baumgarte_gains(base, drift_settings);
     for (double fa : options.baumgarte_factors) {
       for (double fb : options.baumgarte_factors) {

@@ -2,9 +2,11 @@
 // codes and budgets (issue 14): what a CI job sees.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -232,6 +234,9 @@ TEST_CASE(
   CAPTURE(r.err);
   CHECK(r.code == 1);
   CHECK(r.err.find("error: 4 runs of the comparison failed") != std::string::npos);
+  // runs.csv holds the sweep's two; the two drift-history runs are in runs.json.
+  CHECK(r.err.find("out/runs.csv, and for the 2 drift-history runs out/runs.json)") !=
+        std::string::npos);
   CHECK(slurp(box.path("out/runs.csv")).find("step budget") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(box.path("out/baumgarte_study.csv")));
   const Result tolerated = box.run(args + " --allow-failures");
@@ -244,6 +249,15 @@ TEST_CASE(
   CHECK(study.code == 0);
   // The oscillator has no constraint: the study has nothing to stabilize and writes an empty grid.
   CHECK(slurp(box.path("out2/baumgarte_study.csv")).rfind("alpha,beta,default,status", 0) == 0);
+  CHECK(study.err.find("Baumgarte study: not run (the scene has no constraints") !=
+        std::string::npos);
+  // Asked for, the study runs whatever --schemes lists: its 16 points and a header.
+  box.write("c.toml", condyn::test::kTwoMassesScene);
+  CHECK(box.run("compare c.toml --tolerances 1e-4 --schemes ggl --repeats 1 --no-plots "
+                "--baumgarte-study --out-dir out3")
+            .code == 0);
+  const std::string grid = slurp(box.path("out3/baumgarte_study.csv"));
+  CHECK(std::count(grid.begin(), grid.end(), '\n') == 17);
 
   // Figures an earlier comparison drew describe other runs: gone once this one writes its files
   // (drawn again from them, or not at all under --no-plots); the user's own files stay.
