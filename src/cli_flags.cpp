@@ -100,20 +100,36 @@ CLI::Validator positive_check() {
           "NUMBER > 0"};
 }
 
+namespace {
+
+/// A value that is a flag (`--out --scheme ggl`: --out took '--scheme' and ggl was left over):
+/// the value is missing. A file so named can be given as ./--name.
+std::string flag_as_value(const std::string& text, bool file) {
+  if (text.size() > 2 && text.compare(0, 2, "--") == 0) {
+    return "a value is missing ('" + text + "' is a flag" +
+           (file ? "; a file named so is ./" + text : std::string()) + ")";
+  }
+  return {};
+}
+
+}  // namespace
+
 CLI::Validator file_name_check() {
   return {[](std::string& text) {
-            return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos
-                       ? std::string("an empty name: name a file (or - for standard output)")
-                       : std::string();
+            if (text.find_first_not_of(" \t\n\r\v\f") == std::string::npos) {
+              return std::string("an empty name: name a file (or - for standard output)");
+            }
+            return flag_as_value(text, true);
           },
           "FILE"};
 }
 
 CLI::Validator non_empty_check() {
   return {[](std::string& text) {
-            return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos
-                       ? std::string("is empty (leave the flag out instead)")
-                       : std::string();
+            if (text.find_first_not_of(" \t\n\r\v\f") == std::string::npos) {
+              return std::string("is empty (leave the flag out instead)");
+            }
+            return flag_as_value(text, false);
           },
           "TEXT"};
 }

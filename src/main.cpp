@@ -4,11 +4,13 @@
 #include <malloc.h>
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <new>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <new>
 #include <optional>
 #include <sstream>
 
@@ -315,7 +317,9 @@ int stress(std::string dir, const std::string& families, bool no_plots) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_command(int argc, char** argv) {
   CLI::App app{"condyn: constrained dynamic systems, constraints as algebraic equations"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("condyn ") + CONDYN_VERSION);
@@ -463,6 +467,17 @@ int main(int argc, char** argv) {
   auto* validate_cmd = app.add_subcommand("validate", "run the built-in validation suite");
   validate_cmd->add_flag("--quiet", validate_options.quiet, "print only the summary tables");
 
+  // An option before the command that condyn does not have (-x, --versio): CLI11 would say
+  // only "A subcommand is required".
+  if (argc > 1 && argv[1][0] == '-') {
+    const std::string first = argv[1];
+    if (first != "-h" && first != "--help" && first != "--version") {
+      std::cerr << "error: unknown option '" << first
+                << "' (condyn takes --help and --version before a command; condyn --help lists "
+                   "the commands)\n";
+      return 2;
+    }
+  }
   // A first word that names no command: CLI11 would say only "A subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {
     std::string names;
@@ -545,4 +560,17 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int code = run_command(argc, argv);
+  // What a command printed to standard output (info's report, compare's table) is its product:
+  // a write that failed (a full disk, /dev/full, a closed pipe) is a failure, not exit 0.
+  if (!(std::cout << std::flush)) {
+    std::cerr << "error: writing standard output failed (" << std::strerror(errno) << ")\n";
+    return code == 0 ? 1 : code;
+  }
+  return code;
 }

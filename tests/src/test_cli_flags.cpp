@@ -1,7 +1,9 @@
 // Command-line values are read strictly: a number flag takes a whole decimal number in its range,
 // every message is short and names the flag, and `--version` answers.
 #include <doctest/doctest.h>
+#include <sys/wait.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -73,6 +75,9 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       {"run s.toml --scheme '\t' --out r.csv", "--scheme", "is empty"},  // a tab
       {"run s.toml --out ' '", "--out", "an empty name"},
       {"compare ''", "scene", "is empty: name a scene file, or leave it out"},
+      // A flag where a value was due: --out took '--scheme', and ggl was left over.
+      {"run s.toml --out --scheme ggl", "--out", "a value is missing ('--scheme' is a flag"},
+      {"run s.toml --scheme --out r.csv", "--scheme", "a value is missing ('--out' is a flag)"},
       // Below the double range a number is still one: its range is what is wrong.
       {"run s.toml --atol 1e-320 --out r.csv", "--atol",
        "1e-320 is out of range: an absolute tolerance is at least 1e-100"},
@@ -101,7 +106,19 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
     CHECK(r.err.size() < kShortMessage + 40);  // + "Run with --help for more information."
     CHECK(!contains(r.err, "[1/"));            // compare refused before its first run
   }
+  // An option before the command that condyn does not have; a report that cannot be written.
+  for (const char* unknown : {"-x", "--versio"}) {
+    const Result r = box.run(unknown);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "error: unknown option '" + std::string(unknown) + "'"));
+  }
+  const int full = std::system(("cd '" + box.path("").string() + "' && '" + CONDYN_BINARY +
+                                "' info s.toml > /dev/full 2> full.txt")
+                                   .c_str());
+  CHECK((WIFEXITED(full) && WEXITSTATUS(full) == 1));
+  CHECK(contains(condyn::test::slurp(box.path("full.txt")), "error: writing standard output failed"));
   // What stays accepted.
+  CHECK(box.run("run s.toml --out ./--r.csv").code == 0);
   CHECK(box.run("run s.toml --max-steps 2147483647 --out r.csv").code == 0);
   CHECK(box.run("run s.toml --max-steps +01000000000 --out r.csv").code == 0);
   CHECK(box.run("run s.toml --rtol 1e-6 --atol 1E-9 --out r.csv").code == 0);
