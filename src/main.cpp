@@ -446,8 +446,10 @@ int run_command(int argc, char** argv) {
       ->add_option("--out-dir", plot_args.out_dir,
                    "folder for the figures (default: beside RESULT)")
       ->check(non_empty_check());
-  plot_cmd->add_option("--format", plot_args.formats,
-                       "comma-separated: png, pdf, svg (default: png,pdf)");
+  plot_cmd
+      ->add_option("--format", plot_args.formats,
+                   "comma-separated: png, pdf, svg (default: png,pdf)")
+      ->check(non_empty_check());
 
   std::string stress_dir, stress_families_list;
   bool stress_no_plots = false;

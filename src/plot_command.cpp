@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "src/cli_flags.hpp"
 #include "src/hdf5_output.hpp"
 #include "src/output_files.hpp"
 #include "src/report_format.hpp"
@@ -36,23 +37,39 @@ int plot_result(const PlotArgs& args) {
                ": not a result file: condyn plot reads the .csv or .h5 that "
                "condyn run writes");
   }
-  std::istringstream formats(args.formats);
-  std::string format;
-  std::vector<std::string> format_list;
-  while (std::getline(formats, format, ',')) {
+  // The list rules of the other lists: no empty item, none twice, blanks ignored.
+  const std::vector<std::string> format_list = split_list("--format", args.formats);
+  std::string formats;
+  for (const auto& format : format_list) {
     if (format != "png" && format != "pdf" && format != "svg") {
       return bad("--format: unknown format '" + format + "' (png, pdf, svg)");
     }
-    format_list.push_back(format);
+    formats += (formats.empty() ? "" : ",") + format;
   }
-  if (format_list.empty()) return bad("--format: empty (png, pdf, svg, or a list of them)");
   const fs::path out_dir = args.out_dir.empty() ? result.parent_path() : fs::path(args.out_dir);
+  // A folder made here goes again when nothing is drawn into it (a --dofs that matches none).
+  fs::path created;
   if (!out_dir.empty()) {
+    if (!fs::exists(out_dir, ec)) {
+      fs::path top = out_dir;  // the outermost folder that does not exist yet
+      while (top.has_parent_path() && !top.parent_path().empty() &&
+             !fs::exists(top.parent_path(), ec)) {
+        top = top.parent_path();
+      }
+      created = top;
+    }
     fs::create_directories(out_dir, ec);
     if (!fs::is_directory(out_dir)) {
       return bad("--out-dir " + out_dir.string() + ": cannot create the folder");
     }
   }
+  const auto remove_created = [&] {
+    if (created.empty()) return;
+    for (fs::path p = out_dir;; p = p.parent_path()) {  // empty folders only, inner first
+      fs::remove(p, ec);
+      if (p == created || !p.has_parent_path()) break;
+    }
+  };
   // Every figure the script may write is checked as run checks its files, before any is drawn:
   // a folder in the way, a file without write permission (protected), a folder that takes no
   // new file, the result itself. The script then writes them (the plan's temporaries go).
@@ -67,6 +84,7 @@ int plot_result(const PlotArgs& args) {
     }
     plan.check();
   } catch (const OutputError& e) {
+    remove_created();
     return bad(e.what());
   }
   const fs::path script = validation_script("plot_result.py");
@@ -75,9 +93,10 @@ int plot_result(const PlotArgs& args) {
     return 1;
   }
   std::vector<std::string> script_args = {
-      args.result, "--out-dir", out_dir.empty() ? "." : out_dir.string(), "--format", args.formats};
+      args.result, "--out-dir", out_dir.empty() ? "." : out_dir.string(), "--format", formats};
   if (!args.dofs.empty()) script_args.insert(script_args.end(), {"--dofs", args.dofs});
   const int code = run_python_script(script, script_args, "");
+  if (code != 0) remove_created();
   switch (code) {
     case 0:
       return 0;

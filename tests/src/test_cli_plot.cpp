@@ -117,7 +117,13 @@ TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF")
   // Only * is a wildcard, as in [output] dofs: ? is a character of a name.
   refused("plot r.csv --dofs '?'", "--dofs: '?' matches no DOF of r.csv");
   refused("plot r.csv --format gif", "--format: unknown format 'gif'");
-  refused("plot r.csv --format ''", "--format: empty");
+  refused("plot r.csv --format ''", "--format: is empty");
+  // The list rules of every list flag: no stray comma, nothing twice.
+  refused("plot r.csv --format png,", "--format: an empty item in 'png,'");
+  refused("plot r.csv --format png,png", "--format: 'png' is listed twice");
+  // A folder made for the figures goes again when nothing is drawn.
+  refused("plot r.csv --out-dir new/inner --dofs zz", "--dofs: 'zz' matches no DOF");
+  CHECK_FALSE(std::filesystem::exists(box.path("new")));
   // The figures are checked before any is drawn, as run's files are: a folder in the way, a
   // protected (read-only) file.
   std::filesystem::create_directories(box.path("r_energy.pdf"));
