@@ -20,23 +20,48 @@ std::string trim(std::string_view s) {
   return std::string(s.substr(first, last - first + 1));
 }
 
-std::vector<std::string> cells(const std::string& line) {
+/// The cells of a line, trimmed. A cell may be in double quotes, as R's write.csv writes names
+/// (RFC 4180): a comma inside is part of it, "" stands for one quote, the quotes go.
+std::vector<std::string> cells(const std::string& line, int line_no) {
   std::vector<std::string> out;
-  std::size_t begin = 0;
+  std::size_t i = 0;
   while (true) {
-    const auto comma = line.find(',', begin);
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    std::string cell;
+    if (i < line.size() && line[i] == '"') {
+      ++i;
+      while (true) {
+        if (i >= line.size()) {
+          throw TimeTableError(line_no, "a double quote opens a cell and none closes it");
+        }
+        if (line[i] == '"') {
+          if (i + 1 < line.size() && line[i + 1] == '"') {
+            cell += '"';
+            i += 2;
+            continue;
+          }
+          ++i;
+          break;
+        }
+        cell += line[i++];
+      }
+      const auto comma = line.find(',', i);
+      if (!trim(std::string_view(line).substr(i, comma == std::string::npos ? std::string::npos
+                                                                                : comma - i))
+               .empty()) {
+        throw TimeTableError(line_no, "text follows the closing double quote of a cell");
+      }
+      out.push_back(cell);
+      if (comma == std::string::npos) return out;
+      i = comma + 1;
+      continue;
+    }
+    const auto comma = line.find(',', i);
     out.push_back(trim(std::string_view(line).substr(
-        begin, comma == std::string::npos ? std::string::npos : comma - begin)));
+        i, comma == std::string::npos ? std::string::npos : comma - i)));
     if (comma == std::string::npos) return out;
-    begin = comma + 1;
+    i = comma + 1;
   }
-}
-
-/// A header cell without the double quotes some writers put around names (R's write.csv).
-std::string unquoted(const std::string& cell) {
-  return cell.size() >= 2 && cell.front() == '"' && cell.back() == '"'
-             ? cell.substr(1, cell.size() - 2)
-             : cell;
 }
 
 /// A cell as a message quotes it: control bytes (a NUL would end the message) as '?', and at
@@ -106,7 +131,7 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
     ++line_no;
     const std::string trimmed = trim(line);
     if (trimmed.empty() || trimmed.front() == '#') continue;
-    auto row = cells(trimmed);
+    auto row = cells(trimmed, line_no);
     if (first_row) {
       first_row = false;
       width = row.size();
@@ -118,7 +143,6 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
                                           " column: a table needs time and a column of values");
       }
       if (header) {
-        for (auto& cell : row) cell = unquoted(cell);
         if (column.empty()) {
           table.column = row[1];
         } else {

@@ -107,6 +107,17 @@ TEST_CASE("time table: piecewise linear between samples, held outside, columns b
   const TimeTable quoted = parse_time_table("\"t\",\"a\"\n0,1\n1,3\n", "a");
   CHECK(quoted.column == "a");
   CHECK(quoted.value(0.5) == 2.0);
+  // Quoting is there so that a name may hold a comma or a quote (RFC 4180: "" is one quote):
+  // "acc, g" was split in two cells and listed back as the name asked for.
+  const TimeTable comma =
+      parse_time_table("\"t\",\"acc, g\",\"say \"\"hi\"\"\"\n0,1,5\n1,3,7\n", "acc, g");
+  CHECK(comma.value(0.5) == 2.0);
+  CHECK(parse_time_table("\"t\",\"acc, g\",\"say \"\"hi\"\"\"\n0,1,5\n1,3,7\n", "say \"hi\"")
+            .value(0.5) == 6.0);
+  CHECK_THROWS_WITH_AS((void)parse_time_table("\"t,a\n0,1\n1,3\n", ""),
+                       "a double quote opens a cell and none closes it", TimeTableError);
+  CHECK_THROWS_WITH_AS((void)parse_time_table("\"t\"x,a\n0,1\n1,3\n", ""),
+                       "text follows the closing double quote of a cell", TimeTableError);
 }
 
 TEST_CASE("time table: a time function with a scale, shared samples and no breakpoints") {
