@@ -57,16 +57,30 @@ Tokens tokens(std::string_view line) {
   return out;
 }
 
+/// A token as a message quotes it: control bytes as '?' (a NUL cut the message off, an escape
+/// sequence reached the terminal), at most 40 characters.
+std::string shown(std::string_view s) {
+  constexpr std::size_t kMax = 40;
+  std::string out(s.substr(0, kMax));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return s.size() > kMax ? out + "..." : out;
+}
+
 long long to_integer(std::string_view s, int line, const char* what) {
   long long v = 0;
   // A leading '+' is a sign, as C's strtoll takes it (from_chars does not).
   const bool plus = !s.empty() && s.front() == '+';
   const std::string_view digits = plus ? s.substr(1) : s;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
-  if (digits.empty() || (plus && (digits.front() == '+' || digits.front() == '-')) ||
-      ec != std::errc() || end != digits.data() + digits.size()) {
-    throw MatrixMarketError(line,
-                            std::string(what) + " '" + std::string(s) + "' is not an integer");
+  const bool whole = !digits.empty() && !(plus && (digits.front() == '+' || digits.front() == '-'));
+  if (whole && ec == std::errc::result_out_of_range) {
+    throw MatrixMarketError(line, std::string(what) + " '" + shown(s) +
+                                      "' is out of range (beyond 2^63 - 1)");
+  }
+  if (!whole || ec != std::errc() || end != digits.data() + digits.size()) {
+    throw MatrixMarketError(line, std::string(what) + " '" + shown(s) + "' is not an integer");
   }
   return v;
 }
@@ -74,11 +88,10 @@ long long to_integer(std::string_view s, int line, const char* what) {
 double to_double(std::string_view s, int line) {
   double v = 0.0;
   if (const NumberCell kind = parse_number_cell(s, v); kind != NumberCell::ok) {
-    throw MatrixMarketError(line,
-                            "the value '" + std::string(s) + "' " + number_cell_problem(kind));
+    throw MatrixMarketError(line, "the value '" + shown(s) + "' " + number_cell_problem(kind));
   }
   if (!std::isfinite(v)) {
-    throw MatrixMarketError(line, "the value '" + std::string(s) + "' is not finite");
+    throw MatrixMarketError(line, "the value '" + shown(s) + "' is not finite");
   }
   return v;
 }
@@ -91,15 +104,32 @@ namespace {
 /// file of a million DOFs is 300 MB of text).
 MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expect) {
   int line_no = 0;
+  // Lines end in LF, CRLF or a lone CR (a classic Mac ending, as tables accept): what getline
+  // reads up to an LF is served in parts at each CR inside it.
   std::string buffer;
+  std::size_t at = 0;
+  bool serving = false;
   const auto next_line = [&](std::string_view& line) {
-    if (!std::getline(in, buffer)) return false;
-    line = buffer;
+    if (!serving || at > buffer.size()) {
+      if (!std::getline(in, buffer)) return false;
+      at = 0;
+      serving = true;
+    }
+    const auto cr = buffer.find('\r', at);
+    if (cr == std::string::npos || cr + 1 == buffer.size()) {  // the last part (CRLF: its CR)
+      line = std::string_view(buffer).substr(at, (cr == std::string::npos ? buffer.size() : cr) - at);
+      serving = false;
+    } else {
+      line = std::string_view(buffer).substr(at, cr - at);
+      at = cr + 1;
+    }
     ++line_no;
     return true;
   };
   std::string_view line;
   if (!next_line(line)) throw MatrixMarketError(0, "the file is empty");
+  // A UTF-8 byte order mark before the header (Windows editors write one), as tables allow.
+  if (line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
   const auto head = tokens(line);
   if (head.empty() || lower(head[0]) != "%%matrixmarket") {
     throw MatrixMarketError(1, "the first line is not a Matrix Market header (%%MatrixMarket ...)");

@@ -224,6 +224,38 @@ TEST_CASE(
             .matrix.rows() == 3);
 }
 
+TEST_CASE("matrix market: a byte order mark, lone CR endings; messages show no control bytes") {
+  const std::string body = "3 3 3\n1 1 2\n2 2 2\n3 3 2\n";
+  const std::string header = "%%MatrixMarket matrix coordinate real general\n";
+  // A BOM before the header (a Windows editor's), and a file with lone CR line ends, read as
+  // the plain file (the header was 'not a Matrix Market header', the whole file one line).
+  CHECK(parse_matrix_market("\xEF\xBB\xBF" + header + body).matrix.nonZeros() == 3);
+  std::string mac = header + body;
+  std::replace(mac.begin(), mac.end(), '\n', '\r');
+  CHECK(parse_matrix_market(mac).matrix.coeff(2, 2) == 2.0);
+  std::string crlf;
+  for (char c : header + body) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  CHECK(parse_matrix_market(crlf).matrix.coeff(1, 1) == 2.0);
+  try {  // a lone-CR file counts its lines too
+    std::string bad = header + "3 3 1\n1 1 x\n";
+    std::replace(bad.begin(), bad.end(), '\n', '\r');
+    (void)parse_matrix_market(bad);
+    FAIL("accepted");
+  } catch (const MatrixMarketError& e) {
+    CHECK(e.line() == 3);
+  }
+  // A NUL cut the message off and an escape sequence reached the terminal: shown as '?'.
+  CHECK_THROWS_WITH_AS((void)parse_matrix_market(header + "1 1 1\n1 1 2" + std::string(1, '\0') +
+                                                 "x\n"),
+                       "the value '2?x' is not a number", MatrixMarketError);
+  CHECK_THROWS_WITH_AS((void)parse_matrix_market(header + "1 1 1\n1 1 2\x1b[2J\n"),
+                       "the value '2?[2J' is not a number", MatrixMarketError);
+  // An integer beyond 2^63 - 1 is one, out of range.
+  CHECK_THROWS_WITH_AS((void)parse_matrix_market(header + "1 1 99999999999999999999\n"),
+                       "the entry count '99999999999999999999' is out of range (beyond 2^63 - 1)",
+                       MatrixMarketError);
+}
+
 TEST_CASE("matrix market: a size the caller knows is checked at the size line") {
   // 3·10⁸ for 3 (the model's size known from M) was allocated in full, 4.7 GB and 8 s, before
   // the size was compared with M's.
