@@ -15,8 +15,10 @@ namespace condyn {
 void ModelBuilder::check_coefficients(const ConstraintSpec& cs) const {
   double largest = 0.0;
   for (const auto& [name, a] : cs.terms) largest = std::max(largest, std::abs(a));
-  for (const auto& [name, a] : cs.terms) {
-    const SourcePoint key{cs.where.path + ".terms." + name, cs.where.line};
+  for (std::size_t k = 0; k < cs.terms.size(); ++k) {
+    const auto& [name, a] = cs.terms[k];
+    const SourcePoint key{cs.where.path + ".terms." + name,
+                          line_of(cs.term_lines, k, cs.where.line)};
     if (a != 0.0 && std::abs(a) < std::numeric_limits<double>::min()) {
       fail(key, "the coefficient " + fmt(a) +
                     " is subnormal (below 2.2e-308): it has lost its precision; rescale the "
@@ -74,8 +76,10 @@ void ModelBuilder::build_constraints() {
     c.value = cs.value;
     c.where = cs.where;
     const SourcePoint value_at{cs.where.path + ".value", cs.where.line};
-    for (const auto& [name, a] : cs.terms) {
-      const int d = dof(name, {cs.where.path + ".terms." + name, cs.where.line});
+    for (std::size_t k = 0; k < cs.terms.size(); ++k) {
+      const auto& [name, a] = cs.terms[k];
+      const int d =
+          dof(name, {cs.where.path + ".terms." + name, line_of(cs.term_lines, k, cs.where.line)});
       if (a != 0.0) c.coefficients.emplace_back(d, a);
     }
     check_coefficients(cs);

@@ -20,8 +20,10 @@ void ModelBuilder::add_ground_motion(std::vector<double>& total) {
   if (g.direction >= 0) {
     for (int i = g.direction; i < n; i += spec_.model.dimension) r[i] = 1.0;
   } else {
-    for (const auto& [name, value] : g.influence) {
-      r[dof(name, {"ground_motion.influence." + name, g.where.line})] = value;
+    for (std::size_t k = 0; k < g.influence.size(); ++k) {
+      const auto& [name, value] = g.influence[k];
+      r[dof(name, {"ground_motion.influence." + name,
+                   line_of(g.influence_lines, k, g.where.line)})] = value;
     }
   }
   const Eigen::VectorXd mr = model_.M * r;

@@ -24,11 +24,16 @@ void ModelBuilder::build_initial() {
   const int n = model_.dofs();
   model_.u0 = base_u0_.size() == n ? base_u0_ : Eigen::VectorXd::Zero(n);
   model_.v0 = base_v0_.size() == n ? base_v0_ : Eigen::VectorXd::Zero(n);
-  for (const auto& [name, value] : spec_.initial.displacement) {
-    model_.u0[dof(name, {"initial.displacement." + name, spec_.initial.where.line})] = value;
+  const InitialSpec& in = spec_.initial;
+  for (std::size_t k = 0; k < in.displacement.size(); ++k) {
+    const auto& [name, value] = in.displacement[k];
+    model_.u0[dof(name, {"initial.displacement." + name,
+                         line_of(in.displacement_lines, k, in.where.line)})] = value;
   }
-  for (const auto& [name, value] : spec_.initial.velocity) {
-    model_.v0[dof(name, {"initial.velocity." + name, spec_.initial.where.line})] = value;
+  for (std::size_t k = 0; k < in.velocity.size(); ++k) {
+    const auto& [name, value] = in.velocity[k];
+    model_.v0[dof(name, {"initial.velocity." + name,
+                         line_of(in.velocity_lines, k, in.where.line)})] = value;
   }
 }
 

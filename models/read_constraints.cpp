@@ -26,7 +26,7 @@ void SceneReader::read_constraints(const toml::node& node, std::vector<Constrain
       fail(*cons.get(i), p, "duplicate constraint name '" + c.name + "'");
     }
     const auto& terms_node = required(t, p, "terms");
-    c.terms = dof_values(terms_node, join(p, "terms"));
+    c.terms = dof_values(terms_node, join(p, "terms"), &c.term_lines);
     if (c.terms.empty()) fail(terms_node, join(p, "terms"), "a constraint needs at least one term");
     if (const auto* lv = t.get("level")) {
       const std::string s = string(*lv, join(p, "level"));

@@ -41,7 +41,7 @@ void SceneReader::read_ground_motion(const toml::node& node, const ModelSpec& mo
            "is for truss models; a matrix model gives influence = { dof = r, ... }");
     }
     const auto& i = required(t, p, "influence");
-    g.influence = dof_values(i, join(p, "influence"));
+    g.influence = dof_values(i, join(p, "influence"), &g.influence_lines);
     bool any = false;
     for (const auto& [name, r] : g.influence) any = any || r != 0.0;
     if (!any) fail(i, join(p, "influence"), "is zero: no DOF moves with the ground");

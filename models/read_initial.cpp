@@ -27,9 +27,11 @@ void SceneReader::read_initial(const toml::node& node, InitialSpec& initial) con
     }
   }
   if (const auto* d = t.get("displacement")) {
-    initial.displacement = dof_values(*d, "initial.displacement");
+    initial.displacement = dof_values(*d, "initial.displacement", &initial.displacement_lines);
   }
-  if (const auto* v = t.get("velocity")) initial.velocity = dof_values(*v, "initial.velocity");
+  if (const auto* v = t.get("velocity")) {
+    initial.velocity = dof_values(*v, "initial.velocity", &initial.velocity_lines);
+  }
 }
 
 }  // namespace condyn

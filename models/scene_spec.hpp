@@ -84,10 +84,17 @@ struct LoadSpec {
   SourcePoint where;
 };
 
+/// The line of the k-th of a key's values (`lines` from TomlAccess::dof_values), else `fallback`
+/// (a scene from a dict has no lines).
+[[nodiscard]] inline int line_of(const std::vector<int>& lines, std::size_t k, int fallback) {
+  return k < lines.size() && lines[k] > 0 ? lines[k] : fallback;
+}
+
 struct ConstraintSpec {
   enum class Level { position, velocity };
   std::string name;
   std::vector<std::pair<std::string, double>> terms;  ///< in the order written
+  std::vector<int> term_lines;                        ///< each term's line
   Level level = Level::position;
   TimeFunction value;
   SourcePoint where;
@@ -109,11 +116,13 @@ struct GroundMotionSpec {
   TimeFunction acceleration;  ///< a_g(t)
   int direction = -1;         ///< truss: r = 1 on every node's x (0), y (1) or z (2) DOF
   std::vector<std::pair<std::string, double>> influence;  ///< matrix model: r by DOF name
+  std::vector<int> influence_lines;                       ///< each entry's line
   SourcePoint where;
 };
 
 struct InitialSpec {
   std::vector<std::pair<std::string, double>> displacement, velocity;
+  std::vector<int> displacement_lines, velocity_lines;  ///< each entry's line
   /// Project (u0, v0) onto the constraints (minimum-norm Gauss-Newton) instead of refusing an
   /// inconsistent start.
   bool project = false;

@@ -165,11 +165,13 @@ std::vector<std::vector<double>> TomlAccess::dense_matrix(const toml::node& node
 }
 
 std::vector<std::pair<std::string, double>> TomlAccess::dof_values(const toml::node& node,
-                                                                   const std::string& path) const {
+                                                                   const std::string& path,
+                                                                   std::vector<int>* lines) const {
   std::vector<std::pair<std::string, double>> out;
   const auto& t = table(node, path);
   for (const auto& [key, value] : t) {
     out.emplace_back(std::string(key.str()), number(value, join(path, std::string(key.str()))));
+    if (lines != nullptr) lines->push_back(static_cast<int>(value.source().begin.line));
   }
   return out;
 }

@@ -58,9 +58,10 @@ class TomlAccess {
   /// An array of arrays of numbers (rows as written; their lengths are the caller's to check).
   [[nodiscard]] std::vector<std::vector<double>> dense_matrix(const toml::node& node,
                                                               const std::string& path) const;
-  /// A table { dof = number, ... }, in the order written.
+  /// A table { dof = number, ... }, in the order written; `lines`, when given, gets each value's
+  /// line (an inline table's keys are not on its table's line).
   [[nodiscard]] std::vector<std::pair<std::string, double>> dof_values(
-      const toml::node& node, const std::string& path) const;
+      const toml::node& node, const std::string& path, std::vector<int>* lines = nullptr) const;
 
  protected:
   std::string file_;
