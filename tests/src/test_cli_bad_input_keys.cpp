@@ -52,11 +52,11 @@ void check_refused(const Result& r, const std::string& needle) {
 TEST_CASE("a subnormal or negligible constraint coefficient is refused with its key") {
   // 5e-324 squared underflows: the elimination saw a zero row ("rank deficient", exit 1).
   check_refused(run_scene(replace(kScene, "terms = { uy1 = 1.0 }", "terms = { uy1 = 5e-324 }")),
-                "bad.toml:11: constraint[2].terms.uy1: the coefficient 5e-324 is "
+                "bad.toml:13: constraint[2].terms.uy1: the coefficient 5e-324 is "
                 "subnormal");
   check_refused(
       run_scene(replace(kScene, "terms = { uy1 = 1.0 }", "terms = { uy1 = 1.0, uy2 = 1e-20 }")),
-      "bad.toml:11: constraint[2].terms.uy2: the coefficient 1e-20 is below the roundoff");
+      "bad.toml:13: constraint[2].terms.uy2: the coefficient 1e-20 is below the roundoff");
 }
 
 TEST_CASE("[solve] slaves repeated, too many or on unconstrained DOFs: refused with the key") {
