@@ -43,6 +43,16 @@ Eigen::VectorXd EnergyTerms::powers(double t, const Eigen::VectorXd& u, const Ei
   return p;
 }
 
+Eigen::VectorXd EnergyTerms::jump_work(double t, const Eigen::VectorXd& u,
+                                       const Eigen::VectorXd& du) {
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(kIntegrals);
+  if (du.size() == 0 || du.cwiseAbs().maxCoeff() == 0.0) return w;  // no DOF jumped
+  const auto parts = system_->energy_parts(t, u, du);  // its "load power" is f_ext(t, u)ᵀdu
+  if (!parts) throw std::logic_error("energy balance of a model without energy parts");
+  w[1] = parts->load_power;
+  return w;
+}
+
 EnergyBalance EnergyTerms::at(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                               const Eigen::VectorXd& integrals) {
   const auto parts = system_->energy_parts(t, u, v);

@@ -48,6 +48,11 @@ class EnergyTerms {
   /// u'ᵀC u', f_extᵀu', f_conᵀu' at (t, u, u') with multipliers λ (f_con = −Aᵀλ).
   [[nodiscard]] Eigen::VectorXd powers(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                                        const Eigen::VectorXd& lambda);
+  /// The integrals' gain over a jump du of the state at t (a load step; u the state after it):
+  /// the loads' work f_ext(t+)ᵀdu, nothing dissipated or done by the constraints (a jump keeps
+  /// them: it is between two consistent states).
+  [[nodiscard]] Eigen::VectorXd jump_work(double t, const Eigen::VectorXd& u,
+                                          const Eigen::VectorXd& du);
   /// The balance at a row: T and V here, the integrals as given (kIntegrals of them); `initial`
   /// is left to the caller (T + V of the first row).
   [[nodiscard]] EnergyBalance at(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,

@@ -75,6 +75,12 @@ struct IntegratorOptions {
   std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp)>
       integrand;
   int integrand_size = 0;
+  /// When set with `integrand`: what the integrals gain at a load step at t, where the state may
+  /// jump from y_before to y_after (a massless DOF held by stiffness goes to its new equilibrium
+  /// at once, and the load does work over that jump that no step's quadrature sees).
+  std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y_before,
+                                const Eigen::VectorXd& y_after)>
+      integrand_jump;
   /// Compute the energy balance at the output rows (TrajectoryRow::balance; docs/energy.md).
   bool energy_balance = false;
   /// Set by solve() from RunHooks::on_row: the observed run streams full-space rows there (and

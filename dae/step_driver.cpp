@@ -162,7 +162,11 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
     record(t0, y0, yp0, done);
     // Restarts at a load step's time: the state after it, and the outputs merged into it.
     auto restart_at = [&](double b) {
+      const Eigen::VectorXd before = options.integrand_jump ? stepper.y() : Eigen::VectorXd();
       stepper.restart(b);
+      if (options.integrand_jump && done.size() > 0) {
+        done += options.integrand_jump(b, before, stepper.y());
+      }
       stepper.set_stop_time(stop_ahead());
       ++summary.restarts;
       reached = b;

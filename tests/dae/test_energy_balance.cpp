@@ -99,6 +99,39 @@ value = { type = "step", amplitude = 1.0, start = 0.35 }
   }
 }
 
+TEST_CASE("a load step on a preloaded massless DOF: the jump's work, and the half it loses") {
+  // y massless (k = 9 N/m) under a preload P and a step of 2 N at t = 0.5: y jumps from P/9 to
+  // (P + 2)/9. The load, already at P + 2, does (P + 2) Δy over the jump; the spring stores
+  // P Δy + 2 Δy / 2; the balance misses −2 Δy / 2 = −2/9 J whatever P (the jump's own loss, as
+  // any damping however small would dissipate). Without the jump's work the error was
+  // P Δy + 2 Δy / 2: +1.33 J for P = 5, −0.89 J for P = −5 (review, 2026-11-26).
+  for (const double preload : {5.0, -5.0, 0.0}) {
+    const std::string text = scene(R"([model]
+type = "matrix"
+dofs = ["x", "y"]
+mass = [[1.0, 0.0], [0.0, 0.0]]
+stiffness = [[10.0, 0.0], [0.0, 9.0]]
+[[load]]
+dof = "y"
+value = [{ type = "step", amplitude = 2.0, start = 0.5 }, { type = "polynomial", coefficients = [)" +
+                                   std::to_string(preload) + R"(] }]
+)");
+    for (const Scheme scheme : {Scheme::elimination, Scheme::ggl, Scheme::index1}) {
+      CAPTURE(preload);
+      CAPTURE(to_string(scheme));
+      const Balances run = balances(text, scheme, false);
+      const double dy = 2.0 / 9.0;
+      for (std::size_t k = 0; k < run.t.size(); ++k) {
+        const EnergyBalance& b = run.b[k];
+        CAPTURE(run.t[k]);
+        const bool after = run.t[k] >= 0.5;
+        CHECK(std::abs(b.work_loads - (after ? (preload + 2.0) * dy : 0.0)) < 1e-12);
+        CHECK(std::abs(b.error() - (after ? -dy : 0.0)) < 1e-12);  // −2 Δy / 2
+      }
+    }
+  }
+}
+
 TEST_CASE("the energy a damper dissipates, against the exact solution integrated here") {
   // m = 1, k = 4, c = 0.4 (ζ = 0.1), released from x = 1: v(t) = −(ω²/ω_d) e^{−ζωt} sin ω_d t.
   // D(t) = ∫ c v² dt by composite Simpson on 30,000 intervals of the exact v (error ~1e-15).
