@@ -422,7 +422,8 @@ def main(argv):
     paper_style(plt)
     d = argv[1]
     meta = load_meta(d)
-    scene = meta.get("scene") or "unknown scene"
+    # drawn as written: a scene named "cost in $" is not math
+    scene = (meta.get("scene") or "unknown scene").replace("$", r"\$")
     at_rtol = fmt_tol(num(meta["drift_rtol"])) if num(meta.get("drift_rtol")) else "drift_rtol"
     status = 0
     for name, draw in (

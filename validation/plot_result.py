@@ -29,6 +29,13 @@ DEFAULT_DOFS = 4
 # not by prefix, since a DOF may be named energy_top or work_1 (it is then a displacement).
 ENERGY_NAMES = {c for c, _ in ENERGY_TERMS} | {"energy_error"}
 DRIFT_NAMES = {"drift_position", "drift_velocity"}
+# More curves than this are drawn without a legend (it would outgrow the figure).
+MAX_LEGEND = 12
+
+
+def literal(text):
+    """Text matplotlib draws as written: a DOF named y$_1$ (a legal name) is not math."""
+    return text.replace("$", r"\$")
 
 
 def energy_columns(columns):
@@ -169,6 +176,19 @@ def main(argv):
         "axes.linewidth": 0.6, "grid.linewidth": 0.4, "savefig.bbox": "tight"})
     t = columns["t"]
     written, notes = [], []
+    title_stem = literal(stem)
+    # An axis whose values (or their span, with its margins) come near the double range breaks
+    # matplotlib's ticks (a traceback): refused by name. 1e300 leaves the headroom it needs.
+    for names in (["t"], list(chosen), [c for c, _ in energy_columns(columns)]):
+        if not names:
+            continue
+        values = np.concatenate([columns[c][np.isfinite(columns[c])] for c in names])
+        if values.size and np.abs(values).max() > 1e300:
+            worst = max(names, key=lambda c: np.nanmax(np.abs(np.where(
+                np.isfinite(columns[c]), columns[c], 0.0))))
+            print(f"error: {path}: column {worst}: values up to {np.abs(values).max():g} are too "
+                  "near the double range to draw (beyond 1e300)", file=sys.stderr)
+            return 2
 
     def save(fig, what):
         for ext in formats:
@@ -180,17 +200,23 @@ def main(argv):
     if chosen:
         fig, ax = plt.subplots(figsize=(3.5, 2.4))
         for d in chosen:
-            ax.plot(t, columns[d], label=d)
+            ax.plot(t, columns[d], label=literal(d))
         ax.set_xlabel("time [s]")
         ax.set_ylabel("displacement (model units)")
-        ax.set_title(f"{stem}: displacements ({how})")
+        ax.set_title(f"{title_stem}: displacements ({how})")
         ax.grid(True, alpha=0.3)
-        ax.legend(ncol=2 if len(chosen) > 3 else 1, frameon=False)
+        if len(chosen) <= MAX_LEGEND:
+            ax.legend(ncol=2 if len(chosen) > 3 else 1, frameon=False)
+        else:  # a legend of hundreds of names would be the whole (metres-tall) figure
+            notes.append(f"{stem}: {len(chosen)} DOFs drawn without a legend (more than "
+                         f"{MAX_LEGEND}); --dofs chooses fewer")
         fig.tight_layout()
         save(fig, "displacement")
     if "drift_position" in columns:
         fig, ax = plt.subplots(figsize=(3.5, 2.4))
         drawn = 0
+        not_a_number = [c for c in ("drift_position", "drift_velocity")
+                        if c in columns and np.isnan(columns[c]).any()]
         for col, label in (("drift_position", "position |Φ(u, t)|"),
                            ("drift_velocity", "velocity |Ψ(u, u', t)|")):
             y = np.maximum.accumulate(np.nan_to_num(columns[col], nan=0.0))
@@ -201,15 +227,19 @@ def main(argv):
             ax.set_yscale("log")
             ax.set_xlabel("time [s]")
             ax.set_ylabel("max residual, running max\n(units of the constraint rows)")
-            ax.set_title(f"{stem}: constraint drift at the output times")
+            ax.set_title(f"{title_stem}: constraint drift at the output times")
             ax.grid(True, which="major", alpha=0.3)
             ax.legend(frameon=False)
             fig.tight_layout()
             save(fig, "drift")
+        elif not_a_number:
+            plt.close(fig)
+            notes.append(f"{stem}: {', '.join(not_a_number)} not a number at some output times, "
+                         "and nowhere above 0: no drift figure")
         else:  # eliminated constraints hold exactly: an empty log axis would say nothing
             plt.close(fig)
             notes.append(f"{stem}: drift exactly 0 at every output time (constraints "
-                         "eliminated): no drift figure")
+                         "eliminated, or none): no drift figure")
     terms = energy_columns(columns)
     if terms:
         error = "energy_error" in columns
@@ -218,12 +248,13 @@ def main(argv):
                                  gridspec_kw={"height_ratios": [2, 1] if error else [1]})
         top = axes[0][0]
         for col, label in terms:
-            top.plot(t, columns[col], label=label)
+            top.plot(t, columns[col], label=literal(label))
         top.set_ylabel("energy [J in SI]")
         top.grid(True, alpha=0.3)
         # above the axes, under the title: curves fill the whole panel
         top.legend(frameon=False, ncol=3, loc="lower center", bbox_to_anchor=(0.5, 1.0),
-                   fontsize=7, title=f"{stem}: energy balance" if error else f"{stem}: energy",
+                   fontsize=7,
+                   title=f"{title_stem}: energy balance" if error else f"{title_stem}: energy",
                    title_fontsize=9, handlelength=1.5, columnspacing=1.0)
         if error:
             bottom = axes[1][0]

@@ -137,3 +137,37 @@ TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF")
   refused("plot r.csv", "the figure r_drift.png: is read-only");
   CHECK(condyn::test::slurp(box.path("r_drift.png")) == "old");
 }
+
+TEST_CASE("condyn plot draws names as written, many DOFs without a legend, and refuses 1e308") {
+  const Sandbox box;
+  // $ is legal in a DOF name and in a file name; matplotlib read 'x$\foo$' as math and the
+  // script ended in a traceback (exit 1).
+  box.write("m.csv", "t,x$\\foo$,y$_1$\n0,0.1,0\n0.5,0.05,0.02\n1,0,0.04\n");
+  const Result math = box.run("plot m.csv --format png");
+  CAPTURE(math.err);
+  CHECK(math.code == 0);
+  CHECK(is_figure(box, "m_displacement.png"));
+  // 30 DOFs: drawn, without the legend that would outgrow the figure, and said so.
+  std::string wide = "t";
+  for (int i = 1; i <= 30; ++i) wide += ",u" + std::to_string(i);
+  for (int k = 0; k < 3; ++k) {
+    wide += "\n" + std::to_string(k);
+    for (int i = 1; i <= 30; ++i) wide += "," + std::to_string(i * k);
+  }
+  box.write("w.csv", wide + "\n");
+  const Result many = box.run("plot w.csv --format png --dofs 'u*'");
+  CHECK(many.code == 0);
+  CHECK(many.out.find("30 DOFs drawn without a legend (more than 12)") != std::string::npos);
+  // Values near the double range broke matplotlib's ticks (a traceback): refused by name.
+  box.write("h.csv", "t,x,y\n0,1e308,-1e308\n1,1.7e308,0\n");
+  const Result huge = box.run("plot h.csv --format png");
+  CHECK(huge.code == 2);
+  CHECK(huge.err.find("h.csv: column x: values up to 1.7e+308 are too near the double range") !=
+        std::string::npos);
+  // A drift of NaN is no 'drift exactly 0'.
+  box.write("n.csv", "t,x,drift_position,drift_velocity\n0,1,nan,nan\n1,2,nan,nan\n");
+  const Result nan = box.run("plot n.csv --format png");
+  CHECK(nan.code == 0);
+  CHECK(nan.out.find("not a number at some output times") != std::string::npos);
+  CHECK(nan.out.find("exactly 0") == std::string::npos);
+}
