@@ -112,11 +112,14 @@ SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings) {
   if (settings.scheme != Scheme::automatic) return {settings.scheme, "requested"};
   const bool pure = settings.treatment == SolveSpec::Treatment::multipliers;
   if (model.is_nonlinear()) {
-    return {Scheme::ggl,
-            std::string("nonlinear model: GGL (stabilized index 2) holds position and velocity "
-                        "constraints to the Newton tolerance at every step, and treats "
-                        "nonholonomic rows too") +
-                (pure ? "" : "; its constant linear rows eliminated where that stays sparse")};
+    std::string why =
+        "nonlinear model: GGL (stabilized index 2) holds position and velocity constraints to "
+        "the Newton tolerance at every step, and treats nonholonomic rows too";
+    // Said only where it happens: a sleigh or Andrews' mechanism has no such row.
+    if (!pure && !treat_constraints(model).eliminated.empty()) {
+      why += "; its constant linear rows eliminated where that stays sparse";
+    }
+    return {Scheme::ggl, why};
   }
   if (model.constraint_count() == 0) {
     return {Scheme::elimination, "no constraints: the model is integrated as it is"};

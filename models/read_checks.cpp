@@ -50,7 +50,7 @@ void SceneReader::read_checks(const toml::node& node, const SolveSpec& solve,
       const std::string p = join(path, key);
       const double v = number(required(t, path, key), p);
       if (v < 0.0) fail(*t.get(key), p, "must be >= 0");
-      return v;
+      return v + 0.0;  // -0.0 is 0, printed as 0 ("bound -0" read as negative)
     };
     if (has_max) {
       for (const char* key : {"value", "tolerance"}) {

@@ -2,6 +2,8 @@
 
 #include "src/check_report.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <sstream>
 
 namespace condyn {
@@ -128,6 +130,18 @@ void print_check_summary(std::ostream& out, const std::vector<CheckedScene>& sce
   out << " (" << scenes.size() << " scene" << (scenes.size() == 1 ? "" : "s") << ")\n";
 }
 
+namespace {
+
+/// A testcase's class: "condyn." and the scene's stem, its dots as '_'. Jenkins splits a class
+/// name at its last dot (package.class): the scene's path made every class 'toml'.
+std::string class_name(const std::string& scene) {
+  std::string stem = std::filesystem::path(scene).stem().string();
+  std::replace(stem.begin(), stem.end(), '.', '_');
+  return "condyn." + (stem.empty() ? std::string("scene") : stem);
+}
+
+}  // namespace
+
 std::string junit_xml(const std::vector<CheckedScene>& scenes) {
   std::ostringstream x;
   long tests = 0, failures = 0, errors = 0;
@@ -137,12 +151,12 @@ std::string junit_xml(const std::vector<CheckedScene>& scenes) {
     std::ostringstream cases;
     if (!s.result) {
       t = e = 1;
-      cases << "    <testcase classname=\"" << xml_escape(s.scene) << "\" name=\"scene\" time=\""
+      cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene)) << "\" name=\"scene\" time=\""
             << seconds(s.seconds) << "\">\n      <error message=\"" << xml_escape(s.error)
             << "\"/>\n    </testcase>\n";
     } else if (!s.result->failure.empty()) {
       t = e = 1;
-      cases << "    <testcase classname=\"" << xml_escape(s.scene) << "\" name=\"run\" time=\""
+      cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene)) << "\" name=\"run\" time=\""
             << seconds(s.seconds)
             << "\">\n      <error message=\"the run failed: " << xml_escape(s.result->failure)
             << "\"/>\n    </testcase>\n";
@@ -151,7 +165,7 @@ std::string junit_xml(const std::vector<CheckedScene>& scenes) {
       for (std::size_t k = 0; k < outcomes.size(); ++k) {
         const CheckOutcome& o = outcomes[k];
         ++t;
-        cases << "    <testcase classname=\"" << xml_escape(s.scene) << "\" name=\""
+        cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene)) << "\" name=\""
               << xml_escape(case_name(o, k)) << "\" time=\"0\">\n";
         if (!o.passed) {
           ++f;

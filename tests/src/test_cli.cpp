@@ -283,6 +283,14 @@ TEST_CASE("info on a nonlinear scene: classes, and a requested scheme that does 
         std::string::npos);
   CHECK(r.out.find("  slaves: ") == std::string::npos);  // no master-slave split to show
   CHECK(r.out.find("classed by their integrated form") == std::string::npos);
+  // auto's reason mentions eliminated rows only where there are some (the sleigh has none).
+  const Result a = box.run("info '" + sleigh + "' --scheme auto");
+  CHECK(a.out.find("scheme: ggl (nonlinear model") != std::string::npos);
+  CHECK(a.out.find("constant linear rows eliminated") == std::string::npos);
+  const Result crank = box.run("info '" + std::string(CONDYN_SOURCE_DIR) +
+                               "/models/scenes/slider_crank.toml' --scheme auto");
+  CHECK(crank.out.find("; its constant linear rows eliminated where that stays sparse") !=
+        std::string::npos);
 }
 
 TEST_CASE("compare without a reference says which runs failed, at what rtol, and what to try") {

@@ -65,6 +65,12 @@ TEST_CASE("cli check: every check holds: exit 0, one line per check, a JUnit rep
   CHECK(r.out.find("PASS check[1] vel_x (max_abs): max |vel_x| = ") != std::string::npos);
   CHECK(r.out.find("checks: 2 passed, 0 failed (2 scenes)") != std::string::npos);
   CHECK(junit_counts(box, "report.xml") == "testsuites 2 0 0 2 0\n");
+  // Classes Jenkins reads as package 'condyn' and the scene (it splits at the last dot: the
+  // scene's path gave every class the name 'toml').
+  const std::string xml = slurp(box.path("report.xml"));
+  CHECK(xml.find("<testcase classname=\"condyn.a\" name=\"check[1] x (value)\"") !=
+        std::string::npos);
+  CHECK(xml.find("<testcase classname=\"condyn.b\"") != std::string::npos);
 }
 
 TEST_CASE("cli check: a JUnit report on standard output is the whole of it, the lines on stderr") {

@@ -76,6 +76,15 @@ TEST_CASE("checks: each bad [[check]] is refused naming its key and line") {
   }
 }
 
+TEST_CASE("checks: a bound of -0.0 is 0") {
+  // Not refused (it is no negative number) and not printed 'bound -0'.
+  const SceneSpec spec = parse_scene_text(
+      oscillator("[[check]]\nquantity = \"x\"\nmax_abs = -0.0\n"), "s.toml");
+  REQUIRE(spec.checks.size() == 1);
+  CHECK(spec.checks[0].bound == 0.0);
+  CHECK(!std::signbit(spec.checks[0].bound));
+}
+
 TEST_CASE("checks: an unknown column is refused with the nearest names") {
   SceneSpec spec =
       parse_scene_text(oscillator("[[check]]\nquantity = \"vel_y\"\nmax_abs = 1.0\n"), "s.toml");
