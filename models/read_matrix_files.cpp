@@ -115,6 +115,10 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
 void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
                                 ModelSpec& model) const {
   const auto& t = table(node, path);
+  if (const auto* file = t.get("file")) {  // not "file: unknown key": the pair is the mistake
+    fail(*file, join(path, "file"),
+         "give either a damping matrix (file) or rayleigh or modal damping, not both");
+  }
   check_keys(t, path, {"rayleigh", "modal"});
   if (const auto* modal = t.get("modal")) {
     const std::string p = join(path, "modal");

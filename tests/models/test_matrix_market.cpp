@@ -514,6 +514,10 @@ terms = { uy2 = 1.0 }
   CHECK(has(error(condyn::test::replace(truss, "[0.5, 0.02]", "[0.5]")),
             "model.damping.rayleigh: expected [a0, a1]"));
   CHECK(has(error(condyn::test::replace(truss, "rayleigh =", "rayleig =")), "model.damping"));
+  // A file beside rayleigh: the pair is the mistake, not 'file: unknown key'.
+  CHECK(has(error(condyn::test::replace(truss, "rayleigh =", "file = \"C.mtx\", rayleigh =")),
+            "model.damping.file: give either a damping matrix (file) or rayleigh or modal "
+            "damping, not both"));
   CHECK(has(error(condyn::test::replace(truss, "EA = 10.0", "rigid = true")),
             "model.damping.rayleigh: Rayleigh damping needs a linear model"));
 }
