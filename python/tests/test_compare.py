@@ -68,3 +68,15 @@ def test_compare_without_a_reference_raises_integration_error():
     with pytest.raises(condyn.IntegrationError, match=r"^<dict>: no reference solution") as e:
         condyn.compare(scene, tolerances=[1e-4], schemes=["ggl"])
     assert e.value.result is None
+
+
+def test_a_skipped_scheme_has_every_key_of_a_run():
+    # penalty does not treat a nonlinear model: its record is skipped, with the same keys as
+    # a run's (None), so a table of the records needs no special case.
+    runs = condyn.compare(QUICKSTART.parent / "pendulum.toml", tolerances=[1e-3],
+                          schemes=["ggl", "penalty"], max_steps=20000)
+    ran = [r for r in runs if not r["skipped"]]
+    skipped = [r for r in runs if r["skipped"]]
+    assert [r["scheme"] for r in skipped] == ["penalty"]
+    assert set(skipped[0]) == set(ran[0])
+    assert skipped[0]["rtol"] is None and skipped[0]["steps"] is None
