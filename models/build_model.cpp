@@ -71,6 +71,7 @@ Model ModelBuilder::build() {
   apply_modal_damping();  // from the modes of the constrained model: after the rows are final
   if (spec_.initial.static_start) solve_static_initial();
   check_initial_consistency();
+  if (!model_.is_nonlinear()) settle_initial_roundoff();
   check_massless_dofs();
   check_energy_output();
   check_output();

@@ -117,6 +117,7 @@ class ModelBuilder {
   // initial_state.cpp
   void build_initial();
   void check_initial_consistency() const;
+  void settle_initial_roundoff();
   void check_nonlinear_consistency() const;
   [[noreturn]] void refuse_given_values(const InconsistentGivenValues& e) const;
   void project_initial();
