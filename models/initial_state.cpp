@@ -115,7 +115,15 @@ void ModelBuilder::settle_initial_roundoff() {
   if (ldlt.info() != Eigen::Success) return;  // dependent rows: left as the check accepted them
   const Eigen::VectorXd du = model_.A.transpose() * ldlt.solve(ru);
   const Eigen::VectorXd dv = model_.A.transpose() * ldlt.solve(rv);
-  if (!du.allFinite() || !dv.allFinite()) return;
+  // Only a correction that meets the rows and is of the residual's size (rows that are nearly
+  // dependent could make it large): else the start stays as the check accepted it.
+  const double row_min = std::sqrt(aat.diagonal().minCoeff());
+  const auto sound = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& r) {
+    const double size = r.cwiseAbs().maxCoeff();
+    return d.allFinite() && (model_.A * d - r).cwiseAbs().maxCoeff() <= 1e-3 * size &&
+           d.cwiseAbs().maxCoeff() <= 1e3 * size / row_min;
+  };
+  if (!(row_min > 0.0) || !sound(du, ru) || !sound(dv, rv)) return;
   model_.u0 += du;
   model_.v0 += dv;
 }
