@@ -185,8 +185,8 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
   }
   if (!(worst <= kMaxSlaveCondition)) {
     std::ostringstream s;
-    s << "the slave DOFs do not determine the constraints (slave block condition number "
-      << worst << ", rows normalised): choose other slaves";
+    s << "the slave DOFs do not determine the constraints (slave block condition number " << worst
+      << ", rows normalised): choose other slaves";
     throw std::invalid_argument(s.str());
   }
   out.T.resize(n, static_cast<Eigen::Index>(out.masters.size()));

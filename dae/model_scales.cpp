@@ -174,8 +174,8 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
     return std::isnan(atol) ? kMaxDerivedAtol : std::clamp(atol, kMinAtol, kMaxDerivedAtol);
   };
   a.velocity = usable(a.velocity);
-  a.multiplier = settings.atol_multiplier.value_or(
-      usable(a.displacement * s.mass / (T * T * s.coefficient)));
+  a.multiplier =
+      settings.atol_multiplier.value_or(usable(a.displacement * s.mass / (T * T * s.coefficient)));
   a.mu = settings.atol_mu.value_or(usable(a.velocity / s.coefficient));
   a.time_scale = T;
   const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;

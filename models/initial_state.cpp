@@ -32,8 +32,9 @@ void ModelBuilder::build_initial() {
   }
   for (std::size_t k = 0; k < in.velocity.size(); ++k) {
     const auto& [name, value] = in.velocity[k];
-    model_.v0[dof(name, {"initial.velocity." + name,
-                         line_of(in.velocity_lines, k, in.where.line)})] = value;
+    model_
+        .v0[dof(name, {"initial.velocity." + name, line_of(in.velocity_lines, k, in.where.line)})] =
+        value;
   }
 }
 

@@ -76,8 +76,8 @@ long long to_integer(std::string_view s, int line, const char* what) {
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
   const bool whole = !digits.empty() && !(plus && (digits.front() == '+' || digits.front() == '-'));
   if (whole && ec == std::errc::result_out_of_range) {
-    throw MatrixMarketError(line, std::string(what) + " '" + shown(s) +
-                                      "' is out of range (beyond 2^63 - 1)");
+    throw MatrixMarketError(
+        line, std::string(what) + " '" + shown(s) + "' is out of range (beyond 2^63 - 1)");
   }
   if (!whole || ec != std::errc() || end != digits.data() + digits.size()) {
     throw MatrixMarketError(line, std::string(what) + " '" + shown(s) + "' is not an integer");
@@ -117,7 +117,8 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
     }
     const auto cr = buffer.find('\r', at);
     if (cr == std::string::npos || cr + 1 == buffer.size()) {  // the last part (CRLF: its CR)
-      line = std::string_view(buffer).substr(at, (cr == std::string::npos ? buffer.size() : cr) - at);
+      line =
+          std::string_view(buffer).substr(at, (cr == std::string::npos ? buffer.size() : cr) - at);
       serving = false;
     } else {
       line = std::string_view(buffer).substr(at, cr - at);

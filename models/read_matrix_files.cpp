@@ -58,8 +58,7 @@ MarketExpectation SceneReader::block_size() const {
   e.rows_need_entries = true;
   if (matrix_dofs_ == 0) return e;
   e.cols = matrix_dofs_;
-  e.because =
-      "a constraint block needs one column per DOF (" + std::to_string(matrix_dofs_) + ")";
+  e.because = "a constraint block needs one column per DOF (" + std::to_string(matrix_dofs_) + ")";
   return e;
 }
 
@@ -248,7 +247,7 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
       if (expected.rows == 0 && out->matrix.rows() == out->matrix.cols()) {
         expected.rows = expected.cols = out->matrix.rows();
         expected.because = out->file + " is " + std::to_string(expected.rows) + " x " +
-                         std::to_string(expected.rows);
+                           std::to_string(expected.rows);
       }
     }
   }

@@ -46,8 +46,8 @@ std::vector<std::string> cells(const std::string& line, int line_no) {
         cell += line[i++];
       }
       const auto comma = line.find(',', i);
-      if (!trim(std::string_view(line).substr(i, comma == std::string::npos ? std::string::npos
-                                                                                : comma - i))
+      if (!trim(std::string_view(line).substr(
+                    i, comma == std::string::npos ? std::string::npos : comma - i))
                .empty()) {
         throw TimeTableError(line_no, "text follows the closing double quote of a cell");
       }

@@ -63,12 +63,27 @@ py::list compare_records(const CompareResult& result) {
     d["message"] = system_text(reason);
     d["reference"] = result.reference_kind;
     // Every key of a run's record, None: a table of the records (d["rtol"]) needs no special case.
-    for (const char* key :
-         {"rtol", "atol", "error_u", "error_v", "error_reaction", "max_drift_position",
-          "max_drift_velocity", "final_drift_position", "final_drift_velocity", "steps",
-          "residual_evals", "jacobian_evals", "newton_failures", "error_test_failures",
-          "wall_median", "wall_min", "wall_max", "repeats", "mescd_u", "mescd_v",
-          "energy_error"}) {
+    for (const char* key : {"rtol",
+                            "atol",
+                            "error_u",
+                            "error_v",
+                            "error_reaction",
+                            "max_drift_position",
+                            "max_drift_velocity",
+                            "final_drift_position",
+                            "final_drift_velocity",
+                            "steps",
+                            "residual_evals",
+                            "jacobian_evals",
+                            "newton_failures",
+                            "error_test_failures",
+                            "wall_median",
+                            "wall_min",
+                            "wall_max",
+                            "repeats",
+                            "mescd_u",
+                            "mescd_v",
+                            "energy_error"}) {
       d[key] = py::none();
     }
     out.append(d);

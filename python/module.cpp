@@ -105,16 +105,16 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
                                  ? py::object(py::none())
                                  : python::system_text(describe_failure(result, spec.solve.t_end));
   const auto& asked = spec.output.quantities;
-  const bool absolute = std::find(asked.begin(), asked.end(), Quantity::absolute_acceleration) !=
-                        asked.end();
+  const bool absolute =
+      std::find(asked.begin(), asked.end(), Quantity::absolute_acceleration) != asked.end();
   return py::make_tuple(
       python::result_dict(std::move(result), *model, spec.solve, report, absolute), failure);
 }
 
 py::tuple compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,
-                 const std::optional<std::vector<std::string>>& schemes,
-                 const std::optional<int>& repeats, const std::optional<double>& drift_rtol,
-                 long max_steps, double max_wall_time) {
+                  const std::optional<std::vector<std::string>>& schemes,
+                  const std::optional<int>& repeats, const std::optional<double>& drift_rtol,
+                  long max_steps, double max_wall_time) {
   const SceneSpec spec = python::parse_python_scene(scene);
   CompareOptions options;
   options.repeats = 1;  // the CLI repeats runs for stable wall times; a script asks for more

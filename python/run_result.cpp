@@ -116,8 +116,8 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
     py::array_t<double> a_abs({static_cast<py::ssize_t>(nt), static_cast<py::ssize_t>(n)});
     auto out = a_abs.mutable_unchecked<2>();
     for (Eigen::Index i = 0; i < nt; ++i) {
-      const Eigen::VectorXd row = model.absolute_acceleration(
-          traj.t[static_cast<std::size_t>(i)], traj.acceleration.col(i));
+      const Eigen::VectorXd row = model.absolute_acceleration(traj.t[static_cast<std::size_t>(i)],
+                                                              traj.acceleration.col(i));
       for (Eigen::Index j = 0; j < n; ++j) out(i, j) = row(j);
     }
     d["a_abs"] = a_abs;

@@ -151,13 +151,13 @@ std::string junit_xml(const std::vector<CheckedScene>& scenes) {
     std::ostringstream cases;
     if (!s.result) {
       t = e = 1;
-      cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene)) << "\" name=\"scene\" time=\""
-            << seconds(s.seconds) << "\">\n      <error message=\"" << xml_escape(s.error)
-            << "\"/>\n    </testcase>\n";
+      cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene))
+            << "\" name=\"scene\" time=\"" << seconds(s.seconds) << "\">\n      <error message=\""
+            << xml_escape(s.error) << "\"/>\n    </testcase>\n";
     } else if (!s.result->failure.empty()) {
       t = e = 1;
-      cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene)) << "\" name=\"run\" time=\""
-            << seconds(s.seconds)
+      cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene))
+            << "\" name=\"run\" time=\"" << seconds(s.seconds)
             << "\">\n      <error message=\"the run failed: " << xml_escape(s.result->failure)
             << "\"/>\n    </testcase>\n";
     } else {

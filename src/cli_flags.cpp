@@ -149,13 +149,12 @@ CLI::Validator decimal_range_check(double lo, double hi) {
 CLI::Validator whole_check(int lo, int hi) {
   return {[lo, hi](std::string& text) {
             const std::string digits = !text.empty() && text[0] == '+' ? text.substr(1) : text;
-            const bool whole = !digits.empty() &&
-                               digits.find_first_not_of("0123456789") == std::string::npos;
+            const bool whole =
+                !digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos;
             const auto first = digits.find_first_not_of('0');
-            const std::string significant =
-                first == std::string::npos ? "0" : digits.substr(first);
+            const std::string significant = first == std::string::npos ? "0" : digits.substr(first);
             // More than 18 digits is beyond any bound here (and beyond long long).
-            const long long v = !whole                   ? 0
+            const long long v = !whole                    ? 0
                                 : significant.size() > 18 ? std::numeric_limits<long long>::max()
                                                           : std::stoll(significant);
             if (!whole || v < lo || v > hi) {

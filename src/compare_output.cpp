@@ -286,8 +286,7 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
   // (--no-plots): one an earlier comparison drew would show its schemes and tolerances.
   for (const char* figure :
        {"work_precision", "error_steps", "drift", "multipliers", "baumgarte_study"}) {
-    for (const char* ext : {".png", ".pdf"})
-      plan.remove_stale(base / (std::string(figure) + ext));
+    for (const char* ext : {".png", ".pdf"}) plan.remove_stale(base / (std::string(figure) + ext));
   }
   if (result.reference_t.empty()) plan.remove_stale(base / "history_reference.csv");
   // Nor a scheme's drift and history files that this comparison did not write (a scheme not

@@ -15,7 +15,6 @@ namespace {
 
 using hdf5::check;
 using hdf5::Handle;
-using hdf5::put_attribute;
 using hdf5::put_strings;
 
 /// A rows x cols dataset of doubles, row-major (HDF5's order), entry (r, c) = get(r, c); cols = 0

@@ -178,8 +178,8 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
       const double rtol = parse_rtol_flag("--tolerances", t);
       const auto& listed = options.tolerances;
       if (std::find(listed.begin(), listed.end(), rtol) != listed.end()) {
-        throw CLI::ValidationError("--tolerances", "'" + t + "' is listed twice in '" +
-                                                       tolerances + "' (the same number)");
+        throw CLI::ValidationError("--tolerances", "'" + t + "' is listed twice in '" + tolerances +
+                                                       "' (the same number)");
       }
       options.tolerances.push_back(rtol);
     }
@@ -216,15 +216,14 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
   if (!no_plots) std::cout << draw_compare_plots(dir) << "\n";
   if (const int failed = result.failed_runs(); failed > 0) {
     // The sweep's runs are rows of runs.csv; the drift-history runs are in runs.json.
-    const int history = failed - static_cast<int>(std::count_if(
-                                     result.runs.begin(), result.runs.end(),
-                                     [](const auto& r) { return !r.ok; }));
+    const int history =
+        failed - static_cast<int>(std::count_if(result.runs.begin(), result.runs.end(),
+                                                [](const auto& r) { return !r.ok; }));
     std::cerr << (allow_failures ? "warning: " : "error: ") << failed << " run"
               << (failed == 1 ? "" : "s") << " of the comparison failed (see FAILED above and "
               << dir << "/runs.csv"
-              << (history > 0 ? ", and for the " + std::to_string(history) +
-                                    " drift-history run" + (history == 1 ? "" : "s") + " " +
-                                    dir + "/runs.json"
+              << (history > 0 ? ", and for the " + std::to_string(history) + " drift-history run" +
+                                    (history == 1 ? "" : "s") + " " + dir + "/runs.json"
                               : std::string())
               << ")"
               << (allow_failures ? "; tolerated by --allow-failures"
@@ -380,8 +379,9 @@ int run_command(int argc, char** argv) {
       ->check(CLI::Validator(
           [](std::string& text) {
             return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos
-                       ? std::string("is empty: name a scene file, or leave it out for the "
-                                     "built-in truss")
+                       ? std::string(
+                             "is empty: name a scene file, or leave it out for the "
+                             "built-in truss")
                        : std::string();
           },
           "FILE"));

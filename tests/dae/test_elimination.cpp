@@ -98,8 +98,8 @@ TEST_CASE("master-slave transform: a row's scale is no ill-conditioning") {
   b << 1e12, -1e12, 0,  //
       0, 1, -1;
   const MasterSlave scaled = master_slave_transform(b.sparseView());
-  CHECK(Eigen::MatrixXd(b * Eigen::MatrixXd(scaled.G)).isApprox(Eigen::MatrixXd::Identity(2, 2),
-                                                                1e-15));
+  CHECK(Eigen::MatrixXd(b * Eigen::MatrixXd(scaled.G))
+            .isApprox(Eigen::MatrixXd::Identity(2, 2), 1e-15));
 }
 
 TEST_CASE("reduced ODE Jacobian agrees with central differences of the residual") {

@@ -245,9 +245,9 @@ TEST_CASE("matrix market: a byte order mark, lone CR endings; messages show no c
     CHECK(e.line() == 3);
   }
   // A NUL cut the message off and an escape sequence reached the terminal: shown as '?'.
-  CHECK_THROWS_WITH_AS((void)parse_matrix_market(header + "1 1 1\n1 1 2" + std::string(1, '\0') +
-                                                 "x\n"),
-                       "the value '2?x' is not a number", MatrixMarketError);
+  CHECK_THROWS_WITH_AS(
+      (void)parse_matrix_market(header + "1 1 1\n1 1 2" + std::string(1, '\0') + "x\n"),
+      "the value '2?x' is not a number", MatrixMarketError);
   CHECK_THROWS_WITH_AS((void)parse_matrix_market(header + "1 1 1\n1 1 2\x1b[2J\n"),
                        "the value '2?[2J' is not a number", MatrixMarketError);
   // An integer beyond 2^63 - 1 is one, out of range.

@@ -116,7 +116,8 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
                                 "' info s.toml > /dev/full 2> full.txt")
                                    .c_str());
   CHECK((WIFEXITED(full) && WEXITSTATUS(full) == 1));
-  CHECK(contains(condyn::test::slurp(box.path("full.txt")), "error: writing standard output failed"));
+  CHECK(
+      contains(condyn::test::slurp(box.path("full.txt")), "error: writing standard output failed"));
   // What stays accepted.
   CHECK(box.run("run s.toml --out ./--r.csv").code == 0);
   CHECK(box.run("run s.toml --max-steps 2147483647 --out r.csv").code == 0);

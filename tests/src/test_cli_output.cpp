@@ -136,7 +136,8 @@ TEST_CASE("no output may be a file the scene names: its matrices, tables and ref
   CHECK(slurp(box.path("record.csv")) == record);
 }
 
-TEST_CASE("compare and stress: their files never overwrite or remove an input or a protected file") {
+TEST_CASE(
+    "compare and stress: their files never overwrite or remove an input or a protected file") {
   const Sandbox box;
   const std::string record = "t,a\n0,0\n1,1\n";
   std::string scene = kScene;

@@ -78,8 +78,8 @@ TEST_CASE("checks: each bad [[check]] is refused naming its key and line") {
 
 TEST_CASE("checks: a bound of -0.0 is 0") {
   // Not refused (it is no negative number) and not printed 'bound -0'.
-  const SceneSpec spec = parse_scene_text(
-      oscillator("[[check]]\nquantity = \"x\"\nmax_abs = -0.0\n"), "s.toml");
+  const SceneSpec spec =
+      parse_scene_text(oscillator("[[check]]\nquantity = \"x\"\nmax_abs = -0.0\n"), "s.toml");
   REQUIRE(spec.checks.size() == 1);
   CHECK(spec.checks[0].bound == 0.0);
   CHECK(!std::signbit(spec.checks[0].bound));
