@@ -7,11 +7,14 @@ compare schemes, over the same C++ library as the `condyn` command (docs/python.
 """
 
 import collections.abc
+import decimal
 import numbers
 import warnings
 
 from ._condyn import SceneError, scheme_names
 from . import _condyn
+
+SceneError.__module__ = __name__  # shown as condyn.SceneError, where users catch it
 
 __all__ = ["run", "compare", "check", "Result", "SceneError", "IntegrationError", "scheme_names"]
 
@@ -124,7 +127,11 @@ def _number(scene, argument, value):
     """An override that must be a real number (None: not given), else SceneError naming it."""
     if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+    # What a scene value takes takes here too: a 0-d numeric array, a Decimal.
+    if getattr(value, "ndim", None) == 0 and getattr(value, "dtype", None) is not None and \
+            value.dtype.kind in "iuf":
+        value = value.item()
+    if isinstance(value, bool) or not isinstance(value, (numbers.Real, decimal.Decimal)):
         raise SceneError(f"{_name(scene)}: {argument}: expected a number "
                          f"(got {type(value).__name__} {value!r})")
     try:

@@ -2,6 +2,7 @@
 integration raises condyn.IntegrationError (a RuntimeError) with the partial result."""
 
 import copy
+import decimal
 import os
 import pathlib
 import pickle
@@ -19,6 +20,16 @@ from conftest import QUICKSTART
 def test_scene_error_is_a_value_error():
     assert issubclass(condyn.SceneError, ValueError)
     assert issubclass(condyn.IntegrationError, RuntimeError)
+    # Shown where users catch it, not as condyn._condyn.SceneError.
+    assert f"{condyn.SceneError.__module__}.{condyn.SceneError.__name__}" == "condyn.SceneError"
+
+
+def test_overrides_take_what_scene_values_take(quickstart_dict):
+    # A 0-d array or a Decimal is a number in a scene; as an override it was refused.
+    assert condyn.run(quickstart_dict, rtol=np.array(1e-6)).summary["rtol"] == 1e-6
+    assert condyn.run(quickstart_dict, rtol=decimal.Decimal("1e-6")).summary["rtol"] == 1e-6
+    with pytest.raises(condyn.SceneError, match=r"^<dict>: rtol: expected a number"):
+        condyn.run(quickstart_dict, rtol=np.array([1e-6]))
 
 
 def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
