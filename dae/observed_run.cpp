@@ -52,11 +52,8 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     // at its new value, does f_ext(t+)ᵀΔu over the jump (the work the quadrature cannot see).
     observed.integrand_jump = [&](double t, const Eigen::VectorXd& before,
                                   const Eigen::VectorXd& after) {
-      const auto [u_before, v_before] = observe.full_state(t, before);
-      const auto [u_after, v_after] = observe.full_state(t, after);
-      (void)v_before;
-      (void)v_after;
-      return energy->jump_work(t, u_after, u_after - u_before);
+      const Eigen::VectorXd u_after = observe.full_state(t, after).first;
+      return energy->jump_work(t, u_after, u_after - observe.full_state(t, before).first);
     };
   }
   if (observe.drift_at_every_step || options.record_steps || observe.on_state) {

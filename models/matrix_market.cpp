@@ -57,17 +57,6 @@ Tokens tokens(std::string_view line) {
   return out;
 }
 
-/// A token as a message quotes it: control bytes as '?' (a NUL cut the message off, an escape
-/// sequence reached the terminal), at most 40 characters.
-std::string shown(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  std::string out(s.substr(0, kMax));
-  for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  return s.size() > kMax ? out + "..." : out;
-}
-
 long long to_integer(std::string_view s, int line, const char* what) {
   long long v = 0;
   // A leading '+' is a sign, as C's strtoll takes it (from_chars does not).
@@ -77,10 +66,10 @@ long long to_integer(std::string_view s, int line, const char* what) {
   const bool whole = !digits.empty() && !(plus && (digits.front() == '+' || digits.front() == '-'));
   if (whole && ec == std::errc::result_out_of_range) {
     throw MatrixMarketError(
-        line, std::string(what) + " '" + shown(s) + "' is out of range (beyond 2^63 - 1)");
+        line, std::string(what) + " '" + shown_cell(s) + "' is out of range (beyond 2^63 - 1)");
   }
   if (!whole || ec != std::errc() || end != digits.data() + digits.size()) {
-    throw MatrixMarketError(line, std::string(what) + " '" + shown(s) + "' is not an integer");
+    throw MatrixMarketError(line, std::string(what) + " '" + shown_cell(s) + "' is not an integer");
   }
   return v;
 }
@@ -88,10 +77,10 @@ long long to_integer(std::string_view s, int line, const char* what) {
 double to_double(std::string_view s, int line) {
   double v = 0.0;
   if (const NumberCell kind = parse_number_cell(s, v); kind != NumberCell::ok) {
-    throw MatrixMarketError(line, "the value '" + shown(s) + "' " + number_cell_problem(kind));
+    throw MatrixMarketError(line, "the value '" + shown_cell(s) + "' " + number_cell_problem(kind));
   }
   if (!std::isfinite(v)) {
-    throw MatrixMarketError(line, "the value '" + shown(s) + "' is not finite");
+    throw MatrixMarketError(line, "the value '" + shown_cell(s) + "' is not finite");
   }
   return v;
 }

@@ -1,7 +1,7 @@
 #pragma once
 /// A number written in a data file (a Matrix Market entry, a table's cell): what is wrong with
-/// it, if anything, and the shortest text of a double. Shared by models/matrix_market.cpp,
-/// models/time_table.cpp and validation/user_checks.cpp.
+/// it, if anything, the shortest text of a double, and a cell as a message shows it. Shared by
+/// models/matrix_market.cpp, models/time_table.cpp and validation/user_checks.cpp.
 
 #include <array>
 #include <charconv>
@@ -42,6 +42,17 @@ inline std::string shortest_number(double v) {
   std::array<char, 32> buffer{};
   const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), v);
   return ec == std::errc() ? std::string(buffer.data(), end) : std::to_string(v);
+}
+
+/// A cell or token as a message quotes it: control bytes as '?' (a NUL cut the message off, an
+/// escape sequence reached the terminal), at most 40 characters.
+inline std::string shown_cell(std::string_view s) {
+  constexpr std::size_t kMax = 40;
+  std::string out(s.substr(0, kMax));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return s.size() > kMax ? out + "..." : out;
 }
 
 }  // namespace condyn

@@ -64,17 +64,6 @@ std::vector<std::string> cells(const std::string& line, int line_no) {
   }
 }
 
-/// A cell as a message quotes it: control bytes (a NUL would end the message) as '?', and at
-/// most 40 characters.
-std::string shown(const std::string& cell) {
-  constexpr std::size_t kMax = 40;
-  std::string out = cell.size() > kMax ? cell.substr(0, kMax) + "..." : cell;
-  for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20) c = '?';
-  }
-  return out;
-}
-
 /// Lines ended by LF, CRLF or a lone CR (the classic Mac ending some spreadsheets still write).
 std::string with_lf_endings(const std::string& text) {
   std::string out;
@@ -150,7 +139,7 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
           if (it == row.end()) {
             std::string names;
             for (std::size_t c = 1; c < row.size(); ++c)
-              names += (c > 1 ? ", " : "") + shown(row[c]);
+              names += (c > 1 ? ", " : "") + shown_cell(row[c]);
             throw TimeTableError(
                 line_no, "no column '" + column + "' (the value columns are: " + names + ")");
           }
@@ -188,12 +177,12 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
     for (const auto& [cell, out, what] :
          {std::tuple{row[0], &t, "time"}, std::tuple{row[value_col], &v, "value"}}) {
       if (const NumberCell kind = parse_number_cell(cell, *out); kind != NumberCell::ok) {
-        throw TimeTableError(line_no, std::string("the ") + what + " '" + shown(cell) + "' " +
+        throw TimeTableError(line_no, std::string("the ") + what + " '" + shown_cell(cell) + "' " +
                                           number_cell_problem(kind));
       }
       if (!std::isfinite(*out)) {
-        throw TimeTableError(line_no,
-                             std::string("the ") + what + " '" + shown(cell) + "' is not finite");
+        throw TimeTableError(
+            line_no, std::string("the ") + what + " '" + shown_cell(cell) + "' is not finite");
       }
     }
     if (!table.times.empty() && !(t > table.times.back())) {

@@ -114,9 +114,13 @@ std::string flag_as_value(const std::string& text, bool file) {
 
 }  // namespace
 
+bool is_blank(const std::string& text) {
+  return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos;
+}
+
 CLI::Validator file_name_check() {
   return {[](std::string& text) {
-            if (text.find_first_not_of(" \t\n\r\v\f") == std::string::npos) {
+            if (is_blank(text)) {
               return std::string("an empty name: name a file (or - for standard output)");
             }
             return flag_as_value(text, true);
@@ -126,7 +130,7 @@ CLI::Validator file_name_check() {
 
 CLI::Validator non_empty_check() {
   return {[](std::string& text) {
-            if (text.find_first_not_of(" \t\n\r\v\f") == std::string::npos) {
+            if (is_blank(text)) {
               return std::string("is empty (leave the flag out instead)");
             }
             return flag_as_value(text, false);

@@ -32,6 +32,8 @@ namespace condyn {
 [[nodiscard]] CLI::Validator file_name_check();
 /// Refuses an empty value: a flag given as '' is a mistake, not a request for the default.
 [[nodiscard]] CLI::Validator non_empty_check();
+/// True for a value of blanks only (spaces, tabs, line ends) or none: an empty value.
+[[nodiscard]] bool is_blank(const std::string& text);
 
 /// A scheme named by `flag`; throws CLI::ValidationError naming the flag and the schemes.
 [[nodiscard]] Scheme parse_scheme_flag(const std::string& flag, const std::string& s);

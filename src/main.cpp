@@ -378,11 +378,10 @@ int run_command(int argc, char** argv) {
                    "scene file (default: the chapter truss, §5.5.1, built in)")
       ->check(CLI::Validator(
           [](std::string& text) {
-            return text.find_first_not_of(" \t\n\r\v\f") == std::string::npos
-                       ? std::string(
-                             "is empty: name a scene file, or leave it out for the "
-                             "built-in truss")
-                       : std::string();
+            return is_blank(text) ? std::string(
+                                        "is empty: name a scene file, or leave it out for the "
+                                        "built-in truss")
+                                  : std::string();
           },
           "FILE"));
   compare_cmd
