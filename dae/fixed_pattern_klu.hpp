@@ -18,9 +18,18 @@ namespace condyn {
 /// KLU's fill-reducing ordering (0 AMD, KLU's default; 1 COLAMD), and whether a refactored
 /// matrix whose rcond estimate is small is kept when KLU's condest (dearer, more accurate) finds
 /// its condition number at most 1/ε^(2/3).
+///
+/// From `band_ordering_from` unknowns on, the first factorization also tries a bandwidth-reducing
+/// ordering (dae/band_ordering.hpp) and keeps it when its factor has no more entries than the
+/// fill-reducing one's: no more memory or work, and solves that read the vector in order. The
+/// trial costs one factorization more at the first call. Below that size the factor is small
+/// enough for the cache and the order of its reads gained nothing measurable (the benchmark
+/// lattice's index-1 matrix: nothing at 2·10⁴ unknowns, 10⁴ DOFs; 25 to 35% of a solve's time
+/// at 2·10⁵ and 2·10⁶; docs/benchmarks.md), so small systems keep KLU's ordering alone.
 struct KluSettings {
   int ordering = 0;
   bool confirm_with_condest = false;
+  int band_ordering_from = 50'000;
 };
 /// SUNDIALS' SUNLinSol_KLU's: COLAMD, and a small rcond confirmed by condest before pivoting
 /// afresh.
@@ -47,14 +56,18 @@ class FixedPatternKlu {
   /// Factorizations with pivoting, and refactorizations that reused their pivots.
   [[nodiscard]] long pivoting_factorizations() const { return pivoting_; }
   [[nodiscard]] long refactorizations() const { return refactored_; }
+  /// Whether the factors are in the bandwidth-reducing ordering (see KluSettings).
+  [[nodiscard]] bool band_ordered() const { return band_ordered_; }
 
  private:
   struct Impl;
   bool factor(int n, const int* outer, const int* inner, const double* values);
+  bool first_factor(int n, int* outer, int* inner, double* values);
   std::unique_ptr<Impl> impl_;
   KluSettings settings_;
   long pivoting_ = 0;
   long refactored_ = 0;
+  bool band_ordered_ = false;
 };
 
 }  // namespace condyn
