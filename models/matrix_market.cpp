@@ -180,15 +180,26 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   // another file's) had the kernel kill the process while the index arrays were filled.
   // setFromTriplets holds a row-major copy beside the column-major result: 4 + 4 bytes per row
   // and per column, and per entry the triplet (16) and two copies of index and value (24).
-  const double needed = 8.0 * (static_cast<double>(rows) + static_cast<double>(cols)) +
+  const double stored = 8.0 * (static_cast<double>(rows) + static_cast<double>(cols)) +
                         40.0 * static_cast<double>(entries) * (out.symmetric ? 2.0 : 1.0);
+  double integrating = 0.0;  // a model matrix: what a run of that many DOFs holds at least
+  if (expect.rows_are_dofs) {
+    ModelSizes sizes;
+    sizes.dofs = static_cast<double>(rows);
+    sizes.nnz_stiffness = static_cast<double>(entries) * (out.symmetric ? 2.0 : 1.0);
+    integrating = integration_memory_estimate(sizes).lower_bound;
+  }
+  const double needed = stored + integrating;
   if (const auto available = available_memory_bytes(); available && needed > *available) {
-    throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
-                                         std::to_string(cols) + " with " + std::to_string(entries) +
-                                         " entries: holding it needs " + format_bytes(needed) +
-                                         ", more than the " + format_bytes(*available) +
-                                         " this machine has available (MemAvailable in "
-                                         "/proc/meminfo); is the size line right?");
+    throw MatrixMarketError(
+        line_no, "the size line declares " + std::to_string(rows) + " x " + std::to_string(cols) +
+                     " with " + std::to_string(entries) + " entries: " +
+                     (expect.rows_are_dofs ? "holding it and integrating a model of " +
+                                                 std::to_string(rows) + " DOFs needs at least "
+                                           : std::string("holding it needs ")) +
+                     format_bytes(needed) + ", more than the " + format_bytes(*available) +
+                     " this machine has available (MemAvailable in /proc/meminfo); is the size "
+                     "line right?");
   }
   // No upper bound from rows x cols: duplicate entries are allowed (and summed).
   if (entries < 0) {

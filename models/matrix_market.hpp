@@ -41,6 +41,10 @@ struct MarketExpectation {
   bool rows_need_entries = false;
   long long rows = 0, cols = 0;  ///< the size the file must declare; 0: any
   std::string because;           ///< why, for the message ("M.mtx is 3 x 3")
+  /// A model matrix (mass, damping, stiffness): its rows are DOFs, and a size line declaring
+  /// more than the machine could integrate (models/memory_estimate.hpp's lower bound, beside
+  /// the matrix itself) is refused before the DOFs are built.
+  bool rows_are_dofs = false;
 };
 
 /// Reads `path`. Throws MatrixMarketError for anything but a well-formed coordinate real (or

@@ -234,6 +234,7 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
   const FileMatrix* first = nullptr;
   // The size each must declare, checked at its size line: the names' count, else the first's.
   MarketExpectation expected;
+  expected.rows_are_dofs = true;
   if (const auto* d = t.get("dofs"); d != nullptr && d->is_array() && !d->as_array()->empty()) {
     expected.rows = expected.cols = static_cast<long long>(d->as_array()->size());
     expected.because = "model.dofs names " + std::to_string(expected.rows) + " DOFs";

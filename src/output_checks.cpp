@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <filesystem>
 #include <optional>
 #include <string_view>
@@ -141,6 +142,10 @@ void OutputPlan::Impl::check_output(Output& o) {
              "is read-only: condyn does not replace a protected file (make it writable or "
              "choose another name)");
     }
+  } else if (errno == ENAMETOOLONG || o.target.filename().native().size() > NAME_MAX) {
+    // The temporary file's shorter name would pass, and the rename after the run fail.
+    refuse(o, "cannot be created: " + errno_text(ENAMETOOLONG) + " (at most " +
+                  std::to_string(NAME_MAX) + " bytes a name)");
   }
   const fs::path folder = o.target.parent_path();
   if (::stat(folder.c_str(), &st) != 0) {

@@ -23,9 +23,10 @@ using condyn::test::Sandbox;
 namespace {
 
 /// The line a malformed text is refused at, and its message.
-std::pair<int, std::string> market_error(const std::string& text) {
+std::pair<int, std::string> market_error(const std::string& text,
+                                         const MarketExpectation& expect = {}) {
   try {
-    (void)parse_matrix_market(text);
+    (void)parse_matrix_market(text, expect);
   } catch (const MatrixMarketError& e) {
     return {e.line(), e.what()};
   }
@@ -200,6 +201,28 @@ TEST_CASE("matrix market: a size line beyond the memory available is refused bef
       "%%MatrixMarket matrix coordinate real general\n2147483647 2147483647 1\n1 1 1.0\n");
   CHECK(error.first == 2);
   CHECK_MESSAGE(has(error.second, "needs 34.4 GB, more than the"), error.second);
+  CHECK_MESSAGE(has(error.second, "is the size line right?"), error.second);
+}
+
+TEST_CASE("matrix market: a model matrix's size line is refused when its DOFs could not be run") {
+  // 10⁸ DOFs with one entry: the matrix takes 1.6 GB, but a run of 10⁸ DOFs holds at least
+  // IDA's vectors (30 of 2·10⁸ doubles, 48 GB) and the Newton matrix: before this check the DOF
+  // names and vectors were built until memory ran out, with a message naming no file.
+  const auto available = condyn::available_memory_bytes();
+  if (!available || *available > 4.0e10) {
+    MESSAGE("not shown: this machine has the 48 GB available");
+    return;
+  }
+  const std::string text =
+      "%%MatrixMarket matrix coordinate real symmetric\n100000000 100000000 1\n1 1 1.0\n";
+  MarketExpectation model;
+  model.rows_are_dofs = true;
+  const auto error = market_error(text, model);
+  CHECK(error.first == 2);
+  CHECK_MESSAGE(has(error.second,
+                    "holding it and integrating a model of 100000000 DOFs needs at "
+                    "least "),
+                error.second);
   CHECK_MESSAGE(has(error.second, "is the size line right?"), error.second);
 }
 

@@ -287,6 +287,20 @@ TEST_CASE("a path that cannot be written is refused before any work") {
   const Result folder = box.run("run f.toml --out .");
   CHECK(folder.code == 2);
   CHECK(contains(folder.err, "is a folder"));
+  // A name longer than the file system takes: the temporary file beside it (a short name) was
+  // created, the run done, and the rename failed after --out had replaced its file (exit 1).
+  box.write("kept.csv", "the user's\n");
+  const std::string long_name(256, 'c');
+  for (const std::string& cmd : {"run f.toml --out " + long_name + ".csv",
+                                 "run f.toml --out kept.csv --steps-out " + long_name + ".csv",
+                                 "run f.toml --out nowhere/" + long_name + ".csv"}) {
+    CAPTURE(cmd);
+    const Result r = box.run(cmd);
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "File name too long (at most 255 bytes a name)"));
+    CHECK(!contains(r.err, "integration failed"));
+  }
+  CHECK(slurp(box.path("kept.csv")) == "the user's\n");
 
   // compare and stress: the folder is checked before the first run (no progress line).
   for (const std::string& cmd :
