@@ -1,6 +1,7 @@
 #include "models/scene_readers.hpp"
 
 #include <string>
+#include <unordered_map>
 
 namespace condyn {
 
@@ -34,6 +35,10 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
   if (const auto* n = t.get("quantities")) {
     output.quantities.clear();
     const auto& arr = array(*n, "output.quantities");
+    if (arr.empty()) {
+      fail(*n, "output.quantities",
+           "is empty: name what to write, or omit the key for displacement and drift");
+    }
     for (std::size_t i = 0; i < arr.size(); ++i) {
       const std::string p = index("output.quantities", i);
       const std::string s = string(*arr.get(i), p);
@@ -60,10 +65,15 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
   if (const auto* n = t.get("dofs")) {
     const auto& arr = array(*n, "output.dofs");
     if (arr.empty()) fail(*n, "output.dofs", "is empty: omit the key for every DOF");
+    std::unordered_map<std::string, std::size_t> first;  // a column written twice
     for (std::size_t i = 0; i < arr.size(); ++i) {
       const std::string p = index("output.dofs", i);
       const std::string s = string(*arr.get(i), p);
       if (s.empty()) fail(*arr.get(i), p, "must not be empty");
+      if (const auto [at, added] = first.emplace(s, i); !added) {
+        fail(*arr.get(i), p,
+             "'" + s + "' is listed twice (also as " + index("output.dofs", at->second) + ")");
+      }
       output.dofs.push_back(s);
       output.dofs_lines.push_back(static_cast<int>(arr.get(i)->source().begin.line));
     }

@@ -53,8 +53,12 @@ void ModelBuilder::check_output() const {
 void ModelBuilder::check_output_dofs() const {
   const auto& patterns = spec_.output.dofs;
   for (std::size_t k = 0; k < patterns.size(); ++k) {
-    bool any = false;
-    for (const auto& name : model_.dof_names) any = any || matches_dof_pattern(patterns[k], name);
+    const bool any = patterns[k].find('*') == std::string::npos
+                         ? model_.find_dof(patterns[k]).has_value()
+                         : std::any_of(model_.dof_names.begin(), model_.dof_names.end(),
+                                       [&](const std::string& name) {
+                                         return matches_dof_pattern(patterns[k], name);
+                                       });
     if (any) continue;
     std::string some;
     for (std::size_t d = 0; d < model_.dof_names.size() && d < 6; ++d) {

@@ -1,6 +1,7 @@
 // [output] dofs selects the DOF columns; CSV numbers read back as the doubles computed.
 
 #include <doctest/doctest.h>
+#include <filesystem>
 
 #include <algorithm>
 #include <cmath>
@@ -127,6 +128,22 @@ TEST_CASE("[output] dofs: a pattern that matches no DOF is refused, naming it") 
   CHECK(r.err.find("'uz*' matches no DOF") != std::string::npos);
   box.write("e.toml", replace(kChain, "[output]\n", "[output]\ndofs = []\n"));
   CHECK(box.run("run e.toml --out out.csv").err.find("output.dofs") != std::string::npos);
+  // A name given twice (a column written twice) and an empty list of quantities (a CSV of
+  // times alone) are refused as a quantity given twice and an empty list of DOFs are.
+  box.write("d.toml", replace(kChain, "[output]\n", "[output]\ndofs = [\"ux3\", \"ux3\"]\n"));
+  const test::Result twice = box.run("run d.toml --out out.csv");
+  CHECK(twice.code == 2);
+  CHECK_MESSAGE(twice.err.find("output.dofs[2]: 'ux3' is listed twice (also as output.dofs[1])") !=
+                    std::string::npos,
+                twice.err);
+  box.write("q.toml", replace(kChain,
+                              "quantities = [\"displacement\", \"velocity\", \"reaction\", "
+                              "\"multiplier\"]",
+                              "quantities = []"));
+  const test::Result none = box.run("run q.toml --out out.csv");
+  CHECK(none.code == 2);
+  CHECK_MESSAGE(none.err.find("output.quantities: is empty") != std::string::npos, none.err);
+  CHECK_FALSE(std::filesystem::exists(box.path("out.csv")));
 }
 
 TEST_CASE("CSV numbers read back as the same doubles (shortest round-trip form)") {
