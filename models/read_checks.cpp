@@ -87,6 +87,14 @@ void SceneReader::read_checks(const toml::node& node, const SolveSpec& solve,
       check_keys(ref, p, {"file"});
       // One row is a reference too: the run is compared at its times.
       c.reference = table_file(required(ref, p, "file"), join(p, "file"), c.quantity, 1);
+      // The contract's reference has `t` and the quantity's column: a first column headed
+      // otherwise (a row number) would be read as the times.
+      if (c.reference->time_column != "t") {
+        fail(*ref.get("file"), join(p, "file"),
+             c.reference->file + ": its first column is headed '" + c.reference->time_column +
+                 "': a reference's first column is the time, headed t (as in t," + c.quantity +
+                 ")");
+      }
       const auto& times = c.reference->times;
       if (times.front() < -1e-12 * solve.t_end || times.back() > solve.t_end * (1.0 + 1e-12)) {
         fail(*ref.get("file"), join(p, "file"),

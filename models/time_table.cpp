@@ -132,6 +132,7 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
                                           " column: a table needs time and a column of values");
       }
       if (header) {
+        table.time_column = row.front();
         if (column.empty()) {
           table.column = row[1];
         } else {

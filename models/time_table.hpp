@@ -29,8 +29,9 @@ class TimeTableError : public std::runtime_error {
 
 /// The samples of one column, immutable once read (shared by every copy of the time function).
 struct TimeTable {
-  std::string file;    ///< the file as the scene names it (for describe())
-  std::string column;  ///< the values' column: its header name, or "column 2" without a header
+  std::string file;         ///< the file as the scene names it (for describe())
+  std::string column;       ///< the values' column: its header name, or "column 2" without a header
+  std::string time_column;  ///< the time column's header name; empty without a header
   std::vector<double> times, values;
   double max_abs_value = 0.0;  ///< max |v_k|
   double max_abs_slope = 0.0;  ///< max |(v_{k+1} − v_k) / (t_{k+1} − t_k)| (may be inf)

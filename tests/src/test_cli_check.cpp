@@ -214,6 +214,28 @@ TEST_CASE("cli check: a reference of one row is compared at its time") {
   CHECK(box.run("check off.toml").code == 1);
 }
 
+TEST_CASE("cli check: a reference's first column is the time, headed t") {
+  // A row number first was read as the times: correct data gave FAIL (0.337), and a file
+  // without a t column passed as if its first values column were time.
+  Sandbox box;
+  for (const std::string& csv : {std::string("idx,t,x\n0,0,1\n1,0.5,0.8775825618903728\n"),
+                                 std::string("x_ref,x\n1,0.5403023058681398\n")}) {
+    CAPTURE(csv);
+    box.write("bad.csv", csv);
+    box.write("bad.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"bad.csv\" }\n"
+                                "tolerance = 1e-7\n"));
+    const Result r = box.run("check bad.toml");
+    CHECK(r.code == 2);
+    const std::string said = r.out + r.err;
+    CHECK_MESSAGE(said.find("bad.toml:16: check[1].reference.file: bad.csv: its first column is "
+                            "headed") != std::string::npos,
+                  said);
+    CHECK_MESSAGE(said.find("a reference's first column is the time, headed t (as in t,x)") !=
+                      std::string::npos,
+                  said);
+  }
+}
+
 TEST_CASE("cli check: a run that fails is an error of its scene (exit 1)") {
   Sandbox box;
   box.write("a.toml", scene("[[check]]\nquantity = \"x\"\nmax_abs = 1.0\n"));
