@@ -1,4 +1,5 @@
 #include <doctest/doctest.h>
+#include <numbers>
 
 #include <cmath>
 #include <limits>
@@ -187,9 +188,23 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   const Model model = build_model(spec);
   const LinearSystem system(model);
   const PenaltyWeights weights = penalty_weights(model, spec.solve);
-  // Default: 1e4 × the largest stiffness diagonal (5), c = √(w · m_max) with m_max = 3.
-  CHECK(weights.position == doctest::Approx(5e4).epsilon(8 * kEps));
-  CHECK(weights.velocity == doctest::Approx(std::sqrt(5e4 * 3.0)).epsilon(8 * kEps));
+  // Default: the largest stiffness diagonal (5) with m_max = 3 has a period of 2 pi sqrt(3/5) =
+  // 4.9 s, longer than the run (t_end = 1): no stiffness within it, so w = 1e4 m_max (2 pi /
+  // output_step)^2, c = √(w · m_max). (A weight from that stiffness, 1e-12 times smaller in a
+  // soft model, let a tie drift by 1.5e3 over its 100 s.)
+  const double omega = 2.0 * std::numbers::pi / spec.solve.output_step;
+  CHECK(weights.position == doctest::Approx(1e4 * 3.0 * omega * omega).epsilon(8 * kEps));
+  CHECK(weights.velocity == doctest::Approx(std::sqrt(weights.position * 3.0)).epsilon(8 * kEps));
+  CHECK(weights.rule.find("stiffness below m (2 pi / t_end)^2, none within the run") !=
+        std::string::npos);
+  SUBCASE("a stiffness within the run: 1e4 times its largest diagonal") {
+    Model stiff = build_model(spec);
+    stiff.K.edit() *= 1e3;  // 5e3 > m_max (2 pi / t_end)^2 = 118
+    const PenaltyWeights w = penalty_weights(stiff, spec.solve);
+    CHECK(w.position == doctest::Approx(5e7).epsilon(8 * kEps));
+    CHECK(w.velocity == doctest::Approx(std::sqrt(5e7 * 3.0)).epsilon(8 * kEps));
+    CHECK(w.rule.find("(1e4 x the largest stiffness diagonal)") != std::string::npos);
+  }
   const PenaltyOde ode(system, weights);
   CHECK(ode.size() == 2 * model.dofs());  // no multiplier unknowns
   const int n = ode.size();
@@ -197,7 +212,7 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   const Eigen::VectorXd yp = Eigen::VectorXd::LinSpaced(n, -0.2, 0.9);
   Eigen::SparseMatrix<double> J = ode.jacobian_pattern().matrix();
   ode.jacobian(0.37, y, yp, 12.5, J);
-  // Linear residual with entries up to w = 5e4: central differences (h = 1e-6) exact to eps·|F|/h
+  // Linear residual with entries up to w = 4.7e6: central differences (h = 1e-6) exact to eps·|F|/h
   // with |F| ≲ n max|J| (states ≤ 1), i.e. n eps / h relative to max|J| (observed 1.6e-11).
   CONDYN_CHECK_CLOSE(Eigen::MatrixXd(J), test::finite_difference_jacobian(ode, 0.37, y, yp, 12.5),
                      n * kEps / 1e-6);
@@ -206,7 +221,7 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   ode.make_consistent(0.0, y0, yp0);
   Eigen::VectorXd r(n);
   ode.residual(0.0, y0, yp0, r);
-  // Roundoff of penalty terms of size w = 5e4 would allow n eps w ≈ 1e-10, 2e8 times the observed
+  // Roundoff of penalty terms of size w = 4.7e6 would allow n eps w ≈ 8e-9, far above the observed
   // 4e-19 (the w-terms nearly cancel at the consistent start): kept at 1e-12, which still fails
   // for an inconsistent y'0 by far less than any physical quantity here.
   CHECK(r.cwiseAbs().maxCoeff() <= 1e-12);
