@@ -103,10 +103,11 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
     }
     solve.treatment =
         s == "mixed" ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
-    if (solve.treatment == SolveSpec::Treatment::mixed && !mixes(solve.scheme)) {
+    if (!mixes(solve.scheme)) {
       fail(*n, "solve.constraints",
-           std::string("'mixed' applies to the multiplier schemes (index1, baumgarte, ggl, "
-                       "index2, index3) and to auto, not to ") +
+           "'" + s +
+               "' applies to the multiplier schemes (index1, baumgarte, ggl, index2, index3) "
+               "and to auto, not to " +
                to_string(solve.scheme));
     }
   }

@@ -170,11 +170,18 @@ CLI::Validator whole_check(int lo, int hi) {
           "INTEGER in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]"};
 }
 
-SolveSpec::Treatment parse_treatment_flag(const std::string& s) {
-  if (s == "mixed") return SolveSpec::Treatment::mixed;
-  if (s == "multipliers") return SolveSpec::Treatment::multipliers;
-  throw CLI::ValidationError("--constraints",
-                             "expected 'mixed' or 'multipliers' (got '" + s + "')");
+SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme) {
+  if (s != "mixed" && s != "multipliers") {
+    throw CLI::ValidationError("--constraints",
+                               "expected 'mixed' or 'multipliers' (got '" + s + "')");
+  }
+  if (!mixes(scheme)) {
+    throw CLI::ValidationError(
+        "--constraints", std::string("applies to the multiplier schemes (index1, baumgarte, ggl, "
+                                     "index2, index3) and to auto, not to ") +
+                             to_string(scheme));
+  }
+  return s == "mixed" ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
 }
 
 Scheme parse_scheme_flag(const std::string& flag, const std::string& s) {

@@ -38,7 +38,8 @@ namespace condyn {
 /// A scheme named by `flag`; throws CLI::ValidationError naming the flag and the schemes.
 [[nodiscard]] Scheme parse_scheme_flag(const std::string& flag, const std::string& s);
 /// --constraints: "mixed" or "multipliers"; throws CLI::ValidationError otherwise.
-[[nodiscard]] SolveSpec::Treatment parse_treatment_flag(const std::string& s);
+/// --constraints: refused under a scheme without multipliers (elimination, penalty, projection).
+[[nodiscard]] SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme);
 
 /// Splits "a,b,c" (spaces ignored); an empty item (a stray comma) or one listed twice is refused
 /// with CLI::ValidationError naming `flag`.

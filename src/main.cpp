@@ -78,7 +78,8 @@ void keep_freed_memory() {
 int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
   if (!args.scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", args.scheme);
-  if (!args.constraints.empty()) spec.solve.treatment = parse_treatment_flag(args.constraints);
+  if (!args.constraints.empty())
+    spec.solve.treatment = parse_treatment_flag(args.constraints, spec.solve.scheme);
   if (args.rtol) spec.solve.rtol = *args.rtol;  // a loose one is warned of (BuildReport)
   if (args.atol) spec.solve.atol = *args.atol;
   if (args.max_steps) spec.solve.max_steps = *args.max_steps;
@@ -520,7 +521,10 @@ int run_command(int argc, char** argv) {
       keep_freed_memory();
       SceneSpec spec = parse_scene_file(info_scene);
       if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", info_scheme);
-      if (!info_constraints.empty()) spec.solve.treatment = parse_treatment_flag(info_constraints);
+      if (!info_constraints.empty()) {  // info sizes every scheme unless --scheme names one
+        spec.solve.treatment = parse_treatment_flag(
+            info_constraints, info_scheme.empty() ? Scheme::automatic : spec.solve.scheme);
+      }
       BuildReport report;
       const Model model = build_model(spec, report);
       // A bad [[check]] is bad input here as in run and check.

@@ -231,6 +231,15 @@ TEST_CASE("[solve] constraints: 'mixed' only beside a multiplier scheme or auto"
                              "chain.toml"),
       doctest::Contains("solve.constraints: 'mixed' applies to the multiplier schemes"),
       SceneError);
+  // 'multipliers' names a treatment of those schemes too: beside penalty it was accepted and
+  // meant nothing.
+  CHECK_THROWS_WITH_AS(
+      (void)parse_scene_text(chain_scene("scheme = \"penalty\"\nconstraints = \"multipliers\"\n"),
+                             "chain.toml"),
+      doctest::Contains(
+          "solve.constraints: 'multipliers' applies to the multiplier schemes (index1, "
+          "baumgarte, ggl, index2, index3) and to auto, not to penalty"),
+      SceneError);
   CHECK_THROWS_WITH_AS(
       (void)parse_scene_text(chain_scene("constraints = \"some\"\n"), "chain.toml"),
       doctest::Contains("solve.constraints: expected 'mixed' or 'multipliers'"), SceneError);
