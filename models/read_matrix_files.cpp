@@ -115,6 +115,11 @@ void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
                                 ModelSpec& model) const {
   const auto& t = table(node, path);
   if (const auto* file = t.get("file")) {  // not "file: unknown key": the pair is the mistake
+    if (!t.contains("rayleigh") && !t.contains("modal")) {  // a model type without matrices
+      fail(*file, join(path, "file"),
+           "a damping matrix from a file is for matrix models (type = \"matrix\"): give "
+           "rayleigh or modal damping");
+    }
     fail(*file, join(path, "file"),
          "give either a damping matrix (file) or rayleigh or modal damping, not both");
   }
@@ -194,10 +199,14 @@ void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string&
   const double w1 = 2.0 * pi * f[0], w2 = 2.0 * pi * f[1];
   // a0 = 2 w1 w2 (z1 w2 - z2 w1) / (w2² - w1²), a1 = 2 (z2 w2 - z1 w1) / (w2² - w1²), divided
   // through by w2² (r = w1/w2): no square of a frequency, which overflowed from 1e154 and
-  // underflowed below 1e-154 where a0 and a1 themselves are representable.
-  const double r = w1 / w2;
-  const double a0 = 2.0 * w1 * (z[0] - z[1] * r) / (1.0 - r * r);
-  const double a1 = 2.0 * (z[1] - z[0] * r) / (w2 * (1.0 - r * r));
+  // underflowed below 1e-154 where a0 and a1 themselves are representable. With d = 1 - r,
+  // 1 - r² = d (1 + r) and z1 - z2 r = (z1 - z2) + z2 d: d from f2 - f1, exact for close
+  // frequencies, where 1 - r * r lost their difference (f and f + 1 ulp gave a ratio of 0.0417
+  // for 0.05).
+  const double r = f[0] / f[1];
+  const double d = (f[1] - f[0]) / f[1];
+  const double a0 = 2.0 * w1 * ((z[0] - z[1]) / d + z[1]) / (1.0 + r);
+  const double a1 = 2.0 * ((z[1] - z[0]) / d + z[0]) / (w2 * (1.0 + r));
   if (!std::isfinite(a0) || !std::isfinite(a1)) {
     fail(fn, join(path, "frequencies"),
          "these frequencies give a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +

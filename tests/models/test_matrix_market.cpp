@@ -541,6 +541,11 @@ terms = { uy2 = 1.0 }
   CHECK(has(error(condyn::test::replace(truss, "rayleigh =", "file = \"C.mtx\", rayleigh =")),
             "model.damping.file: give either a damping matrix (file) or rayleigh or modal "
             "damping, not both"));
+  // A file alone on a truss: there is no pair, the model type is the mistake.
+  CHECK(
+      has(error(condyn::test::replace(truss, "{ rayleigh = [0.5, 0.02] }", "{ file = \"C.mtx\" }")),
+          "model.damping.file: a damping matrix from a file is for matrix models (type = "
+          "\"matrix\"): give rayleigh or modal damping"));
   CHECK(has(error(condyn::test::replace(truss, "EA = 10.0", "rigid = true")),
             "model.damping.rayleigh: Rayleigh damping needs a linear model"));
 }
