@@ -248,7 +248,7 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
   summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
   summary.jacobian_nonzeros = cvode.jacobian_nonzeros();
   RawTrajectory out = drive(cvode, y0, yp0, options, summary);
-  summary.termination = "reached t = " + std::to_string(options.output_times.back());
+  summary.set_reached(options.output_times.back());
   return out;
 }
 

@@ -95,6 +95,13 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
              "unknown that matters, rtol not tighter than needed), and the time scale (t_end and "
              "output_step against the model's periods); another scheme may start";
     case FailureKind::bad_input:
+      if (e.t_reached == e.t0 && e.message.find("is behind current t") != std::string::npos) {
+        // IDA's first step is 0.5 over the weighted norm of y'0, 0 when that norm overflows.
+        return "the integrator's first step came out as 0: the initial rates of change are "
+               "beyond double precision against the tolerances (|y'| / atol above about 1e308: "
+               "loads, masses or stiffnesses in a unit far too small or too large); rescale the "
+               "model or loosen atol";
+      }
       return "the integrator refused an input (a time, tolerance or size it cannot use): check "
              "t_end, output_step, the load step times and the tolerances";
     case FailureKind::convergence:

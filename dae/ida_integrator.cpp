@@ -374,7 +374,7 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
     problem.begin_segment(t0);
     RawTrajectory out = drive(none, y0, y0, options, summary);
     summary.unknowns = 0;
-    summary.termination = "reached t = " + std::to_string(options.output_times.back());
+    summary.set_reached(options.output_times.back());
     return out;
   }
   Ida ida(problem, options);
@@ -385,7 +385,7 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
   summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
   summary.jacobian_nonzeros = ida.jacobian_nonzeros();
   RawTrajectory out = drive(ida, y_init, yp0, options, summary);
-  summary.termination = "reached t = " + std::to_string(options.output_times.back());
+  summary.set_reached(options.output_times.back());
   return out;
 }
 

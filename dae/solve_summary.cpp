@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/number_cell.hpp"
+
 namespace condyn {
 
 void IntegratorOptions::validate() const {
@@ -77,6 +79,11 @@ std::string SolveSummary::brief() const {
   if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
   if (!notes.empty()) s << "; " << notes;
   return s.str();
+}
+
+void SolveSummary::set_reached(double t) {
+  std::string fixed = std::to_string(t);
+  termination = "reached t = " + (std::stod(fixed) == t ? fixed : shortest_number(t));
 }
 
 }  // namespace condyn

@@ -114,6 +114,9 @@ struct SolveSummary {
   int unknowns = 0;
   long jacobian_nonzeros = 0;
   std::string termination = "not run";
+  /// termination for a run that reached `t`: "reached t = 2.000000" as it has always read where
+  /// six decimals give t exactly, t's shortest form otherwise ("reached t = 1e-10", not 0.000000).
+  void set_reached(double t);
   /// One line for the terminal.
   [[nodiscard]] std::string brief() const;
 };

@@ -14,6 +14,15 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
               "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "newton", "redundant",
               "max_steps", "max_wall_time", "constraints", "max_order"});
   solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
+  // IDA tests its stop time by the product (t_stop - t) h with a first step h of at most
+  // t_end / 1000: below about 1e-160 it underflows to 0 and the run is refused at t = 0 as
+  // 'tstop is behind current t'.
+  if (solve.t_end < 1e-150) {
+    fail(*t.get("t_end"), "solve.t_end",
+         fmt(solve.t_end) +
+             " is below 1e-150, where the integrator's products of times and steps underflow: "
+             "express time in a smaller unit");
+  }
   solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
   if (const auto* n = t.get("max_steps")) {
     // A whole number >= 1 (1e6 is accepted: a budget is often written so).

@@ -130,6 +130,17 @@ TEST_CASE("each failure kind gets its own advice, worded from the facts") {
       "could not be factored"));
   CHECK(contains(failure_suggestion(Scheme::ggl, failure(FailureKind::bad_input, 0.0, 0.0, 2.0, 0)),
                  "refused an input"));
+  {
+    // IDA's first step is 0.5 / |y'0|: a load of 1e300 (|y'| / atol beyond the double range)
+    // gave a step of 0, refused as a stop time "behind" t = 0. Named for what it is.
+    RunFailure zero_step = failure(FailureKind::bad_input, 0.0, 0.0, 1.0, 0);
+    zero_step.t0 = 0.0;
+    zero_step.message =
+        "IDASolve: The value tstop = 1 is behind current t = 0, in the direction of integration.";
+    const std::string advice = failure_suggestion(Scheme::elimination, zero_step);
+    CHECK(contains(advice, "first step came out as 0"));
+    CHECK(contains(advice, "rescale the model or loosen atol"));
+  }
   CHECK(contains(
       failure_suggestion(Scheme::ggl, failure(FailureKind::non_finite, 1.0, 1e-3, 2.0, 10)),
       "blew up"));
@@ -324,7 +335,7 @@ std::string pendulum(const std::string& solve_keys) {
 
 }  // namespace
 
-TEST_CASE("real failures: t_end = 1e300 stops at the step budget; a failure at t = 0 is a start") {
+TEST_CASE("real failures: t_end = 1e300 stops at the step budget, a failure at t = 0 is a start") {
   {
     // index1 takes ordinary steps toward 1e300: the budget ends it, and the advice says how far
     // off t_end is, not that the step collapsed.

@@ -66,7 +66,7 @@ output_step = 0.1
   }
 }
 
-TEST_CASE("kkt_matrix: [M Aᵀ; A 0] entry by entry, stored zeros kept, no rows, uncompressed M") {
+TEST_CASE("kkt_matrix: [M Aᵀ | A 0] entry by entry, stored zeros kept, no rows, uncompressed M") {
   Eigen::MatrixXd Md(3, 3), Ad(2, 3);
   Md << 2, 0, 0.5, 0, 1, 0, 0.5, 0, 3;
   Ad << 1, 0, -1, 0, 2, 0;

@@ -247,7 +247,7 @@ TEST_CASE(
             .matrix.rows() == 3);
 }
 
-TEST_CASE("matrix market: a byte order mark, lone CR endings; messages show no control bytes") {
+TEST_CASE("matrix market: a byte order mark, lone CR endings, messages show no control bytes") {
   const std::string body = "3 3 3\n1 1 2\n2 2 2\n3 3 2\n";
   const std::string header = "%%MatrixMarket matrix coordinate real general\n";
   // A BOM before the header (a Windows editor's), and a file with lone CR line ends, read as

@@ -72,7 +72,7 @@ TEST_CASE("modal damping: each mode of the constrained model gets its ratio") {
   }
 }
 
-TEST_CASE("modal damping: classical, so the exact reference applies; every scheme agrees") {
+TEST_CASE("modal damping: classical, so the exact reference applies, every scheme agrees") {
   const auto s = test::built(parse_scene_text(chain("{ modal = [0.02, 0.07] }"), "m.toml"));
   const Trajectory first =
       test::solved(s.model, test::under(s.spec.solve, Scheme::elimination)).trajectory;

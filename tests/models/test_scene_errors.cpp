@@ -102,6 +102,12 @@ TEST_CASE("values out of range") {
   check_error(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0, inf]"), "must be finite");
   check_error(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0]"), "has 1 entries for 2 nodes");
   check_error(replace(kBase, "t_end = 1.0", "t_end = 0.0"), "solve.t_end: must be > 0");
+  // IDA's stop-time test multiplies times and steps: at 1e-200 it underflowed and the run was
+  // refused at t = 0 as "tstop = 1e-200 is behind current t = 0".
+  check_error(replace(replace(kBase, "t_end = 1.0", "t_end = 1e-200"), "output_step = 0.1",
+                      "output_step = 1e-200"),
+              "solve.t_end: 1e-200 is below 1e-150, where the integrator's products of times and "
+              "steps underflow: express time in a smaller unit");
   check_error(replace(kBase, "output_step = 0.1", "output_step = -0.1"),
               "solve.output_step: must be > 0");
   check_error(replace(kBase, "output_step = 0.1", "output_step = 2.0"), "larger than t_end");

@@ -123,7 +123,7 @@ TEST_CASE("cli check: a check that fails: exit 1 and a JUnit failure") {
   CHECK(junit_counts(box, "report.xml") == "testsuites 2 1 0 1 1\n");
 }
 
-TEST_CASE("cli check: bad input is exit 2 naming file, line and key; the other scenes still run") {
+TEST_CASE("cli check: bad input is exit 2 naming file, line and key, the other scenes still run") {
   Sandbox box;
   box.write("good.toml", scene(kHolds));
   box.write("typo.toml", scene("[[check]]\nquantity = \"y\"\nmax_abs = 1.0\n"));
@@ -252,7 +252,7 @@ TEST_CASE("cli check: a run that fails is an error of its scene (exit 1)") {
 }
 
 TEST_CASE(
-    "cli compare: a failed run makes the exit 1 unless --allow-failures; no study by default") {
+    "cli compare: a failed run makes the exit 1 unless --allow-failures, no study by default") {
   Sandbox box;
   box.write("s.toml", scene(""));
   const std::string args =

@@ -180,7 +180,7 @@ TEST_CASE(
   CHECK(!fs::exists(box.path("st/scenes/stiffness_2.toml")));
 }
 
-TEST_CASE("[output] file is relative to the scene's folder; --out is relative to here") {
+TEST_CASE("[output] file is relative to the scene's folder, --out is relative to here") {
   const Sandbox box;
   fs::create_directory(box.path("sub"));
   box.write("sub/s.toml", kScene + "[output]\nfile = \"r.csv\"\n");
