@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace condyn {
 
@@ -157,6 +158,11 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
 
 double relative_energy_error(const Trajectory& traj) {
   if (traj.energy.size() == 0) return -1.0;
+  // An energy beyond the double range (a load of 1e200 times its displacement) made
+  // inf - inf: the figure read 0.
+  if (!traj.energy.allFinite() || !traj.kinetic.allFinite()) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   double scale = std::abs(traj.energy[0]);
   if (traj.kinetic.size() > 0) scale = std::max(scale, traj.kinetic.maxCoeff());
   const double worst = (traj.energy.array() - traj.energy[0]).abs().maxCoeff();

@@ -117,7 +117,8 @@ class MultiplierRecovery {
 };
 
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
-/// (T the kinetic energy; the scale is never zero for a moving model). −1 without energies.
+/// (T the kinetic energy; the scale is never zero for a moving model). −1 without energies; NaN
+/// when an energy leaves the double range (no figure can be given).
 [[nodiscard]] double relative_energy_error(const Trajectory& traj);
 
 /// What a streamed run keeps of its rows: times, drifts and energies (n-independent), gathered

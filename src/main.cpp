@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -143,7 +144,10 @@ int run(const RunArgs& args) {
   for (const auto& d : report.dropped_constraints)
     msg << "dropped redundant constraint " << d << "\n";
   msg << summary.brief() << "\n";
-  if (const double e = relative_energy_error(traj); e >= 0.0) {
+  if (const double e = relative_energy_error(traj); std::isnan(e)) {
+    msg << "energy: not evaluated: an energy leaves the double range (loads or motions too large "
+           "for double precision)\n";
+  } else if (e >= 0.0) {
     msg << "energy: max |E(t) - E(0)| = " << e << " relative to max(|E(0)|, max kinetic energy)\n";
   }
   const SolveSpec& settings = spec.solve;

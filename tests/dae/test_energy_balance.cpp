@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "dae/solve.hpp"
+#include "dae/trajectory.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
@@ -241,4 +243,20 @@ TEST_CASE("nonlinear models under time-dependent loading: the balance closes wit
     CAPTURE(loose_error);
     CHECK(loose_error > 30.0 * error);
   }
+}
+
+TEST_CASE("relative_energy_error: NaN, not a figure, when an energy leaves the double range") {
+  // A load of 1e200 times its displacement: energies of inf, and inf - inf read as an error of 0.
+  Trajectory traj;
+  traj.energy = Eigen::VectorXd::Zero(3);
+  traj.kinetic = Eigen::VectorXd::Zero(3);
+  traj.energy << 0.0, 1.0, 2.0;
+  traj.kinetic << 0.0, 4.0, 1.0;
+  CHECK(relative_energy_error(traj) == 0.5);  // max |E - E0| = 2 over max(|E0|, max T) = 4
+  traj.energy[2] = std::numeric_limits<double>::infinity();
+  CHECK(std::isnan(relative_energy_error(traj)));
+  traj.energy[2] = 2.0;
+  traj.kinetic[1] = std::numeric_limits<double>::quiet_NaN();
+  CHECK(std::isnan(relative_energy_error(traj)));
+  CHECK(relative_energy_error(Trajectory{}) == -1.0);  // no energies: none asked for
 }
