@@ -113,11 +113,13 @@ void ModelBuilder::check_slaves() const {
   // The elimination solves A_S u_S = g − A_R u_R: the slaves' columns must be well conditioned
   // (the elimination's own limit, 1e12). Dense SVD of m x m; skipped beyond the dense limit.
   if (model_.is_nonlinear() || static_cast<double>(m) * m > kMaxDenseEntries) return;
-  const Eigen::MatrixXd a(model_.A);
-  Eigen::MatrixXd a_s(m, m);
+  // The slaves' columns only: A itself is m x n, and n may be 10⁶.
+  Eigen::MatrixXd a_s = Eigen::MatrixXd::Zero(m, m);
   std::string names;
   for (int k = 0; k < m; ++k) {
-    a_s.col(k) = a.col(model_.dof_at(slaves[static_cast<std::size_t>(k)]));
+    const int column = model_.dof_at(slaves[static_cast<std::size_t>(k)]);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(model_.A, column); it; ++it)
+      a_s(it.row(), k) = it.value();
     names += (k ? ", " : "") + slaves[static_cast<std::size_t>(k)];
   }
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(a_s);
