@@ -67,11 +67,12 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       if (options.record_steps) steps.push_back({t, dp, dv, reversals(v)});
     };
   }
+  const auto& row_lambda = observe.row_multipliers ? observe.row_multipliers : observe.multipliers;
   const auto assemble = [&](const RawTrajectory& raw) {
     std::vector<Eigen::VectorXd> u, v, lambda;
     for (std::size_t k = 0; k < raw.t.size(); ++k) {
       auto [uk, vk] = observe.full_state(raw.t[k], raw.y[k]);
-      lambda.push_back(observe.multipliers(raw.t[k], raw.y[k], raw.yp[k], uk, vk));
+      lambda.push_back(row_lambda(raw.t[k], raw.y[k], raw.yp[k], uk, vk));
       u.push_back(std::move(uk));
       v.push_back(std::move(vk));
     }
@@ -90,7 +91,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
                              const Eigen::VectorXd& integrals) {
       auto [u, v] = observe.full_state(t, y);
-      Eigen::VectorXd lambda = observe.multipliers(t, y, yp, u, v);
+      Eigen::VectorXd lambda = row_lambda(t, y, yp, u, v);
       const TrajectoryRow row =
           (*rows)(t, std::move(u), std::move(v), std::move(lambda), integrals);
       options.on_row(row);

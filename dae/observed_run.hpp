@@ -23,6 +23,11 @@ struct Observation {
   std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
                                 const Eigen::VectorXd& u, const Eigen::VectorXd& v)>
       multipliers;
+  /// λ at an output row, when it differs from `multipliers` (which the energy balance's
+  /// integrand keeps at every quadrature point); optional.
+  std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                const Eigen::VectorXd& u, const Eigen::VectorXd& v)>
+      row_multipliers;
   /// Further per-step observation of y (GGL's μ); optional.
   std::function<void(const Eigen::VectorXd& y)> on_state;
   /// Measure the drift at every internal step even without a drift log (the multiplier schemes,

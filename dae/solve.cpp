@@ -22,6 +22,7 @@
 #include "dae/penalty_ode.hpp"
 #include "dae/projected_ode.hpp"
 #include "dae/reduced_ode.hpp"
+#include "dae/row_multipliers.hpp"
 
 namespace condyn {
 
@@ -218,6 +219,20 @@ void solve_multipliers(const Model& model, Scheme scheme, const SolveSpec& setti
                               const Eigen::VectorXd&,
                               const Eigen::VectorXd&) { return Eigen::VectorXd(dae.lambda(y)); };
   }
+  // Output rows take λ from acceleration level (dae/row_multipliers.hpp), on the system the scheme
+  // integrates (the reduced one under the mixed treatment, whose eliminated rows' λ follow).
+  std::optional<AccelerationLevelMultipliers> at_rows;
+  if (options.row_multipliers) at_rows.emplace(system, !model.nonlinear);
+  if (at_rows) {
+    observe.row_multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                  const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+      const Eigen::VectorXd q = y.head(n), w = y.segment(n, n);
+      const auto solved = (*at_rows)(t, q, w);
+      if (!solved) return observe.multipliers(t, y, yp, u, v);
+      if (mixed) return observer->multipliers(t, q, w, solved->first, solved->second);
+      return solved->second;
+    };
+  }
   observe.on_state = [&](const Eigen::VectorXd& y) {
     if (dae.mu(y).size() > 0) max_mu = std::max(max_mu, dae.mu(y).cwiseAbs().maxCoeff());
   };
@@ -352,6 +367,7 @@ RunHooks hooks_for(const std::vector<Quantity>& quantities) {
   RunHooks hooks;
   hooks.accelerations = has(Quantity::acceleration) || has(Quantity::absolute_acceleration);
   hooks.energy_balance = has(Quantity::energy);
+  hooks.reactions = hooks.accelerations || has(Quantity::reaction) || has(Quantity::multiplier);
   return hooks;
 }
 
@@ -366,6 +382,7 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     IntegratorOptions options = integrator_options(model, s);
     options.record_steps = hooks.record_steps;
     options.accelerations = hooks.accelerations;
+    options.row_multipliers = hooks.reactions;
     options.energy_balance = hooks.energy_balance;
     options.on_progress = hooks.on_progress;
     options.on_row = hooks.on_row;

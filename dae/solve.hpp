@@ -87,6 +87,10 @@ class SystemSizer {
 struct RunHooks {
   bool record_steps = false;   ///< keep the drift at every internal step (Trajectory::steps)
   bool accelerations = false;  ///< compute accelerations at the output rows (dae/acceleration.hpp)
+  /// λ at the output rows from acceleration level (dae/row_multipliers.hpp), so that reactions
+  /// mean the same under every scheme; off only where no reaction, multiplier or acceleration of
+  /// the rows is used (hooks_for), to spare a solve per row.
+  bool reactions = true;
   std::function<void(const Progress&)> on_progress;  ///< for long runs (IntegratorOptions)
   /// When set, every output row goes here as it is computed (a failed run's rows included) and
   /// the result's trajectory holds no n x output-times data: its u, v, reaction and multiplier
@@ -96,7 +100,7 @@ struct RunHooks {
   bool energy_balance = false;
 };
 
-/// The hooks output `quantities` call for: accelerations, the energy balance.
+/// The hooks output `quantities` call for: accelerations, reactions, the energy balance.
 [[nodiscard]] RunHooks hooks_for(const std::vector<Quantity>& quantities);
 
 /// Solves the model under settings.scheme (`automatic` resolves through choose_scheme) with the

@@ -61,6 +61,10 @@ struct IntegratorOptions {
   /// Compute accelerations at the output rows (Trajectory::acceleration, TrajectoryRow::
   /// acceleration; dae/acceleration.hpp); off by default: a run pays only for what it outputs.
   bool accelerations = false;
+  /// The multiplier schemes' λ at output rows from the constraints at acceleration level
+  /// (dae/row_multipliers.hpp) rather than their own unknowns: one solve per row, for runs whose
+  /// reactions, multipliers or accelerations are used.
+  bool row_multipliers = true;
   /// When set, every output row (t, y, y') goes here as it is computed instead of into the
   /// returned RawTrajectory, which then holds the times only (results streamed, nothing of size
   /// unknowns x output times held).

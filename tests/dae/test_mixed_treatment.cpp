@@ -117,9 +117,11 @@ TEST_CASE("the reduced system's derivatives agree with central differences") {
 
 TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimination path") {
   // rtol 1e-10. Displacements are of order 0.09, reactions of order 1.4. The differences
-  // observed (2026-11-25) are below 1.2e-9 (u), 2.3e-8 (v) and 2.1e-6 (reactions, multipliers),
-  // the largest under index3, whose multipliers are its least accurate quantity (docs/schemes.md,
-  // schemes); the others' are below 3.3e-9. The bounds leave a margin of 5 to 100.
+  // observed (2026-11-25) are below 1.2e-9 (u) and 2.3e-8 (v), the largest under index3, whose
+  // positions are the index-3 DAE's (docs/schemes.md, schemes). Reactions and multipliers, from
+  // acceleration level at the rows (dae/row_multipliers.hpp), differ by 5.7e-8 under index3 and
+  // at most 3.3e-9 under the others (2026-11-27; index3's own λ had differed by 2.1e-6). The
+  // bounds leave a margin of 5 to 100.
   const auto scene =
       test::built(parse_scene_text(chain_scene("rtol = 1e-10\natol = 1e-12\n"), "chain.toml"));
   const SolveResult reference =
@@ -137,8 +139,8 @@ TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimina
     const auto& x = mixed.trajectory;
     CHECK(max_abs_difference(x.u, r.u) < 1e-7);
     CHECK(max_abs_difference(x.v, r.v) < 1e-6);
-    CHECK(max_abs_difference(x.reaction, r.reaction) < 1e-5);
-    CHECK(max_abs_difference(x.multiplier, r.multiplier) < 1e-5);
+    CHECK(max_abs_difference(x.reaction, r.reaction) < 5e-7);
+    CHECK(max_abs_difference(x.multiplier, r.multiplier) < 5e-7);
     // The eliminated rows hold to roundoff; the kept one to the scheme's tolerance.
     CHECK(mixed.summary.max_drift_position < 1e-9);
   }

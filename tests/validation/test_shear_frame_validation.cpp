@@ -22,7 +22,8 @@ TEST_CASE("shear frame under El Centro: every scheme agrees with the exact solut
   // rtol 1e-10 (`condyn compare ... --tolerances 1e-10`): u 1.3e-9 to 1.7e-9 for elimination,
   // index1, Baumgarte, GGL and index2, 3.5e-8 for projection, 4.2e-7 for index3 (its positions
   // are the index-3 DAE's: least accurate per tolerance, docs/schemes.md); reactions 1e-8 to
-  // 1e-7 (6e-6 for index3). The issue asks 1e-7 on displacements at tight tolerance.
+  // 1e-7, and 6.5e-7 for index3 since its rows take λ from acceleration level (2026-11-27; 6e-6
+  // from its own λ). The issue asks 1e-7 on displacements at tight tolerance.
   const test::ExactPeaks peak = test::check_against_exact(scene.model, scene.spec.solve,
                                                           {{Scheme::elimination, 1e-7, 1e-6},
                                                            {Scheme::index1, 1e-7, 1e-6},
@@ -30,7 +31,7 @@ TEST_CASE("shear frame under El Centro: every scheme agrees with the exact solut
                                                            {Scheme::ggl, 1e-7, 1e-6},
                                                            {Scheme::index2, 1e-7, 1e-6},
                                                            {Scheme::projection, 1e-7, 1e-6},
-                                                           {Scheme::index3, 2e-6, 1e-4}});
+                                                           {Scheme::index3, 2e-6, 1e-5}});
   // The frame moves (peak roof displacement of centimetres, in m) and its floors carry force (N).
   CHECK(peak.u > 1e-3);
   CHECK(peak.reaction > 1e3);
