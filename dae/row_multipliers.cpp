@@ -29,20 +29,7 @@ AccelerationLevelMultipliers::AccelerationLevelMultipliers(const MechanicalSyste
 
 bool AccelerationLevelMultipliers::factor(double t, const Eigen::VectorXd& u) {
   const Eigen::SparseMatrix<double>& A = system_->constraint_jacobian(t, u);
-  // Each row of A scaled by a power of two (exact): rows written with coefficients of 1e-150 or
-  // 1e150 beside a unit mass would otherwise leave KLU's pivots to roundoff.
-  scale_ = Eigen::VectorXd::Ones(A.rows());
-  Eigen::VectorXd largest = Eigen::VectorXd::Zero(A.rows());
-  for (int k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      largest[it.row()] = std::max(largest[it.row()], std::abs(it.value()));
-    }
-  }
-  for (Eigen::Index i = 0; i < largest.size(); ++i) {
-    int exponent = 0;
-    if (largest[i] > 0.0) (void)std::frexp(largest[i], &exponent);
-    scale_[i] = std::ldexp(1.0, -exponent);
-  }
+  scale_ = row_scales(A);  // exact: rows of 1e-150 or 1e150 beside a unit mass
   const Eigen::SparseMatrix<double> scaled = scale_.asDiagonal() * A;
   Eigen::SparseMatrix<double> M = system_->mass(t, u);
   for (int i : decoupled_) M.coeffRef(i, i) = 1.0;

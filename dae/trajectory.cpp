@@ -4,24 +4,15 @@
 #include <cmath>
 #include <limits>
 
+#include "dae/kkt.hpp"
+
 namespace condyn {
 
 MultiplierRecovery::MultiplierRecovery(const Model& model) : model_(model) {
   if (model.constraint_count() > 0) {
-    // Each row scaled by a power of two near 1/max|a_ij| (exact): A Aᵀ of a row with a
-    // coefficient of 1e155 overflowed, and elimination reported zero reactions.
-    scale_ = Eigen::VectorXd::Ones(model.A.rows());
-    Eigen::VectorXd largest = Eigen::VectorXd::Zero(model.A.rows());
-    for (int k = 0; k < model.A.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(model.A, k); it; ++it) {
-        largest[it.row()] = std::max(largest[it.row()], std::abs(it.value()));
-      }
-    }
-    for (Eigen::Index i = 0; i < largest.size(); ++i) {
-      int exponent = 0;
-      if (largest[i] > 0.0) (void)std::frexp(largest[i], &exponent);
-      scale_[i] = std::ldexp(1.0, -exponent);
-    }
+    // Rows scaled by powers of two (exact): A Aᵀ of a row with a coefficient of 1e155
+    // overflowed, and elimination reported zero reactions.
+    scale_ = row_scales(model.A);
     scaled_ = scale_.asDiagonal() * model.A;
     const Eigen::SparseMatrix<double> At = scaled_.transpose();
     aat_.compute(scaled_ * At);  // m x m, sparse; positive definite (A has full row rank)
