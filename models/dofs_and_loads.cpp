@@ -38,9 +38,10 @@ void ModelBuilder::build_loads() {
   for (const auto& l : spec_.loads) {
     const SourcePoint value_at{l.where.path + ".value", l.where.line};
     check_time_function(l.value, value_at);
-    const double bound = magnitude_bound(l.value, spec_.solve.t_end);
+    const TimeFunction value = acting_in_run(l.value, value_at);
+    const double bound = magnitude_bound(value, spec_.solve.t_end);
     if (l.pattern.given()) {
-      add_pattern_load(l, bound, total);
+      add_pattern_load(l, value, bound, total);
       continue;
     }
     const int d = dof(l.dof, {l.where.path + ".dof", l.where.line});
@@ -50,20 +51,21 @@ void ModelBuilder::build_loads() {
       fail(value_at,
            "the loads on DOF '" + l.dof + "' add up to more than the double range (about 1.8e308)");
     }
-    model_.loads.push_back(Load{d, l.value, {}});
+    model_.loads.push_back(Load{d, value, {}});
   }
   add_ground_motion(total);
 }
 
 /// pattern = { file = "f.mtx" }: one Load holding the pattern as a sparse vector.
-void ModelBuilder::add_pattern_load(const LoadSpec& l, double bound, std::vector<double>& total) {
+void ModelBuilder::add_pattern_load(const LoadSpec& l, const TimeFunction& value, double bound,
+                                    std::vector<double>& total) {
   const auto& p = l.pattern.matrix;
   if (p.cols() != 1 || p.rows() != model_.dofs()) {
     fail(l.pattern.where,
          l.pattern.file + " is " + std::to_string(p.rows()) + " x " + std::to_string(p.cols()) +
              ": a load pattern is n x 1 (n = " + std::to_string(model_.dofs()) + " DOFs)");
   }
-  Load load{-1, l.value, Eigen::SparseVector<double>(p.rows())};
+  Load load{-1, value, Eigen::SparseVector<double>(p.rows())};
   for (Eigen::SparseMatrix<double>::InnerIterator it(p, 0); it; ++it) {
     if (it.value() == 0.0) continue;
     const auto d = static_cast<int>(it.row());

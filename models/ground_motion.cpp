@@ -15,6 +15,7 @@ void ModelBuilder::add_ground_motion(std::vector<double>& total) {
   const GroundMotionSpec& g = *spec_.ground_motion;
   const SourcePoint acceleration_at{"ground_motion.acceleration", g.where.line};
   check_time_function(g.acceleration, acceleration_at);
+  const TimeFunction acceleration = acting_in_run(g.acceleration, acceleration_at);
   const int n = model_.dofs();
   Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
   if (g.direction >= 0) {
@@ -27,8 +28,8 @@ void ModelBuilder::add_ground_motion(std::vector<double>& total) {
     }
   }
   const Eigen::VectorXd mr = model_.M * r;
-  const double bound = magnitude_bound(g.acceleration, spec_.solve.t_end);
-  Load load{-1, g.acceleration, Eigen::SparseVector<double>(n)};
+  const double bound = magnitude_bound(acceleration, spec_.solve.t_end);
+  Load load{-1, acceleration, Eigen::SparseVector<double>(n)};
   for (int d = 0; d < n; ++d) {
     if (mr[d] == 0.0) continue;
     auto& sum = total[static_cast<std::size_t>(d)];
@@ -43,7 +44,7 @@ void ModelBuilder::add_ground_motion(std::vector<double>& total) {
     fail(g.where, "M r is zero: the DOFs the ground moves carry no mass, so it loads nothing");
   }
   model_.loads.push_back(std::move(load));
-  model_.ground = Model::Ground{r, g.acceleration};
+  model_.ground = Model::Ground{r, acceleration};
 }
 
 }  // namespace condyn

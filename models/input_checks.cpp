@@ -92,6 +92,18 @@ TimeFunction ModelBuilder::acting_in_run(const TimeFunction& f, const SourcePoin
                                " starts after t_end = " + fmt(spec_.solve.t_end) +
                                " and has no effect on this run");
   }
+  for (const auto& term : acting.terms()) {
+    if (term.kind != TimeTerm::Kind::table || !term.table || term.table->times.empty()) continue;
+    const double end = term.table->times.back();
+    const double last = term.amplitude * term.table->values.back();
+    if (end < spec_.solve.t_end && last != 0.0) {
+      report_.warnings.push_back(
+          where.path + ": " + term.table->file + " ends at t = " + fmt(end) +
+          ", before t_end = " + fmt(spec_.solve.t_end) + ", on a nonzero value: " + fmt(last) +
+          " is held from there on (a table is constant after its last sample); add a sample "
+          "to say what follows");
+    }
+  }
   return acting;
 }
 

@@ -58,14 +58,16 @@ class ModelBuilder {
   int dof(const std::string& name, const SourcePoint& where) const;
   void set_dofs(std::vector<std::string> names);
   void build_loads();
-  void add_pattern_load(const LoadSpec& l, double bound, std::vector<double>& total);
+  void add_pattern_load(const LoadSpec& l, const TimeFunction& value, double bound,
+                        std::vector<double>& total);
   // ground_motion.cpp
   void add_ground_motion(std::vector<double>& total);
 
   // input_checks.cpp
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
-  /// A constraint's right-hand side as the run sees it: steps after t_end left out, with a
-  /// warning naming `where` (a step inside the run makes the prescribed motion jump: refused).
+  /// A load's, ground motion's or constraint's time function as the run sees it: steps after
+  /// t_end left out, with a warning naming `where`; a warning too for a table that ends before
+  /// t_end on a nonzero value, which the contract holds from there on (a record cut short).
   TimeFunction acting_in_run(const TimeFunction& f, const SourcePoint& where);
   void check_finite() const;
   void check_magnitudes();

@@ -298,9 +298,8 @@ SceneSpec parse_python_scene(const py::handle& scene) {
     throw py::type_error("condyn: a scene is a path (str or os.PathLike) or a dict, not a " +
                          type_name(scene));
   }
-  if (!py::isinstance<py::str>(path)) {
-    throw py::type_error("condyn: a scene path must be text, not bytes");
-  }
+  // A bytes path is the file system's own name, as open() takes it.
+  if (py::isinstance<py::bytes>(path)) return parse_scene_file(path.cast<std::string>());
   py::object bytes;
   try {
     bytes = os.attr("fsencode")(path);

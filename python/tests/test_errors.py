@@ -171,6 +171,9 @@ def test_scene_paths_are_the_systems_bytes(tmp_path, quickstart_dict):
     name = os.fsdecode(b"q\xff.toml")
     (tmp_path / name).write_bytes(QUICKSTART.read_bytes())
     assert condyn.run(tmp_path / name).t[-1] == quickstart_dict["solve"]["t_end"]
+    # The same file named by its bytes, as open() takes it.
+    assert condyn.run(os.fsencode(tmp_path) + b"/q\xff.toml").t[-1] == \
+        quickstart_dict["solve"]["t_end"]
     with pytest.raises(condyn.SceneError, match="cannot open the scene file"):
         condyn.run(tmp_path / os.fsdecode(b"missing\xff.toml"))
     with pytest.raises(condyn.SceneError, match="the scene path is not a file name"):

@@ -158,3 +158,36 @@ TEST_CASE("ground motion: refusals name the key") {
                   "acceleration = 1.0\n[solve]\nt_end = 1.0\noutput_step = 0.5\n"),
             "ground_motion: ground motion applies to truss and matrix models"));
 }
+
+TEST_CASE("a record that ends before t_end on a nonzero value is warned about, by key") {
+  // The contract holds a table constant after its last sample: a record cut short would go on
+  // shaking the ground at its last value, without a word before 2026-11-27.
+  Sandbox box;
+  box.write("rec.csv", kRecord);  // ends at t = 1 on -0.5
+  const auto warnings = [&](const std::string& scene) {
+    BuildReport report;
+    (void)build_model(parse_scene_file(box.write("scene.toml", scene).string()), report);
+    return report.warnings;
+  };
+  // Ground motion, t_end 2: held at 9.81 * -0.5.
+  auto w = warnings(replace(kTruss, "t_end = 1.0", "t_end = 2.0"));
+  REQUIRE(w.size() == 1);
+  CHECK(w[0] ==
+        "ground_motion.acceleration: rec.csv ends at t = 1, before t_end = 2, on a nonzero value: "
+        "-4.905 is held from there on (a table is constant after its last sample); add a sample "
+        "to say what follows");
+  // At t_end itself, or ending on zero: nothing to say.
+  CHECK(warnings(kTruss).empty());
+  box.write("zero.csv", "t,a\n0,0\n0.5,1\n1,0\n");
+  CHECK(warnings(replace(replace(kTruss, "t_end = 1.0", "t_end = 2.0"), "rec.csv", "zero.csv"))
+            .empty());
+  // A load's table, by the load's key.
+  const std::string load = replace(kMatrix, "[ground_motion]",
+                                   "[[load]]\ndof = \"c\"\nvalue = { type = \"table\", file = "
+                                   "\"rec.csv\" }\n[ground_motion]");
+  w = warnings(replace(load, "t_end = 1.0", "t_end = 3.0"));
+  REQUIRE(w.size() == 1);
+  CHECK(has(w[0],
+            "load[1].value: rec.csv ends at t = 1, before t_end = 3, on a nonzero value: "
+            "-0.5 is held"));
+}

@@ -296,6 +296,21 @@ TEST_CASE("constraint right-hand sides may not jump after t = 0") {
           "and has no effect on this run");
     CHECK(model.constraints[2].position_value.is_zero());
   }
+  // A load's step after t_end, on a DOF or a pattern, is warned about as a constraint's is; it
+  // was left out silently before 2026-11-27.
+  {
+    BuildReport report;
+    const Model model = build_model(
+        parse_scene_text(replace(kBase, "dof = \"ux2\"\nvalue = 1.0",
+                                 "dof = \"ux2\"\nvalue = { type = \"step\", amplitude = 2.0, "
+                                 "start = 3.0 }"),
+                         "s.toml"),
+        report);
+    REQUIRE(report.warnings.size() == 1);
+    CHECK(report.warnings[0] ==
+          "load[1].value: the step at t = 3 starts after t_end = 1 and has no effect on this run");
+    CHECK(model.applied_forces(1.0).cwiseAbs().maxCoeff() == 0.0);
+  }
   // One ulp after t_end: warned with the figures that show why (10 digits printed "t = 1").
   BuildReport ulp;
   (void)build_model(parse_scene_text(replace(kBase, "terms = { uy2 = 1.0 }",
