@@ -42,8 +42,9 @@ class AccelerationLevelMultipliers {
   bool constant_;
   bool usable_ = true;
   bool factored_ = false;
-  std::vector<int> decoupled_;  ///< massless DOFs in no row: a unit on their diagonal
-  Eigen::VectorXd scale_;       ///< D: a power of two per row of A, near 1/max|a_ij|
+  std::vector<int> decoupled_;          ///< massless DOFs in no row: a unit on their diagonal
+  Eigen::VectorXd scale_;               ///< D: a power of two per row of A, near 1/max|a_ij|
+  Eigen::SparseMatrix<double> scaled_;  ///< D A
   FixedPatternKlu klu_;
 };
 

@@ -222,7 +222,10 @@ void solve_multipliers(const Model& model, Scheme scheme, const SolveSpec& setti
   // Output rows take λ from acceleration level (dae/row_multipliers.hpp), on the system the scheme
   // integrates (the reduced one under the mixed treatment, whose eliminated rows' λ follow).
   std::optional<AccelerationLevelMultipliers> at_rows;
-  if (options.row_multipliers) at_rows.emplace(system, !model.nonlinear);
+  // Under the mixed treatment even without kept rows: the eliminated rows' λ follow from the
+  // reduced u'', which the integrator only interpolates between steps.
+  if (options.row_multipliers && (mixed || system.constraints() > 0))
+    at_rows.emplace(system, !model.nonlinear);
   if (at_rows) {
     observe.row_multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
                                   const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
