@@ -49,14 +49,17 @@ fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
 # The main job builds the program and the Python module (build/python/condyn); the test command
-# builds every test executable too, with warnings as errors.
+# builds every test executable too, with warnings as errors. Both as a unity build: the library
+# files are compiled in batches, which parse Eigen's and SUNDIALS' headers and instantiate their
+# templates once per batch (a full build of the test command: 11 minutes of wall time on 2 cores,
+# 1318 s of compiler time against 1747 s file by file; 2026-11-27). Test files stay one by one.
 if [ "$mode" = main ]; then
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=OFF -DCONDYN_TESTS=OFF \
-    >/dev/null
+    -DCMAKE_UNITY_BUILD=ON >/dev/null
   cmake --build build -j "$jobs" --target condyn condyn_python
 else
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
-    >/dev/null
+    -DCMAKE_UNITY_BUILD=ON >/dev/null
   cmake --build build -j "$jobs"
 fi
 
@@ -70,7 +73,10 @@ fi
 sources=$(find src dae models validation tests python -name '*.cpp' -o -name '*.hpp' | sort)
 clang-format --dry-run -Werror $sources
 lint_sources=$(find src dae models validation -name '*.cpp' | sort)
-run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option $lint_sources \
+# clang-tidy reads each file's own command: from a tree configured file by file (not built).
+cmake -S . -B build-lint -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
+  >/dev/null
+run-clang-tidy -quiet -p build-lint -j "$jobs" -extra-arg=-Wno-unknown-warning-option $lint_sources \
   >build/clang-tidy.log 2>&1 || {
   grep -E "(warning|error):" build/clang-tidy.log | sort -u >&2
   echo "bootstrap: clang-tidy found problems (full log: build/clang-tidy.log)" >&2

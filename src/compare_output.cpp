@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "src/report_format.hpp"
+#include "validation/scientific.hpp"
 
 namespace condyn {
 
@@ -14,9 +15,7 @@ namespace {
 
 std::string sci(double v, int digits = 2) {
   if (std::isnan(v)) return "-";  // not measured (e.g. reactions against a published state)
-  std::ostringstream s;
-  s << std::scientific << std::setprecision(digits) << v;
-  return s.str();
+  return scientific(v, digits);
 }
 
 /// Fields of a run in the column order of runs.csv; failed runs leave the numbers empty.

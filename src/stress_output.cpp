@@ -124,20 +124,20 @@ void print_stress_report(std::ostream& out, const StressResult& result) {
 }
 
 namespace {
-const char* const kOutDir = "--out-dir";
+const char* const kStressOutDir = "--out-dir";
 }  // namespace
 
 void plan_stress_files(OutputPlan& plan, const std::string& dir,
                        const std::vector<StressCase>& cases) {
   namespace fs = std::filesystem;
   const fs::path base(dir);
-  plan.add_folder(dir, kOutDir);
-  plan.add_folder((base / "scenes").string(), kOutDir);
+  plan.add_folder(dir, kStressOutDir);
+  plan.add_folder((base / "scenes").string(), kStressOutDir);
   for (const char* name : {"stress.csv", "stress.json", "summary.txt"}) {
-    (void)plan.add_output((base / name).string(), kOutDir);
+    (void)plan.add_output((base / name).string(), kStressOutDir);
   }
   for (const auto& c : cases) {
-    (void)plan.add_output((base / "scenes" / (c.id + ".toml")).string(), kOutDir);
+    (void)plan.add_output((base / "scenes" / (c.id + ".toml")).string(), kStressOutDir);
   }
 }
 
@@ -153,7 +153,7 @@ void write_stress_files(OutputPlan& plan, const std::string& dir, const StressRe
   plan.create_folders();
   const fs::path base(dir);
   const auto put = [&](const std::string& path, OutputPlan::Writer writer) {
-    plan.write(plan.add_output(path, kOutDir), std::move(writer));
+    plan.write(plan.add_output(path, kStressOutDir), std::move(writer));
   };
   std::vector<ReportFields> rows;
   for (const auto& r : result.records) rows.push_back(fields(r));

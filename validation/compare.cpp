@@ -10,6 +10,7 @@
 #include "dae/solve.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/exact_solution.hpp"
+#include "validation/scientific.hpp"
 #include "validation/user_checks.hpp"
 
 namespace condyn {
@@ -29,13 +30,6 @@ void CompareOptions::validate() const {
 }
 
 namespace {
-
-std::string sci(double v) {
-  std::ostringstream s;
-  s.precision(1);
-  s << std::scientific << v;
-  return s.str();
-}
 
 /// The scene's run settings with the scheme and tolerances of one run of the sweep.
 SolveSpec settings_of(const SolveSpec& scene, Scheme scheme, double rtol, double atol) {
@@ -85,8 +79,8 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
         const SolveResult run = solve(model, settings_of(settings, scheme, tight, tight * 1e-2));
         Trajectory ref = succeeded(run).trajectory;
         out.reference_kind = to_string(scheme);
-        out.reference_description = std::string(to_string(scheme)) + " at rtol " + sci(tight) +
-                                    " (no exact solution: " + e.what() + ")";
+        out.reference_description = std::string(to_string(scheme)) + " at rtol " +
+                                    scientific(tight, 1) + " (no exact solution: " + e.what() + ")";
         return ref;
       } catch (const std::exception& why) {
         if (scheme == Scheme::elimination) {
@@ -96,13 +90,13 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
         // Without a reference no run can be scored: say which runs failed and what to change.
         throw NoReferenceError(
             "no reference solution: there is no exact one (" + std::string(e.what()) +
-            "), and the tight reference runs failed at rtol " + sci(tight) +
+            "), and the tight reference runs failed at rtol " + scientific(tight, 1) +
             " (1/100 of the smallest --tolerances value): " +
             (model.nonlinear ? std::string() : "elimination: " + elimination_failure + "; ") +
             "ggl: " + why.what() +
             "; a looser smallest tolerance, or a t_end the scene reaches, gives compare a "
             "reference (`condyn run` with --scheme ggl --rtol " +
-            sci(tight) + " shows the same)");
+            scientific(tight, 1) + " shows the same)");
       }
     }
     throw std::logic_error("unreachable");
@@ -226,10 +220,10 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
       ++done;
       if (options.progress) {
         std::ostringstream s;
-        s << "[" << done << "/" << total << "] " << to_string(scheme) << " rtol " << sci(rtol)
-          << ": "
-          << (r.ok ? "error " + sci(std::max({r.error_u, r.error_v, r.error_reaction})) + ", " +
-                         std::to_string(r.steps) + " steps"
+        s << "[" << done << "/" << total << "] " << to_string(scheme) << " rtol "
+          << scientific(rtol, 1) << ": "
+          << (r.ok ? "error " + scientific(std::max({r.error_u, r.error_v, r.error_reaction}), 1) +
+                         ", " + std::to_string(r.steps) + " steps"
                    : "FAILED: " + r.message);
         options.progress(s.str());
       }
@@ -306,7 +300,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
     }
     if (options.progress) {
       options.progress("Baumgarte study: " + std::to_string(out.baumgarte_study.size()) +
-                       " runs at rtol " + sci(options.drift_rtol));
+                       " runs at rtol " + scientific(options.drift_rtol, 1));
     }
   }
   return out;

@@ -15,6 +15,7 @@
 #include "models/model.hpp"
 #include "models/scene_parser.hpp"
 #include "validation/embedded_scenes.hpp"
+#include "validation/scientific.hpp"
 
 namespace condyn {
 
@@ -23,12 +24,6 @@ namespace {
 std::string num(double v) {
   std::ostringstream s;
   s << std::setprecision(17) << v;
-  return s.str();
-}
-
-std::string sci(double v) {
-  std::ostringstream s;
-  s << std::setprecision(0) << std::scientific << v;
   return s.str();
 }
 
@@ -220,14 +215,14 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
   for (double R : {1.0, 1e4, 1e8, 1e12}) {
     const double k[4] = {1.0, std::cbrt(R), std::cbrt(R) * std::cbrt(R), R};
     const double m[4] = {1.0, 1.0, 1.0, 1.0};
-    add("stiffness", "R = " + sci(R), R,
-        chain_scene("chain, stiffness ratio " + sci(R), k, m, 5.0));
+    add("stiffness", "R = " + scientific(R, 0), R,
+        chain_scene("chain, stiffness ratio " + scientific(R, 0), k, m, 5.0));
   }
   const double k_mass[4] = {1.0, 10.0, 10.0, 10.0};
   for (double r : {1.0, 1e4, 1e8}) {
     const double m[4] = {1.0, 1.0 / std::cbrt(r), 1.0 / (std::cbrt(r) * std::cbrt(r)), 1.0 / r};
-    add("mass_ratio", "r = " + sci(r), r,
-        chain_scene("chain, mass ratio " + sci(r), k_mass, m, 5.0));
+    add("mass_ratio", "r = " + scientific(r, 0), r,
+        chain_scene("chain, mass ratio " + scientific(r, 0), k_mass, m, 5.0));
   }
   const double massless[4] = {1.0, 1.0, 0.0, 1.0};
   add("mass_ratio", "m3 = 0", 0.0, chain_scene("chain, massless x3", k_mass, massless, 5.0));
@@ -239,7 +234,7 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
     double kmax = 0.0;
     for (int i = 0; i < truss.dofs(); ++i) kmax = std::max(kmax, truss.K->coeff(i, i));
     for (double f : {1e2, 1e4, 1e6, 1e8, 1e10, 1e12}) {
-      add("penalty_weight", "w = " + sci(f) + " max K_ii", f,
+      add("penalty_weight", "w = " + scientific(f, 0) + " max K_ii", f,
           chapter_truss("", solve + "penalty = { weight = " + num(f * kmax) + " }\n"),
           {Scheme::penalty});
     }
@@ -248,27 +243,27 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
     // The pendulum of period 2: its constraint is nonlinear, so there is drift to correct; its
     // frequency scale is 2π / period = π rad/s.
     const std::string g = num(f * std::numbers::pi);
-    add("baumgarte_gains", "gains = " + sci(f) + " omega", f,
-        "name = \"pendulum of period 2, Baumgarte gains " + sci(f) +
+    add("baumgarte_gains", "gains = " + scientific(f, 0) + " omega", f,
+        "name = \"pendulum of period 2, Baumgarte gains " + scientific(f, 0) +
             " x pi\"\n[model]\ntype = \"pendulum\"\n[solve]\nt_end = 2.0\n"
             "output_step = 0.02\nrtol = 1e-8\natol = 1e-10\nbaumgarte = { alpha = " +
             g + ", beta = " + g + " }\n",
         {Scheme::baumgarte}, 200000);
   }
   for (double periods : {1e4, 1e5}) {
-    if (StressCase* c = add("long_horizon", sci(periods) + " periods", periods, long_scene(periods),
-                            {}, 20000000)) {
+    if (StressCase* c = add("long_horizon", scientific(periods, 0) + " periods", periods,
+                            long_scene(periods), {}, 20000000)) {
       c->drift_limit = 1e-6;
     }
   }
   for (double theta : {1e-2, 1e-4, 1e-6, 1e-8, 0.0}) {
-    add("redundancy", "theta = " + (theta > 0 ? sci(theta) : std::string("0")), theta,
+    add("redundancy", "theta = " + (theta > 0 ? scientific(theta, 0) : std::string("0")), theta,
         redundant_scene(theta));
   }
   add("redundancy", "theta = 0, dropped", 0.0,
       redundant_scene(0.0) + "redundant = \"drop\"\n");  // the [solve] table ends the text
   for (double eps : {1e-1, 1e-2, 1e-3, 1e-4}) {
-    add("dead_point", "eps = " + sci(eps), eps, four_bar_scene(eps), {}, 400000);
+    add("dead_point", "eps = " + scientific(eps, 0), eps, four_bar_scene(eps), {}, 400000);
   }
   if (wanted("high_frequency")) {
     const double omega = chapter_frequency();
@@ -277,7 +272,7 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
       loads << "[[load]]\ndof = \"ux3\"\nvalue = { type = \"harmonic\", amplitude = 1.0, "
             << "omega = " << num(f * omega) << " }\n[[load]]\ndof = \"uy3\"\n"
             << "value = { type = \"step\", amplitude = 0.5, start = 1.0 }\n";
-      add("high_frequency", "omega = " + sci(f) + " omega_max", f,
+      add("high_frequency", "omega = " + scientific(f, 0) + " omega_max", f,
           chapter_truss(loads.str(),
                         "[solve]\nt_end = 3.0\noutput_step = 0.05\n"
                         "rtol = 1e-8\natol = 1e-10\n"));

@@ -10,18 +10,11 @@
 #include "validation/chapter_report.hpp"
 #include "validation/embedded_scenes.hpp"
 #include "validation/exact_solution.hpp"
+#include "validation/scientific.hpp"
 
 namespace condyn {
 
-namespace {
-
-std::string sci(double v) {
-  std::ostringstream s;
-  s << std::scientific << std::setprecision(2) << v;
-  return s.str();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 bool run_validation(std::ostream& out, const ValidationOptions& options) {
   const ChapterReport chapter = chapter_report();
@@ -53,16 +46,17 @@ bool run_validation(std::ostream& out, const ValidationOptions& options) {
       all_pass = all_pass && pass;
       const double drift = std::max(summary.max_drift_position, summary.max_drift_velocity);
       out << "  " << std::left << std::setw(13) << to_string(scheme) << std::setw(10)
-          << sci(spec.solve.rtol) << std::setw(11) << sci(err.displacement) << std::setw(11)
-          << sci(err.velocity) << std::setw(11) << sci(err.reaction) << std::setw(11) << sci(drift)
-          << std::setw(8) << summary.steps << std::setw(10) << std::fixed << std::setprecision(2)
+          << scientific(spec.solve.rtol, 2) << std::setw(11) << scientific(err.displacement, 2)
+          << std::setw(11) << scientific(err.velocity, 2) << std::setw(11)
+          << scientific(err.reaction, 2) << std::setw(11) << scientific(drift, 2) << std::setw(8)
+          << summary.steps << std::setw(10) << std::fixed << std::setprecision(2)
           << summary.wall_seconds * 1e3 << std::defaultfloat << (pass ? "pass" : "FAIL") << "\n";
       // setw counts bytes; "§" takes two.
       summary_table << "  " << std::left << std::setw(10) << cr.section << std::setw(13)
-                    << to_string(scheme) << std::setw(11) << sci(err.displacement) << std::setw(11)
-                    << sci(err.velocity) << std::setw(11) << sci(err.reaction) << std::setw(11)
-                    << sci(tol) << std::setw(8) << summary.steps << (pass ? "pass" : "FAIL")
-                    << "\n";
+                    << to_string(scheme) << std::setw(11) << scientific(err.displacement, 2)
+                    << std::setw(11) << scientific(err.velocity, 2) << std::setw(11)
+                    << scientific(err.reaction, 2) << std::setw(11) << scientific(tol, 2)
+                    << std::setw(8) << summary.steps << (pass ? "pass" : "FAIL") << "\n";
     }
     out << "\n";
   }
