@@ -153,23 +153,30 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
       worst = INFINITY;
       continue;
     }
-    const Eigen::MatrixXd a_s = block(a, g.rows, slaves_in, local);
-    const Eigen::MatrixXd a_r = block(a, g.rows, masters_in, local);
-    Eigen::MatrixXd normalised = a_s;
-    for (Eigen::Index i = 0; i < normalised.rows(); ++i) {
+    // The group's rows normalised, D A with D = 1 / |row|: the slave block's condition is the
+    // user's constraints', not their units', and the LU below solves D A_S x = D b. On A_S itself
+    // FullPivLU's rank threshold (relative to its largest pivot) took a tie written at 1e-150
+    // beside a row at 1 for a zero pivot, and its solve set that slave to 0: the tie was broken
+    // without a word.
+    Eigen::VectorXd inverse_norm(static_cast<Eigen::Index>(g.rows.size()));
+    for (Eigen::Index i = 0; i < inverse_norm.size(); ++i) {
       const double norm = row_norm(a, g.rows[static_cast<std::size_t>(i)]);
-      if (norm > 0.0) normalised.row(i) /= norm;
+      inverse_norm[i] = norm > 0.0 ? 1.0 / norm : 1.0;
     }
+    const Eigen::MatrixXd normalised =
+        inverse_norm.asDiagonal() * block(a, g.rows, slaves_in, local);
+    const Eigen::MatrixXd a_r = inverse_norm.asDiagonal() * block(a, g.rows, masters_in, local);
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(normalised);
     const auto& sv = svd.singularValues();
     const double smin = sv(sv.size() - 1);
     worst = std::max(worst, smin > 0.0 ? sv(0) / smin : INFINITY);
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(a_s);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(normalised);
     // A_S⁻¹ A_R; a group without masters (a support, say) has none to solve for: Eigen's solve
     // with an empty right-hand side binds a reference through a null pointer (UBSan).
     const Eigen::MatrixXd s_r =
-        masters_in.empty() ? Eigen::MatrixXd(a_s.rows(), 0) : Eigen::MatrixXd(lu.solve(a_r));
-    const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd::Identity(a_s.rows(), a_s.cols()));
+        masters_in.empty() ? Eigen::MatrixXd(normalised.rows(), 0) : Eigen::MatrixXd(lu.solve(a_r));
+    // A_S⁻¹ = (D A_S)⁻¹ D.
+    const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd(inverse_norm.asDiagonal()));
     for (std::size_t i = 0; i < slaves_in.size(); ++i) {
       const auto ii = static_cast<Eigen::Index>(i);
       for (std::size_t j = 0; j < masters_in.size(); ++j) {

@@ -416,3 +416,44 @@ output_step = 0.25
   CHECK((huge.trajectory.multiplier * 1e155 - unit.trajectory.multiplier).cwiseAbs().maxCoeff() <=
         64 * kEps * scale);
 }
+
+TEST_CASE("elimination keeps a tie written at 1e-150 beside a row at 1") {
+  // The slave block [[1e-150, 0], [0, 1]] (the tie's slave b, the other row's slave d): LU on it
+  // unscaled took 1e-150 for a zero pivot and its solve set u_b to 0 at every time, the tie
+  // broken without a word (its drift, in the row's units, read 1e-151). Solved on the rows
+  // normalised, u_b − u_c = 0.1 sin 2t holds to roundoff.
+  const std::string scene = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c", "d"]
+mass = [[1.0, 0.0, 0.0, 0.0], [0.0, 2.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
+stiffness = [[2.0, -1.0, 0.0, 0.0], [-1.0, 2.0, -1.0, 0.0], [0.0, -1.0, 101.0, -100.0], [0.0, 0.0, -100.0, 100.0]]
+[[constraint]]
+name = "support"
+terms = { a = 1.0 }
+[[constraint]]
+name = "tie"
+terms = { b = 1e-150, c = -1e-150 }
+value = { type = "harmonic", amplitude = 1e-151, omega = 2.0 }
+[[constraint]]
+name = "mix"
+terms = { d = 1.0, c = 1e-15 }
+[[load]]
+dof = "c"
+value = { type = "step", amplitude = 1.0, start = 0.5 }
+[initial]
+velocity = { b = 0.2 }
+[solve]
+t_end = 1.0
+output_step = 0.1
+scheme = "elimination"
+)";
+  const auto s = test::built(parse_scene_text(scene, "tie.toml"));
+  const Trajectory& traj = test::solved(s.model, s.spec.solve).trajectory;
+  const int b = s.model.dof_at("b"), c = s.model.dof_at("c");
+  for (std::size_t k = 0; k < traj.t.size(); ++k) {
+    const auto col = static_cast<Eigen::Index>(k);
+    CAPTURE(traj.t[k]);
+    CHECK(std::abs(traj.u(b, col) - traj.u(c, col) - 0.1 * std::sin(2.0 * traj.t[k])) <= 1e-15);
+  }
+  CHECK(std::abs(traj.u(b, traj.u.cols() - 1)) > 0.05);  // b moves (0.122 at t = 0.8)
+}
