@@ -17,6 +17,38 @@ mass = [[2.0, 0.0], [0.0, 1.0]]
 stiffness = [[400.0, -200.0], [-200.0, 200.0]]
 )";
 
+/// Four masses (1, 2, 1, 1) on a chain of springs 1, 1, 1 and a stiff 100 between c and d: the
+/// [model] table alone.
+inline const std::string kFourMassModel = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c", "d"]
+mass = [[1.0, 0.0, 0.0, 0.0], [0.0, 2.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
+stiffness = [[2.0, -1.0, 0.0, 0.0], [-1.0, 2.0, -1.0, 0.0], [0.0, -1.0, 101.0, -100.0], [0.0, 0.0, -100.0, 100.0]]
+)";
+
+/// kFourMassModel with rows 1e150 apart in scale: a support a = 0, a tie written at 1e-150,
+/// 1e-150 (b − c) = 1e-151 sin 2t, and d + 1e-15 c = 0; a step load on c at 0.5, b moving at 0.2.
+/// Its [solve] table is open after output_step (t_end 1, steps of 0.1).
+inline const std::string kScaledTieScene = kFourMassModel + R"([[constraint]]
+name = "support"
+terms = { a = 1.0 }
+[[constraint]]
+name = "tie"
+terms = { b = 1e-150, c = -1e-150 }
+value = { type = "harmonic", amplitude = 1e-151, omega = 2.0 }
+[[constraint]]
+name = "mix"
+terms = { d = 1.0, c = 1e-15 }
+[[load]]
+dof = "c"
+value = { type = "step", amplitude = 1.0, start = 0.5 }
+[initial]
+velocity = { b = 0.2 }
+[solve]
+t_end = 1.0
+output_step = 0.1
+)";
+
 /// Two masses on springs, one tied by a constraint, a step load at t = 0.25; four output
 /// intervals to t = 1 (the CLI tests' model).
 inline const std::string kTwoMassesScene = R"(name = "two masses"

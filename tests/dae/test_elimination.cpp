@@ -422,31 +422,7 @@ TEST_CASE("elimination keeps a tie written at 1e-150 beside a row at 1") {
   // unscaled took 1e-150 for a zero pivot and its solve set u_b to 0 at every time, the tie
   // broken without a word (its drift, in the row's units, read 1e-151). Solved on the rows
   // normalised, u_b − u_c = 0.1 sin 2t holds to roundoff.
-  const std::string scene = R"([model]
-type = "matrix"
-dofs = ["a", "b", "c", "d"]
-mass = [[1.0, 0.0, 0.0, 0.0], [0.0, 2.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
-stiffness = [[2.0, -1.0, 0.0, 0.0], [-1.0, 2.0, -1.0, 0.0], [0.0, -1.0, 101.0, -100.0], [0.0, 0.0, -100.0, 100.0]]
-[[constraint]]
-name = "support"
-terms = { a = 1.0 }
-[[constraint]]
-name = "tie"
-terms = { b = 1e-150, c = -1e-150 }
-value = { type = "harmonic", amplitude = 1e-151, omega = 2.0 }
-[[constraint]]
-name = "mix"
-terms = { d = 1.0, c = 1e-15 }
-[[load]]
-dof = "c"
-value = { type = "step", amplitude = 1.0, start = 0.5 }
-[initial]
-velocity = { b = 0.2 }
-[solve]
-t_end = 1.0
-output_step = 0.1
-scheme = "elimination"
-)";
+  const std::string scene = test::kScaledTieScene + "scheme = \"elimination\"\n";
   const auto s = test::built(parse_scene_text(scene, "tie.toml"));
   const Trajectory& traj = test::solved(s.model, s.spec.solve).trajectory;
   const int b = s.model.dof_at("b"), c = s.model.dof_at("c");

@@ -154,32 +154,7 @@ TEST_CASE(
   // A tie written at 1e-150 beside a row d + 1e-15 c = 0: judged unscaled, the tie's residual was
   // measured against |d''| ~ 1e-15 and ordinary roundoff rejected the solve, leaving index3's own
   // λ (2.15e-3 off where the peak is 1.31, at rtol 1e-6).
-  const std::string scene = R"([model]
-type = "matrix"
-dofs = ["a", "b", "c", "d"]
-mass = [[1.0, 0.0, 0.0, 0.0], [0.0, 2.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
-stiffness = [[2.0, -1.0, 0.0, 0.0], [-1.0, 2.0, -1.0, 0.0], [0.0, -1.0, 101.0, -100.0], [0.0, 0.0, -100.0, 100.0]]
-[[constraint]]
-name = "support"
-terms = { a = 1.0 }
-[[constraint]]
-name = "tie"
-terms = { b = 1e-150, c = -1e-150 }
-value = { type = "harmonic", amplitude = 1e-151, omega = 2.0 }
-[[constraint]]
-name = "mix"
-terms = { d = 1.0, c = 1e-15 }
-[[load]]
-dof = "c"
-value = { type = "step", amplitude = 1.0, start = 0.5 }
-[initial]
-velocity = { b = 0.2 }
-[solve]
-t_end = 1.0
-output_step = 0.1
-rtol = 1e-6
-atol = 1e-8
-)";
+  const std::string scene = test::kScaledTieScene + "rtol = 1e-6\natol = 1e-8\n";
   // index1, Baumgarte and GGL fail at t = 0 on this scene (IDA_CONV_FAIL, with or without the
   // row solve: docs/limitations.md); index2 and index3 integrate it.
   for (const char* scheme : {"index2", "index3"}) {
@@ -207,12 +182,7 @@ TEST_CASE("row multipliers under the mixed treatment with every row eliminated: 
   std::string zigzag = "t,ag\n";
   for (int k = 0; k <= 20; ++k) zigzag += std::to_string(0.1 * k) + (k % 2 ? ",1\n" : ",-1\n");
   box.write("zz.csv", zigzag);
-  const std::string scene = R"([model]
-type = "matrix"
-dofs = ["a", "b", "c", "d"]
-mass = [[1.0, 0.0, 0.0, 0.0], [0.0, 2.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
-stiffness = [[2.0, -1.0, 0.0, 0.0], [-1.0, 2.0, -1.0, 0.0], [0.0, -1.0, 101.0, -100.0], [0.0, 0.0, -100.0, 100.0]]
-[[constraint]]
+  const std::string scene = test::kFourMassModel + R"([[constraint]]
 name = "tie"
 terms = { b = 1.0, d = -1.0 }
 [ground_motion]
