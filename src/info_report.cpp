@@ -253,6 +253,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
       std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
       name.resize(std::max<std::size_t>(name.size(), 17), ' ');
       out << "  " << name;
+      const char* marker = s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "";
       try {
         SolveSpec as_scheme = settings;
         as_scheme.scheme = s;
@@ -263,13 +264,14 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         }
         const SystemSize size =
             s == Scheme::elimination && elimination_size ? *elimination_size : sizer(as_scheme);
-        out << std::setw(10) << size.unknowns << size.jacobian_nonzeros;
+        out << std::setw(10) << size.unknowns << size.jacobian_nonzeros << marker << "\n";
       } catch (const std::exception& e) {
-        // Continuation lines indented under the reason.
-        const std::string wrapped = wrapped_text("  " + name + "not applicable: ", e.what());
-        out << wrapped.substr(2 + name.size());
+        // Continuation lines indented under the reason; the marker ends the first line.
+        std::string wrapped =
+            wrapped_text("  " + name + "not applicable: ", e.what()).substr(2 + name.size());
+        wrapped.insert(wrapped.find('\n'), marker);
+        out << wrapped;
       }
-      out << (s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "") << "\n";
     }
   }
 }

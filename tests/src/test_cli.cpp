@@ -170,6 +170,19 @@ TEST_CASE("info classifies constraints and sizes the model") {
   CHECK(r.out.find("<- selected") != std::string::npos);
 }
 
+TEST_CASE("info marks a chosen scheme that does not apply on the first line of its reason") {
+  const Sandbox box;
+  box.write("p.toml", condyn::test::pendulum_scene("t_end = 1.0\noutput_step = 0.5"));
+  const Result r = box.run("info p.toml --scheme penalty");
+  CAPTURE(r.out);
+  REQUIRE(r.code == 0);
+  const std::size_t row = r.out.find("\n  penalty          not applicable: ");
+  REQUIRE(row != std::string::npos);
+  const std::size_t end = r.out.find('\n', row + 1);
+  CHECK(r.out.substr(row, end - row).find("<- selected") != std::string::npos);
+  CHECK(r.out.find("\n   <- selected") == std::string::npos);
+}
+
 TEST_CASE("run --steps-out writes the drift at every internal step") {
   const Sandbox box;
   box.write("s.toml", kScene);
