@@ -140,6 +140,26 @@ output_step = 0.5
   // Holding a fixes the motion (1, -1): accepted.
   const Result held = run_scene(matrix + "[[constraint]]\nterms = { a = 1.0 }\n", "--scheme ggl");
   CHECK(held.code == 0);
+  // Two such motions, each held by its own row, the rows 1e150 apart in scale: both hold (the
+  // rank test on A N unscaled took the small row's pivot for zero and refused the model).
+  const std::string two = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c", "d"]
+mass = [[1.0, 1.0, 0.0, 0.0], [1.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 1.0], [0.0, 0.0, 1.0, 1.0]]
+stiffness = [[2.0, -1.0, 0.0, 0.0], [-1.0, 2.0, 0.0, 0.0], [0.0, 0.0, 2.0, -1.0], [0.0, 0.0, -1.0, 2.0]]
+[[constraint]]
+terms = { a = 1.0 }
+[[constraint]]
+terms = { c = 1e-150 }
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  const Result scaled = run_scene(two, "--scheme index3");
+  CAPTURE(scaled.err);
+  CHECK(scaled.code == 0);
+  check_refused(run_scene(replace(two, "terms = { c = 1e-150 }", "terms = { b = 1e-150 }")),
+                "the mass matrix is singular along a motion of 2 DOFs (c, d)");
 }
 
 TEST_CASE("tolerances that are nan or inf are usage errors naming the flag or key") {
