@@ -268,8 +268,9 @@ def main(argv):
     for line in notes:
         print(f"note: {line}")
     if not written:
-        print(f"error: {path}: nothing to draw (no displacement, drift or energy columns)",
-              file=sys.stderr)
+        why = ("the notes above say why" if notes
+               else "no displacement, drift or energy columns")
+        print(f"error: {path}: nothing to draw ({why})", file=sys.stderr)
         return 2
     for name in written:
         print(f"wrote {name}")

@@ -170,4 +170,10 @@ TEST_CASE("condyn plot draws names as written, many DOFs without a legend, and r
   CHECK(nan.code == 0);
   CHECK(nan.out.find("not a number at some output times") != std::string::npos);
   CHECK(nan.out.find("exactly 0") == std::string::npos);
+  // Nothing but a drift of exactly 0: the note says why, the refusal does not deny the columns.
+  box.write("z.csv", "t,drift_position,drift_velocity\n0,0,0\n1,0,0\n");
+  const Result zero = box.run("plot z.csv --format png");
+  CHECK(zero.code == 2);
+  CHECK(zero.out.find("note: z: drift exactly 0 at every output time") != std::string::npos);
+  CHECK(zero.err.find("z.csv: nothing to draw (the notes above say why)") != std::string::npos);
 }
