@@ -204,6 +204,9 @@ class Converter {
   Value emit(const py::handle& v, const std::string& p, int depth) {
     if (depth > kMaxDepth) fail(p, "dicts and lists nest more than 32 deep");
     if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
+    const bool file_key = p.size() > 5 && p.compare(p.size() - 5, 5, ".file") == 0;
+    // Before numpy's scalars: numpy's str_ is a str (and has a dtype, of kind 'U').
+    if (py::isinstance<py::str>(v)) return file_key ? file_name_of(v, p) : text_of(v, p);
     // numpy's bool scalar is no Python bool, and its __float__ would make True a coefficient of 1.
     if (py::hasattr(v, "dtype") && !py::isinstance<py::array>(v)) {
       const std::string kind = py::str(v.attr("dtype").attr("kind")).cast<std::string>();
@@ -217,8 +220,6 @@ class Converter {
       }
     }
     if (PyComplex_Check(v.ptr())) fail(p, "a complex number is not a scene value");
-    const bool file_key = p.size() > 5 && p.compare(p.size() - 5, 5, ".file") == 0;
-    if (py::isinstance<py::str>(v)) return file_key ? file_name_of(v, p) : text_of(v, p);
     if (py::hasattr(v, "__fspath__")) {
       // A pathlib.Path (any os.PathLike) for a file key, as the scene argument itself takes one.
       if (!py::isinstance<py::str>(py::module_::import("os").attr("fspath")(v))) {

@@ -9,6 +9,7 @@ compare schemes, over the same C++ library as the `condyn` command (docs/python.
 import collections.abc
 import decimal
 import numbers
+import os
 import warnings
 
 from ._condyn import SceneError, scheme_names
@@ -120,7 +121,13 @@ def check(scene, scheme=None):
 
 
 def _name(scene):
-    return "<dict>" if isinstance(scene, dict) else str(scene)
+    """The scene as messages name it: a path's text (bytes decoded as open() would), or <dict>."""
+    if isinstance(scene, dict):
+        return "<dict>"
+    try:
+        return os.fsdecode(scene)
+    except TypeError:  # not a path at all: run() refuses it by its type
+        return str(scene)
 
 
 def _number(scene, argument, value):

@@ -178,3 +178,8 @@ def test_scene_paths_are_the_systems_bytes(tmp_path, quickstart_dict):
         condyn.run(tmp_path / os.fsdecode(b"missing\xff.toml"))
     with pytest.raises(condyn.SceneError, match="the scene path is not a file name"):
         condyn.run("q\ud800.toml")
+    # Messages name a path given as bytes by its text, as the CLI would (not b'...').
+    (tmp_path / "q.toml").write_bytes(QUICKSTART.read_bytes())
+    with pytest.raises(condyn.SceneError) as e:
+        condyn.run(os.fsencode(tmp_path / "q.toml"), rtol="x")
+    assert str(e.value).startswith(f"{tmp_path / 'q.toml'}: rtol: expected a number")

@@ -107,6 +107,9 @@ def test_dict_scene_equals_file_scene(quickstart_dict):
     for key in ("t", "u", "v", "reaction", "multiplier", "drift"):
         np.testing.assert_array_equal(getattr(from_dict, key), getattr(from_file, key))
     assert from_dict.summary["steps"] == from_file.summary["steps"]
+    # numpy's strings are strings (np.str_ subclasses str): a scheme read from an array of names.
+    quickstart_dict["solve"]["scheme"] = np.array(["index1", "ggl"])[1]
+    assert condyn.run(quickstart_dict).summary["scheme"] == "ggl"
 
 
 def test_sparse_and_numpy_matrices_equal_lists(quickstart_dict):
