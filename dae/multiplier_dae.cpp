@@ -11,6 +11,34 @@
 
 namespace condyn {
 
+namespace {
+
+/// The DOFs whose accelerations a multiplier reaches: the columns of A and, since v' = M⁻¹(f −
+/// Aᵀλ), every DOF M's pattern connects to one of them (M⁻¹ is full within a connected block).
+std::vector<bool> reached_by_multipliers(const Eigen::SparseMatrix<double>& A,
+                                         const Eigen::SparseMatrix<double>& M) {
+  const auto n = static_cast<std::size_t>(M.cols());
+  std::vector<std::size_t> parent(n);
+  for (std::size_t j = 0; j < n; ++j) parent[j] = j;
+  const auto root = [&parent](std::size_t j) {
+    while (parent[j] != j) j = parent[j] = parent[parent[j]];
+    return j;
+  };
+  for (Eigen::Index k = 0; k < M.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) {
+      parent[root(static_cast<std::size_t>(it.row()))] = root(static_cast<std::size_t>(it.col()));
+    }
+  }
+  std::vector<bool> constrained_root(n, false), reached(n, false);
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+    if (A.col(k).nonZeros() > 0) constrained_root[root(static_cast<std::size_t>(k))] = true;
+  }
+  for (std::size_t j = 0; j < n; ++j) reached[j] = constrained_root[root(j)];
+  return reached;
+}
+
+}  // namespace
+
 MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, double alpha,
                              double beta, bool linear)
     : system_(system.clone()),
@@ -60,6 +88,10 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, doub
   jacobian_.declare_identity(0, n_, n_);  // −I
   jacobian_.finish();
   if (linear) held_ = held_massless_of(system);
+  if (scheme == Scheme::index3) {
+    const Eigen::SparseMatrix<double> A = system_->constraint_jacobian(0.0, zero_n);
+    reached_ = reached_by_multipliers(A, system_->mass(0.0, zero_n));
+  }
 }
 
 void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
@@ -142,7 +174,10 @@ Eigen::VectorXd MultiplierDae::variable_index() const {
       index.tail(size() - lambda_at()).setConstant(2.0);  // λ (and μ)
       break;
     case Scheme::index3:
-      index.segment(n_, n_).setConstant(2.0);  // velocities
+      // The velocities λ reaches (index 2); the others are a plain ODE's, in the error test.
+      for (int j = 0; j < n_; ++j) {
+        if (reached_[static_cast<std::size_t>(j)]) index[n_ + j] = 2.0;
+      }
       for (int i = 0; i < m_; ++i) {
         index[lambda_at() + i] = system_->position_rows()[static_cast<std::size_t>(i)] ? 3.0 : 2.0;
       }

@@ -107,6 +107,8 @@ class MultiplierDae final : public DaeProblem {
   BlockJacobian jacobian_;
   /// Massless DOFs held by stiffness (linear systems; dae/held_massless.hpp), or null.
   std::shared_ptr<const HeldMassless> held_;
+  /// index3: the DOFs whose velocities λ reaches (index 2); the others' are index 1.
+  std::vector<bool> reached_;
   // Scratch of the residual (the hot path): sized once, no allocation per call. Not
   // thread-safe: one problem object per integration.
   mutable Eigen::VectorXd force_, rows_;
