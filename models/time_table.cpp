@@ -106,7 +106,9 @@ double TimeTable::slope(double t) const {
 TimeTable parse_time_table(const std::string& text, const std::string& column,
                            std::size_t min_samples) {
   TimeTable table;
-  std::istringstream in(with_lf_endings(text));
+  // A UTF-8 byte order mark (spreadsheets write one) is no part of the first cell.
+  const bool bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+  std::istringstream in(with_lf_endings(bom ? text.substr(3) : text));
   std::string line;
   int line_no = 0;
   bool first_row = true;

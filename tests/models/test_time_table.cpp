@@ -104,6 +104,17 @@ TEST_CASE("time table: piecewise linear between samples, held outside, columns b
   const TimeTable mac = parse_time_table("t,a,b\r0,1,10\r1,2,20\r", "b");
   CHECK(mac.times.size() == 2);
   CHECK(mac.value(0.5) == 15.0);
+  // A UTF-8 byte order mark (Excel's "CSV UTF-8") is no part of the header's first name, nor of
+  // the first sample of a file without a header (which was then taken for a header).
+  const TimeTable bom = parse_time_table("\xEF\xBB\xBFt,a\n0,1\n1,3\n", "a");
+  CHECK(bom.time_column == "t");
+  CHECK(bom.value(0.5) == 2.0);
+  const TimeTable bom_bare = parse_time_table(
+      "\xEF\xBB\xBF"
+      "0,1\n1,3\n",
+      "");
+  CHECK(bom_bare.column == "column 2");
+  CHECK(bom_bare.times.size() == 2);
   const TimeTable quoted = parse_time_table("\"t\",\"a\"\n0,1\n1,3\n", "a");
   CHECK(quoted.column == "a");
   CHECK(quoted.value(0.5) == 2.0);
