@@ -61,6 +61,7 @@ SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
     throw SceneError(scene_message(file, SourcePoint{"", static_cast<int>(e.source().begin.line)},
                                    "TOML syntax error: " + std::string(e.description())));
   }
+  check_number_range(root, text, file);
   return SceneReader(file).read(root);
 }
 

@@ -3,6 +3,8 @@
 #include <cctype>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "models/scene_parser.hpp"
 
@@ -72,6 +74,64 @@ void check_key_depth(const std::string& text, const std::string& file) {
       ++i;
     }
   }
+}
+
+namespace {
+
+/// The number token that starts at (line, column) of `text` (both 1-based), or "" where the text
+/// there holds none (a column counted otherwise than in bytes: nothing is checked then).
+std::string number_token(const std::vector<std::size_t>& line_starts, const std::string& text,
+                         const toml::source_position& at) {
+  if (at.line < 1 || at.line > line_starts.size() || at.column < 1) return {};
+  const std::size_t i = line_starts[at.line - 1] + at.column - 1;
+  std::size_t end = i;
+  while (end < text.size() &&
+         (std::isalnum(static_cast<unsigned char>(text[end])) != 0 || text[end] == '.' ||
+          text[end] == '+' || text[end] == '-' || text[end] == '_')) {
+    ++end;
+  }
+  return i < end ? text.substr(i, end - i) : std::string();
+}
+
+/// Whether a float literal's mantissa (before its exponent) has a nonzero digit.
+bool nonzero_mantissa(const std::string& token) {
+  for (const char c : token) {
+    if (c == 'e' || c == 'E') return false;
+    if (c >= '1' && c <= '9') return true;
+  }
+  return false;
+}
+
+void check_underflow(const TomlAccess& access, const toml::node& node, const std::string& path,
+                     const std::vector<std::size_t>& line_starts, const std::string& text) {
+  if (const auto* t = node.as_table()) {
+    for (const auto& [key, value] : *t) {
+      check_underflow(access, value, TomlAccess::join(path, std::string(key.str())), line_starts,
+                      text);
+    }
+  } else if (const auto* a = node.as_array()) {
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      check_underflow(access, *a->get(i), TomlAccess::index(path, i), line_starts, text);
+    }
+  } else if (const auto* f = node.as_floating_point(); f != nullptr && f->get() == 0.0) {
+    const std::string token = number_token(line_starts, text, node.source().begin);
+    if (nonzero_mantissa(token)) {
+      access.fail(node, path,
+                  token +
+                      " is nonzero but below the smallest double (4.9e-324) in magnitude, and "
+                      "would be read as 0 (write 0 if 0 is meant)");
+    }
+  }
+}
+
+}  // namespace
+
+void check_number_range(const toml::table& root, const std::string& text, const std::string& file) {
+  std::vector<std::size_t> line_starts{0};
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\n') line_starts.push_back(i + 1);
+  }
+  check_underflow(TomlAccess(file), root, "", line_starts, text);
 }
 
 SourcePoint TomlAccess::at(const toml::node& node, const std::string& path) const {

@@ -21,6 +21,10 @@ namespace condyn {
 /// before toml++ sees a key it would recurse on until the stack overflows.
 void check_key_depth(const std::string& text, const std::string& file);
 
+/// Throws SceneError ("FILE:LINE: key.path: 1e-400 is nonzero but below the smallest double ...")
+/// for a float written nonzero that toml++ read as 0: an underflow would pass silently for 0.
+void check_number_range(const toml::table& root, const std::string& text, const std::string& file);
+
 /// Walks the TOML tree; knows the file name so every error can say where it is. Every getter
 /// either returns the value at `node` or throws SceneError naming the file, the node's line and
 /// `path` (the key path as the scene writes it: "load[2].value").

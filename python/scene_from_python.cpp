@@ -253,11 +253,21 @@ class Converter {
       }
     }
     if (py::isinstance<py::float_>(v) || py::hasattr(v, "__float__")) {
+      double x = 0.0;
       try {
-        return py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
+        x = py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>();
       } catch (const py::error_already_set& e) {  // its __float__ raised (an overflow, a type)
         fail(p, "a " + type_name(v) + " that is not a number: " + std::string(e.what()));
       }
+      // A Decimal or Fraction below the double range becomes 0: refused, as the TOML reader
+      // refuses 1e-400.
+      if (x == 0.0 && PyObject_RichCompareBool(v.ptr(), py::int_(0).ptr(), Py_NE) == 1) {
+        fail(p, py::str(v).cast<std::string>() +
+                    " is nonzero but below the smallest double (4.9e-324) in magnitude, and "
+                    "would be read as 0 (write 0 if 0 is meant)");
+      }
+      PyErr_Clear();  // a comparison that raised leaves the value as converted
+      return x;
     }
     if (is_sparse(v)) {
       fail(p,

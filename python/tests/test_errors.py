@@ -3,6 +3,7 @@ integration raises condyn.IntegrationError (a RuntimeError) with the partial res
 
 import copy
 import decimal
+import fractions
 import os
 import pathlib
 import pickle
@@ -91,6 +92,11 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
      "<dict>: load[1].value: a complex number is not a scene value"),
     (lambda s: s["solve"].update(t_end=np.timedelta64(1, "s")),
      "<dict>: solve.t_end: a numpy timedelta64[s] is not a scene value"),
+    # A Decimal or Fraction below the double range is no 0, as 1e-400 in a TOML file is none.
+    (lambda s: s["solve"].update(t_end=decimal.Decimal("1e-400")),
+     "<dict>: solve.t_end: 1E-400 is nonzero but below the smallest double"),
+    (lambda s: s["load"][0].update(value=fractions.Fraction(1, 10**400)),
+     "<dict>: load[1].value: 1/1" + "0" * 400 + " is nonzero but below the smallest double"),
     (lambda s: s["solve"].update(t_end=np.datetime64("2020-01-01")),
      "<dict>: solve.t_end: a numpy datetime64[D] is not a scene value"),
     (lambda s: s["model"].update(mass={"file": pathlib.PurePosixPath("no/such.mtx")}),

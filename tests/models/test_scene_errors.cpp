@@ -102,6 +102,19 @@ TEST_CASE("values out of range") {
   check_error(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0, inf]"), "must be finite");
   check_error(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0]"), "has 1 entries for 2 nodes");
   check_error(replace(kBase, "t_end = 1.0", "t_end = 0.0"), "solve.t_end: must be > 0");
+  // A nonzero number below the double range was read as 0 without a word: a check's value of
+  // 1e-400 at tolerance 0 then passed on a computed 0 (review of 2026-11-27).
+  check_error(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0, -2.5e-400]"),
+              "bad.toml:5: model.masses[2]: -2.5e-400 is nonzero but below the smallest double");
+  check_error(replace(kBase, "value = 1.0", "value = 1_0e-4_00"),
+              "bad.toml:10: load[1].value: 1_0e-4_00 is nonzero but below the smallest double");
+  check_error(replace(kBase, "EA = 10.0", "EA = 10.0, x = 0.000_1e-330"),
+              "model.members[1].x: 0.000_1e-330 is nonzero");
+  // Zero written any way is zero.
+  for (const char* zero : {"0.0", "-0.0", "0e-400", "0.000e5", "+0.0"}) {
+    CAPTURE(zero);
+    CHECK(error_of(replace(kBase, "value = 1.0", std::string("value = ") + zero)).empty());
+  }
   // IDA's stop-time test multiplies times and steps: at 1e-200 it underflowed and the run was
   // refused at t = 0 as "tstop = 1e-200 is behind current t = 0".
   check_error(replace(replace(kBase, "t_end = 1.0", "t_end = 1e-200"), "output_step = 0.1",
