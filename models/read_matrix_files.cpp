@@ -284,11 +284,16 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
   for (const auto& [key, out] : files) {
     if (!out->given()) continue;
     const auto& node = *t.get(key)->as_table()->get("file");
-    const std::string p = join(join(path, std::string(key)), "file");
+    // A matrix handed over in memory (Python) is named by its own key, not the `file` key the
+    // module put in its place.
+    const bool in_memory = out->file.starts_with("<array ");
+    const std::string p =
+        in_memory ? join(path, std::string(key)) : join(join(path, std::string(key)), "file");
+    const std::string name = in_memory ? "the array" : out->file;
     const auto& a = out->matrix;
     if (a.rows() != n || a.cols() != n) {
       const std::string size =
-          out->file + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols());
+          name + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols());
       if (t.contains("dofs")) fail(node, p, size + " for " + std::to_string(n) + " DOFs");
       if (out == first) fail(node, p, size + ": a square matrix is needed");
       fail(node, p,
@@ -297,7 +302,7 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
     if (const auto ij = asymmetry(a)) {
       const auto [i, j] = *ij;
       fail(node, p,
-           out->file + " is not symmetric: entry (" + std::to_string(i + 1) + "," +
+           name + " is not symmetric: entry (" + std::to_string(i + 1) + "," +
                std::to_string(j + 1) + ") = " + fmt(a.coeff(i, j)) + " but (" +
                std::to_string(j + 1) + "," + std::to_string(i + 1) + ") = " + fmt(a.coeff(j, i)));
     }

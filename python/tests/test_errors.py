@@ -60,9 +60,9 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
     (lambda s: s["solve"].update(rtol="tight"), "<dict>: solve.rtol: "),
     (lambda s: s.update(extra=1), "<dict>: extra: "),
     (lambda s: s["model"].update(mass=np.diag([2.0, 1.0])),
-     "<dict>: model.mass.file: <array model.mass> is 2 x 2 for 3 DOFs"),
+     "<dict>: model.mass: the array is 2 x 2 for 3 DOFs"),
     (lambda s: s["model"].update(stiffness=sp.csr_matrix(np.triu(np.ones((3, 3))))),
-     "<dict>: model.stiffness.file: <array model.stiffness> is not symmetric: entry (1,2)"),
+     "<dict>: model.stiffness: the array is not symmetric: entry (1,2)"),
     (lambda s: s["model"].update(mass=np.diag([1.0, np.nan, 1.0])),
      "<dict>: model.mass: entry (2,2) is nan: entries must be finite"),
     (lambda s: s.update(constraint_block=[{"file": sp.coo_matrix(
