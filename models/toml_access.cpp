@@ -78,12 +78,16 @@ void check_key_depth(const std::string& text, const std::string& file) {
 
 namespace {
 
-/// The number token that starts at (line, column) of `text` (both 1-based), or "" where the text
-/// there holds none (a column counted otherwise than in bytes: nothing is checked then).
+/// The number token that starts at (line, column) of `text` (both 1-based; toml++ counts columns
+/// in code points, so a name with é earlier on the line moves the byte offset), or "".
 std::string number_token(const std::vector<std::size_t>& line_starts, const std::string& text,
                          const toml::source_position& at) {
   if (at.line < 1 || at.line > line_starts.size() || at.column < 1) return {};
-  const std::size_t i = line_starts[at.line - 1] + at.column - 1;
+  std::size_t i = line_starts[at.line - 1];
+  for (std::size_t c = 1; c < at.column && i < text.size() && text[i] != '\n'; ++c) {
+    ++i;  // past the code point's lead byte and its continuation bytes
+    while (i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0U) == 0x80U) ++i;
+  }
   std::size_t end = i;
   while (end < text.size() &&
          (std::isalnum(static_cast<unsigned char>(text[end])) != 0 || text[end] == '.' ||

@@ -110,6 +110,14 @@ TEST_CASE("values out of range") {
               "bad.toml:10: load[1].value: 1_0e-4_00 is nonzero but below the smallest double");
   check_error(replace(kBase, "EA = 10.0", "EA = 10.0, x = 0.000_1e-330"),
               "model.members[1].x: 0.000_1e-330 is nonzero");
+  // toml++ counts columns in code points: with "ééé" earlier on the line, the 0.0 after 12 was
+  // read at the byte offset of 12 and refused as "12 is nonzero but below ...".
+  check_error(replace(kBase, "value = 1.0",
+                      "value = { type = \"polynomial\", coefficients = [\"ééé\", 12,0.0] }"),
+              "load[1].value.coefficients[1]: expected a number");
+  check_error(replace(kBase, "value = 1.0",
+                      "value = { type = \"polynomial\", coefficients = [\"ééé\", 12,1e-999] }"),
+              "load[1].value.coefficients[3]: 1e-999 is nonzero");
   // Zero written any way is zero.
   for (const char* zero : {"0.0", "-0.0", "0e-400", "0.000e5", "+0.0"}) {
     CAPTURE(zero);
