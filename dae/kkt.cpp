@@ -1,7 +1,5 @@
 #include "dae/kkt.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <vector>
 
 namespace condyn {
@@ -36,22 +34,6 @@ Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
   }
   outer[n + m] = static_cast<Sparse::StorageIndex>(k);
   return kkt;
-}
-
-Eigen::VectorXd row_scales(const Eigen::SparseMatrix<double>& A) {
-  Eigen::VectorXd largest = Eigen::VectorXd::Zero(A.rows());
-  for (int k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      largest[it.row()] = std::max(largest[it.row()], std::abs(it.value()));
-    }
-  }
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(A.rows());
-  for (Eigen::Index i = 0; i < largest.size(); ++i) {
-    int exponent = 0;
-    if (largest[i] > 0.0) (void)std::frexp(largest[i], &exponent);
-    scale[i] = std::ldexp(1.0, -exponent);
-  }
-  return scale;
 }
 
 LinearMatrices linear_matrices(const MechanicalSystem& system) {

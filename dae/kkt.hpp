@@ -13,11 +13,6 @@ namespace condyn {
 [[nodiscard]] Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
                                                      const Eigen::SparseMatrix<double>& A);
 
-/// D: per row of A, the power of two nearest below 1/max_j |a_ij| (1 for an empty row), so that
-/// D A has rows of largest entry in [1, 2) and the scaling is exact. A row with a coefficient of
-/// 1e155 overflowed A Aᵀ, and one of 1e-150 beside a unit mass left KLU's pivots to roundoff.
-[[nodiscard]] Eigen::VectorXd row_scales(const Eigen::SparseMatrix<double>& A);
-
 /// The matrices of a linear system, M u'' + C u' + K u = f(t) with rows A u: M, C = −∂f/∂v,
 /// K = −∂f/∂u and A (0 x n without constraints). Constant for a linear system: evaluated at t = 0
 /// and u = v = 0 on a clone, so the system's own evaluator is left as it was.

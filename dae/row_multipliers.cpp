@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dae/kkt.hpp"
+#include "models/row_scales.hpp"
 
 namespace condyn {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "dae/kkt.hpp"
+#include "models/row_scales.hpp"
 
 namespace condyn {
 

@@ -3,12 +3,12 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <cmath>
 #include <string>
 #include <vector>
 
 #include "models/massless_dofs.hpp"
 #include "models/model_builder.hpp"
+#include "models/row_scales.hpp"
 
 namespace condyn {
 
@@ -235,18 +235,9 @@ void ModelBuilder::check_singular_mass(const std::vector<bool>& held) {
   }
   Eigen::MatrixXd motions = N;  // the null motions no constraint holds
   if (model_.constraint_count() > 0) {
-    // Each row of A N divided by its row of A's largest entry: a row written at 1e-150 holds a
-    // motion as well as one written at 1, and LU's threshold is relative to the largest pivot.
-    Eigen::VectorXd scale = Eigen::VectorXd::Zero(model_.A.rows());
-    for (Eigen::Index k = 0; k < model_.A.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(model_.A, k); it; ++it) {
-        scale[it.row()] = std::max(scale[it.row()], std::abs(it.value()));
-      }
-    }
-    Eigen::MatrixXd AN = model_.A * N;
-    for (Eigen::Index i = 0; i < AN.rows(); ++i) {
-      if (scale[i] > 0) AN.row(i) /= scale[i];  // each entry at most its row's count of entries
-    }
+    // A N on A's rows scaled (row_scales): a row written at 1e-150 holds a motion as well as one
+    // written at 1, and LU's threshold is relative to the largest pivot.
+    const Eigen::MatrixXd AN = row_scales(model_.A).asDiagonal() * (model_.A * N);
     Eigen::FullPivLU<Eigen::MatrixXd> lu(AN);
     lu.setThreshold(kRankTolerance);
     if (lu.rank() == AN.cols()) return;
