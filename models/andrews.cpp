@@ -35,7 +35,7 @@ constexpr double c2 = m2 * da * rr, c4 = m4 * zt * (e - ea), c6 = -m6 * u * (zf 
 }  // namespace par
 
 constexpr int kN = 7, kM = 6;
-enum Dof { beta, Theta, gamma_, Phi, delta, Omega, epsilon };
+enum AndrewsDof { beta, Theta, gamma_, Phi, delta, Omega, epsilon };
 
 /// One term c · sin(θ) or c · cos(θ) of row `row`, θ = q_i + q_j (j < 0: θ = q_i).
 struct TrigTerm {

@@ -20,7 +20,7 @@ constexpr double eps = 1e-2, mass = 10, L = 1, L0 = 0.5, r = 0.1, w = 10, g = 1;
 constexpr double k = mass * eps * eps / 2;  ///< the wheels' mass
 }  // namespace par
 
-enum Dof { xl, yl, xr, yr };
+enum CarAxisDof { xl, yl, xr, yr };
 
 /// The road point (xb, yb) = (√(L² − yb²), r sin(w t)) and its first two time derivatives.
 struct Road {
