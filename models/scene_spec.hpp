@@ -186,6 +186,10 @@ struct SolveSpec {
   void validate() const;
   /// Output times 0, h, 2h, ..., t_end (the last one is t_end even when h does not divide it).
   [[nodiscard]] std::vector<double> output_times() const;
+  /// Sets the scheme, as a command line's --scheme does. `constraints` applies to the multiplier
+  /// schemes only (a file pairing it with another scheme is refused): under any other it is set
+  /// aside, and the returned note says so for the user to see; empty when nothing was set aside.
+  [[nodiscard]] std::string override_scheme(Scheme s);
 };
 
 enum class Quantity {

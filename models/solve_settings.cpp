@@ -55,6 +55,17 @@ void SolveSpec::validate() const {
           "must be a finite number >= 0 (0: no budget)", max_wall_time);
 }
 
+std::string SolveSpec::override_scheme(Scheme s) {
+  scheme = s;
+  if (treatment == Treatment::automatic || mixes(s)) return {};
+  const char* name = treatment == Treatment::mixed ? "mixed" : "multipliers";
+  treatment = Treatment::automatic;
+  return std::string("[solve] constraints = \"") + name +
+         "\" is set aside: it applies to the multiplier schemes (index1, baumgarte, ggl, index2, "
+         "index3) and auto, not to " +
+         to_string(s);
+}
+
 std::vector<double> SolveSpec::output_times() const {
   std::vector<double> times;
   const double h = output_step;

@@ -54,11 +54,12 @@ Scheme scheme_argument(const SceneSpec& spec, const std::string& argument, const
   return *scheme;
 }
 
-/// The scene with run()'s overrides, checked as the parser checks [solve].
+/// The scene with run()'s overrides, checked as the parser checks [solve]; `set_aside` gets the
+/// note of SolveSpec::override_scheme.
 SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& scheme,
-                   std::optional<double> rtol, std::optional<double> atol) {
+                   std::optional<double> rtol, std::optional<double> atol, std::string& set_aside) {
   SceneSpec spec = python::parse_python_scene(scene);
-  if (scheme) spec.solve.scheme = scheme_argument(spec, "scheme", *scheme);
+  if (scheme) set_aside = spec.solve.override_scheme(scheme_argument(spec, "scheme", *scheme));
   if (rtol) {
     if (!(std::isfinite(*rtol) && *rtol >= kMinRtol && *rtol < 1.0)) {
       bad_argument(spec, "rtol", "must lie in [1e-15, 1) (got " + TomlAccess::fmt(*rtol) + ")");
@@ -84,13 +85,15 @@ SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& sc
 /// partial result.
 py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
               std::optional<double> rtol, std::optional<double> atol) {
-  SceneSpec spec = run_spec(scene, scheme, rtol, atol);
+  std::string set_aside;
+  SceneSpec spec = run_spec(scene, scheme, rtol, atol, set_aside);
   BuildReport report;
   std::optional<Model> model;
   SolveResult result;
   without_gil([&] {
     try {
       model.emplace(build_model(spec, report));
+      if (!set_aside.empty()) report.warnings.insert(report.warnings.begin(), set_aside);
       // A bad [[check]] is bad input here as in the command's run (which refuses it, exit 2).
       if (!spec.checks.empty()) (void)CheckEvaluator(*model, spec.checks, spec.file);
       release_model_input(spec);

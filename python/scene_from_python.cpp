@@ -71,7 +71,18 @@ bool takes_matrix(const std::string& parent, const std::string& key) {
 
 /// Real entries as float64 (integers converted); anything else refused, booleans included: a
 /// mask passed by mistake would be a matrix of ones and zeros.
+/// Whether `data` is a numpy masked array with an entry masked: its data there is no value (tolist
+/// gives None, the raw buffer whatever was stored).
+bool has_masked(const py::handle& data) {
+  return py::isinstance<py::array>(data) && py::hasattr(data, "mask") &&
+         py::module_::import("numpy.ma").attr("is_masked")(data).cast<bool>();
+}
+
+constexpr const char* kMasked =
+    "a masked numpy value is not a scene value (fill the masked entries first)";
+
 py::array_t<double> real_entries(const py::handle& data, const std::string& path) {
+  if (has_masked(data)) fail(path, kMasked);
   const auto array = py::array::ensure(data);
   if (!array) fail(path, "the entries are not an array of numbers");
   const char kind = array.dtype().kind();
@@ -230,6 +241,8 @@ class Converter {
     if (py::isinstance<py::dict>(v)) return table(v, p, depth + 1);
     if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) ||
         py::isinstance<py::array>(v)) {
+      // A masked entry (numpy.ma.masked) would come out of tolist() as None.
+      if (has_masked(v)) fail(p, kMasked);
       const py::object items =
           py::isinstance<py::array>(v) ? v.attr("tolist")() : py::reinterpret_borrow<py::object>(v);
       if (!py::isinstance<py::list>(items) && !py::isinstance<py::tuple>(items)) {

@@ -78,7 +78,9 @@ void keep_freed_memory() {
 
 int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
-  if (!args.scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", args.scheme);
+  std::string set_aside;  // the scene's [solve] constraints, when --scheme takes a scheme without
+  if (!args.scheme.empty())
+    set_aside = spec.solve.override_scheme(parse_scheme_flag("--scheme", args.scheme));
   if (!args.constraints.empty())
     spec.solve.treatment = parse_treatment_flag(args.constraints, spec.solve.scheme);
   if (args.rtol) spec.solve.rtol = *args.rtol;  // a loose one is warned of (BuildReport)
@@ -91,6 +93,7 @@ int run(const RunArgs& args) {
   std::ostream& msg = outputs.messages();
   BuildReport report;
   const Model model = build_model(spec, report);
+  if (!set_aside.empty()) report.warnings.insert(report.warnings.begin(), set_aside);
   // [[check]] tables are checked as `condyn check` checks them (their reference files already
   // are, when read), though run does not evaluate them: a bad one is bad input here too.
   if (!spec.checks.empty()) (void)CheckEvaluator(model, spec.checks, args.scene);
@@ -524,13 +527,16 @@ int run_command(int argc, char** argv) {
     if (*info_cmd) {
       keep_freed_memory();
       SceneSpec spec = parse_scene_file(info_scene);
-      if (!info_scheme.empty()) spec.solve.scheme = parse_scheme_flag("--scheme", info_scheme);
+      std::string set_aside;
+      if (!info_scheme.empty())
+        set_aside = spec.solve.override_scheme(parse_scheme_flag("--scheme", info_scheme));
       if (!info_constraints.empty()) {  // info sizes every scheme unless --scheme names one
         spec.solve.treatment = parse_treatment_flag(
             info_constraints, info_scheme.empty() ? Scheme::automatic : spec.solve.scheme);
       }
       BuildReport report;
       const Model model = build_model(spec, report);
+      if (!set_aside.empty()) report.warnings.insert(report.warnings.begin(), set_aside);
       // A bad [[check]] is bad input here as in run and check.
       if (!spec.checks.empty()) (void)CheckEvaluator(model, spec.checks, info_scene);
       release_model_input(spec);

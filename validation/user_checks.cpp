@@ -265,7 +265,8 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
   if (spec.checks.empty()) {
     throw SceneError(scene_message(spec.file, {}, "has no [[check]] table: nothing to check"));
   }
-  if (options.scheme) spec.solve.scheme = *options.scheme;
+  std::string set_aside;  // the scene's [solve] constraints, when --scheme takes a scheme without
+  if (options.scheme) set_aside = spec.solve.override_scheme(*options.scheme);
   // energy and energy_error are the energy quantity's whatever the model: ask for it before the
   // build, which refuses it where it has no meaning.
   auto& quantities = spec.output.quantities;
@@ -281,6 +282,7 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
   }
   BuildReport report;
   const Model model = build_model(spec, report);
+  if (!set_aside.empty()) report.warnings.insert(report.warnings.begin(), set_aside);
   CheckEvaluator evaluator(model, spec.checks, spec.file);
   for (Quantity q : evaluator.quantities()) add(q);
   RunHooks hooks = hooks_for(quantities);

@@ -97,6 +97,14 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
      "<dict>: solve.t_end: 1E-400 is nonzero but below the smallest double"),
     (lambda s: s["load"][0].update(value=fractions.Fraction(1, 10**400)),
      "<dict>: load[1].value: 1/1" + "0" * 400 + " is nonzero but below the smallest double"),
+    # A masked entry has no value: named as such, not as the None tolist() gives for it.
+    # A matrix's masked entry was read as the data stored under the mask.
+    (lambda s: s["model"].update(mass=np.ma.masked_array(np.eye(3), mask=np.eye(3) > 0.5)),
+     "<dict>: model.mass: a masked numpy value is not a scene value"),
+    (lambda s: s["load"][0].update(value=np.ma.masked_array([1.0, 2.0], mask=[0, 1])),
+     "<dict>: load[1].value: a masked numpy value is not a scene value"),
+    (lambda s: s["solve"].update(t_end=np.ma.masked),
+     "<dict>: solve.t_end: a masked numpy value is not a scene value"),
     (lambda s: s["solve"].update(t_end=np.datetime64("2020-01-01")),
      "<dict>: solve.t_end: a numpy datetime64[D] is not a scene value"),
     (lambda s: s["model"].update(mass={"file": pathlib.PurePosixPath("no/such.mtx")}),

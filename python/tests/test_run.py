@@ -81,6 +81,20 @@ def test_the_constraint_treatment_is_recorded(cli, tmp_path, scheme, constraints
     assert condyn.run(scene).summary["constraints"] == expected
 
 
+def test_a_scheme_override_sets_the_constraints_key_aside(quickstart_dict):
+    # As the command's --scheme: [solve] constraints applies to the multiplier schemes, so an
+    # override to another scheme sets it aside and says so in the warnings.
+    quickstart_dict["solve"]["scheme"] = "ggl"
+    quickstart_dict["solve"]["constraints"] = "mixed"
+    r = condyn.run(quickstart_dict, scheme="penalty")
+    assert r.summary["constraints"] is None
+    assert any(w.startswith('[solve] constraints = "mixed" is set aside') and
+               w.endswith("not to penalty") for w in r.summary["warnings"])
+    kept = condyn.run(quickstart_dict, scheme="index1")
+    assert kept.summary["constraints"] == "mixed"
+    assert not any("set aside" in w for w in kept.summary["warnings"])
+
+
 def test_summary_and_overrides():
     r = condyn.run(QUICKSTART, scheme="index1", rtol=1e-6, atol=1e-9)
     s = r.summary

@@ -183,3 +183,32 @@ TEST_CASE("--version prints the program's version") {
   CHECK(r.code == 0);
   CHECK(std::regex_match(r.out, std::regex("condyn [0-9]+\\.[0-9]+\\.[0-9]+\n")));
 }
+
+TEST_CASE("--scheme that takes no [solve] constraints sets the scene's aside, and says so") {
+  // A file pairing constraints with such a scheme is refused; an override (as compare's and a
+  // user's study of one scene under each scheme) runs, with a warning naming what it set aside.
+  const Sandbox box;
+  const std::string tied = kScene + "scheme = \"ggl\"\nconstraints = \"mixed\"\n" +
+                           "[[constraint]]\nterms = { a = 1.0, b = -1.0 }\n" +
+                           "[[check]]\nquantity = \"a\"\nmax_abs = 10.0\n";
+  box.write("s.toml", tied);
+  for (const char* args : {"run s.toml --scheme elimination --out r.csv",
+                           "info s.toml --scheme penalty", "check s.toml --scheme projection"}) {
+    CAPTURE(args);
+    const Result r = box.run(args);
+    const std::string said = r.out + r.err;
+    CAPTURE(said);
+    CHECK(contains(said, "warning: "));
+    CHECK(contains(said,
+                   "[solve] constraints = \"mixed\" is set aside: it applies to the "
+                   "multiplier schemes"));
+  }
+  CHECK(box.run("run s.toml --scheme elimination --out r.csv").code == 0);
+  // Under a multiplier scheme it holds, without a word.
+  const Result kept = box.run("run s.toml --scheme index1 --out r.csv");
+  CHECK(kept.code == 0);
+  CHECK_FALSE(contains(kept.err, "set aside"));
+  // The same pair written in the file is refused, as before.
+  box.write("both.toml", kScene + "scheme = \"elimination\"\nconstraints = \"mixed\"\n");
+  CHECK(box.run("run both.toml --out r.csv").code == 2);
+}
