@@ -69,8 +69,6 @@ bool takes_matrix(const std::string& parent, const std::string& key) {
   return false;
 }
 
-/// Real entries as float64 (integers converted); anything else refused, booleans included: a
-/// mask passed by mistake would be a matrix of ones and zeros.
 /// Whether `data` is a numpy masked array with an entry masked: its data there is no value (tolist
 /// gives None, the raw buffer whatever was stored).
 bool has_masked(const py::handle& data) {
@@ -81,6 +79,8 @@ bool has_masked(const py::handle& data) {
 constexpr const char* kMasked =
     "a masked numpy value is not a scene value (fill the masked entries first)";
 
+/// Real entries as float64 (integers converted); anything else refused, booleans included: a
+/// mask passed by mistake would be a matrix of ones and zeros.
 py::array_t<double> real_entries(const py::handle& data, const std::string& path) {
   if (has_masked(data)) fail(path, kMasked);
   const auto array = py::array::ensure(data);

@@ -78,7 +78,7 @@ void keep_freed_memory() {
 
 int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
-  std::string set_aside;  // the scene's [solve] constraints, when --scheme takes a scheme without
+  std::string set_aside;  // SolveSpec::override_scheme's note, if any
   if (!args.scheme.empty())
     set_aside = spec.solve.override_scheme(parse_scheme_flag("--scheme", args.scheme));
   if (!args.constraints.empty())

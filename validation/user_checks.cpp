@@ -265,7 +265,7 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
   if (spec.checks.empty()) {
     throw SceneError(scene_message(spec.file, {}, "has no [[check]] table: nothing to check"));
   }
-  std::string set_aside;  // the scene's [solve] constraints, when --scheme takes a scheme without
+  std::string set_aside;  // SolveSpec::override_scheme's note, if any
   if (options.scheme) set_aside = spec.solve.override_scheme(*options.scheme);
   // energy and energy_error are the energy quantity's whatever the model: ask for it before the
   // build, which refuses it where it has no meaning.
