@@ -235,9 +235,10 @@ void ModelBuilder::check_singular_mass(const std::vector<bool>& held) {
   }
   Eigen::MatrixXd motions = N;  // the null motions no constraint holds
   if (model_.constraint_count() > 0) {
-    // A N on A's rows scaled (row_scales): a row written at 1e-150 holds a motion as well as one
-    // written at 1, and LU's threshold is relative to the largest pivot.
-    const Eigen::MatrixXd AN = row_scales(model_.A).asDiagonal() * (model_.A * N);
+    // A N with A's rows scaled first (row_scales): a row written at 1e-150 holds a motion as well
+    // as one written at 1, and LU's threshold is relative to the largest pivot.
+    const Eigen::SparseMatrix<double> scaled = row_scales(model_.A).asDiagonal() * model_.A;
+    const Eigen::MatrixXd AN = scaled * N;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(AN);
     lu.setThreshold(kRankTolerance);
     if (lu.rank() == AN.cols()) return;

@@ -113,11 +113,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
     solve.treatment =
         s == "mixed" ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
     if (!mixes(solve.scheme)) {
-      fail(*n, "solve.constraints",
-           "'" + s +
-               "' applies to the multiplier schemes (index1, baumgarte, ggl, index2, index3) "
-               "and to auto, not to " +
-               to_string(solve.scheme));
+      fail(*n, "solve.constraints", "'" + s + "' " + treatment_refusal(solve.scheme));
     }
   }
   if (const auto* n = t.get("redundant")) {

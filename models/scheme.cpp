@@ -34,6 +34,13 @@ std::optional<Scheme> scheme_from_string(std::string_view s) {
   return std::nullopt;
 }
 
+std::string treatment_refusal(Scheme s) {
+  return std::string(
+             "applies to the multiplier schemes (index1, baumgarte, ggl, index2, index3) "
+             "and to auto, not to ") +
+         to_string(s);
+}
+
 std::string scheme_names() {
   std::string names = to_string(Scheme::automatic);
   for (Scheme scheme : kSchemes) names += std::string(", ") + to_string(scheme);

@@ -34,6 +34,9 @@ inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Sc
   return s == Scheme::automatic || s == Scheme::index1 || s == Scheme::baumgarte ||
          s == Scheme::ggl || s == Scheme::index2 || s == Scheme::index3;
 }
+/// Why [solve] constraints (--constraints) does not go with the scheme s, which does not mix:
+/// "applies to the multiplier schemes (index1, ...) and to auto, not to s".
+[[nodiscard]] std::string treatment_refusal(Scheme s);
 /// The scheme named s ("auto" included), or nothing.
 [[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view s);
 /// "auto, elimination, index1, ..." for messages.

@@ -60,10 +60,8 @@ std::string SolveSpec::override_scheme(Scheme s) {
   if (treatment == Treatment::automatic || mixes(s)) return {};
   const char* name = treatment == Treatment::mixed ? "mixed" : "multipliers";
   treatment = Treatment::automatic;
-  return std::string("[solve] constraints = \"") + name +
-         "\" is set aside: it applies to the multiplier schemes (index1, baumgarte, ggl, index2, "
-         "index3) and auto, not to " +
-         to_string(s);
+  return std::string("[solve] constraints = \"") + name + "\" is set aside: it " +
+         treatment_refusal(s);
 }
 
 std::vector<double> SolveSpec::output_times() const {

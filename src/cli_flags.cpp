@@ -176,10 +176,7 @@ SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme) {
                                "expected 'mixed' or 'multipliers' (got '" + s + "')");
   }
   if (!mixes(scheme)) {
-    throw CLI::ValidationError(
-        "--constraints", std::string("applies to the multiplier schemes (index1, baumgarte, ggl, "
-                                     "index2, index3) and to auto, not to ") +
-                             to_string(scheme));
+    throw CLI::ValidationError("--constraints", treatment_refusal(scheme));
   }
   return s == "mixed" ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
 }
