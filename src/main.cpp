@@ -22,6 +22,7 @@
 #include "src/cli_flags.hpp"
 #include "src/compare_output.hpp"
 #include "src/csv_output.hpp"
+#include "src/escaped_streams.hpp"
 #include "src/info_report.hpp"
 #include "src/output_files.hpp"
 #include "src/plot_command.hpp"
@@ -580,6 +581,7 @@ int run_command(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  condyn::escape_standard_streams();
   const int code = run_command(argc, argv);
   // What a command printed to standard output (info's report, compare's table) is its product:
   // a write that failed (a full disk, /dev/full, a closed pipe) is a failure, not exit 0.

@@ -195,3 +195,40 @@ TEST_CASE("an absolute tolerance too small for double-precision error weights is
   }
   CHECK(run_scene(kScene, "--atol 1e-30").code == 0);  // tiny, but weighable: accepted
 }
+
+TEST_CASE("a file name with control characters is shown escaped in every message") {
+  const Sandbox box;
+  // ESC [ 2 J clears a terminal; ESC ] 0 ; ... BEL retitles it; CR hides what came before.
+  const std::string clear = "clear\x1b[2J.toml";
+  const std::string quoted_clear = "\"$(printf 'clear\\033[2J.toml')\"";
+  box.write(clear, "[model\n");
+  const auto no_raw_control = [](const std::string& text) {
+    for (const char c : text) {
+      const auto u = static_cast<unsigned char>(c);
+      if ((u < 0x20 && c != '\n' && c != '\t') || u == 0x7f) return false;
+    }
+    return true;
+  };
+  const Result syntax = box.run("run " + quoted_clear + " --out o.csv");
+  CAPTURE(syntax.err);
+  CHECK(syntax.code == 2);
+  CHECK(syntax.err.find("clear\\x1b[2J.toml:1") != std::string::npos);
+  CHECK(no_raw_control(syntax.err));
+
+  const Result missing = box.run("info \"$(printf 'gone\\033]0;pwned\\007\\r.toml')\"");
+  CAPTURE(missing.err);
+  CHECK(missing.code == 2);
+  CHECK(missing.err.find("gone\\x1b]0;pwned\\x07\\x0d.toml: cannot open") != std::string::npos);
+  CHECK(no_raw_control(missing.err));
+
+  // check's report, on standard output, names the scene too (here: it has no [[check]]).
+  const std::string fine = "fine\x1b[31m.toml";
+  box.write(fine, kScene);
+  const Result checked = box.run("check \"$(printf 'fine\\033[31m.toml')\"");
+  CAPTURE(checked.out);
+  CAPTURE(checked.err);
+  CHECK(checked.code == 2);
+  CHECK(checked.out.find("fine\\x1b[31m.toml: has no [[check]]") != std::string::npos);
+  CHECK(no_raw_control(checked.out));
+  CHECK(no_raw_control(checked.err));
+}
