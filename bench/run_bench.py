@@ -6,12 +6,12 @@ and, up to 5,000 DOFs, inline.toml); build/condyn_bare_driver solves it; `condyn
 --scheme S` runs for each scheme S, and `condyn run condensed.toml --scheme S` ([solve] newton =
 "condensed", variant "condensed"); where inline.toml exists, `condyn run inline.toml --scheme S`
 runs too; `condyn info lattice.toml` is timed too. Every run is wrapped in /usr/bin/time -v (peak
-RSS; wall and CPU time from this runner's clock and resource usage) and repeated --repeat times; the
-table gives medians, time per step, and ratios per step to the bare driver measured in this run.
+RSS; wall and CPU time from this runner's clock and resource usage) and repeated --repeat times
+(--large-repeat times from 1e6 DOFs, default once: such a run takes minutes); the table gives medians, time per step, and ratios per step to the bare driver measured in this run.
 A run that fails (for instance because this condyn cannot read the Matrix Market scene yet) is a
 row that says why, with no figures. Writes bench/results.csv and bench/scaling.png.
 
-  /usr/bin/python3 bench/run_bench.py [--sizes 1e3 1e4 1e5] [--large] [--repeat 3]
+  /usr/bin/python3 bench/run_bench.py [--sizes 1e3 1e4 1e5] [--large] [--repeat 3] [--large-repeat 1]
 """
 import argparse
 import csv
@@ -201,6 +201,8 @@ def main(argv=None):
     p.add_argument("--sizes", type=float, nargs="+", default=[1e3, 1e4, 1e5], help="target DOF counts")
     p.add_argument("--large", action="store_true", help="add N = 1e6")
     p.add_argument("--repeat", type=int, default=3, help="runs per row; the table gives medians")
+    p.add_argument("--large-repeat", type=int, default=1,
+                   help="runs per row from 1e6 DOFs (a 1e6 run takes minutes)")
     p.add_argument("--schemes", nargs="+", default=SCHEMES)
     p.add_argument("--condyn", default=os.path.join(ROOT, "build", "condyn"))
     p.add_argument("--bare", default=os.path.join(ROOT, "build", "condyn_bare_driver"))
@@ -220,6 +222,7 @@ def main(argv=None):
     rows = []
     info_rows = []
     for n_target in sizes:
+        repeat = args.repeat if n_target < 1000000 else args.large_repeat
         folder = os.path.join(args.work, f"N{n_target}")
         print(f"== N = {n_target}: generating {folder}", flush=True)
         lattice.main(["--dofs", str(n_target), "--out", folder])
@@ -228,11 +231,11 @@ def main(argv=None):
         base = {"n": info["n"], "m": info["m"]}
         bare = {"status": "skipped"}
         if not args.no_bare:
-            bare = median_row([run_bare(args.bare, folder, info, args.timeout) for _ in range(args.repeat)])
+            bare = median_row([run_bare(args.bare, folder, info, args.timeout) for _ in range(repeat)])
             print(f"   bare: {bare}", flush=True)
         rows.append(with_ratios(dict(base, variant="bare", scheme="index1", **bare), bare))
         r = median_row([run_info(args.condyn, os.path.join(folder, "lattice.toml"), args.timeout)
-                        for _ in range(args.repeat)])
+                        for _ in range(repeat)])
         print(f"   info: {r}", flush=True)
         info_rows.append(dict(base, **r))
         variants = [("mtx", os.path.join(folder, "lattice.toml"))]
@@ -242,7 +245,7 @@ def main(argv=None):
         for variant, scene in variants:
             for scheme in args.schemes:
                 runs = []
-                for _ in range(args.repeat):
+                for _ in range(repeat):
                     runs.append(run_condyn(args.condyn, scene, scheme, args.timeout))
                     if runs[-1]["status"] != "ok":
                         break  # a failure repeats identically: one is enough to report
