@@ -7,7 +7,8 @@ and, up to 5,000 DOFs, inline.toml); build/condyn_bare_driver solves it; `condyn
 "condensed", variant "condensed"); where inline.toml exists, `condyn run inline.toml --scheme S`
 runs too; `condyn info lattice.toml` is timed too. Every run is wrapped in /usr/bin/time -v (peak
 RSS; wall and CPU time from this runner's clock and resource usage) and repeated --repeat times
-(--large-repeat times from 1e6 DOFs, default once: such a run takes minutes); the table gives medians, time per step, and ratios per step to the bare driver measured in this run.
+(--large-repeat times from 1e6 DOFs, default once: such a run takes minutes); the table gives
+medians, time per step, and ratios per step to the bare driver measured in this run.
 A run that fails (for instance because this condyn cannot read the Matrix Market scene yet) is a
 row that says why, with no figures. Writes bench/results.csv and bench/scaling.png.
 
@@ -212,6 +213,8 @@ def main(argv=None):
     p.add_argument("--no-bare", action="store_true", help="skip the bare driver")
     p.add_argument("--timeout", type=float, default=3600.0, help="seconds per run")
     args = p.parse_args(argv)
+    if args.repeat < 1 or args.large_repeat < 1:
+        p.error("--repeat and --large-repeat take a whole number of runs, at least 1")
     sizes = sorted(set(int(s) for s in args.sizes) | ({1000000} if args.large else set()))
     for exe in ([args.condyn] + ([] if args.no_bare else [args.bare])):
         if not os.access(exe, os.X_OK):
