@@ -60,6 +60,9 @@ class DaeProblem {
   /// Its own solver of IDA's Newton systems (∂F/∂y + cj ∂F/∂y') x = b, or nothing: IDA then
   /// factors the Jacobian jacobian() fills.
   [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }
+  /// For each equation, whether it is algebraic (no y') and its Newton corrections from a stale
+  /// matrix are to satisfy it exactly (dae/stale_correction.hpp); empty: none.
+  [[nodiscard]] virtual std::vector<bool> algebraic_equations() const { return {}; }
   /// Makes (y, y') consistent at time t, where the segment begins (begin_segment(t)): keeps the
   /// differential components of y, recomputes the algebraic ones and y' (used at t = 0 and after
   /// every load step, where accelerations and multipliers jump). Throws std::runtime_error when the

@@ -2,6 +2,7 @@
 
 #include "dae/klu_linear_solver.hpp"
 #include "dae/newton_linear_solver.hpp"
+#include "dae/stale_correction.hpp"
 #include "dae/step_driver.hpp"
 #include "dae/sundials_raii.hpp"
 #include "dae/sundials_stepper.hpp"
@@ -58,6 +59,9 @@ struct CallbackData {
   /// The dense solver's staging matrix with the problem's pattern (empty for KLU, whose matrix
   /// takes the values directly: a copy of the Newton matrix less, issue 12).
   Eigen::SparseMatrix<double> jac;
+  /// Corrections from a stale matrix for problems with algebraic equations, or null: takes W
+  /// from each Jacobian (dae/stale_correction.hpp).
+  StaleCorrection* stale = nullptr;
   sundials::CallbackReport* report = nullptr;
 };
 
@@ -77,10 +81,12 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
   return sundials::guarded(*data->report, [&] {
     if (double* values = sundials::pattern_matrix_values(J)) {
       // The KLU solver's matrix: the values in the problem's fixed pattern, zeroed by IDA.
-      data->problem->fill_jacobian(t, view(y), view(yp), cj,
-                                   data->problem->jacobian_pattern().map(values));
+      const JacobianMap map = data->problem->jacobian_pattern().map(values);
+      data->problem->fill_jacobian(t, view(y), view(yp), cj, map);
+      if (data->stale) data->stale->update(map, cj);
     } else {
       data->problem->jacobian(t, view(y), view(yp), cj, data->jac);
+      if (data->stale) data->stale->update(data->jac, cj);
       for (int k = 0; k < data->jac.outerSize(); ++k) {
         for (Eigen::SparseMatrix<double>::InnerIterator it(data->jac, k); it; ++it) {
           SM_ELEMENT_D(J, it.row(), it.col()) = it.value();
@@ -238,6 +244,19 @@ class Ida final : public sundials::SundialsStepper {
     if ((!newton_ && !matrix_) || !solver_) {
       throw IntegrationError("could not create the linear solver");
     }
+    // Equations without y' (GGL's ψ and φ rows, DaeProblem::algebraic_equations): corrections
+    // from a stale matrix keep them exact (dae/stale_correction.hpp) and IDA's own scaling goes
+    // off below. The condensed solve refactors at every cj and needs none.
+    const std::vector<bool> algebraic = problem.algebraic_equations();
+    if (!newton_ && std::find(algebraic.begin(), algebraic.end(), true) != algebraic.end()) {
+      stale_ = std::make_unique<StaleCorrection>(algebraic, problem.differential_id());
+      void* mem = mem_.get();
+      solver_.reset(sundials::make_stale_corrected_solver(
+          solver_.release(), *stale_,
+          [mem](double& cj) { return IDAGetCurrentCj(mem, &cj) == IDA_SUCCESS; }, ctx_.get()));
+      if (!solver_) throw IntegrationError("could not create the linear solver");
+      data_.stale = stale_.get();
+    }
     attach(mem_.get(), work_.get());
     check(IDASetErrHandlerFn(mem_.get(), sundials::record_message, &report_), "IDASetErrHandlerFn");
   }
@@ -283,6 +302,9 @@ class Ida final : public sundials::SundialsStepper {
     }
     check(IDASetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "IDASetLinearSolver");
     if (!newton_) check(IDASetJacFn(mem_.get(), jacobian_trampoline), "IDASetJacFn");
+    if (stale_) {
+      check(IDASetLinearSolutionScaling(mem_.get(), SUNFALSE), "IDASetLinearSolutionScaling");
+    }
     // IDA's own first step is at most 1e-3 of the way to the first output; a table's first kink
     // closer than that caps it (IntegratorOptions::first_kink).
     const double kink_step = 0.5 * (options.first_kink - t0);
@@ -357,6 +379,7 @@ class Ida final : public sundials::SundialsStepper {
   VectorPtr y_, yp_, id_, work_;
   std::unique_ptr<NewtonSystem> newton_;  ///< outlives solver_, which points to it
   MatrixPtr matrix_;
+  std::unique_ptr<StaleCorrection> stale_;  ///< outlives solver_, which points to it
   SolverPtr solver_;
   IdaPtr mem_;  ///< destroyed first
 };

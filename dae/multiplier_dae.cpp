@@ -339,6 +339,12 @@ void MultiplierDae::make_consistent_held(double t, Eigen::VectorXd& y, Eigen::Ve
   yp.segment(n_, n_) = sol.head(n_);
 }
 
+std::vector<bool> MultiplierDae::algebraic_equations() const {
+  std::vector<bool> algebraic(static_cast<std::size_t>(size()), false);
+  if (scheme_ == Scheme::ggl) std::fill(algebraic.begin() + lambda_at(), algebraic.end(), true);
+  return algebraic;
+}
+
 std::unique_ptr<NewtonSystem> MultiplierDae::newton_system() const {
   if (!condensed_) return nullptr;
   return std::make_unique<CondensedNewton>(scheme_, linear_matrices(*system_), select_p_);

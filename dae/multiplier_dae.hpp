@@ -52,6 +52,10 @@ class MultiplierDae final : public DaeProblem {
   [[nodiscard]] Eigen::VectorXd variable_index() const override;
   /// index1 and GGL of a linear model: dae/condensed_newton.hpp; else nothing.
   [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;
+  /// GGL: its ψ and φ rows, which have no y'. Not index2's or index3's: measured over the scenes
+  /// of models/ and validation/, their nonlinear models took more Jacobian evaluations (index2)
+  /// or more steps (index3) with the correction (docs/benchmarks.md).
+  [[nodiscard]] std::vector<bool> algebraic_equations() const override;
   /// Baumgarte: λ carries the stabilization terms 2αψ + β²φ, which amplify the local errors of
   /// u and v by up to β²; in the error test it would force u's local error below tol/β²
   /// (observed on the pendulum with α = β = 628: a million steps, each with an error-test
