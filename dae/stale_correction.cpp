@@ -56,7 +56,8 @@ void StaleCorrection::factor() {
 }
 
 void StaleCorrection::apply(double cj, Eigen::Ref<Eigen::VectorXd> x) const {
-  if (cj == cj0_) return;
+  // No matrix yet (IDA sets one up before its first solve) or the same cj: as solved.
+  if (!(cj0_ > 0.0) || cj == cj0_) return;
   const double s = 2.0 / (1.0 + cj / cj0_);
   if (!projects_) {
     x *= s;

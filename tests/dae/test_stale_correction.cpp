@@ -56,10 +56,14 @@ Eigen::VectorXd differential_id() {
 
 TEST_CASE("stale correction: the algebraic rows see the unscaled correction, the rest is scaled") {
   StaleCorrection correction(kAlgebraic, differential_id());
+  const Eigen::VectorXd x = correction_vector();
+  // Before any matrix (IDA factors one before its first solve): left as solved.
+  Eigen::VectorXd before = x;
+  correction.apply(3.0, before);
+  CHECK(before == x);
   const Eigen::SparseMatrix<double> J = newton_matrix();
   correction.update(J, 2.0);
   REQUIRE(correction.projects());
-  const Eigen::VectorXd x = correction_vector();
 
   // At the cj of the matrix: nothing changes.
   Eigen::VectorXd same = x;
