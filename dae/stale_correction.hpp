@@ -15,7 +15,9 @@
 /// algebraic equations do not depend on them here. So x ← s x + (1 − s) P x, and W x is as J₀
 /// solved it. When WWᵀ is singular or nearly so (redundant or nearly redundant rows, pivot below
 /// 1e-12 of the largest with W's rows scaled to unit length) the whole correction is scaled by s,
-/// as IDA does. SUNDIALS types stay inside dae/.
+/// as IDA does. Only GGL declares algebraic equations (MultiplierDae::algebraic_equations:
+/// index2's and index3's nonlinear scenes lost with it, docs/schemes.md); the Ida integrator
+/// turns IDA's scaling off where this applies. SUNDIALS types stay inside dae/.
 
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
