@@ -106,7 +106,7 @@ echo "bootstrap: clang-format and clang-tidy clean"
 # ctest registers each doctest case by name and CMake splits a name at ';': such a case was
 # registered as one that matches nothing, and "passed" without running.
 for t in build/condyn_tests_*; do
-  [ -x "$t" ] || continue
+  [ -f "$t" ] && [ -x "$t" ] || continue  # executables, not directories
   if "$t" --list-test-cases --no-version | grep -F ';' >&2; then
     echo "bootstrap: a test case name above holds ';', which ctest would never run ($t)" >&2
     exit 1
