@@ -5,6 +5,7 @@
 
 #include <nvector/nvector_serial.h>
 
+#include <cmath>
 #include <exception>
 #include <new>
 #include <utility>
@@ -23,24 +24,27 @@ constexpr double kMinPivot = 1e-12;
 
 StaleCorrection::StaleCorrection(const std::vector<bool>& algebraic_equations,
                                  const Eigen::VectorXd& differential_id)
-    : equation_row_(algebraic_equations.size(), -1),
-      unknown_col_(static_cast<std::size_t>(differential_id.size()), -1) {
+    : equation_row_(algebraic_equations.size(), -1) {
   int rows = 0;
   for (std::size_t i = 0; i < algebraic_equations.size(); ++i) {
     if (algebraic_equations[i]) equation_row_[i] = rows++;
   }
-  for (Eigen::Index j = 0; j < differential_id.size(); ++j) {
-    if (differential_id[j] != 0.0) {
-      unknown_col_[static_cast<std::size_t>(j)] = static_cast<int>(differential_.size());
-      differential_.push_back(static_cast<int>(j));
+  const auto n = static_cast<int>(differential_id.size());
+  for (int j = 0; j < n;) {
+    if (differential_id[j] == 0.0) {
+      ++j;
+      continue;
     }
+    const int first = j;
+    while (j < n && differential_id[j] != 0.0) ++j;
+    differential_runs_.emplace_back(first, j);
   }
-  w_.resize(rows, static_cast<Eigen::Index>(differential_.size()));
-  xd_.resize(static_cast<Eigen::Index>(differential_.size()));
+  w_.resize(rows, 0);
 }
 
 void StaleCorrection::factor() {
   projects_ = false;
+  w_.resize(w_.rows(), static_cast<Eigen::Index>(columns_.size()));
   w_.setFromTriplets(triplets_.begin(), triplets_.end());
   // Rows of unit length; a row without differential unknowns makes WWᵀ singular.
   for (Eigen::Index i = 0; i < w_.outerSize(); ++i) {
@@ -63,16 +67,18 @@ void StaleCorrection::apply(double cj, Eigen::Ref<Eigen::VectorXd> x) const {
     x *= s;
     return;
   }
-  for (std::size_t k = 0; k < differential_.size(); ++k) {
-    xd_[static_cast<Eigen::Index>(k)] = x[differential_[k]];
+  // x_d ← s x_d + (1 − s) Wᵀ(WWᵀ)⁻¹W x_d; the algebraic unknowns stay. W x_d and Wᵀ(…) live on
+  // W's columns only, so those are gathered before x_d is scaled in place and added after.
+  touched_.resize(static_cast<Eigen::Index>(columns_.size()));
+  for (std::size_t k = 0; k < columns_.size(); ++k) {
+    touched_[static_cast<Eigen::Index>(k)] = x[columns_[k]];
   }
-  rows_ = w_ * xd_;
+  rows_ = w_ * touched_;
   rows_ = ldlt_.solve(rows_);
-  // x_d ← s x_d + (1 − s) Wᵀ(WWᵀ)⁻¹W x_d, scattered back; the algebraic unknowns stay.
-  xd_ *= s;
-  xd_.noalias() += (1.0 - s) * (w_.transpose() * rows_);
-  for (std::size_t k = 0; k < differential_.size(); ++k) {
-    x[differential_[k]] = xd_[static_cast<Eigen::Index>(k)];
+  touched_.noalias() = (1.0 - s) * (w_.transpose() * rows_);
+  for (const auto& [first, last] : differential_runs_) x.segment(first, last - first) *= s;
+  for (std::size_t k = 0; k < columns_.size(); ++k) {
+    x[columns_[k]] += touched_[static_cast<Eigen::Index>(k)];
   }
 }
 

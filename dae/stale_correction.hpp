@@ -25,6 +25,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace condyn {
@@ -50,26 +51,36 @@ class StaleCorrection {
   void factor();
 
   std::vector<int> equation_row_;  ///< equation -> row of W, or −1
-  std::vector<int> unknown_col_;   ///< unknown -> column of W, or −1
-  std::vector<int> differential_;  ///< the differential unknowns, in column order
+  /// The differential unknowns as runs [first, last) (one run for MultiplierDae's [u; v]).
+  std::vector<std::pair<int, int>> differential_runs_;
+  /// W's columns: the differential unknowns with an entry in an algebraic equation, ascending.
+  /// W has only these columns, so a correction costs one scaling pass plus O(nnz W): nothing
+  /// the size of the state is gathered or formed (10⁶ DOFs under GGL: W has some 10⁵ entries).
+  std::vector<int> columns_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> w_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
   std::vector<Eigen::Triplet<double>> triplets_;
   double cj0_ = 0.0;
   bool projects_ = false;
-  mutable Eigen::VectorXd xd_, rows_;
+  mutable Eigen::VectorXd touched_, rows_;
 };
 
 template <class Sparse>
 void StaleCorrection::update(const Sparse& J, double cj0) {
+  static_assert(!Sparse::IsRowMajor, "update walks the Newton matrix by columns");
   cj0_ = cj0;
   triplets_.clear();
-  for (Eigen::Index k = 0; k < J.outerSize(); ++k) {
-    const int col = unknown_col_[static_cast<std::size_t>(k)];
-    if (col < 0) continue;
-    for (typename Sparse::InnerIterator it(J, k); it; ++it) {
-      const int row = equation_row_[static_cast<std::size_t>(it.row())];
-      if (row >= 0 && it.value() != 0.0) triplets_.emplace_back(row, col, it.value());
+  columns_.clear();
+  for (const auto& [first, last] : differential_runs_) {
+    for (int k = first; k < last; ++k) {
+      bool touched = false;
+      for (typename Sparse::InnerIterator it(J, k); it; ++it) {
+        const int row = equation_row_[static_cast<std::size_t>(it.row())];
+        if (row < 0 || it.value() == 0.0) continue;
+        if (!touched) columns_.push_back(k);
+        touched = true;
+        triplets_.emplace_back(row, static_cast<int>(columns_.size()) - 1, it.value());
+      }
     }
   }
   factor();

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,36 @@ TEST_CASE("stale correction: the algebraic rows see the unscaled correction, the
   CHECK(y.tail(2) == x.tail(2));
   // Not a plain scaling: the tangential part moved.
   CHECK((y.head(4) - xd).norm() > 0.1 * (1.0 - s) * xd.norm());
+}
+
+TEST_CASE("stale correction: differential unknowns in several runs, as in the contiguous case") {
+  // The same system with its unknowns reordered [d0 a4 d1 d2 a5 d3]: the differential unknowns
+  // form the runs [0, 1), [2, 4) and [5, 6). The result is the contiguous one, reordered.
+  const std::vector<int> position = {0, 2, 3, 5, 1, 4};  // old unknown -> new position
+  const Eigen::SparseMatrix<double> J = newton_matrix();
+  Eigen::MatrixXd reordered = Eigen::MatrixXd::Zero(6, 6);
+  for (int c = 0; c < 6; ++c) reordered.col(position[c]) = Eigen::MatrixXd(J).col(c);
+  Eigen::VectorXd id = Eigen::VectorXd::Zero(6);
+  Eigen::VectorXd x(6);
+  const Eigen::VectorXd x0 = correction_vector();
+  for (int c = 0; c < 6; ++c) {
+    id[position[c]] = c < 4 ? 1.0 : 0.0;
+    x[position[c]] = x0[c];
+  }
+  StaleCorrection contiguous(kAlgebraic, differential_id());
+  contiguous.update(J, 2.0);
+  StaleCorrection runs(kAlgebraic, id);
+  runs.update(Eigen::SparseMatrix<double>(reordered.sparseView()), 2.0);
+  REQUIRE(runs.projects());
+  Eigen::VectorXd expected = x0;
+  contiguous.apply(3.0, expected);
+  runs.apply(3.0, x);
+  for (int c = 0; c < 6; ++c) {
+    CHECK(std::abs(x[position[c]] - expected[c]) <= 1e-15 * x0.cwiseAbs().maxCoeff());
+  }
+  // The algebraic unknowns stay as solved.
+  CHECK(x[1] == x0[4]);
+  CHECK(x[4] == x0[5]);
 }
 
 TEST_CASE("stale correction: dependent or empty algebraic rows fall back to IDA's scaling") {

@@ -27,7 +27,7 @@ test::BuiltScene scene(const std::string& name, double t_end, double rtol) {
 
 TEST_CASE("nonlinear scenes under every applicable scheme agree with a tight GGL run") {
   // Over 2 s (the double pendulum is chaotic: short horizons only) at rtol 1e-10, against GGL at
-  // rtol 1e-13. All bounds are multiples of rtol = 1e-10 (lengths and speeds of order 1).
+  // rtol 1e-12. All bounds are multiples of rtol = 1e-10 (lengths and speeds of order 1).
   // Relative max-norm errors observed: u 1.6e-10 to 2.8e-7, v up to 8.0e-7 (four-bar, index1),
   // index3 up to 2.0e-5 in u and 5.8e-5 in v (four-bar; it leaves v out of the error test and is
   // the least accurate per tolerance): 2e4 × rtol in u and v, 1e6 × for index3. The energy error
@@ -43,9 +43,12 @@ TEST_CASE("nonlinear scenes under every applicable scheme agree with a tight GGL
     CAPTURE(std::string(name));
     const test::BuiltScene built = scene(name, 2.0, 1e-10);
     const Model& model = built.model;
+    // The reference at rtol 1e-12: at 3e-13 and below GGL's runs of the double pendulum fail
+    // (IDA_CONV_FAIL near t = 0.738) or pass by roundoff luck; a change of rounding in the
+    // Newton corrections alone turned the 1e-13 run from pass to fail.
     SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
-    tight.rtol = 1e-13;
-    tight.atol = 1e-15;
+    tight.rtol = 1e-12;
+    tight.atol = 1e-14;
     const Trajectory ref = test::solved(model, tight).trajectory;
     for (Scheme scheme : {Scheme::elimination, Scheme::penalty}) {
       CHECK(scheme_refusal(model, scheme).has_value());
