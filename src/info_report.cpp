@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -23,9 +24,15 @@ constexpr std::size_t kWidth = 100;
 // Long lists (hundreds of masters) are shown in full up to this many lines, then counted.
 constexpr std::size_t kMaxListLines = 8;
 
+/// Up to this many constraints the table lists each; beyond, the first kShortenedConstraints
+/// and a count per class (10⁴ ties of a 10⁶-DOF lattice are not read row by row).
+constexpr std::size_t kMaxListedConstraints = 60;
+constexpr std::size_t kShortenedConstraints = 40;
+
 /// "label: text" with the words of text wrapped at kWidth columns, continuation lines indented
-/// by the label's width.
+/// by the label's width. Text of several lines is printed as it is.
 std::string wrapped_text(const std::string& label, const std::string& text) {
+  if (text.find('\n') != std::string::npos) return label + text + "\n";
   const std::string indent(label.size(), ' ');
   std::string out = label, word;
   std::size_t width = label.size();
@@ -130,16 +137,17 @@ std::string short_list(const std::vector<std::string>& names) {
 }  // namespace
 
 void print_info(std::ostream& out, const Model& model, const BuildReport& report,
-                const SolveSpec& settings) {
-  out << "scene: " << model.file << (model.name.empty() ? "" : "  (" + model.name + ")") << "\n";
-  if (!model.description.empty()) out << "model: " << model.description << "\n";
+                const SolveSpec& settings, bool every_constraint) {
+  out << wrapped_text("scene: ", model.file + (model.name.empty() ? "" : " (" + model.name + ")"));
+  if (!model.description.empty()) out << wrapped_text("model: ", model.description);
+  // One line per DOF the projection moved: printed as it is.
   if (!report.initial_projection.empty())
     out << "initial state: " << report.initial_projection << "\n";
-  for (const auto& w : report.warnings) out << "warning: " << w << "\n";
+  for (const auto& w : report.warnings) out << wrapped_text("warning: ", w);
   for (const auto& d : report.dropped_constraints)
     out << "dropped redundant constraint " << d << "\n";
   if (!report.memory_estimate.empty()) out << "memory: " << report.memory_estimate << "\n";
-  if (!report.damping.empty()) out << "damping: " << report.damping << "\n";
+  if (!report.damping.empty()) out << wrapped_text("damping: ", report.damping);
   if (!model.is_nonlinear()) {
     const HeldDofs held = held_massless_dofs(
         model.M, model.has_damping() ? model.C : Eigen::SparseMatrix<double>(), *model.K, model.A);
@@ -164,21 +172,53 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
     out << "constraints: none (the model is unconstrained)\n";
   } else {
     out << "constraints (classes of the chapter's Tables 5.1-5.2):\n";
+    // A large model's table is its first rows and a count per class, unless every row is asked.
+    const bool shortened = !every_constraint && classes.size() > kMaxListedConstraints;
+    const std::size_t listed = shortened ? kShortenedConstraints : classes.size();
     int width = 6;
-    for (const auto& c : classes) width = std::max(width, static_cast<int>(c.name.size()) + 2);
-    out << "  " << std::left << std::setw(width) << "name" << std::setw(5) << "" << std::setw(34)
-        << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs" << std::setw(11) << "form"
-        << "DOFs\n";
+    for (std::size_t i = 0; i < listed; ++i) {
+      width = std::max(width, static_cast<int>(classes[i].name.size()) + 2);
+    }
+    // The kind column as wide as its longest entry ("pseudo-nonholonomic (integrable)" is 32).
+    int kind_width = 6;
     for (const auto& c : classes) {
-      out << "  " << std::left << std::setw(width) << c.name << std::setw(5)
-          << (c.single_freedom ? "SFC" : "MFC") << std::setw(34) << c.holonomy() << std::setw(12)
-          << (c.rheonomic ? "rheonomic" : "scleronomic") << std::setw(16)
-          << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
-          << (c.linear ? "linear" : "nonlinear");
-      out << short_list(c.dofs) << "\n";
-      if (!c.note.empty())
-        out << "  " << std::setw(width) << ""
-            << "  " << c.note << "\n";
+      kind_width = std::max(kind_width, static_cast<int>(c.holonomy().size()) + 2);
+    }
+    const auto class_columns = [kind_width](std::ostream& o, const ConstraintClass& c) {
+      o << std::setw(5) << (c.single_freedom ? "SFC" : "MFC") << std::setw(kind_width)
+        << c.holonomy() << std::setw(12) << (c.rheonomic ? "rheonomic" : "scleronomic")
+        << std::setw(16) << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
+        << (c.linear ? "linear" : "nonlinear");
+    };
+    out << "  " << std::left << std::setw(width) << "name" << std::setw(5) << ""
+        << std::setw(kind_width) << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs"
+        << std::setw(11) << "form"
+        << "DOFs\n";
+    for (std::size_t i = 0; i < listed; ++i) {
+      const ConstraintClass& c = classes[i];
+      std::ostringstream row;
+      row << "  " << std::left << std::setw(width) << c.name;
+      class_columns(row, c);
+      out << wrapped_text(row.str(), short_list(c.dofs));
+      if (!c.note.empty()) {
+        out << wrapped_text(std::string(static_cast<std::size_t>(width) + 4, ' '), c.note);
+      }
+    }
+    if (shortened) {
+      out << "  ... and " << classes.size() - listed << " more (" << classes.size()
+          << " in all; info --all-constraints lists every one); count per class:\n";
+      std::map<std::string, std::size_t> count;
+      for (const auto& c : classes) {
+        std::ostringstream key;
+        key << std::left;
+        class_columns(key, c);
+        std::string text = key.str();
+        text.erase(text.find_last_not_of(' ') + 1);
+        ++count[text];
+      }
+      for (const auto& [key, number] : count) {
+        out << "  " << std::left << std::setw(width) << number << key << "\n";
+      }
     }
     const bool integrable_velocity_rows =
         std::any_of(model.constraints.begin(), model.constraints.end(), [](const Constraint& c) {
@@ -190,11 +230,12 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
     }
   }
   const int n = model.dofs(), m = model.constraint_count();
-  out << "\nmodel: "
-      << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
-      << " DOFs, " << m << " constraints; nonzeros M " << model.M.nonZeros() << ", C "
-      << model.C.nonZeros() << ", K " << model.K->nonZeros() << ", A " << model.A.nonZeros()
-      << "\n";
+  std::ostringstream model_size;
+  model_size << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
+             << " DOFs, " << m << (m == 1 ? " constraint" : " constraints") << "; nonzeros M "
+             << model.M.nonZeros() << ", C " << model.C.nonZeros() << ", K " << model.K->nonZeros()
+             << ", A " << model.A.nonZeros();
+  out << "\n" << wrapped_text("model: ", model_size.str());
   print_loads(out, model);
   SchemeChoice choice = choose_scheme(model, settings);
   SystemSizer sizer(model);

@@ -368,6 +368,7 @@ int run_command(int argc, char** argv) {
       ->check(file_name_check());
 
   std::string info_scene, info_scheme, info_constraints;
+  bool info_all_constraints = false;
   auto* info_cmd = app.add_subcommand("info", "classify the constraints and size the model");
   info_cmd->add_option("scene", info_scene, "scene file (TOML)")->required();
   info_cmd->add_option("--scheme", info_scheme, "scheme to report on (default: the scene's)")
@@ -376,6 +377,9 @@ int run_command(int argc, char** argv) {
       ->add_option("--constraints", info_constraints,
                    "mixed or multipliers (default: the scene's [solve] constraints)")
       ->check(non_empty_check());
+  info_cmd->add_flag("--all-constraints", info_all_constraints,
+                     "list every constraint (default: above 60, the first 40 and a count per "
+                     "class)");
 
   std::string compare_scene, compare_dir, compare_tolerances, compare_schemes;
   bool compare_no_plots = false;
@@ -541,7 +545,7 @@ int run_command(int argc, char** argv) {
       // A bad [[check]] is bad input here as in run and check.
       if (!spec.checks.empty()) (void)CheckEvaluator(model, spec.checks, info_scene);
       release_model_input(spec);
-      print_info(std::cout, model, report, spec.solve);
+      print_info(std::cout, model, report, spec.solve, info_all_constraints);
       return 0;
     }
     if (*validate_cmd) return run_validation(std::cout, validate_options) ? 0 : 1;

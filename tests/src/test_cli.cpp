@@ -162,7 +162,7 @@ TEST_CASE("info classifies constraints and sizes the model") {
   CHECK(r.out.find("SFC") != std::string::npos);
   CHECK(r.out.find("holonomic") != std::string::npos);
   CHECK(r.out.find("scleronomic") != std::string::npos);
-  CHECK(r.out.find("2 DOFs, 1 constraints") != std::string::npos);
+  CHECK(r.out.find("2 DOFs, 1 constraint;") != std::string::npos);
   CHECK(r.out.find("1 slave (chosen by column pivoting on A), 1 master\n  slaves: a\n"
                    "  masters: b\n") != std::string::npos);
   CHECK(r.out.find("system each scheme integrates") != std::string::npos);

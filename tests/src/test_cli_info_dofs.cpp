@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/lattice_scene.hpp"
 #include "tests/scene_text.hpp"
 
 using condyn::test::Result;
@@ -68,8 +69,9 @@ TEST_CASE("info: DOF lists of nonlinear rows are what the rows use, not the stor
   // pattern alone would list every DOF; values at u0 alone missed the car axle's yl, yr (their
   // coefficients are zero there).
   const auto row_of = [](const std::string& out, const std::string& name) {
-    const auto at = out.find("  " + name + " ");
-    REQUIRE(at != std::string::npos);
+    // A table row starts a line: "  NAME  SFC|MFC ...".
+    const auto at = out.find("\n  " + name + " ") + 1;
+    REQUIRE(at != 0);
     return out.substr(at, out.find('\n', at) - at);
   };
   Sandbox box;
@@ -95,4 +97,45 @@ TEST_CASE("info: massless DOFs held by stiffness are named, within 100 columns")
   CHECK(r.out.find("ux3, uy3") != std::string::npos);
   std::istringstream lines(r.out);
   for (std::string line; std::getline(lines, line);) CHECK(line.size() <= kWidth);
+}
+
+TEST_CASE("info: above 60 constraints, the first 40 rows and a count per class") {
+  // A 70 x 2 lattice, its left column supported (4 SFC), tied top to bottom in columns 2 to 70
+  // (69 MFC): 73 constraints.
+  std::string extra;
+  for (int i = 2; i <= 70; ++i) {
+    extra += "[[constraint]]\nname = \"tie" + std::to_string(i) + "\"\nterms = { uy" +
+             std::to_string(70 + i) + " = 1.0, uy" + std::to_string(i) + " = -1.0 }\n";
+  }
+  Sandbox box;
+  box.write("ties.toml", condyn::test::lattice(70, 2, extra, "scheme = \"ggl\"\n"));
+  const Result r = box.run("info ties.toml");
+  REQUIRE(r.code == 0);
+  // The supports come first (s1 to s4), then the ties: tie37 is row 40, tie38 row 41.
+  CHECK(r.out.find("tie37 ") != std::string::npos);
+  CHECK(r.out.find("tie38 ") == std::string::npos);
+  CHECK(r.out.find("... and 33 more (73 in all; info --all-constraints lists every one)") !=
+        std::string::npos);
+  const auto count_line = [&r](const std::string& count, const std::string& kind) {
+    std::istringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      std::string first, second;
+      words >> first >> second;
+      if (first == count && second == kind) return line;
+    }
+    return std::string();
+  };
+  const std::string mfc = count_line("69", "MFC");
+  const std::string sfc = count_line("4", "SFC");
+  CHECK(mfc.find("holonomic") != std::string::npos);
+  CHECK(mfc.find("linear") != std::string::npos);
+  CHECK(sfc.find("homogeneous") != std::string::npos);
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) CHECK(line.size() <= kWidth);
+
+  const Result all = box.run("info ties.toml --all-constraints");
+  REQUIRE(all.code == 0);
+  CHECK(all.out.find("tie70 ") != std::string::npos);
+  CHECK(all.out.find("more (73 in all") == std::string::npos);
 }
