@@ -116,10 +116,12 @@ done
 # Sanitizers: the unit and e2e tiers again, built by clang with ASan and UBSan into build-asan/ (its
 # CONDYN_BINARY is build-asan/condyn, sanitized too, so the CLI tests run under them as well).
 # Any report aborts the test. The same build has the libFuzzer harness (CONDYN_FUZZ). A unity build
-# as above: 14.7 min instead of 20.4 on 2 cores (2026-11-27).
+# as above: 14.7 min instead of 20.4 on 2 cores (2026-11-27). Line tables are all the debug
+# information the reports need (file and line of each frame): a library batch compiles in 42 s of
+# CPU instead of 54 with full -g, its object 5.2 MB instead of 13.2 (2026-11-27).
 sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS="$sanitize" -DCONDYN_TESTS=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS="$sanitize" -DCONDYN_TESTS=ON \
   -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
 (cd build-asan && ctest -L "unit|e2e" --output-on-failure -j "$jobs")
