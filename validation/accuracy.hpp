@@ -1,6 +1,8 @@
 #pragma once
 /// How far a trajectory is from a reference: relative max-norms over every DOF and output time,
-/// ‖x − x_ref‖_max / ‖x_ref‖_max (absolute when the reference is identically zero).
+/// ‖x − x_ref‖_max / ‖x_ref‖_max (absolute when the reference is identically zero); velocities
+/// against at least ‖u_ref‖_max / (t_last − t_first), so that a structure at rest is not judged
+/// by the roundoff of its reference's velocities.
 
 #include <optional>
 #include <string>
