@@ -25,14 +25,17 @@ constexpr double kSparsePsdShift = 1e-8;
 }  // namespace
 
 Eigen::SparseMatrix<double> ModelBuilder::sparse_psd(const std::vector<std::vector<double>>& rows,
-                                                     const std::string& key) const {
+                                                     const std::string& key,
+                                                     const SourcePoint& where) const {
   const int n = static_cast<int>(rows.size());
   Eigen::MatrixXd dense(n, n);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j)
       dense(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
   }
-  check_psd(dense, {"model." + key, spec_.model.where.line});
+  // The key's own line where the scene wrote the rows, else the model table's.
+  check_psd(dense,
+            where.path.empty() ? SourcePoint{"model." + key, spec_.model.where.line} : where);
   return dense.sparseView();
 }
 
@@ -118,14 +121,16 @@ void ModelBuilder::check_sparse_inertia(const FileMatrix& m, const std::string& 
 void ModelBuilder::build_matrix() {
   const auto& m = spec_.model;
   set_dofs(m.dofs);
-  model_.M = m.mass_file.given() ? file_psd(m.mass_file, "mass") : sparse_psd(m.mass, "mass");
-  model_.K.edit() = m.stiffness_file.given() ? file_psd(m.stiffness_file, "stiffness")
-                                             : sparse_psd(m.stiffness, "stiffness");
+  model_.M = m.mass_file.given() ? file_psd(m.mass_file, "mass")
+                                 : sparse_psd(m.mass, "mass", m.mass_where);
+  model_.K.edit() = m.stiffness_file.given()
+                        ? file_psd(m.stiffness_file, "stiffness")
+                        : sparse_psd(m.stiffness, "stiffness", m.stiffness_where);
   model_.C.resize(model_.dofs(), model_.dofs());
   if (m.damping_file.given()) {
     model_.C = file_psd(m.damping_file, "damping");
   } else if (!m.damping.empty()) {
-    model_.C = sparse_psd(m.damping, "damping");
+    model_.C = sparse_psd(m.damping, "damping", m.damping_where);
   }
   model_.M.makeCompressed();
   model_.K.edit().makeCompressed();

@@ -82,7 +82,7 @@ class ModelBuilder {
 
   // matrix_model.cpp
   Eigen::SparseMatrix<double> sparse_psd(const std::vector<std::vector<double>>& rows,
-                                         const std::string& key) const;
+                                         const std::string& key, const SourcePoint& where) const;
   Eigen::SparseMatrix<double> file_psd(const FileMatrix& m, const std::string& key) const;
   void check_sparse_inertia(const FileMatrix& m, const std::string& key) const;
   void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where,

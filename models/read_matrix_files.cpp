@@ -307,9 +307,11 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
                std::to_string(j + 1) + "," + std::to_string(i + 1) + ") = " + fmt(a.coeff(j, i)));
     }
   }
-  const auto square = [&](std::string_view key, std::vector<std::vector<double>>& out) {
+  const auto square = [&](std::string_view key, std::vector<std::vector<double>>& out,
+                          SourcePoint& where) {
     const std::string p = join(path, std::string(key));
     const auto& mat = required(t, path, key);
+    where = at(mat, p);
     out = dense_matrix(mat, p);
     const std::size_t rows = model.dofs.size();
     if (out.size() != rows) {
@@ -336,13 +338,13 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
       }
     }
   };
-  if (!model.mass_file.given()) square("mass", model.mass);
-  if (!model.stiffness_file.given()) square("stiffness", model.stiffness);
+  if (!model.mass_file.given()) square("mass", model.mass, model.mass_where);
+  if (!model.stiffness_file.given()) square("stiffness", model.stiffness, model.stiffness_where);
   if (const auto* d = t.get("damping"); d != nullptr && !model.damping_file.given()) {
     if (d->is_table()) {
       read_rayleigh(*d, "model.damping", model);
     } else {
-      square("damping", model.damping);
+      square("damping", model.damping, model.damping_where);
     }
   }
 }

@@ -61,6 +61,7 @@ struct ModelSpec {
   // matrix
   std::vector<std::string> dofs;
   std::vector<std::vector<double>> mass, stiffness, damping;  ///< damping may be empty
+  SourcePoint mass_where, stiffness_where, damping_where;     ///< their keys, when written as rows
   /// The same, given by files instead of rows (models/read_matrix_files.cpp); `dofs` is then
   /// u1..un when the scene omits it.
   FileMatrix mass_file, stiffness_file, damping_file;

@@ -165,9 +165,15 @@ output_step = 0.5
   CHECK(error_of(matrix).empty());
   check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -1.0], [-1.5, 2.0]]"),
               "model.stiffness: is not symmetric: entry (2,1)");
+  // Refused at the key's own line (the mass on line 4, the stiffness on 5, damping on 6), not
+  // at the [model] table's.
   check_error(
       replace(matrix, "mass = [[1.0, 0.0], [0.0, 1.0]]", "mass = [[1.0, 0.0], [0.0, -1.0]]"),
-      "model.mass: is not positive semi-definite");
+      "bad.toml:4: model.mass: is not positive semi-definite");
+  check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -3.0], [-3.0, 2.0]]"),
+              "bad.toml:5: model.stiffness: is not positive semi-definite");
+  check_error(replace(matrix, "[solve]", "damping = [[1.0, 0.0], [0.0, -1.0]]\n[solve]"),
+              "bad.toml:6: model.damping: is not positive semi-definite");
   check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -1.0], [-1.0]]"),
               "model.stiffness[2]: has 1 entries for 2 DOFs");
   check_error(replace(matrix, "dofs = [\"a\", \"b\"]", "dofs = [\"a\", \"a\"]"),
