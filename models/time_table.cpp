@@ -1,6 +1,7 @@
 #include "models/time_table.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -135,6 +136,28 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
       }
       if (header) {
         table.time_column = row.front();
+        // R's write.csv and pandas' to_csv put a row index first by default: an unnamed first
+        // column, or a later one named as time is. Read as time, it stretches the record.
+        const auto named_time = [](std::string name) {
+          std::transform(name.begin(), name.end(), name.begin(),
+                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+          return name == "t" || name == "time";
+        };
+        const auto later_time = std::find_if(row.begin() + 1, row.end(), named_time);
+        if (trim(row.front()).empty() || (!named_time(row.front()) && later_time != row.end())) {
+          throw TimeTableError(
+              line_no,
+              "the first column holds the time, but it is " +
+                  (trim(row.front()).empty() ? std::string("unnamed")
+                                             : "'" + shown_cell(row.front()) + "'") +
+                  (later_time != row.end()
+                       ? " and column " + std::to_string(later_time - row.begin() + 1) + " is '" +
+                             shown_cell(*later_time) + "'"
+                       : std::string()) +
+                  ": a row index, as R's write.csv and pandas' to_csv write by default? Write "
+                  "the table without it (write.csv(..., row.names = FALSE), "
+                  "to_csv(..., index = False)) or with time first");
+        }
         if (column.empty()) {
           table.column = row[1];
         } else {

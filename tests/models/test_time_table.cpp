@@ -131,6 +131,25 @@ TEST_CASE("time table: piecewise linear between samples, held outside, columns b
                        "text follows the closing double quote of a cell", TimeTableError);
 }
 
+TEST_CASE("time table: a row index first (R's write.csv, pandas' to_csv) is refused") {
+  // Read as time, the index 1, 2, 3 stretched a 0.02 s record fifty-fold and started it at 1.
+  for (const char* text : {"\"\",\"t\",\"a\"\n\"1\",0,1\n\"2\",0.02,3\n",  // R
+                           ",t,a\n0,0,1\n1,0.02,3\n",                             // pandas
+                           "index,time,a\n0,0,1\n1,0.02,3\n",                     // named index
+                           ",a\n0,1\n1,3\n"}) {  // unnamed first column, no other time column
+    CAPTURE(std::string(text));
+    CHECK_THROWS_WITH_AS((void)parse_time_table(text, ""),
+                         doctest::Contains("the first column holds the time, but it is"),
+                         TimeTableError);
+  }
+  CHECK_THROWS_WITH_AS((void)parse_time_table(",t,a\n0,0,1\n1,0.02,3\n", "a"),
+                       doctest::Contains("unnamed and column 2 is 't': a row index"),
+                       TimeTableError);
+  // Time first under any name, or named t or Time: read as before.
+  CHECK(parse_time_table("seconds,a\n0,1\n1,3\n", "").value(0.5) == 2.0);
+  CHECK(parse_time_table("Time,a,t2\n0,1,5\n1,3,7\n", "a").value(0.5) == 2.0);
+}
+
 TEST_CASE("time table: a time function with a scale, shared samples and no breakpoints") {
   Sandbox box;
   box.write("rec.csv", kRecord);
