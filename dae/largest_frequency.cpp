@@ -8,6 +8,7 @@
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsSolver.h>
 #include <algorithm>
+#include <stdexcept>
 
 namespace condyn {
 
@@ -29,7 +30,13 @@ std::optional<double> largest_eigenvalue(const Eigen::SparseMatrix<double>& K,
   Spectra::SymGEigsSolver<KOp, MOp, Spectra::GEigsMode::Cholesky> eigs(k_op, m_op, 1, ncv);
   eigs.init();
   constexpr Eigen::Index kMaxRestarts = 200;
-  eigs.compute(Spectra::SortRule::LargestMagn, kMaxRestarts, kLargestFrequencyTolerance);
+  try {
+    eigs.compute(Spectra::SortRule::LargestMagn, kMaxRestarts, kLargestFrequencyTolerance);
+  } catch (const std::runtime_error&) {
+    // Spectra throws when its tridiagonal eigensolve fails (non-finite Ritz values): no
+    // estimate, as when it does not converge.
+    return std::nullopt;
+  }
   if (eigs.info() != Spectra::CompInfo::Successful) return std::nullopt;
   return std::abs(eigs.eigenvalues()[0]);
 }

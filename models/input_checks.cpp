@@ -144,6 +144,23 @@ void ModelBuilder::check_finite() const {
                            "large"));
     }
   }
+  // Finite matrices whose ratios are not: K_ii / M_ii (a natural frequency squared, about) of
+  // 3e160 / 1e-160 made the frequency estimates fail inside the eigensolver, exit 1 and no key.
+  {
+    const Eigen::VectorXd m = model_.M.diagonal(), k = model_.K->diagonal();
+    for (Eigen::Index i = 0; i < m.size(); ++i) {
+      if (m[i] > 0.0 && !std::isfinite(k[i] / m[i])) {
+        const ModelSpec& ms = spec_.model;
+        const SourcePoint& where = ms.stiffness_file.given()          ? ms.stiffness_file.where
+                                   : !ms.stiffness_where.path.empty() ? ms.stiffness_where
+                                                                      : ms.where;
+        fail(where, "DOF '" + model_.dof_names[static_cast<std::size_t>(i)] +
+                        "': K_ii / M_ii = " + fmt(k[i]) + " / " + fmt(m[i]) +
+                        " overflows the double range (its natural frequency squared is not "
+                        "representable): check the units");
+      }
+    }
+  }
   if (!model_.u0.allFinite() || !model_.v0.allFinite()) {
     fail(spec_.initial.where.line ? spec_.initial.where : spec_.model.where,
          "the initial state is not finite (it overflows the double range)");

@@ -174,6 +174,11 @@ output_step = 0.5
               "bad.toml:5: model.stiffness: is not positive semi-definite");
   check_error(replace(matrix, "[solve]", "damping = [[1.0, 0.0], [0.0, -1.0]]\n[solve]"),
               "bad.toml:6: model.damping: is not positive semi-definite");
+  // Each matrix finite, their ratio not: ω² ≈ K_ii / M_ii = 2e160 / 1e-160 overflows. Spectra's
+  // eigensolve failed on it (exit 1, no key).
+  check_error(replace(replace(matrix, "[[1.0, 0.0], [0.0, 1.0]]", "[[1e-160, 0.0], [0.0, 1e-160]]"),
+                      "[[2.0, -1.0], [-1.0, 2.0]]", "[[2e160, -1e160], [-1e160, 2e160]]"),
+              "bad.toml:5: model.stiffness: DOF 'a': K_ii / M_ii = 2e+160 / 1e-160 overflows");
   check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -1.0], [-1.0]]"),
               "model.stiffness[2]: has 1 entries for 2 DOFs");
   check_error(replace(matrix, "dofs = [\"a\", \"b\"]", "dofs = [\"a\", \"a\"]"),
