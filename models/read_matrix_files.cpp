@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "models/matrix_market.hpp"
+#include "models/number_cell.hpp"
 #include "models/scene_readers.hpp"
 
 namespace condyn {
@@ -32,6 +33,16 @@ std::optional<std::array<Eigen::Index, 2>> asymmetry(const Eigen::SparseMatrix<d
     }
   }
   return std::nullopt;
+}
+
+/// "entry (i,j) = a but (j,i) = b (…)", 1-based, each value to round-trip precision and their
+/// difference relative to the tolerance, so that values alike to ten digits are told apart.
+std::string asymmetry_text(Eigen::Index i, Eigen::Index j, double a, double b) {
+  const double size = std::max({std::abs(a), std::abs(b), 1e-300});
+  return "entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+         ") = " + shortest_number(a) + " but (" + std::to_string(j + 1) + "," +
+         std::to_string(i + 1) + ") = " + shortest_number(b) + " (they differ by " +
+         shortest_number(std::abs(a - b) / size) + " of their size; symmetric means within 1e-12)";
 }
 
 }  // namespace
@@ -302,9 +313,7 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
     if (const auto ij = asymmetry(a)) {
       const auto [i, j] = *ij;
       fail(node, p,
-           name + " is not symmetric: entry (" + std::to_string(i + 1) + "," +
-               std::to_string(j + 1) + ") = " + fmt(a.coeff(i, j)) + " but (" +
-               std::to_string(j + 1) + "," + std::to_string(i + 1) + ") = " + fmt(a.coeff(j, i)));
+           name + " is not symmetric: " + asymmetry_text(i, j, a.coeff(i, j), a.coeff(j, i)));
     }
   }
   const auto square = [&](std::string_view key, std::vector<std::vector<double>>& out,
@@ -331,9 +340,8 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
         // Symmetry to a few ulps of the entries' size: a scene writes these by hand.
         if (std::abs(a - b) > 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) {
           fail(mat, p,
-               "is not symmetric: entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
-                   ") = " + fmt(a) + " but (" + std::to_string(j + 1) + "," +
-                   std::to_string(i + 1) + ") = " + fmt(b));
+               "is not symmetric: " + asymmetry_text(static_cast<Eigen::Index>(i),
+                                                     static_cast<Eigen::Index>(j), a, b));
         }
       }
     }

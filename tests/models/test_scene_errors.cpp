@@ -165,6 +165,9 @@ output_step = 0.5
   CHECK(error_of(matrix).empty());
   check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -1.0], [-1.5, 2.0]]"),
               "model.stiffness: is not symmetric: entry (2,1)");
+  // Values alike to ten digits are shown to round-trip precision: "-1 but -1" told nothing.
+  check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -1.0000000001], [-1.0, 2.0]]"),
+              "entry (2,1) = -1 but (1,2) = -1.0000000001 (they differ by");
   // Refused at the key's own line (the mass on line 4, the stiffness on 5, damping on 6), not
   // at the [model] table's.
   check_error(
