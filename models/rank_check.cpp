@@ -169,10 +169,25 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
       (m - rank > 1 ? ": " + std::to_string(m - rank) +
                           " constraints depend on others, these are the first found"
                     : std::string());
-  std::string names;
-  for (const auto& [j, w] : combo) {
-    names += (names.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
-  }
+  // The constraints of the combination, quoted; beyond kNamed, counted (a chain of 4,000 tied
+  // rows named every one on a single 35 kB line).
+  const auto quoted = [&](int skip) {
+    constexpr std::size_t kNamed = 12;
+    std::string text;
+    std::size_t shown = 0, all = 0;
+    for (const auto& [j, w] : combo) {
+      if (j == skip) continue;
+      ++all;
+      if (shown == kNamed) continue;
+      text += (text.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
+      ++shown;
+    }
+    if (all > shown) {
+      text += " and " + std::to_string(all - shown) + " more (" + std::to_string(all) + " in all)";
+    }
+    return text;
+  };
+  const std::string names = quoted(-1);
   // Compatible when the same combination of the right-hand sides vanishes identically over
   // [0, t_end]: decided from the terms (zero_sum.hpp), never from samples, which two
   // different functions can share (0 and 1 - cos(64 pi t) agree at every multiple of 1/32).
@@ -205,13 +220,7 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
         drop = j;
       }
     }
-    std::string others;
-    for (const auto& [j, w] : combo) {
-      if (j == drop) continue;
-      others +=
-          (others.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
-    }
-    return Dependent{drop, others};
+    return Dependent{drop, quoted(drop)};
   }
   std::string drop_hint;
   if (!model_.is_nonlinear()) {

@@ -2,6 +2,7 @@
 // and the problem.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -620,4 +621,32 @@ TEST_CASE("absurd magnitudes are accepted with a warning") {
         "1e-16 of them is lost in roundoff; check the units");
   CHECK(warnings(kBase + "[initial]\nvelocity = { ux2 = -2e16 }\n").size() == 1);
   CHECK(warnings(kBase + "[initial]\nvelocity = { ux2 = 1e15 }\n").empty());
+}
+
+TEST_CASE("a dependent set of many constraints is named by its first 12 and counted") {
+  // 15 DOFs tied in a chain, a_k = a_{k+1}, and a_1 = a_15 besides: a_1 = a_15 is the sum of the
+  // 14 ties, so the 15 rows are dependent. The message named every one (4,001 on one line for a
+  // chain of ties in a review).
+  std::string dofs, mass, constraints;
+  for (int k = 1; k <= 15; ++k) {
+    dofs += std::string(k > 1 ? ", " : "") + "\"a" + std::to_string(k) + "\"";
+    mass += std::string(k > 1 ? ", " : "") + "[";
+    for (int j = 1; j <= 15; ++j) mass += std::string(j > 1 ? ", " : "") + (j == k ? "1.0" : "0.0");
+    mass += "]";
+    if (k < 15) {
+      constraints += "[[constraint]]\nname = \"tie" + std::to_string(k) + "\"\nterms = { a" +
+                     std::to_string(k) + " = 1.0, a" + std::to_string(k + 1) + " = -1.0 }\n";
+    }
+  }
+  constraints += "[[constraint]]\nname = \"ends\"\nterms = { a1 = 1.0, a15 = -1.0 }\n";
+  const std::string scene = "[model]\ntype = \"matrix\"\ndofs = [" + dofs + "]\nmass = [" + mass +
+                            "]\nstiffness = [" + mass + "]\n" + constraints +
+                            "[solve]\nt_end = 1.0\noutput_step = 0.5\n";
+  const std::string msg = error_of(scene);
+  CAPTURE(msg);
+  CHECK(msg.find("are linearly dependent") != std::string::npos);
+  CHECK(msg.find(" and 3 more (15 in all)") != std::string::npos);
+  // Twelve names quoted before the count, each once (the order is the combination's).
+  const std::string named = msg.substr(0, msg.find(" and 3 more"));
+  CHECK(std::count(named.begin(), named.end(), '\'') == 24);
 }
