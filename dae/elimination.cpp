@@ -6,6 +6,7 @@
 #include "dae/ida_integrator.hpp"
 #include "dae/observed_run.hpp"
 #include "dae/reduced_ode.hpp"
+#include "dae/solve.hpp"
 
 namespace condyn {
 
@@ -17,7 +18,9 @@ ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferr
   try {
     r.transform = master_slave_transform(model.A, preferred);
   } catch (const CoupledGroupTooLarge& e) {
-    throw std::invalid_argument(
+    // The request, not the solver, is at fault: bad input for the CLI (exit 2), and auto falls
+    // back to GGL as for any scheme that cannot treat the model.
+    throw SchemeNotApplicable(
         "elimination: constraint '" +
         model.constraints[static_cast<std::size_t>(e.first_row)].name + "'" +
         (e.rows > 1 ? " and " + std::to_string(e.rows - 1) + " others" : std::string()) + ": " +

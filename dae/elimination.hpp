@@ -38,8 +38,8 @@ struct ReducedSystem {
 };
 
 /// `preferred_slaves` ([solve] slaves: DOF names, size m, or empty) as master_slave_transform.
-/// Its CoupledGroupTooLarge is rethrown as std::invalid_argument naming the group's first
-/// constraint.
+/// Its CoupledGroupTooLarge is rethrown as SchemeNotApplicable (dae/solve.hpp) naming the
+/// group's first constraint.
 [[nodiscard]] ReducedSystem reduce(const Model& model,
                                    const std::vector<std::string>& preferred_slaves = {});
 
