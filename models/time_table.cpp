@@ -216,6 +216,14 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
           line_no, "the time " + shortest_number(t) + " is not after the previous sample's " +
                        shortest_number(table.times.back()) + " (times must increase strictly)");
     }
+    if (!table.times.empty() && !std::isfinite(t - table.times.back())) {
+      // −1e308 then 1e308: the interval overflows, and interpolation across it gave the first
+      // value where the line between the samples is meant.
+      throw TimeTableError(line_no, "the time " + shortest_number(t) +
+                                        " is too far from the previous sample's " +
+                                        shortest_number(table.times.back()) +
+                                        ": their interval overflows the double range");
+    }
     if (!table.times.empty()) {
       const double slope = (v - table.values.back()) / (t - table.times.back());
       table.max_abs_slope = std::max(table.max_abs_slope, std::abs(slope));

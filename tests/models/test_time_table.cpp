@@ -134,8 +134,8 @@ TEST_CASE("time table: piecewise linear between samples, held outside, columns b
 TEST_CASE("time table: a row index first (R's write.csv, pandas' to_csv) is refused") {
   // Read as time, the index 1, 2, 3 stretched a 0.02 s record fifty-fold and started it at 1.
   for (const char* text : {"\"\",\"t\",\"a\"\n\"1\",0,1\n\"2\",0.02,3\n",  // R
-                           ",t,a\n0,0,1\n1,0.02,3\n",                             // pandas
-                           "index,time,a\n0,0,1\n1,0.02,3\n",                     // named index
+                           ",t,a\n0,0,1\n1,0.02,3\n",                      // pandas
+                           "index,time,a\n0,0,1\n1,0.02,3\n",              // named index
                            ",a\n0,1\n1,3\n"}) {  // unnamed first column, no other time column
     CAPTURE(std::string(text));
     CHECK_THROWS_WITH_AS((void)parse_time_table(text, ""),
@@ -148,6 +148,14 @@ TEST_CASE("time table: a row index first (R's write.csv, pandas' to_csv) is refu
   // Time first under any name, or named t or Time: read as before.
   CHECK(parse_time_table("seconds,a\n0,1\n1,3\n", "").value(0.5) == 2.0);
   CHECK(parse_time_table("Time,a,t2\n0,1,5\n1,3,7\n", "a").value(0.5) == 2.0);
+}
+
+TEST_CASE("time table: an interval beyond the double range is refused") {
+  // An interval beyond the double range (−1e308 to 1e308) is refused: interpolation across it
+  // returned the first value.
+  CHECK_THROWS_WITH_AS((void)parse_time_table("t,a\n-1e308,-1\n1e308,1\n", ""),
+                       doctest::Contains("their interval overflows the double range"),
+                       TimeTableError);
 }
 
 TEST_CASE("time table: a time function with a scale, shared samples and no breakpoints") {
