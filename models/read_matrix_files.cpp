@@ -244,9 +244,28 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
   model.type = ModelSpec::Type::matrix;
   const auto is_file = [&](std::string_view key) {
     const auto* n = t.get(key);
-    return n != nullptr && n->is_table() && !n->as_table()->contains("rayleigh") &&
-           !n->as_table()->contains("modal");
+    return n != nullptr && n->is_table() && n->as_table()->contains("file") &&
+           !n->as_table()->contains("rayleigh") && !n->as_table()->contains("modal");
   };
+  // A table that is none of the forms (an empty one, a misspelt key): name every form.
+  for (const std::string_view key : {"mass", "stiffness", "damping"}) {
+    const auto* n = t.get(key);
+    if (n == nullptr || !n->is_table()) continue;
+    const auto& entries = *n->as_table();
+    if (entries.contains("file") ||
+        (key == "damping" && (entries.contains("rayleigh") || entries.contains("modal")))) {
+      continue;
+    }
+    fail(*n, join(path, std::string(key)),
+         std::string(entries.empty() ? "is an empty table" : "is a table without a known key") +
+             ": expected rows ([[...], ...]) or { file = \"" +
+             (key == "mass"        ? "M"
+              : key == "stiffness" ? "K"
+                                   : "C") +
+             ".mtx\" }" +
+             (key == "damping" ? std::string(", { rayleigh = [a0, a1] } or { modal = ratio }")
+                               : std::string()));
+  }
   // Files first: when `dofs` is omitted their size fixes n.
   const std::pair<std::string_view, FileMatrix*> files[] = {{"mass", &model.mass_file},
                                                             {"stiffness", &model.stiffness_file},

@@ -166,6 +166,13 @@ output_step = 0.5
   CHECK(error_of(matrix).empty());
   check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -1.0], [-1.5, 2.0]]"),
               "model.stiffness: is not symmetric: entry (2,1)");
+  // A table of none of the forms names every form (an empty damping table read as a file whose
+  // key was missing: "model.damping.file: missing required key").
+  check_error(replace(matrix, "[solve]", "damping = { }\n[solve]"),
+              "bad.toml:6: model.damping: is an empty table: expected rows ([[...], ...]) or { "
+              "file = \"C.mtx\" }, { rayleigh = [a0, a1] } or { modal = ratio }");
+  check_error(replace(matrix, "mass = [[1.0, 0.0], [0.0, 1.0]]", "mass = { fil = \"M.mtx\" }"),
+              "bad.toml:4: model.mass: is a table without a known key: expected rows");
   // Values alike to ten digits are shown to round-trip precision: "-1 but -1" told nothing.
   check_error(replace(matrix, "[[2.0, -1.0], [-1.0, 2.0]]", "[[2.0, -1.0000000001], [-1.0, 2.0]]"),
               "entry (2,1) = -1 but (1,2) = -1.0000000001 (they differ by");
