@@ -80,6 +80,7 @@ def run(scene, scheme=None, rtol=None, atol=None):
     SceneError (a ValueError) with the CLI's "FILE:LINE: key.path: problem" message ("<dict>"
     and no line for a dict); a failed integration raises IntegrationError. The GIL is released
     while the model is built and integrated."""
+    _refuse_text(scene)
     fields, failure = _condyn.run(scene, _text(scene, "scheme", scheme),
                                   _number(scene, "rtol", rtol), _number(scene, "atol", atol))
     result = Result(fields)
@@ -100,6 +101,7 @@ def compare(scene, tolerances=None, schemes=None, repeats=1, drift_rtol=None, ma
     of another type raises SceneError naming it. The scene's warnings are issued as
     UserWarning. When no run can be scored (no exact solution, and the tight reference runs
     failed) it raises IntegrationError, whose result is None."""
+    _refuse_text(scene)
     records, scene_warnings, no_reference = _condyn.compare(
         scene, _list(scene, "tolerances", tolerances, _number),
         _list(scene, "schemes", schemes, _text), _integer(scene, "repeats", repeats),
@@ -117,7 +119,19 @@ def check(scene, scheme=None):
     Returns a dict: scene, scheme, steps, wall_s, failure (the integration failure's message or
     None), passed (every check held and the run reached t_end) and checks, one dict per check
     (quantity, computed, bound, passed, text). A scene without [[check]] raises SceneError."""
+    _refuse_text(scene)
     return _condyn.check(scene, _text(scene, "scheme", scheme))
+
+
+def _refuse_text(scene):
+    """A scene's TOML text given where its path belongs: SceneError saying what to pass, not the
+    whole text followed by 'cannot open the scene file (File name too long)'."""
+    if isinstance(scene, (str, bytes)):
+        text = scene.decode(errors="replace") if isinstance(scene, bytes) else scene
+        if ("\n" in text or text.lstrip().startswith("[")) and not os.path.exists(scene):
+            raise SceneError(
+                f"the scene given is text ({text.count(chr(10)) + 1} lines), not a path: pass the "
+                "path of a scene file, or the scene as a dict (tomllib.loads(text))")
 
 
 def _name(scene):

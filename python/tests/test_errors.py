@@ -197,3 +197,16 @@ def test_scene_paths_are_the_systems_bytes(tmp_path, quickstart_dict):
     with pytest.raises(condyn.SceneError) as e:
         condyn.run(os.fsencode(tmp_path / "q.toml"), rtol="x")
     assert str(e.value).startswith(f"{tmp_path / 'q.toml'}: rtol: expected a number")
+
+
+@pytest.mark.parametrize("call", [condyn.run, condyn.check, condyn.compare])
+def test_scene_text_instead_of_a_path(call):
+    # The TOML text itself, where a path belongs: the message said 'cannot open the scene file
+    # (File name too long)' after the whole text. It now says what to pass, and stays short.
+    text = QUICKSTART.read_text()
+    with pytest.raises(condyn.SceneError, match=r"^the scene given is text \(\d+ lines\), not a "
+                                                r"path: .*tomllib\.loads\(text\)") as caught:
+        call(text)
+    assert len(str(caught.value)) < 200
+    with pytest.raises(condyn.SceneError, match="not a path"):
+        call(text.encode())
