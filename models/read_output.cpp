@@ -80,6 +80,7 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
   }
   if (const auto* n = t.get("file")) {
     output.file = string(*n, "output.file");
+    output.file_line = at(*n, "output.file").line;
     if (output.file.empty()) fail(*n, "output.file", "must not be empty");
   }
 }

@@ -212,7 +212,8 @@ inline constexpr std::array<std::string_view, 7> kEnergyColumns = {
 
 struct OutputSpec {
   std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};
-  std::string file;  ///< empty: decided by the CLI
+  std::string file;   ///< empty: decided by the CLI
+  int file_line = 0;  ///< the line of `file` (0: not from a file)
   /// [output] dofs: the DOFs that get displacement, velocity, acceleration and reaction columns, as
   /// names or patterns where `*` stands for any run of characters; empty: every DOF.
   std::vector<std::string> dofs;

@@ -92,7 +92,9 @@ RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
     const std::string path = file.is_absolute()
                                  ? output_file
                                  : (std::filesystem::path(scene).parent_path() / file).string();
-    csv_ = plan_.add_output(path, scene + ": [output] file");
+    csv_ = plan_.add_output(
+        path, scene + (output.file_line > 0 ? ":" + std::to_string(output.file_line) : "") +
+                  ": [output] file");
   } else {
     const std::string name = std::filesystem::path(scene).stem().string() + ".csv";
     csv_ = plan_.add_output(name, "the default output (SCENE-STEM.csv)");
