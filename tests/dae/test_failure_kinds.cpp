@@ -111,6 +111,11 @@ TEST_CASE("each failure kind gets its own advice, worded from the facts") {
   CHECK(contains(budget, "--max-steps"));
   CHECK(contains(budget, "1e+302 more steps"));  // (1e300 − 3) / 0.01
   CHECK_FALSE(contains(budget, "collapsed"));
+  // In IDA's start-up (fewer than 100 steps) the last step says nothing of the rest: no figure.
+  const std::string early =
+      failure_suggestion(Scheme::index1, failure(FailureKind::step_budget, 1e-6, 1e-7, 1.0, 5));
+  CHECK(contains(early, "after 5 steps the step size is still growing"));
+  CHECK_FALSE(contains(early, "more steps"));
   const std::string wall = failure_suggestion(
       Scheme::ggl, failure(FailureKind::wall_time_budget, 2.0, 0.01, 100.0, 1000));
   CHECK(contains(wall, "wall-time budget"));
