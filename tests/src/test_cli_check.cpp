@@ -218,8 +218,18 @@ TEST_CASE("cli check: a reference's first column is the time, headed t") {
   // A row number first was read as the times: correct data gave FAIL (0.337), and a file
   // without a t column passed as if its first values column were time.
   Sandbox box;
-  for (const std::string& csv : {std::string("idx,t,x\n0,0,1\n1,0.5,0.8775825618903728\n"),
-                                 std::string("x_ref,x\n1,0.5403023058681398\n")}) {
+  // A row index before a column t is refused as for every table (models/time_table.cpp).
+  box.write("bad.csv", "idx,t,x\n0,0,1\n1,0.5,0.8775825618903728\n");
+  box.write("bad.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"bad.csv\" }\n"
+                              "tolerance = 1e-7\n"));
+  const Result index = box.run("check bad.toml");
+  CHECK(index.code == 2);
+  const std::string index_said = index.out + index.err;
+  CHECK_MESSAGE(
+      index_said.find("bad.toml:16: check[1].reference.file: bad.csv:1: the first column "
+                      "holds the time, but it is 'idx' and column 2 is 't'") != std::string::npos,
+      index_said);
+  for (const std::string& csv : {std::string("x_ref,x\n1,0.5403023058681398\n")}) {
     CAPTURE(csv);
     box.write("bad.csv", csv);
     box.write("bad.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"bad.csv\" }\n"
