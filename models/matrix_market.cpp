@@ -129,11 +129,15 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
         1, "the header must read '%%MatrixMarket matrix coordinate real general' (or symmetric)");
   }
   const std::string format = lower(head[2]), field = lower(head[3]), symmetry = lower(head[4]);
-  if (format != "coordinate") {
+  // 'array' is what scipy.io.mmwrite writes for a numpy array (a load pattern or a right-hand
+  // side as a column, or a small dense matrix): its values column by column, one per line, the
+  // lower triangle only when symmetric. Its zeros are not stored.
+  if (format != "coordinate" && format != "array") {
     throw MatrixMarketError(1, "format '" + format +
-                                   "' is not supported: only 'coordinate' (sparse); write the "
-                                   "file from a sparse matrix, e.g. scipy.sparse.coo_matrix");
+                                   "' is not supported: only 'coordinate' (sparse) or 'array' "
+                                   "(dense, column by column)");
   }
+  const bool dense = format == "array";
   if (field != "real" && field != "integer") {
     throw MatrixMarketError(1,
                             "field '" + field + "' is not supported: only 'real' (or 'integer')");
@@ -155,13 +159,15 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   }
   if (size.empty())
     throw MatrixMarketError(line_no, "the size line (rows cols entries) is missing");
-  if (size.size() != 3) {
-    throw MatrixMarketError(line_no, "the size line must hold three integers: rows cols entries");
+  if (size.size() != (dense ? 2U : 3U)) {
+    throw MatrixMarketError(line_no, dense ? "the size line of an array must hold two integers: "
+                                             "rows cols"
+                                           : "the size line must hold three integers: rows cols "
+                                             "entries");
   }
   const int size_line = line_no;
   const long long rows = to_integer(size[0], line_no, "the row count");
   const long long cols = to_integer(size[1], line_no, "the column count");
-  const long long entries = to_integer(size[2], line_no, "the entry count");
   constexpr long long kMaxIndex = std::numeric_limits<int>::max();
   if (rows < 1 || cols < 1 || rows > kMaxIndex || cols > kMaxIndex) {
     throw MatrixMarketError(line_no, "the size " + std::to_string(rows) + " x " +
@@ -171,6 +177,11 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
     throw MatrixMarketError(line_no, "a symmetric matrix must be square (the file says " +
                                          std::to_string(rows) + " x " + std::to_string(cols) + ")");
   }
+  // An array holds every value (the lower triangle when symmetric): rows, cols < 2^31, so the
+  // product fits in 63 bits.
+  const long long entries = !dense          ? to_integer(size[2], line_no, "the entry count")
+                            : out.symmetric ? rows * (rows + 1) / 2
+                                            : rows * cols;
   if ((expect.rows > 0 && rows != expect.rows) || (expect.cols > 0 && cols != expect.cols)) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
                                          std::to_string(cols) + " but " + expect.because +
@@ -207,7 +218,7 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   }
   // Fewer entries than rows leaves a row empty: refused here, before rows of index arrays are
   // filled (2·10⁹ rows with 2 entries ran for minutes in 16 GB before "row 3 has no entry").
-  if (expect.rows_need_entries && entries < rows) {
+  if (!dense && expect.rows_need_entries && entries < rows) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) +
                                          " rows but " + std::to_string(entries) +
                                          " entries, so some row has none: every constraint row "
@@ -217,6 +228,7 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<std::size_t>(std::min(entries * (out.symmetric ? 2 : 1), kMaxReserve)));
   long long read = 0;
+  long long next_row = 1, next_col = 1;  // an array's next position, column by column
   while (next_line(line)) {
     if (!line.empty() && line.front() == '%') continue;
     const auto tok = tokens(line);
@@ -226,12 +238,17 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                                            " the size line (line " + std::to_string(size_line) +
                                            ") declares");
     }
-    if (tok.size() != 3) {
-      throw MatrixMarketError(line_no, "an entry is 'row column value' (found " +
-                                           std::to_string(tok.size()) + " fields)");
+    if (tok.size() != (dense ? 1U : 3U)) {
+      throw MatrixMarketError(line_no, std::string(dense ? "an array's line holds one value"
+                                                         : "an entry is 'row column value'") +
+                                           " (found " + std::to_string(tok.size()) + " fields)");
     }
-    const long long i = to_integer(tok[0], line_no, "the row index");
-    const long long j = to_integer(tok[1], line_no, "the column index");
+    const long long i = dense ? next_row : to_integer(tok[0], line_no, "the row index");
+    const long long j = dense ? next_col : to_integer(tok[1], line_no, "the column index");
+    if (dense && ++next_row > rows) {
+      ++next_col;
+      next_row = out.symmetric ? next_col : 1;
+    }
     if (i < 1 || i > rows || j < 1 || j > cols) {
       throw MatrixMarketError(line_no, "the index (" + std::to_string(i) + ", " +
                                            std::to_string(j) + ") lies outside the " +
@@ -245,16 +262,17 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                                            ") lies above the diagonal: a symmetric file holds the "
                                            "lower triangle only");
     }
-    const double v = to_double(tok[2], line_no);
+    const double v = to_double(tok[dense ? 0 : 2], line_no);
     if (integer && v != std::trunc(v)) {
-      throw MatrixMarketError(line_no, "the value '" + std::string(tok[2]) +
+      throw MatrixMarketError(line_no, "the value '" + std::string(tok[dense ? 0 : 2]) +
                                            "' is not an integer, as the header's field "
                                            "'integer' says every value is");
     }
     const auto r = static_cast<int>(i - 1), c = static_cast<int>(j - 1);
+    ++read;
+    if (dense && v == 0.0) continue;
     trip.emplace_back(r, c, v);
     if (out.symmetric && r != c) trip.emplace_back(c, r, v);
-    ++read;
   }
   if (read != entries) {
     throw MatrixMarketError(line_no, "the file ends after " + std::to_string(read) + " of the " +

@@ -139,6 +139,32 @@ TEST_CASE("matrix market: general and symmetric storage, comments, duplicates su
             .matrix.coeff(0, 1) == 4.5);
 }
 
+TEST_CASE("matrix market: arrays, as scipy.io.mmwrite writes numpy arrays") {
+  // Column by column, one value per line; a symmetric array holds the lower triangle. Zeros are
+  // not stored.
+  const MarketMatrix column =
+      parse_matrix_market("%%MatrixMarket matrix array real general\n%\n3 1\n0.0\n-2.5\n1e3\n");
+  CHECK(column.matrix.rows() == 3);
+  CHECK(column.matrix.cols() == 1);
+  CHECK(column.matrix.nonZeros() == 2);
+  CHECK(column.matrix.coeff(1, 0) == -2.5);
+  CHECK(column.matrix.coeff(2, 0) == 1e3);
+  const MarketMatrix general =
+      parse_matrix_market("%%MatrixMarket matrix array real general\n2 3\n1\n2\n3\n4\n5\n6\n");
+  CHECK(general.matrix.coeff(1, 0) == 2.0);  // column by column
+  CHECK(general.matrix.coeff(0, 2) == 5.0);
+  CHECK(general.matrix.coeff(1, 2) == 6.0);
+  const MarketMatrix symmetric =
+      parse_matrix_market("%%MatrixMarket matrix array real symmetric\n3 3\n4\n-1\n0\n5\n-2\n6\n");
+  Eigen::MatrixXd expected(3, 3);
+  expected << 4, -1, 0, -1, 5, -2, 0, -2, 6;
+  CHECK(Eigen::MatrixXd(symmetric.matrix) == expected);
+  CHECK(symmetric.matrix.nonZeros() == 7);
+  const MarketMatrix integers =
+      parse_matrix_market("%%MatrixMarket matrix array integer general\n2 1\n3\n-7\n");
+  CHECK(integers.matrix.coeff(1, 0) == -7.0);
+}
+
 TEST_CASE("matrix market: malformed files are refused with their line") {
   const std::string general = "%%MatrixMarket matrix coordinate real general\n";
   struct Case {
@@ -151,7 +177,10 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
       {"1 1 1\n1 1 1.0\n", 1, "not a Matrix Market header"},
       {"%%MatrixMarket matrix coordinate pattern general\n1 1 1\n1 1\n", 1, "pattern"},
       {"%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n", 1, "complex"},
-      {"%%MatrixMarket matrix array real general\n1 1\n1.0\n", 1, "array"},
+      {"%%MatrixMarket matrix array real general\n2 1\n1.0\n", 3, "ends after 1 of the 2"},
+      {"%%MatrixMarket matrix array real general\n2 1 2\n1.0\n2.0\n", 2, "two integers"},
+      {"%%MatrixMarket matrix array real general\n1 1\n1 1 1.0\n", 3, "holds one value"},
+      {"%%MatrixMarket matrix array real general\n1 1\n1.0\n2.0\n", 4, "more entries"},
       {"%%MatrixMarket matrix coordinate real hermitian\n1 1 1\n1 1 1.0\n", 1, "hermitian"},
       {"%%MatrixMarket matrix coordinate real skew-symmetric\n1 1 0\n", 1, "skew-symmetric"},
       {general, 1, "size line"},
