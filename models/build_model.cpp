@@ -7,7 +7,9 @@ namespace condyn {
 //     names the DOFs, in which every later stage looks names up; and a truss's gravity loads
 //     enter the load list before the scene's, whose sum per DOF build_loads bounds; a built-in
 //     benchmark also brings its system, constraints and published initial state here.
-//     apply_rayleigh needs the type's M and K (1).
+//     apply_rayleigh needs the type's M and K (1). A matrix model first checks, on what the
+//     scene wrote, that something acts on every DOF (check_unreached_dofs), before the names'
+//     index and the definiteness checks, which grow with the model.
 //  2. build_loads needs the DOF names (1).
 //  3. build_initial needs the DOF names and a benchmark's published state (1).
 //  4. build_constraints (linear models; a nonlinear system brings its own rows) needs u(0) (3):

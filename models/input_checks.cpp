@@ -270,20 +270,22 @@ void ModelBuilder::check_degenerate_dofs() const {
     }
   }
   for (int i = 0; i < n; ++i) {
-    if (!has[static_cast<std::size_t>(i)]) {
-      // A nonlinear model's A is its constraints' gradient at u(0), which can vanish on a DOF
-      // they do involve (straight rigid members, across their line).
-      fail(spec_.model.where,
-           "DOF '" + model_.dof_names[static_cast<std::size_t>(i)] +
-               "' has neither mass nor stiffness nor damping nor a constraint" +
-               (model_.is_nonlinear()
-                    ? std::string(" acting on it at the initial state (a nonlinear constraint "
-                                  "through it, such as straight rigid members, can have a zero "
-                                  "gradient there: give it mass, or start it off that line)")
-                    : std::string()) +
-               ": its motion is undefined");
-    }
+    if (!has[static_cast<std::size_t>(i)])
+      fail_undefined_motion(model_.dof_names[static_cast<std::size_t>(i)]);
   }
+}
+
+void ModelBuilder::fail_undefined_motion(const std::string& name) const {
+  // A nonlinear model's A is its constraints' gradient at u(0), which can vanish on a DOF they do
+  // involve (straight rigid members, across their line).
+  fail(spec_.model.where,
+       "DOF '" + name + "' has neither mass nor stiffness nor damping nor a constraint" +
+           (model_.is_nonlinear()
+                ? std::string(" acting on it at the initial state (a nonlinear constraint "
+                              "through it, such as straight rigid members, can have a zero "
+                              "gradient there: give it mass, or start it off that line)")
+                : std::string()) +
+           ": its motion is undefined");
 }
 
 void ModelBuilder::check_tolerance() {

@@ -37,15 +37,27 @@ MemoryEstimate integration_memory_estimate(const ModelSizes& s) {
   return e;
 }
 
-std::optional<double> available_memory_bytes() {
-  std::ifstream in("/proc/meminfo");
-  std::string key, unit;
+namespace {
+
+/// The value of `key` in a /proc file of "Key: value kB" lines, in bytes.
+std::optional<double> proc_kib(const char* file, const std::string& key) {
+  std::ifstream in(file);
+  std::string name, unit;
   double value = 0;
-  while (in >> key >> value) {
+  while (in >> name >> value) {
     std::getline(in, unit);
-    if (key == "MemAvailable:") return value * 1024.0;  // the kernel writes kB (KiB)
+    if (name == key) return value * 1024.0;  // the kernel writes kB (KiB)
   }
   return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<double> available_memory_bytes() {
+  const std::optional<double> free = proc_kib("/proc/meminfo", "MemAvailable:");
+  if (!free) return std::nullopt;
+  // What condyn holds already (the model read and built so far) is part of every estimate.
+  return *free + proc_kib("/proc/self/status", "RssAnon:").value_or(0.0);
 }
 
 std::string format_bytes(double bytes) {
@@ -70,7 +82,8 @@ std::optional<std::string> memory_refusal(const ModelSizes& sizes, const MemoryE
          " to integrate (a Newton matrix of " + count(e.newton_nonzeros) +
          " nonzeros, its KLU factors at least as large, and the solver's vectors; about " +
          format_bytes(e.bytes) + " with typical fill), more than the " + format_bytes(available) +
-         " this machine has available (MemAvailable in /proc/meminfo): reduce the model or run "
+         " this machine has available (MemAvailable in /proc/meminfo, with what condyn holds "
+         "already): reduce the model or run "
          "it on a machine with more memory";
 }
 

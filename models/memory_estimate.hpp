@@ -34,7 +34,9 @@ struct MemoryEstimate {
 /// constraint rows. A model that needs more fails in KLU with an allocation error, not a crash.
 constexpr double kKluFillFactor = 20.0;
 
-/// MemAvailable of /proc/meminfo in bytes, or nothing when it cannot be read.
+/// The memory a run can have, in bytes: MemAvailable of /proc/meminfo plus what this process holds
+/// already (RssAnon of /proc/self/status), since the estimates count the model it has read and
+/// built; nothing when /proc/meminfo cannot be read.
 [[nodiscard]] std::optional<double> available_memory_bytes();
 
 /// "about 1.2 GB" style: bytes with a binary-free decimal unit, two significant figures.

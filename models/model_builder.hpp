@@ -76,6 +76,8 @@ class ModelBuilder {
   void check_tolerance();
   void check_size();
   void check_degenerate_dofs() const;
+  /// Refuses DOF `name`: nothing in the system acts on it, so its motion is undefined.
+  [[noreturn]] void fail_undefined_motion(const std::string& name) const;
 
   // truss_assembly.cpp
   void build_truss();
@@ -87,6 +89,7 @@ class ModelBuilder {
   void check_sparse_inertia(const FileMatrix& m, const std::string& key) const;
   void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where,
                  const std::string& file = "") const;
+  void check_unreached_dofs() const;
   void build_matrix();
   void apply_rayleigh();
   void apply_modal_damping();  // modal_damping.cpp

@@ -86,7 +86,8 @@ TEST_CASE("the size of a model is judged by a memory estimate against the availa
   REQUIRE(refusal.has_value());
   CHECK(refusal->rfind("20000 DOFs and 200 constraints need at least ", 0) == 0);
   CHECK(refusal->find("with typical fill), more than the 1.0 MB this machine has available "
-                      "(MemAvailable in /proc/meminfo)") != std::string::npos);
+                      "(MemAvailable in /proc/meminfo, with what condyn holds already)") !=
+        std::string::npos);
   // Between the lower bound and the estimate: not refused, but warned about.
   REQUIRE(e.lower_bound < e.bytes);
   const double between = 0.5 * (e.lower_bound + e.bytes);
@@ -207,4 +208,54 @@ TEST_CASE("massless DOFs beyond the dense kernel: those in no constraint are nam
   CHECK(error.find("200 DOFs (ux1001, uy1001, ux1002") != std::string::npos);
   CHECK(error.find("have no mass and no constraint, and their stiffness block K_hh is singular") !=
         std::string::npos);
+}
+
+TEST_CASE("a DOF nothing acts on is refused before the checks that grow with the model") {
+  // 1,000 DOFs from files, M and K diagonal except on DOF 7, which no entry reaches. K also has
+  // an entry beyond its 2 x 2 minor: the definiteness check (LDLt, after the names are indexed)
+  // refused that first; now the unreached DOF, found in O(nnz + n) right after reading, is.
+  test::Sandbox box;
+  const int n = 1000;
+  std::string m = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) + " " +
+                  std::to_string(n) + " " + std::to_string(n - 1) + "\n";
+  std::string k = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) + " " +
+                  std::to_string(n) + " " + std::to_string(n) + "\n";
+  for (int i = 1; i <= n; ++i) {
+    if (i == 7) continue;
+    m += std::to_string(i) + " " + std::to_string(i) + " 1.0\n";
+    k += std::to_string(i) + " " + std::to_string(i) + " 2.0\n";
+  }
+  k += "2 1 5.0\n";  // |5| > sqrt(2 · 2)
+  (void)box.write("M.mtx", m);
+  (void)box.write("K.mtx", k);
+  const std::string model =
+      "[model]\ntype = \"matrix\"\nmass = { file = \"M.mtx\" }\nstiffness = { file = \"K.mtx\" }\n";
+  const std::string solve = "[solve]\nt_end = 1.0\noutput_step = 0.1\n";
+  const auto error_of = [&](const std::string& scene) {
+    try {
+      (void)build_model(parse_scene_file(box.write("s.toml", scene).string()));
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string unreached = error_of(model + solve);
+  CAPTURE(unreached);
+  CHECK(unreached.find("s.toml:1: model: DOF 'u7' has neither mass nor stiffness nor damping nor "
+                       "a constraint: its motion is undefined") != std::string::npos);
+  // A constraint that names u7 reaches it: the build goes on to the next refusal, K's entry.
+  const std::string tied = error_of(model +
+                                    "[[constraint]]\nname = \"tie\"\nterms = { u7 = 1.0, u8 = "
+                                    "-1.0 }\n" +
+                                    solve);
+  CAPTURE(tied);
+  CHECK(tied.find("K.mtx is not positive semi-definite: |entry (2,1)| = 5") != std::string::npos);
+  // So does a constraint block with a coefficient in u7's column; a zero coefficient does not.
+  const auto block = [&](const std::string& value) {
+    (void)box.write("A.mtx", "%%MatrixMarket matrix coordinate real general\n1 " +
+                                 std::to_string(n) + " 2\n1 7 " + value + "\n1 8 -1.0\n");
+    return error_of(model + "[[constraint_block]]\nfile = \"A.mtx\"\n" + solve);
+  };
+  CHECK(block("1.0").find("is not positive semi-definite") != std::string::npos);
+  CHECK(block("0.0").find("DOF 'u7' has neither mass nor stiffness") != std::string::npos);
 }
