@@ -167,8 +167,8 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
 
 namespace {
 
-void refuse_inapplicable(const Model& model, Scheme scheme) {
-  if (auto why = scheme_refusal(model, scheme)) throw SchemeNotApplicable(*why);
+void refuse_inapplicable(const Model& model, Scheme scheme, const SourcePoint& chosen_at) {
+  if (auto why = scheme_refusal(model, scheme)) throw SchemeNotApplicable(*why, chosen_at);
 }
 
 Eigen::VectorXd initial_state(const Model& model) {
@@ -286,7 +286,11 @@ void solve_projection(const Model& model, const IntegratorOptions& options, Solv
 }  // namespace
 
 SystemSize system_size(const Model& model, const SolveSpec& settings) {
-  return SystemSizer(model)(settings);
+  try {
+    return SystemSizer(model)(settings);
+  } catch (const SchemeNotApplicable& why) {
+    throw SchemeNotApplicable(why.what(), settings.scheme_where);
+  }
 }
 
 const ReducedSystem& SystemSizer::reduced(const std::vector<std::string>& slaves) {
@@ -298,7 +302,7 @@ SystemSize SystemSizer::operator()(const SolveSpec& settings) {
   const Model& model = model_;
   Scheme scheme = settings.scheme;
   if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
-  refuse_inapplicable(model, scheme);
+  refuse_inapplicable(model, scheme, settings.scheme_where);
   // The matrix IDA's Newton iterations factor: the condensed one when asked for.
   const bool condensed = settings.condensed_newton && !settings.dense_linear_solver;
   if (scheme == Scheme::elimination) {
@@ -377,7 +381,7 @@ RunHooks hooks_for(const std::vector<Quantity>& quantities) {
 SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks& hooks) {
   settings.validate();
   Scheme scheme = settings.scheme;
-  refuse_inapplicable(model, scheme);
+  refuse_inapplicable(model, scheme, settings.scheme_where);
   if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
   SolveResult result;
   result.scheme = scheme;
@@ -399,7 +403,8 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
       // mass matrix singular to roundoff: a mass of 1e-20 beside 2) goes to GGL with a multiplier
       // for every row, which integrates it; the reason is in the summary. Nothing was integrated
       // or written yet: ReducedOde refuses when it is built, before the first step.
-      if (settings.scheme != Scheme::automatic || scheme != Scheme::elimination) throw;
+      if (settings.scheme != Scheme::automatic || scheme != Scheme::elimination)
+        throw SchemeNotApplicable(why.what(), settings.scheme_where);
       SolveSpec ggl = settings;
       ggl.scheme = Scheme::ggl;
       ggl.treatment = SolveSpec::Treatment::multipliers;

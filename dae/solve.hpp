@@ -21,7 +21,14 @@ struct SchemeChoice {
 /// solver, is at fault, so the CLI answers it as bad input (exit 2).
 class SchemeNotApplicable : public std::invalid_argument {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit SchemeNotApplicable(const std::string& why, SourcePoint where = {})
+      : std::invalid_argument(why), where_(std::move(where)) {}
+  /// Where the refused scheme was chosen (SolveSpec::scheme_where) once solve() or system_size()
+  /// has passed it on; empty before, and for a scheme nobody named (auto).
+  [[nodiscard]] const SourcePoint& where() const { return where_; }
+
+ private:
+  SourcePoint where_;
 };
 
 /// Why `scheme` cannot treat this model (elimination and penalty on nonlinear models), or

@@ -43,7 +43,10 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   }
   if (const auto* n = t.get("max_wall_time"))
     solve.max_wall_time = positive(*n, "solve.max_wall_time");
-  if (const auto* n = t.get("scheme")) solve.scheme = parse_scheme(*n, "solve.scheme");
+  if (const auto* n = t.get("scheme")) {
+    solve.scheme = parse_scheme(*n, "solve.scheme");
+    solve.scheme_where = at(*n, "solve.scheme");
+  }
   if (const auto* n = t.get("rtol")) {
     solve.rtol = positive(*n, "solve.rtol");
     if (solve.rtol < kMinRtol || solve.rtol >= 1.0) {

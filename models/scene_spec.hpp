@@ -148,6 +148,9 @@ struct SolveSpec {
   double t_end = 0.0;
   double output_step = 0.0;
   Scheme scheme = Scheme::automatic;
+  /// Where the scheme was chosen, for a refusal of it: the scene's `solve.scheme` key and line,
+  /// the command line's `--scheme` (line 0), or nothing (the default, or set in code).
+  SourcePoint scheme_where;
   double rtol = 1e-8;
   double atol = 1e-10;  ///< displacements (model length unit)
   /// Absolute tolerances of velocities, multipliers and GGL's μ; unset: derived from atol and the
@@ -190,7 +193,8 @@ struct SolveSpec {
   /// Sets the scheme, as a command line's --scheme does. `constraints` applies to the multiplier
   /// schemes only (a file pairing it with another scheme is refused): under any other it is set
   /// aside, and the returned note says so for the user to see; empty when nothing was set aside.
-  [[nodiscard]] std::string override_scheme(Scheme s);
+  /// `chosen_at` names the override for a refusal of the scheme (`--scheme`).
+  [[nodiscard]] std::string override_scheme(Scheme s, SourcePoint chosen_at = {});
 };
 
 enum class Quantity {

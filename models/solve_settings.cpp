@@ -55,8 +55,9 @@ void SolveSpec::validate() const {
           "must be a finite number >= 0 (0: no budget)", max_wall_time);
 }
 
-std::string SolveSpec::override_scheme(Scheme s) {
+std::string SolveSpec::override_scheme(Scheme s, SourcePoint chosen_at) {
   scheme = s;
+  scheme_where = std::move(chosen_at);
   if (treatment == Treatment::automatic || mixes(s)) return {};
   const char* name = treatment == Treatment::mixed ? "mixed" : "multipliers";
   treatment = Treatment::automatic;

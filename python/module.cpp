@@ -102,7 +102,7 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
       result = solve(*model, spec.solve, hooks);
     } catch (const SchemeNotApplicable& e) {
       // Bad input, as in the CLI (exit 2): the scene and the scheme do not go together.
-      throw SceneError(scene_message(spec.file, SourcePoint{}, e.what()));
+      throw SceneError(scene_message(spec.file, e.where(), e.what()));
     }
   });
   const py::object failure = result.ok()
@@ -146,7 +146,7 @@ py::tuple compare(const py::handle& scene, const std::optional<std::vector<doubl
     try {
       result = run_compare(spec, options);
     } catch (const SchemeNotApplicable& e) {
-      throw SceneError(scene_message(spec.file, SourcePoint{}, e.what()));
+      throw SceneError(scene_message(spec.file, e.where(), e.what()));
     } catch (const NoReferenceError& e) {
       no_reference = e.what();  // raised as IntegrationError, as a run's failure
     }
@@ -171,7 +171,7 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
     try {
       result = run_scene_checks(std::move(spec), options);
     } catch (const SchemeNotApplicable& e) {
-      throw SceneError(scene_message(file, SourcePoint{}, e.what()));
+      throw SceneError(scene_message(file, e.where(), e.what()));
     }
   });
   py::list checks;

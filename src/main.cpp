@@ -81,7 +81,8 @@ int run(const RunArgs& args) {
   SceneSpec spec = parse_scene_file(args.scene);
   std::string set_aside;  // SolveSpec::override_scheme's note, if any
   if (!args.scheme.empty())
-    set_aside = spec.solve.override_scheme(parse_scheme_flag("--scheme", args.scheme));
+    set_aside =
+        spec.solve.override_scheme(parse_scheme_flag("--scheme", args.scheme), {"--scheme", 0});
   if (!args.constraints.empty())
     spec.solve.treatment = parse_treatment_flag(args.constraints, spec.solve.scheme);
   if (args.rtol) spec.solve.rtol = *args.rtol;  // a loose one is warned of (BuildReport)
@@ -248,7 +249,10 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
 int check(const std::vector<std::string>& scenes, const std::string& scheme,
           const std::string& junit) {
   SceneCheckOptions options;
-  if (!scheme.empty()) options.scheme = parse_scheme_flag("--scheme", scheme);
+  if (!scheme.empty()) {
+    options.scheme = parse_scheme_flag("--scheme", scheme);
+    options.scheme_where = {"--scheme", 0};
+  }
   OutputPlan plan;  // the JUnit report, checked before the runs
   for (const auto& s : scenes) plan.add_input(s);
   std::optional<OutputPlan::Id> report;
@@ -280,7 +284,7 @@ int check(const std::vector<std::string>& scenes, const std::string& scheme,
       c.error = e.what();
       c.exit_code = 2;
     } catch (const SchemeNotApplicable& e) {
-      c.error = path + ": " + e.what();
+      c.error = scene_message(path, e.where(), e.what());
       c.exit_code = 2;
     } catch (const std::exception& e) {
       c.error = path + ": " + e.what();
@@ -534,7 +538,8 @@ int run_command(int argc, char** argv) {
       SceneSpec spec = parse_scene_file(info_scene);
       std::string set_aside;
       if (!info_scheme.empty())
-        set_aside = spec.solve.override_scheme(parse_scheme_flag("--scheme", info_scheme));
+        set_aside =
+            spec.solve.override_scheme(parse_scheme_flag("--scheme", info_scheme), {"--scheme", 0});
       if (!info_constraints.empty()) {  // info sizes every scheme unless --scheme names one
         spec.solve.treatment = parse_treatment_flag(
             info_constraints, info_scheme.empty() ? Scheme::automatic : spec.solve.scheme);
@@ -566,7 +571,7 @@ int run_command(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const SchemeNotApplicable& e) {
-    std::cerr << "error: " << scene << ": " << e.what() << "\n";
+    std::cerr << "error: " << scene_message(scene, e.where(), e.what()) << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
     // What() is "std::bad_alloc": say what it means (a memory limit, ulimit -v, or a model

@@ -266,7 +266,7 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
     throw SceneError(scene_message(spec.file, {}, "has no [[check]] table: nothing to check"));
   }
   std::string set_aside;  // SolveSpec::override_scheme's note, if any
-  if (options.scheme) set_aside = spec.solve.override_scheme(*options.scheme);
+  if (options.scheme) set_aside = spec.solve.override_scheme(*options.scheme, options.scheme_where);
   // energy and energy_error are the energy quantity's whatever the model: ask for it before the
   // build, which refuses it where it has no meaning.
   auto& quantities = spec.output.quantities;

@@ -64,6 +64,7 @@ class CheckEvaluator {
 
 struct SceneCheckOptions {
   std::optional<Scheme> scheme;  ///< overrides [solve] scheme
+  SourcePoint scheme_where;      ///< where the override comes from (`--scheme`), for refusals
 };
 
 /// One scene's run and its checks.

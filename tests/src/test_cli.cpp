@@ -274,9 +274,20 @@ TEST_CASE("a scheme that cannot treat the scene is bad input: exit 2 with the re
   box.write("keep.csv", "precious\n");
   const Result r = box.run("run '" + sleigh + "' --scheme elimination --out keep.csv");
   CHECK(r.code == 2);
-  CHECK(r.err.find("chaplygin_sleigh.toml: elimination cannot treat a nonholonomic constraint") !=
-        std::string::npos);
+  CHECK(r.err.find("chaplygin_sleigh.toml: --scheme: elimination cannot treat a nonholonomic "
+                   "constraint") != std::string::npos);
   CHECK(r.err.find("§5.3.1") != std::string::npos);
+  CHECK(slurp(box.path("keep.csv")) == "precious\n");
+  // Chosen in the scene: the refusal names the key's line.
+  box.write("p.toml",
+            "[model]\ntype = \"pendulum\"\n\n[solve]\nt_end = 1.0\noutput_step = 0.1\n"
+            "scheme = \"penalty\"\n");
+  const Result s = box.run("run p.toml --out keep.csv");
+  CAPTURE(s.err);
+  CHECK(s.code == 2);
+  CHECK(
+      s.err.find("error: p.toml:7: solve.scheme: penalty is implemented for linear models only") !=
+      std::string::npos);
   CHECK(slurp(box.path("keep.csv")) == "precious\n");
   const Result c = box.run("compare '" + sleigh + "' --schemes elimination,penalty --no-plots");
   CHECK(c.code == 2);

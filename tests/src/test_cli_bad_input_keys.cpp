@@ -87,9 +87,10 @@ TEST_CASE("a massless DOF nothing holds is bad input under every scheme, DOFs na
     CAPTURE(scheme);
     CHECK(run_scene(triangle, "--scheme " + scheme).code == 0);
   }
-  check_refused(run_scene(triangle, "--scheme projection"),
-                "bad.toml: projection integrates an ODE with the mass matrix factored, and this "
-                "model has massless DOFs held only by stiffness");
+  check_refused(
+      run_scene(triangle, "--scheme projection"),
+      "bad.toml: --scheme: projection integrates an ODE with the mass matrix factored, and this "
+      "model has massless DOFs held only by stiffness");
   // One bar only (2-3): node 3 swings about node 2 with nothing to resist, a mechanism of
   // massless DOFs, though both have stiffness on their diagonal.
   const std::string one_bar = replace(triangle, ", { nodes = [1, 3], EA = 10.0 }]", "]");
