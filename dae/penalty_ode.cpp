@@ -1,5 +1,7 @@
 #include "dae/penalty_ode.hpp"
 
+#include "models/row_scales.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -57,25 +59,24 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   // Row i's spring acts along a_i with stiffness w |a_i|² when its residual a_i·u enters
   // unscaled: a row written as 0.001 u1 = 0.001 u2 got a millionth of the weight and was not
   // held. Each row is weighted by 1/|a_i|², so w is a stiffness whatever the row's scale.
-  // |a_i|² as max² Σ (a/max)², so that coefficients near the double range neither overflow nor
-  // underflow it.
-  Eigen::VectorXd top = Eigen::VectorXd::Zero(m_), sum = Eigen::VectorXd::Zero(m_);
+  // |a_i| from the row scaled exactly by a power of two, and 1/|a_i|² never formed (it overflows
+  // below coefficients of 1e-154 and underflows above 1e154: a row at 1e200 got no weight and was
+  // not held, one at 1e-160 gave NaN): the springs act along the unit normals a_i/|a_i| on the
+  // residuals φ_i/|a_i|, and λ_i = w (φ_i/|a_i|)/|a_i| is scaled once at a time.
+  const Eigen::VectorXd exact = row_scales(A);  // largest entry of each row in [0.5, 1)
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(m_);
   for (int k = 0; k < A.outerSize(); ++k) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      top[it.row()] = std::max(top[it.row()], std::abs(it.value()));
-    }
-  }
-  for (int k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      const double r = it.value() / top[it.row()];
+      const double r = it.value() * exact[it.row()];
       sum[it.row()] += r * r;
     }
   }
+  row_scale_.resize(m_);
   for (int i = 0; i < m_; ++i) {
     const bool position = system.position_rows()[static_cast<std::size_t>(i)];
     row_weight_[i] = position ? weights.position : weights.velocity;
-    const double scale = top[i] > 0.0 ? 1.0 / (sum[i] * top[i]) / top[i] : 1.0;
-    (position ? position_mask_ : velocity_mask_).insert(i, i) = scale;
+    row_scale_[i] = sum[i] > 0.0 ? exact[i] / std::sqrt(sum[i]) : 1.0;
+    (position ? position_mask_ : velocity_mask_).insert(i, i) = 1.0;
   }
   const auto& K0 = system_->stiffness(0.0, zero, zero);
   const auto& C0 = system_->damping(0.0, zero, zero);
@@ -85,8 +86,8 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   jacobian_.declare(n_, 0, K0);
   jacobian_.declare(n_, n_, C0);
   jacobian_.declare(n_, n_, M);
-  const Eigen::SparseMatrix<double> At = A.transpose();
-  const Eigen::SparseMatrix<double> AtPA = At * position_mask_ * A, AtVA = At * velocity_mask_ * A;
+  const Eigen::SparseMatrix<double> N = normals(A), Nt = N.transpose();
+  const Eigen::SparseMatrix<double> AtPA = Nt * position_mask_ * N, AtVA = Nt * velocity_mask_ * N;
   jacobian_.declare(n_, 0, AtPA);
   jacobian_.declare(n_, n_, AtVA);
   jacobian_.finish();
@@ -97,12 +98,19 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
                         Eigen::SparseMatrix<double>(0, n_));
 }
 
+Eigen::SparseMatrix<double> PenaltyOde::normals(const Eigen::SparseMatrix<double>& A) const {
+  return row_scale_.asDiagonal() * A;
+}
+
 Eigen::VectorXd PenaltyOde::multipliers(double t, const Eigen::VectorXd& y) const {
   if (m_ == 0) return {};
   Eigen::VectorXd phi(m_), psi(m_);
   system_->position_residual(t, y.head(n_), phi);  // zero on velocity rows
   system_->velocity_residual(t, y.head(n_), y.tail(n_), psi);
-  return row_weight_.asDiagonal() * (position_mask_ * phi + velocity_mask_ * psi);
+  // Along the unit normal first (a length or a speed), then in the row's own units.
+  const Eigen::VectorXd along =
+      row_scale_.cwiseProduct(position_mask_ * phi + velocity_mask_ * psi);
+  return row_weight_.cwiseProduct(row_scale_.cwiseProduct(along));
 }
 
 void PenaltyOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
@@ -131,11 +139,11 @@ void PenaltyOde::fill_jacobian(double t, ConstRef y, ConstRef /*yp*/, double cj,
   BlockJacobian::add(J, n_, n_, C, 1.0);
   BlockJacobian::add(J, n_, n_, M, cj);
   if (m_ == 0) return;
-  const auto& A = system_->constraint_jacobian(t, u);
-  const Eigen::SparseMatrix<double> At = A.transpose();
-  BlockJacobian::add(J, n_, 0, Eigen::SparseMatrix<double>(At * position_mask_ * A),
+  const Eigen::SparseMatrix<double> N = normals(system_->constraint_jacobian(t, u)),
+                                    Nt = N.transpose();
+  BlockJacobian::add(J, n_, 0, Eigen::SparseMatrix<double>(Nt * position_mask_ * N),
                      weights_.position);
-  BlockJacobian::add(J, n_, n_, Eigen::SparseMatrix<double>(At * velocity_mask_ * A),
+  BlockJacobian::add(J, n_, n_, Eigen::SparseMatrix<double>(Nt * velocity_mask_ * N),
                      weights_.velocity);
 }
 

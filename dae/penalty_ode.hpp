@@ -74,8 +74,12 @@ class PenaltyOde final : public DaeProblem {
   PenaltyWeights weights_;
   int n_, m_;
   Eigen::VectorXd row_weight_;  ///< w on position rows, c on velocity rows
-  /// Diagonal: 1/|a_i|² on the position rows (velocity rows), 0 elsewhere.
+  /// 1/|a_i|: row i scaled by it is its unit normal.
+  Eigen::VectorXd row_scale_;
+  /// Diagonal: 1 on the position rows (velocity rows), 0 elsewhere.
   Eigen::SparseMatrix<double> position_mask_, velocity_mask_;
+  /// The rows' unit normals, diag(row_scale_) A.
+  [[nodiscard]] Eigen::SparseMatrix<double> normals(const Eigen::SparseMatrix<double>& A) const;
   BlockJacobian jacobian_;
   /// Massless DOFs, held by stiffness, damping or the penalty elements (the penalized K and C:
   /// K + w A_pᵀA_p, C + c A_vᵀA_v), or null.

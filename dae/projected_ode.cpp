@@ -4,6 +4,7 @@
 
 #include "dae/kkt.hpp"
 #include "dae/kkt_newton.hpp"
+#include "models/row_scales.hpp"
 
 #include <sstream>
 #include <stdexcept>
@@ -44,7 +45,9 @@ ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd
 
 void ProjectedOde::factor(double t, const ConstRef& u, Factors& f) const {
   const auto& M = system_->mass(t, u);
-  f.A = system_->constraint_jacobian(t, u);
+  const Eigen::SparseMatrix<double>& A = system_->constraint_jacobian(t, u);
+  f.scale = row_scales(A);
+  f.A = f.scale.asDiagonal() * A;
   f.Ap = select_p_ * f.A;
   for (auto [lu, B] : {std::pair{&f.kkt, &f.A}, std::pair{&f.kkt_p, &f.Ap}}) {
     if (B == &f.Ap && position_rows_.empty()) break;  // no position projection
@@ -80,9 +83,11 @@ Eigen::VectorXd ProjectedOde::accelerations(MechanicalSystem& loads_from, double
   rhs.head(n_) = force_;
   if (m_ > 0) {
     system_->acceleration_bias(t, u, v, rows_);
-    rhs.tail(m_) = rows_;
+    rhs.tail(m_) = f.scale.cwiseProduct(rows_);
   }
-  return f.kkt.solve(rhs);
+  Eigen::VectorXd x = f.kkt.solve(rhs);
+  x.tail(m_) = f.scale.cwiseProduct(x.tail(m_));  // λ in the rows' own units
+  return x;
 }
 
 void ProjectedOde::rhs(double t, ConstRef y, Ref ydot) const {
@@ -102,7 +107,7 @@ bool ProjectedOde::project(double t, ConstRef y, Ref corr) const {
   if (!position_rows_.empty()) {
     for (int it = 0; it < kMaxProjectionIterations; ++it) {
       system_->position_residual(t, u, rows_);
-      const Eigen::VectorXd du = correction(f->kkt_p, select_p_ * rows_);
+      const Eigen::VectorXd du = correction(f->kkt_p, select_p_ * f->scale.cwiseProduct(rows_));
       u += du;
       if (varying_) f = &factors(t, u);
       if (!varying_) break;
@@ -114,7 +119,7 @@ bool ProjectedOde::project(double t, ConstRef y, Ref corr) const {
     corr.head(n_) = u - y.head(n_);
   }
   system_->velocity_residual(t, u, y.tail(n_), rows_);
-  corr.tail(n_) = correction(f->kkt, rows_);
+  corr.tail(n_) = correction(f->kkt, f->scale.cwiseProduct(rows_));
   last_ = f;
   return converged;
 }

@@ -66,7 +66,11 @@ class ProjectedOde final : public OdeProblem {
   /// with all rows and with the position rows, factored.
   struct Factors {
     Eigen::SparseLU<Eigen::SparseMatrix<double>> kkt, kkt_p;
-    Eigen::SparseMatrix<double> A, Ap;  ///< all rows, position rows
+    /// Exact per-row powers of two (models/row_scales.hpp): A and Ap hold the rows scaled by
+    /// them, so KKT pivots do not depend on a row's units (rows at 1e-200 left the KKT matrix
+    /// singular to roundoff); residuals are scaled the same way, and multipliers back.
+    Eigen::VectorXd scale;
+    Eigen::SparseMatrix<double> A, Ap;  ///< all rows, position rows (scaled)
   };
   /// Factors at (t, u): the constant ones for a system without curvature, else recomputed into
   /// scratch. Throws std::runtime_error when a KKT matrix is singular there.

@@ -7,7 +7,7 @@
 namespace condyn {
 
 /// D: per row of A, the power of two nearest below 1/max_j |a_ij| (1 for an empty row), so that
-/// D A has rows of largest entry in [1, 2) and the scaling is exact. A row with a coefficient of
+/// D A has rows of largest entry in [0.5, 1) and the scaling is exact. A row with a coefficient of
 /// 1e155 overflowed A Aᵀ, and one of 1e-150 beside a unit mass left KLU's pivots to roundoff.
 [[nodiscard]] Eigen::VectorXd row_scales(const Eigen::SparseMatrix<double>& A);
 

@@ -2,7 +2,10 @@
 #include <numbers>
 
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <optional>
+#include <sstream>
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/multiplier_dae.hpp"
@@ -308,21 +311,21 @@ rtol = 1e-8
   CHECK(index3.velocity <= 1.01 * index1.velocity);
 }
 
-TEST_CASE("penalty: a row's scale does not change what it holds") {
-  // 2 q'' + 200 q = 1 for the tied pair (u1 = u2 = q, unit load on u1): q(1) = (1 - cos 10)/200.
-  // Written as 0.001 u1 = 0.001 u2 the row got a millionth of the weight: u1 = 0.0179, u2 =
-  // 0.00047 at t = 1 (review of 2026-11-26).
-  for (const double a : {1.0, 1e-3, 1e3}) {
-    CAPTURE(a);
-    const std::string text = R"([model]
+namespace {
+
+/// Two unit masses on springs of 100, tied by a·u1 = a·u2, a unit load on u1.
+SceneSpec tie_scene(double a) {
+  std::ostringstream coefficient;
+  coefficient << std::setprecision(17) << a;
+  const std::string text = R"([model]
 type = "matrix"
 dofs = ["u1", "u2"]
 mass = [[1.0, 0.0], [0.0, 1.0]]
 stiffness = [[100.0, 0.0], [0.0, 100.0]]
 [[constraint]]
 name = "tie"
-terms = { u1 = )" + std::to_string(a) +
-                             ", u2 = -" + std::to_string(a) + R"( }
+terms = { u1 = )" + coefficient.str() +
+                           ", u2 = -" + coefficient.str() + R"( }
 [[load]]
 dof = "u1"
 value = 1.0
@@ -332,13 +335,41 @@ output_step = 0.5
 rtol = 1e-10
 atol = 1e-12
 )";
-    const SceneSpec spec = parse_scene_text(text, "tie.toml");
-    const Model model = build_model(spec);
-    const SolveResult r = test::solved(model, test::under(spec.solve, Scheme::penalty));
-    const double q = (1.0 - std::cos(10.0)) / 200.0;
-    // The default w = 1e4 max K_ii = 1e6 lets the tie stretch by |f_con| / w ~ 0.5e-6.
-    CHECK(std::abs(r.trajectory.u(0, 2) - q) < 1e-6);
-    CHECK(std::abs(r.trajectory.u(1, 2) - q) < 1e-6);
+  return parse_scene_text(text, "tie.toml");
+}
+
+}  // namespace
+
+TEST_CASE("penalty and projection: a row's scale does not change what it holds") {
+  // 2 q'' + 200 q = 1 for the tied pair (u1 = u2 = q, unit load on u1): q(1) = (1 - cos 10)/200.
+  // Under penalty, a row written as 0.001 u1 = 0.001 u2 got a millionth of the weight: u1 =
+  // 0.0179, u2 = 0.00047 at t = 1 (review of 2026-11-26). Near the double range, 1/|a|²
+  // overflowed or underflowed: a row at 1e200 got no weight (u1 = 0.0179 and u2 = 0.00047
+  // again, reactions 0, exit 0) and one at 1e-160 gave NaN at t = 0; projection's KKT matrix
+  // was singular to roundoff with a row at 1e-200 (CV_ERR_FAILURE; review of 2026-11-27).
+  const double q = (1.0 - std::cos(10.0)) / 200.0;
+  for (const Scheme scheme : {Scheme::penalty, Scheme::projection}) {
+    CAPTURE(to_string(scheme));
+    std::optional<double> unit_reaction;
+    for (const double a : {1.0, 1e-3, 1e3, 1e200, 1e-160, 1e-200, 1e300, 1e-300}) {
+      CAPTURE(a);
+      const SceneSpec spec = tie_scene(a);
+      const Model model = build_model(spec);
+      const SolveResult r = test::solved(model, test::under(spec.solve, scheme));
+      // Penalty's default w = 1e4 max K_ii = 1e6 lets the tie stretch by |f_con| / w ~ 0.5e-6.
+      CHECK(std::abs(r.trajectory.u(0, 2) - q) < 1e-6);
+      CHECK(std::abs(r.trajectory.u(1, 2) - q) < 1e-6);
+      // The tie's force on u1 (f_con = −Aᵀλ) is the row's whatever its scale. Under penalty it
+      // is w times a stretch of about 2.4e-7, whose integration error differs between the runs
+      // by about 5e-6 of it (observed); a row held by a millionth of the weight, or not at all,
+      // differs by O(1).
+      const double reaction = r.trajectory.reaction(0, 2);
+      CHECK(std::isfinite(reaction));
+      if (!unit_reaction) unit_reaction = reaction;
+      CHECK(reaction == doctest::Approx(*unit_reaction).epsilon(1e-4));
+      // λ is in the row's own units: a λ = f_con along the unit normal.
+      CHECK(std::abs(a * r.trajectory.multiplier(0, 2) + reaction) <= 1e-12 * std::abs(reaction));
+    }
   }
 }
 
