@@ -165,6 +165,9 @@ CLI::Validator whole_check(int lo, int hi) {
               return "'" + text + "' is not a whole number in [" + std::to_string(lo) + ", " +
                      std::to_string(hi) + "]";
             }
+            // CLI11 converts what the validator leaves, and reads a leading 0 as octal ("010"
+            // was 8 steps) and 0x as hexadecimal: it gets the decimal digits alone.
+            text = significant;
             return std::string();
           },
           "INTEGER in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]"};

@@ -355,7 +355,7 @@ int run_command(int argc, char** argv) {
   run_cmd
       ->add_option("--max-steps", run_args.max_steps,
                    "step budget of the run (overrides [solve] max_steps); more is a failure")
-      ->check(whole_check(1, std::numeric_limits<int>::max()));
+      ->transform(whole_check(1, std::numeric_limits<int>::max()));
   run_cmd
       ->add_option("--max-wall-time", run_args.max_wall_time,
                    "wall-time budget in seconds (overrides [solve] max_wall_time); more is a "
@@ -415,7 +415,7 @@ int run_command(int argc, char** argv) {
   compare_cmd
       ->add_option("--repeats", compare_options.repeats,
                    "runs per point for the wall time (default 3)")
-      ->check(whole_check(1, 100));
+      ->transform(whole_check(1, 100));
   compare_cmd
       ->add_option("--drift-rtol", compare_options.drift_rtol,
                    "tolerance of the drift, history and Baumgarte-study runs (default 1e-6)")
@@ -429,7 +429,7 @@ int run_command(int argc, char** argv) {
   compare_cmd
       ->add_option("--max-steps", compare_options.max_steps,
                    "step budget of each run (not the reference); a run beyond it is a failed run")
-      ->check(whole_check(1, std::numeric_limits<int>::max()));
+      ->transform(whole_check(1, std::numeric_limits<int>::max()));
   compare_cmd
       ->add_option("--max-wall-time", compare_options.max_wall_time,
                    "wall-time budget in seconds of each run (not the reference)")

@@ -54,6 +54,17 @@ TEST_CASE("run: a step budget ends a long run with its kind, advice and partial 
   const Result flag = box.run("run p.toml --max-steps 300 --out out.csv");
   CHECK(flag.code == 1);
   CHECK(contains(flag.err, "took more than 300 steps in all"));
+  // Leading zeros are decimal: CLI11 read "0300" as octal (192 steps) and refused "08".
+  for (const char* padded : {"0300", "+000300"}) {
+    CAPTURE(padded);
+    const Result zeros =
+        box.run("run p.toml --max-steps " + std::string(padded) + " --out out.csv");
+    CHECK(zeros.code == 1);
+    CHECK(contains(zeros.err, "took more than 300 steps in all"));
+  }
+  const Result eight = box.run("run p.toml --max-steps 08 --out out.csv");
+  CHECK(eight.code == 1);
+  CHECK(contains(eight.err, "took more than 8 steps in all"));
 
   // A budget spent before the second output time: the row at t = 0 is kept all the same, and
   // replaces the partial file of the failure before.
