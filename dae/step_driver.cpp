@@ -43,11 +43,6 @@ const char* to_string(FailureKind kind) {
   return "integrator failure";
 }
 
-double time_merge_tolerance(double t0, double t_end) {
-  const double scale = std::max({std::abs(t0), std::abs(t_end), t_end - t0});
-  return kTimeMergeUlps * std::numeric_limits<double>::epsilon() * scale;
-}
-
 TimeGrid make_time_grid(const std::vector<double>& output_times,
                         const std::vector<double>& breakpoints) {
   TimeGrid grid;

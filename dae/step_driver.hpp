@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dae/solve_summary.hpp"
+#include "models/time_roundoff.hpp"
 
 namespace condyn {
 
@@ -101,11 +102,6 @@ struct TimeGrid {
   /// Load steps within `tolerance` after t0: the loop restarts there before its first step.
   std::optional<double> initial_stop;
 };
-
-/// Roundoff of the time axis of a run from t0 to t_end: kTimeMergeUlps × eps × max(|t0|, |t_end|,
-/// t_end − t0).
-[[nodiscard]] double time_merge_tolerance(double t0, double t_end);
-inline constexpr double kTimeMergeUlps = 256.0;
 
 /// Merges output times (ascending, t0 first, t_end last) and load steps (ascending) into the
 /// grid the loop visits.

@@ -76,6 +76,7 @@ class ModelBuilder {
   void check_tolerance();
   void check_size();
   void check_degenerate_dofs() const;
+  [[nodiscard]] SourcePoint quantity_key(Quantity q) const;
   /// Refuses DOF `name`: nothing in the system acts on it, so its motion is undefined.
   [[noreturn]] void fail_undefined_motion(const std::string& name) const;
 

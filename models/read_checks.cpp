@@ -2,25 +2,27 @@
 // satisfy. Read here with their types, ranges and forms; the column each names is resolved against
 // the built model by validation/user_checks.cpp, which evaluates them.
 
+#include <algorithm>
 #include <cmath>
 
 #include "models/scene_readers.hpp"
+#include "models/time_roundoff.hpp"
 
 namespace condyn {
 
 namespace {
 
-/// Whether t is one of the output times 0, h, 2h, ..., t_end (SolveSpec::output_times) to a
-/// relative 1e-9 of the output step; `nearest` gets the output times on either side.
+/// Whether t is one of the output times 0, h, 2h, ..., t_end (SolveSpec::output_times) up to the
+/// time axis' roundoff (models/time_roundoff.hpp, as the runs merge times); `nearest` gets the
+/// output times on either side.
 bool is_output_time(const SolveSpec& solve, double t, std::string& nearest) {
-  const double h = solve.output_step;
-  const double k = std::floor(t / h);
-  const double below = std::min(k * h, solve.t_end), above = std::min((k + 1.0) * h, solve.t_end);
-  const double tol = 1e-9 * h;
-  if (std::abs(t - solve.t_end) <= tol || std::abs(t - below) <= tol ||
-      std::abs(t - above) <= tol) {
-    return true;
-  }
+  const double h = solve.output_step, tol = time_merge_tolerance(0.0, solve.t_end);
+  const long last = solve.output_count() - 1;  // t_end's index
+  const auto time = [&](long k) { return k >= last ? solve.t_end : static_cast<double>(k) * h; };
+  const double q = std::floor(t / h);
+  const long k = !(q > 0.0) ? 0 : q >= static_cast<double>(last) ? last : static_cast<long>(q);
+  const double below = time(k), above = time(std::min(k + 1, last));
+  if (std::abs(t - below) <= tol || std::abs(t - above) <= tol) return true;
   nearest = TomlAccess::fmt(below) + " and " + TomlAccess::fmt(above);
   return false;
 }

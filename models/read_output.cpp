@@ -51,6 +51,7 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
             if (seen == q) fail(*arr.get(i), p, "'" + s + "' is listed twice");
           }
           output.quantities.push_back(q);
+          output.quantities_lines.push_back(at(*arr.get(i), p).line);
           found = true;
         }
       }

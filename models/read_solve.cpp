@@ -24,6 +24,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
              "express time in a smaller unit");
   }
   solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
+  solve.output_step_line = at(*t.get("output_step"), "solve.output_step").line;
   if (const auto* n = t.get("max_steps")) {
     // A whole number >= 1 (1e6 is accepted: a budget is often written so).
     const double v = number(*n, "solve.max_steps");
@@ -94,6 +95,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
     }
     for (std::size_t i = 0; i < arr.size(); ++i) {
       solve.slaves.push_back(string(*arr.get(i), index("solve.slaves", i)));
+      solve.slaves_lines.push_back(at(*arr.get(i), index("solve.slaves", i)).line);
     }
   }
   if (const auto* n = t.get("linear_solver")) {

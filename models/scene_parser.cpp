@@ -41,7 +41,7 @@ SceneSpec SceneReader::read(const toml::table& root) const {
   if (const auto* n = root.get("initial")) read_initial(*n, spec.initial);
   read_solve(required(root, "", "solve"), spec.solve);
   if (spec.solve.output_step > spec.solve.t_end) {
-    fail(*root.get("solve"), "solve.output_step",
+    fail(*root.get("solve")->as_table()->get("output_step"), "solve.output_step",
          "is larger than t_end (" + fmt(spec.solve.output_step) + " > " + fmt(spec.solve.t_end) +
              ")");
   }

@@ -147,6 +147,7 @@ inline constexpr double kMinAtol = 1e-100;
 struct SolveSpec {
   double t_end = 0.0;
   double output_step = 0.0;
+  int output_step_line = 0;  ///< the line of `output_step` (0: not from a file)
   Scheme scheme = Scheme::automatic;
   /// Where the scheme was chosen, for a refusal of it: the scene's `solve.scheme` key and line,
   /// the command line's `--scheme` (line 0), or nothing (the default, or set in code).
@@ -166,6 +167,7 @@ struct SolveSpec {
   Treatment treatment = Treatment::automatic;
   /// Optional slave DOFs for the master-slave transformation (default: chosen by pivoting).
   std::vector<std::string> slaves;
+  std::vector<int> slaves_lines;  ///< the line of each `slaves` entry (0: not from a file)
   /// Dense linear solver instead of KLU (only sensible for tiny systems).
   bool dense_linear_solver = false;
   /// [solve] max_order: the highest BDF order (1 to 5, default 5). BDF2 damps the stiff modes a
@@ -188,8 +190,11 @@ struct SolveSpec {
   /// Throws std::invalid_argument naming the first key out of range (the parser's rules, for
   /// settings made or changed in code).
   void validate() const;
-  /// Output times 0, h, 2h, ..., t_end (the last one is t_end even when h does not divide it).
+  /// Output times 0, h, 2h, ..., t_end (the last one is t_end even when h does not divide it; a
+  /// multiple of h within the time axis' roundoff of t_end is t_end: models/time_roundoff.hpp).
   [[nodiscard]] std::vector<double> output_times() const;
+  /// How many output_times() there are, without forming them.
+  [[nodiscard]] long output_count() const;
   /// Sets the scheme, as a command line's --scheme does. `constraints` applies to the multiplier
   /// schemes only (a file pairing it with another scheme is refused): under any other it is set
   /// aside, and the returned note says so for the user to see; empty when nothing was set aside.
@@ -216,8 +221,9 @@ inline constexpr std::array<std::string_view, 7> kEnergyColumns = {
 
 struct OutputSpec {
   std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};
-  std::string file;   ///< empty: decided by the CLI
-  int file_line = 0;  ///< the line of `file` (0: not from a file)
+  std::vector<int> quantities_lines;  ///< the line of each `quantities` entry (0: not from a file)
+  std::string file;                   ///< empty: decided by the CLI
+  int file_line = 0;                  ///< the line of `file` (0: not from a file)
   /// [output] dofs: the DOFs that get displacement, velocity, acceleration and reaction columns, as
   /// names or patterns where `*` stands for any run of characters; empty: every DOF.
   std::vector<std::string> dofs;

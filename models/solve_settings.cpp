@@ -3,11 +3,13 @@
 // module, get the same rules here) and the output times they ask for.
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "models/scene_spec.hpp"
+#include "models/time_roundoff.hpp"
 
 namespace condyn {
 
@@ -65,17 +67,32 @@ std::string SolveSpec::override_scheme(Scheme s, SourcePoint chosen_at) {
          treatment_refusal(s);
 }
 
+namespace {
+
+/// Whether k·output_step is t_end or beyond, up to the time axis' roundoff.
+bool at_or_past_end(const SolveSpec& s, long k) {
+  return static_cast<double>(k) * s.output_step > s.t_end - time_merge_tolerance(0.0, s.t_end);
+}
+
+}  // namespace
+
+long SolveSpec::output_count() const {
+  // The first multiple at or past t_end, from the quotient, then settled by the same test the
+  // times use (the quotient's rounding can put it one off).
+  const double q = std::floor(t_end / output_step);
+  if (!(q < 1e15)) return std::numeric_limits<long>::max();  // far beyond any row limit
+  auto k = static_cast<long>(q);
+  while (k > 0 && at_or_past_end(*this, k - 1)) --k;
+  while (!at_or_past_end(*this, k)) ++k;
+  return k + 1;  // 0, h, ..., (k − 1) h and t_end
+}
+
 std::vector<double> SolveSpec::output_times() const {
+  const long count = output_count();
   std::vector<double> times;
-  const double h = output_step;
-  for (long k = 0;; ++k) {
-    const double t = static_cast<double>(k) * h;
-    if (t > t_end - 1e-9 * h) {
-      times.push_back(t_end);
-      break;
-    }
-    times.push_back(t);
-  }
+  times.reserve(static_cast<std::size_t>(count));
+  for (long k = 0; k + 1 < count; ++k) times.push_back(static_cast<double>(k) * output_step);
+  times.push_back(t_end);
   return times;
 }
 

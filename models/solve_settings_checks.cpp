@@ -16,12 +16,20 @@ constexpr double kMaxOutputRows = 1e7;
 
 }  // namespace
 
+/// `[output] quantities` entry of `q` (asked for by the scene), at its line where known.
+SourcePoint ModelBuilder::quantity_key(Quantity q) const {
+  const auto& quantities = spec_.output.quantities;
+  const auto k = static_cast<std::size_t>(std::find(quantities.begin(), quantities.end(), q) -
+                                          quantities.begin());
+  return {"output.quantities", line_of(spec_.output.quantities_lines, k, spec_.output.where.line)};
+}
+
 /// [output] energy needs a conservative system (else the energy is not a first integral).
 void ModelBuilder::check_energy_output() const {
   const auto& q = spec_.output.quantities;
   if (std::find(q.begin(), q.end(), Quantity::energy) == q.end()) return;
   if (!evaluator()->energy_parts(0.0, model_.u0, model_.v0)) {
-    fail({"output.quantities", spec_.output.where.line},
+    fail(quantity_key(Quantity::energy),
          "'energy' (the energy balance, docs/energy.md) needs forces that split into "
          "potential, dissipated and applied parts, and this model's do not");
   }
@@ -31,18 +39,19 @@ void ModelBuilder::check_absolute_acceleration() const {
   const auto& q = spec_.output.quantities;
   if (std::find(q.begin(), q.end(), Quantity::absolute_acceleration) == q.end()) return;
   if (!model_.ground) {
-    fail({"output.quantities", spec_.output.where.line},
+    fail(quantity_key(Quantity::absolute_acceleration),
          "'absolute_acceleration' needs [ground_motion]: without a moving ground the "
          "accelerations are absolute already (use 'acceleration')");
   }
 }
 
 void ModelBuilder::check_output() const {
-  const double rows = spec_.solve.t_end / spec_.solve.output_step + 1.0;
+  const auto rows = static_cast<double>(spec_.solve.output_count());
   if (rows > kMaxOutputRows) {
-    fail({"solve.output_step", spec_.solve.where.line}, "would write " + fmt(rows) +
-                                                            " rows (limit " + fmt(kMaxOutputRows) +
-                                                            "): increase output_step");
+    fail({"solve.output_step",
+          spec_.solve.output_step_line > 0 ? spec_.solve.output_step_line : spec_.solve.where.line},
+         "would write " + fmt(rows) + " rows (limit " + fmt(kMaxOutputRows) +
+             "): increase output_step");
   }
   check_output_dofs();
   check_absolute_acceleration();
@@ -78,9 +87,10 @@ void ModelBuilder::check_output_dofs() const {
 void ModelBuilder::check_slaves() const {
   const auto& slaves = spec_.solve.slaves;
   if (slaves.empty()) return;
-  const int line = spec_.solve.where.line;
+  const int line = line_of(spec_.solve.slaves_lines, 0, spec_.solve.where.line);  // the key's
   const auto key = [&](std::size_t k) {
-    return SourcePoint{"solve.slaves[" + std::to_string(k + 1) + "]", line};
+    return SourcePoint{"solve.slaves[" + std::to_string(k + 1) + "]",
+                       line_of(spec_.solve.slaves_lines, k, spec_.solve.where.line)};
   };
   std::vector<int> touched(static_cast<std::size_t>(model_.dofs()), 0);
   for (int k = 0; k < model_.A.outerSize(); ++k) {

@@ -62,7 +62,7 @@ std::vector<double> expected_rows(double h, double t_end, const std::vector<doub
   std::vector<double> rows;
   for (long k = 0;; ++k) {
     double t = static_cast<double>(k) * h;
-    if (t > t_end - 1e-9 * h) break;
+    if (t > t_end - tol) break;  // within roundoff of t_end: t_end itself
     for (double s : starts) {
       if (std::abs(t - s) <= tol) t = s;
     }
@@ -197,4 +197,33 @@ TEST_CASE("random k·dt load steps, and steps one ulp off an output, run under e
   const double below = std::nextafter(0.5, 0.0), above = std::nextafter(0.2, 1.0);
   check_every_scheme(scene({literal(below), literal(above)}, "0.1", "1.0"), {above, below}, 0.1,
                      1.0);
+}
+
+TEST_CASE("output times: a multiple of output_step is t_end only within the time axis' roundoff") {
+  SolveSpec s;
+  const auto times = [&s](double t_end, double h) {
+    s.t_end = t_end;
+    s.output_step = h;
+    const std::vector<double> t = s.output_times();
+    CHECK(static_cast<long>(t.size()) == s.output_count());
+    return t;
+  };
+  // 1e-10 before t_end is a row of its own (it was dropped within 1e-9 output steps of t_end, and
+  // a check at that time read the row of t_end; review of 2026-11-27).
+  CHECK(times(1.0, 0.9999999999) == std::vector<double>{0.0, 0.9999999999, 1.0});
+  CHECK(times(0.3000000001, 0.1) == std::vector<double>{0.0, 0.1, 0.2, 3 * 0.1, 0.3000000001});
+  CHECK(times(1000.0, 999.9999999) == std::vector<double>{0.0, 999.9999999, 1000.0});
+  // Within roundoff (3 × 0.1 is one ulp above 0.3): t_end alone.
+  CHECK(times(0.3, 0.1) == std::vector<double>{0.0, 0.1, 0.2, 0.3});
+  CHECK(times(1.0, 0.1).size() == 11);
+  CHECK(times(1.0, 1.0) == std::vector<double>{0.0, 1.0});
+  CHECK(times(1.0, 0.3) == std::vector<double>{0.0, 0.3, 0.6, 0.8999999999999999, 1.0});
+  // The count agrees with the times over pairs drawn at random (the quotient's rounding).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> exponent(-3.0, 3.0), steps(1.0, 2000.0);
+  for (int i = 0; i < 2000; ++i) {
+    const double t_end = std::pow(10.0, exponent(rng));
+    (void)times(t_end, t_end / steps(rng));
+    (void)times(t_end, t_end / std::round(steps(rng)));  // dividing it, to roundoff
+  }
 }

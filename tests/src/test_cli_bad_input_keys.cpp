@@ -64,18 +64,18 @@ TEST_CASE("[solve] slaves repeated, too many or on unconstrained DOFs: refused w
     return replace(kScene, "output_step = 0.5", "output_step = 0.5\nslaves = " + slaves);
   };
   check_refused(run_scene(with("[\"ux1\", \"ux1\"]")),
-                "bad.toml:15: solve.slaves[2]: 'ux1' is named twice");
+                "bad.toml:18: solve.slaves[2]: 'ux1' is named twice");
   check_refused(run_scene(with("[\"ux1\", \"uy1\", \"ux2\"]")),
-                "bad.toml:15: solve.slaves[3]: 'ux2' appears in no constraint");
+                "bad.toml:18: solve.slaves[3]: 'ux2' appears in no constraint");
   check_refused(run_scene(with("[\"ux1\"]")),
-                "bad.toml:15: solve.slaves: names 1 slave but the scene has 2 constraints");
+                "bad.toml:18: solve.slaves: names 1 slave but the scene has 2 constraints");
   // Slaves each in a constraint, but their columns of A are dependent ([1 1; 2 2]).
   const std::string coupled =
       replace(replace(kScene, "terms = { ux1 = 1.0 }", "terms = { ux1 = 1.0, ux2 = 1.0 }"),
               "terms = { uy1 = 1.0 }", "terms = { uy1 = 1.0, ux1 = 2.0, ux2 = 2.0 }");
   check_refused(run_scene(replace(coupled, "output_step = 0.5",
                                   "output_step = 0.5\nslaves = [\"ux1\", \"ux2\"]")),
-                "bad.toml:15: solve.slaves: the slaves ux1, ux2 do not determine the constraints");
+                "bad.toml:18: solve.slaves: the slaves ux1, ux2 do not determine the constraints");
 }
 
 TEST_CASE("a massless DOF nothing holds is bad input under every scheme, DOFs named") {
@@ -232,4 +232,11 @@ TEST_CASE("a file name with control characters is shown escaped in every message
   CHECK(checked.out.find("fine\\x1b[31m.toml: has no [[check]]") != std::string::npos);
   CHECK(no_raw_control(checked.out));
   CHECK(no_raw_control(checked.err));
+}
+
+TEST_CASE("output_step refusals name its own line, not [solve]'s") {
+  check_refused(run_scene(replace(kScene, "output_step = 0.5", "output_step = 2.0")),
+                "bad.toml:17: solve.output_step: is larger than t_end (2 > 1)");
+  check_refused(run_scene(replace(kScene, "output_step = 0.5", "output_step = 0.99999e-7")),
+                "bad.toml:17: solve.output_step: would write 10000102 rows (limit 1e+07)");
 }

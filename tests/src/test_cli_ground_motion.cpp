@@ -120,6 +120,6 @@ TEST_CASE("cli ground motion: absolute accelerations are the relative ones plus 
             "[output]\nquantities = [\"absolute_acceleration\"]\n");
   const Result b = box.run("run case/b.toml --out b.csv");
   CHECK(b.code == 2);
-  CHECK(b.err.find("b.toml:9: output.quantities: 'absolute_acceleration' needs [ground_motion]") !=
+  CHECK(b.err.find("b.toml:10: output.quantities: 'absolute_acceleration' needs [ground_motion]") !=
         std::string::npos);
 }

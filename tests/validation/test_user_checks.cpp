@@ -186,3 +186,19 @@ max_abs = 0.0
   CHECK_FALSE(r.passed());
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("checks: a time 1e-10 before t_end is its own row, not t_end's") {
+  // output_step 1.9999999999 on t_end 2: rows 0, 1.9999999999 and 2. The row 1e-10 before t_end
+  // was dropped (a tolerance of 1e-9 output steps) and a check there read the row of t = 2.
+  std::string text = oscillator(
+      "[[check]]\nquantity = \"x\"\nat = 1.9999999999\nvalue = 0.0\ntolerance = 1.0\n"
+      "[[check]]\nquantity = \"x\"\nat = 2.0\nvalue = 0.0\ntolerance = 1.0\n");
+  text.replace(text.find("output_step = 0.1"), 17, "output_step = 1.9999999999");
+  const SceneCheckResult r = run_scene_checks(parse_scene_text(text, "s.toml"));
+  REQUIRE(r.outcomes.size() == 2);
+  // The figure is |x − 0| = |cos t| (cos < 0 there): the rows differ by sin(2) · 1e-10 = 9.1e-11,
+  // far above the run's error near t_end at rtol 1e-10 (the two rows share it).
+  CHECK(r.outcomes[0].computed == doctest::Approx(-std::cos(1.9999999999)).epsilon(1e-8));
+  CHECK(r.outcomes[1].computed - r.outcomes[0].computed ==
+        doctest::Approx(std::sin(2.0) * 1e-10).epsilon(0.05));
+}
