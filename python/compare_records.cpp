@@ -46,10 +46,10 @@ py::list compare_records(const CompareResult& result) {
     d["jacobian_evals"] = count(r.jacobian_evals);
     d["newton_failures"] = count(r.newton_failures);
     d["error_test_failures"] = count(r.error_test_failures);
-    d["wall_median"] = r.wall_median;
-    d["wall_min"] = r.wall_min;
-    d["wall_max"] = r.wall_max;
-    d["repeats"] = r.repeats;
+    d["wall_median"] = figure(r.wall_median);
+    d["wall_min"] = figure(r.wall_min);
+    d["wall_max"] = figure(r.wall_max);
+    d["repeats"] = count(r.repeats);
     d["mescd_u"] = number_or_none(r.mescd_u);
     d["mescd_v"] = number_or_none(r.mescd_v);
     d["energy_error"] = number_or_none(r.energy_error);
@@ -61,9 +61,9 @@ py::list compare_records(const CompareResult& result) {
     d["ok"] = false;
     d["skipped"] = true;
     d["message"] = system_text(reason);
-    d["reference"] = result.reference_kind;
     // Every key of a run's record, None: a table of the records (d["rtol"]) needs no special case.
-    for (const char* key : {"rtol",
+    for (const char* key : {"reference",
+                            "rtol",
                             "atol",
                             "error_u",
                             "error_v",

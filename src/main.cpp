@@ -415,11 +415,11 @@ int run_command(int argc, char** argv) {
   compare_cmd
       ->add_option("--repeats", compare_options.repeats,
                    "runs per point for the wall time (default 3)")
-      ->transform(whole_check(1, 100));
+      ->transform(whole_check(1, CompareOptions::kMaxRepeats));
   compare_cmd
       ->add_option("--drift-rtol", compare_options.drift_rtol,
                    "tolerance of the drift, history and Baumgarte-study runs (default 1e-6)")
-      ->check(decimal_range_check(1e-14, 0.5));
+      ->check(decimal_range_check(CompareOptions::kMinDriftRtol, CompareOptions::kMaxDriftRtol));
   compare_cmd->add_flag("--no-plots", compare_no_plots, "do not call the plotting script");
   bool compare_allow_failures = false;
   compare_cmd->add_flag("--allow-failures", compare_allow_failures,

@@ -8,6 +8,7 @@
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/solve.hpp"
+#include "models/toml_access.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/exact_solution.hpp"
 #include "validation/scientific.hpp"
@@ -16,17 +17,36 @@
 namespace condyn {
 
 void CompareOptions::validate() const {
-  auto bad = [](const std::string& what) { throw std::invalid_argument("compare: " + what); };
-  if (tolerances.empty()) bad("no tolerances");
-  for (double t : tolerances) {
-    if (!(t > 0.0 && t < 1.0)) bad("tolerances must lie in (0, 1)");
+  auto bad = [](const std::string& what) { throw std::invalid_argument(what); };
+  const auto got = [](double v) { return " (got " + TomlAccess::fmt(v) + ")"; };
+  if (tolerances.empty()) bad("tolerances: none given");
+  for (std::size_t k = 0; k < tolerances.size(); ++k) {
+    const double t = tolerances[k];
+    if (!(t >= kMinRtol && t < 1.0)) {
+      bad("tolerances: each lies in [" + TomlAccess::fmt(kMinRtol) + ", 1)" + got(t));
+    }
+    for (std::size_t j = 0; j < k; ++j) {
+      if (tolerances[j] == t) bad("tolerances: " + TomlAccess::fmt(t) + " is listed twice");
+    }
   }
-  if (repeats < 1) bad("repeats must be >= 1");
-  if (schemes.empty()) bad("no schemes");
-  if (!(drift_rtol > 0.0 && drift_rtol < 1.0)) bad("drift rtol must lie in (0, 1)");
-  if (atol_ratio < 0.0) bad("atol ratio must be >= 0");
-  if (max_steps < 0) bad("max steps must be >= 0");
-  if (!(max_wall_time >= 0.0)) bad("max wall time must be >= 0");
+  if (repeats < 1 || repeats > kMaxRepeats) {
+    bad("repeats: lies in [1, " + std::to_string(kMaxRepeats) + "] (got " +
+        std::to_string(repeats) + ")");
+  }
+  if (schemes.empty()) bad("schemes: none given");
+  if (!(drift_rtol >= kMinDriftRtol && drift_rtol <= kMaxDriftRtol)) {
+    bad("drift_rtol: lies in [" + TomlAccess::fmt(kMinDriftRtol) + ", " +
+        TomlAccess::fmt(kMaxDriftRtol) + "]" + got(drift_rtol));
+  }
+  if (!(atol_ratio >= 0.0)) bad("atol ratio: must be >= 0" + got(atol_ratio));
+  if (max_steps < 0 || max_steps > std::numeric_limits<int>::max()) {
+    bad("max_steps: lies in [0, 2147483647], 0 for no budget (got " + std::to_string(max_steps) +
+        ")");
+  }
+  if (!(max_wall_time == 0.0 || (max_wall_time >= kMinWallTime && max_wall_time <= kMaxWallTime))) {
+    bad("max_wall_time: 0 for no budget, else in [" + TomlAccess::fmt(kMinWallTime) + ", " +
+        TomlAccess::fmt(kMaxWallTime) + "] seconds" + got(max_wall_time));
+  }
 }
 
 namespace {

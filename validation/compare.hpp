@@ -27,6 +27,10 @@ struct WallStatistics {
 [[nodiscard]] WallStatistics wall_statistics(std::vector<double> walls);
 
 struct CompareOptions {
+  /// The ranges validate() holds, the command line's and Python's alike.
+  static constexpr int kMaxRepeats = 100;
+  static constexpr double kMinDriftRtol = 1e-14, kMaxDriftRtol = 0.5;
+  static constexpr double kMinWallTime = 1e-9, kMaxWallTime = 1e12;  ///< a budget, when given
   std::vector<double> tolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   /// atol = rtol · atol_ratio (the scene's atol/rtol when not set).
   double atol_ratio = 0.0;
@@ -45,7 +49,10 @@ struct CompareOptions {
   double max_wall_time = 0.0;
   /// Called after every run with a one-line progress note.
   std::function<void(const std::string&)> progress;
-  /// Throws std::invalid_argument naming the bad option.
+  /// Throws std::invalid_argument naming the bad option ("tolerances: ..."): each tolerance in
+  /// [kMinRtol, 1) and listed once, repeats in [1, kMaxRepeats], drift_rtol in [kMinDriftRtol,
+  /// kMaxDriftRtol], max_steps in [0, 2^31 − 1], max_wall_time 0 (none) or in [kMinWallTime,
+  /// kMaxWallTime].
   void validate() const;
 };
 

@@ -96,3 +96,6 @@ def test_compare_budget_marks_runs_over_it():
     assert "5" in runs[0]["message"]
     # No figures for a failed run: 0 read as a perfect one.
     assert runs[0]["error_u"] is None and runs[0]["steps"] is None
+    # Nor wall times (they were 0.0, and repeats 0).
+    assert runs[0]["wall_median"] is None and runs[0]["wall_min"] is None
+    assert runs[0]["wall_max"] is None and runs[0]["repeats"] is None

@@ -23,8 +23,21 @@ def test_compare_two_schemes():
 def test_compare_refuses_bad_arguments():
     with pytest.raises(condyn.SceneError, match="schemes: name schemes, not 'auto'"):
         condyn.compare(QUICKSTART, schemes=["auto"])
-    with pytest.raises(condyn.SceneError, match="tolerances must lie in"):
+    with pytest.raises(condyn.SceneError, match=r"tolerances: each lies in \[1e-15, 1\) \(got 2\)"):
         condyn.compare(QUICKSTART, tolerances=[2.0])
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    # The command line's ranges (docs/cli.md): these ran, or failed as runs, before.
+    ({"tolerances": [1e-20]}, r"tolerances: each lies in \[1e-15, 1\) \(got 1e-20\)"),
+    ({"drift_rtol": 1e-20}, r"drift_rtol: lies in \[1e-14, 0.5\] \(got 1e-20\)"),
+    ({"drift_rtol": 0.9}, r"drift_rtol: lies in \[1e-14, 0.5\] \(got 0.9\)"),
+    ({"repeats": 1000}, r"repeats: lies in \[1, 100\] \(got 1000\)"),
+    ({"max_wall_time": 1e-12}, r"max_wall_time: 0 for no budget, else in \[1e-09, 1e\+12\]"),
+])
+def test_compare_holds_the_command_lines_ranges(kwargs, message):
+    with pytest.raises(condyn.SceneError, match=message):
+        condyn.compare(QUICKSTART, schemes=["ggl"], **kwargs)
 
 
 @pytest.mark.parametrize("kwargs, message", [
@@ -80,3 +93,6 @@ def test_a_skipped_scheme_has_every_key_of_a_run():
     assert [r["scheme"] for r in skipped] == ["penalty"]
     assert set(skipped[0]) == set(ran[0])
     assert skipped[0]["rtol"] is None and skipped[0]["steps"] is None
+    # Every key but scheme, ok, skipped and message (reference was the sweep's).
+    assert {k for k, v in skipped[0].items() if v is not None} == {
+        "scheme", "ok", "skipped", "message"}
