@@ -1,6 +1,6 @@
 #include "models/scene_readers.hpp"
 
-#include <set>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,7 +9,7 @@ namespace condyn {
 
 void SceneReader::read_constraints(const toml::node& node, std::vector<ConstraintSpec>& out) const {
   const auto& cons = array(node, "constraint");
-  std::set<std::string> names;
+  std::map<std::string, std::pair<std::size_t, bool>> names;  // name: index, whether given
   for (std::size_t i = 0; i < cons.size(); ++i) {
     const std::string p = index("constraint", i);
     const auto& t = table(*cons.get(i), p);
@@ -22,8 +22,17 @@ void SceneReader::read_constraints(const toml::node& node, std::vector<Constrain
       if (c.name.empty()) fail(*nm, join(p, "name"), "must not be empty");
       check_name(*nm, join(p, "name"), c.name, "constraint");
     }
-    if (!names.insert(c.name).second) {
-      fail(*cons.get(i), p, "duplicate constraint name '" + c.name + "'");
+    const bool given = t.contains("name");
+    if (const auto [first, fresh] = names.try_emplace(c.name, i, given); !fresh) {
+      const auto [j, first_given] = first->second;
+      const auto by_default = [&](std::size_t k, bool named) {
+        return named ? std::string()
+                     : " (the default name of unnamed " + index("constraint", k) + ")";
+      };
+      fail(*cons.get(i), p,
+           "duplicate constraint name '" + c.name + "'" + by_default(i, given) + ": " +
+               index("constraint", j) + " is named so too" + by_default(j, first_given) +
+               "; give the constraints distinct names");
     }
     const auto& terms_node = required(t, p, "terms");
     c.terms = dof_values(terms_node, join(p, "terms"), &c.term_lines);

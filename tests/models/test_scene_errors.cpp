@@ -368,7 +368,13 @@ TEST_CASE("constraint right-hand sides may not jump after t = 0") {
 
 TEST_CASE("duplicate names and bad output settings") {
   check_error(replace(kBase, "name = \"pin_y\"", "name = \"pin_x\""),
-              "duplicate constraint name 'pin_x'");
+              "duplicate constraint name 'pin_x': constraint[1] is named so too; give the "
+              "constraints distinct names");
+  // The second constraint unnamed: its default name c2 is the first's given name.
+  check_error(
+      replace(replace(kBase, "name = \"pin_x\"", "name = \"c2\""), "name = \"pin_y\"\n", ""),
+      "duplicate constraint name 'c2' (the default name of unnamed constraint[2]): "
+      "constraint[1] is named so too");
   check_error(kBase + "[output]\nquantities = [\"displacement\", \"stress\"]\n",
               "unknown quantity 'stress'");
   check_error(kBase + "[output]\nquantities = [\"drift\", \"drift\"]\n", "'drift' is listed twice");
