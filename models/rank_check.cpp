@@ -232,6 +232,23 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
         " ([solve] redundant = \"drop\" drops rows of linear models only: a nonlinear "
         "model's rows may depend on each other at t = 0 and not later)";
   }
+  // A velocity row's position form a·u = a·u(0) + ∫ h dt takes a·u(0) from [initial]: rows that
+  // agree as written (one the other's derivative) conflict through the initial displacements.
+  std::string velocity_rows;
+  for (const auto& [j, w] : combo) {
+    const auto& c = constraints[static_cast<std::size_t>(j)];
+    if (c.level == ConstraintSpec::Level::velocity)
+      velocity_rows += (velocity_rows.empty() ? "'" : ", '") + c.name + "'";
+  }
+  const std::string through_initial =
+      velocity_rows.empty()
+          ? std::string()
+          : ". The velocity row" +
+                std::string(velocity_rows.find(',') == std::string::npos ? " " : "s ") +
+                velocity_rows +
+                " holds at position level as a·u = a·u(0) + the integral of its value, with "
+                "a·u(0) from the initial displacements: if the rows agree as written, the "
+                "initial displacements ([initial]) are what conflicts with them";
   fail(constraints[static_cast<std::size_t>(dep)].where,
        "the constraints " + names + " are linearly dependent (" + rank_text +
            "); their right-hand sides are " +
@@ -240,7 +257,8 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
                 : "incompatible (the combination that vanishes on the left leaves " +
                       verdict.detail +
                       " on the right), so the set is conflicting: no motion "
-                      "satisfies it"));
+                      "satisfies it" +
+                      through_initial));
 }
 
 }  // namespace condyn

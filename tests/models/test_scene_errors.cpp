@@ -201,6 +201,44 @@ output_step = 0.5
       "DOF 'b' has neither mass nor stiffness");
 }
 
+TEST_CASE("a velocity row that conflicts through the initial displacements says so") {
+  // v is p's derivative: they agree as written, but v's position form a + b = 0.06 + 0.1 t takes
+  // a + b = 0.06 from [initial] where p asks 0.05. "Conflicting" alone sent the user to the
+  // constraints (review of 2026-11-27).
+  const std::string scene = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c"]
+mass = [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 1.0]]
+stiffness = [[4.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]
+[[constraint]]
+name = "v"
+level = "velocity"
+terms = { a = 1.0, b = 1.0 }
+value = 0.1
+[[constraint]]
+name = "p"
+terms = { a = 1.0, b = 1.0 }
+value = { type = "polynomial", coefficients = [0.05, 0.1] }
+[initial]
+displacement = { a = 0.05, b = 0.01 }
+velocity = { a = 0.1 }
+[solve]
+t_end = 1.0
+output_step = 0.5
+)";
+  const std::string msg = error_of(scene);
+  CAPTURE(msg);
+  CHECK(msg.find("so the set is conflicting: no motion satisfies it. The velocity row 'v' holds "
+                 "at position level as a·u = a·u(0) + the integral of its value, with a·u(0) from "
+                 "the initial displacements") != std::string::npos);
+  // Position rows alone: no such note.
+  const std::string positions =
+      error_of(replace(replace(scene, "level = \"velocity\"\n", ""), "value = 0.1", "value = 0.2"));
+  CAPTURE(positions);
+  CHECK(positions.find("conflicting") != std::string::npos);
+  CHECK(positions.find("velocity row") == std::string::npos);
+}
+
 TEST_CASE("redundant and conflicting constraints are named") {
   const std::string redundant = replace(
       kBase, "[solve]", "[[constraint]]\nname = \"again\"\nterms = { ux1 = 2.0 }\n\n[solve]");
