@@ -15,6 +15,7 @@ ReducedSystem reduce(const Model& model, const std::vector<std::string>& preferr
   preferred.reserve(preferred_slaves.size());
   for (const auto& name : preferred_slaves) preferred.push_back(model.dof_at(name));
   ReducedSystem r;
+  r.named_slaves = !preferred.empty();
   try {
     r.transform = master_slave_transform(model.A, preferred);
   } catch (const CoupledGroupTooLarge& e) {

@@ -31,7 +31,8 @@ struct ReducedSystem {
   Eigen::SparseMatrix<double> FK, FC, FM;
   /// nm x (number of loads): Tᵀ b_k, b_k = e_dof(k) or the load's pattern (sparse columns).
   Eigen::SparseMatrix<double> loads;
-  bool rheonomic = false;  ///< some constraint right-hand side is nonzero: transfer forces exist
+  bool rheonomic = false;     ///< some constraint right-hand side is nonzero: transfer forces exist
+  bool named_slaves = false;  ///< the slaves are [solve] slaves, not the automatic choice
 
   /// f̂(t) for the current segment (steps on when start <= step_reference).
   [[nodiscard]] Eigen::VectorXd forces(const Model& model, double t, double step_reference) const;

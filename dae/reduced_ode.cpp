@@ -25,10 +25,18 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
       ok = d.minCoeff() > std::numeric_limits<double>::epsilon() * d.cwiseAbs().maxCoeff();
     }
     if (!ok) {
+      // The named slaves decide the reduction: one whose coefficient is small beside its row's
+      // others (1e-11 u_b against u_a) made it singular to roundoff where the automatic choice
+      // (the largest coefficients) runs (review of 2026-11-27).
       throw SchemeNotApplicable(
-          "the reduced mass matrix is singular to roundoff: elimination needs inertia on every "
-          "motion of the master DOFs that their stiffness does not hold; the multiplier schemes "
-          "(ggl, index1) integrate such a model");
+          std::string("the reduced mass matrix is singular to roundoff: elimination needs "
+                      "inertia on every motion of the master DOFs that their stiffness does not "
+                      "hold; the multiplier schemes (ggl, index1) integrate such a model") +
+          (reduced.named_slaves
+               ? ". The slaves are those of [solve] slaves: one whose coefficient is small "
+                 "beside the others of its constraint makes the reduction ill-conditioned; "
+                 "leave slaves out for the automatic choice"
+               : ""));
     }
   }
   jacobian_ = BlockJacobian(size());

@@ -433,3 +433,36 @@ TEST_CASE("elimination keeps a tie written at 1e-150 beside a row at 1") {
   }
   CHECK(std::abs(traj.u(b, traj.u.cols() - 1)) > 0.05);  // b moves (0.122 at t = 0.8)
 }
+
+TEST_CASE("elimination: a named slave that makes the reduction singular is said to be the cause") {
+  // a + 1e-11 b = 0 with b the named slave: b = −1e11 a, and the reduced mass 1 + 2e22 of a
+  // leaves M̂ singular to roundoff. The automatic choice (a, the larger coefficient) runs.
+  const std::string text = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c"]
+mass = [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 1.0]]
+stiffness = [[4.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]
+[[load]]
+dof = "c"
+value = 1.0
+[[constraint]]
+terms = { a = 1.0, b = 1e-11 }
+[solve]
+t_end = 2.0
+output_step = 0.5
+scheme = "elimination"
+slaves = ["b"]
+)";
+  const SceneSpec named = parse_scene_text(text, "s.toml");
+  CHECK_THROWS_WITH_AS(
+      (void)solve(build_model(named), named.solve),
+      doctest::Contains("singular to roundoff: elimination needs inertia on every "
+                        "motion of the master DOFs that their stiffness does not "
+                        "hold; the multiplier schemes (ggl, index1) integrate such "
+                        "a model. The slaves are those of [solve] slaves"),
+      SchemeNotApplicable);
+  SceneSpec automatic = named;
+  automatic.solve.slaves.clear();
+  automatic.solve.slaves_lines.clear();
+  CHECK(test::solved(build_model(automatic), automatic.solve).ok());
+}
