@@ -21,7 +21,12 @@ std::string scene_message(const std::string& file, const SourcePoint& where,
   return msg + problem;
 }
 
-SceneSpec SceneReader::read(const toml::table& root) const {
+std::string no_checks_message(const std::string& file) {
+  return scene_message(file, {}, "has no [[check]] table: nothing to check");
+}
+
+SceneSpec SceneReader::read(const toml::table& root, SceneNeeds needs) const {
+  if (needs.checks && !root.contains("check")) throw SceneError(no_checks_message(file_));
   SceneSpec spec;
   spec.file = file_;
   check_keys(root, "",
@@ -52,7 +57,7 @@ SceneSpec SceneReader::read(const toml::table& root) const {
   return spec;
 }
 
-SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
+SceneSpec parse_scene_text(const std::string& text, const std::string& file, SceneNeeds needs) {
   check_key_depth(text, file);
   toml::table root;
   try {
@@ -62,15 +67,15 @@ SceneSpec parse_scene_text(const std::string& text, const std::string& file) {
                                    "TOML syntax error: " + std::string(e.description())));
   }
   check_number_range(root, text, file);
-  return SceneReader(file).read(root);
+  return SceneReader(file).read(root, needs);
 }
 
 SceneSpec parse_scene_table(const toml::table& root, const std::string& file,
-                            const ArrayInputs& arrays) {
-  return SceneReader(file, arrays).read(root);
+                            const ArrayInputs& arrays, SceneNeeds needs) {
+  return SceneReader(file, arrays).read(root, needs);
 }
 
-SceneSpec parse_scene_file(const std::string& path) {
+SceneSpec parse_scene_file(const std::string& path, SceneNeeds needs) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     throw SceneError(path + ": is a folder (name a scene file)");
@@ -87,7 +92,7 @@ SceneSpec parse_scene_file(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path + ": cannot read the scene file");
-  return parse_scene_text(text.str(), path);
+  return parse_scene_text(text.str(), path, needs);
 }
 
 }  // namespace condyn

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/scene_needs.hpp"
 #include "models/scene_spec.hpp"
 
 namespace condyn {
@@ -20,9 +21,13 @@ class SceneError : public std::runtime_error {
 [[nodiscard]] std::string scene_message(const std::string& file, const SourcePoint& where,
                                         const std::string& problem);
 
+/// "FILE: has no [[check]] table: nothing to check".
+[[nodiscard]] std::string no_checks_message(const std::string& file);
+
 /// Reads and validates a scene file. Throws SceneError.
-[[nodiscard]] SceneSpec parse_scene_file(const std::string& path);
+[[nodiscard]] SceneSpec parse_scene_file(const std::string& path, SceneNeeds needs = {});
 /// Same for scene text already in memory; `file` names it in messages.
-[[nodiscard]] SceneSpec parse_scene_text(const std::string& text, const std::string& file);
+[[nodiscard]] SceneSpec parse_scene_text(const std::string& text, const std::string& file,
+                                         SceneNeeds needs = {});
 
 }  // namespace condyn

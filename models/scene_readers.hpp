@@ -24,7 +24,8 @@ class SceneReader : public TomlAccess {
       : TomlAccess(std::move(file)), arrays_(&arrays) {}
 
   /// The whole scene: its top-level keys, then every section in order (scene_parser.cpp).
-  [[nodiscard]] SceneSpec read(const toml::table& root) const;
+  /// What `needs` asks for is checked first.
+  [[nodiscard]] SceneSpec read(const toml::table& root, SceneNeeds needs = {}) const;
 
   /// [model] (read_model.cpp); trusses by read_truss().
   void read_model(const toml::node& node, ModelSpec& model) const;

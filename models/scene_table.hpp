@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "models/scene_needs.hpp"
 #include "models/scene_spec.hpp"
 
 namespace condyn {
@@ -33,6 +34,6 @@ struct ArrayInputs {
 /// Reads and validates `root` as a scene; `file` names it in messages (nodes built in memory
 /// have no line, so messages read "FILE: key.path: problem"). Throws SceneError.
 [[nodiscard]] SceneSpec parse_scene_table(const toml::table& root, const std::string& file,
-                                          const ArrayInputs& arrays = {});
+                                          const ArrayInputs& arrays = {}, SceneNeeds needs = {});
 
 }  // namespace condyn

@@ -162,7 +162,7 @@ py::tuple compare(const py::handle& scene, const std::optional<std::vector<doubl
 /// The scene's [[check]] tables, evaluated on one run: (scene, scheme, steps, wall_s, failure,
 /// one dict per check).
 py::dict check(const py::handle& scene, const std::optional<std::string>& scheme) {
-  SceneSpec spec = python::parse_python_scene(scene);
+  SceneSpec spec = python::parse_python_scene(scene, SceneNeeds{.checks = true});
   SceneCheckOptions options;
   if (scheme) options.scheme = scheme_argument(spec, "scheme", *scheme);
   const std::string file = spec.file;

@@ -308,11 +308,11 @@ py::str system_text(const std::string& text) {
   return py::reinterpret_steal<py::str>(decoded);
 }
 
-SceneSpec parse_python_scene(const py::handle& scene) {
+SceneSpec parse_python_scene(const py::handle& scene, SceneNeeds needs) {
   if (py::isinstance<py::dict>(scene)) {
     ArrayInputs arrays;
     const toml::table root = Converter(arrays).table(scene, "", 0);
-    return parse_scene_table(root, kDictFile, arrays);
+    return parse_scene_table(root, kDictFile, arrays, needs);
   }
   const py::module_ os = py::module_::import("os");
   py::object path;
@@ -323,7 +323,7 @@ SceneSpec parse_python_scene(const py::handle& scene) {
                          type_name(scene));
   }
   // A bytes path is the file system's own name, as open() takes it.
-  if (py::isinstance<py::bytes>(path)) return parse_scene_file(path.cast<std::string>());
+  if (py::isinstance<py::bytes>(path)) return parse_scene_file(path.cast<std::string>(), needs);
   py::object bytes;
   try {
     bytes = os.attr("fsencode")(path);
@@ -332,7 +332,7 @@ SceneSpec parse_python_scene(const py::handle& scene) {
         "condyn: the scene path is not a file name this system can encode (a lone "
         "surrogate?)");
   }
-  return parse_scene_file(bytes.cast<std::string>());
+  return parse_scene_file(bytes.cast<std::string>(), needs);
 }
 
 }  // namespace condyn::python

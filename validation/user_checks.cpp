@@ -258,12 +258,12 @@ bool SceneCheckResult::passed() const {
 }
 
 SceneCheckResult run_scene_checks(const std::string& path, const SceneCheckOptions& options) {
-  return run_scene_checks(parse_scene_file(path), options);
+  return run_scene_checks(parse_scene_file(path, SceneNeeds{.checks = true}), options);
 }
 
 SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& options) {
   if (spec.checks.empty()) {
-    throw SceneError(scene_message(spec.file, {}, "has no [[check]] table: nothing to check"));
+    throw SceneError(no_checks_message(spec.file));
   }
   std::string set_aside;  // SolveSpec::override_scheme's note, if any
   if (options.scheme) set_aside = spec.solve.override_scheme(*options.scheme, options.scheme_where);

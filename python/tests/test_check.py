@@ -90,6 +90,15 @@ def test_check_refuses_a_scene_without_checks(quickstart_dict):
         condyn.check(scene)
 
 
+def test_check_refuses_before_reading_the_scenes_files(tmp_path):
+    # The matrix files are absent: the refusal is about the checks, not about them.
+    scene = tmp_path / "matrix.toml"
+    scene.write_text('[model]\ntype = "matrix"\nmass = { file = "absent_M.mtx" }\n'
+                     'stiffness = { file = "absent_K.mtx" }\n[solve]\nt_end = 1.0\n')
+    with pytest.raises(condyn.SceneError, match=r"matrix.toml: has no \[\[check\]\] table"):
+        condyn.check(scene)
+
+
 def test_compare_budget_marks_runs_over_it():
     runs = condyn.compare(QUICKSTART, tolerances=[1e-8], schemes=["ggl"], max_steps=5)
     assert len(runs) == 1 and not runs[0]["ok"]

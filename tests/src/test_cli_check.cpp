@@ -139,6 +139,16 @@ TEST_CASE("cli check: bad input is exit 2 naming file, line and key, the other s
         std::string::npos);
   CHECK(junit_counts(box, "report.xml") == "testsuites 3 0 2 3 0\n");
 
+  // Refused before the files the scene names are read (a matrix model's can take seconds).
+  box.write("matrix.toml",
+            "[model]\ntype = \"matrix\"\nmass = { file = \"absent_M.mtx\" }\n"
+            "stiffness = { file = \"absent_K.mtx\" }\n[solve]\nt_end = 1.0\n");
+  const Result matrix = box.run("check matrix.toml");
+  CAPTURE(matrix.out);
+  CHECK(matrix.code == 2);
+  CHECK(matrix.out.find("ERROR matrix.toml: has no [[check]] table") != std::string::npos);
+  CHECK(matrix.out.find("absent_") == std::string::npos);
+
   const Result missing = box.run("check nowhere.toml");
   CHECK(missing.code == 2);
   CHECK(missing.out.find("nowhere.toml: cannot open the scene file (No such file or directory)") !=
