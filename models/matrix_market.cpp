@@ -166,6 +166,22 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                                              "entries");
   }
   const int size_line = line_no;
+  // A size line of the right length but not of integers is most often an entry where the size
+  // line was left out: say so (the entry count '1.0' alone sent users to the wrong line).
+  for (std::size_t k = 0; k < size.size(); ++k) {
+    const std::string_view token = size[k];
+    const std::string_view digits =
+        !token.empty() && (token.front() == '+' || token.front() == '-') ? token.substr(1) : token;
+    if (digits.empty() ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      throw MatrixMarketError(
+          line_no, "the size line (" + std::string(dense ? "rows cols" : "rows cols entries") +
+                       ", the first line after the header and comments) holds '" +
+                       shown_cell(token) +
+                       "', not a whole number: is the size line missing, with an entry in its "
+                       "place?");
+    }
+  }
   const long long rows = to_integer(size[0], line_no, "the row count");
   const long long cols = to_integer(size[1], line_no, "the column count");
   constexpr long long kMaxIndex = std::numeric_limits<int>::max();
@@ -184,8 +200,8 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                                             : rows * cols;
   if ((expect.rows > 0 && rows != expect.rows) || (expect.cols > 0 && cols != expect.cols)) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
-                                         std::to_string(cols) + " but " + expect.because +
-                                         ": is the size line right?");
+                                         std::to_string(cols) + " but " + expect.because + ": " +
+                                         expect.advice);
   }
   // What holding it takes, before anything is allocated: a size line of 2·10⁹ (a typo, or
   // another file's) had the kernel kill the process while the index arrays were filled.

@@ -41,6 +41,9 @@ struct MarketExpectation {
   bool rows_need_entries = false;
   long long rows = 0, cols = 0;  ///< the size the file must declare; 0: any
   std::string because;           ///< why, for the message ("M.mtx is 3 x 3")
+  /// What to look at, closing the message: the size line, unless the size comes from another
+  /// file of the scene, which may be the wrong one.
+  std::string advice = "is the size line right?";
   /// A model matrix (mass, damping, stiffness): its rows are DOFs, and a size line declaring
   /// more than the machine could integrate (models/memory_estimate.hpp's lower bound, beside
   /// the matrix itself) is refused before the DOFs are built.

@@ -90,6 +90,14 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
           out.file.starts_with(prefix) && out.file.ends_with('>')
               ? out.file.substr(prefix.size(), out.file.size() - prefix.size() - 1)
               : key;
+      // A block's or a pattern's size first, as a file's size line is checked before its
+      // entries (the model's matrices are checked against each other once all are read).
+      if (!expect.rows_are_dofs && ((expect.rows > 0 && out.matrix.rows() != expect.rows) ||
+                                    (expect.cols > 0 && out.matrix.cols() != expect.cols))) {
+        fail(file_node, array_key,
+             "is " + std::to_string(out.matrix.rows()) + " x " + std::to_string(out.matrix.cols()) +
+                 " but " + expect.because);
+      }
       if (rows_need_entries && out.matrix.nonZeros() < out.matrix.rows()) {
         fail(file_node, array_key,
              "has " + std::to_string(out.matrix.rows()) + " rows but " +
@@ -286,8 +294,14 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
       first = out;
       if (expected.rows == 0 && out->matrix.rows() == out->matrix.cols()) {
         expected.rows = expected.cols = out->matrix.rows();
-        expected.because = out->file + " is " + std::to_string(expected.rows) + " x " +
+        const SourcePoint where = at(*t.get(key), join(path, std::string(key)));
+        expected.because = out->file + " (" + where.path +
+                           (where.line > 0 ? ", line " + std::to_string(where.line) : "") +
+                           ") is " + std::to_string(expected.rows) + " x " +
                            std::to_string(expected.rows);
+        expected.advice =
+            "mass, stiffness and damping must have one size; is one of the two files the wrong "
+            "one, or its size line wrong?";
       }
     }
   }

@@ -75,14 +75,21 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
                                               {"drift_position", "a drift column"},
                                               {"drift_velocity", "a drift column"}};
   for (const auto column : kEnergyColumns) owner[std::string(column)] = "an energy column";
+  // `claimant`: who gives the column, as the message names it ("DOF 'x'").
   const auto claim = [&](const std::string& column, const std::string& who, const toml::node& node,
-                         const std::string& path, const std::string& name, const char* what) {
+                         const std::string& path, const std::string& claimant) {
     const auto [it, fresh] = owner.emplace(column, who);
     if (!fresh) {
       fail(node, path,
-           std::string(what) + " '" + name + "' gives the column '" + column + "', which is " +
-               "already " + it->second + " (CSV columns must be distinct under every quantity)");
+           claimant + " gives the column '" + column + "', which is " + "already " + it->second +
+               " (CSV columns must be distinct under every quantity)");
     }
+  };
+  // "(what, line N)", or "(what)" for a node with no line (a scene from a Python dict).
+  const auto note = [](const std::string& what, const toml::node& node) {
+    const auto line = node.source().begin.line;
+    const std::string at = line > 0 ? "line " + std::to_string(line) : std::string();
+    return " (" + what + (!what.empty() && !at.empty() ? ", " : "") + at + ")";
   };
   const auto* model = root.get_as<toml::table>("model");
   const auto* dofs = model != nullptr ? model->get_as<toml::array>("dofs") : nullptr;
@@ -96,8 +103,8 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
             {"acc_", "acceleration"},
             {"acc_abs_", "absolute acceleration"},
             {"reaction_", "reaction"}}) {
-        claim(prefix + d, "the " + quantity + " column of DOF '" + d + "'", *dofs->get(i), p, d,
-              "DOF");
+        claim(prefix + d, "the " + quantity + " column of DOF '" + d + "'", *dofs->get(i), p,
+              "DOF '" + d + "'");
       }
     }
   }
@@ -124,19 +131,32 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
   for (std::size_t i = 0; i < spec.constraints.size() && cons != nullptr; ++i) {
     const std::string& c = spec.constraints[i].name;
     const auto& t = *cons->get(i)->as_table();
-    const toml::node* where = t.get("name") != nullptr ? t.get("name") : cons->get(i);
-    claim("lambda_" + c, "the multiplier column of constraint '" + c + "'", *where,
-          join(index("constraint", i), "name"), c, "constraint");
+    const bool named = t.get("name") != nullptr;
+    const toml::node* where = named ? t.get("name") : cons->get(i);
+    // Which constraint, where, and whether its name is the default one.
+    std::string who =
+        index("constraint", i) + " '" + c + "'" + note(named ? "" : "its default name", *where);
+    if (who.ends_with(" ()")) who.resize(who.size() - 3);
+    claim("lambda_" + c, "the multiplier column of " + who, *where,
+          named ? join(index("constraint", i), "name") : index("constraint", i), who);
   }
   const auto* blocks = root.get_as<toml::array>("constraint_block");
   for (std::size_t i = 0; i < spec.constraint_blocks.size() && blocks != nullptr; ++i) {
     const auto& b = spec.constraint_blocks[i];
     const auto& t = *blocks->get(i)->as_table();
-    const toml::node* where = t.get("name") != nullptr ? t.get("name") : blocks->get(i);
+    const bool named = t.get("name") != nullptr;
+    const toml::node* where = named ? t.get("name") : blocks->get(i);
+    const std::string path =
+        named ? join(index("constraint_block", i), "name") : index("constraint_block", i);
     for (Eigen::Index k = 1; k <= b.A.matrix.rows(); ++k) {
       const std::string c = b.prefix + std::to_string(k);
-      claim("lambda_" + c, "the multiplier column of constraint '" + c + "'", *where,
-            join(index("constraint_block", i), "name"), c, "constraint");
+      // Row k of a block is named prefix + k: say so, and whether the prefix is the default.
+      const std::string who = "row " + std::to_string(k) + " of " + index("constraint_block", i) +
+                              ", '" + c + "'" +
+                              note(std::string(named ? "its name" : "its default prefix") + " '" +
+                                       b.prefix + "' and the row number",
+                                   *where);
+      claim("lambda_" + c, "the multiplier column of " + who, *where, path, who);
     }
   }
 }

@@ -68,6 +68,9 @@ def test_dict_message_is_the_cli_message(cli, tmp_path, quickstart_dict):
     (lambda s: s.update(constraint_block=[{"file": sp.coo_matrix(
         ([1.0], ([0], [0])), shape=(2000000, 3))}]),
      "<dict>: constraint_block[1]: has 2000000 rows but 1 stored entries, so some row has none"),
+    # A block given transposed: its size is the problem named, as a file's size line is.
+    (lambda s: s.update(constraint_block=[{"file": np.ones((3, 2))}]),
+     "<dict>: constraint_block[1]: is 3 x 2 but a constraint block needs one column per DOF (3)"),
     (lambda s: s["model"].update(mass=np.eye(3, dtype=complex)),
      "<dict>: model.mass: entries must be real numbers"),
     # A boolean array (a mask by mistake) is no matrix of ones, dense or sparse.

@@ -188,7 +188,14 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
       {general + "0 2 0\n", 2, "not between 1"},
       {general + "2 2 -1\n", 2, "entry count -1 is negative"},
       {general + "2 2 5\n", 2, "ends after 0 of the 5"},
-      {general + "2 x 1\n", 2, "not an integer"},
+      {general + "2 x 1\n", 2,
+       "the size line (rows cols entries, the first line after the "
+       "header and comments) holds 'x', not a whole number"},
+      // The size line left out: its first entry read in its place.
+      {general + "1 1 1.0\n2 2 1.0\n", 2,
+       "holds '1.0', not a whole number: is the size line "
+       "missing, with an entry in its place?"},
+      {"%%MatrixMarket matrix array real general\n1.5 2\n", 2, "(rows cols, the first line"},
       {general + "2 2 1\n3 1 1.0\n", 3, "outside the 2 x 2 matrix of the size line, line 2"},
       {general + "2 2 1\n1 0 1.0\n", 3, "outside the 2 x 2"},
       {general + "2 2 1\n1 1 nan\n", 3, "not finite"},
@@ -457,7 +464,9 @@ stiffness = { file = ")" +
   box.write("three.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 1\n1 1 1.0\n");
   CHECK(has(scene_error(box, with_stiffness("three.mtx")),
             "model.stiffness.file: " + box.path("three.mtx").string() +
-                ":2: the size line declares 3 x 3 but M.mtx is 4 x 4: is the size line right?"));
+                ":2: the size line declares 3 x 3 but M.mtx (model.mass, line 3) is 4 x 4: mass, "
+                "stiffness and damping must have one size; is one of the two files the wrong "
+                "one, or its size line wrong?"));
   box.write("wide.mtx", "%%MatrixMarket matrix coordinate real general\n4 5 1\n1 1 1.0\n");
   const std::string wide = R"([model]
 type = "matrix"
@@ -624,7 +633,23 @@ file = "A2.mtx"
   CHECK(has(scene_error(box, condyn::test::replace(base, "[[constraint_block]]",
                                                    "[[constraint]]\nname = \"block2_1\"\nterms = "
                                                    "{ u3 = 1.0 }\n[[constraint_block]]")),
-            "gives the column 'lambda_block2_1'"));
+            "constraint_block[2]: row 1 of constraint_block[2], 'block2_1' (its default prefix "
+            "'block2_' and the row number, line 10) gives the column 'lambda_block2_1', which "
+            "is already the multiplier column of constraint[1] 'block2_1' (line 6)"));
+  // An unnamed constraint's default name against a named block's row: both named as such.
+  CHECK(has(scene_error(box, condyn::test::replace(
+                                 condyn::test::replace(base, "file = \"A2.mtx\"",
+                                                       "file = \"A2.mtx\"\nname = \"c\""),
+                                 "[[constraint_block]]",
+                                 "[[constraint]]\nterms = { u3 = 1.0 }\n[[constraint_block]]")),
+            "constraint_block[2].name: row 1 of constraint_block[2], 'c1' (its name 'c' and the "
+            "row number, line"));
+  CHECK(has(scene_error(box, condyn::test::replace(
+                                 condyn::test::replace(base, "file = \"A2.mtx\"",
+                                                       "file = \"A2.mtx\"\nname = \"c\""),
+                                 "[[constraint_block]]",
+                                 "[[constraint]]\nterms = { u3 = 1.0 }\n[[constraint_block]]")),
+            "already the multiplier column of constraint[1] 'c1' (its default name, line"));
   CHECK(has(scene_error(box, condyn::test::replace(base, "file = \"A2.mtx\"",
                                                    "file = \"A2.mtx\"\nscale = { type = \"step\", "
                                                    "start = 0.5 }")),

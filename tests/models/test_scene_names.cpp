@@ -85,8 +85,8 @@ TEST_CASE("names that give a CSV column twice are refused, under every quantity"
        "already the reaction column of DOF 'x'"},
       // A multiplier column against a DOF column.
       {R"(["a", "lambda_tie"])", tie, "n.toml:7: constraint[1].name",
-       "constraint 'tie' gives the column 'lambda_tie', which is already the displacement "
-       "column of DOF 'lambda_tie'"},
+       "constraint[1] 'tie' (line 7) gives the column 'lambda_tie', which is already the "
+       "displacement column of DOF 'lambda_tie'"},
   };
   for (const auto& c : cases) {
     CAPTURE(c.dofs);
@@ -117,7 +117,8 @@ output_step = 0.5
     text.replace(text.find("NAME"), 4, name);
     return error_of(text);
   };
-  CHECK(named("fix_uy1").find("n.toml:8: constraint[1].name: constraint 'fix_uy1' gives the "
+  CHECK(named("fix_uy1").find("n.toml:8: constraint[1].name: constraint[1] 'fix_uy1' (line 8) "
+                              "gives the "
                               "column 'lambda_fix_uy1', which is already the multiplier column "
                               "of the row 'fix_uy1' that model.supports adds") !=
         std::string::npos);
