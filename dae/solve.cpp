@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "dae/baumgarte_gains.hpp"
 #include "dae/constraint_treatment.hpp"
@@ -26,39 +29,84 @@
 
 namespace condyn {
 
-std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
+namespace {
+
+/// Why a scheme cannot run a model, if it cannot (scheme_refusal() words it).
+enum class Refusal {
+  none,
+  projection_massless,
+  penalty_static_start,
+  elimination_nonholonomic,
+  elimination_nonlinear,
+  penalty_nonlinear
+};
+
+Refusal refusal_of(const Model& model, Scheme scheme) {
   if (scheme == Scheme::projection && !unconstrained_massless_dofs(model.M, model.A).empty()) {
-    return std::string(to_string(scheme)) +
-           " integrates an ODE with the mass matrix factored, and this model has massless DOFs "
-           "held only by stiffness (algebraic unknowns); use index1, baumgarte, ggl, index2, "
-           "index3, penalty or elimination, which integrate them as a DAE";
+    return Refusal::projection_massless;
   }
   if (scheme == Scheme::penalty && model.static_start && model.constraint_count() > 0) {
-    return "[initial] static = true gives the equilibrium under exact constraints, where "
-           "penalty's springs carry no force: under penalty the structure would not start at rest "
-           "(its supports unloaded). Use another scheme, or give the displacements";
+    return Refusal::penalty_static_start;
   }
-  if (!model.is_nonlinear()) return std::nullopt;
-  const bool nonholonomic = std::any_of(model.constraints.begin(), model.constraints.end(),
-                                        [](const Constraint& c) { return c.nonholonomic; });
+  if (!model.is_nonlinear()) return Refusal::none;
   if (scheme == Scheme::elimination) {
-    if (nonholonomic) {
+    const bool nonholonomic = std::any_of(model.constraints.begin(), model.constraints.end(),
+                                          [](const Constraint& c) { return c.nonholonomic; });
+    return nonholonomic ? Refusal::elimination_nonholonomic : Refusal::elimination_nonlinear;
+  }
+  if (scheme == Scheme::penalty) return Refusal::penalty_nonlinear;
+  return Refusal::none;
+}
+
+/// "a, b or c": the candidates this model is not refused under, so that a refusal never points
+/// to a scheme that refuses the same scene (projection's once named penalty on a static start).
+std::string usable(const Model& model, std::initializer_list<Scheme> candidates) {
+  std::vector<std::string> names;
+  for (Scheme s : candidates) {
+    if (refusal_of(model, s) == Refusal::none) names.emplace_back(to_string(s));
+  }
+  std::string out;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    out += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
+  using S = Scheme;
+  const auto dae_schemes = {S::index1, S::baumgarte, S::ggl, S::index2, S::index3, S::projection};
+  switch (refusal_of(model, scheme)) {
+    case Refusal::none:
+      return std::nullopt;
+    case Refusal::projection_massless:
+      return std::string(to_string(scheme)) +
+             " integrates an ODE with the mass matrix factored, and this model has massless DOFs "
+             "held only by stiffness (algebraic unknowns); use " +
+             usable(model, {S::index1, S::baumgarte, S::ggl, S::index2, S::index3, S::penalty,
+                            S::elimination}) +
+             ", which integrate them as a DAE";
+    case Refusal::penalty_static_start:
+      return "[initial] static = true gives the equilibrium under exact constraints, where "
+             "penalty's springs carry no force: under penalty the structure would not start at "
+             "rest (its supports unloaded). Use another scheme, or give the displacements";
+    case Refusal::elimination_nonholonomic:
       return "elimination cannot treat a nonholonomic constraint: master-slave elimination "
              "solves constraints for slave displacements, and a nonintegrable velocity "
              "constraint has no displacement form to solve. The chapter says so: nonholonomic "
              "MFCs \"are non treatable by master-slave methods unless they integrate to "
              "holonomic constraints\" (§5.6), and for them \"only the Lagrange multiplier "
-             "method, used with extreme care, offers hope\" (§5.3.1). Use index1, baumgarte, "
-             "ggl, index2, index3 or projection";
-    }
-    return "elimination is the chapter's linear path (constant coefficients, linear forces); "
-           "this model is nonlinear (state-dependent constraints or forces). Use index1, "
-           "baumgarte, ggl, index2, index3 or projection";
-  }
-  if (scheme == Scheme::penalty) {
-    return "penalty is implemented for linear models only (constant constraints, linear "
-           "forces); this model is nonlinear (state-dependent constraints or forces). Use index1, "
-           "baumgarte, ggl, index2, index3 or projection";
+             "method, used with extreme care, offers hope\" (§5.3.1). Use " +
+             usable(model, dae_schemes);
+    case Refusal::elimination_nonlinear:
+      return "elimination is the chapter's linear path (constant coefficients, linear forces); "
+             "this model is nonlinear (state-dependent constraints or forces). Use " +
+             usable(model, dae_schemes);
+    case Refusal::penalty_nonlinear:
+      return "penalty is implemented for linear models only (constant constraints, linear "
+             "forces); this model is nonlinear (state-dependent constraints or forces). Use " +
+             usable(model, dae_schemes);
   }
   return std::nullopt;
 }

@@ -94,6 +94,18 @@ TimeFunction ModelBuilder::acting_in_run(const TimeFunction& f, const SourcePoin
   }
   for (const auto& term : acting.terms()) {
     if (term.kind != TimeTerm::Kind::table || !term.table || term.table->times.empty()) continue;
+    // A record that starts late on a nonzero value acts from t = 0 at that value (a time-shifted
+    // accelerogram would be a step of ground acceleration at 0): said as its cut end is.
+    const double start = term.table->times.front();
+    const double first = term.amplitude * term.table->values.front();
+    if (start > 0.0 && first != 0.0) {
+      report_.warnings.push_back(
+          where.path + ": " + term.table->file + " starts at t = " + fmt(start) +
+          (start >= spec_.solve.t_end ? ", after t_end = " + fmt(spec_.solve.t_end) + "," : "") +
+          " on a nonzero value: " + fmt(first) +
+          " acts from t = 0 (a table is constant before its first sample); add a sample at t = 0 "
+          "to say what precedes");
+    }
     const double end = term.table->times.back();
     const double last = term.amplitude * term.table->values.back();
     if (end < spec_.solve.t_end && last != 0.0) {

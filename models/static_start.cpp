@@ -57,6 +57,15 @@ void ModelBuilder::solve_static_initial() {
   s << "static equilibrium at t = 0 (sparse LU of [K Aᵀ; A 0], " << model_.dofs() << " DOFs, "
     << model_.constraint_count() << " constraints): max |u| = " << eq.u.lpNorm<Eigen::Infinity>()
     << ", relative residual " << eq.residual;
+  // The ground motion is one of the loads at t = 0: a preload under gravity then a record that
+  // does not start at rest includes it, which the line says rather than leave it to be found.
+  if (spec_.ground_motion) {
+    const double a0 = spec_.ground_motion->acceleration.value(0.0);
+    if (a0 != 0.0) {
+      s << "; the loads at t = 0 include the ground motion's -M r a_g(0), a_g(0) = " << a0
+        << " (start the record at 0 for a preload without it)";
+    }
+  }
   report_.initial_projection = s.str();
 }
 

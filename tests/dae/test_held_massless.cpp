@@ -236,6 +236,15 @@ TEST_CASE("projection, which factors M, refuses massless DOFs held by stiffness,
         std::string::npos);
   for (Scheme scheme : {Scheme::index1, Scheme::ggl, Scheme::elimination, Scheme::penalty})
     CHECK_FALSE(scheme_refusal(s.model, scheme).has_value());
+  // A static start rules penalty out as well: the list leaves it out (it named penalty, which
+  // then refused the scene, before 2026-11-28).
+  const auto preloaded = test::built(parse_scene_text(
+      test::replace(kChain, "[solve]", "[initial]\nstatic = true\n[solve]"), "chain.toml"));
+  REQUIRE(scheme_refusal(preloaded.model, Scheme::penalty).has_value());
+  const auto without_penalty = scheme_refusal(preloaded.model, Scheme::projection);
+  REQUIRE(without_penalty.has_value());
+  CHECK(without_penalty->find("; use index1, baumgarte, ggl, index2, index3 or elimination, which "
+                              "integrate them as a DAE") != std::string::npos);
 }
 
 TEST_CASE("massless DOFs that stiffness does not hold are bad input, DOFs named") {

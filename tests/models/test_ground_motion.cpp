@@ -191,3 +191,30 @@ TEST_CASE("a record that ends before t_end on a nonzero value is warned about, b
             "load[1].value: rec.csv ends at t = 1, before t_end = 3, on a nonzero value: "
             "-0.5 is held"));
 }
+
+TEST_CASE("a record that starts after t = 0 on a nonzero value is warned about, by key") {
+  // A table is constant before its first sample: a time-shifted accelerogram acted from t = 0
+  // at its first value, without a word before 2026-11-28, even when it began after t_end.
+  Sandbox box;
+  const auto warnings = [&](const std::string& scene) {
+    BuildReport report;
+    (void)build_model(parse_scene_file(box.write("scene.toml", scene).string()), report);
+    return report.warnings;
+  };
+  box.write("late.csv", "t,a\n0.25,0.5\n0.5,1\n1,0\n");
+  auto w = warnings(replace(kTruss, "rec.csv", "late.csv"));
+  REQUIRE(w.size() == 1);
+  CHECK(w[0] ==
+        "ground_motion.acceleration: late.csv starts at t = 0.25 on a nonzero value: 4.905 acts "
+        "from t = 0 (a table is constant before its first sample); add a sample at t = 0 to say "
+        "what precedes");
+  box.write("after.csv", "t,a\n5,0.5\n6,0\n");
+  w = warnings(replace(kTruss, "rec.csv", "after.csv"));
+  REQUIRE(w.size() == 1);
+  CHECK(has(w[0], "after.csv starts at t = 5, after t_end = 1, on a nonzero value: 4.905 acts"));
+  // Starting on zero, or at t = 0: nothing to say.
+  box.write("quiet.csv", "t,a\n0.25,0\n0.5,1\n1,0\n");
+  CHECK(warnings(replace(kTruss, "rec.csv", "quiet.csv")).empty());
+  box.write("rec.csv", kRecord);
+  CHECK(warnings(kTruss).empty());
+}

@@ -97,6 +97,28 @@ TEST_CASE("static start: a prescribed support displacement at t = 0 is honored, 
   CHECK(m.v0[0] == 1.0);
 }
 
+TEST_CASE("static start: the ground motion at t = 0 is one of the loads, and the line says so") {
+  // x3 is accelerated by a_g = 2 (mass 1): its load 6 becomes 6 - 2 = 4, u = (0, 2, 2 + 4/3).
+  const std::string ground = "[ground_motion]\ninfluence = { x3 = 1.0 }\nacceleration = 2.0\n";
+  const auto scene = test::built(parse_scene_text(
+      test::replace(chain("0.0", ""), "[solve]", ground + "[solve]"), "chain.toml"));
+  check_close(scene.model.u0[1], 2.0);
+  check_close(scene.model.u0[2], 2.0 + 4.0 / 3.0);
+  CHECK(contains(scene.report.initial_projection,
+                 "; the loads at t = 0 include the ground motion's -M r a_g(0), a_g(0) = 2 (start "
+                 "the record at 0 for a preload without it)"));
+  // A record at rest at t = 0: the gravity-only equilibrium, and no note.
+  const auto quiet = test::built(
+      parse_scene_text(test::replace(chain("0.0", ""), "[solve]",
+                                     test::replace(ground, "2.0\n",
+                                                   "{ type = \"polynomial\", coefficients = "
+                                                   "[0.0, 1.0] }\n") +
+                                         "[solve]"),
+                       "chain.toml"));
+  check_close(quiet.model.u0[2], 5.0);
+  CHECK(!contains(quiet.report.initial_projection, "ground motion"));
+}
+
 TEST_CASE("static start: refusals name initial.static") {
   SUBCASE("a DOF nothing holds") {
     const std::string e = error_of(R"([model]
