@@ -74,6 +74,30 @@ long long to_integer(std::string_view s, int line, const char* what) {
   return v;
 }
 
+/// 2^53: every integer up to it is a double; above, only some are.
+constexpr double kMaxExactInteger = 9007199254740992.0;
+
+/// An integer written in digits that the double v, read from it, does not hold exactly: refused,
+/// since the 'integer' field promises exact values (9007199254740993 became ...992 silently).
+void inexact_integer(std::string_view text, double v, int line) {
+  std::string_view digits = text;
+  if (!digits.empty() && (digits.front() == '+' || digits.front() == '-')) digits.remove_prefix(1);
+  if (digits.empty() ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return;  // an exponent form ('1e20') says which double it means
+  }
+  while (digits.size() > 1 && digits.front() == '0') digits.remove_prefix(1);
+  std::array<char, 400> held{};
+  const auto [end, ec] = std::to_chars(held.data(), held.data() + held.size(), std::abs(v),
+                                       std::chars_format::fixed, 0);
+  if (ec == std::errc() && std::string_view(held.data(), end - held.data()) == digits) return;
+  throw MatrixMarketError(line, "the integer '" + shown_cell(text) +
+                                    "' is beyond 2^53 and not held exactly by a double (it would "
+                                    "be " +
+                                    std::string(held.data(), end) +
+                                    "); write the value meant, or the field 'real'");
+}
+
 double to_double(std::string_view s, int line) {
   double v = 0.0;
   if (const NumberCell kind = parse_number_cell(s, v); kind != NumberCell::ok) {
@@ -284,6 +308,7 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                                            "' is not an integer, as the header's field "
                                            "'integer' says every value is");
     }
+    if (integer && std::abs(v) >= kMaxExactInteger) inexact_integer(tok[dense ? 0 : 2], v, line_no);
     const auto r = static_cast<int>(i - 1), c = static_cast<int>(j - 1);
     ++read;
     if (dense && v == 0.0) continue;

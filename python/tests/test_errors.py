@@ -213,3 +213,13 @@ def test_scene_text_instead_of_a_path(call):
     assert len(str(caught.value)) < 200
     with pytest.raises(condyn.SceneError, match="not a path"):
         call(text.encode())
+
+
+def test_an_all_zero_pattern_is_warned_about_by_its_key():
+    scene = {"model": {"type": "matrix", "dofs": ["a", "b"], "mass": np.eye(2),
+                       "stiffness": np.eye(2)},
+             "load": [{"pattern": np.zeros((2, 1)), "value": 1.0}],
+             "solve": {"t_end": 1.0, "output_step": 0.5}}
+    result = condyn.run(scene)
+    assert result.summary["warnings"] == [
+        "load[1].pattern: the array has no nonzero entry: this load applies no force"]

@@ -131,6 +131,13 @@ TEST_CASE("matrix market: general and symmetric storage, comments, duplicates su
       "%%MatrixMarket matrix coordinate integer general\n\n2 2 3\n1 1 1\n1 1 2\n\n2 2 5\n");
   CHECK(dup.matrix.coeff(0, 0) == 3.0);
   CHECK(dup.matrix.coeff(1, 1) == 5.0);
+  // Integers beyond 2^53 that doubles hold exactly, and exponent forms, are read.
+  const auto big = parse_matrix_market(
+      "%%MatrixMarket matrix coordinate integer general\n2 2 3\n1 1 9007199254740992\n"
+      "2 2 -18014398509481984\n1 2 1e20\n");
+  CHECK(big.matrix.coeff(0, 0) == 9007199254740992.0);
+  CHECK(big.matrix.coeff(1, 1) == -18014398509481984.0);
+  CHECK(big.matrix.coeff(0, 1) == 1e20);
   // Header words are case-insensitive (some writers capitalize them).
   CHECK(parse_matrix_market("%%MatrixMarket MATRIX Coordinate Real General\n1 1 1\n1 1 4\n")
             .matrix.coeff(0, 0) == 4.0);
@@ -207,6 +214,12 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
       {general + "2 2 1\n+-1 1 1\n", 3, "not an integer"},
       {"%%MatrixMarket matrix coordinate integer general\n2 2 1\n1 1 100.9\n", 3,
        "'100.9' is not an integer"},
+      // Beyond 2^53 an integer may have no double: it was rounded silently before 2026-11-28.
+      {"%%MatrixMarket matrix coordinate integer general\n2 2 1\n1 1 9007199254740993\n", 3,
+       "the integer '9007199254740993' is beyond 2^53 and not held exactly by a double (it "
+       "would be 9007199254740992); write the value meant, or the field 'real'"},
+      {"%%MatrixMarket matrix array integer general\n1 1\n-00018014398509481985\n", 3,
+       "(it would be 18014398509481984)"},
       {general + "2 2 1\n1 1\n", 3, "found 2 fields"},
       {general + "2 2 2\n1 1 1.0\n", 3, "ends after 1 of the 2"},
       {general + "2 2 1\n1 1 1.0\n2 2 1.0\n", 4, "more entries"},
@@ -688,6 +701,14 @@ value = 1.0
             "the size line right?"));
   CHECK(has(scene_error(box, condyn::test::replace(base, "value = 1.0", "dof = \"u1\"\nvalue = 1")),
             "load[1].pattern: give either dof or pattern, not both"));
+  // A pattern of no nonzero entry applies no force: said (it ran unloaded without a word).
+  box.write("f0.mtx", "%%MatrixMarket matrix coordinate real general\n4 1 1\n2 1 0.0\n");
+  const auto empty = test::built(parse_scene_file(
+      box.write("s.toml", condyn::test::replace(base, "f3.mtx", "f0.mtx")).string()));
+  REQUIRE(empty.report.warnings.size() == 1);
+  CHECK(empty.report.warnings[0] ==
+        "load[1].pattern.file: f0.mtx has no nonzero entry: this load applies no force");
+  CHECK(empty.model.loads.empty());
 }
 
 TEST_CASE("matrix model from files runs exactly as the same model written inline") {
