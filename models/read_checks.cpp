@@ -66,7 +66,7 @@ void SceneReader::read_checks(const toml::node& node, const SolveSpec& solve,
     } else if (has_at) {
       c.form = CheckSpec::Form::at_value;
       const std::string p = join(path, "at");
-      c.at = number(*t.get("at"), p);
+      c.at = number(*t.get("at"), p) + 0.0;  // -0.0 is t = 0, not printed 't = -0
       std::string nearest;
       if (c.at < 0.0 || c.at > solve.t_end * (1.0 + 1e-12)) {
         fail(*t.get("at"), p, "is outside the run, [0, " + fmt(solve.t_end) + "]");
@@ -100,8 +100,8 @@ void SceneReader::read_checks(const toml::node& node, const SolveSpec& solve,
       const auto& times = c.reference->times;
       if (times.front() < -1e-12 * solve.t_end || times.back() > solve.t_end * (1.0 + 1e-12)) {
         fail(*ref.get("file"), join(p, "file"),
-             "its times run from " + fmt(times.front()) + " to " + fmt(times.back()) +
-                 ", outside the run [0, " + fmt(solve.t_end) + "]");
+             c.reference->file + ": its times run from " + fmt(times.front()) + " to " +
+                 fmt(times.back()) + ", outside the run [0, " + fmt(solve.t_end) + "]");
       }
       c.tolerance = bound("tolerance");
     }

@@ -76,6 +76,8 @@ SceneSpec parse_scene_table(const toml::table& root, const std::string& file,
 }
 
 SceneSpec parse_scene_file(const std::string& path, SceneNeeds needs) {
+  // `condyn check a.toml ''` printed ": cannot open the scene file", naming nothing.
+  if (path.empty()) throw SceneError("'': an empty scene file name: name a scene file");
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     throw SceneError(path + ": is a folder (name a scene file)");

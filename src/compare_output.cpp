@@ -287,6 +287,8 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
        {"work_precision", "error_steps", "drift", "multipliers", "baumgarte_study"}) {
     for (const char* ext : {".png", ".pdf"}) plan.remove_stale(base / (std::string(figure) + ext));
   }
+  // And the plotting script's log of those figures (rewritten when figures are drawn).
+  plan.remove_stale(base / "plots.log");
   if (result.reference_t.empty()) plan.remove_stale(base / "history_reference.csv");
   // Nor a scheme's drift and history files that this comparison did not write (a scheme not
   // asked for, not applicable, or whose run left nothing).

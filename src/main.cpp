@@ -292,6 +292,9 @@ int check(const std::vector<std::string>& scenes, const std::string& scheme,
     }
     c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     print_checked_scene(msg, c);
+    // On disk before the next scene runs: a CI job killed by its time limit keeps the verdicts
+    // already reached (stdout to a file or pipe is fully buffered, and a signal discards it).
+    msg.flush();
     code = std::max(code, c.exit_code);
     checked.push_back(std::move(c));
   }

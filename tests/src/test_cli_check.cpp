@@ -149,6 +149,18 @@ TEST_CASE("cli check: bad input is exit 2 naming file, line and key, the other s
   CHECK(matrix.out.find("ERROR matrix.toml: has no [[check]] table") != std::string::npos);
   CHECK(matrix.out.find("absent_") == std::string::npos);
 
+  // A reference reaching past the run names its file; an empty scene name is named as such.
+  box.write("late_ref.csv", "t,x\n0,1\n2.5,0\n");
+  box.write("late.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = "
+                               "\"late_ref.csv\" }\ntolerance = 1e-6\n"));
+  const Result late = box.run("check late.toml ''");
+  CAPTURE(late.out);
+  CHECK(late.code == 2);
+  CHECK(late.out.find("check[1].reference.file: late_ref.csv: its times run from 0 to 2.5, "
+                      "outside the run [0, 2]") != std::string::npos);
+  CHECK(late.out.find("ERROR '': an empty scene file name: name a scene file") !=
+        std::string::npos);
+
   const Result missing = box.run("check nowhere.toml");
   CHECK(missing.code == 2);
   CHECK(missing.out.find("nowhere.toml: cannot open the scene file (No such file or directory)") !=
@@ -320,4 +332,24 @@ TEST_CASE(
   CHECK_FALSE(std::filesystem::exists(box.path("out2/work_precision.pdf")));
   CHECK_FALSE(std::filesystem::exists(box.path("out2/baumgarte_study.png")));
   CHECK(std::filesystem::exists(box.path("out2/notes.png")));
+}
+
+TEST_CASE("cli check: a run killed by a time limit keeps the verdicts already printed") {
+  // stdout to a file is fully buffered, and SIGTERM discards the buffer: every PASS/FAIL line
+  // of the scenes done was lost before each scene's lines were flushed (2026-11-28).
+  Sandbox box;
+  box.write("quick.toml", scene(kHolds));
+  // The oscillator for 10^6 s at rtol 1e-10: millions of steps, stopped long before its end.
+  std::string endless = scene("[[check]]\nquantity = \"x\"\nmax_abs = 2.0\n");
+  endless = condyn::test::replace(endless, "t_end = 2.0\noutput_step = 0.1",
+                                  "t_end = 1e6\noutput_step = 1000.0");
+  box.write("endless.toml", endless);
+  const std::string cmd = "cd '" + box.path("").string() + "' && timeout 3 '" +
+                          std::string(CONDYN_BINARY) +
+                          "' check quick.toml endless.toml > killed.txt 2>&1";
+  const int status = std::system(cmd.c_str());
+  CHECK(WEXITSTATUS(status) == 124);  // timeout's code: the run was stopped
+  const std::string out = slurp(box.path("killed.txt"));
+  CAPTURE(out);
+  CHECK(out.find("PASS check[1] x (value)") != std::string::npos);
 }

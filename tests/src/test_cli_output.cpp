@@ -168,8 +168,11 @@ TEST_CASE(
   fs::permissions(box.path("drift.png"), fs::perms::owner_read);
   // A writable stale file goes (history_index2.csv, from a comparison with index2).
   box.write("history_index2.csv", "stale\n");
+  // And the log of figures this run does not draw (--no-plots).
+  box.write("plots.log", "plot_compare: wrote drift.png\n");
   const Result ok = box.run("compare b.toml " + compare);
   CHECK(ok.code == 0);
+  CHECK(!fs::exists(box.path("plots.log")));
   CHECK(slurp(box.path("drift_index1.csv")) == record);
   CHECK(fs::exists(box.path("drift.png")));
   CHECK(!fs::exists(box.path("history_index2.csv")));
