@@ -57,6 +57,12 @@ class DaeProblem {
   /// The kind of each unknown, for its absolute tolerance (IntegratorOptions::atol_of); empty:
   /// every unknown gets the displacement atol.
   [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
+  /// Per unknown, the largest |coefficient| at (t, y) of the constraint row a multiplier or μ
+  /// belongs to, 0 for the other unknowns (IntegratorOptions::atol_vector); empty: no such row.
+  [[nodiscard]] virtual Eigen::VectorXd multiplier_row_scales(double /*t*/,
+                                                              const Eigen::VectorXd& /*y*/) const {
+    return {};
+  }
   /// Its own solver of IDA's Newton systems (∂F/∂y + cj ∂F/∂y') x = b, or nothing: IDA then
   /// factors the Jacobian jacobian() fills.
   [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }

@@ -163,6 +163,23 @@ Eigen::VectorXd MultiplierDae::differential_id() const {
   return id;
 }
 
+Eigen::VectorXd MultiplierDae::multiplier_row_scales(double t, const Eigen::VectorXd& y) const {
+  if (m_ == 0) return {};
+  Eigen::VectorXd scales = Eigen::VectorXd::Zero(size());
+  const Eigen::VectorXd uu = u(y);
+  const Eigen::SparseMatrix<double>& A = system_->constraint_jacobian(t, uu);
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      double& c = scales[lambda_at() + it.row()];
+      c = std::max(c, std::abs(it.value()));
+    }
+  }
+  for (int k = 0; k < p_; ++k) {
+    scales[mu_at() + k] = scales[lambda_at() + position_row_[static_cast<std::size_t>(k)]];
+  }
+  return scales;
+}
+
 Eigen::VectorXd MultiplierDae::variable_index() const {
   Eigen::VectorXd index = Eigen::VectorXd::Ones(size());
   switch (scheme_) {

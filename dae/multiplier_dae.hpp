@@ -49,6 +49,8 @@ class MultiplierDae final : public DaeProblem {
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_, m_, p_);
   }
+  [[nodiscard]] Eigen::VectorXd multiplier_row_scales(double t,
+                                                      const Eigen::VectorXd& y) const override;
   [[nodiscard]] Eigen::VectorXd variable_index() const override;
   /// index1 and GGL of a linear model: dae/condensed_newton.hpp; else nothing.
   [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;

@@ -200,6 +200,8 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
   o.atol_velocity = atol.velocity;
   o.atol_multiplier = atol.multiplier;
   o.atol_mu = atol.mu;
+  o.multiplier_atol_per_row = !settings.atol_multiplier;
+  o.mu_atol_per_row = !settings.atol_mu;
   o.time_scale = atol.time_scale;
   o.first_step = atol.first_step;
   o.first_kink = model.first_kink(0.0);

@@ -50,13 +50,31 @@ double IntegratorOptions::atol_of(UnknownKind kind) const {
   return atol;
 }
 
-Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& kinds,
-                                               int size) const {
+Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& kinds, int size,
+                                               const Eigen::VectorXd& row_scales) const {
   if (kinds.empty()) return Eigen::VectorXd::Constant(size, atol);
   if (static_cast<int>(kinds.size()) != size)
     throw std::logic_error("integrator: unknown kinds do not match the problem size");
   Eigen::VectorXd out(size);
   for (int i = 0; i < size; ++i) out[i] = atol_of(kinds[static_cast<std::size_t>(i)]);
+  if (row_scales.size() == 0) return out;
+  if (row_scales.size() != size)
+    throw std::logic_error("integrator: row scales do not match the problem size");
+  // Rows within kRowScaleSpan of the largest keep the common figure; a smaller row gets it times
+  // how far it lies beyond that span. (Scaled by the full ratio, the rows of Andrews' mechanism,
+  // lengths within a decade, lost 3 to 11 times in accuracy at the same rtol under GGL:
+  // docs/benchmarks.md.)
+  const double reach = row_scales.maxCoeff() / kRowScaleSpan;
+  for (int i = 0; i < size; ++i) {
+    const UnknownKind kind = kinds[static_cast<std::size_t>(i)];
+    const bool per_row = (kind == UnknownKind::multiplier && multiplier_atol_per_row) ||
+                         (kind == UnknownKind::mu && mu_atol_per_row);
+    // A row without a coefficient at the start keeps the common figure; none grows past 1e300,
+    // where its error weight would leave the normal doubles.
+    if (per_row && row_scales[i] > 0.0 && row_scales[i] < reach) {
+      out[i] = std::min(out[i] * (reach / row_scales[i]), 1e300);
+    }
+  }
   return out;
 }
 

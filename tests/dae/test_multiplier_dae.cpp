@@ -373,6 +373,55 @@ TEST_CASE("penalty and projection: a row's scale does not change what it holds")
   }
 }
 
+TEST_CASE("multiplier schemes: rows 1e40 apart in scale get tolerances of their own units") {
+  // A driven row at 1e20 and a tie at 1e-20: one λ tolerance for both, set by the largest
+  // coefficient, asked the small row's multiplier for roundoff, and index1, Baumgarte, GGL and
+  // index3 failed before their first step (GGL at 2e9 against 1 failed at t = 1.59; user trial
+  // of 2026-11-27). Reference: elimination at rtol 1e-12.
+  const char* text = R"([model]
+type = "matrix"
+dofs = ["a", "b", "c"]
+mass = [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 1.0]]
+stiffness = [[4.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]
+[[load]]
+dof = "c"
+value = { type = "harmonic", amplitude = 1.0, omega = 1.3 }
+[[constraint]]
+name = "big"
+terms = { a = 1e20, b = -2e20 }
+value = { type = "harmonic", amplitude = 1e19, omega = 2.0 }
+[[constraint]]
+name = "small"
+terms = { b = 1e-20, c = 1e-20 }
+[initial]
+velocity = { a = 0.2 }
+[solve]
+t_end = 3.0
+output_step = 0.5
+rtol = 1e-10
+atol = 1e-12
+)";
+  SceneSpec spec = parse_scene_text(text, "scales.toml");
+  const Model model = build_model(spec);
+  SolveSpec tight = test::under(spec.solve, Scheme::elimination);
+  tight.rtol = 1e-12;
+  tight.atol = 1e-14;
+  const Trajectory reference = test::solved(model, tight).trajectory;
+  for (const Scheme scheme :
+       {Scheme::index1, Scheme::baumgarte, Scheme::ggl, Scheme::index2, Scheme::index3}) {
+    CAPTURE(to_string(scheme));
+    const SolveResult r = test::solved(model, test::under(spec.solve, scheme));
+    REQUIRE(r.ok());
+    // Observed 6e-10 (GGL) to 1e-8 (index3) of the largest displacement and reaction: rtol
+    // 1e-10 with index3's and Baumgarte's larger global error; 1e-7 leaves a margin of 10.
+    const auto& u = r.trajectory.u;
+    const auto& reaction = r.trajectory.reaction;
+    CHECK((u - reference.u).cwiseAbs().maxCoeff() <= 1e-7 * reference.u.cwiseAbs().maxCoeff());
+    CHECK((reaction - reference.reaction).cwiseAbs().maxCoeff() <=
+          1e-7 * reference.reaction.cwiseAbs().maxCoeff());
+  }
+}
+
 TEST_CASE("penalty: the constraint error shrinks like 1/w") {
   SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
   spec.solve.rtol = 1e-8;  // well below the penalty error, so the penalty error dominates

@@ -169,6 +169,26 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
   CHECK(v[4] == 1e-3);
   CHECK(v[5] == 2e-9);
 
+  // Derived multiplier tolerances per row: rows more than 1e3 below the largest coefficient
+  // get the common figure times how far below they lie ([u u v v | λ λ λ λ | μ]).
+  IntegratorOptions per_row = o;
+  const std::vector<UnknownKind> kinds = unknown_kinds(2, 4, 1);
+  Eigen::VectorXd scales(9);
+  scales << 0, 0, 0, 0, 2e9, 2e6, 1.0, 0.0, 1.0;
+  const Eigen::VectorXd flat = per_row.atol_vector(kinds, 9, scales);  // the flags are off
+  CHECK(flat == per_row.atol_vector(kinds, 9));
+  per_row.multiplier_atol_per_row = per_row.mu_atol_per_row = true;
+  const Eigen::VectorXd w = per_row.atol_vector(kinds, 9, scales);
+  CHECK(w.head(4) == flat.head(4));
+  CHECK(w[4] == 1e-3);                                       // the largest row
+  CHECK(w[5] == 1e-3);                                       // within 1e3 of it
+  CHECK(w[6] == doctest::Approx(1e-3 * 2e6).epsilon(kEps));  // 2e9 / 1e3 / 1
+  CHECK(w[7] == 1e-3);                                       // no coefficient: the common one
+  CHECK(w[8] == doctest::Approx(2e-9 * 2e6).epsilon(kEps));  // μ of the small row
+  // Never past 1e300, where the error weight leaves the normal doubles.
+  scales[6] = 1e-300;
+  CHECK(per_row.atol_vector(kinds, 9, scales)[6] == 1e300);
+
   // A huge atol (accepted: the user's unit) derives no infinite one: atol 1e307 made the
   // multipliers' overflow, and the run stopped on 'atol_multiplier must be > 0 and finite'.
   SolveSpec huge = scene.spec.solve;
