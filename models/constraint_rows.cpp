@@ -104,7 +104,7 @@ void ModelBuilder::build_constraints() {
         size += std::abs(a * model_.u0[d]);
       }
       if (!std::isfinite(size)) {
-        fail(spec_.initial.where.line ? spec_.initial.where : cs.where,
+        fail(spec_.initial.given() ? spec_.initial.where : cs.where,
              "a·u(0) of constraint '" + c.name +
                  "' overflows the double range (coefficients times initial displacements)");
       }

@@ -61,7 +61,7 @@ void ModelBuilder::check_initial_consistency() const {
     const bool position = c.level == ConstraintSpec::Level::position;
     const std::string where = "constraint '" + c.name + "'";
     if (!std::isfinite(su) || !std::isfinite(sv)) {
-      fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+      fail(spec_.initial.given() ? spec_.initial.where : c.where,
            "a·u(0) or a·v(0) of " + where +
                " overflows the double range (coefficients times initial values)");
     }
@@ -73,7 +73,7 @@ void ModelBuilder::check_initial_consistency() const {
       const double size = std::max({su, std::abs(g), c.value.magnitude(0, 0.0), 1e-300});
       if (!(std::abs(au - g) <=
             std::max(kConsistencyTolerance * size, kStateRoundoff * a_sum * u_scale))) {
-        fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+        fail(spec_.initial.given() ? spec_.initial.where : c.where,
              "initial displacements violate " + where + ": a·u(0) = " + fmt(au) +
                  " but the constraint requires " + fmt(g) + " (residual " + fmt(au - g) + ")");
       }
@@ -83,7 +83,7 @@ void ModelBuilder::check_initial_consistency() const {
     if (!(std::abs(av - gv) <=
           std::max(kConsistencyTolerance * std::max({sv, std::abs(gv), gv_size, 1e-300}),
                    kStateRoundoff * a_sum * v_scale))) {
-      fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+      fail(spec_.initial.given() ? spec_.initial.where : c.where,
            "initial velocities violate " + where + ": a·v(0) = " + fmt(av) +
                " but the constraint requires " + fmt(gv) + " (residual " + fmt(av - gv) +
                "); set [initial] velocity to match");
@@ -145,7 +145,7 @@ void ModelBuilder::check_nonlinear_consistency() const {
     const bool bad_u = !(std::abs(phi[i]) <= kConsistencyTolerance * u_scale);
     const bool bad_v = !(std::abs(psi[i]) <= kConsistencyTolerance * v_scale * u_scale);
     if (!bad_u && !bad_v) continue;
-    fail(spec_.initial.where.line ? spec_.initial.where : c.where,
+    fail(spec_.initial.given() ? spec_.initial.where : c.where,
          std::string("initial ") + (bad_u ? "displacements" : "velocities") +
              " violate constraint '" + c.name + "'" +
              (c.nonlinear_kind.empty() ? "" : " (" + c.nonlinear_kind + ")") + ": residual " +

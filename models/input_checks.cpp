@@ -145,7 +145,7 @@ void ModelBuilder::check_finite() const {
       {&model_.A, "constraint matrix A"}};
   // A nonlinear model's matrices are its linearization at (u0, v0): too large an initial state
   // is the likelier cause there.
-  const bool at_start = model_.is_nonlinear() && spec_.initial.where.line > 0;
+  const bool at_start = model_.is_nonlinear() && spec_.initial.given();
   for (const auto& [mat, name] : matrices) {
     if (!all_finite(*mat)) {
       fail(at_start ? spec_.initial.where : spec_.model.where,
@@ -174,12 +174,12 @@ void ModelBuilder::check_finite() const {
     }
   }
   if (!model_.u0.allFinite() || !model_.v0.allFinite()) {
-    fail(spec_.initial.where.line ? spec_.initial.where : spec_.model.where,
+    fail(spec_.initial.given() ? spec_.initial.where : spec_.model.where,
          "the initial state is not finite (it overflows the double range)");
   }
   // Finite values whose forces are not (K u(0) with u(0) = 1e308): the run would fail at t = 0
   // with "the solution became non-finite", a message about the integration, not the input.
-  if (!model_.is_nonlinear() && spec_.initial.where.line > 0) {
+  if (!model_.is_nonlinear() && spec_.initial.given()) {
     const Eigen::VectorXd ku = *model_.K * model_.u0;
     const Eigen::VectorXd cv = model_.has_damping() ? Eigen::VectorXd(model_.C * model_.v0)
                                                     : Eigen::VectorXd::Zero(model_.dofs());

@@ -75,10 +75,20 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   if (const auto* n = t.get("baumgarte")) {
     const auto& b = table(*n, "solve.baumgarte");
     check_keys(b, "solve.baumgarte", {"alpha", "beta"});
-    if (const auto* a = b.get("alpha"))
+    // The constraint forces carry 2α ψ and β² φ: gains whose terms leave the double range gave
+    // NaN at t = 0 and a message about loads (β = 1e160).
+    if (const auto* a = b.get("alpha")) {
       solve.baumgarte_alpha = positive(*a, "solve.baumgarte.alpha");
-    if (const auto* be = b.get("beta"))
+      if (*solve.baumgarte_alpha > 1e300) {
+        fail(*a, "solve.baumgarte.alpha", "2 alpha overflows the double range: give at most 1e300");
+      }
+    }
+    if (const auto* be = b.get("beta")) {
       solve.baumgarte_beta = positive(*be, "solve.baumgarte.beta");
+      if (*solve.baumgarte_beta > 1e150) {
+        fail(*be, "solve.baumgarte.beta", "beta^2 overflows the double range: give at most 1e150");
+      }
+    }
   }
   if (const auto* n = t.get("penalty")) {
     const auto& pt = table(*n, "solve.penalty");

@@ -129,7 +129,10 @@ struct InitialSpec {
   bool project = false;
   /// [initial] static: u(0) is the constrained static equilibrium at t = 0 (linear models).
   bool static_start = false;
-  SourcePoint where;
+  SourcePoint where;  ///< of the [initial] table; its path is empty when there is none
+  /// Whether the scene has an [initial] table (from a file or a Python dict, whose nodes have
+  /// no line: testing the line sent a dict scene's start errors to other keys).
+  [[nodiscard]] bool given() const { return !where.path.empty(); }
 };
 
 /// Relative tolerances accepted ([solve] rtol, --rtol, compare --tolerances): [kMinRtol, 1).

@@ -223,3 +223,15 @@ def test_an_all_zero_pattern_is_warned_about_by_its_key():
     result = condyn.run(scene)
     assert result.summary["warnings"] == [
         "load[1].pattern: the array has no nonzero entry: this load applies no force"]
+
+
+def test_a_dict_scenes_inconsistent_start_is_blamed_on_initial():
+    # Dict nodes have no line: the error went to model.members[1] instead of initial.
+    scene = {"model": {"type": "truss2d", "nodes": [[0.0, 0.0], [1.0, 0.0]],
+                       "masses": [0.0, 1.0], "supports": [1],
+                       "members": [{"nodes": [1, 2], "rigid": True}], "gravity": [0.0, -9.81]},
+             "initial": {"velocity": {"ux2": 0.3, "uy2": -1.0}},
+             "solve": {"t_end": 1.0, "output_step": 0.1}}
+    with pytest.raises(condyn.SceneError,
+                       match=r"^<dict>: initial: initial velocities violate constraint 'rigid_1_2'"):
+        condyn.run(scene)

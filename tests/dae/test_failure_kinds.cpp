@@ -153,6 +153,11 @@ TEST_CASE("each failure kind gets its own advice, worded from the facts") {
       failure_suggestion(Scheme::baumgarte, failure(FailureKind::convergence, 1.0, 1e-3, 2.0, 10));
   CHECK(contains(conv, "near the time reached"));
   CHECK(contains(conv, "Baumgarte gains"));
+  // GGL's points at its derived μ and λ tolerances, which tight rtol can bring to roundoff.
+  const std::string ggl_collapsed = failure_suggestion(
+      Scheme::ggl, failure(FailureKind::step_size_collapsed, 4.6e-5, 5e-22, 10.0, 100000));
+  CHECK(contains(ggl_collapsed, "singular configuration"));
+  CHECK(contains(ggl_collapsed, "set [solve] atol_mu and atol_multiplier larger"));
   // The advice follows the kind, not the message: a message with another kind's words in it.
   IntegrationError misleading(FailureKind::first_step, "took 10 steps without reaching NaN");
   CHECK(contains(failure_suggestion(Scheme::ggl, failure_of(misleading)), "before its first step"));

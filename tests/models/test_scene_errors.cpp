@@ -428,6 +428,13 @@ TEST_CASE("duplicate names and bad output settings") {
               "solve.penalty.wieght: unknown key");
   check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\nbaumgarte = { alpha = 0.0 }"),
               "solve.baumgarte.alpha: must be > 0");
+  // Gains whose terms overflow: NaN at t = 0 and a message about loads before (β = 1e160).
+  check_error(
+      replace(kBase, "output_step = 0.1", "output_step = 0.1\nbaumgarte = { beta = 1e160 }"),
+      "solve.baumgarte.beta: beta^2 overflows the double range: give at most 1e150");
+  check_error(
+      replace(kBase, "output_step = 0.1", "output_step = 0.1\nbaumgarte = { alpha = 1e305 }"),
+      "solve.baumgarte.alpha: 2 alpha overflows the double range: give at most 1e300");
   check_error(replace(kBase, "output_step = 0.1", "output_step = 0.1\nscheme = \"projektion\""),
               "unknown scheme 'projektion' (expected auto, elimination, index1, baumgarte, ggl, "
               "index2, index3, penalty, projection)");
