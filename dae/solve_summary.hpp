@@ -29,15 +29,6 @@ struct IntegratorOptions {
   /// Absolute tolerances of the other kinds of unknown ([solve] atol_velocity, atol_multiplier,
   /// atol_mu); unset means atol (integrator_options(model) sets them from the model's scales).
   std::optional<double> atol_velocity, atol_multiplier, atol_mu;
-  /// Whether atol_multiplier and atol_mu, which hold for rows of the largest coefficient, are
-  /// raised for rows more than kRowScaleSpan smaller (DaeProblem::multiplier_row_scales) by the
-  /// factor they lie beyond it: a multiplier is a force per unit coefficient, so a row written
-  /// 1e9 times smaller has a multiplier 1e9 times larger, and one tolerance for all asked
-  /// roundoff of the small rows' (GGL failed on rows of 2e9 and 1 at rtol 1e-10). Set for
-  /// tolerances derived from the model, not for those a scene gives.
-  bool multiplier_atol_per_row = false, mu_atol_per_row = false;
-  /// Rows of coefficients within this factor of the largest share its tolerance.
-  static constexpr double kRowScaleSpan = 1e3;
   /// The model's time scale T (dae/model_scales.hpp): higher-index components' Newton weights
   /// are scaled by (h/T)^(k−1), a pure number. 1 when the caller knows no model.
   double time_scale = 1.0;
@@ -53,6 +44,15 @@ struct IntegratorOptions {
   /// The problem's own condensed Newton solve (DaeProblem::newton_system), when it has one and
   /// KLU is used ([solve] newton = "condensed").
   bool condensed_newton = false;
+  /// Whether atol_multiplier and atol_mu, which hold for rows of the largest coefficient, are
+  /// raised for rows more than kRowScaleSpan smaller (DaeProblem::multiplier_row_scales) by the
+  /// factor they lie beyond it: a multiplier is a force per unit coefficient, so a row written
+  /// 1e9 times smaller has a multiplier 1e9 times larger, and one tolerance for all asked
+  /// roundoff of the small rows' (GGL failed on rows of 2e9 and 1 at rtol 1e-10). Set for
+  /// tolerances derived from the model, not for those a scene gives.
+  bool multiplier_atol_per_row = false, mu_atol_per_row = false;
+  /// Rows of coefficients within this factor of the largest share its tolerance.
+  static constexpr double kRowScaleSpan = 1e3;
   std::vector<double> output_times;    ///< ascending, first one is the initial time
   std::vector<double> breakpoints;     ///< load steps inside (t0, t_end): stop and restart there
   long max_steps_per_output = 100000;  ///< between two output times; more is a failure
