@@ -479,6 +479,10 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     auto& notes = result.summary.notes;
     notes = notes.empty() ? note : notes + "; " + note;
   }
+  if (const auto note = result.summary.error_test_warning(); note && !result.failure) {
+    auto& notes = result.summary.notes;
+    notes = notes.empty() ? *note : notes + "; " + *note;
+  }
   if (result.failure) result.failure->suggestion = failure_suggestion(scheme, *result.failure);
   return result;
 }

@@ -78,6 +78,14 @@ Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& k
   return out;
 }
 
+std::optional<std::string> SolveSummary::error_test_warning() const {
+  constexpr long kManySteps = 10'000;
+  if (steps < kManySteps || 2 * error_test_failures < steps) return std::nullopt;
+  return "warning: " + std::to_string(error_test_failures) + " of " + std::to_string(steps) +
+         " steps failed the error test: the result may be off by far more than rtol; compare it "
+         "with another scheme (index1 or projection)";
+}
+
 std::string SolveSummary::brief() const {
   std::ostringstream s;
   s.precision(3);

@@ -388,3 +388,26 @@ TEST_CASE("real failures: t_end = 1e300 stops at the step budget, a failure at t
     CHECK(thrown);
   }
 }
+
+TEST_CASE("a run whose steps mostly failed the error test is flagged, a normal one is not") {
+  // The conical pendulum's GGL run: 248,279 steps, 245,905 failures, 0.5 % off at exit 0.
+  SolveSummary s;
+  s.steps = 248279;
+  s.error_test_failures = 245905;
+  const auto warning = s.error_test_warning();
+  REQUIRE(warning.has_value());
+  CHECK(*warning ==
+        "warning: 245905 of 248279 steps failed the error test: the result may be off by far "
+        "more than rtol; compare it with another scheme (index1 or projection)");
+  // The El Centro frame at rtol 1e-8 (compare_builds): 42,614 steps, 3,721 failures.
+  s.steps = 42614;
+  s.error_test_failures = 3721;
+  CHECK_FALSE(s.error_test_warning().has_value());
+  // Half of a short run: too few steps to judge.
+  s.steps = 9999;
+  s.error_test_failures = 9999;
+  CHECK_FALSE(s.error_test_warning().has_value());
+  s.steps = 10000;
+  s.error_test_failures = 5000;
+  CHECK(s.error_test_warning().has_value());
+}
