@@ -63,7 +63,7 @@ Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& k
   // Rows within kRowScaleSpan of the largest keep the common figure; a smaller row gets it times
   // how far it lies beyond that span. (Scaled by the full ratio, the rows of Andrews' mechanism,
   // lengths within a decade, lost 3 to 11 times in accuracy at the same rtol under GGL:
-  // docs/benchmarks.md.)
+  // docs/schemes.md, "Absolute tolerances".)
   const double reach = row_scales.maxCoeff() / kRowScaleSpan;
   for (int i = 0; i < size; ++i) {
     const UnknownKind kind = kinds[static_cast<std::size_t>(i)];
