@@ -83,9 +83,9 @@ void ModelBuilder::add_pattern_load(const LoadSpec& l, const TimeFunction& value
   } else {
     // Most likely an export that lost its values: said, since the run would go on unloaded.
     // A pattern handed over in memory (Python) is named by its own key.
-    const bool in_memory = l.pattern.file.starts_with("<array ");
-    report_.warnings.push_back((in_memory ? l.where.path + ".pattern: the array"
-                                          : l.pattern.where.path + ": " + l.pattern.file) +
+    report_.warnings.push_back((l.pattern.in_memory()
+                                    ? l.where.path + ".pattern: the array"
+                                    : l.pattern.where.path + ": " + l.pattern.file) +
                                " has no nonzero entry: this load applies no force");
   }
 }

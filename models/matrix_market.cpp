@@ -74,18 +74,21 @@ long long to_integer(std::string_view s, int line, const char* what) {
   return v;
 }
 
+/// Whether s is an optional sign and decimal digits only (no point, no exponent).
+bool whole_number_text(std::string_view s) {
+  if (!s.empty() && (s.front() == '+' || s.front() == '-')) s.remove_prefix(1);
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 /// 2^53: every integer up to it is a double; above, only some are.
 constexpr double kMaxExactInteger = 9007199254740992.0;
 
 /// An integer written in digits that the double v, read from it, does not hold exactly: refused,
 /// since the 'integer' field promises exact values (9007199254740993 became ...992 silently).
 void inexact_integer(std::string_view text, double v, int line) {
+  if (!whole_number_text(text)) return;  // an exponent form ('1e20') says which double it means
   std::string_view digits = text;
-  if (!digits.empty() && (digits.front() == '+' || digits.front() == '-')) digits.remove_prefix(1);
-  if (digits.empty() ||
-      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    return;  // an exponent form ('1e20') says which double it means
-  }
+  if (digits.front() == '+' || digits.front() == '-') digits.remove_prefix(1);
   while (digits.size() > 1 && digits.front() == '0') digits.remove_prefix(1);
   std::array<char, 400> held{};
   const auto [end, ec] = std::to_chars(held.data(), held.data() + held.size(), std::abs(v),
@@ -194,10 +197,7 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   // line was left out: say so (the entry count '1.0' alone sent users to the wrong line).
   for (std::size_t k = 0; k < size.size(); ++k) {
     const std::string_view token = size[k];
-    const std::string_view digits =
-        !token.empty() && (token.front() == '+' || token.front() == '-') ? token.substr(1) : token;
-    if (digits.empty() ||
-        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    if (!whole_number_text(token)) {
       throw MatrixMarketError(
           line_no, "the size line (" + std::string(dense ? "rows cols" : "rows cols entries") +
                        ", the first line after the header and comments) holds '" +

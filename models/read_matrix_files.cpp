@@ -85,11 +85,10 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
       // reported under the key the array was given for (its name is "<array KEY>"), not the
       // `file` key the module put in its place.
       out.matrix = it->second;
-      const std::string prefix = "<array ";
-      const std::string array_key =
-          out.file.starts_with(prefix) && out.file.ends_with('>')
-              ? out.file.substr(prefix.size(), out.file.size() - prefix.size() - 1)
-              : key;
+      const std::size_t prefix = std::string_view("<array ").size();
+      const std::string array_key = out.in_memory() && out.file.ends_with('>')
+                                        ? out.file.substr(prefix, out.file.size() - prefix - 1)
+                                        : key;
       // A block's or a pattern's size first, as a file's size line is checked before its
       // entries (the model's matrices are checked against each other once all are read).
       if (!expect.rows_are_dofs && ((expect.rows > 0 && out.matrix.rows() != expect.rows) ||
@@ -330,7 +329,7 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
     const auto& node = *t.get(key)->as_table()->get("file");
     // A matrix handed over in memory (Python) is named by its own key, not the `file` key the
     // module put in its place.
-    const bool in_memory = out->file.starts_with("<array ");
+    const bool in_memory = out->in_memory();
     const std::string p =
         in_memory ? join(path, std::string(key)) : join(join(path, std::string(key)), "file");
     const std::string name = in_memory ? "the array" : out->file;

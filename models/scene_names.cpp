@@ -85,10 +85,12 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
                " (CSV columns must be distinct under every quantity)");
     }
   };
-  // "(what, line N)", or "(what)" for a node with no line (a scene from a Python dict).
+  // " (what, line N)", " (what)" for a node with no line (a scene from a Python dict), nothing
+  // when there is neither.
   const auto note = [](const std::string& what, const toml::node& node) {
     const auto line = node.source().begin.line;
     const std::string at = line > 0 ? "line " + std::to_string(line) : std::string();
+    if (what.empty() && at.empty()) return std::string();
     return " (" + what + (!what.empty() && !at.empty() ? ", " : "") + at + ")";
   };
   const auto* model = root.get_as<toml::table>("model");
@@ -134,9 +136,8 @@ void SceneReader::check_columns(const toml::table& root, const SceneSpec& spec) 
     const bool named = t.get("name") != nullptr;
     const toml::node* where = named ? t.get("name") : cons->get(i);
     // Which constraint, where, and whether its name is the default one.
-    std::string who =
+    const std::string who =
         index("constraint", i) + " '" + c + "'" + note(named ? "" : "its default name", *where);
-    if (who.ends_with(" ()")) who.resize(who.size() - 3);
     claim("lambda_" + c, "the multiplier column of " + who, *where,
           named ? join(index("constraint", i), "name") : index("constraint", i), who);
   }

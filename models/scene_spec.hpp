@@ -32,6 +32,8 @@ struct FileMatrix {
   Eigen::SparseMatrix<double> matrix;
   SourcePoint where;  ///< the key, e.g. "model.stiffness.file"
   [[nodiscard]] bool given() const { return !file.empty(); }
+  /// Handed over in memory by the Python module, which names it "<array KEY>" (KEY its own key).
+  [[nodiscard]] bool in_memory() const { return file.starts_with("<array "); }
   /// Frees the matrix (the file name and key stay, for messages).
   void release() { Eigen::SparseMatrix<double>().swap(matrix); }
 };

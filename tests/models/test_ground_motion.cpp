@@ -68,6 +68,13 @@ Built build(const Sandbox& box, const std::string& scene) {
   }
 }
 
+/// The build's warnings for `scene` (written to the sandbox; its tables are the test's own).
+std::vector<std::string> build_warnings(const Sandbox& box, const std::string& scene) {
+  BuildReport report;
+  (void)build_model(parse_scene_file(box.write("scene.toml", scene).string()), report);
+  return report.warnings;
+}
+
 }  // namespace
 
 TEST_CASE("ground motion: a truss gets one pattern load −M r a_g along its direction") {
@@ -164,11 +171,7 @@ TEST_CASE("a record that ends before t_end on a nonzero value is warned about, b
   // shaking the ground at its last value, without a word before 2026-11-27.
   Sandbox box;
   box.write("rec.csv", kRecord);  // ends at t = 1 on -0.5
-  const auto warnings = [&](const std::string& scene) {
-    BuildReport report;
-    (void)build_model(parse_scene_file(box.write("scene.toml", scene).string()), report);
-    return report.warnings;
-  };
+  const auto warnings = [&box](const std::string& scene) { return build_warnings(box, scene); };
   // Ground motion, t_end 2: held at 9.81 * -0.5.
   auto w = warnings(replace(kTruss, "t_end = 1.0", "t_end = 2.0"));
   REQUIRE(w.size() == 1);
@@ -196,11 +199,7 @@ TEST_CASE("a record that starts after t = 0 on a nonzero value is warned about, 
   // A table is constant before its first sample: a time-shifted accelerogram acted from t = 0
   // at its first value, without a word before 2026-11-28, even when it began after t_end.
   Sandbox box;
-  const auto warnings = [&](const std::string& scene) {
-    BuildReport report;
-    (void)build_model(parse_scene_file(box.write("scene.toml", scene).string()), report);
-    return report.warnings;
-  };
+  const auto warnings = [&box](const std::string& scene) { return build_warnings(box, scene); };
   box.write("late.csv", "t,a\n0.25,0.5\n0.5,1\n1,0\n");
   auto w = warnings(replace(kTruss, "rec.csv", "late.csv"));
   REQUIRE(w.size() == 1);

@@ -650,18 +650,15 @@ file = "A2.mtx"
             "'block2_' and the row number, line 10) gives the column 'lambda_block2_1', which "
             "is already the multiplier column of constraint[1] 'block2_1' (line 6)"));
   // An unnamed constraint's default name against a named block's row: both named as such.
-  CHECK(has(scene_error(box, condyn::test::replace(
-                                 condyn::test::replace(base, "file = \"A2.mtx\"",
-                                                       "file = \"A2.mtx\"\nname = \"c\""),
-                                 "[[constraint_block]]",
-                                 "[[constraint]]\nterms = { u3 = 1.0 }\n[[constraint_block]]")),
+  const std::string default_clash = scene_error(
+      box,
+      condyn::test::replace(
+          condyn::test::replace(base, "file = \"A2.mtx\"", "file = \"A2.mtx\"\nname = \"c\""),
+          "[[constraint_block]]", "[[constraint]]\nterms = { u3 = 1.0 }\n[[constraint_block]]"));
+  CHECK(has(default_clash,
             "constraint_block[2].name: row 1 of constraint_block[2], 'c1' (its name 'c' and the "
             "row number, line"));
-  CHECK(has(scene_error(box, condyn::test::replace(
-                                 condyn::test::replace(base, "file = \"A2.mtx\"",
-                                                       "file = \"A2.mtx\"\nname = \"c\""),
-                                 "[[constraint_block]]",
-                                 "[[constraint]]\nterms = { u3 = 1.0 }\n[[constraint_block]]")),
+  CHECK(has(default_clash,
             "already the multiplier column of constraint[1] 'c1' (its default name, line"));
   CHECK(has(scene_error(box, condyn::test::replace(base, "file = \"A2.mtx\"",
                                                    "file = \"A2.mtx\"\nscale = { type = \"step\", "
