@@ -56,6 +56,17 @@ struct CallbackData {
   /// h/T in its weight.
   Eigen::VectorXi order;
   std::vector<double> scale;  ///< (h/T)^order for each order, recomputed at each call
+  /// Floors under |y_i| in the weights (DaeProblem::error_scale_floors): off until a run of
+  /// kTrappedSteps steps in a row at order 1, each after an error-test failure (a trapped run),
+  /// then on for the rest of the run and refilled at each call.
+  struct FloorWatch {
+    long steps = -1, fails = 0;  ///< IDA's step and error-test failure counts at the last call
+    int run = 0;                 ///< steps in a row at order 1, each after a failure
+    bool engaged = false;
+    bool applied = false;  ///< engaged, and the problem has floors
+    double since = 0.0;    ///< the time they were engaged
+  } watch;
+  Eigen::VectorXd floor;
   /// The dense solver's staging matrix with the problem's pattern (empty for KLU, whose matrix
   /// takes the values directly: a copy of the Newton matrix less, issue 12).
   Eigen::SparseMatrix<double> jac;
@@ -101,6 +112,34 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
 /// BDF start at order 1 ramps up from there within a few steps).
 constexpr double kFirstStepFraction = 1e-8;
 
+/// Steps in a row at order 1, each after an error-test failure, that engage the weights' floors.
+/// The trapped runs seen (a conical pendulum in steady rotation under GGL and index3) went on
+/// like that for 10⁵ steps; the scenes of models/ and validation/ never reach 25 under any
+/// multiplier scheme at rtol 1e-4 to 1e-10 (docs/schemes.md, "Error weights on position rows").
+constexpr int kTrappedSteps = 25;
+
+/// Called by the weight function after each step (IDA evaluates the weights once per step):
+/// engages the floors when the last kTrappedSteps steps were each at order 1 after a failure.
+void watch_for_trap(CallbackData& data, double t) {
+  long steps = 0, fails = 0;
+  int order = 0;
+  IDAGetNumSteps(data.mem, &steps);
+  IDAGetNumErrTestFails(data.mem, &fails);
+  IDAGetLastOrder(data.mem, &order);
+  auto& w = data.watch;
+  if (steps == w.steps + 1) {
+    w.run = (fails > w.fails && order == 1) ? w.run + 1 : 0;
+  } else if (steps < w.steps) {
+    w.run = 0;  // IDAReInit at a restart reset the counters
+  }
+  w.steps = steps;
+  w.fails = fails;
+  if (w.run >= kTrappedSteps) {
+    w.engaged = true;
+    w.since = t;
+  }
+}
+
 /// Error weights (h/T)^(k_i − 1) / (rtol |y_i| + atol_i), k_i the component's index (DaeProblem),
 /// T the model's time scale (IntegratorOptions::time_scale): h/T is a pure number, so the
 /// weights do not change with the units (with the default atol of λ, dae/model_scales.hpp, an
@@ -121,9 +160,24 @@ int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   const double* atol = data->atol.data();
   const int* order = data->order.data();
   const Eigen::Index n = data->order.size();
+  bool floored = false;
+  if (data->mem != nullptr) {
+    double t = 0.0;
+    IDAGetCurrentTime(data->mem, &t);
+    if (!data->watch.engaged) watch_for_trap(*data, t);
+    if (data->watch.engaged) {
+      const bool ok = sundials::guarded(*data->report, [&] {
+                        floored = data->problem->error_scale_floors(t, view(y), data->floor);
+                        data->watch.applied = data->watch.applied || floored;
+                        return 0;
+                      }) == 0;
+      if (!ok) return -1;
+    }
+  }
+  const double* floor = data->floor.data();
   for (Eigen::Index i = 0; i < n; ++i) {
-    w[i] =
-        data->scale[static_cast<std::size_t>(order[i])] / (data->rtol * std::abs(yv[i]) + atol[i]);
+    const double magnitude = floored ? std::max(std::abs(yv[i]), floor[i]) : std::abs(yv[i]);
+    w[i] = data->scale[static_cast<std::size_t>(order[i])] / (data->rtol * magnitude + atol[i]);
   }
   return 0;
 }
@@ -367,6 +421,15 @@ class Ida final : public sundials::SundialsStepper {
           "IDAGetNumNonlinSolvConvFails");
     check(IDAGetNumErrTestFails(mem_.get(), &c.error_tests), "IDAGetNumErrTestFails");
     return c;
+  }
+  [[nodiscard]] std::string notes(const sundials::Counters& /*totals*/) const override {
+    if (!data_.watch.applied) return {};
+    std::ostringstream s;
+    s.precision(6);
+    s << "error weights of the DOFs on position rows floored by their rows from t = "
+      << data_.watch.since << ", after " << kTrappedSteps
+      << " steps in a row at order 1 each failed the error test (docs/schemes.md)";
+    return s.str();
   }
   static void check_raw(int flag, const char* call) {
     if (flag != 0)

@@ -180,6 +180,30 @@ Eigen::VectorXd MultiplierDae::multiplier_row_scales(double t, const Eigen::Vect
   return scales;
 }
 
+bool MultiplierDae::error_scale_floors(double t, const ConstRef& y, Eigen::VectorXd& floor) const {
+  if (m_ == 0 || (scheme_ != Scheme::ggl && scheme_ != Scheme::index3)) return false;
+  const Eigen::VectorXd uu = y.segment(0, n_);
+  const Eigen::SparseMatrix<double>& A = system_->constraint_jacobian(t, uu);
+  const std::vector<bool>& position = system_->position_rows();
+  row_reach_.setZero(m_);
+  row_norm2_.setZero(m_);
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      row_reach_[it.row()] += std::abs(it.value() * uu[k]);
+      row_norm2_[it.row()] += it.value() * it.value();
+    }
+  }
+  floor.setZero(size());
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      const auto r = it.row();
+      if (!position[static_cast<std::size_t>(r)] || !(row_norm2_[r] > 0.0)) continue;
+      floor[k] = std::max(floor[k], std::abs(it.value()) * row_reach_[r] / row_norm2_[r]);
+    }
+  }
+  return true;
+}
+
 Eigen::VectorXd MultiplierDae::variable_index() const {
   Eigen::VectorXd index = Eigen::VectorXd::Ones(size());
   switch (scheme_) {
