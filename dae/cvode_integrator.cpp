@@ -40,7 +40,21 @@ struct CallbackData {
   /// at the first step after CVodeReInit, after the segment's baseline was read, so a run with a
   /// load step lost the projections before it.
   long projections = 0;
+  double rtol = 0.0;
+  Eigen::VectorXd atol;     ///< per component, as CVODE has it
+  Eigen::VectorXd settled;  ///< kProjectionSettled (rtol |y_i| + atol_i), per projection
 };
+
+/// The fraction of the error test's tolerance at which a projection that no longer shrinks its
+/// corrections counts as converged (OdeProblem::project): CVODE's own default for the
+/// projection's stopping test (epsProj, 0.1).
+constexpr double kProjectionSettled = 0.1;
+
+/// kProjectionSettled (rtol |y_i| + atol_i) at y, into data.settled.
+const Eigen::VectorXd& settled_at(CallbackData& data, const Eigen::Ref<const Eigen::VectorXd>& y) {
+  data.settled = kProjectionSettled * (data.rtol * y.array().abs() + data.atol.array()).matrix();
+  return data.settled;
+}
 
 int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user) {
   auto* data = static_cast<CallbackData*>(user);
@@ -57,7 +71,9 @@ int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N
   ++data->projections;
   return sundials::guarded(*data->report, [&] {
     auto c = view(corr);
-    if (!data->problem->project(t, view(y), c)) return 1;  // recoverable: smaller step
+    if (!data->problem->project(t, view(y), c, settled_at(*data, view(y)))) {
+      return 1;  // recoverable: smaller step
+    }
     if (err != nullptr) {
       auto e = view(err);
       data->problem->project_error(e);
@@ -145,7 +161,9 @@ class Cvode final : public sundials::SundialsStepper {
     check(CVodeInit(mem_.get(), rhs_trampoline, t0, y_.get()), "CVodeInit");
     check(CVodeSetUserData(mem_.get(), &data_), "CVodeSetUserData");
     check(CVodeSetMaxOrd(mem_.get(), options.max_order), "CVodeSetMaxOrd");
-    view(work_.get()) = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
+    data_.rtol = options.rtol;
+    data_.atol = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
+    view(work_.get()) = data_.atol;
     check(CVodeSVtolerances(mem_.get(), options.rtol, work_.get()),
           "CVodeSVtolerances");  // copies the vector
     check(CVodeSetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
@@ -170,7 +188,7 @@ class Cvode final : public sundials::SundialsStepper {
     if (!data_.problem->has_projection()) return;
     correction_.resize(n_);
     try {
-      if (!data_.problem->project(t, y, correction_)) return;
+      if (!data_.problem->project(t, y, correction_, settled_at(data_, y))) return;
     } catch (const RecoverableError&) {
       return;
     }

@@ -26,9 +26,11 @@ class OdeProblem {
   [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
   /// True when the problem has an invariant to project onto after each step.
   [[nodiscard]] virtual bool has_projection() const = 0;
-  /// corr such that y + corr lies on the manifold (CVodeSetProjFn).
+  /// corr such that y + corr lies on the manifold (CVodeSetProjFn). `settled`: per component of
+  /// y, a correction small enough to stop an iteration that no longer shrinks it (one at the
+  /// roundoff of large coordinates), a fraction of the error test's rtol |y_i| + atol_i.
   /// Returns false when the projection did not converge (CVODE then retries with a smaller step).
-  virtual bool project(double t, ConstRef y, Ref corr) const = 0;
+  virtual bool project(double t, ConstRef y, Ref corr, const Eigen::VectorXd& settled) const = 0;
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
   /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian.

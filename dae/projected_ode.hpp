@@ -47,7 +47,7 @@ class ProjectedOde final : public OdeProblem {
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_);
   }
-  bool project(double t, ConstRef y, Ref corr) const override;
+  bool project(double t, ConstRef y, Ref corr, const Eigen::VectorXd& settled) const override;
   void project_error(Ref err) const override;
   /// The sparse saddle-point solve for a linear model (dae/kkt_newton.hpp); nothing otherwise.
   [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;

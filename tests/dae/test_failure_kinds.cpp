@@ -257,7 +257,8 @@ class OdeBreaksAtT : public OdeProblem {
     ydot[0] = t <= 0.0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
   }
   [[nodiscard]] bool has_projection() const override { return false; }
-  bool project(double /*t*/, ConstRef /*y*/, Ref corr) const override {
+  bool project(double /*t*/, ConstRef /*y*/, Ref corr,
+               const Eigen::VectorXd& /*settled*/) const override {
     corr.setZero();
     return true;
   }

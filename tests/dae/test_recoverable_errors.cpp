@@ -28,7 +28,8 @@ class OdeRefusesSomeTrials : public OdeProblem {
     ydot[0] = -y[0];
   }
   [[nodiscard]] bool has_projection() const override { return false; }
-  bool project(double /*t*/, ConstRef /*y*/, Ref corr) const override {
+  bool project(double /*t*/, ConstRef /*y*/, Ref corr,
+               const Eigen::VectorXd& /*settled*/) const override {
     corr.setZero();
     return true;
   }
