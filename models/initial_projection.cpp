@@ -22,6 +22,9 @@ constexpr double kConsistencyTolerance = 1e-10;
 // more, so that the least-squares residual lands on the rows that do (and names them).
 constexpr double kHardRowWeight = 1e6;
 constexpr int kMaxReportedDofs = 20;
+// How far off a stalled start the projection starts again on each side, relative to 1 + max|u|
+// (Projector::sides).
+constexpr double kSideStep = 1e-3;
 // A least-change step whose block (rows x free DOFs) has more entries than this is solved
 // sparse, by the normal equations of the minimum-norm problem (below); smaller ones keep the
 // dense complete orthogonal decomposition, which also treats rank-deficient rows (32 MB, ~10 s).
@@ -123,6 +126,49 @@ class Projector {
       s_.velocity_residual(t_, u, v, psi);
       v += least_change_step(A, rows, free_v_, psi, row_weight);
     }
+  }
+
+  /// Starts where Gauss-Newton stalls because the violated `rows` do not change to first order
+  /// along the free DOFs in their patterns: from u displaced by ±kSideStep (1 + max|u|) along
+  /// those DOFs, the projections that meet every row, as "uy2 = 0.8" (the DOFs that moved), when
+  /// they land on two different states; empty otherwise.
+  [[nodiscard]] std::vector<std::string> sides(const Eigen::VectorXd& u,
+                                               const std::vector<std::pair<int, double>>& rows,
+                                               const std::vector<std::string>& dof_names) const {
+    std::vector<bool> free(static_cast<std::size_t>(n_), false), in_rows = free;
+    for (int d : free_u_) free[static_cast<std::size_t>(d)] = true;
+    for (const auto& [row, r] : rows) {
+      for (int d : row_dofs(row))
+        in_rows[static_cast<std::size_t>(d)] = free[static_cast<std::size_t>(d)];
+    }
+    const Eigen::VectorXd plain = Eigen::VectorXd::Ones(m_);
+    const double step = kSideStep * (1.0 + u.lpNorm<Eigen::Infinity>());
+    std::vector<Eigen::VectorXd> landed;
+    for (const double sign : {1.0, -1.0}) {
+      Eigen::VectorXd x = u;
+      for (int d = 0; d < n_; ++d) {
+        if (in_rows[static_cast<std::size_t>(d)]) x[d] += sign * step;
+      }
+      project_positions(x, plain);
+      if (x.allFinite() && violated(x, nullptr).empty()) landed.push_back(x);
+    }
+    // Both sides met the rows, at two different states (more than the two starts' distance
+    // apart: a regular start's two projections land on the same state).
+    if (landed.size() != 2 || (landed[0] - landed[1]).lpNorm<Eigen::Infinity>() <= 4.0 * step) {
+      return {};
+    }
+    std::vector<std::string> out;
+    for (const Eigen::VectorXd& x : landed) {
+      std::ostringstream s;
+      s.precision(10);
+      int listed = 0;
+      for (int d = 0; d < n_ && listed < kMaxReportedDofs; ++d) {
+        if (std::abs(x[d] - u[d]) <= 1e-9 * (1.0 + std::abs(u[d]))) continue;
+        s << (listed++ ? ", " : "") << dof_names[static_cast<std::size_t>(d)] << " = " << x[d];
+      }
+      out.push_back(s.str());
+    }
+    return out;
   }
 
   /// Rows left violated: position rows at u, or every row at (u, v).
@@ -256,7 +302,8 @@ std::vector<int> given_in(MechanicalSystem& s, double t, const Eigen::VectorXd& 
 std::string project_initial_state(MechanicalSystem& system, double t, Eigen::VectorXd& u,
                                   Eigen::VectorXd& v, const std::vector<bool>& given_u,
                                   const std::vector<bool>& given_v,
-                                  const std::vector<std::string>& dof_names) {
+                                  const std::vector<std::string>& dof_names,
+                                  const std::vector<std::string>& constraint_names) {
   const int n = system.dofs(), m = system.constraints();
   const Eigen::VectorXd u_in = u, v_in = v;
   const Projector p(system, t, u_in, given_u, given_v);
@@ -283,6 +330,28 @@ std::string project_initial_state(MechanicalSystem& system, double t, Eigen::Vec
 
   const int iterations = p.project_positions(u, plain);
   if (const auto bad = p.violated(u, nullptr); !bad.empty() || !u.allFinite()) {
+    // A start where the rows do not change to first order along some free DOFs (a rod given its
+    // x and left its y at 0: the closest states lie at ±y): Gauss-Newton cannot leave it, and
+    // which side is meant is not the projection's to choose. Found by starting again a little
+    // off, on each side, along the free DOFs of the violated rows.
+    const auto start_rows = p.violated(u_in, nullptr);
+    const auto sides = p.sides(u_in, start_rows, dof_names);
+    if (!sides.empty()) {
+      std::ostringstream s;
+      s.precision(10);
+      s << "cannot project the initial state: at the given state constraint";
+      for (std::size_t k = 0; k < start_rows.size() && k < 3; ++k) {
+        s << (k ? ", '" : (start_rows.size() == 1 ? " '" : "s '"))
+          << constraint_names[static_cast<std::size_t>(start_rows[k].first)] << "'";
+      }
+      if (start_rows.size() > 3) s << " and " << start_rows.size() - 3 << " more";
+      s << (start_rows.size() == 1 ? " does" : " do")
+        << " not change to first order along the DOFs left free, so the least change is not "
+           "determined: the constraints are met on either side, e.g. with ";
+      for (std::size_t k = 0; k < sides.size(); ++k) s << (k ? " or with " : "") << sides[k];
+      s << "; give the one meant in [initial] displacement (project = true keeps it)";
+      throw std::runtime_error(s.str());
+    }
     refuse(false, bad);
     std::ostringstream s;
     s << "cannot project the initial state: Gauss-Newton did not converge in " << kMaxIterations

@@ -43,10 +43,12 @@ class InconsistentGivenValues : public std::runtime_error {
 /// fixed). Returns the report `run` and `info` print: one summary line, then one line per DOF that
 /// moved ("  ux3: displacement 0 -> 0.25"), at most 20 lines, the rest counted.
 /// Throws InconsistentGivenValues (above), or std::runtime_error when the constraints cannot be
-/// met at all near u0 (the iteration does not converge).
+/// met at all near u0 (the iteration does not converge) or a violated row does not change to
+/// first order along the free DOFs at u0 (naming it: `constraint_names`, one per row).
 std::string project_initial_state(MechanicalSystem& system, double t, Eigen::VectorXd& u,
                                   Eigen::VectorXd& v, const std::vector<bool>& given_u,
                                   const std::vector<bool>& given_v,
-                                  const std::vector<std::string>& dof_names);
+                                  const std::vector<std::string>& dof_names,
+                                  const std::vector<std::string>& constraint_names);
 
 }  // namespace condyn

@@ -191,9 +191,12 @@ void ModelBuilder::project_initial() {
     given_u[static_cast<std::size_t>(model_.dof_at(name))] = true;
   for (const auto& [name, value] : spec_.initial.velocity)
     given_v[static_cast<std::size_t>(model_.dof_at(name))] = true;
+  std::vector<std::string> names;
+  names.reserve(model_.constraints.size());
+  for (const auto& c : model_.constraints) names.push_back(c.name);
   try {
-    report_.initial_projection =
-        project_initial_state(*s, 0.0, model_.u0, model_.v0, given_u, given_v, model_.dof_names);
+    report_.initial_projection = project_initial_state(*s, 0.0, model_.u0, model_.v0, given_u,
+                                                       given_v, model_.dof_names, names);
   } catch (const InconsistentGivenValues& e) {
     refuse_given_values(e);
   } catch (const std::runtime_error& e) {

@@ -188,6 +188,27 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
     return text;
   };
   const std::string names = quoted(-1);
+  // A nonlinear row's coefficients are those of the initial configuration: dependent there, the
+  // set may be independent at every other one (a pendulum driven along x from the horizontal:
+  // the rod's row and the drive are parallel at t = 0 only), and its right-hand sides say
+  // nothing about a conflict. The schemes need independent rows where they start.
+  std::string nonlinear_rows;
+  for (const auto& [j, w] : combo) {
+    const auto& c = constraints[static_cast<std::size_t>(j)];
+    if (!c.nonlinear_kind.empty())
+      nonlinear_rows += (nonlinear_rows.empty() ? "'" : ", '") + c.name + "'";
+  }
+  if (!nonlinear_rows.empty()) {
+    fail(constraints[static_cast<std::size_t>(dep)].where,
+         "the constraints " + names + " are linearly dependent at the initial configuration (" +
+             rank_text + "): " + nonlinear_rows +
+             (nonlinear_rows.find(',') == std::string::npos ? " is" : " are") +
+             " nonlinear, so this is a singular configuration of the set, which may be "
+             "independent everywhere else; the multipliers are not determined there and no "
+             "scheme can start from it: start away from it (other [initial] displacements, or "
+             "a prescribed motion that starts elsewhere), or remove one of the constraints if "
+             "they are dependent everywhere");
+  }
   // Compatible when the same combination of the right-hand sides vanishes identically over
   // [0, t_end]: decided from the terms (zero_sum.hpp), never from samples, which two
   // different functions can share (0 and 1 - cos(64 pi t) agree at every multiple of 1/32).

@@ -270,6 +270,35 @@ TEST_CASE("redundant and conflicting constraints are named") {
               "has no nonzero coefficient");
 }
 
+TEST_CASE("a nonlinear set dependent at the start is a singular configuration, not a conflict") {
+  // A pendulum driven along x from the horizontal: the rod's row and the drive are parallel at
+  // t = 0 only (x = 1 − t²/2, y = −t √(1 − t²/4) is a motion), and the set was refused as
+  // "conflicting: no motion satisfies it" (user trial of 2026-11-28).
+  const std::string msg = error_of(R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+[[constraint]]
+name = "drive"
+terms = { ux2 = 1.0 }
+value = { type = "polynomial", coefficients = [0.0, 0.0, -0.5] }
+[initial]
+velocity = { uy2 = -1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.1
+)");
+  CAPTURE(msg);
+  CHECK(msg.find("are linearly dependent at the initial configuration") != std::string::npos);
+  CHECK(msg.find("'rigid_1_2' is nonlinear, so this is a singular configuration of the set") !=
+        std::string::npos);
+  CHECK(msg.find("'drive'") != std::string::npos);
+  CHECK(msg.find("conflicting") == std::string::npos);
+  CHECK(msg.find("no motion satisfies it") == std::string::npos);
+}
+
 TEST_CASE("inconsistent initial conditions name the constraint and the residual") {
   check_error(kBase + "[initial]\ndisplacement = { ux1 = 0.25 }\n",
               "initial displacements violate constraint 'pin_x': a·u(0) = 0.25 but the constraint "
