@@ -166,6 +166,27 @@ output_step = 0.5
   }
 }
 
+TEST_CASE("compare: when the tight GGL run fails another scheme gives the reference") {
+  // The pendulum of models/scenes at --tolerances 1e-11: GGL at rtol 1e-13 takes 10⁵ steps
+  // before t = 4.6e-5 (its derived μ and λ tolerances ask for roundoff), and compare ended with
+  // "no reference solution" though projection and index1 run it (user trial of 2026-11-28).
+  // Now the next scheme that applies gives it, and the description says what failed.
+  const SceneSpec spec =
+      parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/pendulum.toml");
+  CompareOptions o;
+  o.tolerances = {1e-11};
+  o.repeats = 1;
+  o.schemes = {Scheme::index1};
+  const CompareResult r = run_compare(spec, o);
+  CHECK(r.reference_kind == "projection");
+  CHECK(r.reference_description.find("projection at rtol 1.0e-13") != std::string::npos);
+  CHECK(r.reference_description.find("failed: ggl: took 100000 steps") != std::string::npos);
+  REQUIRE(r.runs.size() == 1);
+  CHECK_MESSAGE(r.runs[0].ok, r.runs[0].message);
+  // index1 at rtol 1e-11 against projection at 1e-13 over 10 s (measured 4.5e-8).
+  CHECK(r.runs[0].error_u < 1e-6);
+}
+
 TEST_CASE("compare: the output files follow validation/compare-output.md") {
   const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
   CompareOptions o = small_options();
