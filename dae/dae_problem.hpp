@@ -59,10 +59,11 @@ class DaeProblem {
   [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
   /// Per unknown, a floor under |y_i| in its error weight 1/(rtol max(|y_i|, floor_i) + atol_i),
   /// written into `floor` (resized to size()); false (and `floor` untouched): none. Read by the
-  /// weights of higher-index problems (variable_index) at every step once a run is trapped at order
-  /// 1 (dae/ida_integrator.cpp). Schemes that project displacements onto position rows (GGL,
-  /// index3) hand a DOF a share of the other DOFs' local errors in each row; a DOF near 0 beside
-  /// large ones cannot be held to its own rtol·|u_i| + atol (MultiplierDae::error_scale_floors).
+  /// weights of higher-index problems (variable_index) at every step once a run is trapped,
+  /// failing the error test at every step (dae/ida_integrator.cpp). Schemes that project onto
+  /// constraint rows (GGL, index3) hand a DOF a share of the other DOFs' local errors in each
+  /// row; a DOF near 0 beside large ones cannot be held to its own rtol·|y_i| + atol
+  /// (MultiplierDae::error_scale_floors).
   virtual bool error_scale_floors(double /*t*/, const ConstRef& /*y*/,
                                   Eigen::VectorXd& /*floor*/) const {
     return false;

@@ -57,11 +57,11 @@ struct CallbackData {
   Eigen::VectorXi order;
   std::vector<double> scale;  ///< (h/T)^order for each order, recomputed at each call
   /// Floors under |y_i| in the weights (DaeProblem::error_scale_floors): off until a run of
-  /// kTrappedSteps steps in a row at order 1, each after an error-test failure (a trapped run),
+  /// kTrappedSteps steps in a row, each after an error-test failure (a trapped run),
   /// then on for the rest of the run and refilled at each call.
   struct FloorWatch {
     long steps = -1, fails = 0;  ///< IDA's step and error-test failure counts at the last call
-    int run = 0;                 ///< steps in a row at order 1, each after a failure
+    int run = 0;                 ///< steps in a row, each after a failure
     bool engaged = false;
     bool applied = false;  ///< engaged, and the problem has floors
     double since = 0.0;    ///< the time they were engaged
@@ -112,23 +112,22 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
 /// BDF start at order 1 ramps up from there within a few steps).
 constexpr double kFirstStepFraction = 1e-8;
 
-/// Steps in a row at order 1, each after an error-test failure, that engage the weights' floors.
-/// The trapped runs seen (a conical pendulum in steady rotation under GGL and index3) went on
-/// like that for 10⁵ steps; the scenes of models/ and validation/ never reach 25 under any
-/// multiplier scheme at rtol 1e-4 to 1e-10 (docs/schemes.md, "Error weights on position rows").
+/// Steps in a row, each after an error-test failure, that engage the weights' floors. The
+/// trapped runs seen (a conical pendulum in steady rotation under GGL and index3) went on like
+/// that for 10⁵ steps, at order 1, or at order 3 with atol 1e-13; the scenes of models/ and
+/// validation/ never reach 25 under GGL or index3 at rtol 1e-4 to 1e-10 (atol rtol/100)
+/// (docs/schemes.md, "Error weights on rows").
 constexpr int kTrappedSteps = 25;
 
 /// Called by the weight function after each step (IDA evaluates the weights once per step):
-/// engages the floors when the last kTrappedSteps steps were each at order 1 after a failure.
+/// engages the floors when the last kTrappedSteps steps were each after a failure.
 void watch_for_trap(CallbackData& data, double t) {
   long steps = 0, fails = 0;
-  int order = 0;
   IDAGetNumSteps(data.mem, &steps);
   IDAGetNumErrTestFails(data.mem, &fails);
-  IDAGetLastOrder(data.mem, &order);
   auto& w = data.watch;
   if (steps == w.steps + 1) {
-    w.run = (fails > w.fails && order == 1) ? w.run + 1 : 0;
+    w.run = fails > w.fails ? w.run + 1 : 0;
   } else if (steps < w.steps) {
     w.run = 0;  // IDAReInit at a restart reset the counters
   }
@@ -426,9 +425,10 @@ class Ida final : public sundials::SundialsStepper {
     if (!data_.watch.applied) return {};
     std::ostringstream s;
     s.precision(6);
-    s << "error weights of the DOFs on position rows floored by their rows from t = "
+    s << "error weights of the DOFs on constraint rows floored by their rows from t = "
       << data_.watch.since << ", after " << kTrappedSteps
-      << " steps in a row at order 1 each failed the error test (docs/schemes.md)";
+      << " steps in a row each failed the error test (docs/schemes.md; on a long run, compare "
+         "with index2 or projection)";
     return s.str();
   }
   static void check_raw(int flag, const char* call) {

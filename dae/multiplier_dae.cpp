@@ -185,22 +185,32 @@ bool MultiplierDae::error_scale_floors(double t, const ConstRef& y, Eigen::Vecto
   const Eigen::VectorXd uu = y.segment(0, n_);
   const Eigen::SparseMatrix<double>& A = system_->constraint_jacobian(t, uu);
   const std::vector<bool>& position = system_->position_rows();
-  row_reach_.setZero(m_);
-  row_norm2_.setZero(m_);
-  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      row_reach_[it.row()] += std::abs(it.value() * uu[k]);
-      row_norm2_[it.row()] += it.value() * it.value();
-    }
-  }
   floor.setZero(size());
-  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      const auto r = it.row();
-      if (!position[static_cast<std::size_t>(r)] || !(row_norm2_[r] > 0.0)) continue;
-      floor[k] = std::max(floor[k], std::abs(it.value()) * row_reach_[r] / row_norm2_[r]);
+  // The rows' shares of the values x (u or v) into floor.segment(at, n): over `rows` (position
+  // rows for u; every row for GGL's v, which ψ = 0 holds through λ).
+  const auto shares = [&](const Eigen::VectorXd& x, int at, bool all_rows) {
+    row_reach_.setZero(m_);
+    row_norm2_.setZero(m_);
+    for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+        row_reach_[it.row()] += std::abs(it.value() * x[k]);
+        row_norm2_[it.row()] += it.value() * it.value();
+      }
     }
-  }
+    for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+        const auto r = it.row();
+        if (!(all_rows || position[static_cast<std::size_t>(r)]) || !(row_norm2_[r] > 0.0)) {
+          continue;
+        }
+        double& f = floor[at + k];
+        f = std::max(f, std::abs(it.value()) * row_reach_[r] / row_norm2_[r]);
+      }
+    }
+  };
+  shares(uu, 0, false);
+  // index3's velocities on rows are index 2, out of the error test: no floor.
+  if (scheme_ == Scheme::ggl) shares(y.segment(n_, n_), n_, true);
   return true;
 }
 

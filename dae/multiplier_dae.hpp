@@ -54,11 +54,12 @@ class MultiplierDae final : public DaeProblem {
   /// GGL and index3, which hold u on the position rows: the projection onto a row a (a
   /// correction along aᵀ that cancels a·δ, δ the step's local errors, each up to rtol |u_j|)
   /// moves DOF i by up to |a_i| Σ_j |a_j| |u_j| / |a|²: that is u_i's floor (the largest over
-  /// its rows). A DOF at 0 beside moving ones (a conical pendulum's height in steady rotation)
-  /// cannot be held to its own atol: GGL's μ, which grows with h, made every change of step
-  /// size fail the error test, and 2.5·10⁵ steps at order 1 ended 0.5 % off. The integrator
-  /// applies the floors only once a run is caught that way (dae/ida_integrator.cpp): applied
-  /// always, they cost Andrews' mechanism 7 times its accuracy at rtol 1e-8 (docs/schemes.md).
+  /// its rows); GGL's v the same over every row (ψ = 0 through λ). A DOF at 0 beside moving ones
+  /// (a conical pendulum's height in steady rotation) cannot be held to its own atol: GGL's μ,
+  /// which grows with h, made every change of step size fail the error test, and 2.5·10⁵ steps
+  /// at order 1 ended 0.5 % off. The integrator applies the floors only once a run is caught
+  /// that way (dae/ida_integrator.cpp): applied always, they cost Andrews' mechanism 7 times
+  /// its accuracy at rtol 1e-8 (docs/schemes.md).
   bool error_scale_floors(double t, const ConstRef& y, Eigen::VectorXd& floor) const override;
   [[nodiscard]] Eigen::VectorXd variable_index() const override;
   /// index1 and GGL of a linear model: dae/condensed_newton.hpp; else nothing.
