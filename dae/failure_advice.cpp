@@ -1,6 +1,8 @@
 #include "dae/failure_advice.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace condyn {
@@ -46,6 +48,34 @@ std::string scheme_advice(Scheme scheme) {
 }
 
 }  // namespace
+
+std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement) {
+  switch (e.kind) {
+    case FailureKind::step_size_collapsed:
+    case FailureKind::steps_per_output:
+    case FailureKind::error_test:
+    case FailureKind::convergence:
+      break;
+    default:
+      return "";
+  }
+  constexpr double kUlps = 100.0;
+  // Coordinates of order 1 (a model in metres) are what constraint rows compute with even where
+  // the displacements are small: 1 is the least scale.
+  const double scale = std::max(1.0, max_displacement);
+  const double roundoff = std::numeric_limits<double>::epsilon() * scale;
+  if (!(atol < kUlps * roundoff)) return "";
+  std::ostringstream s;
+  s.precision(2);
+  s << "; atol " << atol << " is within " << static_cast<int>(kUlps) << " ulps of " << scale
+    << " (the largest displacement, and at least 1 for coordinates of order 1), which doubles "
+       "hold to about "
+    << roundoff
+    << ": the error test may ask for what the arithmetic cannot give; raise atol (and "
+       "atol_velocity, atol_multiplier, atol_mu if set) to the size of the smallest "
+       "displacement that matters";
+  return s.str();
+}
 
 std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
   // What is left of the run, in steps of the last size and in wall time at the pace so far.

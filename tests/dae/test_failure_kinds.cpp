@@ -163,6 +163,23 @@ TEST_CASE("each failure kind gets its own advice, worded from the facts") {
   CHECK(contains(failure_suggestion(Scheme::ggl, failure_of(misleading)), "before its first step"));
 }
 
+TEST_CASE("a collapse at an atol near roundoff says to raise atol") {
+  // A conical pendulum at rtol 1e-8 and atol 1e-16 collapsed under GGL with advice about
+  // singular configurations and rtol 1e-10 alone (user trial of 2026-11-28).
+  const RunFailure collapsed = failure(FailureKind::step_size_collapsed, 0.02, 1e-18, 10.0, 1000);
+  const std::string tiny = roundoff_advice(collapsed, 1e-16, 0.01);
+  CHECK(contains(tiny,
+                 "; atol 1e-16 is within 100 ulps of 1 (the largest displacement, and at "
+                 "least 1 for coordinates of order 1), which doubles hold to about 2.2e-16"));
+  CHECK(contains(tiny, "raise atol"));
+  // The largest displacement sets the scale when above 1: 1e-12 beside 1e5 (roundoff 2.2e-11).
+  CHECK(contains(roundoff_advice(collapsed, 1e-12, 1e5), "within 100 ulps of 1e+05"));
+  // Not near roundoff, or a failure the tolerances do not explain: nothing.
+  CHECK(roundoff_advice(collapsed, 1e-13, 1.0).empty());  // 450 ulps of 1
+  CHECK(roundoff_advice(failure(FailureKind::step_budget, 0.02, 1e-18, 10.0, 1000), 1e-16, 1.0)
+            .empty());
+}
+
 TEST_CASE("the loop refines a solver failure from the facts: no step taken, step at roundoff") {
   const IntegratorOptions options = quarter_outputs();
   FakeStepper at_start(kStep);
