@@ -60,6 +60,22 @@ SolveSpec settings_of(const SolveSpec& scene, Scheme scheme, double rtol, double
   return s;
 }
 
+/// Hooks that report a long run's progress through options.progress, each line led by `what`
+/// ("[3/8] projection rtol 1.0e-06"): a sweep whose run takes minutes says which one it is.
+RunHooks progress_hooks(const CompareOptions& options, const std::string& what) {
+  RunHooks hooks;
+  if (!options.progress) return hooks;
+  hooks.on_progress = [&options, what](const Progress& p) {
+    std::ostringstream s;
+    s.precision(4);
+    s << what << ": running, t = " << p.t << " of " << p.t_end << ", " << p.steps << " steps, ";
+    s.precision(3);
+    s << p.elapsed_seconds << " s";
+    options.progress(s.str());
+  };
+  return hooks;
+}
+
 /// The same within the per-run budget of the options (compare --max-steps, --max-wall-time).
 SolveSpec budgeted(SolveSpec s, const CompareOptions& options) {
   if (options.max_steps > 0) s.max_steps = options.max_steps;
@@ -100,7 +116,10 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
     for (Scheme scheme : {Scheme::elimination, Scheme::ggl, Scheme::projection, Scheme::index1}) {
       if (scheme_refusal(model, scheme)) continue;
       try {
-        const SolveResult run = solve(model, settings_of(settings, scheme, tight, tight * 1e-2));
+        const SolveResult run =
+            solve(model, settings_of(settings, scheme, tight, tight * 1e-2),
+                  progress_hooks(options, std::string("reference ") + to_string(scheme) + " rtol " +
+                                              scientific(tight, 1)));
         Trajectory ref = succeeded(run).trajectory;
         out.reference_kind = to_string(scheme);
         out.reference_description = std::string(to_string(scheme)) + " at rtol " +
@@ -184,9 +203,12 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
       r.atol = rtol * ratio;
       const SolveSpec settings = budgeted(settings_of(spec.solve, scheme, r.rtol, r.atol), options);
       std::vector<double> walls;
+      const RunHooks hooks =
+          progress_hooks(options, "[" + std::to_string(done + 1) + "/" + std::to_string(total) +
+                                      "] " + to_string(scheme) + " rtol " + scientific(rtol, 1));
       try {
         for (int k = 0; k < options.repeats; ++k) {
-          const SolveResult result = solve(base, settings);
+          const SolveResult result = solve(base, settings, hooks);
           const Trajectory& run = succeeded(result).trajectory;
           const SolveSummary& summary = result.summary;
           walls.push_back(summary.wall_seconds);

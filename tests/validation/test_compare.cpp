@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <numbers>
 #include <sstream>
 
 #include "dae/solve.hpp"
@@ -185,6 +186,40 @@ TEST_CASE("compare: when the tight GGL run fails another scheme gives the refere
   CHECK_MESSAGE(r.runs[0].ok, r.runs[0].message);
   // index1 at rtol 1e-11 against projection at 1e-13 over 10 s (measured 4.5e-8).
   CHECK(r.runs[0].error_u < 1e-6);
+}
+
+TEST_CASE("compare: a run that takes long reports its progress under its own name") {
+  // A conical pendulum in steady rotation at atol 1e-13 crawls under projection (steps of 3e-7
+  // s); `condyn compare` without a budget ran for minutes with no hint of which run (user trial
+  // of 2026-11-28). Each run's progress now comes through options.progress, led by its place in
+  // the sweep. Here with a 3 s budget per run: a line at 2 s, then the failure.
+  const double r = std::sin(std::numbers::pi / 3.0), z = -0.5;
+  std::ostringstream text;
+  text.precision(17);
+  text << "[model]\ntype = \"truss3d\"\nnodes = [[0.0, 0.0, 0.0], [" << r << ", 0.0, " << z
+       << "]]\nmasses = [0.0, 1.0]\nsupports = [1]\n"
+          "members = [{ nodes = [1, 2], rigid = true }]\ngravity = [0.0, 0.0, -9.81]\n"
+          "[initial]\nvelocity = { uy2 = "
+       << std::sqrt(9.81 / 0.5) * r
+       << " }\n[solve]\nt_end = 10.0\noutput_step = 0.01\nrtol = 1e-8\natol = 1e-13\n";
+  const SceneSpec spec = parse_scene_text(text.str(), "conical");
+  CompareOptions o;
+  o.tolerances = {1e-6};
+  o.repeats = 1;
+  o.schemes = {Scheme::projection};
+  o.max_wall_time = 3.0;
+  std::vector<std::string> lines;
+  o.progress = [&lines](const std::string& line) { lines.push_back(line); };
+  const CompareResult result = run_compare(spec, o);
+  REQUIRE(result.runs.size() == 1);
+  CHECK_FALSE(result.runs[0].ok);
+  CHECK(result.runs[0].message.find("wall-time budget") != std::string::npos);
+  bool running = false;
+  for (const auto& line : lines) {
+    running = running || line.rfind("[1/1] projection rtol 1.0e-06: running, t = ", 0) == 0;
+  }
+  CHECK(running);
+  CHECK(lines.back().find("[1/1] projection rtol 1.0e-06: FAILED") == 0);
 }
 
 TEST_CASE("compare: the output files follow validation/compare-output.md") {
