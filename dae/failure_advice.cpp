@@ -55,6 +55,7 @@ std::string roundoff_advice(const RunFailure& e, double atol, double max_displac
     case FailureKind::steps_per_output:
     case FailureKind::error_test:
     case FailureKind::convergence:
+    case FailureKind::first_step:
       break;
     default:
       return "";
@@ -68,9 +69,8 @@ std::string roundoff_advice(const RunFailure& e, double atol, double max_displac
   std::ostringstream s;
   s.precision(2);
   s << "; atol " << atol << " is within " << static_cast<int>(kUlps) << " ulps of " << scale
-    << " (the largest displacement, and at least 1 for coordinates of order 1), which doubles "
-       "hold to about "
-    << roundoff
+    << " (the larger of 1, for coordinates of order 1, and the largest displacement reached, "
+    << max_displacement << "), which doubles hold to about " << roundoff
     << ": the error test may ask for what the arithmetic cannot give; raise atol (and "
        "atol_velocity, atol_multiplier, atol_mu if set) to the size of the smallest "
        "displacement that matters";

@@ -13,11 +13,11 @@ namespace condyn {
 [[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e);
 
 /// After a failure of the step size (collapsed, tiny for many steps, repeated error-test or
-/// convergence failures): when the displacements' atol lies within 100 ulps of the largest
-/// displacement the run reached (`max_displacement`), or of 1 (coordinates of order 1, as the
-/// constraint rows compute with), the advice to raise it; else nothing. A conical pendulum at atol
-/// 1e-16 failed under GGL with advice about singular configurations and tight rtol alone (user
-/// trial of 2026-11-28).
+/// convergence failures, a failure before the first step): when the displacements' atol lies within
+/// 100 ulps of the largest displacement the run reached (`max_displacement`), or of 1 (coordinates
+/// of order 1, as the constraint rows compute with), the advice to raise it; else nothing. A
+/// conical pendulum at atol 1e-16 failed under GGL with advice about singular configurations and
+/// tight rtol alone (user trial of 2026-11-28).
 [[nodiscard]] std::string roundoff_advice(const RunFailure& e, double atol,
                                           double max_displacement);
 

@@ -15,11 +15,15 @@ namespace condyn {
 namespace {
 
 /// The summary's drifts: the largest over the internal steps and the output rows, after a
-/// failure as after a whole run.
-void summarize_drift(SolveResult& result, double max_dp, double max_dv) {
+/// failure as after a whole run; and the largest displacement of the rows (`streamed_max_u` for
+/// a streamed run, whose trajectory holds no u).
+void summarize_drift(SolveResult& result, double max_dp, double max_dv, double streamed_max_u) {
   const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
   result.summary.max_drift_position = std::max(max_dp, max_of(result.trajectory.drift_position));
   result.summary.max_drift_velocity = std::max(max_dv, max_of(result.trajectory.drift_velocity));
+  const Eigen::MatrixXd& u = result.trajectory.u;
+  result.summary.max_abs_displacement =
+      std::max(streamed_max_u, u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0);
 }
 
 }  // namespace
@@ -119,7 +123,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
         // last row, say) is dropped; the failure reported is the integrator's, not this one.
       }
     }
-    summarize_drift(result, max_dp, max_dv);
+    summarize_drift(result, max_dp, max_dv, log.max_abs_displacement());
     return;
   }
   if (streamed) {
@@ -128,7 +132,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   } else {
     result.trajectory = assemble(raw);
   }
-  summarize_drift(result, max_dp, max_dv);
+  summarize_drift(result, max_dp, max_dv, log.max_abs_displacement());
 }
 
 }  // namespace condyn

@@ -479,17 +479,17 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     auto& notes = result.summary.notes;
     notes = notes.empty() ? note : notes + "; " + note;
   }
-  if (const auto note = result.summary.error_test_warning(); note && !result.failure) {
+  for (const auto& note :
+       {result.summary.error_test_warning(), result.summary.atol_warning(settings.atol)}) {
+    if (!note || result.failure) continue;
     auto& notes = result.summary.notes;
     notes = notes.empty() ? *note : notes + "; " + *note;
   }
   if (result.failure) {
     RunFailure& failure = *result.failure;
     failure.suggestion = failure_suggestion(scheme, failure);
-    // The largest displacement of the rows kept (the initial one at least; none when streamed).
-    const Eigen::MatrixXd& rows = result.trajectory.u;
-    const double reached = rows.size() > 0 ? rows.cwiseAbs().maxCoeff() : 0.0;
-    failure.suggestion += roundoff_advice(failure, settings.atol, reached);
+    failure.suggestion +=
+        roundoff_advice(failure, settings.atol, result.summary.max_abs_displacement);
   }
   return result;
 }

@@ -86,6 +86,17 @@ std::optional<std::string> SolveSummary::error_test_warning() const {
          "with another scheme (index1 or projection)";
 }
 
+std::optional<std::string> SolveSummary::atol_warning(double atol) const {
+  if (!(max_abs_displacement > 0.0) || !(atol > max_abs_displacement)) return std::nullopt;
+  std::ostringstream s;
+  s.precision(3);
+  s << "warning: atol " << atol << " exceeds the largest displacement of the run ("
+    << max_abs_displacement
+    << "): the error test held none of the motion, which may be off by up to atol; set atol to "
+       "the size of the smallest displacement that matters";
+  return s.str();
+}
+
 std::string SolveSummary::brief() const {
   std::ostringstream s;
   s.precision(3);

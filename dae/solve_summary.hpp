@@ -126,12 +126,18 @@ struct SolveSummary {
   double max_drift_velocity = 0.0;
   /// GGL only: max |μ| over the output times (μ vanishes on exact solutions); −1 otherwise.
   double max_abs_mu = -1.0;
+  /// max |u| over the output rows (those before a failure included).
+  double max_abs_displacement = 0.0;
   std::string notes;  ///< scheme settings worth printing (Baumgarte gains)
   /// A warning when at least half of 10,000 or more steps failed the error test, no normal run
   /// (the scenes of models/ and validation/ fail 1 to 12 % of their steps): a conical pendulum
   /// in steady rotation ended 0.5 % off under GGL after 248,279 steps, 245,905 of them such
   /// failures, exit 0 and not a word (user trial of 2026-11-28, docs/limitations.md).
   [[nodiscard]] std::optional<std::string> error_test_warning() const;
+  /// A warning when `atol` exceeds the largest displacement of a run that moved: the error
+  /// test then held none of the motion (an SI oscillator peaking at 2 mm, run at atol 10, was
+  /// 85 to 224 % off under every scheme, exit 0: user trial of 2026-11-28).
+  [[nodiscard]] std::optional<std::string> atol_warning(double atol) const;
   int unknowns = 0;
   long jacobian_nonzeros = 0;
   std::string termination = "not run";

@@ -70,6 +70,7 @@ TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::Vecto
 
 void RowLog::add(const TrajectoryRow& row) {
   t_.push_back(row.t);
+  if (row.u.size() > 0) max_abs_u_ = std::max(max_abs_u_, row.u.cwiseAbs().maxCoeff());
   drift_position_.push_back(row.drift_position);
   drift_velocity_.push_back(row.drift_velocity);
   if (row.conservative) {

@@ -128,9 +128,12 @@ class RowLog {
   void add(const TrajectoryRow& row);
   /// The rows so far as a trajectory without its n x nt parts.
   [[nodiscard]] Trajectory trajectory() const;
+  /// max |u| over the rows so far (0 before any).
+  [[nodiscard]] double max_abs_displacement() const { return max_abs_u_; }
 
  private:
   std::vector<double> t_, drift_position_, drift_velocity_, energy_, kinetic_;
+  double max_abs_u_ = 0.0;
   std::vector<EnergyBalance> balance_;
 };
 

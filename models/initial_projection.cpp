@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -22,6 +23,10 @@ constexpr double kConsistencyTolerance = 1e-10;
 // more, so that the least-squares residual lands on the rows that do (and names them).
 constexpr double kHardRowWeight = 1e6;
 constexpr int kMaxReportedDofs = 20;
+// The largest ratio of the velocity projection's change to the residual it removes
+// (Projector::velocity_amplification) taken as a fit: a lever of ratio 10⁴. Positions found to
+// the consistency tolerance (1e-10) resolve a double root only to about 1e-5, a ratio of 10⁵.
+constexpr double kMaxVelocityGain = 1e4;
 // How far off a stalled start the projection starts again on each side, relative to 1 + max|u|
 // (Projector::sides).
 constexpr double kSideStep = 1e-3;
@@ -171,6 +176,22 @@ class Projector {
     return out;
   }
 
+  /// How far the velocity projection from v moved the free velocities, against the residual it
+  /// removed: max|dv| / max_i |ψ_i| / max_j |a_ij| (rows in their own units). About 1 where the
+  /// rows set the free velocities directly, k for a lever of ratio k.
+  [[nodiscard]] double velocity_amplification(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                                              const Eigen::VectorXd& projected) const {
+    Eigen::VectorXd psi(m_);
+    s_.velocity_residual(t_, u, v, psi);
+    const Eigen::VectorXd a_max = row_max(s_.constraint_jacobian(t_, u));
+    double residual = 0.0;
+    for (int i = 0; i < m_; ++i) {
+      if (a_max[i] > 0.0) residual = std::max(residual, std::abs(psi[i]) / a_max[i]);
+    }
+    const double moved = (projected - v).lpNorm<Eigen::Infinity>();
+    return residual > 0.0 ? moved / residual : 0.0;
+  }
+
   /// Rows left violated: position rows at u, or every row at (u, v).
   [[nodiscard]] std::vector<std::pair<int, double>> violated(const Eigen::VectorXd& u,
                                                              const Eigen::VectorXd* v) const {
@@ -282,18 +303,24 @@ class Projector {
 };
 
 /// The given DOFs the violated rows act on at u (a nonzero coefficient there: a DOF the row
-/// depends on but not at this state cannot be the culprit), ascending.
+/// depends on but not at this state cannot be the culprit; when none has one, those in the
+/// rows' pattern), ascending.
 std::vector<int> given_in(MechanicalSystem& s, double t, const Eigen::VectorXd& u,
                           const std::vector<std::pair<int, double>>& rows,
                           const std::vector<bool>& given) {
   const SparseRowMajor A = s.constraint_jacobian(t, u);
-  std::set<int> out;
+  std::set<int> out, in_pattern;
   for (const auto& [row, r] : rows) {
     for (SparseRowMajor::InnerIterator it(A, row); it; ++it) {
-      if (given[static_cast<std::size_t>(it.col())] && it.value() != 0.0)
-        out.insert(static_cast<int>(it.col()));
+      if (!given[static_cast<std::size_t>(it.col())]) continue;
+      in_pattern.insert(static_cast<int>(it.col()));
+      // Negated: a NaN coefficient (a member of length 0) counts as acting.
+      if (!(it.value() == 0.0)) out.insert(static_cast<int>(it.col()));
     }
   }
+  // No coefficient on a given DOF at all (a rod whose given ends coincide, its direction 0/0):
+  // the given DOFs in the rows' pattern are still the ones that put it there.
+  if (out.empty()) out = in_pattern;
   return {out.begin(), out.end()};
 }
 
@@ -358,7 +385,25 @@ std::string project_initial_state(MechanicalSystem& system, double t, Eigen::Vec
       << " iterations (no configuration near the given one satisfies the constraints)";
     throw std::runtime_error(s.str());
   }
-  p.project_velocities(u, v, plain);
+  // Velocities the rows barely depend on where the positions landed: those that meet them are
+  // the residual over that small rate. A pendulum written horizontal, given uy2 = -1 (straight
+  // down: a double root, found to about √tol, ux2 = -0.99999237) and vy2 = 1, got vx2 = 131072
+  // and an exit 0 (user trial of 2026-11-28); at the exact configuration no velocity meets the
+  // given speed.
+  Eigen::VectorXd projected = v;
+  p.project_velocities(u, projected, plain);
+  if (const double gain = p.velocity_amplification(u, v, projected); gain > kMaxVelocityGain) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "cannot project the initial velocities: where the positions meet the constraints, the "
+         "rows barely depend on the velocities left free (meeting them moves those "
+      << gain
+      << " times the rows' residual: a singular configuration, or next to one), so the given "
+         "velocities do not fit this configuration; change them, or give displacements away "
+         "from it";
+    throw std::runtime_error(s.str());
+  }
+  v = projected;
   if (const auto bad = p.violated(u, &v); !bad.empty() || !v.allFinite()) {
     refuse(true, bad);
     throw std::runtime_error(

@@ -73,11 +73,15 @@ def test_compare_issues_the_scenes_warnings(quickstart_dict):
 
 
 def test_compare_without_a_reference_raises_integration_error():
-    # A nonlinear scene (no exact solution) whose tight reference runs exhaust its step budget:
-    # no run can be scored. It was a bare RuntimeError, documented nowhere.
-    scene = {"model": {"type": "sleigh", "mass": 1.0, "inertia": 0.5, "contact_offset": 0.3},
-             "initial": {"velocity": {"x": 1.0, "y": -0.3, "theta": 1.0}},
-             "solve": {"t_end": 0.5, "output_step": 0.05, "max_steps": 5}}
+    # A nonlinear scene (no exact solution) whose tight reference runs all fail (a load of
+    # 1e300 strikes at t = 0.5): no run can be scored. It was a bare RuntimeError, documented
+    # nowhere. (A scene's step budget no longer bounds the reference.)
+    scene = {"model": {"type": "truss2d", "nodes": [[0.0, 0.0], [1.0, 0.0]],
+                       "masses": [0.0, 1.0], "supports": [1],
+                       "members": [{"nodes": [1, 2], "rigid": True}]},
+             "load": [{"dof": "uy2",
+                       "value": {"type": "step", "amplitude": 1e300, "start": 0.5}}],
+             "solve": {"t_end": 1.0, "output_step": 0.1}}
     with pytest.raises(condyn.IntegrationError, match=r"^<dict>: no reference solution") as e:
         condyn.compare(scene, tolerances=[1e-4], schemes=["ggl"])
     assert e.value.result is None

@@ -169,8 +169,9 @@ TEST_CASE("a collapse at an atol near roundoff says to raise atol") {
   const RunFailure collapsed = failure(FailureKind::step_size_collapsed, 0.02, 1e-18, 10.0, 1000);
   const std::string tiny = roundoff_advice(collapsed, 1e-16, 0.01);
   CHECK(contains(tiny,
-                 "; atol 1e-16 is within 100 ulps of 1 (the largest displacement, and at "
-                 "least 1 for coordinates of order 1), which doubles hold to about 2.2e-16"));
+                 "; atol 1e-16 is within 100 ulps of 1 (the larger of 1, for coordinates "
+                 "of order 1, and the largest displacement reached, 0.01), which doubles "
+                 "hold to about 2.2e-16"));
   CHECK(contains(tiny, "raise atol"));
   // The largest displacement sets the scale when above 1: 1e-12 beside 1e5 (roundoff 2.2e-11).
   CHECK(contains(roundoff_advice(collapsed, 1e-12, 1e5), "within 100 ulps of 1e+05"));
@@ -178,6 +179,24 @@ TEST_CASE("a collapse at an atol near roundoff says to raise atol") {
   CHECK(roundoff_advice(collapsed, 1e-13, 1.0).empty());  // 450 ulps of 1
   CHECK(roundoff_advice(failure(FailureKind::step_budget, 0.02, 1e-18, 10.0, 1000), 1e-16, 1.0)
             .empty());
+  // Before the first step too (GGL at atol 1e-20 and rtol 1e-4 on an SI oscillator).
+  CHECK(contains(roundoff_advice(failure(FailureKind::first_step, 0.0, 0.0, 1.0, 0), 1e-20, 0.0),
+                 "; atol 1e-20 is within 100 ulps of 1"));
+}
+
+TEST_CASE("a run whose atol exceeds its whole motion is flagged") {
+  // An SI oscillator (m = 1e4 kg, k = 1e8 N/m, a step of 1e5 N: peak 2 mm) at atol 10 was 85 to
+  // 224 % off under every scheme, exit 0 and no word (user trial of 2026-11-28).
+  SolveSummary summary;
+  summary.max_abs_displacement = 0.002;
+  const auto loose = summary.atol_warning(10.0);
+  REQUIRE(loose.has_value());
+  CHECK(contains(*loose,
+                 "warning: atol 10 exceeds the largest displacement of the run (0.002): "
+                 "the error test held none of the motion"));
+  CHECK_FALSE(summary.atol_warning(1e-3).has_value());  // below the motion
+  summary.max_abs_displacement = 0.0;                   // at rest: nothing to hold
+  CHECK_FALSE(summary.atol_warning(10.0).has_value());
 }
 
 TEST_CASE("the loop refines a solver failure from the facts: no step taken, step at roundoff") {

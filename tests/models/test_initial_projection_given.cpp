@@ -186,3 +186,31 @@ output_step = 0.1
   const std::string far = error_of(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = -3.0 }"));
   CHECK(far.find("no initial state satisfies constraint 'rigid_1_2'") != std::string::npos);
 }
+
+TEST_CASE("given velocities that fit only next to a singular configuration are refused") {
+  // The rod written along x, given uy2 = -1 (straight down: ux2 = -1 is a double root, found to
+  // about √1e-10, ux2 = -0.99999237) and vy2 = 1: the rod's velocity row there depends on vx2
+  // by 7.6e-6 only, and the projection gave vx2 = 131072 with exit 0 (user trial of
+  // 2026-11-28). At the exact configuration no velocity meets vy2 = 1.
+  const std::string msg =
+      error_of(replace(kPendulum, "displacement = { uy2 = -0.2 }",
+                       "displacement = { uy2 = -1.0 }\nvelocity = { uy2 = 1.0 }"));
+  CHECK(msg.find("cannot project the initial velocities: where the positions meet the "
+                 "constraints, the rows barely depend on the velocities left free (meeting them "
+                 "moves those 1.31e+05 times the rows' residual") != std::string::npos);
+  // Without a given velocity the same position is a start at rest: kept.
+  const test::BuiltScene at_rest = test::built(parse_scene_text(
+      replace(kPendulum, "displacement = { uy2 = -0.2 }", "displacement = { uy2 = -1.0 }"), "s"));
+  CHECK(at_rest.model.v0.isZero(0.0));
+  CHECK(std::abs(at_rest.model.u0[dof(at_rest.model, "ux2")] + 1.0) < 1e-5);
+}
+
+TEST_CASE("given values that put a rod's ends together name the keys and the rod") {
+  // ux2 = -1, uy2 = 0 puts node 2 on the support: the rod has no direction there (0/0) and the
+  // scene got "Gauss-Newton did not converge in 50 iterations" at key `initial` (user trial).
+  const std::string msg = error_of(replace(kPendulum, "displacement = { uy2 = -0.2 }",
+                                           "displacement = { ux2 = -1.0, uy2 = 0.0 }"));
+  CHECK(msg.find("initial.displacement.ux2: project = true keeps the values given in [initial], "
+                 "but with displacement ux2 = -1, uy2 = 0 kept no initial state satisfies "
+                 "constraint 'rigid_1_2'") != std::string::npos);
+}

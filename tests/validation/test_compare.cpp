@@ -222,6 +222,34 @@ TEST_CASE("compare: a run that takes long reports its progress under its own nam
   CHECK(lines.back().find("[1/1] projection rtol 1.0e-06: FAILED") == 0);
 }
 
+TEST_CASE("compare: the scene's own budget does not bound the reference") {
+  // [solve] max_steps = 450 on the pendulum: the runs at rtol 1e-4 and 1e-6 fit in it, the
+  // tight references (ggl, projection, index1 at 1e-8) did not, and compare failed with "no
+  // reference solution" (user trial of 2026-11-28), though --max-steps exempts the reference.
+  std::string text = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[solve]
+t_end = 2.0
+output_step = 0.01
+rtol = 1e-8
+atol = 1e-10
+max_steps = 450
+)";
+  CompareOptions o;
+  o.tolerances = {1e-4, 1e-6};
+  o.repeats = 1;
+  o.schemes = {Scheme::ggl};
+  const CompareResult r = run_compare(parse_scene_text(text, "budget"), o);
+  CHECK(r.reference_kind == "ggl");
+  REQUIRE(r.runs.size() == 2);
+  for (const auto& run : r.runs) CHECK_MESSAGE(run.ok, run.message);  // within 450 steps
+}
+
 TEST_CASE("compare: the output files follow validation/compare-output.md") {
   const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
   CompareOptions o = small_options();
