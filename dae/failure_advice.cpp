@@ -49,7 +49,8 @@ std::string scheme_advice(Scheme scheme) {
 
 }  // namespace
 
-std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement) {
+std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement,
+                            double coordinates) {
   switch (e.kind) {
     case FailureKind::step_size_collapsed:
     case FailureKind::steps_per_output:
@@ -61,16 +62,17 @@ std::string roundoff_advice(const RunFailure& e, double atol, double max_displac
       return "";
   }
   constexpr double kUlps = 100.0;
-  // Coordinates of order 1 (a model in metres) are what constraint rows compute with even where
-  // the displacements are small: 1 is the least scale.
-  const double scale = std::max(1.0, max_displacement);
+  // The constraint rows compute with the coordinates even where the displacements are small;
+  // where the model does not say how large they are, of order 1 (a model in metres).
+  const double scale = std::max({1.0, max_displacement, coordinates});
   const double roundoff = std::numeric_limits<double>::epsilon() * scale;
   if (!(atol < kUlps * roundoff)) return "";
   std::ostringstream s;
   s.precision(2);
   s << "; atol " << atol << " is within " << static_cast<int>(kUlps) << " ulps of " << scale
-    << " (the larger of 1, for coordinates of order 1, and the largest displacement reached, "
-    << max_displacement << "), which doubles hold to about " << roundoff
+    << " (the largest of 1, the model's coordinates, " << coordinates
+    << ", and the largest displacement reached, " << max_displacement
+    << "), which doubles hold to about " << roundoff
     << ": the error test may ask for what the arithmetic cannot give; raise atol (and "
        "atol_velocity, atol_multiplier, atol_mu if set) to the size of the smallest "
        "displacement that matters";

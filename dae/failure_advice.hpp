@@ -13,12 +13,13 @@ namespace condyn {
 [[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e);
 
 /// After a failure of the step size (collapsed, tiny for many steps, repeated error-test or
-/// convergence failures, a failure before the first step): when the displacements' atol lies within
-/// 100 ulps of the largest displacement the run reached (`max_displacement`), or of 1 (coordinates
-/// of order 1, as the constraint rows compute with), the advice to raise it; else nothing. A
+/// convergence failures, a failure before the first step): when the displacements' atol lies
+/// within 100 ulps of the largest of 1, the model's `coordinates`
+/// (MechanicalSystem::coordinate_scale, which the constraint rows compute with) and the largest
+/// displacement the run reached (`max_displacement`), the advice to raise it; else nothing. A
 /// conical pendulum at atol 1e-16 failed under GGL with advice about singular configurations and
 /// tight rtol alone (user trial of 2026-11-28).
-[[nodiscard]] std::string roundoff_advice(const RunFailure& e, double atol,
-                                          double max_displacement);
+[[nodiscard]] std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement,
+                                          double coordinates);
 
 }  // namespace condyn

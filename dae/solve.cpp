@@ -489,7 +489,8 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     RunFailure& failure = *result.failure;
     failure.suggestion = failure_suggestion(scheme, failure);
     failure.suggestion +=
-        roundoff_advice(failure, settings.atol, result.summary.max_abs_displacement);
+        roundoff_advice(failure, settings.atol, result.summary.max_abs_displacement,
+                        model.system->coordinate_scale());
   }
   return result;
 }

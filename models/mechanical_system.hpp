@@ -132,6 +132,11 @@ class MechanicalSystem {
   }
   // NOLINTEND(performance-unnecessary-value-param)
 
+  /// The size of the coordinates the constraint rows compute with (node positions, lengths),
+  /// whose roundoff bounds what the displacements can be held to; 0 when the system has none
+  /// beyond the displacements (matrix models, angles).
+  [[nodiscard]] virtual double coordinate_scale() const { return 0.0; }
+
  protected:
   MechanicalSystem() = default;
   MechanicalSystem(const MechanicalSystem&) = default;  ///< for clone()

@@ -226,4 +226,15 @@ std::optional<MechanicalSystem::EnergyParts> PointMassSystem::energy_parts(doubl
   return parts;
 }
 
+double PointMassSystem::coordinate_scale() const {
+  double scale = 0.0;
+  for (const auto& node : layout_.nodes) {
+    for (const double x : node) scale = std::max(scale, std::abs(x));
+  }
+  for (const auto* members : {&layout_.bars, &layout_.rods}) {
+    for (const auto& b : *members) scale = std::max(scale, b.length);
+  }
+  return scale;
+}
+
 }  // namespace condyn

@@ -71,6 +71,8 @@ class PointMassSystem final : public MechanicalSystem {
   /// The strain energy of the bars with the potential of the constant loads (gravity), and the
   /// power of the time-dependent ones: the balance of any loading (no damping here).
   [[nodiscard]] std::optional<EnergyParts> energy_parts(double t, ConstRef u, ConstRef v) override;
+  /// The largest |reference coordinate| of the nodes and the longest member.
+  [[nodiscard]] double coordinate_scale() const override;
 
  private:
   /// d = x_j + u_j − x_i − u_i for a member (dimension entries).

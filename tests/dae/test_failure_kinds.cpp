@@ -167,21 +167,25 @@ TEST_CASE("a collapse at an atol near roundoff says to raise atol") {
   // A conical pendulum at rtol 1e-8 and atol 1e-16 collapsed under GGL with advice about
   // singular configurations and rtol 1e-10 alone (user trial of 2026-11-28).
   const RunFailure collapsed = failure(FailureKind::step_size_collapsed, 0.02, 1e-18, 10.0, 1000);
-  const std::string tiny = roundoff_advice(collapsed, 1e-16, 0.01);
+  const std::string tiny = roundoff_advice(collapsed, 1e-16, 0.01, 0.0);
   CHECK(contains(tiny,
-                 "; atol 1e-16 is within 100 ulps of 1 (the larger of 1, for coordinates "
-                 "of order 1, and the largest displacement reached, 0.01), which doubles "
-                 "hold to about 2.2e-16"));
+                 "; atol 1e-16 is within 100 ulps of 1 (the largest of 1, the model's "
+                 "coordinates, 0, and the largest displacement reached, 0.01), which "
+                 "doubles hold to about 2.2e-16"));
+  // The model's coordinates set it when larger: a pendulum of length 1e6 at atol 1e-10
+  // (roundoff 2.2e-10) failed under projection with advice about singular configurations.
+  CHECK(contains(roundoff_advice(collapsed, 1e-10, 4.4, 1e6), "within 100 ulps of 1e+06"));
   CHECK(contains(tiny, "raise atol"));
   // The largest displacement sets the scale when above 1: 1e-12 beside 1e5 (roundoff 2.2e-11).
-  CHECK(contains(roundoff_advice(collapsed, 1e-12, 1e5), "within 100 ulps of 1e+05"));
+  CHECK(contains(roundoff_advice(collapsed, 1e-12, 1e5, 0.0), "within 100 ulps of 1e+05"));
   // Not near roundoff, or a failure the tolerances do not explain: nothing.
-  CHECK(roundoff_advice(collapsed, 1e-13, 1.0).empty());  // 450 ulps of 1
-  CHECK(roundoff_advice(failure(FailureKind::step_budget, 0.02, 1e-18, 10.0, 1000), 1e-16, 1.0)
+  CHECK(roundoff_advice(collapsed, 1e-13, 1.0, 0.0).empty());  // 450 ulps of 1
+  CHECK(roundoff_advice(failure(FailureKind::step_budget, 0.02, 1e-18, 10.0, 1000), 1e-16, 1.0, 0.0)
             .empty());
   // Before the first step too (GGL at atol 1e-20 and rtol 1e-4 on an SI oscillator).
-  CHECK(contains(roundoff_advice(failure(FailureKind::first_step, 0.0, 0.0, 1.0, 0), 1e-20, 0.0),
-                 "; atol 1e-20 is within 100 ulps of 1"));
+  CHECK(
+      contains(roundoff_advice(failure(FailureKind::first_step, 0.0, 0.0, 1.0, 0), 1e-20, 0.0, 0.0),
+               "; atol 1e-20 is within 100 ulps of 1"));
 }
 
 TEST_CASE("a run whose atol exceeds its whole motion is flagged") {
