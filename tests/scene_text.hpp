@@ -4,6 +4,9 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <numbers>
+#include <sstream>
 #include <string>
 
 namespace condyn::test {
@@ -80,6 +83,27 @@ members = [{ nodes = [1, 2], rigid = true }]
 gravity = [0.0, -9.81]
 [solve]
 )" + solve_keys;
+}
+
+/// A conical pendulum in exactly steady rotation (truss3d): a unit mass on a rigid member of
+/// length L from a fixed support, at `degrees` from the vertical, gravity 9.81 L along −z (the
+/// same motion in other length units: L = 1000 is millimetres), started with `speed` times the
+/// steady speed ω r (ω² = 9.81 / cos a, r = L sin a); rtol 1e-8, output every 0.01.
+inline std::string conical_pendulum_scene(double degrees, double t_end, double speed = 1.0,
+                                          double atol = 1e-10, double length = 1.0) {
+  constexpr double kG = 9.81;
+  const double a = degrees * std::numbers::pi / 180.0;
+  const double r = length * std::sin(a), z = -length * std::cos(a);
+  const double w = std::sqrt(kG / std::cos(a));
+  std::ostringstream s;
+  s.precision(17);
+  s << "[model]\ntype = \"truss3d\"\nnodes = [[0.0, 0.0, 0.0], [" << r << ", 0.0, " << z
+    << "]]\nmasses = [0.0, 1.0]\nsupports = [1]\nmembers = [{ nodes = [1, 2], rigid = true }]\n"
+       "gravity = [0.0, 0.0, "
+    << -kG * length << "]\n[initial]\nvelocity = { uy2 = " << speed * w * r
+    << " }\n[solve]\nt_end = " << t_end << "\noutput_step = 0.01\nrtol = 1e-8\natol = " << atol
+    << "\n";
+  return s.str();
 }
 
 /// The pendulum with a rheonomic row pulling its mass straight down at unit speed, under GGL to

@@ -17,6 +17,7 @@
 #include "dae/multiplier_dae.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
@@ -25,38 +26,12 @@ namespace {
 
 constexpr double kG = 9.81;
 
-/// `speed`: times the steady speed; `length` L in its unit and gravity 9.81 L (the same motion
-/// in other length units: L = 1000 is millimetres).
-std::string conical(double degrees, double t_end, double speed = 1.0, double atol = 1e-10,
-                    double length = 1.0) {
-  const double a = degrees * std::numbers::pi / 180.0;
-  const double r = length * std::sin(a), z = -length * std::cos(a);
-  const double w = std::sqrt(kG / std::cos(a));
-  std::ostringstream s;
-  s.precision(17);
-  s << "[model]\ntype = \"truss3d\"\nnodes = [[0.0, 0.0, 0.0], [" << r << ", 0.0, " << z
-    << "]]\nmasses = [0.0, 1.0]\nsupports = [1]\nmembers = [{ nodes = [1, 2], rigid = true }]\n"
-       "gravity = [0.0, 0.0, "
-    << -kG * length << "]\n[initial]\nvelocity = { uy2 = " << speed * w * r
-    << " }\n[solve]\nt_end = " << t_end << "\noutput_step = 0.01\nrtol = 1e-8\natol = " << atol
-    << "\n";
-  return s.str();
-}
-
-int dof(const Model& model, const std::string& name) {
-  for (std::size_t i = 0; i < model.dof_names.size(); ++i) {
-    if (model.dof_names[i] == name) return static_cast<int>(i);
-  }
-  FAIL("no DOF " << name);
-  return -1;
-}
-
 /// Largest distance of the bob from its exact circle over the output rows, in the scene's unit.
 double circle_error(const Model& model, const Trajectory& run, double degrees,
                     double length = 1.0) {
   const double a = degrees * std::numbers::pi / 180.0;
   const double r = length * std::sin(a), w = std::sqrt(kG / std::cos(a));
-  const int x = dof(model, "ux2"), y = dof(model, "uy2"), z = dof(model, "uz2");
+  const int x = model.dof_at("ux2"), y = model.dof_at("uy2"), z = model.dof_at("uz2");
   double worst = 0.0;
   for (std::size_t k = 0; k < run.t.size(); ++k) {
     const double t = run.t[k];
@@ -78,7 +53,8 @@ TEST_CASE(
   // Steps: the trapped runs took 45,496 to 134,911 over these 3 s; now 673 to 1,992.
   for (const double degrees : {45.0, 60.0, 80.0}) {
     CAPTURE(degrees);
-    const test::BuiltScene scene = test::built(parse_scene_text(conical(degrees, 3.0), "conical"));
+    const test::BuiltScene scene =
+        test::built(parse_scene_text(test::conical_pendulum_scene(degrees, 3.0), "conical"));
     for (const Scheme scheme : {Scheme::ggl, Scheme::index3, Scheme::automatic}) {
       CAPTURE(std::string(to_string(scheme)));
       const SolveResult run = test::solved(scene.model, test::under(scene.spec.solve, scheme));
@@ -105,8 +81,8 @@ TEST_CASE("steady conical pendulum at a tight atol and in millimetres: GGL stays
   for (const Case c : {Case{1e-13, 1.0}, Case{1e-10, 1000.0}}) {
     CAPTURE(c.atol);
     CAPTURE(c.length);
-    const test::BuiltScene scene =
-        test::built(parse_scene_text(conical(60.0, 3.0, 1.0, c.atol, c.length), "conical"));
+    const test::BuiltScene scene = test::built(parse_scene_text(
+        test::conical_pendulum_scene(60.0, 3.0, 1.0, c.atol, c.length), "conical"));
     for (const Scheme scheme : {Scheme::ggl, Scheme::automatic}) {
       CAPTURE(std::string(to_string(scheme)));
       const SolveResult run = test::solved(scene.model, test::under(scene.spec.solve, scheme));
@@ -125,7 +101,8 @@ TEST_CASE("the floors engage only in a trapped run and the summary says when") {
   // The trapped conical pendulum engages them (its note names the time); the same pendulum
   // 10 % faster than steady, a spherical pendulum whose height swings, runs with the plain
   // weights and no note (as do the scenes of models/ and validation/).
-  const test::BuiltScene trapped = test::built(parse_scene_text(conical(60.0, 3.0), "conical"));
+  const test::BuiltScene trapped =
+      test::built(parse_scene_text(test::conical_pendulum_scene(60.0, 3.0), "conical"));
   const SolveResult ggl = test::solved(trapped.model, test::under(trapped.spec.solve, Scheme::ggl));
   CHECK(ggl.summary.notes.find("error weights of the DOFs on constraint rows floored by their rows "
                                "from t = ") != std::string::npos);
@@ -133,7 +110,7 @@ TEST_CASE("the floors engage only in a trapped run and the summary says when") {
       test::solved(trapped.model, test::under(trapped.spec.solve, Scheme::index2));
   CHECK(index2.summary.notes.find("floored") == std::string::npos);  // no floors to engage
   const test::BuiltScene swinging =  // 10 % faster: an orbit that swings up and down
-      test::built(parse_scene_text(conical(60.0, 3.0, 1.1), "swinging"));
+      test::built(parse_scene_text(test::conical_pendulum_scene(60.0, 3.0, 1.1), "swinging"));
   const SolveResult free_run =
       test::solved(swinging.model, test::under(swinging.spec.solve, Scheme::ggl));
   CHECK(free_run.summary.notes.find("floored") == std::string::npos);
@@ -146,16 +123,17 @@ TEST_CASE("error_scale_floors: each DOF's share of its rows' reach") {
   // member's row too, get the same shares (their supports' rows, one DOF each, would floor them
   // at their own |u|, 0).
   const double degrees = 60.0;
-  const test::BuiltScene scene = test::built(parse_scene_text(conical(degrees, 1.0), "conical"));
+  const test::BuiltScene scene =
+      test::built(parse_scene_text(test::conical_pendulum_scene(degrees, 1.0), "conical"));
   const MechanicalSystem& system = *scene.model.system;
   for (const Scheme scheme : {Scheme::ggl, Scheme::index3}) {
     CAPTURE(std::string(to_string(scheme)));
     const MultiplierDae dae(system, scheme);
     Eigen::VectorXd u = Eigen::VectorXd::Zero(system.dofs());
-    u[dof(scene.model, "ux2")] = -0.3;
-    u[dof(scene.model, "uy2")] = 0.4;
+    u[scene.model.dof_at("ux2")] = -0.3;
+    u[scene.model.dof_at("uy2")] = 0.4;
     Eigen::VectorXd v = Eigen::VectorXd::Zero(system.dofs());
-    v[dof(scene.model, "uy2")] = 2.0;
+    v[scene.model.dof_at("uy2")] = 2.0;
     const Eigen::VectorXd y = dae.pack(u, v);
     Eigen::VectorXd floor = Eigen::VectorXd::Constant(dae.size(), -1.0);
     REQUIRE(dae.error_scale_floors(0.0, y, floor));
@@ -164,15 +142,15 @@ TEST_CASE("error_scale_floors: each DOF's share of its rows' reach") {
     const double length = std::sqrt(x * x + yy * yy + z * z);
     const double ax = std::abs(x) / length, ay = yy / length, az = std::abs(z) / length;
     const double reach = (ax * 0.3 + ay * 0.4) / 2.0;
-    CHECK(floor[dof(scene.model, "uz2")] == doctest::Approx(az * reach).epsilon(1e-12));
-    CHECK(floor[dof(scene.model, "ux2")] == doctest::Approx(ax * reach).epsilon(1e-12));
-    CHECK(floor[dof(scene.model, "uy2")] == doctest::Approx(ay * reach).epsilon(1e-12));
-    CHECK(floor[dof(scene.model, "ux1")] == doctest::Approx(ax * reach).epsilon(1e-12));
-    CHECK(floor[dof(scene.model, "uz1")] == doctest::Approx(az * reach).epsilon(1e-12));
+    CHECK(floor[scene.model.dof_at("uz2")] == doctest::Approx(az * reach).epsilon(1e-12));
+    CHECK(floor[scene.model.dof_at("ux2")] == doctest::Approx(ax * reach).epsilon(1e-12));
+    CHECK(floor[scene.model.dof_at("uy2")] == doctest::Approx(ay * reach).epsilon(1e-12));
+    CHECK(floor[scene.model.dof_at("ux1")] == doctest::Approx(ax * reach).epsilon(1e-12));
+    CHECK(floor[scene.model.dof_at("uz1")] == doctest::Approx(az * reach).epsilon(1e-12));
     // GGL holds v on every row through λ: the same shares of the velocities' reach, here
     // |e_y| 2 / 2; index3's velocities on rows are out of the error test, no floor.
     const double v_reach = ay * 2.0 / 2.0;
-    const Eigen::Index vz2 = system.dofs() + dof(scene.model, "uz2");
+    const Eigen::Index vz2 = system.dofs() + scene.model.dof_at("uz2");
     CHECK(floor[vz2] == doctest::Approx(scheme == Scheme::ggl ? az * v_reach : 0.0).epsilon(1e-12));
     CHECK(floor.tail(dae.size() - 2 * system.dofs()).isZero(0.0));  // λ, μ: none
   }

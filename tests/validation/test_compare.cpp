@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <numbers>
 #include <sstream>
 
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "src/compare_output.hpp"
+#include "tests/scene_text.hpp"
 #include "validation/compare.hpp"
 #include "validation/embedded_scenes.hpp"
 
@@ -193,16 +193,8 @@ TEST_CASE("compare: a run that takes long reports its progress under its own nam
   // s); `condyn compare` without a budget ran for minutes with no hint of which run (user trial
   // of 2026-11-28). Each run's progress now comes through options.progress, led by its place in
   // the sweep. Here with a 3 s budget per run: a line at 2 s, then the failure.
-  const double r = std::sin(std::numbers::pi / 3.0), z = -0.5;
-  std::ostringstream text;
-  text.precision(17);
-  text << "[model]\ntype = \"truss3d\"\nnodes = [[0.0, 0.0, 0.0], [" << r << ", 0.0, " << z
-       << "]]\nmasses = [0.0, 1.0]\nsupports = [1]\n"
-          "members = [{ nodes = [1, 2], rigid = true }]\ngravity = [0.0, 0.0, -9.81]\n"
-          "[initial]\nvelocity = { uy2 = "
-       << std::sqrt(9.81 / 0.5) * r
-       << " }\n[solve]\nt_end = 10.0\noutput_step = 0.01\nrtol = 1e-8\natol = 1e-13\n";
-  const SceneSpec spec = parse_scene_text(text.str(), "conical");
+  const SceneSpec spec =
+      parse_scene_text(test::conical_pendulum_scene(60.0, 10.0, 1.0, 1e-13), "conical");
   CompareOptions o;
   o.tolerances = {1e-6};
   o.repeats = 1;
@@ -226,20 +218,8 @@ TEST_CASE("compare: the scene's own budget does not bound the reference") {
   // [solve] max_steps = 450 on the pendulum: the runs at rtol 1e-4 and 1e-6 fit in it, the
   // tight references (ggl, projection, index1 at 1e-8) did not, and compare failed with "no
   // reference solution" (user trial of 2026-11-28), though --max-steps exempts the reference.
-  std::string text = R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-t_end = 2.0
-output_step = 0.01
-rtol = 1e-8
-atol = 1e-10
-max_steps = 450
-)";
+  const std::string text = test::pendulum_scene(
+      "t_end = 2.0\noutput_step = 0.01\nrtol = 1e-8\natol = 1e-10\nmax_steps = 450\n");
   CompareOptions o;
   o.tolerances = {1e-4, 1e-6};
   o.repeats = 1;
