@@ -6,11 +6,13 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "dae/band_ordering.hpp"
+#include "dae/klu_streamed_solve.hpp"
 
 namespace condyn {
 
@@ -19,6 +21,8 @@ struct FixedPatternKlu::Impl {
   klu_symbolic* symbolic = nullptr;
   klu_numeric* numeric = nullptr;
   int n = 0;
+  /// The factors copied for the streamed solve, when large enough (KluSettings).
+  std::optional<KluStreamedSolve> streamed;
 
   Impl() { klu_defaults(&common); }
   ~Impl() {
@@ -36,6 +40,7 @@ FixedPatternKlu::FixedPatternKlu(KluSettings settings)
 
 void FixedPatternKlu::restart() {
   Impl& k = *impl_;
+  k.streamed.reset();
   if (k.numeric != nullptr) klu_free_numeric(&k.numeric, &k.common);
 }
 FixedPatternKlu::~FixedPatternKlu() = default;
@@ -77,14 +82,29 @@ bool FixedPatternKlu::factor(int n, const int* outer, const int* inner, const do
                          k.common.condest <= 1.0 / kMinRcond);
       if (keep) {
         ++refactored_;
+        if (k.streamed) k.streamed->refresh_values(*k.symbolic, *k.numeric);
         return true;
       }
     }
     klu_free_numeric(&k.numeric, &k.common);
   }
+  k.streamed.reset();  // before the new factors are allocated
   ++pivoting_;
   k.numeric = klu_factor(p, i, x, k.symbolic, &k.common);
-  return k.numeric != nullptr && k.common.status == KLU_OK;
+  return copy_for_streamed_solve();
+}
+
+bool FixedPatternKlu::streamed() const { return impl_->streamed.has_value(); }
+
+bool FixedPatternKlu::copy_for_streamed_solve() {
+  Impl& k = *impl_;
+  k.streamed.reset();
+  if (k.numeric == nullptr || k.common.status != KLU_OK) return false;
+  if (k.numeric->lnz + k.numeric->unz >= settings_.streamed_solve_from) {
+    k.streamed.emplace();
+    k.streamed->build(*k.symbolic, *k.numeric);
+  }
+  return true;
 }
 
 namespace {
@@ -105,7 +125,7 @@ bool FixedPatternKlu::first_factor(int n, int* p, int* i, double* x) {
   ++pivoting_;
   k.numeric = klu_factor(p, i, x, k.symbolic, &k.common);
   if (k.numeric == nullptr || k.common.status != KLU_OK) return false;
-  if (n < settings_.band_ordering_from) return true;
+  if (n < settings_.band_ordering_from) return copy_for_streamed_solve();
 
   // The band ordering is tried when the factor of A + Aᵀ under it, an upper bound on A's LU
   // factors when KLU pivots on the diagonal (as it prefers to), has at most 2.5 times as many
@@ -133,13 +153,13 @@ bool FixedPatternKlu::first_factor(int n, int* p, int* i, double* x) {
       k.symbolic = band;
       k.numeric = numeric;
       band_ordered_ = true;
-      return true;
+      return copy_for_streamed_solve();
     }
     if (numeric != nullptr) klu_free_numeric(&numeric, &k.common);
     klu_free_symbolic(&band, &k.common);
   }
   k.numeric = klu_factor(p, i, x, k.symbolic, &k.common);
-  return k.numeric != nullptr && k.common.status == KLU_OK;
+  return copy_for_streamed_solve();
 }
 
 void FixedPatternKlu::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
@@ -147,6 +167,10 @@ void FixedPatternKlu::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
   if (k.numeric == nullptr) throw std::logic_error("FixedPatternKlu: solve before a factorization");
   if (x.size() != k.n)
     throw std::invalid_argument("FixedPatternKlu: right-hand side of wrong size");
+  if (k.streamed) {
+    k.streamed->solve(*k.symbolic, *k.numeric, x);
+    return;
+  }
   if (klu_solve(k.symbolic, k.numeric, k.n, 1, x.data(), &k.common) == 0) {
     throw std::runtime_error("KLU solve failed (status " + std::to_string(k.common.status) + ")");
   }

@@ -13,6 +13,8 @@
 #include <Eigen/Sparse>
 #include <memory>
 
+#include "models/memory_estimate.hpp"
+
 namespace condyn {
 
 /// KLU's fill-reducing ordering (0 AMD, KLU's default; 1 COLAMD), and whether a refactored
@@ -26,10 +28,18 @@ namespace condyn {
 /// enough for the cache and the order of its reads gained nothing measurable (the benchmark
 /// lattice's index-1 matrix: nothing at 2·10⁴ unknowns, 10⁴ DOFs; 25 to 35% of a solve's time
 /// at 2·10⁵ and 2·10⁶; docs/benchmarks.md), so small systems keep KLU's ordering alone.
+///
+/// From `streamed_solve_from` entries in L and U on, the factors are also copied in the order the
+/// triangular solves read them, and solves read the copy (dae/klu_streamed_solve.hpp): KLU's own
+/// layout makes each solve stream the whole factor from memory twice once it is larger than the
+/// cache. The copy doubles the factor's memory, so factors that fit in a cache (2.4 MB at 200,000
+/// entries) keep klu_solve: on the lattice's 45,000 entries at 10³ DOFs the copy gained nothing
+/// measurable.
 struct KluSettings {
   int ordering = 0;
   bool confirm_with_condest = false;
   int band_ordering_from = 50'000;
+  long streamed_solve_from = kStreamedSolveFromEntries;
 };
 /// SUNDIALS' SUNLinSol_KLU's: COLAMD, and a small rcond confirmed by condest before pivoting
 /// afresh.
@@ -58,11 +68,16 @@ class FixedPatternKlu {
   [[nodiscard]] long refactorizations() const { return refactored_; }
   /// Whether the factors are in the bandwidth-reducing ordering (see KluSettings).
   [[nodiscard]] bool band_ordered() const { return band_ordered_; }
+  /// Whether solves read the factors' streamed copy (see KluSettings).
+  [[nodiscard]] bool streamed() const;
 
  private:
   struct Impl;
   bool factor(int n, const int* outer, const int* inner, const double* values);
   bool first_factor(int n, int* outer, int* inner, double* values);
+  /// After a pivoting factorization: whether it succeeded; copies the factors for the streamed
+  /// solve when they are large enough.
+  bool copy_for_streamed_solve();
   std::unique_ptr<Impl> impl_;
   KluSettings settings_;
   long pivoting_ = 0;

@@ -32,8 +32,14 @@ MemoryEstimate integration_memory_estimate(const ModelSizes& s) {
   const double unknowns = 2.0 * s.dofs + 2.0 * s.constraints;
   const double rest =
       kIdaVectors * 8.0 * unknowns + kModelCopies * kBytesPerNonzero * model_nonzeros;
-  e.bytes = (2.0 + kKluFillFactor) * kBytesPerNonzero * e.newton_nonzeros + rest;
-  e.lower_bound = 3.0 * kBytesPerNonzero * e.newton_nonzeros + rest;
+  // L and U, and their copy for the solves when large enough (dae/fixed_pattern_klu.hpp).
+  const auto factors = [](double entries) {
+    return entries >= static_cast<double>(kStreamedSolveFromEntries) ? 2.0 * entries : entries;
+  };
+  e.bytes =
+      kBytesPerNonzero * (2.0 * e.newton_nonzeros + factors(kKluFillFactor * e.newton_nonzeros)) +
+      rest;
+  e.lower_bound = kBytesPerNonzero * (2.0 * e.newton_nonzeros + factors(e.newton_nonzeros)) + rest;
   return e;
 }
 

@@ -17,11 +17,13 @@ struct ModelSizes {
 /// factorization of its Newton matrix, whose nonzeros are those of cj²M + cjC + K blocks, the
 /// identity couplings (2n) and A, Aᵀ twice (4 nnz(A)):
 ///   Jacobian and its pattern copy: 2 × 12 B per nonzero (value + row index);
-///   KLU's L and U: kKluFillFactor × 12 B per nonzero of the Newton matrix;
+///   KLU's L and U: kKluFillFactor × 12 B per nonzero of the Newton matrix, twice from
+///   kStreamedSolveFromEntries entries on (the copy the solves stream);
 ///   IDA's vectors: 30 of length N (six history arrays, error weights, work vectors);
 ///   the model's own sparse matrices, held three times (Model, LinearSystem, evaluator).
 /// `bytes` takes KLU's fill as kKluFillFactor; `lower_bound` as none at all (L and U hold at
-/// least the Newton matrix's nonzeros), which no run can go below.
+/// least the Newton matrix's nonzeros, twice when that is kStreamedSolveFromEntries or more),
+/// which no run can go below.
 struct MemoryEstimate {
   double bytes = 0;
   double lower_bound = 0;
@@ -33,6 +35,10 @@ struct MemoryEstimate {
 /// 3 to 10 times their nonzeros up to a million unknowns; 20 leaves a margin for 3D meshes and
 /// constraint rows. A model that needs more fails in KLU with an allocation error, not a crash.
 constexpr double kKluFillFactor = 20.0;
+
+/// The entries of L and U from which the Newton solvers keep a second copy of them, in the order
+/// the triangular solves read them (KluSettings::streamed_solve_from, dae/fixed_pattern_klu.hpp).
+constexpr long kStreamedSolveFromEntries = 200'000;
 
 /// The memory a run can have, in bytes: MemAvailable of /proc/meminfo plus what this process holds
 /// already (RssAnon of /proc/self/status), since the estimates count the model it has read and
