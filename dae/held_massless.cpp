@@ -12,8 +12,8 @@ namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
 
-std::shared_ptr<Eigen::SparseLU<Sparse>> factor(const Sparse& S, const char* what) {
-  auto lu = std::make_shared<Eigen::SparseLU<Sparse>>();
+std::shared_ptr<KktLu> factor(const Sparse& S, const char* what) {
+  auto lu = std::make_shared<KktLu>();
   if (S.rows() == 0) return lu;
   lu->compute(S);
   if (lu->info() != Eigen::Success) {
@@ -73,7 +73,7 @@ void HeldMassless::mark(Eigen::VectorXd& id, Eigen::VectorXd& index) const {
 namespace {
 
 /// Solves S x = (b − P·a)|_dofs with a_dofs taken as 0 in the product, into a_dofs.
-void solve_rows(const Eigen::SparseLU<Sparse>& lu, const Sparse& P, const std::vector<int>& dofs,
+void solve_rows(const KktLu& lu, const Sparse& P, const std::vector<int>& dofs,
                 const Eigen::VectorXd& b, Eigen::VectorXd& a) {
   if (dofs.empty()) return;
   for (int h : dofs) a[h] = 0.0;

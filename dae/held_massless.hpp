@@ -72,7 +72,7 @@ class HeldMassless {
  private:
   LinearMatrices l_;
   std::vector<int> held_, undamped_, damped_;
-  std::shared_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> kkt_, stiff_, damp_;
+  std::shared_ptr<KktLu> kkt_, stiff_, damp_;
 };
 
 /// differential_id and variable_index of a [u; v] problem of `size` unknowns, all differential

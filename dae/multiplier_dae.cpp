@@ -340,7 +340,7 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
   const Eigen::VectorXd rhs_l = constraint_rhs(t, uu, vv);
   // [M Aᵀ; A 0] [v'; λ] = [f; γ]
   const Eigen::SparseMatrix<double> kkt = kkt_matrix(M, A);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  KktLu lu;
   lu.compute(kkt);
   if (lu.info() != Eigen::Success) {
     std::ostringstream s;

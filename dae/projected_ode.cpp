@@ -69,8 +69,7 @@ const ProjectedOde::Factors& ProjectedOde::factors(double t, const ConstRef& u) 
   return scratch_;
 }
 
-Eigen::VectorXd ProjectedOde::correction(const Eigen::SparseLU<Eigen::SparseMatrix<double>>& kkt,
-                                         const Eigen::VectorXd& r) const {
+Eigen::VectorXd ProjectedOde::correction(const KktLu& kkt, const Eigen::VectorXd& r) const {
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + r.size());
   rhs.tail(r.size()) = -r;
   return kkt.solve(rhs).head(n_);

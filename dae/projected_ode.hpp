@@ -28,6 +28,7 @@
 
 #include <Eigen/SparseLU>
 
+#include "dae/kkt.hpp"
 #include "dae/ode_problem.hpp"
 #include "models/mechanical_system.hpp"
 
@@ -65,7 +66,7 @@ class ProjectedOde final : public OdeProblem {
   /// Everything the right-hand side and the projections need at one (t, u): the KKT matrices
   /// with all rows and with the position rows, factored.
   struct Factors {
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> kkt, kkt_p;
+    KktLu kkt, kkt_p;
     /// Exact per-row powers of two (models/row_scales.hpp): A and Ap hold the rows scaled by
     /// them, so KKT pivots do not depend on a row's units (rows at 1e-200 left the KKT matrix
     /// singular to roundoff); residuals are scaled the same way, and multipliers back.
@@ -77,8 +78,7 @@ class ProjectedOde final : public OdeProblem {
   const Factors& factors(double t, const ConstRef& u) const;
   void factor(double t, const ConstRef& u, Factors& f) const;
   /// The M-weighted correction Δ with B Δ = −r, B = A (all rows) or A_p (position rows).
-  [[nodiscard]] Eigen::VectorXd correction(const Eigen::SparseLU<Eigen::SparseMatrix<double>>& kkt,
-                                           const Eigen::VectorXd& r) const;
+  [[nodiscard]] Eigen::VectorXd correction(const KktLu& kkt, const Eigen::VectorXd& r) const;
 
   std::unique_ptr<MechanicalSystem> system_;    ///< this run's evaluator
   std::unique_ptr<MechanicalSystem> observer_;  ///< outside any segment: for multipliers()

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dae/baumgarte_gains.hpp"
@@ -19,6 +20,7 @@
 #include "dae/elimination.hpp"
 #include "dae/failure_advice.hpp"
 #include "dae/ida_integrator.hpp"
+#include "dae/master_slave.hpp"
 #include "dae/model_scales.hpp"
 #include "dae/multiplier_dae.hpp"
 #include "dae/observed_run.hpp"
@@ -38,8 +40,30 @@ enum class Refusal {
   penalty_static_start,
   elimination_nonholonomic,
   elimination_nonlinear,
-  penalty_nonlinear
+  penalty_nonlinear,
+  penalty_dense_row
 };
+
+/// The constraint row with the most entries, and their count (m = 0: row −1).
+std::pair<int, long> longest_row(const Eigen::SparseMatrix<double>& A) {
+  std::vector<long> entries(static_cast<std::size_t>(A.rows()), 0);
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      ++entries[static_cast<std::size_t>(it.row())];
+    }
+  }
+  const auto at = std::max_element(entries.begin(), entries.end());
+  if (at == entries.end()) return {-1, 0};
+  return {static_cast<int>(at - entries.begin()), *at};
+}
+
+/// Penalty's springs add w aᵢᵀaᵢ for each row aᵢ to K (and C): a row over L DOFs couples them
+/// all, L² entries of the stiffness, as master-slave elimination's dense block would
+/// (kMaxDenseGroupEntries): a row over 50,000 DOFs (a floor's average drift) is 2.5·10⁹.
+bool penalty_too_dense(const Model& model) {
+  const double entries = static_cast<double>(longest_row(model.A).second);
+  return entries * entries > kMaxDenseGroupEntries;
+}
 
 Refusal refusal_of(const Model& model, Scheme scheme) {
   if (scheme == Scheme::projection && !unconstrained_massless_dofs(model.M, model.A).empty()) {
@@ -48,7 +72,10 @@ Refusal refusal_of(const Model& model, Scheme scheme) {
   if (scheme == Scheme::penalty && model.static_start && model.constraint_count() > 0) {
     return Refusal::penalty_static_start;
   }
-  if (!model.is_nonlinear()) return Refusal::none;
+  if (!model.is_nonlinear()) {
+    return scheme == Scheme::penalty && penalty_too_dense(model) ? Refusal::penalty_dense_row
+                                                                 : Refusal::none;
+  }
   if (scheme == Scheme::elimination) {
     const bool nonholonomic = std::any_of(model.constraints.begin(), model.constraints.end(),
                                           [](const Constraint& c) { return c.nonholonomic; });
@@ -107,6 +134,16 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
       return "penalty is implemented for linear models only (constant constraints, linear "
              "forces); this model is nonlinear (state-dependent constraints or forces). Use " +
              usable(model, dae_schemes);
+    case Refusal::penalty_dense_row: {
+      const auto [row, entries] = longest_row(model.A);
+      std::ostringstream s;
+      s << "penalty: constraint '" << model.constraints[static_cast<std::size_t>(row)].name
+        << "' has " << entries << " terms; its spring couples them all, a dense block of "
+        << static_cast<double>(entries) * static_cast<double>(entries)
+        << " entries in the stiffness and damping (beyond " << kMaxDenseGroupEntries << "); use "
+        << usable(model, {S::index1, S::ggl, S::automatic}) << ", which keep it as one multiplier";
+      return s.str();
+    }
   }
   return std::nullopt;
 }

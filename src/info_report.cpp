@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <map>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -307,9 +308,15 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
             s == Scheme::elimination && elimination_size ? *elimination_size : sizer(as_scheme);
         out << std::setw(10) << size.unknowns << size.jacobian_nonzeros << marker << "\n";
       } catch (const std::exception& e) {
+        // Out of memory while building it says nothing of the scheme's applicability.
+        const bool memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
         // Continuation lines indented under the reason; the marker ends the first line.
         std::string wrapped =
-            wrapped_text("  " + name + "not applicable: ", e.what()).substr(2 + name.size());
+            wrapped_text("  " + name + (memory ? "not sized: " : "not applicable: "),
+                         memory ? "out of memory while building its system (the run would need "
+                                  "more than this process may have)"
+                                : e.what())
+                .substr(2 + name.size());
         wrapped.insert(wrapped.find('\n'), marker);
         out << wrapped;
       }

@@ -192,9 +192,11 @@ TEST_CASE("compare: a run that takes long reports its progress under its own nam
   // A conical pendulum in steady rotation at atol 1e-13 crawls under projection (steps of 3e-7
   // s); `condyn compare` without a budget ran for minutes with no hint of which run (user trial
   // of 2026-11-28). Each run's progress now comes through options.progress, led by its place in
-  // the sweep. Here with a 3 s budget per run: a line at 2 s, then the failure.
+  // the sweep. Here with a 3 s budget per run: a line at 2 s, then the failure. (compare keeps
+  // the scene's atol/rtol: 1e-15/1e-8 runs at 1e-13/1e-6. At 1e-11/1e-6 it crawled too until
+  // the KKT factorizations moved to KLU: now 9,197 steps.)
   const SceneSpec spec =
-      parse_scene_text(test::conical_pendulum_scene(60.0, 10.0, 1.0, 1e-13), "conical");
+      parse_scene_text(test::conical_pendulum_scene(60.0, 10.0, 1.0, 1e-15), "conical");
   CompareOptions o;
   o.tolerances = {1e-6};
   o.repeats = 1;
