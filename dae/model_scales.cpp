@@ -92,7 +92,7 @@ ModelScales model_scales(const Model& model) {
     // the applied forces give it (see the header).
     Eigen::VectorXd lambda0 = Eigen::VectorXd::Zero(m), gamma(m);
     system.acceleration_bias(t, model.u0, model.v0, gamma);
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(kkt_matrix(M, A));
+    KktLu lu(kkt_matrix(M, A));
     if (lu.info() == Eigen::Success) {
       Eigen::VectorXd rhs(n + m);
       rhs << f, gamma;
@@ -102,13 +102,23 @@ ModelScales model_scales(const Model& model) {
     const Eigen::SparseMatrix<double> At = A.transpose();
     Eigen::VectorXd w(m);
     for (int i = 0; i < m; ++i) {
-      // The largest force on the row's DOFs over its largest coefficient (λ A is a force).
-      double force = 0.0, coefficient = 0.0;
+      // The force that gives the row's lightest DOF the largest acceleration the loads give any
+      // of its DOFs, over the row's largest coefficient (λ A is a force): a rod between a 1e6 kg
+      // and a 1e-6 kg mass under gravity carries about 1e-6 g, not the heavy mass's 1e6 g
+      // (which made ω 3e6 for a double pendulum whose frequencies are 3.1: user trial,
+      // 2026-11-28). Rows over massless DOFs alone: the largest force on them.
+      double force = 0.0, acceleration = 0.0, lightest = 0.0, coefficient = 0.0;
       for (Eigen::SparseMatrix<double>::InnerIterator it(At, i); it; ++it) {
-        force = std::max(force, std::abs(f[it.row()]));
+        const double load = std::abs(f[it.row()]), mass = M.coeff(it.row(), it.row());
+        force = std::max(force, load);
+        if (mass > 0.0) {
+          acceleration = std::max(acceleration, load / mass);
+          lightest = lightest > 0.0 ? std::min(lightest, mass) : mass;
+        }
         coefficient = std::max(coefficient, std::abs(it.value()));
       }
-      w[i] = std::max(std::abs(lambda0[i]), coefficient > 0.0 ? force / coefficient : 0.0);
+      const double carried = lightest > 0.0 ? acceleration * lightest : force;
+      w[i] = std::max(std::abs(lambda0[i]), coefficient > 0.0 ? carried / coefficient : 0.0);
     }
     const auto& G = system.constraint_force_jacobian(t, model.u0, w);
     if (G.size() > 0) K += G;

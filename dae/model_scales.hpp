@@ -6,14 +6,16 @@
 /// Frequencies are those of the linearization at t = 0 and (u0, v0) on the constraint manifold:
 ///   (Nᵀ K_T N) x = ω² (Nᵀ M N) x,   N an orthonormal basis of null(A),
 ///   K_T = −∂f/∂u + Σ_i w_i ∂(A_iᵀ)/∂u   (the geometric stiffness of the constraint forces),
-/// with w_i = max(|λ_i(0)|, F_i / a_i), F_i the largest force f_j(0) and a_i the largest
-/// coefficient |A_ij| over the DOFs j row i touches: a pendulum released from rest with its rod
-/// horizontal (λ(0) = 0) still gets its gravity stiffness m g / L, hence ω = √(g/L). |ω²| is taken
-/// (compressed members and inverted pendulums give negative ones: their time scale counts all the
-/// same). Models with more than kDenseScaleLimit DOFs, or whose reduced mass is singular (massless
-/// DOFs held by springs), get the diagonal estimates ω² ∈ {K_T,ii / M_ii : M_ii > 0} instead,
-/// and ω_max from a few Lanczos iterations on the unconstrained pencil when M is positive definite
-/// (dae/largest_frequency.hpp; the larger of it and the diagonal estimates).
+/// with w_i = max(|λ_i(0)|, F_i / a_i), a_i the largest coefficient |A_ij| over the DOFs j row i
+/// touches and F_i = min_j M_jj · max_j |f_j(0)| / M_jj over those with mass (the force that gives
+/// the lightest the largest acceleration; max_j |f_j(0)| if all are massless): a pendulum released
+/// from rest with its rod horizontal (λ(0) = 0) still gets its gravity stiffness m g / L, hence
+/// ω = √(g/L), and a rod from a heavy mass to a light one carries the light one's weight. |ω²| is
+/// taken (compressed members and inverted pendulums give negative ones: their time scale counts all
+/// the same). Models with more than kDenseScaleLimit DOFs, or whose reduced mass is singular
+/// (massless DOFs held by springs), get the diagonal estimates ω² ∈ {K_T,ii / M_ii : M_ii > 0}
+/// instead, and ω_max from a few Lanczos iterations on the unconstrained pencil when M is positive
+/// definite (dae/largest_frequency.hpp; the larger of it and the diagonal estimates).
 
 #include <string>
 
