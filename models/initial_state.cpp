@@ -200,6 +200,23 @@ void ModelBuilder::project_initial() {
   } catch (const InconsistentGivenValues& e) {
     refuse_given_values(e);
   } catch (const std::runtime_error& e) {
+    // A linear model's rows are dependent or not whatever the state: the rank check, which
+    // otherwise comes later (models/build_model.cpp), names a dependent set and says whether it
+    // conflicts; with redundant = "drop" the projection runs again without the dropped rows. A
+    // conflicting block was reported as a projection whose velocities no state satisfies (user
+    // trial, 2026-11-28).
+    if (!model_.is_nonlinear()) {
+      check_finite();
+      bool dropped = false;
+      while (const auto dependent = check_rank()) {
+        drop_constraint(*dependent);
+        dropped = true;
+      }
+      if (dropped) {
+        project_initial();
+        return;
+      }
+    }
     fail(spec_.initial.where, e.what());
   }
   if (!model_.is_nonlinear()) {  // velocity rows integrate with the projected u(0)

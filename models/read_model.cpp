@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ void SceneReader::read_truss(const toml::table& t, int dim, ModelSpec& model) co
     return static_cast<int>(k);
   };
   const auto& members = array(required(t, path, "members"), "model.members");
+  // The rigid member already joining each pair of nodes (smaller node first): a second one
+  // repeats its constraint, dependent everywhere, and took the same row name (user trial,
+  // 2026-11-28: two lambda_rigid_1_2 and a "singular configuration" message).
+  std::map<std::pair<int, int>, std::size_t> rigid_pairs;
   for (std::size_t i = 0; i < members.size(); ++i) {
     const std::string p = index("model.members", i);
     const auto& m = table(*members.get(i), p);
@@ -69,6 +74,13 @@ void SceneReader::read_truss(const toml::table& t, int dim, ModelSpec& model) co
     if (member.rigid) {
       if (const auto* ea = m.get("EA")) {
         fail(*ea, join(p, "EA"), "a rigid member has no stiffness: remove EA or rigid");
+      }
+      const auto pair = std::minmax(member.node_i, member.node_j);
+      if (const auto [it, added] = rigid_pairs.emplace(pair, i); !added) {
+        fail(ends_node, join(p, "nodes"),
+             "nodes " + std::to_string(pair.first) + " and " + std::to_string(pair.second) +
+                 " are already joined rigidly by " + index("model.members", it->second) +
+                 ": a second rigid member repeats its constraint; remove one");
       }
     } else {
       member.EA = positive(required(m, p, "EA"), join(p, "EA"));

@@ -299,6 +299,61 @@ output_step = 0.1
   CHECK(msg.find("no motion satisfies it") == std::string::npos);
 }
 
+TEST_CASE("a second rigid member between the same nodes is refused, naming the first") {
+  // It repeats the first's row (dependent everywhere), and both took the name rigid_1_2: the
+  // message spoke of a singular configuration, two columns lambda_rigid_1_2 (user trial,
+  // 2026-11-28). Either order of the nodes; an elastic member beside a rigid one is allowed.
+  const std::string scene = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }, SECOND]
+gravity = [0.0, -9.81]
+[solve]
+t_end = 1.0
+output_step = 0.1
+)";
+  for (const char* second :
+       {"{ nodes = [1, 2], rigid = true }", "{ nodes = [2, 1], rigid = true }"}) {
+    const std::string msg = error_of(replace(scene, "SECOND", second));
+    CAPTURE(msg);
+    CHECK(msg.find(":6: model.members[2].nodes: nodes 1 and 2 are already joined rigidly by "
+                   "model.members[1]: a second rigid member repeats its constraint; remove one") !=
+          std::string::npos);
+  }
+  CHECK(error_of(replace(scene, "SECOND", "{ nodes = [2, 1], EA = 10.0 }")).empty());
+}
+
+TEST_CASE("with [initial] project, a conflicting linear set is named as such") {
+  // The projection met the dependent rows first and said only that no velocity satisfies them
+  // (user trial, 2026-11-28): the rank check, which does not depend on the state for linear
+  // rows, now names them and says they conflict.
+  const std::string drives = R"([[constraint]]
+name = "drive"
+terms = { ux2 = 1.0 }
+value = { type = "harmonic", amplitude = 0.1, omega = 10.0 }
+
+[[constraint]]
+name = "drive2"
+terms = { ux2 = 2.0 }
+value = { type = "harmonic", amplitude = AMPLITUDE, omega = 10.0 }
+
+[initial]
+project = true
+
+[solve])";
+  const std::string scene = replace(kBase, "[solve]", drives);
+  const std::string msg = error_of(replace(scene, "AMPLITUDE", "0.3"));
+  CAPTURE(msg);
+  CHECK(msg.find("the constraints 'drive2', 'drive' are linearly dependent") != std::string::npos);
+  CHECK(msg.find("so the set is conflicting: no motion satisfies it") != std::string::npos);
+  CHECK(msg.find("cannot project") == std::string::npos);
+  // Compatible and dropped: it builds.
+  CHECK(error_of(replace(replace(scene, "AMPLITUDE", "0.2"), "output_step = 0.1",
+                         "output_step = 0.1\nredundant = \"drop\"")) == "");
+}
+
 TEST_CASE("inconsistent initial conditions name the constraint and the residual") {
   check_error(kBase + "[initial]\ndisplacement = { ux1 = 0.25 }\n",
               "initial displacements violate constraint 'pin_x': a·u(0) = 0.25 but the constraint "
