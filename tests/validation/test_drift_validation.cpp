@@ -78,13 +78,14 @@ TEST_CASE("long runs: GGL drift stays at the Newton tolerance, index1 drift grow
   CHECK(i1_3 > i1_2);
   CHECK(exponent >= 1.0);
   // Projection puts the state back on the manifold after every step: at the steps the drift is
-  // roundoff of the projection, a few ulps of |u| (8 eps; observed 2.6e-17 |u|), below GGL's
-  // Newton-level drift.
+  // roundoff of the projection, a few ulps of |u| (8 eps; observed 2.6e-17 |u|). (It was also
+  // required below GGL's drift in [1, 10), but GGL's Newton corrections keep linear rows exact
+  // since a69f455: both are roundoff, 3.5e-18 each with the KKT start of 74ba684, and which is
+  // smaller is not a property of either scheme.)
   double proj_steps = 0.0;
   for (const auto& s : proj.steps) proj_steps = std::max(proj_steps, s.drift_position);
   MESSAGE("projection drift at steps: " << proj_steps);
   CHECK(proj_steps <= 8 * kEps * u_scale);
-  CHECK(proj_steps < g1);
 }
 
 TEST_CASE("pendulum over 1000 periods: the fitted drift growth follows theory, per scheme") {
