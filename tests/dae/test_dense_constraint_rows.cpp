@@ -69,7 +69,7 @@ TEST_CASE("KktLu: a dense constraint row leaves the saddle point's factors spars
   CHECK(KktLu(kkt_matrix(M, twice)).info() == Eigen::NumericalIssue);
 }
 
-TEST_CASE("penalty refuses a row whose spring would be a dense block; the others run it") {
+TEST_CASE("penalty refuses a row whose spring would be a dense block and the others run it") {
   // 2,450 terms: a block of 6.0e6 entries, beyond elimination's and penalty's 4e6.
   const auto wide = test::built(parse_scene_text(averaged_lattice(2450), "wide.toml"));
   const auto why = scheme_refusal(wide.model, Scheme::penalty);

@@ -325,7 +325,7 @@ output_step = 0.1
   CHECK(error_of(replace(scene, "SECOND", "{ nodes = [2, 1], EA = 10.0 }")).empty());
 }
 
-TEST_CASE("with [initial] project, a conflicting linear set is named as such") {
+TEST_CASE("with an initial projection a conflicting linear set is named as such") {
   // The projection met the dependent rows first and said only that no velocity satisfies them
   // (user trial, 2026-11-28): the rank check, which does not depend on the state for linear
   // rows, now names them and says they conflict.
