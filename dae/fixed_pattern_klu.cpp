@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -101,8 +102,12 @@ bool FixedPatternKlu::copy_for_streamed_solve() {
   k.streamed.reset();
   if (k.numeric == nullptr || k.common.status != KLU_OK) return false;
   if (k.numeric->lnz + k.numeric->unz >= settings_.streamed_solve_from) {
-    k.streamed.emplace();
-    k.streamed->build(*k.symbolic, *k.numeric);
+    try {
+      k.streamed.emplace();
+      k.streamed->build(*k.symbolic, *k.numeric);
+    } catch (const std::bad_alloc&) {
+      k.streamed.reset();  // no room for the copy: klu_solve on KLU's own factors, slower
+    }
   }
   return true;
 }
