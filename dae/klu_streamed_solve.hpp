@@ -32,8 +32,6 @@ class KluStreamedSolve {
   /// x ← A⁻¹ x with the factors last copied, as klu_solve with one right-hand side.
   void solve(const klu_symbolic& symbolic, const klu_numeric& numeric,
              Eigen::Ref<Eigen::VectorXd> x) const;
-  /// Entries held (of L and U, the unit and stored diagonals left out).
-  [[nodiscard]] std::size_t entries() const { return values_.size(); }
 
  private:
   /// Calls visit(column) for each column of the factors in the order the solve reads them.
