@@ -35,7 +35,7 @@ test::BuiltScene chapter_model(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("truss2d assembles the chapter's master stiffness") {
+TEST_CASE("truss2d assembles the chapter's master stiffness" * doctest::test_suite("smoke")) {
   // reference/chapter-truss.md, "Master stiffness" (derived there by hand).
   Eigen::MatrixXd K(6, 6);
   K << 20, 10, -10, 0, -10, -10,  //
@@ -51,7 +51,8 @@ TEST_CASE("truss2d assembles the chapter's master stiffness") {
   CONDYN_CHECK_CLOSE(Eigen::MatrixXd(model.M), Eigen::MatrixXd(m.asDiagonal()), 0.0);
 }
 
-TEST_CASE("master-slave transform: A T = 0, A G = I, pivoted slave choice") {
+TEST_CASE("master-slave transform: A T = 0, A G = I, pivoted slave choice" *
+          doctest::test_suite("smoke")) {
   Eigen::MatrixXd a(3, 6);
   a << 1, 2, 0, 0, -1, 0,  //
       0, 0, 3, 1, 0, 0,    //
@@ -134,7 +135,8 @@ output_step = 0.5
                      n * kEps / 1e-6);
 }
 
-TEST_CASE("a load step after t = 0 is crossed with a stop and restart, under every scheme") {
+TEST_CASE("a load step after t = 0 is crossed with a stop and restart, under every scheme" *
+          doctest::test_suite("smoke")) {
   // Two unit masses x, y tied together (y = x), a spring 4 on x, and F H(t − 1) on x: the pair
   // moves as one mass 2 on the spring, x = F/k (1 − cos(ω (t − 1))) for t ≥ 1, ω = √2. The tie
   // pulls y along with f_con = m_y x'', which jumps at the step, so the multiplier schemes must

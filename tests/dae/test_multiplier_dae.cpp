@@ -53,7 +53,8 @@ output_step = 0.5
 
 }  // namespace
 
-TEST_CASE("multiplier formulations: Jacobian agrees with central differences") {
+TEST_CASE("multiplier formulations: Jacobian agrees with central differences" *
+          doctest::test_suite("smoke")) {
   const Model model = build_model(parse_scene_text(kScene, "jacobian test"));
   const LinearSystem system(model);
   for (auto scheme : {Scheme::index1, Scheme::baumgarte, Scheme::ggl}) {
@@ -186,7 +187,7 @@ TEST_CASE("homogeneous scleronomic constraints evaluate no time function") {
   CHECK(LinearSystem(mixed).rows_with_time_functions() == 2);
 }
 
-TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
+TEST_CASE("penalty formulation: Jacobian, consistency, weights" * doctest::test_suite("smoke")) {
   const SceneSpec spec = parse_scene_text(kScene, "penalty");
   const Model model = build_model(spec);
   const LinearSystem system(model);
@@ -230,7 +231,8 @@ TEST_CASE("penalty formulation: Jacobian, consistency, weights") {
   CHECK(r.cwiseAbs().maxCoeff() <= 1e-12);
 }
 
-TEST_CASE("index2 and index3 follow the exact solution at their own accuracy") {
+TEST_CASE("index2 and index3 follow the exact solution at their own accuracy" *
+          doctest::test_suite("smoke")) {
   const SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
   const Model model = build_model(spec);
   const Trajectory exact = exact_trajectory(model, spec.solve.output_times());
@@ -340,7 +342,8 @@ atol = 1e-12
 
 }  // namespace
 
-TEST_CASE("penalty and projection: a row's scale does not change what it holds") {
+TEST_CASE("penalty and projection: a row's scale does not change what it holds" *
+          doctest::test_suite("smoke")) {
   // 2 q'' + 200 q = 1 for the tied pair (u1 = u2 = q, unit load on u1): q(1) = (1 - cos 10)/200.
   // Under penalty, a row written as 0.001 u1 = 0.001 u2 got a millionth of the weight: u1 =
   // 0.0179, u2 = 0.00047 at t = 1 (review of 2026-11-26). Near the double range, 1/|a|²

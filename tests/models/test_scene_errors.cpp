@@ -68,9 +68,11 @@ void check_error(const std::string& text, const std::string& needle) {
 
 }  // namespace
 
-TEST_CASE("the base scene is valid") { CHECK(error_of(kBase).empty()); }
+TEST_CASE("the base scene is valid" * doctest::test_suite("smoke")) {
+  CHECK(error_of(kBase).empty());
+}
 
-TEST_CASE("syntax and structure") {
+TEST_CASE("syntax and structure" * doctest::test_suite("smoke")) {
   check_error(kBase + "\n[solve2]\n", "solve2: unknown key");
   check_error(replace(kBase, "t_end = 1.0", "t_end = 1.0\nrtoll = 1e-6"),
               "solve.rtoll: unknown key");

@@ -28,7 +28,7 @@ const std::string& kScene = condyn::test::kTwoMassesScene;
 
 }  // namespace
 
-TEST_CASE("run writes the contract's CSV and a one-line summary") {
+TEST_CASE("run writes the contract's CSV and a one-line summary" * doctest::test_suite("smoke")) {
   const Sandbox box;
   box.write("s.toml", kScene);
   const Result r = box.run("run s.toml --out r.csv");
@@ -58,7 +58,8 @@ TEST_CASE("run: default output name, tolerance flags, all quantities") {
   CHECK(csv.rfind("t,vel_a,vel_b,lambda_tie,reaction_a,reaction_b\n", 0) == 0);
 }
 
-TEST_CASE("bad input: exit 2, the file and key named, existing output untouched") {
+TEST_CASE("bad input: exit 2, the file and key named, existing output untouched" *
+          doctest::test_suite("smoke")) {
   const Sandbox box;
   box.write("bad.toml", kScene + "[initial]\ndisplacement = { zz = 1.0 }\n");
   box.write("keep.csv", "precious\n");
@@ -119,7 +120,7 @@ TEST_CASE("output to a FIFO or through a symbolic link replaces neither") {
   CHECK(slurp(box.path("real.csv")).rfind("t,a,b", 0) == 0);
 }
 
-TEST_CASE("every scheme runs from the command line") {
+TEST_CASE("every scheme runs from the command line" * doctest::test_suite("smoke")) {
   const Sandbox box;
   box.write("s.toml", kScene + "[output]\nquantities = [\"reaction\", \"multiplier\"]\n");
   for (const char* scheme : {"auto", "elimination", "index1", "baumgarte", "ggl", "index2",
@@ -152,7 +153,7 @@ TEST_CASE("command-line errors exit 2") {
   CHECK(box.run("--help").code == 0);
 }
 
-TEST_CASE("info classifies constraints and sizes the model") {
+TEST_CASE("info classifies constraints and sizes the model" * doctest::test_suite("smoke")) {
   const Sandbox box;
   box.write("s.toml", kScene);
   const Result r = box.run("info s.toml");
