@@ -207,6 +207,9 @@ class Cvode final : public sundials::SundialsStepper {
   void restart(double t) override {
     collect();  // CVodeReInit may reset the counters: keep what this segment did
     data_.problem->begin_segment(t);
+    Eigen::VectorXd y = view(y_.get());
+    data_.problem->settle(t, y);  // a load step may move what the rows fix
+    view(y_.get()) = y;
     check(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
     rebase();
   }
@@ -260,12 +263,14 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
   const WallTimer timer(summary);
   const double t0 = options.output_times.front();
   problem.begin_segment(t0);
-  Cvode cvode(problem, y0, t0, options);
+  Eigen::VectorXd y_start = y0;
+  problem.settle(t0, y_start);
+  Cvode cvode(problem, y_start, t0, options);
   Eigen::VectorXd yp0(problem.size());
-  problem.rhs(t0, y0, yp0);
+  problem.rhs(t0, y_start, yp0);
   summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
   summary.jacobian_nonzeros = cvode.jacobian_nonzeros();
-  RawTrajectory out = drive(cvode, y0, yp0, options, summary);
+  RawTrajectory out = drive(cvode, y_start, yp0, options, summary);
   summary.set_reached(options.output_times.back());
   return out;
 }

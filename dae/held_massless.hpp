@@ -43,6 +43,9 @@ class HeldMassless {
   [[nodiscard]] bool empty() const { return held_.empty(); }
   /// The held massless DOFs, ascending.
   [[nodiscard]] const std::vector<int>& dofs() const { return held_; }
+  /// Those without damping of their own (algebraic u), and those with it (first order in u).
+  [[nodiscard]] const std::vector<int>& undamped() const { return undamped_; }
+  [[nodiscard]] const std::vector<int>& damped() const { return damped_; }
   /// In a [u; v; ...] layout of n DOFs: v_h algebraic (id 0); index 2 on the undamped ones' v_h.
   void mark(Eigen::VectorXd& id, Eigen::VectorXd& index) const;
 

@@ -5,12 +5,14 @@
 #include "dae/kkt_newton.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 #include "dae/kkt.hpp"
 
 namespace condyn {
 
-KktNewton::KktNewton(LinearMatrices&& matrices) {
+KktNewton::KktNewton(LinearMatrices&& matrices, std::shared_ptr<const HeldMassless> held)
+    : held_(std::move(held)) {
   // Eigen 3.4's SparseMatrix has no move constructor: swapped in, not copied.
   M_.swap(matrices.M);
   C_.swap(matrices.C);
@@ -47,6 +49,14 @@ void KktNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   x.head(n_).noalias() = M_ * bv;
   x.head(n_).noalias() -= gamma_ * (K_ * bu);
   if (m_ > 0) x.tail(m_).noalias() = A_ * bv;
+  if (held_) {  // their rows differentiated (kkt_newton.hpp)
+    const Eigen::VectorXd kv = K_ * bv;
+    for (int h : held_->undamped()) x[h] = gamma_ * gamma_ * kv[h];
+    if (!held_->damped().empty()) {
+      const Eigen::VectorXd cv = C_ * bv;
+      for (int h : held_->damped()) x[h] = gamma_ * cv[h];
+    }
+  }
   klu_.solve_in_place(x);
   const auto xv = x.head(n_);
   b.head(n_) += gamma_ * xv;  // x_u = b_u + γ x_v

@@ -11,10 +11,19 @@
 /// of n + m unknowns, which KLU factors (its pattern analysed once). It is exact for a linear model
 /// (constant M, C, K, A); the projection scheme uses it for those, and CVODE's dense Jacobian for
 /// nonlinear models.
+///
+/// Massless DOFs held by stiffness (their rows of M and columns of A are zero) take their
+/// accelerations from their rows differentiated (dae/projected_ode.hpp): K_h· a = f̈_h
+/// (undamped) or C_h· a + K_h· v = ḟ_h (damped). Linearised with a = (x_v − b_v)/γ, those rows
+/// read γ² K_h· x_v = γ² K_h· b_v and γ (C_h· + γ K_h·) x_v = γ C_h· b_v: the matrix's rows h
+/// as they stand, with these right-hand sides.
 
 #include <Eigen/Sparse>
 
+#include <memory>
+
 #include "dae/fixed_pattern_klu.hpp"
+#include "dae/held_massless.hpp"
 #include "dae/kkt.hpp"
 #include "dae/ode_problem.hpp"
 
@@ -24,7 +33,8 @@ class KktNewton final : public NewtonSystem {
  public:
   /// Takes the matrices over (M, C, K n x n with C possibly empty; A m x n; swapped, not copied).
   /// Throws std::invalid_argument when their sizes disagree.
-  explicit KktNewton(LinearMatrices&& matrices);
+  /// `held`: the massless DOFs held by stiffness among them, or null.
+  explicit KktNewton(LinearMatrices&& matrices, std::shared_ptr<const HeldMassless> held = nullptr);
 
   /// Factors the saddle-point matrix for γ; false when it is singular.
   bool setup(double gamma) override;
@@ -36,6 +46,7 @@ class KktNewton final : public NewtonSystem {
   [[nodiscard]] Eigen::SparseMatrix<double> saddle(double gamma) const;
 
   Eigen::SparseMatrix<double> M_, C_, K_, A_;
+  std::shared_ptr<const HeldMassless> held_;
   int n_ = 0, m_ = 0;
   double gamma_ = 0.0;
   long nonzeros_ = 0;

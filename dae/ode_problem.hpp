@@ -31,6 +31,10 @@ class OdeProblem {
   /// roundoff of large coordinates), a fraction of the error test's rtol |y_i| + atol_i.
   /// Returns false when the projection did not converge (CVODE then retries with a smaller step).
   virtual bool project(double t, ConstRef y, Ref corr, const Eigen::VectorXd& settled) const = 0;
+  /// Places y on the invariant's algebraic rows at a segment start (t), before the integrator
+  /// takes it: the rows that fix some unknowns outright (massless DOFs held by stiffness, which a
+  /// load step may move). Nothing by default.
+  virtual void settle(double /*t*/, Eigen::VectorXd& /*y*/) const {}
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
   /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian.

@@ -21,13 +21,16 @@ constexpr int kMaxProjectionIterations = 10;
 
 }  // namespace
 
-ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0, bool linear)
+ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0, bool linear,
+                           const Model* loads)
     : system_(system.clone()),
       observer_(system.clone()),
       n_(system.dofs()),
       m_(system.constraints()),
       varying_(system.has_curvature()),
-      linear_(linear) {
+      linear_(linear),
+      held_(linear ? held_massless_of(system) : nullptr),
+      loads_(loads) {
   for (int i = 0; i < m_; ++i) {
     if (system.position_rows()[static_cast<std::size_t>(i)]) position_rows_.push_back(i);
   }
@@ -45,7 +48,12 @@ ProjectedOde::ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd
 }
 
 void ProjectedOde::factor(double t, const ConstRef& u, Factors& f) const {
-  const auto& M = system_->mass(t, u);
+  Eigen::SparseMatrix<double> M = system_->mass(t, u);
+  // A held massless DOF's row and column are empty in M and A: a unit pivot there decouples it
+  // (its acceleration and corrections come from its own rows, HeldMassless).
+  if (held_) {
+    for (int h : held_->dofs()) M.coeffRef(h, h) = 1.0;
+  }
   const Eigen::SparseMatrix<double>& A = system_->constraint_jacobian(t, u);
   f.scale = row_scales(A);
   f.A = f.scale.asDiagonal() * A;
@@ -85,9 +93,38 @@ Eigen::VectorXd ProjectedOde::accelerations(MechanicalSystem& loads_from, double
     system_->acceleration_bias(t, u, v, rows_);
     rhs.tail(m_) = f.scale.cwiseProduct(rows_);
   }
+  if (held_) {
+    for (int h : held_->dofs()) rhs[h] = 0.0;
+  }
   Eigen::VectorXd x = f.kkt.solve(rhs);
   x.tail(m_) = f.scale.cwiseProduct(x.tail(m_));  // λ in the rows' own units
+  if (held_) {
+    Eigen::VectorXd a = x.head(n_);
+    held_->accelerations(v, loads().applied_forces_derivative(1, t),
+                         loads().applied_forces_derivative(2, t), a);
+    x.head(n_) = a;
+  }
   return x;
+}
+
+const Model& ProjectedOde::loads() const {
+  if (loads_ == nullptr) {
+    throw std::logic_error("ProjectedOde: massless DOFs held by stiffness need the model's loads");
+  }
+  return *loads_;
+}
+
+void ProjectedOde::settle_held(double t, Ref u, Ref v) const {
+  if (!held_) return;
+  Eigen::VectorXd uu = u, vv = v;
+  held_->settle(loads().applied_forces(t, segment_start_), loads().applied_forces_derivative(1, t),
+                uu, vv);
+  u = uu;
+  v = vv;
+}
+
+void ProjectedOde::settle(double t, Eigen::VectorXd& y) const {
+  settle_held(t, y.head(n_), y.tail(n_));
 }
 
 void ProjectedOde::rhs(double t, ConstRef y, Ref ydot) const {
@@ -124,10 +161,15 @@ bool ProjectedOde::project(double t, ConstRef y, Ref corr, const Eigen::VectorXd
       }
       previous = size;
     }
-    corr.head(n_) = u - y.head(n_);
   }
-  system_->velocity_residual(t, u, y.tail(n_), rows_);
-  corr.tail(n_) = correction(f->kkt, f->scale.cwiseProduct(rows_));
+  Eigen::VectorXd v = y.tail(n_);
+  if (m_ > 0) {
+    system_->velocity_residual(t, u, v, rows_);
+    v += correction(f->kkt, f->scale.cwiseProduct(rows_));
+  }
+  settle_held(t, u, v);  // after the rows on the DOFs with mass, which the held rows read
+  corr.head(n_) = u - y.head(n_);
+  corr.tail(n_) = v - y.tail(n_);
   last_ = f;
   return converged;
 }
@@ -137,12 +179,19 @@ void ProjectedOde::project_error(Ref err) const {
   if (!position_rows_.empty()) {
     err.head(n_) += correction(f.kkt_p, f.Ap * err.head(n_));
   }
-  err.tail(n_) += correction(f.kkt, f.A * err.tail(n_));
+  if (m_ > 0) err.tail(n_) += correction(f.kkt, f.A * err.tail(n_));
+  if (held_) {
+    // The held rows linearised: the held DOFs' errors follow the others' as their rows say.
+    Eigen::VectorXd eu = err.head(n_), ev = err.tail(n_);
+    const Eigen::VectorXd none = Eigen::VectorXd::Zero(n_);
+    held_->settle(none, none, eu, ev);
+    err << eu, ev;
+  }
 }
 
 std::unique_ptr<NewtonSystem> ProjectedOde::newton_system() const {
   if (!linear_) return nullptr;
-  return std::make_unique<KktNewton>(linear_matrices(*system_));
+  return std::make_unique<KktNewton>(linear_matrices(*system_), held_);
 }
 
 }  // namespace condyn

@@ -19,6 +19,15 @@
 /// For nonlinear constraints (A = A(t, u)) the position projection is a Gauss-Newton iteration of
 /// the same step, with A and M re-evaluated at each iterate, until the correction is at roundoff.
 ///
+/// Massless DOFs held by stiffness (dae/held_massless.hpp; linear models): their momentum rows
+/// are algebraic, K_h· u = f_h (undamped) or C_h· v + K_h· u = f_h (damped), and M cannot give
+/// their accelerations. The ODE takes them from the rows differentiated, K_h· a = f̈_h and
+/// C_h· a + K_h· v = ḟ_h (the other DOFs' accelerations do not depend on them: M's and A's
+/// columns h are zero), and keeps the rows as invariants: each projection and each segment start
+/// settles u_h and v_h on them after the constraint rows (HeldMassless::settle). That is the
+/// limit of the projection in the metric M + εI as ε → 0: the other DOFs move as in the
+/// M-weighted projection, the held ones follow their rows.
+///
 /// Costs: for constant M and A the KKT system is factored once and every right-hand side is one
 /// solve; with curvature (M or A varying) it is re-factored at every evaluation. CVODE's Newton
 /// systems: for a linear model the sparse saddle-point solve of dae/kkt_newton.hpp (exact, n + m
@@ -28,6 +37,7 @@
 
 #include <Eigen/SparseLU>
 
+#include "dae/held_massless.hpp"
 #include "dae/kkt.hpp"
 #include "dae/ode_problem.hpp"
 #include "models/mechanical_system.hpp"
@@ -37,14 +47,21 @@ namespace condyn {
 class ProjectedOde final : public OdeProblem {
  public:
   /// Evaluates its own clones of `system`; `linear`: M, C, K and A are constant (Model::nonlinear
-  /// false), so the sparse Newton solve is exact. Throws std::invalid_argument when a KKT matrix is
-  /// singular at the initial state u0.
-  ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0, bool linear);
+  /// false), so the sparse Newton solve is exact. `loads`: the model whose applied loads (and
+  /// their time derivatives) the held massless DOFs' rows need, for a linear system that has
+  /// such DOFs (null: sizes only, rhs() and project() are not called). Throws
+  /// std::invalid_argument when a KKT matrix is singular at the initial state u0.
+  ProjectedOde(const MechanicalSystem& system, const Eigen::VectorXd& u0, bool linear,
+               const Model* loads = nullptr);
 
   [[nodiscard]] int size() const override { return 2 * n_; }
-  void begin_segment(double t0) override { system_->begin_segment(t0); }
+  void begin_segment(double t0) override {
+    system_->begin_segment(t0);
+    segment_start_ = t0;
+  }
   void rhs(double t, ConstRef y, Ref ydot) const override;
-  [[nodiscard]] bool has_projection() const override { return m_ > 0; }
+  [[nodiscard]] bool has_projection() const override { return m_ > 0 || held_ != nullptr; }
+  void settle(double t, Eigen::VectorXd& y) const override;
   [[nodiscard]] std::vector<UnknownKind> unknown_kinds() const override {
     return condyn::unknown_kinds(n_);
   }
@@ -80,11 +97,19 @@ class ProjectedOde final : public OdeProblem {
   /// The M-weighted correction Δ with B Δ = −r, B = A (all rows) or A_p (position rows).
   [[nodiscard]] Eigen::VectorXd correction(const KktLu& kkt, const Eigen::VectorXd& r) const;
 
+  /// The model the held massless DOFs' loads come from; throws std::logic_error without one.
+  [[nodiscard]] const Model& loads() const;
+  /// Sets the held massless DOFs' u and v from their rows at t (nothing without them).
+  void settle_held(double t, Ref u, Ref v) const;
+
   std::unique_ptr<MechanicalSystem> system_;    ///< this run's evaluator
   std::unique_ptr<MechanicalSystem> observer_;  ///< outside any segment: for multipliers()
   int n_, m_;
   bool varying_;
   bool linear_;
+  std::shared_ptr<const HeldMassless> held_;  ///< null: no massless DOFs held by stiffness
+  const Model* loads_;
+  double segment_start_ = 0.0;  ///< load steps with start <= it are on
   std::vector<int> position_rows_;
   Eigen::SparseMatrix<double> select_p_;
   Factors constant_;

@@ -1,7 +1,5 @@
 #include "dae/solve.hpp"
 
-#include "models/massless_dofs.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -36,7 +34,6 @@ namespace {
 /// Why a scheme cannot run a model, if it cannot (scheme_refusal() words it).
 enum class Refusal {
   none,
-  projection_massless,
   penalty_static_start,
   elimination_nonholonomic,
   elimination_nonlinear,
@@ -66,9 +63,6 @@ bool penalty_too_dense(const Model& model) {
 }
 
 Refusal refusal_of(const Model& model, Scheme scheme) {
-  if (scheme == Scheme::projection && !unconstrained_massless_dofs(model.M, model.A).empty()) {
-    return Refusal::projection_massless;
-  }
   if (scheme == Scheme::penalty && model.static_start && model.constraint_count() > 0) {
     return Refusal::penalty_static_start;
   }
@@ -107,13 +101,6 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
   switch (refusal_of(model, scheme)) {
     case Refusal::none:
       return std::nullopt;
-    case Refusal::projection_massless:
-      return std::string(to_string(scheme)) +
-             " integrates an ODE with the mass matrix factored, and this model has massless DOFs "
-             "held only by stiffness (algebraic unknowns); use " +
-             usable(model, {S::index1, S::baumgarte, S::ggl, S::index2, S::index3, S::penalty,
-                            S::elimination}) +
-             ", which integrate them as a DAE";
     case Refusal::penalty_static_start:
       return "[initial] static = true gives the equilibrium under exact constraints, where "
              "penalty's springs carry no force: under penalty the structure would not start at "
@@ -356,7 +343,7 @@ void solve_penalty(const Model& model, const SolveSpec& settings, const Integrat
 void solve_projection(const Model& model, const IntegratorOptions& options, SolveResult& result) {
   SolveSummary& summary = result.summary;
   summary.scheme = to_string(Scheme::projection);
-  ProjectedOde ode(*model.system, model.u0, !model.nonlinear);
+  ProjectedOde ode(*model.system, model.u0, !model.nonlinear, &model);
   Observation observe;
   observe.full_state = full_state_prefix(model.dofs());
   observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
@@ -412,7 +399,7 @@ SystemSize SystemSizer::operator()(const SolveSpec& settings) {
     if (*mixed_) system = mixed_->get();
   }
   if (scheme == Scheme::projection) {
-    const ProjectedOde ode(*system, model.u0, !model.nonlinear);
+    const ProjectedOde ode(*system, model.u0, !model.nonlinear, &model);
     // The matrix the Newton iterations factor: the sparse saddle point, else CVODE's dense one.
     if (const auto newton = ode.newton_system()) {
       return {ode.size(), newton->nonzeros()};

@@ -153,7 +153,7 @@ output_step = 0.1
 }
 
 /// A triangle pinned at node 1 whose node 3 has no mass: its two bars hold it (an algebraic DOF
-/// pair, integrated by every scheme but projection: docs/schemes.md, "Massless DOFs").
+/// pair, integrated by every scheme: docs/schemes.md, "Massless DOFs").
 inline const std::string kMasslessTriangleScene = R"([model]
 type = "truss2d"
 nodes = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]

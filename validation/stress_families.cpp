@@ -144,9 +144,9 @@ const std::vector<StressFamily>& stress_families() {
        "stiffest spring), break first"},
       {"mass_ratio", "masses spanning 1 to 1/r (r = 1 ... 1e8), and a massless DOF",
        "light masses add fast modes: more steps, and error where they ring; a massless DOF that "
-       "its springs hold is algebraic: the multiplier schemes and elimination integrate it as a "
-       "DAE (against the statically condensed exact solution), projection and penalty, which "
-       "factor M, refuse it"},
+       "its springs hold is algebraic: the multiplier schemes, elimination and penalty integrate "
+       "it as a DAE, projection as an index-reduced ODE with its row as an invariant (against "
+       "the statically condensed exact solution)"},
       {"penalty_weight", "penalty weight w from 1e2 to 1e12 times the largest stiffness",
        "the error falls like 1/w while the penalty springs ring at sqrt(w/m); at large w BDF damps "
        "the ringing and the error settles at the integration error"},
