@@ -53,6 +53,10 @@ py::list compare_records(const CompareResult& result) {
     d["mescd_u"] = number_or_none(r.mescd_u);
     d["mescd_v"] = number_or_none(r.mescd_v);
     d["energy_error"] = number_or_none(r.energy_error);
+    // The mark of runs far beyond their target (CompareOptions::mark_factor).
+    d["error_target"] = r.error_target;
+    d["error_ratio"] = figure(r.error_ratio);
+    d["over_tolerance"] = r.ok ? py::object(py::bool_(r.over_tolerance)) : py::object(py::none());
     out.append(d);
   }
   for (const auto& [scheme, reason] : result.skipped) {
@@ -83,7 +87,10 @@ py::list compare_records(const CompareResult& result) {
                             "repeats",
                             "mescd_u",
                             "mescd_v",
-                            "energy_error"}) {
+                            "energy_error",
+                            "error_target",
+                            "error_ratio",
+                            "over_tolerance"}) {
       d[key] = py::none();
     }
     out.append(d);

@@ -45,82 +45,143 @@ ReportFields fields(const RunRecord& r) {
           {"message", r.message},
           {"mescd_u", num(r.mescd_u)},
           {"mescd_v", num(r.mescd_v)},
-          {"energy_error", num(r.energy_error)}};
+          {"energy_error", num(r.energy_error)},
+          {"error_target", full_precision(r.error_target)},
+          {"error_ratio", num(r.error_ratio)},
+          {"over_tolerance", r.ok ? (r.over_tolerance ? "1" : "0") : std::string()}};
+}
+
+}  // namespace
+
+namespace {
+
+/// The header's statement of what the errors are relative to, with the scales.
+std::string error_scales_line(const CompareResult& result) {
+  const ErrorScales& s = result.error_scales;
+  const bool published = result.reference_kind == "published";
+  std::string text = published ? "errors: max-norm over all DOFs at the reference's time"
+                               : "errors: max-norm over all DOFs and output times";
+  if (result.scale_source.rfind("each run", 0) == 0) {
+    return text + ", relative to the reference's largest value, else to " + result.scale_source;
+  }
+  text += ", relative to the largest value over the whole run of " + result.scale_source +
+          " (sampled " + std::to_string(kScaleSamples) + " times per output step): |u| " +
+          sci(s.displacement, 1) + ", |u'| " + sci(s.velocity, 1);
+  if (!published) text += ", |f_con| " + sci(s.reaction, 1);
+  if (s.energy > 0.0) text += ", energy " + sci(s.energy, 1);
+  return text;
+}
+
+/// The sweep's table: one row per run, the optional columns (digits, energy) only when some run
+/// has them.
+void print_runs(std::ostream& out, const CompareResult& result) {
+  const auto any = [&](auto has) {
+    return std::any_of(result.runs.begin(), result.runs.end(), has);
+  };
+  const bool digits = any([](const RunRecord& r) { return std::isfinite(r.mescd_u); });
+  const bool energy = any([](const RunRecord& r) { return std::isfinite(r.energy_error); });
+  std::vector<std::string> header = {"scheme",    "rtol",       "err u",     "err v",
+                                     "err f_con", "err/target", "max drift", "end drift",
+                                     "steps",     "res",        "jac",       "wall ms (min-max)"};
+  if (digits) header.insert(header.end(), {"digits u", "digits v"});
+  if (energy) header.emplace_back("energy err");
+  header.emplace_back("mark");
+  TextTable table(header);
+  const auto fixed = [](double v, int decimals) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(decimals) << v;
+    return s.str();
+  };
+  for (const auto& r : result.runs) {
+    std::vector<std::string> row = {to_string(r.scheme), sci(r.rtol, 0)};
+    if (!r.ok) {
+      row.push_back("FAILED: " + r.message);
+      table.add_row(std::move(row));
+      continue;
+    }
+    row.insert(row.end(), {sci(r.error_u, 1), sci(r.error_v, 1), sci(r.error_reaction, 1),
+                           sci(r.error_ratio, 1), sci(r.max_drift_position, 1),
+                           sci(r.final_drift_position, 1), std::to_string(r.steps),
+                           std::to_string(r.residual_evals), std::to_string(r.jacobian_evals),
+                           fixed(r.wall_median * 1e3, 2) + " (" + fixed(r.wall_min * 1e3, 2) + "-" +
+                               fixed(r.wall_max * 1e3, 2) + ")"});
+    if (digits) {
+      row.push_back(std::isfinite(r.mescd_u) ? fixed(r.mescd_u, 1) : "-");
+      row.push_back(std::isfinite(r.mescd_v) ? fixed(r.mescd_v, 1) : "-");
+    }
+    if (energy) row.push_back(sci(r.energy_error, 1));
+    row.emplace_back(r.over_tolerance ? "OVER" : "");
+    table.add_row(std::move(row));
+  }
+  table.print(out);
+  out << "\nerr/target: the worst of err u, err v, err f_con over the run's target, its rtol "
+         "(under "
+         "penalty, whose weight sets its error, max(rtol, "
+      << sci(kPenaltyAccuracy, 0) << " x default weight / weight)); mark OVER: above "
+      << sci(result.options.mark_factor, 0) << " (--fail-above)\n";
+  if (const int over = result.over_tolerance_runs(); over > 0) {
+    out << over << " run" << (over == 1 ? "" : "s")
+        << " over tolerance: the errors are far beyond what rtol asks for\n";
+  }
+}
+
+void print_drift_growth(std::ostream& out, const CompareResult& result) {
+  out << "\ndrift growth at rtol " << sci(result.options.drift_rtol, 0)
+      << " (position drift ~ t^p, fitted to its running max where it follows a steady law):\n";
+  TextTable table({}, "  ");
+  for (const auto& h : result.histories) {
+    if (!h.ok) {
+      table.add_row({to_string(h.scheme), "not fitted: the run failed"});
+    } else if (h.growth.fit) {
+      std::ostringstream p;
+      p << "p = " << std::fixed << std::setprecision(2) << h.growth.fit->exponent;
+      table.add_row(
+          {to_string(h.scheme), p.str(),
+           "over t in [" + sci(h.growth.fit->t_from, 1) + ", " + sci(h.growth.fit->t_to, 1) + "]",
+           "theory: " + predicted_drift_growth(h.scheme)});
+    } else {
+      table.add_row({to_string(h.scheme), "not fitted: " + h.growth.reason});
+    }
+  }
+  table.print(out);
+}
+
+void print_baumgarte_study(std::ostream& out, const CompareResult& result) {
+  out << "\nBaumgarte study at rtol " << sci(result.options.drift_rtol, 0)
+      << " (max position drift, steps; * = default gains):\n";
+  TextTable table({"alpha", "beta", "", "drift", "steps"}, "  ");
+  for (const auto& p : result.baumgarte_study) {
+    std::vector<std::string> row = {sci(p.alpha, 2), sci(p.beta, 2), p.is_default ? "*" : ""};
+    if (p.ok) {
+      row.insert(row.end(), {sci(p.max_drift_position, 1), std::to_string(p.steps)});
+    } else {
+      row.push_back("FAILED: " + p.message);
+    }
+    table.add_row(std::move(row));
+  }
+  table.print(out);
 }
 
 }  // namespace
 
 void print_compare_table(std::ostream& out, const CompareResult& result) {
   const bool published = result.reference_kind == "published";
-  out << "scene: " << result.scene_name << "\nreference: " << result.reference_description
-      << (published ? "\nerrors: relative max-norm over all DOFs at the reference's time"
-                    : "\nerrors: relative max-norm over all DOFs and output times")
-      << "; wall: median of " << result.options.repeats << " runs (min-max)\n";
+  out << "scene: " << result.scene_name << "\nreference: " << result.reference_description << "\n"
+      << error_scales_line(result) << "; wall: median of " << result.options.repeats
+      << " runs (min-max)\n";
   for (const auto& [scheme, why] : result.skipped) {
     out << "not run: " << to_string(scheme) << " (" << why << ")\n";
   }
   out << "\n";
-  out << std::left << std::setw(12) << "scheme" << std::setw(9) << "rtol" << std::setw(10)
-      << "err u" << std::setw(10) << "err v" << std::setw(10) << "err f_con" << std::setw(11)
-      << "max drift" << std::setw(11) << "end drift" << std::setw(8) << "steps" << std::setw(8)
-      << "res" << std::setw(6) << "jac"
-      << "wall ms (min-max)\n";
-  for (const auto& r : result.runs) {
-    out << std::left << std::setw(12) << to_string(r.scheme) << std::setw(9) << sci(r.rtol, 0);
-    if (!r.ok) {
-      out << "FAILED: " << r.message << "\n";
-      continue;
-    }
-    out << std::setw(10) << sci(r.error_u, 1) << std::setw(10) << sci(r.error_v, 1) << std::setw(10)
-        << sci(r.error_reaction, 1) << std::setw(11) << sci(r.max_drift_position, 1)
-        << std::setw(11) << sci(r.final_drift_position, 1) << std::setw(8) << r.steps
-        << std::setw(8) << r.residual_evals << std::setw(6) << r.jacobian_evals << std::fixed
-        << std::setprecision(2) << r.wall_median * 1e3 << " (" << r.wall_min * 1e3 << "-"
-        << r.wall_max * 1e3 << ")" << std::defaultfloat;
-    if (std::isfinite(r.mescd_u)) {
-      out << "  digits u " << std::fixed << std::setprecision(1) << r.mescd_u;
-      if (std::isfinite(r.mescd_v)) out << " v " << r.mescd_v;
-      out << std::defaultfloat;
-    }
-    if (std::isfinite(r.energy_error)) out << "  energy err " << sci(r.energy_error, 1);
-    out << "\n";
-  }
+  print_runs(out, result);
   if (published) {
     out << "\ndigits: the test set's mescd at t_end (positions u, velocities v); the reference "
            "vouches for "
         << result.trusted_digits_u << " digits in u and " << result.trusted_digits_v
         << " in v: more is agreement at the reference's limit\n";
   }
-  if (!result.histories.empty()) {
-    out << "\ndrift growth at rtol " << sci(result.options.drift_rtol, 0)
-        << " (position drift ~ t^p, fitted to its running max where it follows a steady law):\n";
-    for (const auto& h : result.histories) {
-      out << "  " << std::left << std::setw(12) << to_string(h.scheme) << std::right;
-      if (!h.ok) {
-        out << "not fitted: the run failed\n";
-      } else if (h.growth.fit) {
-        out << "p = " << std::fixed << std::setprecision(2) << h.growth.fit->exponent
-            << std::defaultfloat << " over t in [" << sci(h.growth.fit->t_from, 1) << ", "
-            << sci(h.growth.fit->t_to, 1) << "]   theory: " << predicted_drift_growth(h.scheme)
-            << "\n";
-      } else {
-        out << "not fitted: " << h.growth.reason << "\n";
-      }
-    }
-  }
-  if (!result.baumgarte_study.empty()) {
-    out << "\nBaumgarte study at rtol " << sci(result.options.drift_rtol, 0)
-        << " (max position drift, steps; * = default gains):\n";
-    for (const auto& p : result.baumgarte_study) {
-      out << "  alpha " << std::setw(10) << sci(p.alpha, 2) << " beta " << std::setw(10)
-          << sci(p.beta, 2) << (p.is_default ? " * " : "   ");
-      if (p.ok) {
-        out << "drift " << sci(p.max_drift_position, 1) << ", " << p.steps << " steps\n";
-      } else {
-        out << "FAILED: " << p.message << "\n";
-      }
-    }
-  }
+  if (!result.histories.empty()) print_drift_growth(out, result);
+  if (!result.baumgarte_study.empty()) print_baumgarte_study(out, result);
 }
 
 namespace {
@@ -176,6 +237,12 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
       out << ", \"trusted_digits_u\": " << result.trusted_digits_u
           << ", \"trusted_digits_v\": " << result.trusted_digits_v;
     }
+    const ErrorScales& sc = result.error_scales;
+    out << ", \"scales\": {\"displacement\": " << full_precision(sc.displacement)
+        << ", \"velocity\": " << full_precision(sc.velocity)
+        << ", \"reaction\": " << full_precision(sc.reaction)
+        << ", \"energy\": " << full_precision(sc.energy)
+        << ", \"source\": " << json_string(result.scale_source) << "}";
     out << "},\n  \"skipped\": [";
     for (std::size_t k = 0; k < result.skipped.size(); ++k) {
       out << (k ? ", " : "") << "{\"scheme\": " << json_string(to_string(result.skipped[k].first))
@@ -205,6 +272,7 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
     }
     out << "],\n  \"repeats\": " << result.options.repeats
         << ",\n  \"drift_rtol\": " << full_precision(result.options.drift_rtol)
+        << ",\n  \"mark_factor\": " << full_precision(result.options.mark_factor)
         << ",\n  \"runs\": [\n";
     write_json_records(out, rows, {"scheme", "status", "message"}, "    ");
     out << "  ]\n}\n";

@@ -174,7 +174,7 @@ int run(const RunArgs& args) {
 }
 
 int compare(const std::string& scene, std::string dir, const std::string& tolerances,
-            const std::string& schemes, bool no_plots, bool allow_failures,
+            const std::string& schemes, bool no_plots, bool allow_failures, bool fail_above,
             CompareOptions options) {
   const std::string stem =
       scene.empty() ? "chapter_5_5_1" : std::filesystem::path(scene).stem().string();
@@ -240,6 +240,13 @@ int compare(const std::string& scene, std::string dir, const std::string& tolera
                                  : "; --allow-failures tolerates them")
               << "\n";
     if (!allow_failures) return 1;
+  }
+  // Runs far beyond their tolerance fail only when asked (--fail-above): they are marked anyway.
+  if (const int over = result.over_tolerance_runs(); over > 0 && fail_above) {
+    std::cerr << "error: " << over << " run" << (over == 1 ? "" : "s")
+              << " of the comparison missed the target by more than --fail-above "
+              << options.mark_factor << " (marked OVER above and in " << dir << "/runs.csv)\n";
+    return 1;
   }
   return 0;
 }
@@ -427,6 +434,11 @@ int run_command(int argc, char** argv) {
   bool compare_allow_failures = false;
   compare_cmd->add_flag("--allow-failures", compare_allow_failures,
                         "exit 0 even when runs failed (they are reported either way)");
+  compare_cmd
+      ->add_option("--fail-above", compare_options.mark_factor,
+                   "exit 1 when a run's worst error exceeds FACTOR times its rtol (penalty: its "
+                   "weight's target); such runs are marked OVER either way, above 1e4 by default")
+      ->check(decimal_range_check(1.0, 1e15));
   compare_cmd->add_flag("--baumgarte-study", compare_options.baumgarte_study,
                         "also run the Baumgarte gain study (16 runs at --drift-rtol)");
   compare_cmd
@@ -560,7 +572,8 @@ int run_command(int argc, char** argv) {
     if (*stress_cmd) return stress(stress_dir, stress_families_list, stress_no_plots);
     if (*compare_cmd) {
       return compare(compare_scene, compare_dir, compare_tolerances, compare_schemes,
-                     compare_no_plots, compare_allow_failures, compare_options);
+                     compare_no_plots, compare_allow_failures,
+                     compare_cmd->count("--fail-above") > 0, compare_options);
     }
     if (*check_cmd) return check(check_scenes, check_scheme, check_junit);
     if (*plot_cmd) return plot_result(plot_args);

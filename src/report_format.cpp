@@ -2,6 +2,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -80,6 +81,50 @@ void write_json_records(std::ostream& out, const std::vector<ReportFields>& reco
     }
     out << "}" << (k + 1 < records.size() ? "," : "") << "\n";
   }
+}
+
+namespace {
+
+/// Characters of UTF-8 text: its bytes that do not continue a character.
+std::size_t display_width(const std::string& s) {
+  return static_cast<std::size_t>(
+      std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+}  // namespace
+
+TextTable::TextTable(std::vector<std::string> header, std::string indent)
+    : header_(std::move(header)), indent_(std::move(indent)) {}
+
+void TextTable::add_row(std::vector<std::string> cells) { rows_.push_back(std::move(cells)); }
+
+void TextTable::print(std::ostream& out) const {
+  std::size_t columns = header_.size();
+  for (const auto& r : rows_) columns = std::max(columns, r.size());
+  std::vector<std::size_t> width(columns, 0);
+  const auto measure = [&](const std::vector<std::string>& cells, bool whole) {
+    // A short row's last cell spans the columns after it: it sets no width.
+    const std::size_t counted = whole ? cells.size() : cells.size() - 1;
+    for (std::size_t c = 0; c < counted; ++c)
+      width[c] = std::max(width[c], display_width(cells[c]));
+  };
+  if (!header_.empty()) measure(header_, true);
+  for (const auto& r : rows_) {
+    if (!r.empty()) measure(r, r.size() == columns);
+  }
+  const auto line = [&](const std::vector<std::string>& cells) {
+    std::string text = indent_;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      text += cells[c];
+      if (c + 1 < cells.size()) {
+        text += std::string(width[c] - std::min(width[c], display_width(cells[c])) + kGap, ' ');
+      }
+    }
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    out << text << "\n";
+  };
+  if (!header_.empty()) line(header_);
+  for (const auto& r : rows_) line(r);
 }
 
 namespace {

@@ -30,6 +30,26 @@ void write_csv_table(std::ostream& out, const ReportFields& header,
 void write_json_records(std::ostream& out, const std::vector<ReportFields>& records,
                         const std::set<std::string>& text_fields, const std::string& indent);
 
+/// A plain-text table for the terminal: every column as wide as its widest cell (its header's
+/// included) and kGap spaces from the next whatever its values' widths, so that no two columns
+/// run together (compare's "1840405781.76" was 184040 Jacobian evaluations beside 5781.76 ms).
+/// Cells are left-aligned; widths count UTF-8 characters, not bytes.
+class TextTable {
+ public:
+  static constexpr int kGap = 2;
+  /// The column names; an empty list prints no header line.
+  explicit TextTable(std::vector<std::string> header, std::string indent = "");
+  /// A row of cells in the header's order. A row of fewer cells (a failed run: its name and
+  /// "FAILED: ...") ends in its last cell, written whole and counted in no column's width.
+  void add_row(std::vector<std::string> cells);
+  void print(std::ostream& out) const;
+
+ private:
+  std::vector<std::string> header_;
+  std::string indent_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
 /// validation/SCRIPT in the source tree (the plotting scripts live there).
 [[nodiscard]] std::filesystem::path validation_script(const std::string& script);
 

@@ -69,19 +69,17 @@ void print_stress_report(std::ostream& out, const StressResult& result) {
     if (!any) continue;
     out << "\n== " << family.name << ": " << family.question
         << "\n   expected: " << family.expectation << "\n";
-    out << "  " << std::left << std::setw(26) << "case" << std::setw(12) << "scheme"
-        << std::setw(12) << "verdict" << std::setw(10) << "error u" << std::setw(10) << "drift"
-        << std::setw(10) << "energy" << std::setw(10) << "steps"
-        << "time s\n";
+    TextTable table({"case", "scheme", "verdict", "error u", "drift", "energy", "steps", "time s"},
+                    "  ");
     std::ostringstream breaks;
     for (const auto& r : result.records) {
       if (r.family != family.name) continue;
       const bool ran = r.status == "holds" || r.status == "inaccurate";
-      out << "  " << std::left << std::setw(26) << r.label << std::setw(12) << to_string(r.scheme)
-          << std::setw(12) << r.status << std::setw(10) << sci(r.error) << std::setw(10)
-          << (ran ? sci(r.max_drift_position) : "-") << std::setw(10) << sci(r.energy_error)
-          << std::setw(10) << (ran ? std::to_string(r.steps) : "-") << std::fixed
-          << std::setprecision(3) << r.wall_seconds << std::defaultfloat << "\n";
+      std::ostringstream wall;
+      wall << std::fixed << std::setprecision(3) << r.wall_seconds;
+      table.add_row({r.label, to_string(r.scheme), r.status, sci(r.error),
+                     ran ? sci(r.max_drift_position) : "-", sci(r.energy_error),
+                     ran ? std::to_string(r.steps) : "-", wall.str()});
       if (r.status == "failed" || r.status == "inaccurate") {
         breaks << "    " << r.label << ", " << to_string(r.scheme) << ": " << r.reason;
         if (r.status == "failed") breaks << " (reached t = " << r.t_reached << ")";
@@ -89,6 +87,7 @@ void print_stress_report(std::ostream& out, const StressResult& result) {
         breaks << "\n";
       }
     }
+    table.print(out);
     if (!breaks.str().empty()) out << "  breaks:\n" << breaks.str();
     // Refusals repeat one reason per scheme: list each reason once.
     std::map<std::string, std::string> refusals;
@@ -104,23 +103,22 @@ void print_stress_report(std::ostream& out, const StressResult& result) {
     }
   }
   // The map: one row per case, one column per scheme.
-  out << "\nmap (+ holds, ~ inaccurate, x failed, . refused, blank: not part of the family):\n  "
-      << std::left << std::setw(44) << "";
-  for (Scheme s : kSchemes) out << std::setw(12) << to_string(s);
-  out << "\n";
-  for (std::size_t i = 0; i < result.cases.size(); ++i) {
-    const auto& c = result.cases[i];
-    const std::string& id = c.id;
-    out << "  " << std::setw(44) << (c.family + " " + c.label);
+  out << "\nmap (+ holds, ~ inaccurate, x failed, . refused, blank: not part of the family):\n";
+  std::vector<std::string> header = {""};
+  for (Scheme s : kSchemes) header.emplace_back(to_string(s));
+  TextTable map(header, "  ");
+  for (const auto& c : result.cases) {
+    std::vector<std::string> row = {c.family + " " + c.label};
     for (Scheme s : kSchemes) {
       char mark = ' ';
       for (const auto& r : result.records) {
-        if (r.case_id == id && r.scheme == s) mark = verdict_mark(r.status);
+        if (r.case_id == c.id && r.scheme == s) mark = verdict_mark(r.status);
       }
-      out << std::setw(12) << std::string(1, mark);
+      row.emplace_back(1, mark);
     }
-    out << "\n";
+    map.add_row(std::move(row));
   }
+  map.print(out);
 }
 
 namespace {

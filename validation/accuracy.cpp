@@ -11,16 +11,38 @@ double TrajectoryError::worst() const { return std::max({displacement, velocity,
 
 namespace {
 
-double relative_max(const Eigen::MatrixXd& a, const Eigen::MatrixXd& ref, double floor = 0.0) {
+/// max |a − ref| over `scale` (absolute when the scale is 0).
+double relative_max(const Eigen::MatrixXd& a, const Eigen::MatrixXd& ref, double scale) {
   if (a.size() == 0) return 0.0;
   const double diff = (a - ref).cwiseAbs().maxCoeff();
-  const double scale = std::max(ref.cwiseAbs().maxCoeff(), floor);
   return scale > 0.0 ? diff / scale : diff;
 }
 
+double max_abs(const Eigen::MatrixXd& x) { return x.size() > 0 ? x.cwiseAbs().maxCoeff() : 0.0; }
+
 }  // namespace
 
+ErrorScales error_scales(const Trajectory& trajectory) {
+  ErrorScales s;
+  s.displacement = max_abs(trajectory.u);
+  s.reaction = max_abs(trajectory.reaction);
+  const double span = trajectory.t.empty() ? 0.0 : trajectory.t.back() - trajectory.t.front();
+  const double velocity_floor = span > 0.0 ? s.displacement / span : 0.0;
+  s.velocity =
+      std::max(max_abs(trajectory.v), std::isfinite(velocity_floor) ? velocity_floor : 0.0);
+  if (trajectory.energy.size() > 0) {
+    s.energy = std::abs(trajectory.energy[0]);
+    if (trajectory.kinetic.size() > 0) s.energy = std::max(s.energy, trajectory.kinetic.maxCoeff());
+  }
+  return s;
+}
+
 TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference) {
+  return relative_error(run, reference, error_scales(reference));
+}
+
+TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference,
+                               const ErrorScales& scales) {
   if (run.t.size() != reference.t.size() || run.u.rows() != reference.u.rows()) {
     throw std::invalid_argument("relative_error: trajectories differ in shape");
   }
@@ -29,16 +51,17 @@ TrajectoryError relative_error(const Trajectory& run, const Trajectory& referenc
       throw std::invalid_argument("relative_error: output times differ");
     }
   }
-  // Velocities against at least the displacement scale over the run's span: a structure at rest
-  // (a static start) has reference velocities of roundoff, 1e-17, which would make a run's
-  // exact zeros an error of 1. Any motion of angular frequency ω over a span D ≥ 2π/ω has
-  // max |v| ≈ ω max |u| > max |u| / D, so only quasi-static runs meet the floor.
-  const double span = reference.t.empty() ? 0.0 : reference.t.back() - reference.t.front();
-  const double velocity_floor =
-      span > 0.0 && reference.u.size() > 0 ? reference.u.cwiseAbs().maxCoeff() / span : 0.0;
-  return {relative_max(run.u, reference.u),
-          relative_max(run.v, reference.v, std::isfinite(velocity_floor) ? velocity_floor : 0.0),
-          relative_max(run.reaction, reference.reaction)};
+  return {relative_max(run.u, reference.u, scales.displacement),
+          relative_max(run.v, reference.v, scales.velocity),
+          relative_max(run.reaction, reference.reaction, scales.reaction)};
+}
+
+double relative_energy_error(const Trajectory& run, double energy_scale) {
+  const double own = relative_energy_error(run);
+  if (!(own >= 0.0)) return own;  // −1: no energies; NaN: an energy beyond the double range
+  const double worst = (run.energy.array() - run.energy[0]).abs().maxCoeff();
+  const double scale = std::max(energy_scale, error_scales(run).energy);
+  return scale > 0.0 ? worst / scale : worst;
 }
 
 }  // namespace condyn

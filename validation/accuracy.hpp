@@ -16,8 +16,31 @@ struct TrajectoryError {
   [[nodiscard]] double worst() const;
 };
 
-/// Both trajectories must share output times; throws std::invalid_argument otherwise.
+/// What errors are measured against: each quantity's largest magnitude over every DOF and row of
+/// a trajectory (a whole run, where compare samples its reference between the output rows, so
+/// that a quantity zero at every output row still has its scale).
+struct ErrorScales {
+  double displacement = 0.0, velocity = 0.0, reaction = 0.0;
+  /// max(|E(0)|, max_t T(t)), the scale of relative_energy_error; 0 without energies.
+  double energy = 0.0;
+};
+
+/// The scales of `trajectory`: max |u|, max |f_con|, max |u'| but at least max |u| / (t_last −
+/// t_first) (so that a structure at rest is not judged by the roundoff of its velocities: any
+/// motion of angular frequency ω over a span D ≥ 2π/ω has max |u'| ≈ ω max |u| > max |u| / D), and
+/// the energy scale.
+[[nodiscard]] ErrorScales error_scales(const Trajectory& trajectory);
+
+/// Both trajectories must share output times; throws std::invalid_argument otherwise. Relative to
+/// error_scales(reference).
 [[nodiscard]] TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference);
+/// The same relative to `scales`: max-norm differences over every DOF and output time divided by
+/// the scale (absolute where the scale is 0: a quantity that is zero throughout).
+[[nodiscard]] TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference,
+                                             const ErrorScales& scales);
+/// max_t |E(t) − E(0)| of `run` over max(energy_scale, its own max(|E(0)|, max_t T(t))): −1 without
+/// energies, NaN when an energy leaves the double range (relative_energy_error's rules).
+[[nodiscard]] double relative_energy_error(const Trajectory& run, double energy_scale);
 
 /// The Test Set for IVP Solvers' "mixed-error significant correct digits" (Mazzia, Magherini,
 /// Iavernaro, release 2.4): min_i −log10(|y_i − ref_i| / (atol/rtol + |ref_i|)), with the run's

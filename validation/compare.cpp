@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "dae/baumgarte_gains.hpp"
+#include "dae/penalty_ode.hpp"
 #include "dae/solve.hpp"
 #include "models/toml_access.hpp"
 #include "validation/accuracy.hpp"
@@ -42,6 +43,9 @@ void CompareOptions::validate() const {
   if (max_steps < 0 || max_steps > std::numeric_limits<int>::max()) {
     bad("max_steps: lies in [0, 2147483647], 0 for no budget (got " + std::to_string(max_steps) +
         ")");
+  }
+  if (!(mark_factor >= 1.0 && mark_factor <= 1e15)) {
+    bad("mark factor: lies in [1, 1e15]" + got(mark_factor));
   }
   if (!(max_wall_time == 0.0 || (max_wall_time >= kMinWallTime && max_wall_time <= kMaxWallTime))) {
     bad("max_wall_time: 0 for no budget, else in [" + TomlAccess::fmt(kMinWallTime) + ", " +
@@ -83,9 +87,39 @@ SolveSpec budgeted(SolveSpec s, const CompareOptions& options) {
   return s;
 }
 
+/// The first of elimination, GGL, projection and index1 that applies and reaches t_end at `rtol`
+/// (atol rtol/100), without the scene's budget ([solve] max_steps, max_wall_time) as without
+/// compare's: a reference at rtol/100 takes more steps than the runs it scores (the scene's 450
+/// steps failed all three fallbacks of a nonlinear scene, user trial of 2026-11-28). Each in turn,
+/// the next when one fails or does not apply: GGL at tight tolerances can ask its derived μ and λ
+/// tolerances for roundoff (the pendulum at rtol 1e-13 failed, where projection and index1 run
+/// it). Nothing when all fail; `failures` then says why, scheme by scheme.
+std::optional<std::pair<Scheme, Trajectory>> first_run(const Model& model,
+                                                       const SolveSpec& settings,
+                                                       const CompareOptions& options, double rtol,
+                                                       const std::string& what,
+                                                       std::string& failures) {
+  for (Scheme scheme : {Scheme::elimination, Scheme::ggl, Scheme::projection, Scheme::index1}) {
+    if (scheme_refusal(model, scheme)) continue;
+    SolveSpec unbounded = settings_of(settings, scheme, rtol, rtol * 1e-2);
+    unbounded.max_steps = 0;
+    unbounded.max_wall_time = 0.0;
+    try {
+      const SolveResult run = solve(
+          model, unbounded,
+          progress_hooks(options, what + " " + to_string(scheme) + " rtol " + scientific(rtol, 1)));
+      return std::make_pair(scheme, succeeded(run).trajectory);
+    } catch (const std::exception& why) {
+      failures +=
+          (failures.empty() ? "" : "; ") + std::string(to_string(scheme)) + ": " + why.what();
+    }
+  }
+  return std::nullopt;
+}
+
 /// The best reference available: a built-in benchmark's published state at t_end, else the exact
-/// modal solution, else a tight run of the first of elimination, GGL, projection and index1 that
-/// applies and reaches t_end.
+/// modal solution, else a tight run (first_run at 1/100 of the smallest tolerance). Trajectories
+/// are at settings.output_times().
 Trajectory reference(const Model& model, const SolveSpec& settings, const CompareOptions& options,
                      CompareResult& out) {
   if (model.reference) {
@@ -109,33 +143,13 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
   } catch (const ExactSolutionUnavailable& e) {
     const double tight = std::max(
         1e-13, *std::min_element(options.tolerances.begin(), options.tolerances.end()) / 100.0);
-    // Each in turn, the next when one fails or does not apply: GGL at tight tolerances can ask
-    // its derived μ and λ tolerances for roundoff (the pendulum at rtol 1e-13 failed, and
-    // compare had no reference, where projection and index1 run it).
     std::string failures;
-    for (Scheme scheme : {Scheme::elimination, Scheme::ggl, Scheme::projection, Scheme::index1}) {
-      if (scheme_refusal(model, scheme)) continue;
-      // Without the scene's budget ([solve] max_steps, max_wall_time), as without compare's:
-      // a reference at rtol/100 takes more steps than the runs it scores (the scene's 450 steps
-      // failed all three fallbacks of a nonlinear scene, user trial of 2026-11-28).
-      SolveSpec unbounded = settings_of(settings, scheme, tight, tight * 1e-2);
-      unbounded.max_steps = 0;
-      unbounded.max_wall_time = 0.0;
-      try {
-        const SolveResult run =
-            solve(model, unbounded,
-                  progress_hooks(options, std::string("reference ") + to_string(scheme) + " rtol " +
-                                              scientific(tight, 1)));
-        Trajectory ref = succeeded(run).trajectory;
-        out.reference_kind = to_string(scheme);
-        out.reference_description = std::string(to_string(scheme)) + " at rtol " +
-                                    scientific(tight, 1) + " (no exact solution: " + e.what() +
-                                    (failures.empty() ? "" : "; failed: " + failures) + ")";
-        return ref;
-      } catch (const std::exception& why) {
-        failures +=
-            (failures.empty() ? "" : "; ") + std::string(to_string(scheme)) + ": " + why.what();
-      }
+    if (auto run = first_run(model, settings, options, tight, "reference", failures)) {
+      out.reference_kind = to_string(run->first);
+      out.reference_description = std::string(to_string(run->first)) + " at rtol " +
+                                  scientific(tight, 1) + " (no exact solution: " + e.what() +
+                                  (failures.empty() ? "" : "; failed: " + failures) + ")";
+      return std::move(run->second);
     }
     // Without a reference no run can be scored: say which runs failed and what to change.
     throw NoReferenceError(
@@ -146,6 +160,101 @@ Trajectory reference(const Model& model, const SolveSpec& settings, const Compar
         "reference (`condyn run` with --scheme ggl --rtol " +
         scientific(tight, 1) + " --atol " + scientific(tight * 1e-2, 1) + " shows the same)");
   }
+}
+
+/// Penalty's error target without rtol: kPenaltyAccuracy at the default weight, shrinking like
+/// 1/w under a weight of the scene's; 0 where penalty does not apply or has no constraints.
+double penalty_error_target(const Model& model, const SolveSpec& settings) {
+  if (model.constraint_count() == 0 || scheme_refusal(model, Scheme::penalty)) return 0.0;
+  SolveSpec defaults = settings;
+  defaults.penalty_weight.reset();
+  return kPenaltyAccuracy * penalty_weights(model, defaults).position /
+         penalty_weights(model, settings).position;
+}
+
+/// Sets r.error_ratio and r.over_tolerance from its errors and error_target.
+void mark_against_target(RunRecord& r, double factor) {
+  double worst = std::max(r.error_u, r.error_v);
+  if (std::isfinite(r.error_reaction)) worst = std::max(worst, r.error_reaction);
+  r.error_ratio = worst / r.error_target;
+  r.over_tolerance = r.error_ratio > factor;
+}
+
+/// The drift growth of every history that ran, under one rule: the motion's oscillations are
+/// counted once for all of them, as the fewest of their runs count (half the sign changes of the
+/// fastest-reversing velocity over the steps): the motion is one, and a scheme whose velocities
+/// chatter about zero adds sign changes, never removes them (GGL counted 10 or more where the
+/// others counted 3.5 and 8, and was fitted where they were not).
+void assess_drift_growths(std::vector<SchemeHistory>& histories) {
+  std::optional<double> oscillations;
+  for (const auto& h : histories) {
+    if (!h.ok || h.trajectory.steps.empty()) continue;
+    const double count = static_cast<double>(h.trajectory.steps.back().velocity_reversals) / 2.0;
+    oscillations = std::min(oscillations.value_or(count), count);
+  }
+  for (auto& h : histories) {
+    if (!h.ok) continue;
+    // Roundoff in the drift: a few dozen ulps of the largest displacement (1 when all are 0).
+    const double u_scale = h.trajectory.u.size() > 0 ? h.trajectory.u.cwiseAbs().maxCoeff() : 0.0;
+    const double roundoff =
+        64.0 * std::numeric_limits<double>::epsilon() * (u_scale > 0.0 ? u_scale : 1.0);
+    h.growth = assess_drift_growth(h.trajectory.steps, roundoff, oscillations);
+  }
+}
+
+/// The rows of `dense` at `times`, each of them among its times (the output grid refined by
+/// kScaleSamples, whose every kScaleSamples-th time is an output time bit for bit).
+Trajectory rows_at(const Trajectory& dense, const std::vector<double>& times) {
+  std::vector<Eigen::Index> cols;
+  std::size_t j = 0;
+  for (double t : times) {
+    while (j < dense.t.size() && dense.t[j] < t) ++j;
+    if (j == dense.t.size() || dense.t[j] != t) {
+      throw std::logic_error("compare: output time " + scientific(t, 16) +
+                             " is not among the reference's times");
+    }
+    cols.push_back(static_cast<Eigen::Index>(j));
+  }
+  const auto pick = [&cols](const Eigen::MatrixXd& x) {
+    return x.cols() == 0 ? x : Eigen::MatrixXd(x(Eigen::all, cols));
+  };
+  const auto pick_vector = [&cols](const Eigen::VectorXd& x) {
+    return x.size() == 0 ? x : Eigen::VectorXd(x(cols));
+  };
+  Trajectory out;
+  out.t = times;
+  out.u = pick(dense.u);
+  out.v = pick(dense.v);
+  out.reaction = pick(dense.reaction);
+  out.acceleration = pick(dense.acceleration);
+  out.multiplier = pick(dense.multiplier);
+  out.drift_position = pick_vector(dense.drift_position);
+  out.drift_velocity = pick_vector(dense.drift_velocity);
+  out.energy = pick_vector(dense.energy);
+  out.kinetic = pick_vector(dense.kinetic);
+  return out;
+}
+
+/// The scene's settings with kScaleSamples output rows per output interval.
+SolveSpec refined(SolveSpec settings) {
+  settings.output_step /= kScaleSamples;  // a power of two: the output times stay among its own
+  return settings;
+}
+
+/// The error scales (accuracy.hpp) of a run against a published state, which has no trajectory:
+/// from a run of first_run at drift_rtol on the refined grid (two digits of a scale need no
+/// tight run), or, when all fail, nothing (each run's own rows then give its scales).
+std::optional<ErrorScales> published_scales(const Model& model, const SolveSpec& settings,
+                                            const CompareOptions& options, std::string& source) {
+  std::string failures;
+  if (auto run =
+          first_run(model, refined(settings), options, options.drift_rtol, "scales", failures)) {
+    source = std::string("a ") + to_string(run->first) + " run at rtol " +
+             scientific(options.drift_rtol, 1);
+    return error_scales(run->second);
+  }
+  source = "each run's own output rows (the scale runs failed: " + failures + ")";
+  return std::nullopt;
 }
 
 }  // namespace
@@ -193,11 +302,24 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
   }
   const double ratio =
       options.atol_ratio > 0.0 ? options.atol_ratio : spec.solve.atol / spec.solve.rtol;
-  const Trajectory ref = reference(base, spec.solve, options, out);
-  if (out.reference_kind != "published") {
+  // The reference on a grid kScaleSamples times finer than the output rows, for scales of the
+  // whole run; the runs are scored at the output rows.
+  const Trajectory dense = reference(base, refined(spec.solve), options, out);
+  const bool published = out.reference_kind == "published";
+  std::optional<ErrorScales> scales;
+  if (published) {
+    scales = published_scales(base, spec.solve, options, out.scale_source);
+  } else {
+    scales = error_scales(dense);
+    out.scale_source = "the reference";
+  }
+  if (scales) out.error_scales = *scales;
+  const Trajectory ref = published ? dense : rows_at(dense, spec.solve.output_times());
+  if (!published) {
     out.reference_t = ref.t;
     out.reference_multiplier = ref.multiplier;
   }
+  const double penalty_target = penalty_error_target(base, spec.solve);
 
   const std::size_t total = schemes.size() * options.tolerances.size();
   std::size_t done = 0;
@@ -219,30 +341,33 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
           const SolveSummary& summary = result.summary;
           walls.push_back(summary.wall_seconds);
           if (k > 0) continue;  // repeats only time the run: the numbers are deterministic
-          if (out.reference_kind == "published") {
+          if (published) {
             const Eigen::Index last = run.u.cols() - 1;
             // Relative to the reference's largest entry, or, where the reference is zero (the
-            // period-2 pendulum is at rest at t = 2N), to the run's own largest entry over time.
-            const auto rel = [](const Eigen::VectorXd& a, const Eigen::MatrixXd& b,
+            // period-2 pendulum is at rest at t = 2N), to the scale of the whole run; without
+            // one, to the run's own largest entry over its rows.
+            const auto rel = [](const Eigen::VectorXd& a, const Eigen::MatrixXd& b, double whole,
                                 const Eigen::MatrixXd& history) {
-              double scale = b.cwiseAbs().maxCoeff();
+              double scale = std::max(b.cwiseAbs().maxCoeff(), whole);
               if (!(scale > 0.0)) scale = history.cwiseAbs().maxCoeff();
               const double diff = (a - b.col(0)).cwiseAbs().maxCoeff();
               return scale > 0.0 ? diff / scale : diff;
             };
-            r.error_u = rel(run.u.col(last), ref.u, run.u);
-            r.error_v = rel(run.v.col(last), ref.v, run.v);
+            r.error_u = rel(run.u.col(last), ref.u, out.error_scales.displacement, run.u);
+            r.error_v = rel(run.v.col(last), ref.v, out.error_scales.velocity, run.v);
             r.error_reaction = std::numeric_limits<double>::quiet_NaN();  // λ: not scored
             const auto score = score_against_reference(base, run, r.rtol, r.atol);
             r.mescd_u = score->digits_u;
             if (score->digits_v) r.mescd_v = *score->digits_v;
           } else {
-            const TrajectoryError err = relative_error(run, ref);
+            const TrajectoryError err = relative_error(run, ref, out.error_scales);
             r.error_u = err.displacement;
             r.error_v = err.velocity;
             r.error_reaction = err.reaction;
           }
-          if (const double e = relative_energy_error(run); e >= 0.0) r.energy_error = e;
+          if (const double e = relative_energy_error(run, out.error_scales.energy); e >= 0.0) {
+            r.energy_error = e;
+          }
           r.max_drift_position = summary.max_drift_position;
           r.max_drift_velocity = summary.max_drift_velocity;
           r.final_drift_position = run.drift_position[run.drift_position.size() - 1];
@@ -259,8 +384,10 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
         r.wall_min = stats.min;
         r.wall_max = stats.max;
         r.ok = std::isfinite(r.error_u) && std::isfinite(r.error_v) &&
-               (out.reference_kind == "published" || std::isfinite(r.error_reaction));
+               (published || std::isfinite(r.error_reaction));
         if (!r.ok) r.message = "non-finite error against the reference";
+        r.error_target = scheme == Scheme::penalty ? std::max(rtol, penalty_target) : rtol;
+        if (r.ok) mark_against_target(r, options.mark_factor);
       } catch (const std::exception& e) {
         r.ok = false;
         r.message = e.what();
@@ -300,17 +427,13 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
         continue;
       }
       h.t_reached = settings.t_end;
-      // Roundoff in the drift: a few dozen ulps of the largest displacement (1 when all are 0).
-      const double u_scale = h.trajectory.u.size() > 0 ? h.trajectory.u.cwiseAbs().maxCoeff() : 0.0;
-      const double roundoff =
-          64.0 * std::numeric_limits<double>::epsilon() * (u_scale > 0.0 ? u_scale : 1.0);
-      h.growth = assess_drift_growth(h.trajectory.steps, roundoff);
       h.ok = true;
     } catch (const std::exception& e) {
       h.message = e.what();
     }
     out.histories.push_back(std::move(h));
   }
+  assess_drift_growths(out.histories);
 
   // Baumgarte study: the default gains scaled over a grid. Asked for, it runs whatever
   // --schemes lists (it wrote a header-only file when baumgarte was not among them).
@@ -333,7 +456,7 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
           const SolveResult result = solve(base, s);
           const SolveSummary& summary = succeeded(result).summary;
           if (out.reference_kind != "published") {
-            p.error_u = relative_error(result.trajectory, ref).displacement;
+            p.error_u = relative_error(result.trajectory, ref, out.error_scales).displacement;
           }
           p.ok = true;
           p.max_drift_position = summary.max_drift_position;
@@ -352,6 +475,11 @@ CompareResult run_compare(const SceneSpec& spec, const CompareOptions& options) 
     }
   }
   return out;
+}
+
+int CompareResult::over_tolerance_runs() const {
+  return static_cast<int>(
+      std::count_if(runs.begin(), runs.end(), [](const auto& r) { return r.over_tolerance; }));
 }
 
 int CompareResult::failed_runs() const {

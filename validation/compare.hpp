@@ -15,6 +15,7 @@
 
 #include "dae/trajectory.hpp"
 #include "models/scene_spec.hpp"
+#include "validation/accuracy.hpp"
 #include "validation/drift_growth.hpp"
 
 namespace condyn {
@@ -47,12 +48,18 @@ struct CompareOptions {
   /// a failed run, recorded with the reason, and the sweep goes on.
   long max_steps = 0;
   double max_wall_time = 0.0;
+  /// A run whose worst error (error_u, error_v, error_reaction) exceeds mark_factor times its
+  /// target (RunRecord::error_target) is marked over_tolerance: well beyond the spread of
+  /// global error over rtol of the schemes that converge (up to 1e3 on the example scenes from
+  /// rtol 1e-3 to 1e-10). compare --fail-above sets it and fails such runs.
+  static constexpr double kDefaultMarkFactor = 1e4;
+  double mark_factor = kDefaultMarkFactor;
   /// Called after every run with a one-line progress note.
   std::function<void(const std::string&)> progress;
   /// Throws std::invalid_argument naming the bad option ("tolerances: ..."): each tolerance in
   /// [kMinRtol, 1) and listed once, repeats in [1, kMaxRepeats], drift_rtol in [kMinDriftRtol,
   /// kMaxDriftRtol], max_steps in [0, 2^31 − 1], max_wall_time 0 (none) or in [kMinWallTime,
-  /// kMaxWallTime].
+  /// kMaxWallTime], mark_factor in [1, 1e15].
   void validate() const;
 };
 
@@ -74,7 +81,25 @@ struct RunRecord {
   double mescd_v = std::numeric_limits<double>::quiet_NaN();
   /// Conservative scenes: max |E(t) − E(0)| relative to the energy scale; NaN otherwise.
   double energy_error = std::numeric_limits<double>::quiet_NaN();
+  /// The error the run aims at: its rtol; under penalty, whose error its weight sets and rtol
+  /// does not, max(rtol, kPenaltyAccuracy · w_default / w).
+  double error_target = 0.0;
+  /// The worst of error_u, error_v and error_reaction over error_target (NaN for a failed run),
+  /// and whether it exceeds CompareOptions::mark_factor.
+  double error_ratio = std::numeric_limits<double>::quiet_NaN();
+  bool over_tolerance = false;
 };
+
+/// Penalty's default weight (1e4 times the stiffest diagonal) aims at constraint errors of about
+/// 1e-4 of the elastic deformation, and its errors shrink like 1/w (docs/schemes.md).
+inline constexpr double kPenaltyAccuracy = 1e-4;
+
+/// Reference rows per output interval: the reference is computed on the output grid refined by
+/// this, and the error scales (ErrorScales) are its largest values over all of it, so that a
+/// quantity zero at every output row (a pendulum's rod force at its turning points, sampled
+/// once a swing) is still measured against its size over the run. A power of two: the output
+/// times are among the refined ones bit for bit.
+inline constexpr int kScaleSamples = 4;
 
 /// One scheme's run at drift_rtol: its per-step drift log and its output-time trajectory.
 struct SchemeHistory {
@@ -117,6 +142,12 @@ struct CompareResult {
   std::vector<std::pair<Scheme, std::string>> skipped;
   /// What building the model warned of (BuildReport::warnings), as run prints it.
   std::vector<std::string> warnings;
+  /// What the errors are relative to (accuracy.hpp): the largest |u|, |u'|, |f_con| and the energy
+  /// scale over the reference sampled kScaleSamples times per output interval (against a
+  /// published state, over a run at drift_rtol so sampled), and where they come from. All 0
+  /// when no scale run succeeded against a published state: each run's own rows then.
+  ErrorScales error_scales;
+  std::string scale_source;
   std::vector<RunRecord> runs;
   std::vector<SchemeHistory> histories;
   std::vector<BaumgarteStudyPoint> baumgarte_study;
@@ -130,6 +161,8 @@ struct CompareResult {
   /// Runs of the sweep and histories that failed (the study's points are not counted: extreme
   /// gains are meant to find where it breaks).
   [[nodiscard]] int failed_runs() const;
+  /// Runs of the sweep marked over_tolerance.
+  [[nodiscard]] int over_tolerance_runs() const;
 };
 
 /// Runs the comparison. A failed run is recorded, not thrown; input errors throw SceneError, and

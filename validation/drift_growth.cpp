@@ -54,7 +54,8 @@ std::string figure(double x) {
 
 }  // namespace
 
-DriftGrowthAssessment assess_drift_growth(const std::vector<StepRecord>& steps, double floor) {
+DriftGrowthAssessment assess_drift_growth(const std::vector<StepRecord>& steps, double floor,
+                                          std::optional<double> oscillations_counted) {
   DriftGrowthAssessment out;
   if (steps.empty()) {
     out.reason = "no steps recorded";
@@ -74,7 +75,8 @@ DriftGrowthAssessment assess_drift_growth(const std::vector<StepRecord>& steps, 
                  "): no growth law to fit";
     return out;
   }
-  const double oscillations = static_cast<double>(steps.back().velocity_reversals) / 2.0;
+  const double oscillations =
+      oscillations_counted.value_or(static_cast<double>(steps.back().velocity_reversals) / 2.0);
   if (oscillations < kMinOscillations) {
     out.reason = "the run spans " + figure(oscillations) +
                  (oscillations == 1.0 ? " oscillation" : " oscillations") +

@@ -48,8 +48,11 @@ inline constexpr int kMinStepsPerQuarter = 5;
 inline constexpr double kMinOscillations = 10.0;
 
 /// `floor`: the drift below which it is roundoff, e.g. 64 eps times the largest |u| of the run.
-[[nodiscard]] DriftGrowthAssessment assess_drift_growth(const std::vector<StepRecord>& steps,
-                                                        double floor);
+/// `oscillations`: those of the motion when counted elsewhere (compare counts them once for all
+/// its schemes); by default half the velocity sign changes of `steps`.
+[[nodiscard]] DriftGrowthAssessment assess_drift_growth(
+    const std::vector<StepRecord>& steps, double floor,
+    std::optional<double> oscillations = std::nullopt);
 
 /// What theory predicts for the scheme's position drift, in words ("t^2", "bounded", ...).
 [[nodiscard]] std::string predicted_drift_growth(Scheme scheme);

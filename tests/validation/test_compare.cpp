@@ -2,15 +2,20 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <vector>
 
+#include "dae/penalty_ode.hpp"
 #include "dae/solve.hpp"
+#include "models/model.hpp"
 #include "models/scene_parser.hpp"
 #include "src/compare_output.hpp"
+#include "src/report_format.hpp"
 #include "tests/scene_text.hpp"
 #include "validation/compare.hpp"
 #include "validation/embedded_scenes.hpp"
@@ -248,12 +253,13 @@ TEST_CASE("compare: the output files follow validation/compare-output.md") {
     return s.str();
   };
   const std::string runs = slurp("runs.csv");
-  CHECK(runs.rfind(
-            "scheme,rtol,atol,status,error_u,error_v,error_reaction,max_drift_position,"
-            "max_drift_velocity,final_drift_position,final_drift_velocity,steps,"
-            "residual_evals,jacobian_evals,newton_failures,error_test_failures,"
-            "wall_median_s,wall_min_s,wall_max_s,repeats,message,mescd_u,mescd_v,energy_error\n",
-            0) == 0);
+  CHECK(
+      runs.rfind("scheme,rtol,atol,status,error_u,error_v,error_reaction,max_drift_position,"
+                 "max_drift_velocity,final_drift_position,final_drift_velocity,steps,"
+                 "residual_evals,jacobian_evals,newton_failures,error_test_failures,"
+                 "wall_median_s,wall_min_s,wall_max_s,repeats,message,mescd_u,mescd_v,energy_error,"
+                 "error_target,error_ratio,over_tolerance\n",
+                 0) == 0);
   CHECK(std::count(runs.begin(), runs.end(), '\n') == 1 + 4);
   const std::string json = slurp("runs.json");
   CHECK(json.find("\"reference\": {\"kind\": \"exact\"") != std::string::npos);
@@ -401,4 +407,157 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
 
   o.schemes = {Scheme::elimination};
   CHECK_THROWS_AS((void)run_compare(spec, o), SchemeNotApplicable);
+}
+
+TEST_CASE("compare: quantities zero at every output row are measured against the whole run") {
+  // The period-2 pendulum sampled once a swing (output_step 1) is at a turning point at every
+  // row: its rod force, velocity and kinetic energy are zero there, and errors relative to their
+  // largest value over the rows read 1.5e2 (reactions), 8e-4 (velocities) and 4.4e4 (energy) at
+  // rtol 1e-7 under GGL while the positions were right to 2.9e-6. Against their largest values
+  // over the whole run (the reference sampled four times per output step) every error is of
+  // the positions' order: the bound is the largest global error over rtol of the schemes that
+  // converge on the example scenes (1e3, CompareOptions::kDefaultMarkFactor's comment).
+  constexpr double kGlobalErrorOverRtol = 1e3;
+  SceneSpec spec =
+      parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/pendulum_period2.toml");
+  spec.solve.output_step = 1.0;
+  CompareOptions o;
+  o.tolerances = {1e-7};
+  o.repeats = 1;
+  o.schemes = {Scheme::ggl};
+  for (double t_end : {19.0, 20.0}) {  // a tight GGL reference at 19, the published state at 20
+    CAPTURE(t_end);
+    spec.solve.t_end = t_end;
+    const CompareResult r = run_compare(spec, o);
+    CHECK(r.reference_kind == (t_end == 20.0 ? "published" : "ggl"));
+    REQUIRE(r.runs.size() == 1);
+    const RunRecord& run = r.runs[0];
+    REQUIRE(run.ok);
+    CHECK(run.error_u < kGlobalErrorOverRtol * run.rtol);
+    CHECK(run.error_v < kGlobalErrorOverRtol * run.rtol);
+    if (t_end == 19.0) CHECK(run.error_reaction < kGlobalErrorOverRtol * run.rtol);
+    CHECK(run.energy_error < kGlobalErrorOverRtol * run.rtol);
+    // The scales are the run's size, each at the bottom of the swing (unit mass and length,
+    // g = (2 K(1/sqrt 2))^2 = 13.75): |u'| = sqrt(2 g) = 5.24, the rod force 3 m g = 41.25 and
+    // the kinetic energy m g = 13.75, sampled within 1 % by four rows a swing; |u| = L = 1.
+    constexpr double kSampled = 0.01;
+    const double g = std::pow(2.0 * 1.8540746773013719, 2);  // K(1/sqrt 2), DLMF 19.20.2
+    CHECK(r.error_scales.displacement == doctest::Approx(1.0).epsilon(kSampled));
+    CHECK(r.error_scales.velocity == doctest::Approx(std::sqrt(2.0 * g)).epsilon(kSampled));
+    CHECK(r.error_scales.energy == doctest::Approx(g).epsilon(kSampled));
+    if (t_end == 19.0) CHECK(r.error_scales.reaction == doctest::Approx(3.0 * g).epsilon(kSampled));
+  }
+}
+
+TEST_CASE("compare: one rule for the drift fit of every scheme") {
+  // The pendulum over 10 s (about 4 swings): GGL's velocities chatter about zero and counted 10
+  // or more sign changes, so its drift was assessed for a growth law where index1's, counting
+  // 8 oscillations, was refused as too short a run. The motion's oscillations are counted once.
+  const SceneSpec spec =
+      parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/pendulum.toml");
+  CompareOptions o;
+  o.tolerances = {1e-4};
+  o.repeats = 1;
+  o.schemes = {Scheme::ggl, Scheme::index1};
+  const CompareResult r = run_compare(spec, o);
+  REQUIRE(r.histories.size() == 2);
+  for (const auto& h : r.histories) {
+    CAPTURE(std::string(to_string(h.scheme)));
+    CAPTURE(h.growth.reason);
+    REQUIRE(h.ok);
+    CHECK_FALSE(h.growth.fit);
+    CHECK(h.growth.reason.find("oscillations of the motion") != std::string::npos);
+  }
+  CHECK(r.histories[0].growth.reason == r.histories[1].growth.reason);
+}
+
+TEST_CASE("compare: the error target of every scheme, penalty's from its weight") {
+  SceneSpec spec = parse_scene_text(embedded_scene("chapter_5_6_2").text, "E");
+  CompareOptions o;
+  o.tolerances = {1e-8};
+  o.repeats = 1;
+  o.schemes = {Scheme::ggl, Scheme::penalty};
+  o.baumgarte_study = false;
+  o.mark_factor = 100.0;
+  const CompareResult r = run_compare(spec, o);
+  REQUIRE(r.runs.size() == 2);
+  CHECK(r.runs[0].error_target == 1e-8);
+  CHECK(r.runs[1].error_target == kPenaltyAccuracy);  // the default weight's
+  for (const auto& run : r.runs) {
+    CAPTURE(std::string(to_string(run.scheme)));
+    REQUIRE(run.ok);
+    const double worst = std::max({run.error_u, run.error_v, run.error_reaction});
+    CHECK(run.error_ratio == worst / run.error_target);
+    CHECK(run.over_tolerance == (run.error_ratio > o.mark_factor));
+  }
+  // Penalty's reactions ring at its springs' frequency (11 % of their size, docs/schemes.md):
+  // 1e3 times its target, beyond the factor 100; GGL's worst error is 40 times rtol.
+  CHECK(r.runs[1].over_tolerance);
+  CHECK_FALSE(r.runs[0].over_tolerance);
+  CHECK(r.over_tolerance_runs() == 1);
+  // Ten times the default weight: a target ten times smaller (errors shrink like 1/w).
+  BuildReport report;
+  const Model model = build_model(spec, report);
+  spec.solve.penalty_weight = 10.0 * penalty_weights(model, spec.solve).position;
+  o.schemes = {Scheme::penalty};
+  const CompareResult heavy = run_compare(spec, o);
+  REQUIRE(heavy.runs.size() == 1);
+  CHECK(heavy.runs[0].error_target == doctest::Approx(kPenaltyAccuracy / 10.0));
+  CHECK_THROWS_AS(
+      [&] {
+        CompareOptions bad = o;
+        bad.mark_factor = 0.5;
+        bad.validate();
+      }(),
+      std::invalid_argument);
+}
+
+TEST_CASE("compare's table keeps every column apart whatever the width of its values") {
+  // 184040 Jacobian evaluations beside 5781.76 ms of wall time read "1840405781.76".
+  CompareResult result;
+  result.scene_name = "wide";
+  result.reference_kind = "exact";
+  result.scale_source = "the reference";
+  RunRecord r;
+  r.scheme = Scheme::projection;
+  r.rtol = 1e-5;
+  r.ok = true;
+  r.error_u = r.error_v = r.error_reaction = 1e-3;
+  r.error_target = 1e-5;
+  r.error_ratio = 100.0;
+  r.steps = 123456789;
+  r.residual_evals = 1234567890;
+  r.jacobian_evals = 184040;
+  r.wall_median = r.wall_min = r.wall_max = 5.78176;
+  result.runs.push_back(r);
+  RunRecord failed = r;
+  failed.ok = false;
+  failed.message = "step budget exhausted";
+  result.runs.push_back(failed);
+  std::ostringstream out;
+  print_compare_table(out, result);
+  const std::string text = out.str();
+  CAPTURE(text);
+  // Each figure is a word of its own.
+  std::istringstream words(text);
+  std::vector<std::string> all{std::istream_iterator<std::string>(words), {}};
+  for (const char* figure : {"123456789", "1234567890", "184040", "5781.76"}) {
+    CAPTURE(figure);
+    CHECK(std::find(all.begin(), all.end(), figure) != all.end());
+  }
+  CHECK(text.find("FAILED: step budget exhausted") != std::string::npos);
+}
+
+TEST_CASE("text tables: columns as wide as their widest cell, a gap between any two") {
+  TextTable table({"a", "bb"}, "  ");
+  table.add_row({"12345", "x"});
+  table.add_row({"≥1", "y"});  // two characters, four bytes
+  table.add_row({"only: a message that spans the columns after it"});
+  std::ostringstream out;
+  table.print(out);
+  CHECK(out.str() ==
+        "  a      bb\n"
+        "  12345  x\n"
+        "  ≥1     y\n"
+        "  only: a message that spans the columns after it\n");
 }
