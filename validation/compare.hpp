@@ -51,7 +51,8 @@ struct CompareOptions {
   /// A run whose worst error (error_u, error_v, error_reaction) exceeds mark_factor times its
   /// target (RunRecord::error_target) is marked over_tolerance: well beyond the spread of
   /// global error over rtol of the schemes that converge (up to 1e3 on the example scenes from
-  /// rtol 1e-3 to 1e-10). compare --fail-above sets it and fails such runs.
+  /// rtol 1e-3 to 1e-10, index3 6.3e3 on the shear frame at 1e-10). compare --fail-above sets it
+  /// and fails such runs.
   static constexpr double kDefaultMarkFactor = 1e4;
   double mark_factor = kDefaultMarkFactor;
   /// Called after every run with a one-line progress note.

@@ -100,3 +100,16 @@ def test_a_skipped_scheme_has_every_key_of_a_run():
     # Every key but scheme, ok, skipped and message (reference was the sweep's).
     assert {k for k, v in skipped[0].items() if v is not None} == {
         "scheme", "ok", "skipped", "message"}
+
+
+def test_compare_marks_runs_far_beyond_their_target():
+    # Every run carries its target, its worst error over it and the mark (docs/python.md);
+    # GGL's errors on the quickstart stay within 1e3 times rtol (test above), far below the
+    # default mark 1e4.
+    runs = condyn.compare(QUICKSTART, tolerances=[1e-6], schemes=["ggl"])
+    r = runs[0]
+    assert r["ok"], r["message"]
+    assert r["error_target"] == 1e-6
+    worst = max(r["error_u"], r["error_v"], r["error_reaction"])
+    assert r["error_ratio"] == pytest.approx(worst / r["error_target"], rel=1e-15)
+    assert r["over_tolerance"] is False
