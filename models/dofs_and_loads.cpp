@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "models/model_builder.hpp"
+#include "models/nearest_names.hpp"
 #include "models/scene_parser.hpp"
 
 namespace condyn {
@@ -14,10 +15,12 @@ void ModelBuilder::fail(const SourcePoint& where, const std::string& problem) co
 int ModelBuilder::dof(const std::string& name, const SourcePoint& where) const {
   const auto index = model_.find_dof(name);
   if (!index) {
+    // The names a typo most likely meant; a small model's every DOF when none is near.
     std::string hint;
-    if (model_.dofs() <= 12) {
-      for (const auto& d : model_.dof_names) hint += (hint.empty() ? "" : ", ") + d;
-      hint = " (DOFs are: " + hint + ")";
+    if (const auto near = nearest_names(name, model_.dof_names); !near.empty()) {
+      hint = " (the nearest: " + joined_names(near) + ")";
+    } else if (model_.dofs() <= 12) {
+      hint = " (DOFs are: " + joined_names(model_.dof_names) + ")";
     }
     fail(where, "no such DOF '" + name + "'" + hint);
   }

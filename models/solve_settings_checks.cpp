@@ -3,9 +3,12 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <string>
+#include <vector>
 
 #include "models/linear_system.hpp"
 #include "models/model_builder.hpp"
+#include "models/nearest_names.hpp"
 
 namespace condyn {
 
@@ -69,15 +72,25 @@ void ModelBuilder::check_output_dofs() const {
                                          return matches_dof_pattern(patterns[k], name);
                                        });
     if (any) continue;
+    // The names a typo most likely meant (a pattern's `*` left out of the comparison), else the
+    // model's first DOFs, said to be that.
+    std::string pattern = patterns[k];
+    std::erase(pattern, '*');
+    const std::vector<std::string> near = nearest_names(pattern, model_.dof_names);
     std::string some;
-    for (std::size_t d = 0; d < model_.dof_names.size() && d < 6; ++d) {
-      some += (d ? ", " : "") + model_.dof_names[d];
+    if (!near.empty()) {
+      some = "the nearest: " + joined_names(near);
+    } else {
+      some = "the model's DOFs: ";
+      for (std::size_t d = 0; d < model_.dof_names.size() && d < 6; ++d) {
+        some += (d ? ", " : "") + model_.dof_names[d];
+      }
+      if (model_.dof_names.size() > 6) some += ", ...";
     }
-    if (model_.dof_names.size() > 6) some += ", ...";
     const auto& lines = spec_.output.dofs_lines;
     const int line = k < lines.size() && lines[k] > 0 ? lines[k] : spec_.output.where.line;
     fail({"output.dofs[" + std::to_string(k + 1) + "]", line},
-         "'" + patterns[k] + "' matches no DOF (the model's DOFs: " + some +
+         "'" + patterns[k] + "' matches no DOF (" + some +
              "; `*` stands for any run of characters)");
   }
 }

@@ -80,6 +80,26 @@ std::string with_lf_endings(const std::string& text) {
   return out;
 }
 
+/// For a row read as one cell: the separator it seems to use instead of commas, said with what to
+/// do, or "" when it holds none. Spreadsheets write CSV with semicolons where the decimal mark is
+/// a comma, and tab-separated text when asked for text.
+std::string other_separator(const std::string& row) {
+  if (row.find(';') != std::string::npos) {
+    return "; its cells seem separated by semicolons (';'), as spreadsheets write CSV where the "
+           "decimal mark is a comma: condyn reads comma-separated values with a decimal point "
+           "(export with ',' between cells and '.' in numbers)";
+  }
+  if (row.find('\t') != std::string::npos) {
+    return "; its cells seem separated by tabs: condyn reads comma-separated values (save the "
+           "table as CSV, ',' between cells)";
+  }
+  if (row.find(' ') != std::string::npos) {
+    return "; its cells seem separated by spaces: condyn reads comma-separated values (',' "
+           "between cells)";
+  }
+  return "";
+}
+
 /// The whole cell as a double (a leading '+' allowed), or false.
 bool parse_number(const std::string& cell, double& out) {
   return parse_number_cell(cell, out) == NumberCell::ok;
@@ -132,7 +152,8 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
       const bool header = !parse_number(row.front(), ignored);
       if (row.size() < 2) {
         throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
-                                          " column: a table needs time and a column of values");
+                                          " column: a table needs time and a column of values" +
+                                          other_separator(trimmed));
       }
       if (header) {
         table.time_column = row.front();
@@ -190,7 +211,8 @@ TimeTable parse_time_table(const std::string& text, const std::string& column,
     if (row.size() <= value_col) {
       throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
                                         " cell(s) but the values are in column " +
-                                        std::to_string(value_col + 1));
+                                        std::to_string(value_col + 1) +
+                                        (row.size() == 1 ? other_separator(trimmed) : ""));
     }
     if (row.size() != width) {
       throw TimeTableError(line_no, "has " + std::to_string(row.size()) + " cells, line " +

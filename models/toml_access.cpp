@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "models/nearest_names.hpp"
 #include "models/scene_parser.hpp"
 
 namespace condyn {
@@ -153,9 +154,11 @@ void TomlAccess::check_keys(const toml::table& table, const std::string& path,
     bool known = false;
     for (auto a : allowed) known = known || key.str() == a;
     if (!known) {
-      std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      fail(node, join(path, std::string(key.str())), "unknown key (expected one of: " + list + ")");
+      const std::vector<std::string> keys(allowed.begin(), allowed.end());
+      const std::vector<std::string> near = nearest_names(std::string(key.str()), keys, 1);
+      fail(node, join(path, std::string(key.str())),
+           "unknown key (" + (near.empty() ? std::string() : "did you mean " + near[0] + "? ") +
+               "expected one of: " + joined_names(keys) + ")");
     }
   }
 }

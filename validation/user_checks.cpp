@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "dae/solve.hpp"
+#include "models/nearest_names.hpp"
 #include "models/number_cell.hpp"
 #include "models/scene_parser.hpp"
 
@@ -21,22 +22,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Each figure exact (a check's verdict compares doubles: 6 digits showed "max |x| = 1, bound 1"
 /// for a FAIL of 1 against 0.9999999).
 std::string fmt(double v) { return shortest_number(v); }
-
-/// Edit distance, for suggesting a column name.
-std::size_t distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
 
 /// Every column a run of the model can write (under some quantity).
 std::vector<std::string> all_columns(const Model& model) {
@@ -52,7 +37,8 @@ std::vector<std::string> all_columns(const Model& model) {
   return out;
 }
 
-/// "unknown column 'uz3'; the nearest are ux3, uy3" (up to five names at the smallest distance).
+/// "no output column is named 'uz3' (...); the nearest: ux3, uy3" (nearest_names: the names a
+/// typo most likely meant, or none).
 std::string unknown_column(const Model& model, const std::string& name) {
   for (const auto& c : model.dropped_constraints) {
     if (name == "lambda_" + c) {
@@ -61,19 +47,13 @@ std::string unknown_column(const Model& model, const std::string& name) {
              "and its reaction is carried by the constraints it combines";
     }
   }
-  std::vector<std::pair<std::size_t, std::string>> ranked;
-  for (auto& c : all_columns(model)) ranked.emplace_back(distance(name, c), std::move(c));
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::string near;
-  for (std::size_t k = 0; k < ranked.size() && k < 5; ++k) {
-    near += (k ? ", " : "") + ranked[k].second;
-  }
+  const std::vector<std::string> near = nearest_names(name, all_columns(model));
   return "no output column is named '" + name +
          "' (columns are a DOF's name, vel_, acc_, acc_abs_ or reaction_ and a DOF, lambda_ and a "
          "constraint, drift_position, drift_velocity, energy, energy_error and the other "
-         "energy columns); the nearest: " +
-         near;
+         "energy columns); " +
+         (near.empty() ? std::string("no column's name is near it")
+                       : "the nearest: " + joined_names(near));
 }
 
 SourcePoint quantity_key(const CheckSpec& c) { return {c.where.path + ".quantity", c.where.line}; }

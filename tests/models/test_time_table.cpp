@@ -259,6 +259,17 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
   CHECK(has(error("t,a\n0,1\n"), key + ": has 1 sample(s): a table needs at least 2"));
   CHECK(has(error("# only comments\n"), key + ": has 0 sample(s)"));
   CHECK(has(error("t\n0\n"), key + ":1: has 1 column: a table needs time and a column"));
+  // Another separator than the comma: the one a spreadsheet used, named with the remedy
+  // (issue 42: a semicolon-separated record was reported as "has 1 column" alone).
+  CHECK(has(error("t;a\n0;0,5\n1;1,5\n"),
+            key + ":1: has 1 column: a table needs time and a column of values; its cells seem "
+                  "separated by semicolons (';')"));
+  CHECK(has(error("0;1\n1;2\n"), key + ":1: has 1 column: a table needs time and a column of "
+                                       "values; its cells seem separated by semicolons"));
+  CHECK(has(error("t\ta\n0\t1\n1\t2\n"), "; its cells seem separated by tabs"));
+  CHECK(has(error("t a\n0 1\n1 2\n"), "; its cells seem separated by spaces"));
+  CHECK(has(error("t,a\n0,1\n1;2\n"), key + ":3: has 1 cell(s) but the values are in column 2; "
+                                            "its cells seem separated by semicolons"));
   CHECK(has(error("0,1\n1,2\n", "a"),
             key + ":1: has no header line naming its columns, so no column 'a' (add a header "
                   "line such as t,a)"));
@@ -273,7 +284,8 @@ TEST_CASE("time table: bad files are refused with the scene key, the CSV file an
   // Keys: unknown, missing, empty.
   box.write("ok.csv", kRecord);
   CHECK(has(scene_error(box, load_scene(R"({ type = "table", file = "ok.csv", scal = 2 })")),
-            "load[1].value.scal: unknown key (expected one of: type, file, column, scale)"));
+            "load[1].value.scal: unknown key (did you mean scale? expected one of: type, file, "
+            "column, scale)"));
   CHECK(has(scene_error(box, load_scene(R"({ type = "table" })")),
             "load[1].value.file: missing required key"));
   CHECK(has(scene_error(box, load_scene(R"({ type = "table", file = "ok.csv", column = "" })")),
