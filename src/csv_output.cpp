@@ -2,9 +2,16 @@
 
 #include "src/csv_rows.hpp"
 #include "src/hdf5_output.hpp"
+#include "src/output_format.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <array>
 #include <charconv>
+#include <climits>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -44,11 +51,42 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
   }
 }
 
+/// FNV-1a, 32 bits: a short, stable digest of a name.
+std::uint32_t name_hash(const std::string& name) {
+  std::uint32_t h = 2166136261U;
+  for (const char c : name) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 16777619U;
+  }
+  return h;
+}
+
+/// The longest name the folder of `path` takes (NAME_MAX, 255 bytes, on most file systems).
+std::size_t name_limit(const std::filesystem::path& path) {
+  const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+  const long limit = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+  return limit > 0 ? static_cast<std::size_t>(limit) : static_cast<std::size_t>(NAME_MAX);
+}
+
 /// FILE.csv -> FILE.partial.csv (beside it): where a failed run keeps what it computed, so that
-/// the file the user named is never overwritten by an incomplete result.
+/// the file the user named is never overwritten by an incomplete result. A name that fits the
+/// file system while its partial name would not (FILE of 248 bytes and more, as the limit is 255)
+/// keeps the start of its stem, cut at a character, then `~` and 8 hex digits of a hash of the
+/// whole name: `FILE-START~1a2b3c4d.partial.csv`, within the limit, and different for names
+/// that share their start.
 std::string partial_path(const std::string& out) {
   const std::filesystem::path p(out);
-  return (p.parent_path() / (p.stem().string() + ".partial" + p.extension().string())).string();
+  const std::string stem = p.stem().string();
+  const std::string tail = ".partial" + p.extension().string();
+  const std::size_t limit = name_limit(p);
+  if (stem.size() + tail.size() <= limit) return (p.parent_path() / (stem + tail)).string();
+  char digest[16];
+  std::snprintf(digest, sizeof digest, "~%08x",
+                static_cast<unsigned>(name_hash(p.filename().string())));
+  const std::size_t room = limit > tail.size() + 9 ? limit - tail.size() - 9 : 0;
+  std::size_t cut = std::min(room, stem.size());
+  while (cut > 0 && (static_cast<unsigned char>(stem[cut]) & 0xC0U) == 0x80U) --cut;  // UTF-8
+  return (p.parent_path() / (stem.substr(0, cut) + digest + tail)).string();
 }
 
 /// "the output row at t = 0" or "the 12 output rows up to t = 0.11".
@@ -85,30 +123,27 @@ RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
   const std::string& output_file = output.file;
   plan_.add_input(scene);
   for (const auto& in : inputs) plan_.add_input(in);
+  std::string path, source;
   if (!out_flag.empty()) {
-    csv_ = plan_.add_output(out_flag, "--out");
+    path = out_flag;
+    source = "--out";
   } else if (!output_file.empty()) {
     const std::filesystem::path file(output_file);
-    const std::string path = file.is_absolute()
-                                 ? output_file
-                                 : (std::filesystem::path(scene).parent_path() / file).string();
-    csv_ = plan_.add_output(
-        path, scene + (output.file_line > 0 ? ":" + std::to_string(output.file_line) : "") +
-                  ": [output] file");
+    path = file.is_absolute() ? output_file
+                              : (std::filesystem::path(scene).parent_path() / file).string();
+    source = scene + (output.file_line > 0 ? ":" + std::to_string(output.file_line) : "") +
+             ": [output] file";
   } else {
-    const std::string name = std::filesystem::path(scene).stem().string() + ".csv";
-    csv_ = plan_.add_output(name, "the default output (SCENE-STEM.csv)");
+    path = std::filesystem::path(scene).stem().string() + ".csv";
+    source = "the default output (SCENE-STEM.csv)";
   }
-  if (!steps_out.empty()) {
-    // The drift log is CSV only: CSV text in a .h5 file is a file no HDF5 reader opens.
-    if (is_hdf5_path(steps_out)) {
-      throw OutputError("--steps-out " + steps_out +
-                        ": the drift log is written as CSV; name it .csv (only the result, --out, "
-                        "is written as HDF5)");
-    }
-    steps_ = plan_.add_output(steps_out, "--steps-out");
-  }
+  csv_ = plan_.add_output(path, source);
+  if (!steps_out.empty()) steps_ = plan_.add_output(steps_out, "--steps-out");
   plan_.check();  // the stream test below needs the CSV resolved
+  // The formats the names ask for, once the paths are known good (a name that is an input or a
+  // folder says so first): the result CSV or HDF5, the drift log CSV only.
+  format_ = output_format(path, source, {FileFormat::csv, FileFormat::hdf5});
+  if (steps_) (void)output_format(steps_out, "--steps-out", {FileFormat::csv});
   if (!plan_.is_stream(csv_)) {
     partial_ = plan_.add_output(partial_path(plan_.display_name(csv_)), "the partial-result file");
   }
@@ -129,7 +164,7 @@ void RunOutputs::write_result(OutputPlan::Id id, const Model& model, const RunAt
                               const Trajectory& traj) {
   // A stream's writer runs later, at commit (OutputPlan): it captures what it needs by value or
   // refers to what outlives the commit (the model, the trajectory, the caller's attributes).
-  const bool hdf5 = is_hdf5_path(plan_.display_name(id));
+  const bool hdf5 = format_ == FileFormat::hdf5;
   plan_.write(id, [this, hdf5, &model, &run, &traj](std::ostream& out) {
     if (hdf5) {
       write_hdf5(out, model, output_, run, traj);
@@ -151,11 +186,18 @@ void RunOutputs::commit_result(const Trajectory& traj) {
     ids.push_back(*steps_);
   }
   plan_.commit(ids);
+  // The result is complete: a partial file an earlier failed run left under these names would
+  // now look like a later, shorter result. Removed as outputs are protected (remove_stale).
+  for (const auto& partial : {partial_, steps_partial_}) {
+    if (partial && plan_.remove_stale(plan_.display_name(*partial))) {
+      removed_.push_back(plan_.display_name(*partial));
+    }
+  }
 }
 
 std::function<void(const TrajectoryRow&)> RunOutputs::stream_rows(const Model& model) {
   rows_path_ = plan_.write_in_place(csv_);
-  rows_ = open_row_writer(rows_path_, is_hdf5_path(plan_.display_name(csv_)), model, output_);
+  rows_ = open_row_writer(rows_path_, format_ == FileFormat::hdf5, model, output_);
   return [this](const TrajectoryRow& row) { rows_->row(row); };
 }
 

@@ -13,6 +13,7 @@
 #include "models/model.hpp"
 #include "src/hdf5_output.hpp"
 #include "src/output_files.hpp"
+#include "src/output_format.hpp"
 #include "src/row_writer.hpp"
 
 namespace condyn {
@@ -41,8 +42,8 @@ class RunOutputs {
   [[nodiscard]] bool has_steps() const { return steps_.has_value(); }
   [[nodiscard]] std::string steps_name() const;
 
-  /// A finished run: the CSV (HDF5 for a name ending in .h5) and the drift log, committed
-  /// together.
+  /// A finished run: the result (HDF5 for a name ending in .h5, .hdf5 or .hdf) and the drift log,
+  /// committed together.
   void write(const Model& model, const RunAttributes& run, const Trajectory& traj);
   /// A failed run: its rows into FILE.partial.csv (the CSV and drift log are left as they were);
   /// returns the sentence saying where they went, or why they were not written.
@@ -58,6 +59,9 @@ class RunOutputs {
   [[nodiscard]] std::function<void(const TrajectoryRow&)> stream_rows(const Model& model);
   /// A finished streamed run: completes the file, writes the drift log, commits both.
   void finish_stream(const RunAttributes& run, const Trajectory& traj);
+  /// The partial files of an earlier failed run (FILE.partial.csv, STEPS.partial.csv) that a
+  /// finished run removed when it committed its own files: they no longer describe its result.
+  [[nodiscard]] const std::vector<std::string>& removed_partials() const { return removed_; }
   /// A failed streamed run: completes the rows written so far and keeps them in the partial file
   /// (when there is more than the initial row; else nothing is kept and "" is returned); returns
   /// the sentence saying where they went, as write_partial.
@@ -70,7 +74,8 @@ class RunOutputs {
   /// for the partial result's sentence, or "" without a log.
   [[nodiscard]] std::string commit_partial(std::optional<OutputPlan::Id> rows,
                                            const Trajectory& partial);
-  /// Commits the result (written) with the drift log of `traj` when one is asked for.
+  /// Commits the result (written) with the drift log of `traj` when one is asked for, and removes
+  /// the partial files an earlier failed run left under the same names.
   void commit_result(const Trajectory& traj);
   /// The result into output `id`, in the format its name asks for.
   void write_result(OutputPlan::Id id, const Model& model, const RunAttributes& run,
@@ -78,10 +83,12 @@ class RunOutputs {
 
   OutputSpec output_;
   OutputPlan plan_;
-  std::unique_ptr<RowWriter> rows_;  ///< a streamed run's result file
-  std::string rows_path_;            ///< its temporary file
+  FileFormat format_ = FileFormat::csv;  ///< the result's (and its partial file's)
+  std::unique_ptr<RowWriter> rows_;      ///< a streamed run's result file
+  std::string rows_path_;                ///< its temporary file
   OutputPlan::Id csv_ = 0;
   std::optional<OutputPlan::Id> steps_, partial_, steps_partial_;
+  std::vector<std::string> removed_;  ///< removed_partials()
 };
 
 }  // namespace condyn

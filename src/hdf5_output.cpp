@@ -4,8 +4,6 @@
 
 #include "src/hdf5_parts.hpp"
 
-#include <cctype>
-#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
@@ -39,12 +37,6 @@ void put_matrix(hid_t file, const char* name, hsize_t rows, hsize_t cols, const 
 }
 
 }  // namespace
-
-bool is_hdf5_path(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".h5" || ext == ".hdf5";
-}
 
 void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
                 const RunAttributes& run, const Trajectory& traj) {

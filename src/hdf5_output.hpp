@@ -1,5 +1,6 @@
 #pragma once
-/// HDF5 output (scene-format.md, "Output"): chosen by the `.h5` extension. One dataset per
+/// HDF5 output (scene-format.md, "Output"): chosen by the `.h5` extension (or `.hdf5`, `.hdf`:
+/// src/output_format.hpp). One dataset per
 /// quantity (`t`; `displacement`, `velocity`, `reaction` as nt x n over the [output] dofs;
 /// `multiplier` nt x m; `drift` nt x 2; `energy` nt x 2: energy and its error), the names as string
 /// datasets `dof_names` and `constraint_names`, and the scheme, rtol and atol as attributes of the
@@ -21,9 +22,6 @@ struct RunAttributes {
   /// "mixed" or "multipliers" (treatment_name); empty: no attribute (not a multiplier scheme).
   std::string constraints;
 };
-
-/// True for a path ending in `.h5` (the contract's choice of format), or `.hdf5`, in any case.
-[[nodiscard]] bool is_hdf5_path(const std::string& path);
 
 /// Writes the HDF5 file of `traj` to `out`. Throws std::runtime_error when the HDF5 library
 /// fails (the message names the call).

@@ -25,9 +25,11 @@
 #include "src/escaped_streams.hpp"
 #include "src/info_report.hpp"
 #include "src/output_files.hpp"
+#include "src/output_format.hpp"
 #include "src/plot_command.hpp"
 #include "src/report_format.hpp"
 #include "src/stress_output.hpp"
+#include "src/temp_registry.hpp"
 #include "validation/accuracy.hpp"
 #include "validation/compare.hpp"
 #include "validation/embedded_scenes.hpp"
@@ -170,6 +172,9 @@ int run(const RunArgs& args) {
     msg << "wrote the drift at " << traj.steps.size() << " internal steps to "
         << outputs.steps_name() << "\n";
   }
+  for (const auto& stale : outputs.removed_partials()) {
+    msg << "removed " << stale << ", the partial result of an earlier failed run\n";
+  }
   return 0;
 }
 
@@ -275,6 +280,7 @@ int check(const std::vector<std::string>& scenes, const std::string& scheme,
     report = plan.add_output(junit, "--junit");
   }
   plan.check();
+  if (report) (void)output_format(junit, "--junit", {FileFormat::xml});  // its name says XML
   // A report on standard output (`--junit -`) keeps it a well-formed XML stream: the lines go to
   // stderr, as run's do with `--out -`.
   std::ostream& msg = report && plan.to_stdout(*report) ? std::cerr : std::cout;
@@ -373,12 +379,13 @@ int run_command(int argc, char** argv) {
       ->check(decimal_range_check(1e-9, 1e12));
   run_cmd
       ->add_option("--out", run_args.out,
-                   "CSV file, or - for standard output (default: [output] file, else "
-                   "SCENE-STEM.csv here)")
+                   "result file: .csv or no extension for CSV, .h5, .hdf5 or .hdf for HDF5, - "
+                   "for standard output (default: [output] file, else SCENE-STEM.csv here)")
       ->check(file_name_check());
   run_cmd
       ->add_option("--steps-out", run_args.steps_out,
-                   "also write the constraint drift at every internal step to this CSV")
+                   "also write the constraint drift at every internal step to this CSV (.csv or "
+                   "no extension)")
       ->check(file_name_check());
 
   std::string info_scene, info_scheme, info_constraints;
@@ -460,13 +467,15 @@ int run_command(int argc, char** argv) {
       ->add_option("--scheme", check_scheme,
                    "scheme for every scene (overrides [solve] scheme): " + scheme_names())
       ->check(non_empty_check());
-  check_cmd->add_option("--junit", check_junit, "also write a JUnit XML report to this file")
+  check_cmd
+      ->add_option("--junit", check_junit,
+                   "also write a JUnit XML report to this file (.xml or no extension)")
       ->check(non_empty_check());
 
   PlotArgs plot_args;
   auto* plot_cmd = app.add_subcommand(
       "plot", "figures of one run's CSV or HDF5: displacements, drift, energy (docs/plots.md)");
-  plot_cmd->add_option("result", plot_args.result, "the .csv or .h5 that condyn run wrote")
+  plot_cmd->add_option("result", plot_args.result, "the CSV or HDF5 file that condyn run wrote")
       ->required();
   plot_cmd
       ->add_option("--dofs", plot_args.dofs,

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "src/cli_flags.hpp"
-#include "src/hdf5_output.hpp"
 #include "src/output_files.hpp"
+#include "src/output_format.hpp"
 #include "src/report_format.hpp"
 
 namespace condyn {
@@ -32,10 +32,11 @@ int plot_result(const PlotArgs& args) {
   if (!fs::is_regular_file(result, ec)) {
     return bad(args.result + ": no such file (condyn plot reads the CSV or HDF5 of condyn run)");
   }
-  if (result.extension() != ".csv" && !is_hdf5_path(args.result)) {
-    return bad(args.result +
-               ": not a result file: condyn plot reads the .csv or .h5 that "
-               "condyn run writes");
+  // The names run writes results under (src/output_format.hpp): CSV or HDF5 by extension.
+  if (!has_no_extension(args.result) && named_format(args.result) != FileFormat::csv &&
+      named_format(args.result) != FileFormat::hdf5) {
+    return bad(args.result + ": not a result file: condyn plot reads what condyn run writes, " +
+               accepted_names({FileFormat::csv, FileFormat::hdf5}));
   }
   // The list rules of the other lists: no empty item, none twice, blanks ignored.
   const std::vector<std::string> format_list = split_list("--format", args.formats);

@@ -158,7 +158,9 @@ def main(argv):
     stem = os.path.splitext(os.path.basename(path))[0]
     formats = [f for f in args.format.split(",") if f]
     try:
-        columns, dofs = read_h5(np, path) if path.lower().endswith((".h5", ".hdf5")) else read_csv(np, path)
+        # HDF5 under the names run writes it (src/output_format.hpp), else CSV.
+        hdf5 = path.lower().endswith((".h5", ".hdf5", ".hdf"))
+        columns, dofs = read_h5(np, path) if hdf5 else read_csv(np, path)
         patterns = [p for p in args.dofs.split(",") if p]
         if patterns and not dofs:
             raise BadInput(f"{path}: has no displacement columns to choose from")

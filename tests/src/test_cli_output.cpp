@@ -103,11 +103,11 @@ TEST_CASE("no output may be an input: the scene is never overwritten") {
   CHECK(slurp(box.path("x.csv")) == kScene);
 
   // The file a failed run would keep its rows in is an output too.
-  box.write("p.partial.toml", kFailing);
-  const Result partial = box.run("run p.partial.toml --out p.toml");
+  box.write("p.partial.csv", kFailing);
+  const Result partial = box.run("run p.partial.csv --out p.csv");
   CHECK(partial.code == 2);
-  CHECK(contains(partial.err, "p.partial.toml: is p.partial.toml, an input"));
-  CHECK(slurp(box.path("p.partial.toml")) == kFailing);
+  CHECK(contains(partial.err, "p.partial.csv: is p.partial.csv, an input"));
+  CHECK(slurp(box.path("p.partial.csv")) == kFailing);
   CHECK(hidden_files(box.path(".")).empty());
 }
 
