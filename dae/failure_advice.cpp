@@ -149,6 +149,8 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
       }
       return "the integrator refused an input (a time, tolerance or size it cannot use): check "
              "t_end, output_step, the load step times and the tolerances";
+    case FailureKind::interrupted:
+      return "";  // the user stopped it: nothing to try instead
     case FailureKind::convergence:
     case FailureKind::error_test:
     case FailureKind::unknown:

@@ -39,6 +39,8 @@ const char* to_string(FailureKind kind) {
       return "failure before the first step";
     case FailureKind::bad_input:
       return "integrator input refused";
+    case FailureKind::interrupted:
+      return "interrupted";
   }
   return "integrator failure";
 }
@@ -216,6 +218,11 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
         steps_since_output = 0;
       }
       check_interrupt();
+      if (const int signal = stop_requested(); signal != 0) {
+        std::ostringstream s;
+        s << "stopped by " << signal_name(signal) << " at t = " << t;
+        throw IntegrationError(FailureKind::interrupted, s.str());
+      }
       if (options.max_wall_seconds > 0.0 || options.on_progress) {
         const double seconds = elapsed();
         if (options.on_progress && seconds >= next_progress && k < times.size()) {

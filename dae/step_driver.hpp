@@ -40,6 +40,7 @@ enum class FailureKind {
   linear_solver,        ///< the iteration matrix could not be factored or solved
   first_step,           ///< a solver failure at the start, before any step was taken
   bad_input,            ///< the integrator refused an input (a time, a tolerance, a size)
+  interrupted,          ///< stopped from outside (request_stop: a signal), not by the model
 };
 
 /// A few words naming the kind ("step budget exhausted").
@@ -113,8 +114,9 @@ struct TimeGrid {
 /// Fills the summary's counters, restarts, unknowns-independent fields and wall time is left to
 /// the caller. Reports progress through options.on_progress. Throws IntegrationError when more
 /// than max_steps_per_output steps pass between two outputs, a budget (max_steps,
-/// max_wall_seconds) is exhausted or the solution becomes non-finite; throws Interrupted when the
-/// interrupt poll asks to stop (dae/interrupt.hpp); every IntegrationError
+/// max_wall_seconds) is exhausted, the solution becomes non-finite or a stop is requested
+/// (request_stop: FailureKind::interrupted); throws Interrupted when the interrupt poll asks to
+/// stop (dae/interrupt.hpp); every IntegrationError
 /// leaving the loop carries its kind, the time reached, the last step, the steps taken and the
 /// rows recorded so far.
 [[nodiscard]] RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0,

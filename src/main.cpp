@@ -123,6 +123,9 @@ int run(const RunArgs& args) {
       if (keep_last) last = row;
     };
   }
+  // From here a first SIGINT, SIGTERM or SIGHUP stops the run as a failure that keeps its rows
+  // (or, had it finished, its whole result); main then ends the process by the signal.
+  keep_rows_on_signal(true);
   const SolveResult result = solve(model, spec.solve, hooks);
   const Trajectory& traj = result.trajectory;
   const SolveSummary& summary = result.summary;
@@ -134,9 +137,9 @@ int run(const RunArgs& args) {
     const std::string partial =
         streamed ? outputs.finish_stream_partial(attributes, traj)
                  : (traj.t.empty() ? "" : outputs.write_partial(model, attributes, traj));
-    std::cerr << "error: " << args.scene
-              << ": integration failed: " << describe_failure(result, spec.solve.t_end, partial)
-              << "\n";
+    const bool stopped = result.failure->kind == FailureKind::interrupted;
+    std::cerr << "error: " << args.scene << (stopped ? ": run stopped: " : ": integration failed: ")
+              << describe_failure(result, spec.solve.t_end, partial) << "\n";
     return 1;
   }
   if (streamed) {
@@ -619,9 +622,13 @@ int main(int argc, char** argv) {
   const int code = run_command(argc, argv);
   // What a command printed to standard output (info's report, compare's table) is its product:
   // a write that failed (a full disk, /dev/full, a closed pipe) is a failure, not exit 0.
-  if (!(std::cout << std::flush)) {
+  const bool written = static_cast<bool>(std::cout << std::flush);
+  if (!written)
     std::cerr << "error: writing standard output failed (" << std::strerror(errno) << ")\n";
-    return code == 0 ? 1 : code;
-  }
+  // A run stopped by a signal kept its rows; every temporary file is gone: the process now ends
+  // by that signal, as it would have at once, so a shell sees 130 (SIGINT) or 143 (SIGTERM).
+  condyn::keep_rows_on_signal(false);
+  if (const int signal = condyn::stopped_by_signal(); signal != 0) condyn::end_by_signal(signal);
+  if (!written) return code == 0 ? 1 : code;
   return code;
 }

@@ -5,8 +5,11 @@
 #include <atomic>
 #include <climits>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <iostream>
 
+#include "dae/interrupt.hpp"
 #include "src/output_files.hpp"
 
 namespace condyn {
@@ -25,8 +28,14 @@ struct TempNode {
 namespace {
 
 std::atomic<TempNode*> g_temps{nullptr};
+/// keep_rows_on_signal: the first SIGINT, SIGTERM or SIGHUP stops the run instead.
+std::atomic<bool> g_keep_rows{false};
 
 extern "C" void remove_temps_and_reraise(int sig) {
+  if (sig != SIGPIPE && g_keep_rows.load() && stop_requested() == 0) {
+    request_stop(sig);  // the run ends at its next step and keeps its rows
+    return;
+  }
   for (TempNode* n = g_temps.load(); n != nullptr; n = n->next) {
     if (n->live.load()) ::unlink(n->path);
   }
@@ -46,7 +55,8 @@ void install_signal_handlers() {
     if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
     struct sigaction action {};
     action.sa_handler = remove_temps_and_reraise;
-    sigfillset(&action.sa_mask);  // one cleanup at a time
+    action.sa_flags = SA_RESTART;  // a deferred stop must not fail a write in progress (EINTR)
+    sigfillset(&action.sa_mask);   // one cleanup at a time
     ::sigaction(sig, &action, nullptr);
   }
 }
@@ -72,6 +82,26 @@ TempNode* register_temp(const std::string& path) {
   std::memcpy(node->path, path.c_str(), path.size() + 1);
   node->live.store(true);
   return node;
+}
+
+void keep_rows_on_signal(bool on) {
+  static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler reads it");
+  if (on) install_signal_handlers();
+  g_keep_rows.store(on);
+}
+
+int stopped_by_signal() { return stop_requested(); }
+
+void end_by_signal(int signal) {
+  std::cout.flush();
+  std::cerr.flush();
+  std::signal(signal, SIG_DFL);
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, signal);
+  ::sigprocmask(SIG_UNBLOCK, &set, nullptr);
+  std::raise(signal);
+  std::_Exit(128 + signal);  // not reached: the default action of these signals ends the process
 }
 
 void release_temp(TempNode*& node) {

@@ -1,7 +1,7 @@
 #pragma once
 /// Temporary files removed on a fatal signal (SIGTERM, SIGINT, SIGHUP, SIGPIPE): how an output's
 /// temporary file (src/output_files.hpp) is cleaned up when the program is killed before it
-/// commits. Internal to src/.
+/// commits; and `condyn run`'s stop on a signal, which keeps the rows computed. Internal to src/.
 
 #include <string>
 
@@ -15,5 +15,17 @@ struct TempNode;
 [[nodiscard]] TempNode* register_temp(const std::string& path);
 /// The file is gone or in place: a signal no longer removes it. Sets `node` to nullptr.
 void release_temp(TempNode*& node);
+
+/// While `on` (a run integrating, whose rows are worth keeping): the first SIGINT, SIGTERM or
+/// SIGHUP does not end the process but asks the run to stop (request_stop, dae/interrupt.hpp),
+/// which then ends as a failed run and keeps its rows in the partial file; a second one ends the
+/// process at once, as without (temporary files removed). Installs the handlers on first use.
+void keep_rows_on_signal(bool on);
+/// The signal a run was stopped by (0: none). Once the command has written what it kept and
+/// released its temporary files, main ends the process by it (end_by_signal).
+[[nodiscard]] int stopped_by_signal();
+/// Ends the process by `signal`, as its default action does, so the caller sees the signal (a
+/// shell's status 128 + N: 130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP).
+[[noreturn]] void end_by_signal(int signal);
 
 }  // namespace condyn

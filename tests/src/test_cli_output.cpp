@@ -393,7 +393,7 @@ TEST_CASE("CSV on standard output: stdout is the CSV alone, every other line on 
   CHECK(contains(redirected.err, "--steps-out out.txt: is the same file as --out -"));
 }
 
-TEST_CASE("SIGTERM while the CSV is written leaves no temporary file") {
+TEST_CASE("SIGTERM or SIGINT while the CSV is written keeps the rows, leaves no temporary file") {
   const Sandbox box;
   // 40 oscillators started at 1, 50001 output rows: a CSV of about 40 MB, long enough to write
   // that the signal lands during the write.
@@ -415,38 +415,60 @@ TEST_CASE("SIGTERM while the CSV is written leaves no temporary file") {
   for (int i = 0; i < n; ++i) s << (i ? ", " : " ") << "x" << i << " = 1.0";
   s << " }\n[solve]\nt_end = 1000.0\noutput_step = 0.02\nrtol = 1e-4\natol = 1e-6\n";
   box.write("big.toml", s.str());
+  std::string header = "t";
+  for (int i = 0; i < n; ++i) header += ",x" + std::to_string(i);
+  header += ",drift_position,drift_velocity\n";
 
-  const pid_t pid = ::fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    if (::chdir(box.path(".").c_str()) != 0) ::_exit(126);
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(null, 2);
-    ::execl(CONDYN_BINARY, "condyn", "run", "big.toml", "--out", "big.csv", nullptr);
-    ::_exit(127);
-  }
-  // Wait until a temporary file holds data: the CSV is being written.
-  bool writing = false;
-  int status = 0;
-  bool exited = false;
-  for (int k = 0; k < 120000 && !writing && !exited; ++k) {
-    for (const auto& name : hidden_files(box.path("."))) {
-      std::error_code ec;
-      writing = writing || fs::file_size(box.path(name), ec) > 0;
+  for (const int signal : {SIGTERM, SIGINT}) {
+    CAPTURE(signal);
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      if (::chdir(box.path(".").c_str()) != 0) ::_exit(126);
+      const int null = ::open("/dev/null", O_WRONLY);
+      const int err = ::open("err.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      ::dup2(null, 1);
+      ::dup2(err, 2);
+      ::execl(CONDYN_BINARY, "condyn", "run", "big.toml", "--out", "big.csv", nullptr);
+      ::_exit(127);
     }
-    exited = ::waitpid(pid, &status, WNOHANG) == pid;
-    if (!writing && !exited) ::usleep(500);
+    // Wait until a temporary file holds data: the CSV is being written.
+    bool writing = false;
+    int status = 0;
+    bool exited = false;
+    for (int k = 0; k < 120000 && !writing && !exited; ++k) {
+      for (const auto& name : hidden_files(box.path("."))) {
+        std::error_code ec;
+        writing = writing || fs::file_size(box.path(name), ec) > 0;
+      }
+      exited = ::waitpid(pid, &status, WNOHANG) == pid;
+      if (!writing && !exited) ::usleep(500);
+    }
+    if (!exited) {
+      ::kill(pid, signal);
+      REQUIRE(::waitpid(pid, &status, 0) == pid);
+    }
+    REQUIRE(writing);
+    // The process ends by the signal, as before, so a shell sees 128 + N (130, 143) ...
+    CHECK(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == signal);
+    CHECK(hidden_files(box.path(".")).empty());
+    CHECK(!fs::exists(box.path("big.csv")));
+    // ... after keeping the rows computed, as a failed run does: complete rows from t = 0 on.
+    const std::string partial = slurp(box.path("big.partial.csv"));
+    CHECK(pure_csv(partial, header));
+    CHECK(partial.rfind(header + "0,", 0) == 0);
+    CHECK(!partial.empty());
+    CHECK(partial.back() == '\n');
+    const std::string err = slurp(box.path("err.txt"));
+    CAPTURE(err);
+    CHECK(contains(err, "run stopped: under "));
+    CHECK(contains(err, signal == SIGINT ? "stopped by SIGINT (Ctrl-C) at t = "
+                                         : "stopped by SIGTERM at t = "));
+    CHECK(contains(
+        err, " are in big.partial.csv (the run did not reach t_end; big.csv was not written)"));
+    fs::remove(box.path("big.partial.csv"));
   }
-  if (!exited) {
-    ::kill(pid, SIGTERM);
-    REQUIRE(::waitpid(pid, &status, 0) == pid);
-  }
-  REQUIRE(writing);
-  CHECK(WIFSIGNALED(status));
-  CHECK(WTERMSIG(status) == SIGTERM);
-  CHECK(hidden_files(box.path(".")).empty());
-  CHECK(!fs::exists(box.path("big.csv")));
 }
 
 TEST_CASE("links and permissions: what replacing an output keeps") {
