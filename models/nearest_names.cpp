@@ -42,21 +42,27 @@ std::vector<std::string> nearest_names(const std::string& name,
   constexpr std::size_t kMinContained = 3;  // "x" is in every name that has an x: no hint
   const std::size_t within = std::max<std::size_t>(1, name.size() / 3);
   const std::string folded = lowercase(name);
-  std::vector<std::pair<std::size_t, std::size_t>> near;  // (distance, index)
+  std::vector<std::pair<std::size_t, std::size_t>> near;  // (score, index)
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const std::string other = lowercase(candidates[k]);
     const std::size_t d = name_distance(folded, other);
     const bool contained =
         std::min(folded.size(), other.size()) >= kMinContained &&
         (other.find(folded) != std::string::npos || folded.find(other) != std::string::npos);
-    // Within a typo or two, and not a rewrite of the whole name ('q' is not near 'a').
+    // Within a typo or two, and not a rewrite of the whole name ('q' is not near 'a'); a name
+    // that contains the other ranks as the farthest typo still taken.
     const bool typo = d <= within && d < std::max(folded.size(), other.size());
-    if (typo || contained) near.emplace_back(d, k);
+    if (typo) {
+      near.emplace_back(d, k);
+    } else if (contained) {
+      near.emplace_back(within, k);
+    }
   }
   std::stable_sort(near.begin(), near.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
+  // The nearest alone: ux7 for UX7, not ux1 and uy7 one edit further.
   std::vector<std::string> out;
-  for (std::size_t k = 0; k < near.size() && k < most; ++k) {
+  for (std::size_t k = 0; k < near.size() && k < most && near[k].first == near[0].first; ++k) {
     out.push_back(candidates[near[k].second]);
   }
   return out;

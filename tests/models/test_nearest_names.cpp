@@ -71,8 +71,10 @@ TEST_CASE("nearest_names: the names a typo meant, nearest first, or none") {
   CHECK(nearest_names("drift_pos", Names{"drift_position", "drift_velocity", "energy"}) ==
         Names{"drift_position"});
   CHECK(nearest_names("displacement_uy3", dofs) == Names{"uy3"});
-  // At most `most`, the nearest first, ties in the candidates' order.
+  // The nearest alone (ux7, not ux1 or uy7 one edit further), at most `most` of them, in the
+  // candidates' order.
   CHECK(nearest_names("ux", dofs, 3) == Names{"ux1", "ux2", "ux3"});
+  CHECK(nearest_names("ux_7", dofs) == Names{"ux7"});
   CHECK(condyn::joined_names(Names{"a", "b"}) == "a, b");
 }
 
