@@ -272,7 +272,9 @@ TEST_CASE("--out and --steps-out: checked together before the run, committed tog
   // The drift log is CSV: a .h5 name is refused before the run.
   const Result h5 = box.run("run s.toml --out o.csv --steps-out steps.h5");
   CHECK(h5.code == 2);
-  CHECK(contains(h5.err, "--steps-out steps.h5: the drift log is written as CSV; name it .csv"));
+  CHECK(contains(h5.err,
+                 "--steps-out steps.h5: the extension .h5 asks for a format --steps-out "
+                 "does not write: --steps-out writes CSV"));
   // Its partial name is checked before the run as well.
   const Result clash = box.run("run f.toml --out steps.partial.csv --steps-out steps.csv");
   CHECK(clash.code == 2);
