@@ -29,8 +29,12 @@ int plot_result(const PlotArgs& args) {
   if (fs::is_directory(result, ec)) {
     return bad(args.result + ": is a folder (condyn plot reads the CSV or HDF5 of condyn run)");
   }
-  if (!fs::is_regular_file(result, ec)) {
+  if (!fs::exists(result, ec)) {
     return bad(args.result + ": no such file (condyn plot reads the CSV or HDF5 of condyn run)");
+  }
+  if (!fs::is_regular_file(result, ec)) {  // a FIFO or a device: reading it could block
+    return bad(args.result +
+               ": not a regular file (condyn plot reads the CSV or HDF5 of condyn run)");
   }
   // The names run writes results under (src/output_format.hpp): CSV or HDF5 by extension.
   if (!has_no_extension(args.result) && named_format(args.result) != FileFormat::csv &&

@@ -134,10 +134,23 @@ def title(fig, text, fontsize=9):
 
 
 def legend_below(fig, handles, ncol, **kwargs):
-    """A legend of the whole figure along its bottom edge, in as many rows as it needs."""
-    return fig.legend(handles=handles, loc="lower center", ncol=ncol, frameon=False,
-                      bbox_to_anchor=(0.5, PAD_IN / fig.get_figheight()), borderaxespad=0.0,
-                      **kwargs)
+    """A legend of the whole figure along its bottom edge, in as many rows as it needs: at most
+    ncol columns, fewer where long names would run past the figure's edges (and a smaller font
+    where even one column would)."""
+    renderer = fig.canvas.get_renderer()
+    room = (fig.get_figwidth() - 2 * PAD_IN) * fig.dpi
+    size = matplotlib.rcParams["legend.fontsize"]
+    while True:
+        legend = fig.legend(handles=handles, loc="lower center", ncol=ncol, frameon=False,
+                            bbox_to_anchor=(0.5, PAD_IN / fig.get_figheight()),
+                            borderaxespad=0.0, fontsize=size, **kwargs)
+        if legend.get_window_extent(renderer).width <= room or (ncol == 1 and size <= 5):
+            return legend
+        legend.remove()
+        if ncol > 1:
+            ncol -= 1
+        else:
+            size -= 0.5
 
 
 def fit(fig, legend=None):

@@ -18,11 +18,22 @@ import os
 import re
 import sys
 
+try:  # the shared style imports matplotlib: without it, main exits 3
+    import figure_style as style
+except ImportError:
+    style = None
+
 ENERGY_TERMS = (("energy_kinetic", "kinetic T"), ("energy_potential", "potential V"),
                 ("energy_dissipated", "dissipated D"), ("work_loads", "work of loads"),
                 ("work_constraints", "work of constraints"),
                 ("energy", "total T + V"))
 DEFAULT_DOFS = 4
+# Two DOFs whose curves stay within this fraction of the larger peak of each other throughout
+# are drawn over each other: the default choice takes one of them.
+DISTINCT = 0.25
+# A DOF whose peak is below this fraction of the largest peak stays at 0 but for roundoff (a
+# support: 1e-26 against the pendulum's 1): about 4500 machine epsilons.
+STILL = 1e-12
 
 
 # Every energy column condyn writes (kEnergyColumns in models/scene_spec.hpp): matched by name,
@@ -31,11 +42,6 @@ ENERGY_NAMES = {c for c, _ in ENERGY_TERMS} | {"energy_error"}
 DRIFT_NAMES = {"drift_position", "drift_velocity"}
 # More curves than this are drawn without a legend (it would outgrow the figure).
 MAX_LEGEND = 12
-
-
-def literal(text):
-    """Text matplotlib draws as written: a DOF named y$_1$ (a legal name) is not math."""
-    return text.replace("$", r"\$")
 
 
 def energy_columns(columns):
@@ -47,44 +53,119 @@ class BadInput(Exception):
     pass
 
 
-def read_csv(np, path):
-    with open(path, newline="") as f:
-        header = f.readline().strip().split(",")
+def finite_table(np, path, header, rows):
+    """Checks a result's columns: names unique and not empty, t first, every cell a finite
+    number, t not decreasing. `rows` holds the data lines (line number, cells)."""
     if not header or header[0] != "t":
         raise BadInput(f"{path}: not a condyn result (its first column is not t)")
-    import warnings
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # an empty file's warning: "no rows" below says it
-            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except ValueError:
-        raise BadInput(first_bad_line(path, len(header))) from None
-    if data.shape[0] == 0:
+    seen = set()
+    for name in header:
+        if not name or name in seen:
+            raise BadInput(f"{path}:1: " + (f"column '{name}' named twice" if name else
+                                            "a column without a name"))
+        seen.add(name)
+    if not rows:
         raise BadInput(f"{path}: no rows")
-    if data.shape[1] != len(header):
-        raise BadInput(first_bad_line(path, len(header)))
-    columns = {name: data[:, k] for k, name in enumerate(header)}
-    prefixed = ("vel_", "acc_", "reaction_", "lambda_")
-    dofs = [n for n in header[1:]
-            if not n.startswith(prefixed) and n not in ENERGY_NAMES and n not in DRIFT_NAMES]
-    return columns, dofs
-
-
-def first_bad_line(path, width):
-    """FILE:LINE: what is wrong with the first row that is not `width` numbers."""
-    with open(path, newline="") as f:
-        for number, line in enumerate(f, start=1):
-            if number == 1 or not line.strip():
-                continue
-            cells = line.rstrip("\r\n").split(",")
-            if len(cells) != width:
-                return f"{path}:{number}: {len(cells)} cells for the header's {width} columns"
+    for number, cells in rows:
+        if len(cells) != len(header):
+            raise BadInput(f"{path}:{number}: {len(cells)} cells for the header's "
+                           f"{len(header)} columns")
+    try:
+        data = np.array([cells for _, cells in rows], dtype=float)
+    except ValueError:  # find the cell, row by row (the fast path above fails only here)
+        for number, cells in rows:
             for cell in cells:
                 try:
                     float(cell)
                 except ValueError:
-                    return f"{path}:{number}: '{cell[:40]}' is not a number"
-    return f"{path}: rows of different lengths"
+                    raise BadInput(f"{path}:{number}: '{cell[:40]}' is not a number") from None
+        raise
+    bad = np.argwhere(~np.isfinite(data))
+    if bad.size:
+        k, j = bad[0]
+        raise BadInput(f"{path}:{rows[k][0]}: column {header[j]}: '{rows[k][1][j].strip()}' is "
+                       "not a finite number (condyn writes none)")
+    back = np.flatnonzero(np.diff(data[:, 0]) < 0)
+    if back.size:
+        k = back[0] + 1
+        raise BadInput(f"{path}:{rows[k][0]}: t = {data[k, 0]:g} after t = {data[k - 1, 0]:g} "
+                       "(times must not decrease)")
+    return data
+
+
+def read_csv(np, path):
+    with open(path, "rb") as f:
+        raw = f.read()
+    if not raw.strip():
+        raise BadInput(f"{path}: empty file (condyn plot reads the CSV or HDF5 of condyn run)")
+    if b"\0" in raw:
+        line = raw[:raw.index(b"\0")].count(b"\n") + 1
+        raise BadInput(f"{path}:{line}: binary data (a NUL byte), not a CSV")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = raw[:e.start].count(b"\n") + 1
+        raise BadInput(f"{path}:{line}: not UTF-8 text (byte 0x{raw[e.start]:02x}): "
+                       "not a condyn result") from None
+    lines = text.splitlines()
+    header = lines[0].strip().split(",")
+    rows = [(n, line.strip().split(",")) for n, line in enumerate(lines[1:], start=2)
+            if line.strip()]
+    data = finite_table(np, path, header, rows)
+    columns = {name: data[:, k] for k, name in enumerate(header)}
+    prefixed = ("vel_", "acc_", "reaction_", "lambda_")
+    dofs = [n for n in header[1:]
+            if not n.startswith(prefixed) and n not in ENERGY_NAMES and n not in DRIFT_NAMES]
+    # acc_abs_ columns exist only under [ground_motion]: the displacements are relative to it
+    return columns, dofs, any(n.startswith("acc_abs_") for n in header)
+
+
+def h5_names(h5py, f, path, name):
+    """A dataset of names, fixed-length bytes or variable-length strings, as a list of str."""
+    ds = h5_dataset(h5py, f, path, name)
+    if ds.ndim != 1 or not (ds.dtype.kind == "S" or h5py.check_string_dtype(ds.dtype)):
+        raise BadInput(f"{path}: dataset {name} is not a list of names "
+                       f"(shape {ds.shape}, type {ds.dtype})")
+    names = []
+    for s in h5_read(path, name, ds):
+        try:
+            names.append(s.decode("utf-8") if isinstance(s, bytes) else str(s))
+        except UnicodeDecodeError:
+            raise BadInput(f"{path}: dataset {name}: a name that is not UTF-8") from None
+    return names
+
+
+def h5_dataset(h5py, f, path, name):
+    item = f.get(name)
+    if not isinstance(item, h5py.Dataset):
+        raise BadInput(f"{path}: not a condyn result (no dataset {name})" if item is None else
+                       f"{path}: {name} is a group, not a dataset")
+    return item
+
+
+def h5_read(path, name, ds):
+    try:
+        return ds[()]
+    except (OSError, ValueError, TypeError) as e:
+        raise BadInput(f"{path}: dataset {name} cannot be read (a truncated or damaged file?: "
+                       f"{e})") from None
+
+
+def h5_numbers(np, h5py, f, path, name, shape):
+    """A numeric dataset of the given shape (None: any length), every entry finite."""
+    ds = h5_dataset(h5py, f, path, name)
+    if ds.dtype.kind not in "fiu":
+        raise BadInput(f"{path}: dataset {name} holds {ds.dtype}, not numbers")
+    if len(ds.shape) != len(shape) or any(
+            want is not None and have != want for have, want in zip(ds.shape, shape)):
+        want = " x ".join("n" if w is None else str(w) for w in shape)
+        raise BadInput(f"{path}: dataset {name} is {' x '.join(map(str, ds.shape)) or 'a scalar'}"
+                       f", expected {want} (the rows of t, the columns its names give)")
+    values = np.asarray(h5_read(path, name, ds), dtype=float)
+    if not np.isfinite(values).all():
+        raise BadInput(f"{path}: dataset {name} holds values that are not finite numbers "
+                       "(condyn writes none)")
+    return values
 
 
 def read_h5(np, path):
@@ -95,28 +176,29 @@ def read_h5(np, path):
     try:
         f = h5py.File(path, "r")
     except OSError as e:
-        raise BadInput(f"{path}: not an HDF5 file ({e})") from None
+        raise BadInput(f"{path}: not an HDF5 file, or a damaged one ({e})") from None
     with f:
-        if "t" not in f:
-            raise BadInput(f"{path}: not a condyn result (no dataset t)")
-        columns = {"t": np.asarray(f["t"])}
-        dofs = [s.decode() if isinstance(s, bytes) else str(s) for s in f.get("dof_names", [])]
+        t = h5_numbers(np, h5py, f, path, "t", (None,))
+        if not t.size:
+            raise BadInput(f"{path}: no rows")
+        if (np.diff(t) < 0).any():
+            raise BadInput(f"{path}: dataset t decreases (times must not decrease)")
+        nt = t.size
+        columns, dofs = {"t": t}, []
         if "displacement" in f:
-            u = np.asarray(f["displacement"])
-            for k, name in enumerate(dofs):
-                columns[name] = u[:, k]
-        else:
-            dofs = []
+            dofs = h5_names(h5py, f, path, "dof_names")
+            u = h5_numbers(np, h5py, f, path, "displacement", (nt, len(dofs)))
+            if len(set(dofs)) != len(dofs):
+                raise BadInput(f"{path}: dataset dof_names names a DOF twice")
+            columns.update({name: u[:, k] for k, name in enumerate(dofs)})
         if "drift" in f:
-            d = np.asarray(f["drift"])
+            d = h5_numbers(np, h5py, f, path, "drift", (nt, 2))
             columns["drift_position"], columns["drift_velocity"] = d[:, 0], d[:, 1]
         if "energy" in f:
-            e = np.asarray(f["energy"])
-            names = [s.decode() if isinstance(s, bytes) else str(s)
-                     for s in f.get("energy_columns", [])]
-            for k, name in enumerate(names):
-                columns[name] = e[:, k]
-    return columns, dofs
+            names = h5_names(h5py, f, path, "energy_columns")
+            e = h5_numbers(np, h5py, f, path, "energy", (nt, len(names)))
+            columns.update({name: e[:, k] for k, name in enumerate(names)})
+        return columns, dofs, "absolute_acceleration" in f
 
 
 def star_match(name, pattern):
@@ -126,17 +208,155 @@ def star_match(name, pattern):
 
 
 def chosen_dofs(np, columns, dofs, patterns, path):
+    """The DOFs to draw, how they were chosen (for the title), and notes: --dofs patterns, or by
+    default up to DEFAULT_DOFS of the largest peaks that differ from each other (distinct). DOFs
+    that stay 0 throughout (supports) are drawn only when named exactly."""
+    peak = {d: float(np.abs(columns[d]).max()) for d in dofs}
+    largest = max(peak.values(), default=0.0)
+    still_ = {d for d in dofs if peak[d] <= STILL * largest}
     if patterns:
-        chosen = []
+        chosen, still = [], []
         for p in patterns:
             hits = [d for d in dofs if star_match(d, p)]
             if not hits:
                 some = ", ".join(dofs[:8]) + (", ..." if len(dofs) > 8 else "")
                 raise BadInput(f"--dofs: '{p}' matches no DOF of {path} (DOFs: {some or 'none'})")
-            chosen += [d for d in hits if d not in chosen]
-        return chosen, "chosen"
-    peaks = sorted(dofs, key=lambda d: -np.nanmax(np.abs(columns[d])))
-    return peaks[:DEFAULT_DOFS], f"the {min(DEFAULT_DOFS, len(dofs))} largest peaks of {len(dofs)}"
+            glob = "*" in p
+            still += [d for d in hits if glob and d in still_ and d not in still]
+            chosen += [d for d in hits if d not in chosen and not (glob and d in still_)]
+        notes = [f"{names(still)} stay at 0 but for roundoff (supports?): not drawn (name "
+                 "them in --dofs to draw them)"] if still else []
+        if not chosen:
+            raise BadInput(f"--dofs: every DOF it matches stays at 0 but for roundoff "
+                           f"({names(still)}): name one to draw it")
+        return chosen, "chosen", notes
+    moving = sorted((d for d in dofs if d not in still_), key=lambda d: -peak[d])
+    chosen, close = [], []
+    for d in moving:
+        twin = next((c for c in chosen if np.abs(columns[d] - columns[c]).max()
+                     <= DISTINCT * max(peak[d], peak[c])), None)
+        if twin is None:
+            chosen.append(d)
+        elif len(chosen) < DEFAULT_DOFS:
+            close.append(f"{d} (near {twin})")
+        if len(chosen) == DEFAULT_DOFS:
+            break
+    notes = []
+    if close:
+        notes.append(f"not drawn, within {DISTINCT:.0%} of a larger peak's curve throughout: "
+                     f"{names(close)}; --dofs draws them")
+    if len(moving) < len(dofs):
+        notes.append(f"{names(sorted(still_, key=dofs.index))} stay at 0 but for roundoff "
+                     "(supports?): not drawn")
+    how = (f"{len(chosen)} of {len(dofs)} DOFs: largest distinct peaks" if len(chosen) < len(dofs)
+           else f"all {len(dofs)} DOFs")
+    return chosen, how, notes
+
+
+def names(items, most=6):
+    return ", ".join(items[:most]) + (f" and {len(items) - most} more" if len(items) > most else "")
+
+
+def draw_displacement(plt, t, columns, chosen, how, title_stem, relative):
+    fig, ax = plt.subplots(figsize=(style.COLUMN_WIDTH, 2.8))
+    for d in chosen:
+        ax.plot(t, columns[d], label=style.literal(d))
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("displacement [m in SI]")
+    # condyn writes displacements relative to the ground under [ground_motion]; a result says so
+    # only through its absolute accelerations (acc_abs_), so without them the title covers both
+    ground = "relative to the ground" if relative else "relative to any ground motion"
+    style.title(fig, f"{title_stem}: displacements {ground}\n({how}; --dofs chooses)")
+    ax.grid(True, alpha=0.3)
+    legend = None
+    if len(chosen) <= MAX_LEGEND:
+        legend = style.legend_below(fig, ax.get_lines(), ncol=min(4, len(chosen)))
+    style.fit(fig, legend)
+    return fig
+
+
+def draw_drift(plt, np, t, columns, title_stem):
+    """The drift figure, or None and the note that says why there is none."""
+    not_a_number = [c for c in ("drift_position", "drift_velocity") if c in columns and np.isnan(columns[c]).any()]
+    curves = []
+    for col, label in (("drift_position", "position |Φ(u, t)|"),
+                       ("drift_velocity", "velocity |Ψ(u, u', t)|")):
+        y = np.maximum.accumulate(np.nan_to_num(columns[col], nan=0.0))
+        if (y > 0).any():
+            curves.append((np.where(y > 0, y, np.nan), label))
+    if not curves:
+        if not_a_number:
+            return None, (f"{', '.join(not_a_number)} not a number at some output times, and "
+                          "nowhere above 0: no drift figure")
+        # eliminated constraints hold exactly: an empty log axis would say nothing
+        return None, ("drift exactly 0 at every output time (constraints eliminated, or none): "
+                      "no drift figure")
+    fig, ax = plt.subplots(figsize=(style.COLUMN_WIDTH, 2.8))
+    for y, label in curves:
+        ax.plot(t, y, label=label)
+    style.log_axis(ax, "y")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("residual, running max\n(constraint row units)")
+    style.title(fig, f"{title_stem}: constraint drift at the output times")
+    ax.grid(True, which="major", alpha=0.3)
+    style.fit(fig, style.legend_below(fig, ax.get_lines(), ncol=2))
+    return fig, None
+
+
+def draw_energy(plt, t, columns, terms, title_stem):
+    error = "energy_error" in columns
+    fig, axes = plt.subplots(2 if error else 1, 1,
+                             figsize=(style.COLUMN_WIDTH, 3.8 if error else 2.8),
+                             sharex=True, squeeze=False,
+                             gridspec_kw={"height_ratios": [2, 1] if error else [1]})
+    top = axes[0][0]
+    for col, label in terms:
+        top.plot(t, columns[col], label=style.literal(label))
+    top.set_ylabel("energy [J in SI]")
+    top.grid(True, alpha=0.3)
+    if error:
+        bottom = axes[1][0]
+        bottom.plot(t, columns["energy_error"], color="black")
+        bottom.set_ylabel("balance\nerror [J]")
+        bottom.grid(True, alpha=0.3)
+    axes[-1][0].set_xlabel("time [s]")
+    fig.align_ylabels(axes[:, 0])
+    style.title(fig, f"{title_stem}: energy balance" if error else f"{title_stem}: energy")
+    style.fit(fig, style.legend_below(fig, top.get_lines(), ncol=3, handlelength=1.5,
+                                      columnspacing=1.0))
+    return fig
+
+
+def too_large(np, columns, chosen):
+    """The refusal of a column whose values come near the double range (they break matplotlib's
+    ticks: a traceback), or None. 1e300 leaves the headroom it needs."""
+    for names_ in (["t"], list(chosen), [c for c, _ in energy_columns(columns)]):
+        if not names_:
+            continue
+        worst = max(names_, key=lambda c: np.abs(columns[c]).max())
+        top = np.abs(columns[worst]).max()
+        if top > 1e300:
+            return (f"column {worst}: values up to {top:g} are too near the double range to draw "
+                    "(beyond 1e300)")
+    return None
+
+
+def read_result(np, path, dofs_flag):
+    """Everything plot needs from the result, or BadInput naming the file and the problem."""
+    try:
+        # HDF5 under the names run writes it (src/output_format.hpp), else CSV.
+        hdf5 = path.lower().endswith((".h5", ".hdf5", ".hdf"))
+        columns, dofs, relative = read_h5(np, path) if hdf5 else read_csv(np, path)
+    except OSError as e:  # a folder, no permission, a read error
+        raise BadInput(f"{path}: {e.strerror or e}") from None
+    patterns = [p for p in dofs_flag.split(",") if p]
+    if patterns and not dofs:
+        raise BadInput(f"{path}: has no displacement columns to choose from")
+    chosen, how, notes = chosen_dofs(np, columns, dofs, patterns, path) if dofs else ([], "", [])
+    problem = too_large(np, columns, chosen)
+    if problem:
+        raise BadInput(f"{path}: {problem}")
+    return columns, chosen, how, notes, relative
 
 
 def main(argv):
@@ -153,44 +373,24 @@ def main(argv):
         import numpy as np
     except ImportError:
         return 3
+    if style is None:
+        return 3
     path = args.result
     out_dir = args.out_dir or os.path.dirname(os.path.abspath(path))
     stem = os.path.splitext(os.path.basename(path))[0]
     formats = [f for f in args.format.split(",") if f]
     try:
-        # HDF5 under the names run writes it (src/output_format.hpp), else CSV.
-        hdf5 = path.lower().endswith((".h5", ".hdf5", ".hdf"))
-        columns, dofs = read_h5(np, path) if hdf5 else read_csv(np, path)
-        patterns = [p for p in args.dofs.split(",") if p]
-        if patterns and not dofs:
-            raise BadInput(f"{path}: has no displacement columns to choose from")
-        chosen, how = chosen_dofs(np, columns, dofs, patterns, path) if dofs else ([], "")
+        columns, chosen, how, notes, relative = read_result(np, path, args.dofs)
     except BadInput as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    except OSError as e:
-        print(f"error: {path}: {e.strerror}", file=sys.stderr)
+    except Exception as e:  # noqa: BLE001 -- any other malformed input: named, never a traceback
+        print(f"error: {path}: cannot be read as a condyn result ({type(e).__name__}: {e})",
+              file=sys.stderr)
         return 2
-
-    plt.rcParams.update({
-        "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "xtick.labelsize": 8,
-        "ytick.labelsize": 8, "legend.fontsize": 8, "lines.linewidth": 1.0,
-        "axes.linewidth": 0.6, "grid.linewidth": 0.4, "savefig.bbox": "tight"})
-    t = columns["t"]
-    written, notes = [], []
-    title_stem = literal(stem)
-    # An axis whose values (or their span, with its margins) come near the double range breaks
-    # matplotlib's ticks (a traceback): refused by name. 1e300 leaves the headroom it needs.
-    for names in (["t"], list(chosen), [c for c, _ in energy_columns(columns)]):
-        if not names:
-            continue
-        values = np.concatenate([columns[c][np.isfinite(columns[c])] for c in names])
-        if values.size and np.abs(values).max() > 1e300:
-            worst = max(names, key=lambda c: np.nanmax(np.abs(np.where(
-                np.isfinite(columns[c]), columns[c], 0.0))))
-            print(f"error: {path}: column {worst}: values up to {np.abs(values).max():g} are too "
-                  "near the double range to draw (beyond 1e300)", file=sys.stderr)
-            return 2
+    notes = [f"{stem}: {n}" for n in notes]
+    style.paper_style(plt)
+    t, title_stem, written = columns["t"], style.literal(stem), []
 
     def save(fig, what):
         for ext in formats:
@@ -199,74 +399,25 @@ def main(argv):
             written.append(name)
         plt.close(fig)
 
-    if chosen:
-        fig, ax = plt.subplots(figsize=(3.5, 2.4))
-        for d in chosen:
-            ax.plot(t, columns[d], label=literal(d))
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("displacement (model units)")
-        ax.set_title(f"{title_stem}: displacements ({how})")
-        ax.grid(True, alpha=0.3)
-        if len(chosen) <= MAX_LEGEND:
-            ax.legend(ncol=2 if len(chosen) > 3 else 1, frameon=False)
-        else:  # a legend of hundreds of names would be the whole (metres-tall) figure
-            notes.append(f"{stem}: {len(chosen)} DOFs drawn without a legend (more than "
-                         f"{MAX_LEGEND}); --dofs chooses fewer")
-        fig.tight_layout()
-        save(fig, "displacement")
-    if "drift_position" in columns:
-        fig, ax = plt.subplots(figsize=(3.5, 2.4))
-        drawn = 0
-        not_a_number = [c for c in ("drift_position", "drift_velocity")
-                        if c in columns and np.isnan(columns[c]).any()]
-        for col, label in (("drift_position", "position |Φ(u, t)|"),
-                           ("drift_velocity", "velocity |Ψ(u, u', t)|")):
-            y = np.maximum.accumulate(np.nan_to_num(columns[col], nan=0.0))
-            if (y > 0).any():
-                ax.plot(t, np.where(y > 0, y, np.nan), label=label)
-                drawn += 1
-        if drawn:
-            ax.set_yscale("log")
-            ax.set_xlabel("time [s]")
-            ax.set_ylabel("max residual, running max\n(units of the constraint rows)")
-            ax.set_title(f"{title_stem}: constraint drift at the output times")
-            ax.grid(True, which="major", alpha=0.3)
-            ax.legend(frameon=False)
-            fig.tight_layout()
-            save(fig, "drift")
-        elif not_a_number:
-            plt.close(fig)
-            notes.append(f"{stem}: {', '.join(not_a_number)} not a number at some output times, "
-                         "and nowhere above 0: no drift figure")
-        else:  # eliminated constraints hold exactly: an empty log axis would say nothing
-            plt.close(fig)
-            notes.append(f"{stem}: drift exactly 0 at every output time (constraints "
-                         "eliminated, or none): no drift figure")
-    terms = energy_columns(columns)
-    if terms:
-        error = "energy_error" in columns
-        fig, axes = plt.subplots(2 if error else 1, 1, figsize=(3.5, 3.6 if error else 2.4),
-                                 sharex=True, squeeze=False,
-                                 gridspec_kw={"height_ratios": [2, 1] if error else [1]})
-        top = axes[0][0]
-        for col, label in terms:
-            top.plot(t, columns[col], label=literal(label))
-        top.set_ylabel("energy [J in SI]")
-        top.grid(True, alpha=0.3)
-        # above the axes, under the title: curves fill the whole panel
-        top.legend(frameon=False, ncol=3, loc="lower center", bbox_to_anchor=(0.5, 1.0),
-                   fontsize=7,
-                   title=f"{title_stem}: energy balance" if error else f"{title_stem}: energy",
-                   title_fontsize=9, handlelength=1.5, columnspacing=1.0)
-        if error:
-            bottom = axes[1][0]
-            bottom.plot(t, columns["energy_error"], color="black")
-            bottom.set_ylabel("balance\nerror [J]")
-            bottom.grid(True, alpha=0.3)
-        axes[-1][0].set_xlabel("time [s]")
-        fig.align_ylabels(axes[:, 0])
-        fig.tight_layout()
-        save(fig, "energy")
+    try:
+        if chosen:
+            save(draw_displacement(plt, t, columns, chosen, how, title_stem, relative),
+                 "displacement")
+            if len(chosen) > MAX_LEGEND:  # a legend of hundreds of names would be the figure
+                notes.append(f"{stem}: {len(chosen)} DOFs drawn without a legend (more than "
+                             f"{MAX_LEGEND}); --dofs chooses fewer")
+        if "drift_position" in columns:
+            fig, why = draw_drift(plt, np, t, columns, title_stem)
+            if fig:
+                save(fig, "drift")
+            else:
+                notes.append(f"{stem}: {why}")
+        terms = energy_columns(columns)
+        if terms:
+            save(draw_energy(plt, t, columns, terms, title_stem), "energy")
+    except Exception as e:  # noqa: BLE001 -- a drawing error is a bug: said in one line
+        print(f"error: {path}: drawing failed ({type(e).__name__}: {e})", file=sys.stderr)
+        return 1
     for line in notes:
         print(f"note: {line}")
     if not written:

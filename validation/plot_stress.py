@@ -10,8 +10,8 @@ Run:   /usr/bin/python3 validation/plot_stress.py DIR
 Needs: matplotlib and numpy (Debian: apt-get install python3-matplotlib python3-numpy).
 Input: DIR/stress.csv as defined in validation/stress-output.md.
 
-Exit status: 0 done, 1 the plot raised an error, 2 bad usage or no stress.csv, 3 matplotlib not
-importable.
+Exit status: 0 done, 1 the plot raised an error, 2 bad usage, no stress.csv, or one that condyn
+stress would not have written (named with the problem), 3 matplotlib not importable.
 """
 import csv
 import math
@@ -36,6 +36,32 @@ def num(value):
     return x if math.isfinite(x) else None
 
 
+class BadData(Exception):
+    """stress.csv is not what condyn stress writes: named with the problem."""
+
+
+def read_rows(path):
+    """stress.csv's rows, each with the columns the map needs."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            reader = csv.DictReader(f)
+            rows = list(reader)
+            header = reader.fieldnames or []
+    except UnicodeDecodeError as e:
+        raise BadData(f"{path}: not UTF-8 text (byte 0x{e.object[e.start]:02x})") from None
+    except (csv.Error, OSError) as e:
+        raise BadData(f"{path}: {e}") from None
+    missing = [c for c in ("case", "family", "label", "scheme", "status") if c not in header]
+    if missing:
+        raise BadData(f"{path}: no column {', '.join(missing)} (not written by condyn stress)")
+    if not rows:
+        raise BadData(f"{path}: no rows")
+    for line, r in enumerate(rows, start=2):
+        if None in r or any(v is None for v in r.values()):
+            raise BadData(f"{path}:{line}: the row's cells do not match the header's columns")
+    return rows
+
+
 def main(argv):
     if len(argv) != 2 or not os.path.isfile(os.path.join(argv[1], "stress.csv")):
         print("usage: plot_stress.py DIR   (DIR: output folder of `condyn stress`, with "
@@ -50,8 +76,11 @@ def main(argv):
         print("plot_stress: matplotlib not available, plot skipped")
         return 3
     d = argv[1]
-    with open(os.path.join(d, "stress.csv"), newline="") as f:
-        rows = list(csv.DictReader(f))
+    try:
+        rows = read_rows(os.path.join(d, "stress.csv"))
+    except BadData as e:
+        print(f"plot_stress: {e}", file=sys.stderr)
+        return 2
     cases = list(dict.fromkeys((r["case"], f'{r["family"]}: {r["label"]}') for r in rows))
     schemes = [s for s in SCHEMES if any(r["scheme"] == s for r in rows)]
     schemes += sorted({r["scheme"] for r in rows} - set(schemes))

@@ -2,6 +2,8 @@
 // refusals (exit 2, the file or DOF named) of what it cannot draw.
 #include <doctest/doctest.h>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <string>
 
@@ -111,6 +113,9 @@ TEST_CASE("condyn plot refuses what it cannot draw, naming the file or the DOF")
   refused("plot header.csv", "header.csv: no rows");
   std::filesystem::create_directories(box.path("dir.csv"));
   refused("plot dir.csv", "dir.csv: is a folder");
+  // A FIFO is no file to read (it would block): named as what it is, not as missing.
+  REQUIRE(::mkfifo(box.path("fifo.csv").c_str(), 0600) == 0);
+  refused("plot fifo.csv", "fifo.csv: not a regular file");
   box.write("fake.h5", "not hdf5");
   refused("plot fake.h5", "fake.h5: not an HDF5 file");
   refused("plot r.csv --dofs zz", "--dofs: 'zz' matches no DOF of r.csv (DOFs: a, b)");
@@ -164,11 +169,13 @@ TEST_CASE("condyn plot draws names as written, many DOFs without a legend, and r
   CHECK(huge.code == 2);
   CHECK(huge.err.find("h.csv: column x: values up to 1.7e+308 are too near the double range") !=
         std::string::npos);
-  // A drift of NaN is no 'drift exactly 0'.
+  // A drift of NaN is no 'drift exactly 0': condyn writes no NaN (a NaN in the state stops the
+  // run), so the file is refused, the cell named (issue 42).
   box.write("n.csv", "t,x,drift_position,drift_velocity\n0,1,nan,nan\n1,2,nan,nan\n");
   const Result nan = box.run("plot n.csv --format png");
-  CHECK(nan.code == 0);
-  CHECK(nan.out.find("not a number at some output times") != std::string::npos);
+  CHECK(nan.code == 2);
+  CHECK(nan.err.find("n.csv:2: column drift_position: 'nan' is not a finite number") !=
+        std::string::npos);
   CHECK(nan.out.find("exactly 0") == std::string::npos);
   // Nothing but a drift of exactly 0: the note says why, the refusal does not deny the columns.
   box.write("z.csv", "t,drift_position,drift_velocity\n0,0,0\n1,0,0\n");
