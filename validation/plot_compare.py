@@ -53,6 +53,10 @@ FORMATS = ("png", "pdf")
 # A relative error from here up leaves no correct digit: such a run followed another solution (a
 # wrong branch, a lost phase) and is ringed in the cost figures.
 NO_DIGIT = 0.5
+# The marks of the cost figures: a ring around a run without a correct digit, a red square
+# around a run compare marked OVER (its error far beyond its target).
+RING = dict(mec="black", mew=0.8)
+OVER = dict(marker="s", ms=7, mfc="none", mec="#d62728", mew=0.8)
 # A curve denser than this many points is drawn as its upper envelope over as many bins of t (a
 # 3.5 in axis is about 200 points wide): 100 periods of multipliers were a solid band.
 ENVELOPE_BINS = 200
@@ -151,7 +155,7 @@ def per_scheme_files(d, prefix):
 # What runs.json holds (validation/compare-output.md), by key: a key of another type is left
 # out with a note, as if absent.
 META_TYPES = {"scene": str, "reference": dict, "tolerances": list, "drift_rtol": (int, float),
-              "histories": dict, "drift_growth": dict, "runs": list, "skipped": list}
+              "mark_factor": (int, float), "histories": dict, "drift_growth": dict, "runs": list, "skipped": list}
 
 
 def load_meta(d):
@@ -213,6 +217,13 @@ def cost_points(rows, cost, col, digits):
     return sorted(pts)
 
 
+def over_points(rows, cost, col, digits):
+    """The points of runs compare marked OVER (runs.csv over_tolerance = 1, an optional column):
+    errors far beyond what their rtol asks for."""
+    return [p for p in cost_points([r for r in rows if num(r.get("over_tolerance")) == 1],
+                                   cost, col, digits)]
+
+
 def no_digit(y, digits):
     """A value that leaves no correct digit (error NO_DIGIT or more, or as few digits)."""
     return y <= -math.log10(NO_DIGIT) if digits else y >= NO_DIGIT
@@ -233,7 +244,7 @@ def cost_panels(plt, d, meta, scene, cost, cost_label, name):
                ("error_reaction", "reactions f_con")])
     fig, axes = plt.subplots(1, len(panels), figsize=(style.PAGE_WIDTH, 3.1),
                              sharey=not digits, squeeze=False)
-    handles, drawn, ringed = [], 0, False
+    handles, drawn, ringed, marked = [], 0, False, False
     for scheme, rows in by_scheme.items():
         style_ = dict(color=colour(scheme), marker=SCHEME_MARKERS.get(scheme, "o"))
         failed = sum(1 for r in rows if r.get("status") != "ok")
@@ -249,8 +260,12 @@ def cost_panels(plt, d, meta, scene, cost, cost_label, name):
             bad = [p for p in pts if no_digit(p[1], digits)]
             if bad:
                 ax.plot([p[0] for p in bad], [p[1] for p in bad], ls="none", marker="o", ms=9,
-                        mfc="none", mec="black", mew=0.8)
+                        mfc="none", **RING)
                 ringed = True
+            over = over_points(rows, cost, col, digits)
+            if over:
+                ax.plot([p[0] for p in over], [p[1] for p in over], ls="none", **OVER)
+                marked = True
             any_point = True
         drawn += any_point
         label = scheme + (f" ({failed}/{len(rows)} failed)" if failed else "")
@@ -260,9 +275,13 @@ def cost_panels(plt, d, meta, scene, cost, cost_label, name):
         plt.close(fig)
         return note(f"{name} skipped: no successful run")
     if ringed:
-        handles.append(Line2D([], [], ls="none", marker="o", ms=9, mfc="none", mec="black",
-                              mew=0.8, label=f"error ≥ {NO_DIGIT:g}: no correct digit "
-                                             "(another branch or phase)"))
+        handles.append(Line2D([], [], ls="none", marker="o", ms=9, mfc="none", **RING,
+                              label=f"error ≥ {NO_DIGIT:g}: no correct digit "
+                                    "(another branch or phase)"))
+    if marked:
+        factor = num(meta.get("mark_factor"))
+        handles.append(Line2D([], [], ls="none", **OVER, label="OVER: error beyond " + (
+            f"{factor:g} ×" if factor else "far beyond") + " its target"))
     for k, (ax, (col, what)) in enumerate(zip(axes[0], panels)):
         style.log_axis(ax, "x")
         if len(panels) % 2 == 0 or k == len(panels) // 2:  # one label under the row

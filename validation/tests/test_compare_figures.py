@@ -56,6 +56,14 @@ def trial(tmp_path_factory):
             r["wall_median_s"] = "1.0"  # slower than every tighter run: once a zig-zag
         return r
     rewrite(d / "runs.csv", runs)
+    # compare's optional mark (a column of newer folders): index3's loosest run marked OVER
+    with open(d / "runs.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    rows[0].append("over_tolerance")
+    for r in rows[1:]:
+        r.append("1" if r[0] == "index3" and float(r[1]) > 1e-5 else "0")
+    with open(d / "runs.csv", "w", newline="") as f:
+        csv.writer(f).writerows(rows)
     with open(d / "drift_index3.csv", "a") as f:
         f.write("0.6,1e50,1e50\n")
     # 100 periods of multipliers, 40 output times each
@@ -111,6 +119,10 @@ def test_cost_lines_joined_in_order_of_cost_and_runs_without_a_digit_ringed(draw
     rings = [line for line in ax.get_lines() if line.get_markersize() == 9]
     assert rings and all(np.asarray(r.get_ydata(), float).min() >= plot_compare.NO_DIGIT
                          for r in rings)
+    over = [line for line in ax.get_lines() if line.get_marker() == "s"
+            and line.get_markeredgecolor() == plot_compare.OVER["mec"]]
+    assert len(over) == 1 and len(over[0].get_xdata()) == 1
+    assert any("OVER" in t.get_text() for t in fig.legends[0].get_texts())
 
 
 def test_drift_clipped_at_a_failure_on_log_log_axes_with_the_fitted_slope(drawn):
