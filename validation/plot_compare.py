@@ -280,8 +280,8 @@ def cost_panels(plt, d, meta, scene, cost, cost_label, name):
                                     "(another branch or phase)"))
     if marked:
         factor = num(meta.get("mark_factor"))
-        handles.append(Line2D([], [], ls="none", **OVER, label="OVER: error beyond " + (
-            f"{factor:g} ×" if factor else "far beyond") + " its target"))
+        handles.append(Line2D([], [], ls="none", **OVER, label="OVER: error " + (
+            f"over {factor:g} × its target" if factor else "far beyond its target")))
     for k, (ax, (col, what)) in enumerate(zip(axes[0], panels)):
         style.log_axis(ax, "x")
         if len(panels) % 2 == 0 or k == len(panels) // 2:  # one label under the row

@@ -45,7 +45,7 @@ def trial(tmp_path_factory):
     meta = json.loads((d / "runs.json").read_text())
     meta["scene"] = "A slider-crank with a long descriptive name (rigid crank and rod, slider " \
                     "on a line, gravity, a driven crank)"
-    meta["histories"] = {"index3": {"status": "failed", "t_reached": 0.5, "message": "gave up"}}
+    meta["histories"] = {"index3": {"status": "failed", "t_reached": 10.1, "message": "gave up"}}
     meta["drift_growth"] = {"baumgarte": {"exponent": 1.5, "predicted": "t^2"}}
     (d / "runs.json").write_text(json.dumps(meta))
 
@@ -64,8 +64,9 @@ def trial(tmp_path_factory):
         r.append("1" if r[0] == "index3" and float(r[1]) > 1e-5 else "0")
     with open(d / "runs.csv", "w", newline="") as f:
         csv.writer(f).writerows(rows)
-    with open(d / "drift_index3.csv", "a") as f:
-        f.write("0.6,1e50,1e50\n")
+    last = float((d / "drift_index3.csv").read_text().split()[-1].split(",")[0])
+    with open(d / "drift_index3.csv", "a") as f:  # the step at which it gave up
+        f.write(f"{last * 1.01},1e50,1e50\n")
     # 100 periods of multipliers, 40 output times each
     t = np.linspace(0.0, 100.0, 4001)
     for name, wobble in (("elimination", 0.0), ("baumgarte", 1e-4), ("index2", 1e-6)):
