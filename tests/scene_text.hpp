@@ -166,6 +166,29 @@ t_end = 1.0
 output_step = 0.5
 )";
 
+/// A chain of `links` rigid members (length `link`, a point mass `mass` at every joint) hanging
+/// from a fixed support at node 1, released from rest along a straight line `degrees` below the
+/// horizontal, under gravity 9.81: models/scenes/hanging_chain.toml (8 links of 0.5, 0.1 each, 30
+/// degrees) for any number of links. Its [solve] table is open after scheme = "ggl" (t_end 1).
+inline std::string hanging_chain_scene(int links, double link = 0.5, double mass = 0.1,
+                                       double degrees = 30.0) {
+  const double c = std::cos(degrees * std::numbers::pi / 180.0);
+  const double s = std::sin(degrees * std::numbers::pi / 180.0);
+  std::ostringstream o;
+  o.precision(17);
+  o << "[model]\ntype = \"truss2d\"\nnodes = [";
+  for (int k = 0; k <= links; ++k)
+    o << (k > 0 ? ", " : "") << "[" << k * link * c << ", " << -k * link * s << "]";
+  o << "]\nmasses = [0.0";
+  for (int k = 0; k < links; ++k) o << ", " << mass;
+  o << "]\nsupports = [1]\nmembers = [";
+  for (int k = 1; k <= links; ++k) {
+    o << (k > 1 ? ", " : "") << "{ nodes = [" << k << ", " << k + 1 << "], rigid = true }";
+  }
+  o << "]\ngravity = [0.0, -9.81]\n[solve]\nt_end = 1.0\noutput_step = 0.1\nscheme = \"ggl\"\n";
+  return o.str();
+}
+
 /// `s` with its first `from` replaced by `to`; fails the test when `from` is absent.
 inline std::string replace(std::string s, const std::string& from, const std::string& to) {
   const auto pos = s.find(from);
