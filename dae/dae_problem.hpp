@@ -74,6 +74,13 @@ class DaeProblem {
                                                               const Eigen::VectorXd& /*y*/) const {
     return {};
   }
+  /// Per unknown, the lightest positive diagonal mass among the DOFs the constraint row of a
+  /// multiplier touches at (t, y), 0 for the other unknowns and for rows over massless DOFs alone
+  /// (IntegratorOptions::atol_vector); empty: no such row.
+  [[nodiscard]] virtual Eigen::VectorXd multiplier_row_masses(double /*t*/,
+                                                              const Eigen::VectorXd& /*y*/) const {
+    return {};
+  }
   /// Its own solver of IDA's Newton systems (∂F/∂y + cj ∂F/∂y') x = b, or nothing: IDA then
   /// factors the Jacobian jacobian() fills.
   [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }

@@ -337,7 +337,8 @@ class Ida final : public sundials::SundialsStepper {
     check(IDASetMaxOrd(mem_.get(), options.max_order), "IDASetMaxOrd");
     check(IDASetId(mem_.get(), id_.get()), "IDASetId");
     data_.atol = options.atol_vector(data_.problem->unknown_kinds(), static_cast<int>(n_),
-                                     data_.problem->multiplier_row_scales(t0, y0));
+                                     data_.problem->multiplier_row_scales(t0, y0),
+                                     data_.problem->multiplier_row_masses(t0, y0));
     if (higher_index) {
       data_.rtol = options.rtol;
       data_.time_scale = options.time_scale;

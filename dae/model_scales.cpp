@@ -188,6 +188,7 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
       settings.atol_multiplier.value_or(usable(a.displacement * s.mass / (T * T * s.coefficient)));
   a.mu = settings.atol_mu.value_or(usable(a.velocity / s.coefficient));
   a.time_scale = T;
+  a.mass = s.mass;
   const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;
   a.first_step = std::sqrt(settings.rtol) * fast;
   std::ostringstream r;

@@ -55,6 +55,9 @@ struct AbsoluteTolerances {
   /// T above: the higher-index Newton weights use (h/T)^(k−1), a pure number, instead of h^(k−1),
   /// whose size depended on the unit of time.
   double time_scale = 1.0;
+  /// m above (ModelScales::mass): rows whose lightest mass lies far below it get a smaller
+  /// multiplier atol (IntegratorOptions::multiplier_mass).
+  double mass = 1.0;
   /// First step of the higher-index schemes: √rtol / ω_max (at most t_end), the step at which
   /// BDF1's local error h² |y''| / 2 is about rtol |y| on the model's fastest time scale. A step
   /// far below it makes index3's Newton matrix singular in double precision (its condition grows

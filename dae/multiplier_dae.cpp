@@ -180,6 +180,23 @@ Eigen::VectorXd MultiplierDae::multiplier_row_scales(double t, const Eigen::Vect
   return scales;
 }
 
+Eigen::VectorXd MultiplierDae::multiplier_row_masses(double t, const Eigen::VectorXd& y) const {
+  if (m_ == 0) return {};
+  Eigen::VectorXd masses = Eigen::VectorXd::Zero(size());
+  const Eigen::VectorXd uu = u(y);
+  const Eigen::VectorXd diagonal = system_->mass(t, uu).diagonal();
+  const Eigen::SparseMatrix<double>& A = system_->constraint_jacobian(t, uu);
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k) {
+    if (!(diagonal[k] > 0.0)) continue;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      if (it.value() == 0.0) continue;  // a structural zero: the row does not touch the DOF
+      double& lightest = masses[lambda_at() + it.row()];
+      lightest = lightest > 0.0 ? std::min(lightest, diagonal[k]) : diagonal[k];
+    }
+  }
+  return masses;
+}
+
 bool MultiplierDae::error_scale_floors(double t, const ConstRef& y, Eigen::VectorXd& floor) const {
   if (m_ == 0 || (scheme_ != Scheme::ggl && scheme_ != Scheme::index3)) return false;
   const Eigen::VectorXd uu = y.segment(0, n_);

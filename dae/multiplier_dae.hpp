@@ -51,6 +51,8 @@ class MultiplierDae final : public DaeProblem {
   }
   [[nodiscard]] Eigen::VectorXd multiplier_row_scales(double t,
                                                       const Eigen::VectorXd& y) const override;
+  [[nodiscard]] Eigen::VectorXd multiplier_row_masses(double t,
+                                                      const Eigen::VectorXd& y) const override;
   /// GGL and index3, which hold u on the position rows: the projection onto a row a (a
   /// correction along aᵀ that cancels a·δ, δ the step's local errors, each up to rtol |u_j|)
   /// moves DOF i by up to |a_i| Σ_j |a_j| |u_j| / |a|²: that is u_i's floor (the largest over

@@ -225,6 +225,7 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
   o.atol_multiplier = atol.multiplier;
   o.atol_mu = atol.mu;
   o.multiplier_atol_per_row = !settings.atol_multiplier;
+  o.multiplier_mass = atol.mass;
   o.mu_atol_per_row = !settings.atol_mu;
   o.time_scale = atol.time_scale;
   o.first_step = atol.first_step;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "models/number_cell.hpp"
+#include "models/scene_spec.hpp"
 
 namespace condyn {
 
@@ -51,12 +52,26 @@ double IntegratorOptions::atol_of(UnknownKind kind) const {
 }
 
 Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& kinds, int size,
-                                               const Eigen::VectorXd& row_scales) const {
+                                               const Eigen::VectorXd& row_scales,
+                                               const Eigen::VectorXd& row_masses) const {
   if (kinds.empty()) return Eigen::VectorXd::Constant(size, atol);
   if (static_cast<int>(kinds.size()) != size)
     throw std::logic_error("integrator: unknown kinds do not match the problem size");
   Eigen::VectorXd out(size);
   for (int i = 0; i < size; ++i) out[i] = atol_of(kinds[static_cast<std::size_t>(i)]);
+  if (row_masses.size() != 0 && multiplier_atol_per_row && multiplier_mass > 0.0) {
+    if (row_masses.size() != size)
+      throw std::logic_error("integrator: row masses do not match the problem size");
+    // A row whose lightest mass lies more than kRowScaleSpan below the common one: its λ moves
+    // that mass, so its atol shrinks by how far beyond the span it lies (never below kMinAtol).
+    const double reach = multiplier_mass / kRowScaleSpan;
+    for (int i = 0; i < size; ++i) {
+      if (kinds[static_cast<std::size_t>(i)] == UnknownKind::multiplier && row_masses[i] > 0.0 &&
+          row_masses[i] < reach) {
+        out[i] = std::max(out[i] * (row_masses[i] / reach), kMinAtol);
+      }
+    }
+  }
   if (row_scales.size() == 0) return out;
   if (row_scales.size() != size)
     throw std::logic_error("integrator: row scales do not match the problem size");

@@ -51,8 +51,15 @@ struct IntegratorOptions {
   /// roundoff of the small rows' (GGL failed on rows of 2e9 and 1 at rtol 1e-10). Set for
   /// tolerances derived from the model, not for those a scene gives.
   bool multiplier_atol_per_row = false, mu_atol_per_row = false;
-  /// Rows of coefficients within this factor of the largest share its tolerance.
+  /// Rows of coefficients within this factor of the largest share its tolerance; so do rows whose
+  /// lightest mass lies within it of multiplier_mass.
   static constexpr double kRowScaleSpan = 1e3;
+  /// The mass m the common atol_multiplier was derived with (ModelScales::mass; 0: none). With
+  /// multiplier_atol_per_row, a row whose lightest mass m_i is more than kRowScaleSpan below it
+  /// gets atol_multiplier times m_i kRowScaleSpan / m: a force error Δλ moves that mass by
+  /// Δλ T²/m_i, and with the mean mass a 1e-6 kg tip on a 1e6 kg body had its rod's λ (1e-5 N)
+  /// below its atol (4.9e-4).
+  double multiplier_mass = 0.0;
   std::vector<double> output_times;    ///< ascending, first one is the initial time
   std::vector<double> breakpoints;     ///< load steps inside (t0, t_end): stop and restart there
   long max_steps_per_output = 100000;  ///< between two output times; more is a failure
@@ -106,8 +113,11 @@ struct IntegratorOptions {
   /// One absolute tolerance per unknown (`kinds` empty: atol for all `size` unknowns).
   /// `row_scales`: per unknown, the largest |coefficient| of its constraint row for multipliers
   /// and μ (0 for other unknowns, empty for none), which the per-row flags above apply.
+  /// `row_masses`: per unknown, the lightest mass of a multiplier's row (DaeProblem::
+  /// multiplier_row_masses; 0 for other unknowns, empty for none), applied with multiplier_mass.
   [[nodiscard]] Eigen::VectorXd atol_vector(const std::vector<UnknownKind>& kinds, int size,
-                                            const Eigen::VectorXd& row_scales = {}) const;
+                                            const Eigen::VectorXd& row_scales = {},
+                                            const Eigen::VectorXd& row_masses = {}) const;
 };
 
 struct SolveSummary {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "dae/model_scales.hpp"
+#include "dae/multiplier_dae.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
@@ -239,4 +240,51 @@ gravity = [0.0, -9.81]
     CHECK(s.omega_min == doctest::Approx(omega).epsilon(0.01));
     CHECK(s.omega_max == doctest::Approx(omega).epsilon(0.01));
   }
+}
+
+TEST_CASE("derived multiplier atol per row: a light tip on a heavy body gets its own") {
+  // A double pendulum hanging at rest: a 1e6 kg mass on a unit rod from the support, a 1e-6 kg
+  // tip on a unit rod below it. The tip's rod carries its weight, λ = m g = 9.81e-6 N; with the
+  // mean mass (5e5 kg) every row had atol_multiplier 4.9e-4, fifty times that λ.
+  const auto built = test::built(parse_scene_text(R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [0.0, -1.0], [0.0, -2.0]]
+masses = [0.0, 1e6, 1e-6]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }, { nodes = [2, 3], rigid = true }]
+gravity = [0.0, -9.81]
+[solve]
+t_end = 1.0
+output_step = 0.1
+scheme = "ggl"
+)",
+                                                  "tip.toml"));
+  const Model& model = built.model;
+  const IntegratorOptions o = integrator_options(model, built.spec.solve);
+  const MultiplierDae dae(*model.system, Scheme::ggl, 0.0, 0.0);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(dae.size());
+  const Eigen::VectorXd masses = dae.multiplier_row_masses(0.0, y);
+  const Eigen::VectorXd atol =
+      o.atol_vector(dae.unknown_kinds(), dae.size(), dae.multiplier_row_scales(0.0, y), masses);
+  // y = [u (6) | v (6) | λ: ux1, uy1, the heavy rod, the tip's rod | μ (4)].
+  constexpr int kHeavyRod = 14, kTipRod = 15;
+  REQUIRE(dae.unknown_kinds()[kTipRod] == UnknownKind::multiplier);
+  CHECK(masses[kHeavyRod] == 1e6);  // the support's DOFs are massless
+  CHECK(masses[kTipRod] == 1e-6);
+  const double common = *o.atol_multiplier, mean = 0.5 * (1e6 + 1e-6);
+  CHECK(o.multiplier_mass == doctest::Approx(mean).epsilon(kEps));
+  CHECK(atol[kHeavyRod] == common);
+  // The tip's row lies 5e11 below the mean, 5e8 beyond the span: its atol is that much smaller.
+  CHECK(atol[kTipRod] ==
+        doctest::Approx(common * 1e-6 * IntegratorOptions::kRowScaleSpan / mean).epsilon(4 * kEps));
+  // And far below the rod's force: atol alone holds λ to at least three digits.
+  const double tip_force = 1e-6 * 9.81;
+  CHECK(common > tip_force);
+  CHECK(atol[kTipRod] < 1e-3 * tip_force);
+  // A scene's own atol_multiplier holds for every row.
+  SolveSpec given = built.spec.solve;
+  given.atol_multiplier = 1e-3;
+  const IntegratorOptions g = integrator_options(model, given);
+  CHECK(g.atol_vector(dae.unknown_kinds(), dae.size(), dae.multiplier_row_scales(0.0, y),
+                      masses)[kTipRod] == 1e-3);
 }
