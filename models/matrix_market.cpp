@@ -114,6 +114,36 @@ double to_double(std::string_view s, int line) {
 
 }  // namespace
 
+std::optional<std::string> size_range_refusal(long long rows, long long cols) {
+  constexpr long long kMaxIndex = std::numeric_limits<int>::max();
+  if (rows >= 1 && cols >= 1 && rows <= kMaxIndex && cols <= kMaxIndex) return std::nullopt;
+  return "the size " + std::to_string(rows) + " x " + std::to_string(cols) +
+         " is not between 1 and 2^31 - 1";
+}
+
+std::optional<std::string> holding_refusal(long long rows, long long cols, double entries,
+                                           bool rows_are_dofs) {
+  // setFromTriplets holds a row-major copy beside the column-major result: 4 + 4 bytes per row
+  // and per column, and per entry the triplet (16) and two copies of index and value (24).
+  const double stored =
+      8.0 * (static_cast<double>(rows) + static_cast<double>(cols)) + 40.0 * entries;
+  double integrating = 0.0;  // a model matrix: what a run of that many DOFs holds at least
+  if (rows_are_dofs) {
+    ModelSizes sizes;
+    sizes.dofs = static_cast<double>(rows);
+    sizes.nnz_stiffness = entries;
+    integrating = integration_memory_estimate(sizes).lower_bound;
+  }
+  const double needed = stored + integrating;
+  const auto available = available_memory_bytes();
+  if (!available || needed <= *available) return std::nullopt;
+  return (rows_are_dofs ? "holding it and integrating a model of " + std::to_string(rows) +
+                              " DOFs needs at least "
+                        : std::string("holding it needs ")) +
+         format_bytes(needed) + ", more than the " + format_bytes(*available) +
+         " this machine has available (MemAvailable in /proc/meminfo)";
+}
+
 namespace {
 
 /// Reads the file line by line from `in`: never more than one line of it in memory (a stiffness
@@ -208,10 +238,8 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   }
   const long long rows = to_integer(size[0], line_no, "the row count");
   const long long cols = to_integer(size[1], line_no, "the column count");
-  constexpr long long kMaxIndex = std::numeric_limits<int>::max();
-  if (rows < 1 || cols < 1 || rows > kMaxIndex || cols > kMaxIndex) {
-    throw MatrixMarketError(line_no, "the size " + std::to_string(rows) + " x " +
-                                         std::to_string(cols) + " is not between 1 and 2^31 - 1");
+  if (const auto refusal = size_range_refusal(rows, cols)) {
+    throw MatrixMarketError(line_no, *refusal);
   }
   if (out.symmetric && rows != cols) {
     throw MatrixMarketError(line_no, "a symmetric matrix must be square (the file says " +
@@ -229,28 +257,11 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   }
   // What holding it takes, before anything is allocated: a size line of 2·10⁹ (a typo, or
   // another file's) had the kernel kill the process while the index arrays were filled.
-  // setFromTriplets holds a row-major copy beside the column-major result: 4 + 4 bytes per row
-  // and per column, and per entry the triplet (16) and two copies of index and value (24).
-  const double stored = 8.0 * (static_cast<double>(rows) + static_cast<double>(cols)) +
-                        40.0 * static_cast<double>(entries) * (out.symmetric ? 2.0 : 1.0);
-  double integrating = 0.0;  // a model matrix: what a run of that many DOFs holds at least
-  if (expect.rows_are_dofs) {
-    ModelSizes sizes;
-    sizes.dofs = static_cast<double>(rows);
-    sizes.nnz_stiffness = static_cast<double>(entries) * (out.symmetric ? 2.0 : 1.0);
-    integrating = integration_memory_estimate(sizes).lower_bound;
-  }
-  const double needed = stored + integrating;
-  if (const auto available = available_memory_bytes(); available && needed > *available) {
-    throw MatrixMarketError(
-        line_no, "the size line declares " + std::to_string(rows) + " x " + std::to_string(cols) +
-                     " with " + std::to_string(entries) + " entries: " +
-                     (expect.rows_are_dofs ? "holding it and integrating a model of " +
-                                                 std::to_string(rows) + " DOFs needs at least "
-                                           : std::string("holding it needs ")) +
-                     format_bytes(needed) + ", more than the " + format_bytes(*available) +
-                     " this machine has available (MemAvailable in /proc/meminfo); is the size "
-                     "line right?");
+  const double stored_entries = static_cast<double>(entries) * (out.symmetric ? 2.0 : 1.0);
+  if (const auto refusal = holding_refusal(rows, cols, stored_entries, expect.rows_are_dofs)) {
+    throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
+                                         std::to_string(cols) + " with " + std::to_string(entries) +
+                                         " entries: " + *refusal + "; is the size line right?");
   }
   // No upper bound from rows x cols: duplicate entries are allowed (and summed).
   if (entries < 0) {

@@ -11,6 +11,7 @@
 /// no line for anything. Scenes need each of those refused with the file's line.
 
 #include <Eigen/Sparse>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -49,6 +50,20 @@ struct MarketExpectation {
   /// the matrix itself) is refused before the DOFs are built.
   bool rows_are_dofs = false;
 };
+
+/// The checks of a matrix's declared size made before anything is held, shared by every route a
+/// matrix comes in (a file's size line; an array handed over by Python, python/scene_from_python):
+/// a size outside 1 to 2^31 - 1 (KLU's and Eigen's 32-bit indices), as "the size R x C is not
+/// between 1 and 2^31 - 1"; nothing when it is inside.
+[[nodiscard]] std::optional<std::string> size_range_refusal(long long rows, long long cols);
+
+/// More memory than is available for holding a rows x cols matrix of `entries` stored entries
+/// (both triangles of a symmetric one) and, when `rows_are_dofs` (M, C or K), for integrating a
+/// model of `rows` DOFs (models/memory_estimate.hpp's lower bound): "holding it [and integrating
+/// a model of N DOFs] needs [at least] X, more than the Y this machine has available
+/// (MemAvailable in /proc/meminfo)"; nothing when it may fit or /proc/meminfo cannot be read.
+[[nodiscard]] std::optional<std::string> holding_refusal(long long rows, long long cols,
+                                                         double entries, bool rows_are_dofs);
 
 /// Reads `path`. Throws MatrixMarketError for anything but a well-formed coordinate real (or
 /// integer) general or symmetric file with finite values and indices inside the declared size,

@@ -7,11 +7,13 @@
 
 #include <pybind11/numpy.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "models/matrix_market.hpp"
 #include "models/scene_parser.hpp"
 #include "models/scene_table.hpp"
 
@@ -98,15 +100,36 @@ std::vector<long long> indices(const py::handle& data) {
   return {a.data(), a.data() + a.size()};
 }
 
+/// A matrix's size refused before anything of it is held, by the checks a file's size line gets
+/// (models/matrix_market.hpp): a scipy.sparse matrix of 10⁸ x 10⁸ with 3 entries was held (and
+/// its 10⁸ DOFs named) to 5.4 GB before the scene was refused for another reason.
+void check_size(long long rows, long long cols, double entries, bool rows_are_dofs,
+                const std::string& path) {
+  if (rows < 1 || cols < 1) {
+    fail(path, "the matrix is " + std::to_string(rows) + " x " + std::to_string(cols) +
+                   ": it has no entries");
+  }
+  if (const auto refusal = size_range_refusal(rows, cols)) fail(path, *refusal);
+  if (const auto refusal = holding_refusal(rows, cols, entries, rows_are_dofs)) {
+    fail(path, "the array is " + std::to_string(rows) + " x " + std::to_string(cols) + " with " +
+                   std::to_string(static_cast<long long>(entries)) +
+                   " stored entries: " + *refusal);
+  }
+}
+
 /// A scipy.sparse matrix or a numpy array (1-D: a column) as a sparse matrix; zeros of a dense
 /// array are not stored, duplicates of a sparse one are summed (as a Matrix Market file's are).
-Eigen::SparseMatrix<double> sparse_of(const py::handle& value, const std::string& path) {
+/// `rows_are_dofs`: M, C or K, whose size is also checked against integrating that many DOFs.
+Eigen::SparseMatrix<double> sparse_of(const py::handle& value, const std::string& path,
+                                      bool rows_are_dofs) {
   std::vector<Eigen::Triplet<double>> entries;
-  Eigen::Index rows = 0, cols = 0;
+  long long rows = 0, cols = 0;
   if (is_sparse(value)) {
     const auto shape = value.attr("shape").cast<py::tuple>();
-    rows = shape[0].cast<Eigen::Index>();
-    cols = shape[1].cast<Eigen::Index>();
+    if (shape.size() != 2) fail(path, "a sparse matrix must have 2 dimensions");
+    rows = shape[0].cast<long long>();
+    cols = shape[1].cast<long long>();
+    check_size(rows, cols, value.attr("nnz").cast<double>(), rows_are_dofs, path);
     const py::object coo = value.attr("tocoo")();
     const auto r = indices(coo.attr("row")), c = indices(coo.attr("col"));
     const auto v = real_entries(coo.attr("data"), path);
@@ -116,6 +139,14 @@ Eigen::SparseMatrix<double> sparse_of(const py::handle& value, const std::string
                            v.data()[k]);
     }
   } else {
+    // The declared size first, as if every entry were zero: a strided view (numpy's
+    // broadcast_to) declares 10⁸ x 10⁸ in a few bytes, and real_entries copies it whole.
+    const auto declared = py::array::ensure(value);
+    if (declared && declared.ndim() >= 1 && declared.ndim() <= 2) {
+      rows = declared.shape(0);
+      cols = declared.ndim() == 2 ? declared.shape(1) : 1;
+      check_size(rows, cols, 0.0, rows_are_dofs, path);
+    }
     const auto a = real_entries(value, path);
     if (a.ndim() != 1 && a.ndim() != 2) {
       fail(path, "a matrix must have 1 or 2 dimensions (this array has " +
@@ -124,16 +155,17 @@ Eigen::SparseMatrix<double> sparse_of(const py::handle& value, const std::string
     rows = a.shape(0);
     cols = a.ndim() == 2 ? a.shape(1) : 1;
     const double* x = a.data();
-    for (Eigen::Index i = 0; i < rows; ++i) {
-      for (Eigen::Index j = 0; j < cols; ++j) {
-        // NaN != 0: kept, so the parser refuses it.
-        if (const double e = x[i * cols + j]; e != 0.0) entries.emplace_back(i, j, e);
+    const auto size = static_cast<std::size_t>(rows * cols);
+    // NaN != 0: kept, so the parser refuses it.
+    const auto stored = std::count_if(x, x + size, [](double e) { return e != 0.0; });
+    check_size(rows, cols, static_cast<double>(stored), rows_are_dofs, path);
+    entries.reserve(static_cast<std::size_t>(stored));
+    for (std::size_t k = 0; k < size; ++k) {
+      if (x[k] != 0.0) {
+        entries.emplace_back(static_cast<Eigen::Index>(k) / cols,
+                             static_cast<Eigen::Index>(k) % cols, x[k]);
       }
     }
-  }
-  if (rows < 1 || cols < 1) {
-    fail(path, "the matrix is " + std::to_string(rows) + " x " + std::to_string(cols) +
-                   ": it has no entries");
   }
   Eigen::SparseMatrix<double> m(rows, cols);
   m.setFromTriplets(entries.begin(), entries.end());
@@ -193,7 +225,7 @@ class Converter {
       } else if ((py::isinstance<py::array>(v) || is_sparse(v)) && takes_matrix(path, key)) {
         // Kept by name; the scene gets `file = NAME` (constraint_block.file) or `{ file = NAME }`.
         const std::string name = "<array " + (key == "file" ? path : p) + ">";
-        arrays_.matrices[name] = sparse_of(v, p);
+        arrays_.matrices[name] = sparse_of(v, p, path == "model");
         if (key == "file") {
           out.insert(key, name);
         } else {

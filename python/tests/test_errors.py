@@ -9,6 +9,7 @@ import pathlib
 import pickle
 import re
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -235,3 +236,103 @@ def test_a_dict_scenes_inconsistent_start_is_blamed_on_initial():
     with pytest.raises(condyn.SceneError,
                        match=r"^<dict>: initial: initial velocities violate constraint 'rigid_1_2'"):
         condyn.run(scene)
+
+
+# A model of this many DOFs cannot be integrated in 24 GB or any machine's memory near it: IDA's
+# vectors alone are 30 of 2n doubles, 48 GB (models/memory_estimate.hpp's lower bound).
+HUGE = 10**8
+
+# Each call runs in a child limited to 4 GB of address space: were the check lost, the model's
+# 10⁸ DOFs (5.4 GB before this check) would fail there, not take the machine's memory.
+SIZED_CALL = """
+import resource, sys
+import numpy as np, scipy.sparse as sp
+import condyn
+resource.setrlimit(resource.RLIMIT_AS, (4 << 30, 4 << 30))
+n = int(sys.argv[1])
+diagonal = sp.coo_matrix((np.ones(3), ([0, 1, 2], [0, 1, 2])), shape=(n, n))
+routes = {
+    "sparse": lambda: {"mass": diagonal, "stiffness": diagonal},
+    # A strided view declares n x n in a few bytes (its entries: ones).
+    "dense": lambda: dict.fromkeys(("mass", "stiffness"), np.broadcast_to(np.float64(1.0), (n, n))),
+    "block": lambda: {"mass": np.eye(3), "stiffness": np.eye(3)},
+}
+scene = {"model": {"type": "matrix", **routes[sys.argv[2]]()},
+         "solve": {"t_end": 1.0, "output_step": 0.5}}
+if sys.argv[2] == "block":  # constraint rows: held, not integrated as DOFs
+    scene["constraint_block"] = [{"file": diagonal}]
+try:
+    condyn.run(scene)
+except condyn.SceneError as e:
+    print(e)
+"""
+
+
+def sized_call(n, route):
+    done = subprocess.run([sys.executable, "-c", SIZED_CALL, str(n), route], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return done.stdout.strip()
+
+
+def without_available(message):
+    """The message without the figure of available memory, which changes from call to call."""
+    return re.sub(r"more than the [0-9.]+ [kMGTP]?B", "more than the X", message)
+
+
+@pytest.mark.parametrize("route", ["sparse", "dense"])
+def test_a_model_matrix_too_large_to_integrate_is_refused_as_the_cli_refuses(cli, tmp_path,
+                                                                             route):
+    # A scipy.sparse matrix of 10⁸ x 10⁸ with 3 entries took 5.4 GB before a refusal for
+    # another reason, where the CLI refuses the same .mtx at its size line: the same check, the
+    # same words, before anything of the matrix is held.
+    mtx = tmp_path / "K.mtx"
+    mtx.write_text(f"%%MatrixMarket matrix coordinate real general\n{HUGE} {HUGE} 3\n"
+                   "1 1 1.0\n2 2 1.0\n3 3 1.0\n")
+    scene = tmp_path / "huge.toml"
+    scene.write_text('[model]\ntype = "matrix"\nmass = { file = "K.mtx" }\n'
+                     'stiffness = { file = "K.mtx" }\n[solve]\nt_end = 1.0\noutput_step = 0.5\n')
+    cli_run = subprocess.run([str(cli), "run", str(scene)], capture_output=True, text=True,
+                             timeout=60)
+    assert cli_run.returncode == 2
+    cli_says = re.search(r"holding it and integrating .*\(MemAvailable in /proc/meminfo\)",
+                         cli_run.stderr)
+    assert cli_says, cli_run.stderr
+    message = sized_call(HUGE, route)
+    size = f"{HUGE} x {HUGE}"
+    if route == "sparse":  # its 3 entries, as the file's: the same figure of bytes needed
+        assert message.startswith(f"<dict>: model.mass: the array is {size} with 3 stored "
+                                  "entries: "), message
+        assert without_available(cli_says.group(0)) in without_available(message)
+    else:  # refused before its entries are counted (or copied): as if all were zero
+        assert message.startswith(f"<dict>: model.mass: the array is {size} with 0 stored "
+                                  f"entries: holding it and integrating a model of {HUGE} DOFs "
+                                  "needs at least "), message
+
+
+def test_constraint_rows_too_large_to_hold_and_sizes_beyond_32_bit_indices_are_refused():
+    # 2^31 rows: past the 32-bit indices of Eigen's and KLU's matrices, as a file's size line.
+    assert sized_call(2**31, "sparse") == (f"<dict>: model.mass: the size {2**31} x {2**31} is "
+                                           "not between 1 and 2^31 - 1")
+    # Not a model matrix: only holding it is counted, 8 bytes a row and a column (34 GB here),
+    # as the file reader counts a constraint block's.
+    top = 2**31 - 1
+    available = available_bytes()
+    if available is None or available > 3.4e10:
+        pytest.skip("this machine has the 34 GB available: the refusal cannot be shown")
+    message = sized_call(top, "block")
+    assert message.startswith(f"<dict>: constraint_block[1].file: the array is {top} x {top} "
+                              "with 3 stored entries: holding it needs 34.4 GB, more than the "), \
+        message
+
+
+def available_bytes():
+    """MemAvailable of /proc/meminfo in bytes, None where it cannot be read."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return None
