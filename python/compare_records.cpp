@@ -62,11 +62,11 @@ py::list compare_records(const CompareResult& result) {
   for (const auto& [scheme, reason] : result.skipped) {
     py::dict d;
     d["scheme"] = to_string(scheme);
-    d["ok"] = false;
     d["skipped"] = true;
     d["message"] = system_text(reason);
     // Every key of a run's record, None: a table of the records (d["rtol"]) needs no special case.
-    for (const char* key : {"reference",
+    for (const char* key : {"ok",
+                            "reference",
                             "rtol",
                             "atol",
                             "error_u",

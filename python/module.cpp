@@ -166,6 +166,7 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
   SceneCheckOptions options;
   if (scheme) options.scheme = scheme_argument(spec, "scheme", *scheme);
   const std::string file = spec.file;
+  const std::vector<CheckSpec> specs = spec.checks;  // a failed run's checks are still listed
   SceneCheckResult result;
   without_gil([&] {
     try {
@@ -174,6 +175,8 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
       throw SceneError(scene_message(file, e.where(), e.what()));
     }
   });
+  // A failed run evaluates no check: each still gets its dict, NaN and not passed (docs/python.md).
+  if (!result.failure.empty()) result.outcomes = unevaluated_outcomes(specs);
   py::list checks;
   for (const CheckOutcome& o : result.outcomes) {
     py::dict d;

@@ -23,6 +23,11 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// for a FAIL of 1 against 0.9999999).
 std::string fmt(double v) { return shortest_number(v); }
 
+/// What a check's figure is held against: its bound (max_abs) or its tolerance.
+double bound_of(const CheckSpec& c) {
+  return c.form == CheckSpec::Form::max_abs ? c.bound : c.tolerance;
+}
+
 /// Every column a run of the model can write (under some quantity).
 std::vector<std::string> all_columns(const Model& model) {
   std::vector<std::string> out = {"drift_position", "drift_velocity"};
@@ -201,7 +206,7 @@ std::vector<CheckOutcome> CheckEvaluator::outcomes() const {
     o.quantity = c.quantity;
     o.form = c.form;
     o.computed = s.seen ? s.figure : kNaN;
-    o.bound = c.form == CheckSpec::Form::max_abs ? c.bound : c.tolerance;
+    o.bound = bound_of(c);
     std::string text;
     switch (c.form) {
       case CheckSpec::Form::at_value: {
@@ -227,6 +232,21 @@ std::vector<CheckOutcome> CheckEvaluator::outcomes() const {
                (c.form != CheckSpec::Form::reference || s.next == c.reference->times.size());
     if (std::isnan(o.computed)) text += " (no finite value: the run wrote NaN or never reached it)";
     o.text = std::move(text);
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+std::vector<CheckOutcome> unevaluated_outcomes(const std::vector<CheckSpec>& checks) {
+  std::vector<CheckOutcome> out;
+  for (const CheckSpec& c : checks) {
+    CheckOutcome o;
+    o.quantity = c.quantity;
+    o.form = c.form;
+    o.computed = kNaN;
+    o.bound = bound_of(c);
+    o.passed = false;
+    o.text = "not evaluated: the run failed before t_end";
     out.push_back(std::move(o));
   }
   return out;

@@ -62,6 +62,11 @@ class CheckEvaluator {
   std::vector<State> states_;
 };
 
+/// One outcome per check of a run that failed before t_end: computed NaN, the check's bound,
+/// passed false, and text saying it was not evaluated (condyn.check's `checks`; the command
+/// prints the failure alone).
+[[nodiscard]] std::vector<CheckOutcome> unevaluated_outcomes(const std::vector<CheckSpec>& checks);
+
 struct SceneCheckOptions {
   std::optional<Scheme> scheme;  ///< overrides [solve] scheme
   SourcePoint scheme_where;      ///< where the override comes from (`--scheme`), for refusals

@@ -2,6 +2,7 @@
 compare's per-run budget."""
 
 import copy
+import math
 import os
 import tomllib
 
@@ -43,13 +44,20 @@ def test_check_fails_when_a_bound_is_too_tight():
 def test_a_run_that_fails_reports_its_failure_and_the_time_it_took():
     with open(OSCILLATOR, "rb") as f:
         scene = tomllib.load(f)
-    scene["check"] = [{"quantity": "x", "max_abs": 2.0}]
+    scene["check"] = [{"quantity": "x", "max_abs": 2.0},
+                      {"quantity": "vel_x", "at": 1.0, "value": 0.5, "tolerance": 1e-3}]
     scene["solve"]["max_steps"] = 50  # the budget ends the run: a failure, as the CLI's
     result = condyn.check(scene)
     assert not result["passed"]
     assert result["failure"] and "budget" in result["failure"]
-    assert result["checks"] == []  # nothing evaluated on a run that did not finish
     assert result["wall_s"] > 0.0  # it was 0 for a failed run
+    # One dict per check, NaN where the run gave no figure (docs/python.md): the list was empty.
+    assert [c["quantity"] for c in result["checks"]] == ["x", "vel_x"]
+    assert [c["bound"] for c in result["checks"]] == [2.0, 1e-3]  # max_abs; the tolerance
+    for c in result["checks"]:
+        assert set(c) == {"quantity", "computed", "bound", "passed", "text"}
+        assert math.isnan(c["computed"]) and c["passed"] is False
+        assert "not evaluated" in c["text"] and "nan" not in c["text"].lower()
 
 
 def test_check_lists_the_scenes_warnings_as_run_does():

@@ -97,9 +97,11 @@ def test_a_skipped_scheme_has_every_key_of_a_run():
     assert [r["scheme"] for r in skipped] == ["penalty"]
     assert set(skipped[0]) == set(ran[0])
     assert skipped[0]["rtol"] is None and skipped[0]["steps"] is None
-    # Every key but scheme, ok, skipped and message (reference was the sweep's).
-    assert {k for k, v in skipped[0].items() if v is not None} == {
-        "scheme", "ok", "skipped", "message"}
+    # Every key but scheme, skipped and message, as docs/python.md says: ok too (it was False,
+    # a verdict on a run that never ran; reference was the sweep's).
+    assert {k for k, v in skipped[0].items() if v is not None} == {"scheme", "skipped", "message"}
+    assert skipped[0]["ok"] is None and skipped[0]["skipped"] is True
+    assert "penalty" in skipped[0]["message"] or "nonlinear" in skipped[0]["message"]
 
 
 def test_compare_marks_runs_far_beyond_their_target():
