@@ -248,7 +248,7 @@ class Projector {
     Eigen::VectorXd rhs(nr);
     for (Eigen::Index k = 0; k < nr; ++k) {
       const int i = rows[static_cast<std::size_t>(k)];
-      const double norm = B.row(k).norm();
+      const double norm = B.row(k).blueNorm();  // no overflow of the squares of large rows
       if (norm > 0.0) {  // a row on given DOFs only: nothing free can change its residual
         B.row(k) *= row_weight[i] / norm;
         rhs[k] = -r[i] * row_weight[i] / norm;

@@ -75,7 +75,8 @@ void ModelBuilder::check_initial_consistency() const {
             std::max(kConsistencyTolerance * size, kStateRoundoff * a_sum * u_scale))) {
         fail(spec_.initial.given() ? spec_.initial.where : c.where,
              "initial displacements violate " + where + ": a·u(0) = " + fmt(au) +
-                 " but the constraint requires " + fmt(g) + " (residual " + fmt(au - g) + ")");
+                 " but the constraint requires " + fmt(g) + " (residual " +
+                 computed_fmt(au - g, "a·u(0) and the required value") + ")");
       }
     }
     const double gv = position ? c.value.derivative(1, 0.0) : c.value.value(0.0);
@@ -85,7 +86,8 @@ void ModelBuilder::check_initial_consistency() const {
                    kStateRoundoff * a_sum * v_scale))) {
       fail(spec_.initial.given() ? spec_.initial.where : c.where,
            "initial velocities violate " + where + ": a·v(0) = " + fmt(av) +
-               " but the constraint requires " + fmt(gv) + " (residual " + fmt(av - gv) +
+               " but the constraint requires " + fmt(gv) + " (residual " +
+               computed_fmt(av - gv, "a·v(0) and the required value") +
                "); set [initial] velocity to match");
     }
   }
@@ -149,7 +151,8 @@ void ModelBuilder::check_nonlinear_consistency() const {
          std::string("initial ") + (bad_u ? "displacements" : "velocities") +
              " violate constraint '" + c.name + "'" +
              (c.nonlinear_kind.empty() ? "" : " (" + c.nonlinear_kind + ")") + ": residual " +
-             fmt(bad_u ? phi[i] : psi[i]) +
+             computed_fmt(bad_u ? phi[i] : psi[i],
+                          "products of the initial coordinates, lengths and velocities") +
              "; fix [initial], or set [initial] project = true to project the initial state "
              "onto the constraints");
   }
@@ -169,7 +172,9 @@ void ModelBuilder::refuse_given_values(const InconsistentGivenValues& e) const {
   }
   for (const auto& [row, residual] : e.violated) {
     rows += (rows.empty() ? "'" : ", '") + model_.constraints[static_cast<std::size_t>(row)].name +
-            "' (residual " + fmt(residual) + ")";
+            "' (residual " +
+            computed_fmt(residual, "products of the initial coordinates, lengths and velocities") +
+            ")";
   }
   rows += " at the closest state";
   fail({"initial." + level + "." + model_.dof_names[static_cast<std::size_t>(e.given.front())],

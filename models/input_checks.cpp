@@ -24,6 +24,12 @@ constexpr double kMaxExponent = 700.0;
 // at 2.0000000000000004 is never shown as "2" beside a t_end of 2.
 std::string fmt(double v) { return shortest_number(v); }
 
+std::string computed_fmt(double v, const std::string& cause) {
+  if (std::isfinite(v)) return fmt(v);
+  return std::string(std::isnan(v) ? "not a number" : "infinite") + " (" + cause +
+         " overflow the double range)";
+}
+
 /// An upper bound of |d^order/dt^order term(t)| over [0, t_end], order in {0, 1, 2}; infinite when
 /// the term leaves the double range there.
 double magnitude_bound(const TimeTerm& term, int order, double t_end) {

@@ -35,6 +35,10 @@ constexpr double kDenseBlockEntries = 1e4;
 
 // input_checks.cpp
 std::string fmt(double v);
+/// A figure computed from the scene (a residual, a norm) for a message: fmt(v), or, when it is
+/// not finite, "not a number (CAUSE overflow the double range)" or "infinite (...)": a message
+/// never shows "nan" or "-nan", and says what overflowed.
+std::string computed_fmt(double v, const std::string& cause);
 double magnitude_bound(const TimeTerm& term, int order, double t_end);
 double magnitude_bound(const TimeFunction& f, double t_end);
 bool all_finite(const Eigen::SparseMatrix<double>& m);

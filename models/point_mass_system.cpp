@@ -1,6 +1,24 @@
 #include "models/point_mass_system.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace condyn {
+
+namespace {
+
+/// The power of 2 of |x| (1 for 0, inf or NaN): dividing by it is exact, so a computation on x/s
+/// rounds as the same computation on x would, where that stays inside the double range.
+double power_of_two(double x) {
+  return x != 0.0 && std::isfinite(x) ? std::ldexp(1.0, std::ilogb(x)) : 1.0;
+}
+
+}  // namespace
+
+double PointMassSystem::distance(const Eigen::VectorXd& d) {
+  const double s = power_of_two(d.cwiseAbs().maxCoeff());
+  return s * (d / s).norm();
+}
 
 PointMassSystem::PointMassSystem(PointMassLayout layout)
     : layout_(std::move(layout)),
@@ -98,7 +116,7 @@ void PointMassSystem::force(double t, ConstRef u, ConstRef /*v*/, Ref f) {
   }
   for (const auto& b : layout_.bars) {
     const Eigen::VectorXd d = separation(b, u);
-    const double l = d.norm();
+    const double l = distance(d);
     const Eigen::VectorXd pull = (b.EA * (l - b.length) / b.length / l) * d;  // N e
     for (int k = 0; k < layout_.dimension; ++k) {
       f[dof(b.i, k)] += pull[k];
@@ -115,7 +133,7 @@ const MechanicalSystem::Sparse& PointMassSystem::stiffness(double /*t*/, ConstRe
   const int dim = layout_.dimension;
   for (const auto& b : layout_.bars) {
     const Eigen::VectorXd d = separation(b, u);
-    const double l = d.norm();
+    const double l = distance(d);
     const Eigen::VectorXd e = d / l;
     const double N = b.EA * (l - b.length) / b.length;
     const Eigen::MatrixXd tangent =
@@ -139,8 +157,14 @@ void PointMassSystem::position_residual(double t, ConstRef u, Ref phi) {
   linear_.position_residual(t, u, phi.head(linear_count_));
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
+    // (|d|² − L²)/(2L) on d/s and L/s, s a power of 2 of their size: the squares overflowed
+    // from |d| ~ 1e154 on (a member of length 1e200 was refused with "residual -nan") and
+    // underflowed below 1e-154; the same bits as before where they did not.
+    const Eigen::VectorXd d = separation(b, u);
+    const double s = power_of_two(std::max(d.cwiseAbs().maxCoeff(), b.length));
+    const double length = b.length / s;
     phi[linear_count_ + static_cast<int>(r)] =
-        (separation(b, u).squaredNorm() - b.length * b.length) / (2.0 * b.length);
+        s * (((d / s).squaredNorm() - length * length) / (2.0 * length));
   }
 }
 
@@ -148,7 +172,11 @@ void PointMassSystem::velocity_residual(double t, ConstRef u, ConstRef v, Ref ps
   linear_.velocity_residual(t, v, psi.head(linear_count_));
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
-    psi[linear_count_ + static_cast<int>(r)] = separation(b, u).dot(relative(b, v)) / b.length;
+    // d·d'/L on d/s and L/s (s the power of 2 of L): d·d' overflowed for a member of 1e300
+    // swinging at √(gL); the same bits as before where it did not.
+    const double s = power_of_two(b.length);
+    psi[linear_count_ + static_cast<int>(r)] =
+        (separation(b, u) / s).dot(relative(b, v)) / (b.length / s);
   }
 }
 
@@ -156,7 +184,11 @@ void PointMassSystem::acceleration_bias(double t, ConstRef /*u*/, ConstRef v, Re
   linear_.acceleration_bias(t, gamma.head(linear_count_));
   for (std::size_t r = 0; r < layout_.rods.size(); ++r) {
     const auto& b = layout_.rods[r];
-    gamma[linear_count_ + static_cast<int>(r)] = -relative(b, v).squaredNorm() / b.length;
+    // −|d'|²/L as −|d'/s|²/(L/s²), s the power of 2 of d': no overflow of the squares, the same
+    // bits as before where they did not (L/s² leaves the range only where γ does).
+    const Eigen::VectorXd w = relative(b, v);
+    const double s = power_of_two(w.cwiseAbs().maxCoeff());
+    gamma[linear_count_ + static_cast<int>(r)] = -(w / s).squaredNorm() / (b.length / s / s);
   }
 }
 
@@ -218,7 +250,7 @@ std::optional<MechanicalSystem::EnergyParts> PointMassSystem::energy_parts(doubl
     parts.potential = 0.5 * u.dot(K_linear_ * u);
   } else {
     for (const auto& b : layout_.bars) {
-      const double stretch = separation(b, u).norm() - b.length;
+      const double stretch = distance(separation(b, u)) - b.length;
       parts.potential += 0.5 * b.EA / b.length * stretch * stretch;
     }
   }

@@ -78,6 +78,10 @@ class PointMassSystem final : public MechanicalSystem {
   /// d = x_j + u_j − x_i − u_i for a member (dimension entries).
   [[nodiscard]] Eigen::VectorXd separation(const PointMassLayout::Bar& b, const ConstRef& u) const;
   [[nodiscard]] Eigen::VectorXd relative(const PointMassLayout::Bar& b, const ConstRef& v) const;
+  /// |d| = s |d/s| with s the power of 2 of d's largest entry: the squares neither overflow (from
+  /// 1e154 up) nor underflow (below 1e-154), and where they did not, the same bits as d.norm()
+  /// (scaling by a power of 2 is exact, and so commutes with each rounding).
+  [[nodiscard]] static double distance(const Eigen::VectorXd& d);
   [[nodiscard]] int dof(int node, int direction) const {
     return node * layout_.dimension + direction;
   }

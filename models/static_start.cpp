@@ -47,7 +47,7 @@ void ModelBuilder::solve_static_initial() {
   }
   if (!(eq.residual <= kMaxStaticResidual)) {
     fail(where, "the static equilibrium could not be solved accurately (relative residual " +
-                    fmt(eq.residual) +
+                    computed_fmt(eq.residual, "the loads, stiffness or displacements") +
                     "): the stiffness is nearly singular on the motions the "
                     "constraints allow");
   }
