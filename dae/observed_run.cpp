@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dae/energy_balance.hpp"
+#include "dae/singular_passages.hpp"
 #include "models/constraint_drift.hpp"
 
 namespace condyn {
@@ -60,11 +61,17 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       return energy->jump_work(t, u_after, u_after - observe.full_state(t, before).first);
     };
   }
-  if (observe.drift_at_every_step || options.record_steps || observe.on_state) {
+  // Passages near a singular configuration, at every step, for models whose A depends on the
+  // state (a linear model's rank is checked once, when it is built).
+  std::optional<SingularPassageMonitor> passages;
+  if (model.nonlinear && model.constraint_count() > 0) passages.emplace(*model.system);
+  if (observe.drift_at_every_step || options.record_steps || observe.on_state || passages) {
     observed.on_step = [&](double t, const Eigen::VectorXd& y) {
       if (observe.on_state) observe.on_state(y);
-      if (!observe.drift_at_every_step && !options.record_steps) return;
+      if (!observe.drift_at_every_step && !options.record_steps && !passages) return;
       const auto [u, v] = observe.full_state(t, y);
+      if (passages) passages->step(t, u, v);
+      if (!observe.drift_at_every_step && !options.record_steps) return;
       const auto [dp, dv] = drift(t, u, v);
       max_dp = std::max(max_dp, dp);
       max_dv = std::max(max_dv, dv);
@@ -124,6 +131,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       }
     }
     summarize_drift(result, max_dp, max_dv, log.max_abs_displacement());
+    if (passages) result.summary.singular_passages = passages->passages();
     return;
   }
   if (streamed) {
@@ -133,6 +141,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     result.trajectory = assemble(raw);
   }
   summarize_drift(result, max_dp, max_dv, log.max_abs_displacement());
+  if (passages) result.summary.singular_passages = passages->passages();
 }
 
 }  // namespace condyn

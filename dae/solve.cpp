@@ -26,6 +26,7 @@
 #include "dae/projected_ode.hpp"
 #include "dae/reduced_ode.hpp"
 #include "dae/row_multipliers.hpp"
+#include "dae/singular_passages.hpp"
 
 namespace condyn {
 
@@ -510,9 +511,16 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     auto& notes = result.summary.notes;
     notes = notes.empty() ? *note : notes + "; " + *note;
   }
+  if (const std::string note =
+          singular_passage_note(result.summary.singular_passages, result.trajectory.t);
+      !note.empty()) {
+    auto& notes = result.summary.notes;
+    notes = notes.empty() ? note : notes + "; " + note;
+  }
   if (result.failure) {
     RunFailure& failure = *result.failure;
     failure.suggestion = failure_suggestion(scheme, failure);
+    failure.suggestion += singular_failure_advice(result.summary.singular_passages);
     failure.suggestion +=
         roundoff_advice(failure, settings.atol, result.summary.max_abs_displacement,
                         model.system->coordinate_scale());

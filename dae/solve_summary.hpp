@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/singular_passage.hpp"
 #include "dae/unknown_kind.hpp"
 
 namespace condyn {
@@ -139,6 +140,9 @@ struct SolveSummary {
   /// max |u| over the output rows (those before a failure included).
   double max_abs_displacement = 0.0;
   std::string notes;  ///< scheme settings worth printing (Baumgarte gains)
+  /// Passages near a singular configuration (models whose constraint Jacobian depends on the
+  /// state; dae/singular_passages.hpp), in time order.
+  std::vector<SingularPassage> singular_passages;
   /// A warning when at least half of 10,000 or more steps failed the error test, no normal run
   /// (the scenes of models/ and validation/ fail 1 to 12 % of their steps): a conical pendulum
   /// in steady rotation ended 0.5 % off under GGL after 248,279 steps, 245,905 of them such

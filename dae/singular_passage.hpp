@@ -1,0 +1,30 @@
+#pragma once
+/// One passage of a run near a singular configuration, as the run's summary carries it
+/// (dae/singular_passages.hpp measures it).
+
+namespace condyn {
+
+/// One passage: the internal steps at which the rows' conditioning stayed below kNearSingular.
+struct SingularPassage {
+  /// Below this conditioning a configuration is near singular: on the parallelogram four-bar it
+  /// is about half the crank's angle from the collinear position in radians (0.05: 0.1 rad, some
+  /// 6°), and λ's sensitivity to the state's error is 1/σ² = 400 times its size at σ = 1.
+  static constexpr double kNearSingular = 0.05;
+  /// Above this share of the motion's kinetic energy forbidden after the passage, the run left
+  /// the branch it was on: a smooth passage turns the free motion by the small angle the
+  /// configuration turns inside the passage (sin² of 0.2 rad, 0.04, on the parallelogram), a
+  /// change of branch by the angle between the branches (sin² 45° = 0.5 on the N-four-bar).
+  static constexpr double kBranchShare = 0.25;
+  double t_enter = 0.0;  ///< the first step below kNearSingular
+  double t_leave = 0.0;  ///< the first step back above it (left_open: the run ended inside)
+  bool left_open = false;
+  double t_closest = 0.0;  ///< the step of the smallest conditioning
+  double closest = 1.0;    ///< that smallest conditioning, σ_min of the scaled rows (0: singular)
+  /// The share of the kinetic energy of the motion just before the passage that the
+  /// configuration just after it does not allow (0: the same free motions; −1: not judged, the
+  /// run ended inside or the mechanism was at rest).
+  double branch_change = -1.0;
+  [[nodiscard]] bool left_branch() const { return branch_change > kBranchShare; }
+};
+
+}  // namespace condyn
