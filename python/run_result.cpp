@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/singular_passages.hpp"
 #include "dae/solve.hpp"
 
 namespace py = pybind11;
@@ -48,6 +49,23 @@ py::object vector_view(const Eigen::VectorXd& x, const py::object& owner) {
   return read_only_view(x.data(), x.size(), owner);
 }
 
+/// The run's passages near a singular configuration (dae/singular_passage.hpp), one dict each.
+py::list passage_list(const std::vector<SingularPassage>& passages) {
+  py::list out;
+  for (const SingularPassage& p : passages) {
+    py::dict d;
+    d["t_enter"] = p.t_enter;
+    d["t_closest"] = p.t_closest;
+    d["t_leave"] = p.left_open ? py::object(py::none()) : py::float_(p.t_leave);
+    d["closest"] = p.closest;
+    d["branch_change"] =
+        p.branch_change < 0.0 ? py::object(py::none()) : py::float_(p.branch_change);
+    d["left_branch"] = p.left_branch();
+    out.append(d);
+  }
+  return out;
+}
+
 py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const BuildReport& r,
                       const char* treatment) {
   py::dict d;
@@ -73,7 +91,10 @@ py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const Bu
   d["termination"] = s.termination;
   d["notes"] = s.notes;
   d["brief"] = s.brief();
-  d["warnings"] = r.warnings;
+  std::vector<std::string> warnings = r.warnings;
+  for (auto& w : singular_passage_warnings(s.singular_passages)) warnings.push_back(std::move(w));
+  d["warnings"] = warnings;
+  d["singular_passages"] = passage_list(s.singular_passages);
   d["initial_state"] = r.initial_projection;
   d["damping"] = r.damping;
   d["dropped_constraints"] = r.dropped_constraints;
@@ -136,6 +157,11 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
     }
     d["energy_balance"] = balance;
   }
+  const std::vector<bool> near = near_singular_rows(result.summary.singular_passages, traj.t);
+  py::array_t<bool> near_singular(static_cast<py::ssize_t>(nt));
+  for (Eigen::Index i = 0; i < nt; ++i)
+    near_singular.mutable_at(i) = near[static_cast<std::size_t>(i)];
+  d["near_singular"] = near_singular;
   d["energy_columns"] = energy_column_names();
   d["energy"] = vector_view(traj.energy, owner);
   d["kinetic"] = vector_view(traj.kinetic, owner);

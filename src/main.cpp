@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "dae/ida_integrator.hpp"
+#include "dae/singular_passages.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
 #include "src/check_report.hpp"
@@ -151,6 +152,8 @@ int run(const RunArgs& args) {
     msg << "initial state: " << report.initial_projection << "\n";
   if (!report.damping.empty()) msg << "damping: " << report.damping << "\n";
   for (const auto& w : report.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";
+  for (const auto& w : singular_passage_warnings(summary.singular_passages))
+    std::cerr << "warning: " << args.scene << ": " << w << "\n";
   for (const auto& d : report.dropped_constraints)
     msg << "dropped redundant constraint " << d << "\n";
   msg << summary.brief() << "\n";

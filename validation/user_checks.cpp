@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "dae/singular_passages.hpp"
 #include "dae/solve.hpp"
 #include "models/nearest_names.hpp"
 #include "models/number_cell.hpp"
@@ -291,6 +292,11 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
   SceneCheckResult out;
   out.scene = spec.file;
   out.warnings = std::move(report.warnings);
+  // A run that left its mechanism's branch passes or fails its checks as computed; the warning
+  // stands beside the verdicts (and in the JUnit report's system-err), as in `run`.
+  for (auto& w : singular_passage_warnings(result.summary.singular_passages)) {
+    out.warnings.push_back(std::move(w));
+  }
   out.scheme = to_string(result.scheme);
   out.steps = result.summary.steps;
   out.wall_s = result.summary.wall_seconds;

@@ -30,15 +30,17 @@ class Result:
     energy and kinetic (nt) for a conservative model, else None; energy_balance (nt x 7, columns
     named by energy_columns: energy, energy_error, energy_kinetic, energy_potential,
     energy_dissipated, work_loads, work_constraints) when [output] asks for "energy", else None
-    (docs/energy.md); dof_names, constraint_names;
-    summary (dict: scheme, steps, wall_s, rtol, atol, residual_evals, jacobian_evals, ...).
+    (docs/energy.md); near_singular (nt booleans: the rows inside a passage near a singular
+    configuration, whose reactions are not to be trusted; docs/schemes.md); dof_names,
+    constraint_names; summary (dict: scheme, steps, wall_s, rtol, atol, residual_evals,
+    jacobian_evals, ..., singular_passages).
     The arrays are read-only: views of the run's memory, except drift, a_abs and energy_balance
     (copies gathered from the rows).
     """
 
     __slots__ = ("t", "u", "v", "reaction", "multiplier", "drift", "a", "a_abs", "energy",
-                 "kinetic", "energy_balance", "energy_columns", "dof_names", "constraint_names",
-                 "summary")
+                 "kinetic", "energy_balance", "energy_columns", "near_singular", "dof_names",
+                 "constraint_names", "summary")
 
     def __init__(self, fields):
         for key in self.__slots__:
