@@ -107,7 +107,12 @@ void SingularPassageMonitor::step(double t, const Eigen::VectorXd& u, const Eige
   const bool near = sigma < SingularPassage::kNearSingular;
   if (near && !inside_) {
     inside_ = true;
-    before_v_ = last_v_.size() == v.size() ? last_v_ : v;
+    before_t_ = outside_t_;
+    before_v_ = outside_v_;
+    if (before_v_[1].size() != v.size()) {  // a run that starts inside: its first velocity
+      before_t_ = {t, t};
+      before_v_ = {v, v};
+    }
     SingularPassage p;
     p.t_enter = p.t_leave = p.t_closest = t;
     p.closest = sigma;
@@ -125,9 +130,19 @@ void SingularPassageMonitor::step(double t, const Eigen::VectorXd& u, const Eige
     SingularPassage& p = passages_.back();
     p.t_leave = t;
     p.left_open = false;
-    p.branch_change = conditioning_.forbidden_share(before_v_);
+    p.branch_change = conditioning_.forbidden_share(velocity_before(t));
   }
-  if (!near) last_v_ = v;
+  if (!near) {
+    outside_t_ = {outside_t_[1], t};
+    outside_v_[0] = std::move(outside_v_[1]);
+    outside_v_[1] = v;
+  }
+}
+
+Eigen::VectorXd SingularPassageMonitor::velocity_before(double t) const {
+  const double dt = before_t_[1] - before_t_[0];
+  if (before_v_[0].size() != before_v_[1].size() || !(dt > 0.0)) return before_v_[1];
+  return before_v_[1] + (before_v_[1] - before_v_[0]) * ((t - before_t_[1]) / dt);
 }
 
 std::vector<SingularPassage> SingularPassageMonitor::passages() const { return passages_; }

@@ -11,6 +11,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -70,8 +71,15 @@ class SingularPassageMonitor {
   ConstraintConditioning conditioning_;
   std::vector<SingularPassage> passages_;
   bool inside_ = false;
-  Eigen::VectorXd last_v_;    ///< the velocity at the last step outside a passage
-  Eigen::VectorXd before_v_;  ///< the velocity just before the passage the run is in
+  /// The velocity the motion before the passage would have at t: the last two steps outside it
+  /// extrapolated linearly (their acceleration turns the velocity as the configuration turns, so
+  /// that a smooth passage, even one crossed in a few long steps, keeps its free motion).
+  [[nodiscard]] Eigen::VectorXd velocity_before(double t) const;
+  /// The last two steps outside a passage (the last in [1]); times below t0 while unset.
+  std::array<double, 2> outside_t_{-1.0, -1.0};
+  std::array<Eigen::VectorXd, 2> outside_v_;
+  std::array<double, 2> before_t_{-1.0, -1.0};  ///< those of the passage the run is in
+  std::array<Eigen::VectorXd, 2> before_v_;
 };
 
 /// The summary's note: "passed 2 near-singular configurations (...): t = 1 (closest 2.1e-05,
