@@ -14,7 +14,7 @@ import scipy.io
 import scipy.sparse as sp
 
 import condyn
-from conftest import QUICKSTART
+from conftest import QUICKSTART, ROOT
 
 
 def read_csv(path):
@@ -304,3 +304,21 @@ def test_times_are_a_read_only_view():
     assert r.t.base is not None  # the run's own memory
     with pytest.raises(ValueError):
         r.t.flags.writeable = True
+
+
+def test_singular_passages_and_rows():
+    """The parallelogram four-bar under index1: both collinear passages (t = 1 and 3) in the
+    summary, the change of branch at t = 3 among the warnings, and exactly those two rows marked
+    (docs/schemes.md, "Singular configurations")."""
+    r = condyn.run(str(ROOT / "models" / "scenes" / "parallelogram_four_bar.toml"),
+                   scheme="index1")
+    passages = r.summary["singular_passages"]
+    assert [round(p["t_closest"]) for p in passages] == [1, 3]
+    assert [p["left_branch"] for p in passages] == [False, True]
+    assert all(p["closest"] < 0.05 and p["t_leave"] is not None for p in passages)
+    assert any("left its branch" in w for w in r.summary["warnings"])
+    assert r.near_singular.dtype == bool
+    assert list(r.t[r.near_singular]) == [1.0, 3.0]
+    # A linear scene: nothing marked, nothing listed.
+    q = condyn.run(str(QUICKSTART))
+    assert q.summary["singular_passages"] == [] and not q.near_singular.any()

@@ -107,11 +107,16 @@ TEST_CASE("conditioning: a sagging chain against a dense SVD, dense and sparse G
       if (sag < 1e-2) CHECK(estimate <= exact * (1 + 1e-9) + roundoff);
     }
   }
-  // Taut: singular.
-  const auto taut = sagging_chain(70, 0.0);
-  condyn::ConstraintConditioning conditioning(*taut.model.system);
-  CHECK(conditioning(0.0, Eigen::VectorXd::Zero(taut.model.dofs())) <
-        1e3 * std::numeric_limits<double>::epsilon());
+  // Pulled taut (every node on the line of the supports, whatever the members' lengths): the
+  // rows are dependent. A scene cannot start there (the build refuses a singular start).
+  const auto chain = sagging_chain(70, 0.1);
+  Eigen::VectorXd taut = Eigen::VectorXd::Zero(chain.model.dofs());
+  for (int k = 1; k < 70; ++k) {
+    taut[dof(chain.model, "uy" + std::to_string(k + 1))] =
+        0.1 * std::sin(std::numbers::pi * k / 70);
+  }
+  condyn::ConstraintConditioning conditioning(*chain.model.system);
+  CHECK(conditioning(0.0, taut) < 1e3 * std::numeric_limits<double>::epsilon());
 }
 
 TEST_CASE("conditioning: the parallelogram's rows against a dense SVD, 0 where collinear") {
@@ -157,12 +162,13 @@ TEST_CASE("the parallelogram's two collinear passages: reported, rows flagged, b
       CAPTURE(t_star);
       CHECK(p.t_enter < t_star);
       CHECK(p.t_leave > t_star);
-      // One step of either side of the passage's edge (steps here are below 0.01 s).
-      constexpr double kStep = 0.01;
+      // One step either side of the passage's edge (projection's steps here reach 0.03 s, the
+      // DAE schemes' stay below 0.01 s).
+      constexpr double kStep = 0.04;
       CHECK(p.t_enter > t_star - half_width - kStep);
       CHECK(p.t_leave < t_star + half_width + kStep);
-      // The closest step lies within a step of t*, where σ ≈ ω |t − t*| / 2 < 0.008.
-      CHECK(p.closest < std::numbers::pi / 4 * kStep);
+      // The closest step lies within half a step of t*, where σ ≈ ω |t − t*| / 2.
+      CHECK(p.closest < std::numbers::pi / 4 * kStep / 2);
       CHECK_FALSE(p.left_open);
     }
     // What each scheme did at t = 3 (index1, Baumgarte and index2 take the crossed branch, as
