@@ -97,6 +97,33 @@ GroupRank sparse_group_rank(const Eigen::SparseMatrix<double>& at) {
   return g;
 }
 
+/// The refusal of a set dependent at the initial configuration with nonlinear rows among it
+/// (`nonlinear`, quoted): their coefficients are those of t = 0, so the set may be independent
+/// at every other configuration (a singular one) or everywhere dependent (a redundant joint).
+/// [solve] redundant = "drop" does not tell the two apart yet: it drops linear rows only, and a
+/// scene asking for it is told so rather than handed the singular-configuration text alone.
+std::string nonlinear_dependence(const std::string& names, const std::string& rank_text,
+                                 const std::string& nonlinear, bool drop_asked) {
+  const std::string head =
+      "the constraints " + names + " are linearly dependent at the initial configuration (" +
+      rank_text + "): " + nonlinear + (nonlinear.find(',') == std::string::npos ? " is" : " are") +
+      " nonlinear";
+  if (drop_asked) {
+    return head +
+           ", and [solve] redundant = \"drop\" does not apply to nonlinear rows yet (it drops "
+           "linear rows only), so condyn neither drops one nor tells a redundant set from a "
+           "singular configuration here: if the constraints are dependent everywhere (a "
+           "redundant joint), remove one of them from the scene; if only here, start away from "
+           "this configuration (other [initial] displacements, or a prescribed motion that "
+           "starts elsewhere)";
+  }
+  return head +
+         ", so this is a singular configuration of the set, which may be independent everywhere "
+         "else; the multipliers are not determined there and no scheme can start from it: start "
+         "away from it (other [initial] displacements, or a prescribed motion that starts "
+         "elsewhere), or remove one of the constraints if they are dependent everywhere";
+}
+
 }  // namespace
 
 /// Rank of the row-normalised constraint matrix; a dependent set is named with the
@@ -200,14 +227,7 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   }
   if (!nonlinear_rows.empty()) {
     fail(constraints[static_cast<std::size_t>(dep)].where,
-         "the constraints " + names + " are linearly dependent at the initial configuration (" +
-             rank_text + "): " + nonlinear_rows +
-             (nonlinear_rows.find(',') == std::string::npos ? " is" : " are") +
-             " nonlinear, so this is a singular configuration of the set, which may be "
-             "independent everywhere else; the multipliers are not determined there and no "
-             "scheme can start from it: start away from it (other [initial] displacements, or "
-             "a prescribed motion that starts elsewhere), or remove one of the constraints if "
-             "they are dependent everywhere");
+         nonlinear_dependence(names, rank_text, nonlinear_rows, spec_.solve.drop_redundant));
   }
   // Compatible when the same combination of the right-hand sides vanishes identically over
   // [0, t_end]: decided from the terms (zero_sum.hpp), never from samples, which two

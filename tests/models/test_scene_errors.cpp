@@ -301,6 +301,33 @@ output_step = 0.1
   CHECK(msg.find("no motion satisfies it") == std::string::npos);
 }
 
+TEST_CASE("redundant = drop on dependent nonlinear rows says drop does not apply to them yet") {
+  // The same driven pendulum asking for drop: it was handed the singular-configuration text
+  // alone, as if drop had been considered (issue 42, item 17). Drop removes linear rows only.
+  const std::string msg = error_of(R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+[[constraint]]
+name = "drive"
+terms = { ux2 = 1.0 }
+value = { type = "polynomial", coefficients = [0.0, 0.0, -0.5] }
+[initial]
+velocity = { uy2 = -1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.1
+redundant = "drop"
+)");
+  CAPTURE(msg);
+  CHECK(msg.find("'rigid_1_2' is nonlinear, and [solve] redundant = \"drop\" does not apply to "
+                 "nonlinear rows yet (it drops linear rows only)") != std::string::npos);
+  CHECK(msg.find("remove one of them from the scene") != std::string::npos);
+  CHECK(msg.find("so this is a singular configuration of the set") == std::string::npos);
+}
+
 TEST_CASE("a second rigid member between the same nodes is refused, naming the first") {
   // It repeats the first's row (dependent everywhere), and both took the name rigid_1_2: the
   // message spoke of a singular configuration, two columns lambda_rigid_1_2 (user trial,
