@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "models/scene_spec.hpp"
+
 namespace condyn {
 
 namespace {
@@ -116,8 +118,10 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
     }
     case FailureKind::steps_per_output:
       return "the step size stayed tiny for many steps: the model is very stiff or oscillates far "
-             "faster than the output step; a smaller output_step lets the run go on, a looser "
-             "rtol takes larger steps" +
+             "faster than the output step; a smaller output_step or a larger [solve] "
+             "max_steps_per_output (default " +
+             std::to_string(kDefaultStepsPerOutput) +
+             ", or max_steps when larger) lets the run go on, a looser rtol takes larger steps" +
              scheme_advice(scheme);
     case FailureKind::step_size_collapsed:
       return "the step size collapsed to roundoff of the time reached: the motion reaches a "

@@ -237,6 +237,7 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
   o.output_times = settings.output_times();
   o.breakpoints = model.breakpoints(settings.t_end);
   o.max_steps = settings.max_steps;
+  o.max_steps_per_output = settings.steps_per_output_budget();
   o.max_wall_seconds = settings.max_wall_time;
   return o;
 }

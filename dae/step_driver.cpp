@@ -188,7 +188,8 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
       if (++steps_since_output > options.max_steps_per_output) {
         std::ostringstream s;
         s << "took " << options.max_steps_per_output << " steps without reaching the output time "
-          << times[k] << " (at t = " << t << ")";
+          << times[k] << " (at t = " << t
+          << "; the budget of steps between two outputs, [solve] max_steps_per_output)";
         throw IntegrationError(FailureKind::steps_per_output, s.str());
       }
       if (options.max_steps > 0 && total_steps > options.max_steps) {

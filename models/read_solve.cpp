@@ -1,6 +1,7 @@
 #include "models/scene_readers.hpp"
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace condyn {
@@ -12,7 +13,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   check_keys(t, path,
              {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
               "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "newton", "redundant",
-              "max_steps", "max_wall_time", "constraints", "max_order"});
+              "max_steps", "max_wall_time", "constraints", "max_order", "max_steps_per_output"});
   solve.t_end = positive(required(t, path, "t_end"), "solve.t_end");
   // IDA tests its stop time by the product (t_stop - t) h with a first step h of at most
   // t_end / 1000: below about 1e-160 it underflows to 0 and the run is refused at t = 0 as
@@ -25,14 +26,19 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   }
   solve.output_step = positive(required(t, path, "output_step"), "solve.output_step");
   solve.output_step_line = at(*t.get("output_step"), "solve.output_step").line;
-  if (const auto* n = t.get("max_steps")) {
-    // A whole number >= 1 (1e6 is accepted: a budget is often written so).
-    const double v = number(*n, "solve.max_steps");
+  // Step budgets: whole numbers >= 1 (1e6 is accepted: a budget is often written so).
+  const auto steps = [&](const char* key) -> std::optional<long> {
+    const auto* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    const std::string key_path = join(path, key);
+    const double v = number(*n, key_path);
     if (!(v >= 1.0) || v != std::floor(v) || v > 1e18) {
-      fail(*n, "solve.max_steps", "must be a whole number of steps >= 1 (got " + fmt(v) + ")");
+      fail(*n, key_path, "must be a whole number of steps >= 1 (got " + fmt(v) + ")");
     }
-    solve.max_steps = static_cast<long>(v);
-  }
+    return static_cast<long>(v);
+  };
+  if (const auto v = steps("max_steps")) solve.max_steps = *v;
+  if (const auto v = steps("max_steps_per_output")) solve.max_steps_per_output = *v;
   if (const auto* n = t.get("max_order")) {
     const double v = number(*n, "solve.max_order");
     if (!(v >= 1.0 && v <= 5.0) || v != std::floor(v)) {

@@ -147,6 +147,11 @@ inline constexpr double kMinRtol = 1e-15;
 /// step with atol 1e-300). No model unit makes such an atol meaningful.
 inline constexpr double kMinAtol = 1e-100;
 
+/// The default budget of internal steps between two output times ([solve] max_steps_per_output):
+/// a run that crawls at tiny steps (a stiff mode it resolves, a step size near roundoff) fails
+/// with its partial result instead of running on unseen, as it would without a step budget.
+inline constexpr long kDefaultStepsPerOutput = 100'000;
+
 /// The run settings ([solve]): passed beside the Model to everything that runs it, never stored
 /// in it, so one model serves runs at many tolerances and schemes.
 struct SolveSpec {
@@ -190,7 +195,15 @@ struct SolveSpec {
   /// exhausts either fails with its partial result.
   long max_steps = 0;
   double max_wall_time = 0.0;
+  /// [solve] max_steps_per_output: internal steps allowed between two output times (0: the
+  /// default, steps_per_output_budget()).
+  long max_steps_per_output = 0;
   SourcePoint where;
+
+  /// The budget of steps between two outputs: max_steps_per_output when given, else
+  /// kDefaultStepsPerOutput, raised to max_steps when that is larger (a run given a budget of
+  /// its own is held to that budget, not to a smaller hidden one).
+  [[nodiscard]] long steps_per_output_budget() const;
 
   /// Throws std::invalid_argument naming the first key out of range (the parser's rules, for
   /// settings made or changed in code).

@@ -2,6 +2,7 @@
 // and line; callers that set them in code, such as compare's tolerance sweep and the Python
 // module, get the same rules here) and the output times they ask for.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -55,6 +56,13 @@ void SolveSpec::validate() const {
           static_cast<double>(max_steps));
   require(std::isfinite(max_wall_time) && max_wall_time >= 0.0, "max_wall_time",
           "must be a finite number >= 0 (0: no budget)", max_wall_time);
+  require(max_steps_per_output >= 0, "max_steps_per_output", "must be >= 0 (0: the default budget)",
+          static_cast<double>(max_steps_per_output));
+}
+
+long SolveSpec::steps_per_output_budget() const {
+  if (max_steps_per_output > 0) return max_steps_per_output;
+  return std::max(kDefaultStepsPerOutput, max_steps);
 }
 
 std::string SolveSpec::override_scheme(Scheme s, SourcePoint chosen_at) {

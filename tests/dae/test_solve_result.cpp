@@ -70,6 +70,9 @@ TEST_CASE("run settings are validated before a run, naming the key") {
   CHECK(refusal([](SolveSpec& s) { s.penalty_weight = 0.0; }).find("solve.penalty.weight") == 0);
   CHECK(refusal([](SolveSpec& s) { s.max_steps = -5; }).find("solve.max_steps") == 0);
   CHECK(refusal([](SolveSpec& s) { s.max_wall_time = INFINITY; }).find("solve.max_wall_time") == 0);
+  CHECK(refusal([](SolveSpec& s) {
+          s.max_steps_per_output = -1;
+        }).find("solve.max_steps_per_output") == 0);
   CHECK(refusal([](SolveSpec&) {}) == "accepted");
 }
 
@@ -131,4 +134,15 @@ TEST_CASE("the run summary prints its wall time without an exponent") {
   CHECK(wall(0.7584) == "758");
   // Four minutes: every millisecond shown (it was "2.5e+05").
   CHECK(wall(250.1234) == "250123");
+}
+
+TEST_CASE("the budget of steps between two outputs: given, default, or the run's own budget") {
+  SolveSpec s;
+  CHECK(s.steps_per_output_budget() == kDefaultStepsPerOutput);
+  s.max_steps = 500;  // below the default: the run's budget ends the run first anyway
+  CHECK(s.steps_per_output_budget() == kDefaultStepsPerOutput);
+  s.max_steps = 3 * kDefaultStepsPerOutput;  // above: no smaller hidden cap cuts in before it
+  CHECK(s.steps_per_output_budget() == 3 * kDefaultStepsPerOutput);
+  s.max_steps_per_output = 7;  // given: as given
+  CHECK(s.steps_per_output_budget() == 7);
 }

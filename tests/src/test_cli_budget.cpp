@@ -77,6 +77,25 @@ TEST_CASE("run: a step budget ends a long run with its kind, advice and partial 
   CHECK(one_row.find("\n0,") != std::string::npos);
 }
 
+TEST_CASE("run: [solve] max_steps_per_output is a budget of its own, named in the failure") {
+  const Sandbox box;
+  // GGL on the pendulum takes more than 40 steps to reach t = 5, its only output after 0.
+  box.write("p.toml", pendulum("t_end = 5.0\noutput_step = 5.0\nmax_steps_per_output = 40\n"));
+  const Result r = box.run("run p.toml --out out.csv");
+  CAPTURE(r.err);
+  CHECK(r.code == 1);
+  CHECK(contains(r.err, "(too many steps between two outputs)"));
+  CHECK(contains(r.err, "took 40 steps without reaching the output time 5"));
+  CHECK(contains(r.err, "the budget of steps between two outputs, [solve] max_steps_per_output"));
+  CHECK(contains(r.err, "a larger [solve] max_steps_per_output (default 100000"));
+  CHECK(contains(r.err, "out.partial.csv"));
+  // A budget that suffices lets the same run through.
+  box.write("p.toml", pendulum("t_end = 5.0\noutput_step = 5.0\nmax_steps_per_output = 1e6\n"));
+  const Result ok = box.run("run p.toml --out out.csv");
+  CAPTURE(ok.err);
+  CHECK(ok.code == 0);
+}
+
 TEST_CASE("run: a wall-time budget ends the run as a failure with its kind") {
   const Sandbox box;
   box.write("p.toml", pendulum("t_end = 1e5\noutput_step = 1.0\n"));
@@ -99,6 +118,11 @@ TEST_CASE("run: bad budgets are refused, naming the key or flag") {
       {"max_wall_time = -1", "solve.max_wall_time"},
       {"max_wall_time = inf", "solve.max_wall_time"},
       {"max_wall_time = nan", "solve.max_wall_time"},
+      {"max_steps_per_output = 0", "solve.max_steps_per_output"},
+      {"max_steps_per_output = -5", "solve.max_steps_per_output"},
+      {"max_steps_per_output = 2.5", "solve.max_steps_per_output"},
+      {"max_steps_per_output = 1e19", "solve.max_steps_per_output"},
+      {"max_steps_per_output = \"many\"", "solve.max_steps_per_output"},
   };
   for (const auto& bad : bad_keys) {
     // Named copies: clang 14 cannot capture structured bindings in CAPTURE's lambda.
