@@ -16,10 +16,13 @@ namespace condyn {
 namespace {
 
 /// The summary's drifts: the largest over the internal steps and the output rows, after a
-/// failure as after a whole run; and the largest displacement of the rows (`streamed_max_u` for
-/// a streamed run, whose trajectory holds no u).
-void summarize_drift(SolveResult& result, double max_dp, double max_dv, double streamed_max_u) {
+/// failure as after a whole run (`max_relative`: ConstraintDrift::relative_position's); and the
+/// largest displacement of the rows (`streamed_max_u` for a streamed run, whose trajectory holds
+/// no u).
+void summarize_drift(SolveResult& result, double max_dp, double max_dv, double max_relative,
+                     double streamed_max_u) {
   const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
+  result.summary.max_relative_drift_position = max_relative;
   result.summary.max_drift_position = std::max(max_dp, max_of(result.trajectory.drift_position));
   result.summary.max_drift_velocity = std::max(max_dv, max_of(result.trajectory.drift_velocity));
   const Eigen::MatrixXd& u = result.trajectory.u;
@@ -38,10 +41,16 @@ Observation::FullState full_state_prefix(int n) {
 void run_observed(const Model& model, const IntegratorOptions& options,
                   const std::function<RawTrajectory(const IntegratorOptions&)>& run,
                   const Observation& observe, SolveResult& result) {
-  double max_dp = 0.0, max_dv = 0.0;
+  double max_dp = 0.0, max_dv = 0.0, max_relative = 0.0;
   std::vector<StepRecord> steps;
   VelocityReversals reversals;
   ConstraintDrift drift(model);
+  // The drift relative to each row's scale, at every step seen and every output row (elimination
+  // and runs without a step log are judged at their rows).
+  const auto track_relative = [&](double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+    (void)drift(t, u, v);
+    max_relative = std::max(max_relative, drift.relative_position());
+  };
   IntegratorOptions observed = options;
   // The energy balance's integrals, over every internal step (EnergyTerms::powers at the
   // quadrature points of the loop).
@@ -75,6 +84,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
       const auto [dp, dv] = drift(t, u, v);
       max_dp = std::max(max_dp, dp);
       max_dv = std::max(max_dv, dv);
+      max_relative = std::max(max_relative, drift.relative_position());
       if (options.record_steps) steps.push_back({t, dp, dv, reversals(v)});
     };
   }
@@ -83,6 +93,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     std::vector<Eigen::VectorXd> u, v, lambda;
     for (std::size_t k = 0; k < raw.t.size(); ++k) {
       auto [uk, vk] = observe.full_state(raw.t[k], raw.y[k]);
+      track_relative(raw.t[k], uk, vk);
       lambda.push_back(row_lambda(raw.t[k], raw.y[k], raw.yp[k], uk, vk));
       u.push_back(std::move(uk));
       v.push_back(std::move(vk));
@@ -102,6 +113,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
                              const Eigen::VectorXd& integrals) {
       auto [u, v] = observe.full_state(t, y);
+      track_relative(t, u, v);
       Eigen::VectorXd lambda = row_lambda(t, y, yp, u, v);
       const TrajectoryRow row =
           (*rows)(t, std::move(u), std::move(v), std::move(lambda), integrals);
@@ -130,7 +142,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
         // last row, say) is dropped; the failure reported is the integrator's, not this one.
       }
     }
-    summarize_drift(result, max_dp, max_dv, log.max_abs_displacement());
+    summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
     if (passages) result.summary.singular_passages = passages->passages();
     return;
   }
@@ -140,7 +152,7 @@ void run_observed(const Model& model, const IntegratorOptions& options,
   } else {
     result.trajectory = assemble(raw);
   }
-  summarize_drift(result, max_dp, max_dv, log.max_abs_displacement());
+  summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
   if (passages) result.summary.singular_passages = passages->passages();
 }
 

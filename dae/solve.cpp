@@ -507,7 +507,8 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     notes = notes.empty() ? note : notes + "; " + note;
   }
   for (const auto& note :
-       {result.summary.error_test_warning(), result.summary.atol_warning(settings.atol)}) {
+       {result.summary.error_test_warning(), result.summary.atol_warning(settings.atol),
+        result.summary.drift_warning(settings.rtol, settings.atol)}) {
     if (!note || result.failure) continue;
     auto& notes = result.summary.notes;
     notes = notes.empty() ? *note : notes + "; " + *note;

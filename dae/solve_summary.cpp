@@ -112,6 +112,26 @@ std::optional<std::string> SolveSummary::atol_warning(double atol) const {
   return s.str();
 }
 
+std::optional<std::string> SolveSummary::drift_warning(double rtol, double atol) const {
+  const double allowed = kDriftMultiple * (rtol * max_abs_displacement + atol);
+  if (!(max_relative_drift_position > allowed)) return std::nullopt;
+  std::ostringstream s;
+  s.precision(3);
+  s << "warning: the constraints drifted by " << max_relative_drift_position
+    << " (the largest |phi_i| / max_j |A_ij| over the run, a length), beyond "
+    << static_cast<int>(kDriftMultiple) << " (rtol max|u| + atol) = " << allowed
+    << ": the result does not hold its constraints to the tolerance asked; ";
+  if (scheme == "penalty") {
+    s << "penalty approximates them (error about |f_con| / w): raise [solve] penalty weight, or "
+         "use ggl or projection";
+  } else if (scheme == "index1" || scheme == "index2" || scheme == "baumgarte") {
+    s << scheme << " lets the drift grow: use ggl or projection, which hold it, or a tighter rtol";
+  } else {
+    s << "tighten rtol, or compare with projection, which holds the drift at every step";
+  }
+  return s.str();
+}
+
 std::string SolveSummary::brief() const {
   std::ostringstream s;
   s.precision(3);

@@ -135,6 +135,9 @@ struct SolveSummary {
   double wall_seconds = 0.0;
   double max_drift_position = 0.0;
   double max_drift_velocity = 0.0;
+  /// max over the run and the position-level rows of |φ_i| / s_i, s_i the row's largest
+  /// coefficient at t = 0 (ConstraintDrift::relative_position): a length in the model's unit.
+  double max_relative_drift_position = 0.0;
   /// GGL only: max |μ| over the output times (μ vanishes on exact solutions); −1 otherwise.
   double max_abs_mu = -1.0;
   /// max |u| over the output rows (those before a failure included).
@@ -152,6 +155,13 @@ struct SolveSummary {
   /// test then held none of the motion (an SI oscillator peaking at 2 mm, run at atol 10, was
   /// 85 to 224 % off under every scheme, exit 0: user trial of 2026-11-28).
   [[nodiscard]] std::optional<std::string> atol_warning(double atol) const;
+  /// How far beyond the error test's own tolerance a drift may grow before it is warned of.
+  static constexpr double kDriftMultiple = 100.0;
+  /// A warning when the position drift relative to each row's scale exceeds kDriftMultiple
+  /// (rtol max|u| + atol), the displacement error the error test allows: the constraints are
+  /// then held to far less than the tolerance asked (index1's pendulum 10 % too long after
+  /// 2,000 s at rtol 1e-8, exit 0: user trial of 2026-11-28). `condyn check` fails on it.
+  [[nodiscard]] std::optional<std::string> drift_warning(double rtol, double atol) const;
   int unknowns = 0;
   long jacobian_nonzeros = 0;
   std::string termination = "not run";

@@ -195,6 +195,8 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
   d["failure"] =
       result.failure.empty() ? py::object(py::none()) : python::system_text(result.failure);
   d["checks"] = checks;
+  // A drift beyond the tolerance fails the scene whatever its checks say (docs/checks.md).
+  d["drift"] = result.drift.empty() ? py::object(py::none()) : python::system_text(result.drift);
   py::list warnings;
   for (const auto& w : result.warnings) warnings.append(python::system_text(w));
   d["warnings"] = warnings;

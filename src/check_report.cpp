@@ -112,6 +112,7 @@ void print_checked_scene(std::ostream& out, const CheckedScene& scene) {
     const CheckOutcome& o = r.outcomes[k];
     out << "  " << (o.passed ? "PASS " : "FAIL ") << case_name(o, k) << ": " << o.text << "\n";
   }
+  if (!r.drift.empty()) out << "  FAIL drift: " << r.drift << "\n";
 }
 
 void print_check_summary(std::ostream& out, const std::vector<CheckedScene>& scenes) {
@@ -123,6 +124,7 @@ void print_check_summary(std::ostream& out, const std::vector<CheckedScene>& sce
     }
     if (!s.result->failure.empty()) ++runs_failed;
     for (const auto& o : s.result->outcomes) (o.passed ? passed : failed) += 1;
+    if (!s.result->drift.empty()) ++failed;
   }
   out << "checks: " << passed << " passed, " << failed << " failed";
   if (runs_failed > 0) out << ", " << runs_failed << " run(s) failed";
@@ -174,6 +176,13 @@ std::string junit_xml(const std::vector<CheckedScene>& scenes) {
           cases << "      <system-out>" << xml_escape(o.text) << "</system-out>\n";
         }
         cases << "    </testcase>\n";
+      }
+      if (!s.result->drift.empty()) {
+        ++t;
+        ++f;
+        cases << "    <testcase classname=\"" << xml_escape(class_name(s.scene))
+              << "\" name=\"drift\" time=\"0\">\n      <failure message=\""
+              << xml_escape(s.result->drift) << "\"/>\n    </testcase>\n";
       }
     }
     tests += t;

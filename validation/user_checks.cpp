@@ -254,8 +254,9 @@ std::vector<CheckOutcome> unevaluated_outcomes(const std::vector<CheckSpec>& che
 }
 
 bool SceneCheckResult::passed() const {
-  return failure.empty() && std::all_of(outcomes.begin(), outcomes.end(),
-                                        [](const CheckOutcome& o) { return o.passed; });
+  return failure.empty() && drift.empty() &&
+         std::all_of(outcomes.begin(), outcomes.end(),
+                     [](const CheckOutcome& o) { return o.passed; });
 }
 
 SceneCheckResult run_scene_checks(const std::string& path, const SceneCheckOptions& options) {
@@ -305,6 +306,9 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
     return out;
   }
   out.outcomes = evaluator.outcomes();
+  if (const auto drift = result.summary.drift_warning(spec.solve.rtol, spec.solve.atol)) {
+    out.drift = drift->substr(drift->find(' ') + 1);  // without its "warning: "
+  }
   return out;
 }
 

@@ -79,7 +79,10 @@ struct SceneCheckResult {
   long steps = 0;
   double wall_s = 0.0;  ///< the solver's wall time
   std::string failure;  ///< the integration failure's message, empty when the run reached t_end
-  std::vector<std::string> warnings;   ///< what building the model warned of, as run prints it
+  std::vector<std::string> warnings;  ///< what building the model warned of, as run prints it
+  /// The run's drift warning (SolveSummary::drift_warning), empty when none: the constraints
+  /// were not held to the tolerance, a failed verdict of its own whatever the checks say.
+  std::string drift;
   std::vector<CheckOutcome> outcomes;  ///< empty when the run failed
   [[nodiscard]] bool passed() const;
 };
