@@ -16,6 +16,7 @@ void ModelBuilder::add_ground_motion(std::vector<double>& total) {
   const SourcePoint acceleration_at{"ground_motion.acceleration", g.where.line};
   check_time_function(g.acceleration, acceleration_at);
   const TimeFunction acceleration = acting_in_run(g.acceleration, acceleration_at);
+  report_ground_records(acceleration);
   const int n = model_.dofs();
   Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
   if (g.direction >= 0) {

@@ -12,6 +12,20 @@
 
 namespace condyn {
 
+namespace {
+
+/// The names of `dofs`: the first ten, then how many more.
+std::string first_names(const std::vector<std::string>& names, const std::vector<int>& dofs) {
+  constexpr std::size_t kShown = 10;
+  std::string s;
+  for (std::size_t k = 0; k < dofs.size() && k < kShown; ++k)
+    s += (k ? ", " : "") + names[static_cast<std::size_t>(dofs[k])];
+  if (dofs.size() > kShown) s += " ... and " + std::to_string(dofs.size() - kShown) + " more";
+  return s;
+}
+
+}  // namespace
+
 /// Accelerations are defined only when M is regular on the motions the constraints allow:
 /// [M Aᵀ; A 0] (and the elimination's Tᵀ M T) is singular exactly when some motion x has
 /// M x = 0 and A x = 0. With M positive semi-definite, a zero diagonal entry means a zero row:
@@ -45,10 +59,43 @@ void ModelBuilder::warn_given_held_values(const std::vector<bool>& held) {
   }
 }
 
+/// The one line `run` and `info` print of every DOF without mass (a zero diagonal entry of M),
+/// those in constraints and those that only their stiffness or damping holds: a mass forgotten
+/// on a DOF that its stiffness holds makes a valid model, so the run says which DOFs it treats
+/// as massless (issue 42: a roof without its mass ran silently).
+void ModelBuilder::report_massless_dofs(const std::vector<bool>& held) {
+  std::vector<int> massless;
+  long in_constraints = 0, by_stiffness = 0, by_damping = 0;
+  for (int i = 0; i < model_.dofs(); ++i) {
+    if (model_.M.coeff(i, i) != 0.0) continue;
+    massless.push_back(i);
+    if (held[static_cast<std::size_t>(i)]) {
+      // First order through damping of its own (models/massless_dofs.hpp), else algebraic.
+      ++(model_.has_damping() && model_.C.coeff(i, i) != 0.0 ? by_damping : by_stiffness);
+    } else if (model_.constraint_count() > 0 && model_.A.col(i).nonZeros() > 0) {
+      ++in_constraints;
+    }
+  }
+  if (massless.empty()) return;
+  std::string parts;
+  const auto add = [&parts](long count, const std::string& what) {
+    if (count > 0) parts += (parts.empty() ? "" : ", ") + std::to_string(count) + " " + what;
+  };
+  add(in_constraints, "in constraints");
+  add(by_stiffness, std::string(by_stiffness == 1 ? "held by its" : "held by their") +
+                        " stiffness alone (algebraic, no inertia)");
+  add(by_damping, std::string(by_damping == 1 ? "held by its" : "held by their") +
+                      " stiffness and damping alone (first order, no inertia)");
+  report_.massless_dofs = std::to_string(massless.size()) + " of " + std::to_string(model_.dofs()) +
+                          " (" + first_names(model_.dof_names, massless) + ")" +
+                          (parts.empty() ? "" : ": " + parts);
+}
+
 void ModelBuilder::check_massless_dofs() {
   const int n = model_.dofs();
   std::vector<bool> held = held_massless();
   warn_given_held_values(held);
+  report_massless_dofs(held);
   std::vector<int> massless, local(static_cast<std::size_t>(n), -1);
   for (int i = 0; i < n; ++i) {
     if (model_.M.coeff(i, i) == 0.0 && !held[static_cast<std::size_t>(i)]) {
@@ -155,12 +202,8 @@ std::vector<bool> ModelBuilder::held_massless() const {
   const SourcePoint where{truss ? "model.masses" : "model.mass", spec_.model.where.line};
   const auto named = [&](std::vector<int> list) {
     std::sort(list.begin(), list.end());
-    std::string names;
-    for (std::size_t k = 0; k < list.size() && k < 10; ++k)
-      names += (k ? ", " : "") + model_.dof_names[static_cast<std::size_t>(list[k])];
-    if (list.size() > 10) names += " ... and " + std::to_string(list.size() - 10) + " more";
-    return std::to_string(list.size()) + " DOF" + (list.size() == 1 ? " (" : "s (") + names +
-           ") ha" + (list.size() == 1 ? "s" : "ve");
+    return std::to_string(list.size()) + " DOF" + (list.size() == 1 ? " (" : "s (") +
+           first_names(model_.dof_names, list) + ") ha" + (list.size() == 1 ? "s" : "ve");
   };
   std::vector<int> all = dofs.undamped;
   all.insert(all.end(), dofs.damped.begin(), dofs.damped.end());

@@ -159,6 +159,12 @@ struct BuildReport {
   std::string memory_estimate;
   /// The Rayleigh coefficients derived from (frequency, ratio) pairs, when the scene gave pairs.
   std::string damping;
+  /// One line per table of [ground_motion] acceleration: its peak over the run and when
+  /// (models/ground_records.hpp).
+  std::vector<std::string> ground_records;
+  /// The DOFs without mass, counted and the first named, and what holds them ("3 of 12 (ux1,
+  /// uy1, u5): 2 in constraints, 1 held by its stiffness ..."); empty when every DOF has mass.
+  std::string massless_dofs;
 };
 
 /// Builds and checks the model: DOF names, geometry, matrix properties, constraint rank and

@@ -66,6 +66,8 @@ class ModelBuilder {
                         std::vector<double>& total);
   // ground_motion.cpp
   void add_ground_motion(std::vector<double>& total);
+  // ground_records.cpp
+  void report_ground_records(const TimeFunction& acceleration);
 
   // input_checks.cpp
   void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
@@ -136,6 +138,7 @@ class ModelBuilder {
 
   // mass_regularity.cpp
   void check_massless_dofs();
+  void report_massless_dofs(const std::vector<bool>& held);
   void warn_given_held_values(const std::vector<bool>& held);
   [[nodiscard]] std::vector<bool> held_massless() const;
   void check_singular_mass(const std::vector<bool>& held);

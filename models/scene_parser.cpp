@@ -30,9 +30,19 @@ SceneSpec SceneReader::read(const toml::table& root, SceneNeeds needs) const {
   SceneSpec spec;
   spec.file = file_;
   check_keys(root, "",
-             {"name", "model", "load", "ground_motion", "constraint", "constraint_block", "initial",
-              "solve", "output", "check"});
+             {"name", "units", "model", "load", "ground_motion", "constraint", "constraint_block",
+              "initial", "solve", "output", "check"});
   if (const auto* n = root.get("name")) spec.name = string(*n, "name");
+  if (const auto* n = root.get("units")) {
+    const std::string u = string(*n, "units");
+    if (u != "SI") {
+      fail(*n, "units",
+           "'" + u +
+               "' is not a unit system condyn knows: \"SI\" (metres, kilograms, seconds) is the "
+               "one it names; leave the key out for any other consistent units");
+    }
+    spec.si_units = true;
+  }
   read_model(required(root, "", "model"), spec.model);
 
   if (const auto* n = root.get("load")) read_loads(*n, spec.loads);

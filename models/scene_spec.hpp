@@ -276,6 +276,10 @@ struct CheckSpec {
 struct SceneSpec {
   std::string file;  ///< path the scene was read from (or "<embedded:NAME>")
   std::string name;
+  /// `units = "SI"` (metres, kilograms, seconds): g is then 9.80665 in the scene's units, so
+  /// ground motion peaks are also given in g and judged against it (models/ground_records.hpp).
+  /// Unset: any consistent units (the contract), g unknown.
+  bool si_units = false;
   ModelSpec model;
   std::vector<LoadSpec> loads;
   std::vector<ConstraintSpec> constraints;

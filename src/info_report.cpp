@@ -14,7 +14,6 @@
 #include "dae/model_scales.hpp"
 #include "dae/solve.hpp"
 #include "models/classification.hpp"
-#include "models/massless_dofs.hpp"
 
 namespace condyn {
 
@@ -149,24 +148,8 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
     out << "dropped redundant constraint " << d << "\n";
   if (!report.memory_estimate.empty()) out << "memory: " << report.memory_estimate << "\n";
   if (!report.damping.empty()) out << wrapped_text("damping: ", report.damping);
-  if (!model.is_nonlinear()) {
-    const HeldDofs held = held_massless_dofs(
-        model.M, model.has_damping() ? model.C : Eigen::SparseMatrix<double>(), *model.K, model.A);
-    std::vector<int> dofs = held.undamped;
-    dofs.insert(dofs.end(), held.damped.begin(), held.damped.end());
-    std::sort(dofs.begin(), dofs.end());
-    std::vector<std::string> names;
-    names.reserve(dofs.size());
-    for (int j : dofs) names.push_back(model.dof_names[static_cast<std::size_t>(j)]);
-    if (!names.empty()) {
-      out << wrapped_text("massless DOFs: ",
-                          std::to_string(names.size()) +
-                              " held by stiffness, algebraic unknowns (" +
-                              std::to_string(held.damped.size()) +
-                              " first order through damping of their own): " + short_list(names))
-          << "\n";
-    }
-  }
+  if (!report.massless_dofs.empty()) out << wrapped_text("massless DOFs: ", report.massless_dofs);
+  for (const auto& r : report.ground_records) out << wrapped_text("ground motion record: ", r);
   out << "\n";
   const auto classes = classify_constraints(model, settings.t_end);
   if (classes.empty()) {

@@ -151,6 +151,8 @@ int run(const RunArgs& args) {
   if (!report.initial_projection.empty())
     msg << "initial state: " << report.initial_projection << "\n";
   if (!report.damping.empty()) msg << "damping: " << report.damping << "\n";
+  if (!report.massless_dofs.empty()) msg << "massless DOFs: " << report.massless_dofs << "\n";
+  for (const auto& r : report.ground_records) msg << "ground motion record: " << r << "\n";
   for (const auto& w : report.warnings) std::cerr << "warning: " << args.scene << ": " << w << "\n";
   for (const auto& w : singular_passage_warnings(summary.singular_passages))
     std::cerr << "warning: " << args.scene << ": " << w << "\n";
