@@ -95,6 +95,26 @@ bool FixedPatternKlu::factor(int n, const int* outer, const int* inner, const do
   return copy_for_streamed_solve();
 }
 
+double predicted_factor_entries(const Eigen::SparseMatrix<double>& matrix) {
+  if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
+    throw std::invalid_argument("predicted_factor_entries: a square compressed matrix is expected");
+  }
+  klu_common common{};
+  klu_defaults(&common);
+  common.ordering = 0;  // AMD, whose analysis counts the factor (COLAMD's does not)
+  // KLU's interface takes non-const arrays it does not write.
+  klu_symbolic* symbolic =
+      klu_analyze(static_cast<int>(matrix.rows()), const_cast<int*>(matrix.outerIndexPtr()),
+                  const_cast<int*>(matrix.innerIndexPtr()), &common);
+  if (symbolic == nullptr) {
+    throw std::runtime_error("KLU's analysis failed (status " + std::to_string(common.status) +
+                             ")");
+  }
+  const double entries = symbolic->lnz + symbolic->unz + symbolic->nzoff;
+  klu_free_symbolic(&symbolic, &common);
+  return entries;
+}
+
 bool FixedPatternKlu::streamed() const { return impl_->streamed.has_value(); }
 
 bool FixedPatternKlu::copy_for_streamed_solve() {

@@ -45,6 +45,13 @@ struct KluSettings {
 /// afresh.
 inline constexpr KluSettings kSundialsKluSettings{1, true};
 
+/// The entries of the KLU factors L and U (with those off BTF's diagonal blocks) of a matrix of
+/// this pattern as KLU's symbolic analysis under AMD predicts them, from the factor of the pattern
+/// of A + Aᵀ: exact for a symmetric pattern when the pivots stay on the diagonal, an upper bound
+/// when they do so on an unsymmetric one. Costs an analysis (AMD) and no factorization. Throws
+/// std::runtime_error when the analysis fails; std::invalid_argument for a matrix not square.
+[[nodiscard]] double predicted_factor_entries(const Eigen::SparseMatrix<double>& matrix);
+
 class FixedPatternKlu {
  public:
   explicit FixedPatternKlu(KluSettings settings = {});

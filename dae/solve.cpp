@@ -382,14 +382,22 @@ SystemSize SystemSizer::operator()(const SolveSpec& settings) {
   refuse_inapplicable(model, scheme, settings.scheme_where);
   // The matrix IDA's Newton iterations factor: the condensed one when asked for.
   const bool condensed = settings.condensed_newton && !settings.dense_linear_solver;
+  SystemSize size;
+  size.dense = settings.dense_linear_solver;
   if (scheme == Scheme::elimination) {
     const ReducedOde ode(model, reduced(settings.slaves));
-    if (condensed) return {ode.size(), ode.newton_system()->nonzeros()};
-    return {ode.size(), ode.jacobian_pattern().nonZeros()};
+    size.unknowns = ode.size();
+    size.condensed = condensed;
+    size.reduced = true;
+    size.jacobian_nonzeros =
+        condensed ? ode.newton_system()->nonzeros() : ode.jacobian_pattern().nonZeros();
+    return size;
   }
   if (scheme == Scheme::penalty) {
     const PenaltyOde ode(*model.system, penalty_weights(model, settings));
-    return {ode.size(), ode.jacobian_pattern().nonZeros()};
+    size.unknowns = ode.size();
+    size.jacobian_nonzeros = ode.jacobian_pattern().nonZeros();
+    return size;
   }
   const MechanicalSystem* system = model.system.get();
   if (uses_mixed_treatment(model, scheme, settings)) {
@@ -400,23 +408,28 @@ SystemSize SystemSizer::operator()(const SolveSpec& settings) {
                    : std::make_shared<const EliminatedSystem>(model, treatment);
     }
     if (*mixed_) system = mixed_->get();
+    size.reduced = *mixed_ != nullptr;
   }
   if (scheme == Scheme::projection) {
     const ProjectedOde ode(*system, model.u0, !model.nonlinear, &model);
     // The matrix the Newton iterations factor: the sparse saddle point, else CVODE's dense one.
-    if (const auto newton = ode.newton_system()) {
-      return {ode.size(), newton->nonzeros()};
-    }
-    return {ode.size(), static_cast<long>(ode.size()) * ode.size()};
+    size.unknowns = ode.size();
+    const auto newton = ode.newton_system();
+    size.condensed = newton != nullptr;
+    size.dense = !size.condensed;
+    size.jacobian_nonzeros =
+        newton ? newton->nonzeros() : static_cast<long>(ode.size()) * ode.size();
+    return size;
   }
   // The Jacobian's pattern does not depend on the values of Baumgarte's gains, only on their
   // being nonzero: unit gains size it without the model's frequencies (a Lanczos run at scale).
   const double gain = scheme == Scheme::baumgarte ? 1.0 : 0.0;
   const MultiplierDae dae(*system, scheme, gain, gain, !model.nonlinear);
-  if (condensed) {
-    if (const auto newton = dae.newton_system()) return {dae.size(), newton->nonzeros()};
-  }
-  return {dae.size(), dae.jacobian_pattern().nonZeros()};
+  size.unknowns = dae.size();
+  const auto newton = condensed ? dae.newton_system() : nullptr;
+  size.condensed = newton != nullptr;
+  size.jacobian_nonzeros = newton ? newton->nonzeros() : dae.jacobian_pattern().nonZeros();
+  return size;
 }
 
 namespace {

@@ -59,7 +59,16 @@ struct ReducedSystem;  // dae/elimination.hpp
 /// What a scheme makes the integrator solve for this model.
 struct SystemSize {
   int unknowns = 0;
-  long jacobian_nonzeros = 0;
+  long jacobian_nonzeros = 0;  ///< of the matrix the Newton iterations factor
+  /// That matrix is the condensed one (positions eliminated: the projection's saddle point,
+  /// [solve] newton = "condensed"), not the integrator's Jacobian over [u; v; ...].
+  bool condensed = false;
+  /// That matrix is dense ([solve] linear_solver = "dense", the projection of a nonlinear model):
+  /// unknowns² entries, factored without KLU.
+  bool dense = false;
+  /// The system is a reduced model's (elimination, the mixed treatment): its matrices are held
+  /// beside the model's.
+  bool reduced = false;
 };
 
 /// Builds the DAE of settings.scheme (without integrating) and sizes it. Throws like solve().

@@ -253,28 +253,18 @@ void ModelBuilder::check_magnitudes() {
   }
 }
 
-/// No fixed limit on DOFs or constraints: the memory integrating will need, estimated from the
-/// nonzeros (models/memory_estimate.hpp), is stated in the report, warned about when it may not
-/// fit and refused only when even its lower bound exceeds what the machine has available.
+/// No fixed limit on DOFs or constraints: a model is refused here only when even the least any
+/// scheme holds (models/memory_estimate.hpp) exceeds what the machine has available. The estimate
+/// of the scheme a run integrates is stated by `info` and checked by `run`
+/// (dae/scheme_memory.hpp).
 void ModelBuilder::check_size() {
-  ModelSizes sizes;
-  sizes.dofs = model_.dofs();
-  sizes.constraints = model_.constraint_count();
-  sizes.nnz_mass = static_cast<double>(model_.M.nonZeros());
-  sizes.nnz_damping = static_cast<double>(model_.C.nonZeros());
-  sizes.nnz_stiffness = static_cast<double>(model_.K->nonZeros());
-  sizes.nnz_constraints = static_cast<double>(model_.A.nonZeros());
-  const MemoryEstimate estimate = integration_memory_estimate(sizes);
+  const ModelSizes sizes = model_sizes(model_);
   const std::optional<double> available = available_memory_bytes();
-  report_.memory_estimate =
-      "about " + format_bytes(estimate.bytes) + " to integrate" +
-      (available ? " (" + format_bytes(*available) + " available)" : std::string());
   if (!available) return;
-  if (const auto refusal = memory_refusal(sizes, estimate, *available)) {
+  if (const auto refusal =
+          memory_refusal(sizes, least_memory_estimate(sizes), "any scheme", *available)) {
     fail(spec_.model.where, *refusal);
   }
-  if (const auto warning = memory_warning(estimate, *available))
-    report_.warnings.push_back(*warning);
 }
 
 void ModelBuilder::check_degenerate_dofs() const {

@@ -132,7 +132,7 @@ std::optional<std::string> holding_refusal(long long rows, long long cols, doubl
     ModelSizes sizes;
     sizes.dofs = static_cast<double>(rows);
     sizes.nnz_stiffness = entries;
-    integrating = integration_memory_estimate(sizes).lower_bound;
+    integrating = least_memory_estimate(sizes).lower_bound;
   }
   const double needed = stored + integrating;
   const auto available = available_memory_bytes();

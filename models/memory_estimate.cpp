@@ -3,17 +3,23 @@
 
 #include "models/memory_estimate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+
+#include "models/model.hpp"
 
 namespace condyn {
 
 namespace {
 
 constexpr double kBytesPerNonzero = 12.0;  // a double and a 32-bit row index
-constexpr double kIdaVectors = 30.0;
+/// Resident before any model is read: the executable, its libraries and their data.
+constexpr double kProcessBytes = 7.0e6;
 constexpr double kModelCopies = 3.0;
+/// IDA's: six history arrays, error weights, the Newton iterates and work vectors.
+constexpr double kIntegratorVectors = 30.0;
 
 std::string count(double v) {
   std::ostringstream s;
@@ -22,25 +28,48 @@ std::string count(double v) {
   return s.str();
 }
 
+/// Bytes of a factor of `entries` entries, with the streamed copy when it is large enough.
+double factor_bytes(double entries) {
+  const double copies = entries >= static_cast<double>(kStreamedSolveFromEntries) ? 2.0 : 1.0;
+  return copies * kBytesPerNonzero * entries;
+}
+
 }  // namespace
 
-MemoryEstimate integration_memory_estimate(const ModelSizes& s) {
-  const double model_nonzeros = s.nnz_mass + s.nnz_damping + s.nnz_stiffness + s.nnz_constraints;
+MemoryEstimate integration_memory_estimate(const ModelSizes& m, const IntegratedSizes& s) {
+  const double model_nonzeros = m.nnz_mass + m.nnz_damping + m.nnz_stiffness + m.nnz_constraints;
+  const double copies = kModelCopies + (s.condensed ? 1.0 : 0.0) + (s.reduced ? 1.0 : 0.0);
+  const double rest = kProcessBytes + copies * kBytesPerNonzero * model_nonzeros +
+                      kIntegratorVectors * 8.0 * s.unknowns;
   MemoryEstimate e;
-  e.newton_nonzeros =
-      s.nnz_mass + s.nnz_damping + s.nnz_stiffness + 2.0 * s.dofs + 4.0 * s.nnz_constraints;
-  const double unknowns = 2.0 * s.dofs + 2.0 * s.constraints;
-  const double rest =
-      kIdaVectors * 8.0 * unknowns + kModelCopies * kBytesPerNonzero * model_nonzeros;
-  // L and U, and their copy for the solves when large enough (dae/fixed_pattern_klu.hpp).
-  const auto factors = [](double entries) {
-    return entries >= static_cast<double>(kStreamedSolveFromEntries) ? 2.0 * entries : entries;
-  };
-  e.bytes =
-      kBytesPerNonzero * (2.0 * e.newton_nonzeros + factors(kKluFillFactor * e.newton_nonzeros)) +
-      rest;
-  e.lower_bound = kBytesPerNonzero * (2.0 * e.newton_nonzeros + factors(e.newton_nonzeros)) + rest;
+  e.newton_nonzeros = s.newton_nonzeros;
+  e.factor_entries = s.factor_entries;
+  if (s.dense) {  // the matrix and its LU, in place of KLU's
+    e.bytes = e.lower_bound = rest + 2.0 * 8.0 * s.unknowns * s.unknowns;
+    return e;
+  }
+  const double newton = (kBytesPerNonzero * (s.condensed ? 2.0 : 1.0) + 4.0) * s.newton_nonzeros;
+  e.bytes = rest + newton + factor_bytes(std::max(s.factor_entries, s.newton_nonzeros));
+  e.lower_bound = rest + newton + factor_bytes(s.newton_nonzeros);
   return e;
+}
+
+ModelSizes model_sizes(const Model& model) {
+  ModelSizes sizes;
+  sizes.dofs = model.dofs();
+  sizes.constraints = model.constraint_count();
+  sizes.nnz_mass = static_cast<double>(model.M.nonZeros());
+  sizes.nnz_damping = static_cast<double>(model.C.nonZeros());
+  sizes.nnz_stiffness = static_cast<double>(model.K->nonZeros());
+  sizes.nnz_constraints = static_cast<double>(model.A.nonZeros());
+  return sizes;
+}
+
+MemoryEstimate least_memory_estimate(const ModelSizes& m) {
+  IntegratedSizes fewest;
+  fewest.unknowns = 2.0 * std::max(m.dofs - m.constraints, 0.0);
+  fewest.newton_nonzeros = fewest.factor_entries = fewest.unknowns;
+  return integration_memory_estimate(m, fewest);
 }
 
 namespace {
@@ -81,23 +110,23 @@ std::string format_bytes(double bytes) {
 }
 
 std::optional<std::string> memory_refusal(const ModelSizes& sizes, const MemoryEstimate& e,
-                                          double available) {
+                                          const std::string& what, double available) {
   if (e.lower_bound <= available) return std::nullopt;
   return count(sizes.dofs) + " DOFs and " + count(sizes.constraints) +
-         " constraints need at least " + format_bytes(e.lower_bound) +
-         " to integrate (a Newton matrix of " + count(e.newton_nonzeros) +
-         " nonzeros, its KLU factors at least as large, and the solver's vectors; about " +
-         format_bytes(e.bytes) + " with typical fill), more than the " + format_bytes(available) +
+         " constraints need at least " + format_bytes(e.lower_bound) + " to integrate under " +
+         what + " (a Newton matrix of " + count(e.newton_nonzeros) +
+         " nonzeros, its KLU factors at least as large, and the solver's vectors), more than the " +
+         format_bytes(available) +
          " this machine has available (MemAvailable in /proc/meminfo, with what condyn holds "
-         "already): reduce the model or run "
-         "it on a machine with more memory";
+         "already): reduce the model or run it on a machine with more memory";
 }
 
-std::optional<std::string> memory_warning(const MemoryEstimate& e, double available) {
+std::optional<std::string> memory_warning(const MemoryEstimate& e, const std::string& what,
+                                          double available) {
   if (e.bytes <= available) return std::nullopt;
-  return "integrating needs about " + format_bytes(e.bytes) + " (at least " +
-         format_bytes(e.lower_bound) + "; KLU's fill taken as " + count(kKluFillFactor) +
-         " times the Newton matrix), more than the " + format_bytes(available) +
+  return "integrating under " + what + " needs about " + format_bytes(e.bytes) + " (at least " +
+         format_bytes(e.lower_bound) + "; KLU's factors predicted at " + count(e.factor_entries) +
+         " entries), more than the " + format_bytes(available) +
          " available now: the run may fail for lack of memory";
 }
 

@@ -154,9 +154,6 @@ struct BuildReport {
   std::vector<std::string> warnings;
   /// What [solve] redundant = "drop" removed, one entry per constraint (empty when nothing).
   std::vector<std::string> dropped_constraints;
-  /// The memory integrating is expected to need, and the machine's available memory
-  /// ("about 12.3 MB to integrate (3.1 GB available)"); models/memory_estimate.hpp.
-  std::string memory_estimate;
   /// The Rayleigh coefficients derived from (frequency, ratio) pairs, when the scene gave pairs.
   std::string damping;
   /// One line per table of [ground_motion] acceleration: its peak over the run and when

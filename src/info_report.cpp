@@ -12,8 +12,10 @@
 #include "dae/constraint_treatment.hpp"
 #include "dae/elimination.hpp"
 #include "dae/model_scales.hpp"
+#include "dae/scheme_memory.hpp"
 #include "dae/solve.hpp"
 #include "models/classification.hpp"
+#include "models/number_cell.hpp"
 
 namespace condyn {
 
@@ -134,6 +136,18 @@ std::string short_list(const std::vector<std::string>& names) {
   return s;
 }
 
+/// The selected scheme's memory estimate against the machine's available memory.
+void print_memory(std::ostream& out, const std::optional<MemoryEstimate>& selected) {
+  if (!selected) return;
+  const std::optional<double> available = available_memory_bytes();
+  out << wrapped_text(
+      "memory: ", "about " + format_bytes(selected->bytes) + " to integrate under the selected " +
+                      "scheme (at least " + format_bytes(selected->lower_bound) +
+                      "; KLU's factors predicted at " + shortest_number(selected->factor_entries) +
+                      " entries)" +
+                      (available ? ", " + format_bytes(*available) + " available" : std::string()));
+}
+
 }  // namespace
 
 void print_info(std::ostream& out, const Model& model, const BuildReport& report,
@@ -146,7 +160,6 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   for (const auto& w : report.warnings) out << wrapped_text("warning: ", w);
   for (const auto& d : report.dropped_constraints)
     out << "dropped redundant constraint " << d << "\n";
-  if (!report.memory_estimate.empty()) out << "memory: " << report.memory_estimate << "\n";
   if (!report.damping.empty()) out << wrapped_text("damping: ", report.damping);
   if (!report.massless_dofs.empty()) out << wrapped_text("massless DOFs: ", report.massless_dofs);
   for (const auto& r : report.ground_records) out << wrapped_text("ground motion record: ", r);
@@ -270,7 +283,10 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model, settings).rule);
   out << "\nsystem each scheme integrates:\n";
   out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
-      << "Jacobian nonzeros\n";
+      << std::setw(19) << "Jacobian nonzeros"
+      << "memory\n";
+  SchemeMemory scheme_memory(model);
+  std::optional<MemoryEstimate> selected;
   // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
   for (Scheme s : kSchemes) {
     for (const bool mixed : {false, true}) {
@@ -289,7 +305,10 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         }
         const SystemSize size =
             s == Scheme::elimination && elimination_size ? *elimination_size : sizer(as_scheme);
-        out << std::setw(10) << size.unknowns << size.jacobian_nonzeros << marker << "\n";
+        const MemoryEstimate estimate = scheme_memory(size);
+        if (*marker != '\0') selected = estimate;
+        out << std::setw(10) << size.unknowns << std::setw(19) << size.jacobian_nonzeros
+            << format_bytes(estimate.bytes) << marker << "\n";
       } catch (const std::exception& e) {
         // Out of memory while building it says nothing of the scheme's applicability.
         const bool memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
@@ -305,6 +324,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
       }
     }
   }
+  print_memory(out, selected);
 }
 
 }  // namespace condyn

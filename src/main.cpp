@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "dae/ida_integrator.hpp"
+#include "dae/scheme_memory.hpp"
 #include "dae/singular_passages.hpp"
 #include "dae/solve.hpp"
 #include "models/scene_parser.hpp"
@@ -102,6 +103,10 @@ int run(const RunArgs& args) {
   // [[check]] tables are checked as `condyn check` checks them (their reference files already
   // are, when read), though run does not evaluate them: a bad one is bad input here too.
   if (!spec.checks.empty()) (void)CheckEvaluator(model, spec.checks, args.scene);
+  // The chosen scheme's memory against the machine's: refused when even its lower bound cannot
+  // fit, warned about now (before a run that may be killed) when its estimate cannot.
+  if (const auto warning = check_run_memory(model, spec.solve))
+    std::cerr << "warning: " << args.scene << ": " << *warning << "\n";
   release_model_input(spec);
   // The scene's parse tree and its copy of the model are freed in the middle of the heap, where
   // glibc keeps their pages: on the 10³-DOF inline lattice the heap stayed 2.36 MB resident to the

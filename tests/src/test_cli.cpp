@@ -169,6 +169,10 @@ TEST_CASE("info classifies constraints and sizes the model" * doctest::test_suit
   CHECK(r.out.find("system each scheme integrates") != std::string::npos);
   CHECK(r.out.find("ggl") != std::string::npos);
   CHECK(r.out.find("<- selected") != std::string::npos);
+  // The memory each scheme needs, in the table, and the selected scheme's after it.
+  CHECK(r.out.find("unknowns  Jacobian nonzeros  memory\n") != std::string::npos);
+  CHECK(r.out.find("\nmemory: about ") != std::string::npos);
+  CHECK(r.out.find(" to integrate under the selected scheme (at least ") != std::string::npos);
 }
 
 TEST_CASE("info marks a chosen scheme that does not apply on the first line of its reason") {
