@@ -146,7 +146,22 @@ def fmt(x, spec):
 
 COLUMNS = ["n", "m", "variant", "scheme", "status", "steps", "jacobian_evals", "residual_evals",
            "solver_s", "solver_cpu_s", "process_s", "process_cpu_s", "peak_mb", "solver_ms_per_step",
-           "process_ms_per_step", "ratio_solver", "ratio_process", "ratio_process_cpu", "ratio_peak"]
+           "process_ms_per_step", "ratio_solver", "ratio_process", "ratio_process_cpu", "ratio_peak",
+           "estimate_mb", "ratio_estimate"]
+
+ESTIMATE_ROW = re.compile(r"^  (\S+)\s+\d+\s+\d+\s+([0-9.]+) (B|kB|MB|GB|TB)", re.M)
+UNITS = {"B": 1.0, "kB": 1e3, "MB": 1e6, "GB": 1e9, "TB": 1e12}
+
+
+def memory_estimates(condyn, scene, timeout):
+    """Each pure scheme's memory estimate in MB of 2^20 bytes (as peak_mb), from `condyn info`'s
+    table of the systems each scheme integrates; {} when info fails."""
+    try:
+        out = subprocess.run([condyn, "info", scene], capture_output=True, text=True,
+                             timeout=timeout).stdout
+    except subprocess.TimeoutExpired:
+        return {}
+    return {m[1]: float(m[2]) * UNITS[m[3]] / 2.0**20 for m in ESTIMATE_ROW.finditer(out)}
 
 
 def with_ratios(row, bare):
@@ -246,6 +261,7 @@ def main(argv=None):
         if info["inline"] and info["n"] <= INLINE_MAX:
             variants.append(("inline", os.path.join(folder, "inline.toml")))
         for variant, scene in variants:
+            estimate = memory_estimates(args.condyn, scene, args.timeout)
             for scheme in args.schemes:
                 runs = []
                 for _ in range(repeat):
@@ -255,6 +271,9 @@ def main(argv=None):
                 r = median_row(runs)
                 if variant == "mtx" and r["status"] != "ok":
                     r["status"] = "failed: " + r["status"][8:]
+                if r["status"] == "ok" and scheme in estimate:
+                    r["estimate_mb"] = estimate[scheme]
+                    r["ratio_estimate"] = round(estimate[scheme] / r["peak_mb"], 2)
                 print(f"   {variant} {scheme}: {r}", flush=True)
                 rows.append(with_ratios(dict(base, variant=variant, scheme=scheme, **r), bare))
 
@@ -277,6 +296,12 @@ def main(argv=None):
               f'{r["jacobian_evals"]:.0f} | {r["solver_ms_per_step"]} | {r["process_ms_per_step"]} | '
               f'{r["peak_mb"]:.1f} | {r["ratio_solver"]} | {r["ratio_process"]} | '
               f'{r["ratio_process_cpu"]} | {r["ratio_peak"]} |')
+    print("\nMemory estimate (`condyn info`, the scheme's row) against the run's peak:\n\n"
+          "| N | run | scheme | estimate MB | peak MB | estimate / peak |\n|---|---|---|---|---|---|")
+    for r in rows:
+        if r["status"] == "ok" and "estimate_mb" in r:
+            print(f'| {r["n"]} | {r["variant"]} | {r["scheme"]} | {r["estimate_mb"]:.1f} | '
+                  f'{r["peak_mb"]:.1f} | {r["ratio_estimate"]} |')
     print("\nFitted cost exponent (solver time per step ~ N^k, least squares over the sizes run):")
     series = {}
     for r in rows:
