@@ -272,11 +272,9 @@ TEST_CASE("redundant and conflicting constraints are named") {
               "has no nonzero coefficient");
 }
 
-TEST_CASE("a nonlinear set dependent at the start is a singular configuration, not a conflict") {
-  // A pendulum driven along x from the horizontal: the rod's row and the drive are parallel at
-  // t = 0 only (x = 1 − t²/2, y = −t √(1 − t²/4) is a motion), and the set was refused as
-  // "conflicting: no motion satisfies it" (user trial of 2026-11-28).
-  const std::string msg = error_of(R"([model]
+/// A pendulum driven along x from the horizontal: the rod's row and the drive are parallel at
+/// t = 0 only (x = 1 − t²/2, y = −t √(1 − t²/4) is a motion). Its [solve] table is last.
+const std::string kDrivenPendulum = R"([model]
 type = "truss2d"
 nodes = [[0.0, 0.0], [1.0, 0.0]]
 masses = [0.0, 1.0]
@@ -291,7 +289,13 @@ velocity = { uy2 = -1.0 }
 [solve]
 t_end = 1.0
 output_step = 0.1
-)");
+)";
+
+TEST_CASE("a nonlinear set dependent at the start is a singular configuration, not a conflict") {
+  // A pendulum driven along x from the horizontal: the rod's row and the drive are parallel at
+  // t = 0 only (x = 1 − t²/2, y = −t √(1 − t²/4) is a motion), and the set was refused as
+  // "conflicting: no motion satisfies it" (user trial of 2026-11-28).
+  const std::string msg = error_of(kDrivenPendulum);
   CAPTURE(msg);
   CHECK(msg.find("are linearly dependent at the initial configuration") != std::string::npos);
   CHECK(msg.find("'rigid_1_2' is nonlinear, so this is a singular configuration of the set") !=
@@ -304,23 +308,7 @@ output_step = 0.1
 TEST_CASE("redundant = drop on dependent nonlinear rows says drop does not apply to them yet") {
   // The same driven pendulum asking for drop: it was handed the singular-configuration text
   // alone, as if drop had been considered (issue 42, item 17). Drop removes linear rows only.
-  const std::string msg = error_of(R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-[[constraint]]
-name = "drive"
-terms = { ux2 = 1.0 }
-value = { type = "polynomial", coefficients = [0.0, 0.0, -0.5] }
-[initial]
-velocity = { uy2 = -1.0 }
-[solve]
-t_end = 1.0
-output_step = 0.1
-redundant = "drop"
-)");
+  const std::string msg = error_of(kDrivenPendulum + "redundant = \"drop\"\n");
   CAPTURE(msg);
   CHECK(msg.find("'rigid_1_2' is nonlinear, and [solve] redundant = \"drop\" does not apply to "
                  "nonlinear rows yet (it drops linear rows only)") != std::string::npos);
