@@ -104,7 +104,8 @@ double ConstraintConditioning::forbidden_share(const Eigen::VectorXd& v) const {
 
 void SingularPassageMonitor::step(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
   const double sigma = conditioning_(t, u);
-  const bool near = sigma < SingularPassage::kNearSingular;
+  best_ = std::max(best_, sigma);
+  const bool near = sigma < SingularPassage::kNearSingular * best_;
   if (near && !inside_) {
     inside_ = true;
     before_t_ = outside_t_;
@@ -183,7 +184,7 @@ std::string singular_passage_note(const std::vector<SingularPassage>& passages,
   s.precision(3);
   s << "passed " << passages.size() << " near-singular configuration"
     << (passages.size() == 1 ? "" : "s") << " (rows' conditioning below "
-    << SingularPassage::kNearSingular << "; reactions there unreliable):";
+    << SingularPassage::kNearSingular << " of the run's best; reactions there unreliable):";
   // The first few in full; a run around a rotating mechanism passes one every half turn.
   constexpr std::size_t kListed = 5;
   for (std::size_t k = 0; k < std::min(passages.size(), kListed); ++k) {

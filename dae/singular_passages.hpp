@@ -69,6 +69,7 @@ class SingularPassageMonitor {
 
  private:
   ConstraintConditioning conditioning_;
+  double best_ = 0.0;  ///< the largest conditioning of the steps so far
   std::vector<SingularPassage> passages_;
   bool inside_ = false;
   /// The velocity the motion before the passage would have at t: the last two steps outside it
@@ -98,8 +99,8 @@ class SingularPassageMonitor {
 [[nodiscard]] std::string singular_failure_advice(const std::vector<SingularPassage>& passages);
 
 /// For each output time, whether it lies inside a passage (between its first and last step
-/// below kNearSingular, both included): the rows whose reactions and multipliers are not to be
-/// trusted.
+/// below kNearSingular times the best before it, both included): the rows whose reactions and
+/// multipliers are not to be trusted.
 [[nodiscard]] std::vector<bool> near_singular_rows(const std::vector<SingularPassage>& passages,
                                                    const std::vector<double>& row_times);
 

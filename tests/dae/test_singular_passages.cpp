@@ -11,6 +11,7 @@
 #include <string>
 
 #include "dae/singular_passages.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 namespace {
@@ -218,4 +219,22 @@ TEST_CASE("a linear model has no singular passages to report") {
   const auto result = condyn::test::solved(s.model, s.spec.solve);
   CHECK(result.summary.singular_passages.empty());
   CHECK(result.summary.notes.find("near-singular") == std::string::npos);
+}
+
+TEST_CASE("a long chain, ill-conditioned by its length alone, passes no singular configuration") {
+  // 300 links in a line at 30°: σ about π/600 in any configuration near it (5e-3, below
+  // kNearSingular itself), with no change of rank anywhere; the passage threshold is relative to
+  // the run's best conditioning, so nothing is reported (the absolute one reported a passage
+  // "ended inside" for every chain of more than some 30 links).
+  const auto s = condyn::test::built(condyn::parse_scene_text(
+      condyn::test::replace(condyn::test::hanging_chain_scene(300),
+                            "t_end = 1.0\noutput_step = 0.1", "t_end = 0.05\noutput_step = 0.05"),
+      "chain.toml"));
+  condyn::ConstraintConditioning conditioning(*s.model.system);
+  const double sigma0 = conditioning(0.0, Eigen::VectorXd::Zero(s.model.dofs()));
+  CHECK(sigma0 < SingularPassage::kNearSingular);
+  CHECK(sigma0 > 0.5 * std::numbers::pi / 600.0);
+  const auto result = condyn::test::solved(s.model, s.spec.solve);
+  CHECK(result.summary.singular_passages.empty());
+  CHECK(condyn::singular_passage_warnings(result.summary.singular_passages).empty());
 }
