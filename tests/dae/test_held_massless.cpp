@@ -228,7 +228,8 @@ TEST_CASE("values [initial] gives a massless DOF that it does not keep are warne
             .report.warnings.empty());
 }
 
-TEST_CASE("every scheme accepts massless DOFs held by stiffness; refusals name only usable ones") {
+TEST_CASE(
+    "every scheme accepts massless DOFs held by stiffness, and refusals name only usable ones") {
   const auto s = test::built(parse_scene_text(kChain, "chain.toml"));
   for (Scheme scheme :
        {Scheme::index1, Scheme::ggl, Scheme::elimination, Scheme::penalty, Scheme::projection})

@@ -42,7 +42,7 @@ bool no_hidden_files(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("run --out: the extension names the format, in any case; no extension is CSV") {
+TEST_CASE("run --out: the extension names the format, in any case, and no extension is CSV") {
   const Sandbox box;
   box.write("s.toml", kScene);
   for (const std::string name : {"r.h5", "r.hdf5", "r.hdf", "R.HDF", "r.H5"}) {

@@ -48,7 +48,7 @@ TEST_CASE("run names the parallelogram's passages near its collinear configurati
   CHECK(has(left.out, "row t = 3, left its branch)"));
 }
 
-TEST_CASE("run warns when index2 leaves the N-four-bar's branch; projection does not") {
+TEST_CASE("run warns when index2 leaves the N-four-bar's branch, not when projection stays on it") {
   condyn::test::Sandbox box;
   box.write("n.toml", short_n_four_bar());
   const auto left = box.run("run n.toml --scheme index2 --out n.csv");
