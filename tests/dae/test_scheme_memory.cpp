@@ -47,7 +47,8 @@ TEST_CASE("the memory estimate is per scheme, from the sizes each integrates") {
   CHECK(condensed > 0.0);
   for (const auto& [s, x] : by) {
     if (s == Scheme::projection) continue;
-    CAPTURE(std::string(to_string(s)));
+    const std::string name = to_string(s);  // CAPTURE's lambda cannot name a binding (clang 14)
+    CAPTURE(name);
     CHECK_FALSE(x.size.condensed);
     CHECK(x.estimate.factor_entries == static_cast<double>(x.size.jacobian_nonzeros) + condensed);
   }
@@ -59,7 +60,8 @@ TEST_CASE("the memory estimate is per scheme, from the sizes each integrates") {
       if (x.size.condensed != y.size.condensed || x.size.reduced != y.size.reduced) continue;
       if (x.size.unknowns < y.size.unknowns || x.size.jacobian_nonzeros < y.size.jacobian_nonzeros)
         continue;
-      CAPTURE(std::string(to_string(a)) + " against " + to_string(b));
+      const std::string pair = std::string(to_string(a)) + " against " + to_string(b);
+      CAPTURE(pair);
       const bool larger =
           x.size.unknowns > y.size.unknowns || x.size.jacobian_nonzeros > y.size.jacobian_nonzeros;
       CHECK(x.estimate.bytes >= y.estimate.bytes);

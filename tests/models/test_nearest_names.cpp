@@ -80,10 +80,11 @@ TEST_CASE("nearest_names: the names a typo meant, nearest first, or none") {
 
 TEST_CASE("a check's unknown column: only the nearest names are suggested") {
   const std::string scene = frame_scene();
-  for (const auto& [quantity, said] :
+  for (const auto& [name, said] :
        {std::pair<std::string, std::string>{"uy_12", "; the nearest: uy12"},
         {"vel_uy_12", "; the nearest: vel_uy12"},
         {"rotation", "; no column's name is near it"}}) {
+    const std::string quantity = name;  // CAPTURE's lambda cannot name a binding (clang 14)
     CAPTURE(quantity);
     const condyn::SceneSpec spec = condyn::parse_scene_text(
         scene + "[[check]]\nquantity = \"" + quantity + "\"\nmax_abs = 1.0\n", "f.toml");
