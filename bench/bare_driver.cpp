@@ -15,7 +15,8 @@
 // integrates nothing: it fills the same Newton matrix at cj = 1000, factors it with KLU as
 // SUNLinSol_KLU does (COLAMD) in 64-bit indices (klu_l_*, what Debian's SUNDIALS calls) and in
 // 32-bit ones (klu_*, what condyn calls), and prints the factors' entries and the median time of
-// SOLVES triangular solves of each (why condyn has its own KLU solver, dae/klu_linear_solver.hpp).
+// SOLVES triangular solves of each (why condyn has its own KLU solver,
+// dae/integrators/klu_linear_solver.hpp).
 #include <ida/ida.h>
 #include <klu.h>
 #include <nvector/nvector_serial.h>

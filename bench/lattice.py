@@ -194,7 +194,7 @@ def main(argv=None):
     scene = matrix_scene(args, n, watch)
     with open(path("lattice.toml"), "w") as fh:
         fh.write(scene)
-    # The same scene with IDA's Newton systems condensed (dae/condensed_newton.hpp).
+    # The same scene with IDA's Newton systems condensed (dae/linsolve/condensed_newton.hpp).
     with open(path("condensed.toml"), "w") as fh:
         fh.write(scene.replace("[solve]\n", '[solve]\nnewton = "condensed"\n', 1))
     inline = n <= args.inline_max and A.shape[0] <= args.inline_max

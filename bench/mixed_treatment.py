@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """What the mixed constraint treatment saves (issue 12, item 7): each scene under index1 and GGL,
 with a multiplier for every row ([solve] constraints = "multipliers") and mixed (the cheap linear
-rows eliminated, dae/constraint_treatment.hpp), and the lattice of bench/lattice.py under the same
+rows eliminated, dae/formulations/constraint_treatment.hpp), and the lattice of bench/lattice.py under the same
 four runs and elimination.
 
 For every run: unknowns, steps, Jacobian evaluations, median wall time in the solver over --repeat

@@ -1,9 +1,10 @@
 #pragma once
-/// `condyn compare`'s sweep (validation/compare.hpp) → one Python dict per (scheme, rtol) run.
+/// `condyn compare`'s sweep (validation/studies/compare.hpp) → one Python dict per (scheme, rtol)
+/// run.
 
 #include <pybind11/pybind11.h>
 
-#include "validation/compare.hpp"
+#include "validation/studies/compare.hpp"
 
 namespace condyn::python {
 

@@ -13,16 +13,16 @@
 #include <utility>
 #include <vector>
 
-#include "dae/interrupt.hpp"
-#include "dae/solve.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
-#include "models/toml_access.hpp"
+#include "dae/interface/interrupt.hpp"
+#include "dae/run/solve.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
+#include "models/scene/toml_access.hpp"
 #include "python/compare_records.hpp"
 #include "python/run_result.hpp"
 #include "python/scene_from_python.hpp"
-#include "validation/compare.hpp"
-#include "validation/user_checks.hpp"
+#include "validation/studies/compare.hpp"
+#include "validation/studies/user_checks.hpp"
 
 namespace py = pybind11;
 using namespace condyn;
@@ -30,8 +30,8 @@ using namespace condyn;
 namespace {
 
 /// Runs `body` without the GIL, so threads run scenes side by side. Ctrl-C stops it: the step
-/// driver polls Python's signal handlers (dae/interrupt.hpp), and the exception the handler set
-/// (KeyboardInterrupt) is raised here, once the GIL is back.
+/// driver polls Python's signal handlers (dae/interface/interrupt.hpp), and the exception the
+/// handler set (KeyboardInterrupt) is raised here, once the GIL is back.
 template <class Body>
 void without_gil(const Body& body) {
   try {

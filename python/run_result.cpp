@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "dae/singular_passages.hpp"
-#include "dae/solve.hpp"
+#include "dae/run/singular_passages.hpp"
+#include "dae/run/solve.hpp"
 
 namespace py = pybind11;
 
@@ -49,7 +49,8 @@ py::object vector_view(const Eigen::VectorXd& x, const py::object& owner) {
   return read_only_view(x.data(), x.size(), owner);
 }
 
-/// The run's passages near a singular configuration (dae/singular_passage.hpp), one dict each.
+/// The run's passages near a singular configuration (dae/interface/singular_passage.hpp), one dict
+/// each.
 py::list passage_list(const std::vector<SingularPassage>& passages) {
   py::list out;
   for (const SingularPassage& p : passages) {

@@ -5,9 +5,9 @@
 
 #include <pybind11/pybind11.h>
 
-#include "dae/solve_result.hpp"
-#include "models/model.hpp"
-#include "models/scene_spec.hpp"
+#include "dae/run/solve_result.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_spec.hpp"
 
 namespace condyn::python {
 

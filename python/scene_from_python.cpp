@@ -13,9 +13,9 @@
 #include <variant>
 #include <vector>
 
-#include "models/matrix_market.hpp"
-#include "models/scene_parser.hpp"
-#include "models/scene_table.hpp"
+#include "models/scene/matrix_market.hpp"
+#include "models/scene/scene_parser.hpp"
+#include "models/scene/scene_table.hpp"
 
 namespace py = pybind11;
 
@@ -101,8 +101,8 @@ std::vector<long long> indices(const py::handle& data) {
 }
 
 /// A matrix's size refused before anything of it is held, by the checks a file's size line gets
-/// (models/matrix_market.hpp): a scipy.sparse matrix of 10⁸ x 10⁸ with 3 entries was held (and
-/// its 10⁸ DOFs named) to 5.4 GB before the scene was refused for another reason.
+/// (models/scene/matrix_market.hpp): a scipy.sparse matrix of 10⁸ x 10⁸ with 3 entries was held
+/// (and its 10⁸ DOFs named) to 5.4 GB before the scene was refused for another reason.
 void check_size(long long rows, long long cols, double entries, bool rows_are_dofs,
                 const std::string& path) {
   if (rows < 1 || cols < 1) {

@@ -1,13 +1,13 @@
 #pragma once
 /// A Python scene (a path, or a dict with the TOML's structure) → SceneSpec, through the same
-/// parser as a file (models/scene_table.hpp). Needs the GIL.
+/// parser as a file (models/scene/scene_table.hpp). Needs the GIL.
 
 #include <pybind11/pybind11.h>
 
 #include <string>
 
-#include "models/scene_needs.hpp"
-#include "models/scene_spec.hpp"
+#include "models/scene/scene_needs.hpp"
+#include "models/scene/scene_spec.hpp"
 
 namespace condyn::python {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "dae/dae_problem.hpp"
+#include "dae/interface/dae_problem.hpp"
 
 namespace condyn::test {
 

@@ -1,6 +1,7 @@
 #pragma once
-// Every scheme of a list against the exact modal solution (validation/exact_solution.hpp): the
-// validation scenes under ground motion compare runs this one way.
+// Every scheme of a list against the exact modal solution
+// (validation/references/exact_solution.hpp): the validation scenes under ground motion compare
+// runs this one way.
 
 #include <doctest/doctest.h>
 
@@ -8,7 +9,7 @@
 #include <string>
 
 #include "tests/solve_helpers.hpp"
-#include "validation/exact_solution.hpp"
+#include "validation/references/exact_solution.hpp"
 
 namespace condyn::test {
 

@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "validation/modal_exact.hpp"
+#include "validation/references/modal_exact.hpp"
 
 namespace condyn::test::modal {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <utility>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 
 namespace condyn::test {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "models/mechanical_system.hpp"
+#include "models/core/mechanical_system.hpp"
 
 namespace condyn::test {
 

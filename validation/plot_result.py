@@ -36,7 +36,7 @@ DISTINCT = 0.25
 STILL = 1e-12
 
 
-# Every energy column condyn writes (kEnergyColumns in models/scene_spec.hpp): matched by name,
+# Every energy column condyn writes (kEnergyColumns in models/scene/scene_spec.hpp): matched by name,
 # not by prefix, since a DOF may be named energy_top or work_1 (it is then a displacement).
 ENERGY_NAMES = {c for c, _ in ENERGY_TERMS} | {"energy_error"}
 DRIFT_NAMES = {"drift_position", "drift_velocity"}
@@ -344,7 +344,7 @@ def too_large(np, columns, chosen):
 def read_result(np, path, dofs_flag):
     """Everything plot needs from the result, or BadInput naming the file and the problem."""
     try:
-        # HDF5 under the names run writes it (src/output_format.hpp), else CSV.
+        # HDF5 under the names run writes it (src/output/output_format.hpp), else CSV.
         hdf5 = path.lower().endswith((".h5", ".hdf5", ".hdf"))
         columns, dofs, relative = read_h5(np, path) if hdf5 else read_csv(np, path)
     except OSError as e:  # a folder, no permission, a read error

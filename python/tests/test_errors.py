@@ -239,7 +239,7 @@ def test_a_dict_scenes_inconsistent_start_is_blamed_on_initial():
 
 
 # A model of this many DOFs cannot be integrated in 24 GB or any machine's memory near it: IDA's
-# vectors alone are 30 of 2n doubles, 48 GB (models/memory_estimate.hpp's lower bound).
+# vectors alone are 30 of 2n doubles, 48 GB (models/core/memory_estimate.hpp's lower bound).
 HUGE = 10**8
 
 # Each call runs in a child limited to 4 GB of address space: were the check lost, the model's

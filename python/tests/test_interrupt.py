@@ -1,5 +1,5 @@
 """Ctrl-C stops a run, a compare and a check within a fraction of a second: the step driver asks
-Python's signal handlers every 0.1 s (dae/interrupt.hpp), and KeyboardInterrupt is raised from
+Python's signal handlers every 0.1 s (dae/interface/interrupt.hpp), and KeyboardInterrupt is raised from
 the call. Before, the signal waited for the whole call to end."""
 
 import os

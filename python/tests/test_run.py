@@ -75,7 +75,7 @@ def test_every_string_hdf5_writes_is_variable_length_utf8(cli, tmp_path):
     streamed = tmp_path / "streamed.h5"
     subprocess.run([str(cli), "run", str(scene), "--scheme", "ggl", "--out", str(streamed)],
                    check=True, capture_output=True)
-    # Into a FIFO the result is written whole once the run ends (src/hdf5_output.cpp).
+    # Into a FIFO the result is written whole once the run ends (src/output/hdf5_output.cpp).
     fifo = tmp_path / "whole.h5"
     os.mkfifo(fifo)
     writer = subprocess.Popen([str(cli), "run", str(scene), "--scheme", "ggl", "--out",

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
@@ -106,8 +106,8 @@ TEST_CASE("accelerations satisfy M a + C v + K u = f + f_con at every row, under
     REQUIRE(traj.acceleration.cols() == static_cast<Eigen::Index>(traj.t.size()));
     CHECK(equation_residual(s.model, traj) <= 1e-12);
     // The tie holds a at 0: its acceleration vanishes to roundoff, as every multiplier scheme's
-    // rows take λ from acceleration level (dae/row_multipliers.hpp; before, index2's and index3's
-    // own λ left it at 1e-3 of b's); penalty's spring lets a move.
+    // rows take λ from acceleration level (dae/formulations/row_multipliers.hpp; before, index2's
+    // and index3's own λ left it at 1e-3 of b's); penalty's spring lets a move.
     const std::string scheme = c.scheme;
     if (scheme != "penalty") {
       const double scale = traj.acceleration.row(1).cwiseAbs().maxCoeff();

@@ -1,5 +1,5 @@
-// Reverse Cuthill–McKee and the factor entry count (dae/band_ordering.hpp), and KLU keeping that
-// ordering only where its factor is no larger (dae/fixed_pattern_klu.hpp).
+// Reverse Cuthill–McKee and the factor entry count (dae/linsolve/band_ordering.hpp), and KLU
+// keeping that ordering only where its factor is no larger (dae/linsolve/fixed_pattern_klu.hpp).
 
 #include <doctest/doctest.h>
 
@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "dae/band_ordering.hpp"
-#include "dae/fixed_pattern_klu.hpp"
+#include "dae/linsolve/band_ordering.hpp"
+#include "dae/linsolve/fixed_pattern_klu.hpp"
 
 using namespace condyn;
 

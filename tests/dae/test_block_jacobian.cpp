@@ -1,4 +1,4 @@
-// The fixed Jacobian pattern built from declared blocks (dae/block_jacobian.hpp).
+// The fixed Jacobian pattern built from declared blocks (dae/linsolve/block_jacobian.hpp).
 
 #include <doctest/doctest.h>
 
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "dae/block_jacobian.hpp"
+#include "dae/linsolve/block_jacobian.hpp"
 
 using namespace condyn;
 

@@ -1,5 +1,6 @@
 // IDA's index1 and GGL Newton systems of a linear model solved condensed to [u; λ (; μ)]
-// (dae/condensed_newton.hpp) against a sparse LU of the full Jacobian J = ∂F/∂y + cj ∂F/∂y'.
+// (dae/linsolve/condensed_newton.hpp) against a sparse LU of the full Jacobian J = ∂F/∂y + cj
+// ∂F/∂y'.
 
 #include <doctest/doctest.h>
 
@@ -7,9 +8,9 @@
 #include <cmath>
 #include <string>
 
-#include "dae/fixed_pattern_klu.hpp"
-#include "dae/multiplier_dae.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/multiplier_dae.hpp"
+#include "dae/linsolve/fixed_pattern_klu.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"
 

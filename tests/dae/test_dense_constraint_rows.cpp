@@ -1,6 +1,6 @@
 // A constraint over many DOFs (a floor's average drift held at zero): the saddle-point
-// factorizations keep it sparse (dae/kkt.hpp's KktLu), penalty, whose spring would couple every
-// DOF of the row, refuses it up front, and the other schemes run it.
+// factorizations keep it sparse (dae/linsolve/kkt.hpp's KktLu), penalty, whose spring would couple
+// every DOF of the row, refuses it up front, and the other schemes run it.
 
 #include <doctest/doctest.h>
 
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "dae/kkt.hpp"
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/linsolve/kkt.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"
 

@@ -4,14 +4,14 @@
 #include <limits>
 #include <string>
 
-#include "dae/elimination.hpp"
-#include "dae/reduced_ode.hpp"
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/reduced_ode.hpp"
+#include "dae/run/elimination.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/embedded_scenes.hpp"
+#include "validation/references/embedded_scenes.hpp"
 
 using namespace condyn;
 
@@ -177,8 +177,9 @@ atol = 1e-12
       worst_x = std::max(worst_x, std::abs(run.u(0, c) - x));
       worst_r = std::max(worst_r, std::abs(run.reaction(1, c) - xdd));
     }
-    // Global error of a 2-period run on O(1) values: kGlobalErrorFactor (1e3, validation/suite.hpp)
-    // × the scene's rtol 1e-10 (observed up to 7.2e-10 in x, 8.2e-9 in f_con).
+    // Global error of a 2-period run on O(1) values: kGlobalErrorFactor (1e3,
+    // validation/references/suite.hpp) × the scene's rtol 1e-10 (observed up to 7.2e-10 in
+    // x, 8.2e-9 in f_con).
     CHECK(worst_x <= 1e3 * 1e-10);
     CHECK(worst_r <= 1e3 * 1e-10);
     CHECK(run.u(0, 2) == 0.0);  // t = 1.0: the step has not moved anything yet

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
-#include "validation/embedded_scenes.hpp"
-#include "validation/exact_solution.hpp"
+#include "validation/references/accuracy.hpp"
+#include "validation/references/embedded_scenes.hpp"
+#include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
 

@@ -1,5 +1,5 @@
-// The energy balance (dae/energy_balance.hpp, docs/energy.md) against closed forms: the work of a
-// load step switched on between output times, the energy a damper dissipates (integrated here
+// The energy balance (dae/run/energy_balance.hpp, docs/energy.md) against closed forms: the work of
+// a load step switched on between output times, the energy a damper dissipates (integrated here
 // from the exact solution, independently of the run's quadrature), and the balance of a damped,
 // loaded chain on a moving support under every scheme, closing with the tolerance.
 
@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-#include "dae/solve.hpp"
-#include "dae/trajectory.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "dae/run/trajectory.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;

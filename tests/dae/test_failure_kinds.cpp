@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "dae/cvode_integrator.hpp"
-#include "dae/failure_advice.hpp"
-#include "dae/ida_integrator.hpp"
-#include "dae/solve.hpp"
-#include "dae/step_driver.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/integrators/cvode_integrator.hpp"
+#include "dae/integrators/ida_integrator.hpp"
+#include "dae/integrators/step_driver.hpp"
+#include "dae/run/failure_advice.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace condyn;

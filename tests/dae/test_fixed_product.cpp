@@ -1,11 +1,11 @@
-// L X R with fixed patterns (dae/fixed_product.hpp) against Eigen's general product.
+// L X R with fixed patterns (dae/linsolve/fixed_product.hpp) against Eigen's general product.
 
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
-#include "dae/fixed_product.hpp"
+#include "dae/linsolve/fixed_product.hpp"
 
 using namespace condyn;
 using Sparse = Eigen::SparseMatrix<double>;

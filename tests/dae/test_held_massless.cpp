@@ -1,5 +1,5 @@
-// Massless DOFs held by stiffness (issue 13, dae/held_massless.hpp): every scheme that integrates
-// a DAE integrates them, and agrees with the same model condensed by hand.
+// Massless DOFs held by stiffness (issue 13, dae/interface/held_massless.hpp): every scheme that
+// integrates a DAE integrates them, and agrees with the same model condensed by hand.
 
 #include <doctest/doctest.h>
 
@@ -7,9 +7,9 @@
 #include <cmath>
 #include <string>
 
-#include "dae/held_massless.hpp"
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/interface/held_massless.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
@@ -152,7 +152,7 @@ TEST_CASE("a massless DOF held by stiffness: every DAE scheme agrees with the ha
     // u2's row, and the rows differentiated once and twice, hold at every output to roundoff:
     // the rows settle u2 and v2 from the other DOFs (HeldMassless::settle; measured 1.4e-17 and
     // 5.6e-17; before, v2 was the BDF derivative of u2, 2.6e-8 off at the step) and the
-    // acceleration comes from the row differentiated twice (dae/acceleration.hpp).
+    // acceleration comes from the row differentiated twice (dae/formulations/acceleration.hpp).
     CHECK(row2 <= 300.0 * 1e-14);
     CHECK(vel2 <= 300.0 * 1e-14);
     CHECK(acc2 <= 300.0 * 1e-14);

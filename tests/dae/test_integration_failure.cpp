@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "dae/failure_advice.hpp"
-#include "dae/ida_integrator.hpp"
-#include "dae/solve.hpp"
+#include "dae/integrators/ida_integrator.hpp"
+#include "dae/run/failure_advice.hpp"
+#include "dae/run/solve.hpp"
 
 using namespace condyn;
 

@@ -1,15 +1,15 @@
-// The projection scheme's sparse Newton solve (dae/kkt_newton.hpp) against the dense Newton
-// matrix I − γ J, with J = ∂F/∂y of the projected ODE by central differences.
+// The projection scheme's sparse Newton solve (dae/formulations/kkt_newton.hpp) against the dense
+// Newton matrix I − γ J, with J = ∂F/∂y of the projected ODE by central differences.
 
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "dae/kkt.hpp"
-#include "dae/kkt_newton.hpp"
-#include "dae/projected_ode.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/kkt_newton.hpp"
+#include "dae/formulations/projected_ode.hpp"
+#include "dae/linsolve/kkt.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;

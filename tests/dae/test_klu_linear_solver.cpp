@@ -1,6 +1,6 @@
 // IDA's sparse Jacobian factored by KLU in 32-bit indices over a fixed pattern
-// (dae/klu_linear_solver.hpp), called as IDA calls it: setup on the integrator's matrix, then
-// solves.
+// (dae/integrators/klu_linear_solver.hpp), called as IDA calls it: setup on the integrator's
+// matrix, then solves.
 #include <doctest/doctest.h>
 
 #include <nvector/nvector_serial.h>
@@ -10,9 +10,9 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
-#include "dae/block_jacobian.hpp"
-#include "dae/klu_linear_solver.hpp"
-#include "dae/sundials_raii.hpp"
+#include "dae/integrators/klu_linear_solver.hpp"
+#include "dae/integrators/sundials_raii.hpp"
+#include "dae/linsolve/block_jacobian.hpp"
 
 using namespace condyn;
 

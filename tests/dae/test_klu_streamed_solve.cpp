@@ -1,6 +1,6 @@
-// KLU's solves over the factors copied in reading order (dae/klu_streamed_solve.hpp), through
-// FixedPatternKlu: bitwise klu_solve's results on matrices with several diagonal blocks, singletons
-// among them, row pivoting and scaling, after refactorizations and fresh pivoting.
+// KLU's solves over the factors copied in reading order (dae/linsolve/klu_streamed_solve.hpp),
+// through FixedPatternKlu: bitwise klu_solve's results on matrices with several diagonal blocks,
+// singletons among them, row pivoting and scaling, after refactorizations and fresh pivoting.
 
 #include <doctest/doctest.h>
 
@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "dae/fixed_pattern_klu.hpp"
+#include "dae/linsolve/fixed_pattern_klu.hpp"
 
 using namespace condyn;
 

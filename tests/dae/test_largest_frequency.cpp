@@ -1,5 +1,6 @@
-// The largest frequency of models beyond the dense eigensolver (dae/largest_frequency.hpp): the
-// Lanczos value against the dense generalized eigensolver on a model small enough for both.
+// The largest frequency of models beyond the dense eigensolver
+// (dae/formulations/largest_frequency.hpp): the Lanczos value against the dense generalized
+// eigensolver on a model small enough for both.
 
 #include <doctest/doctest.h>
 
@@ -7,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "dae/largest_frequency.hpp"
+#include "dae/formulations/largest_frequency.hpp"
 
 using namespace condyn;
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;

@@ -1,7 +1,7 @@
 // The mixed treatment (issue 12, item 7): each constraint row gets its cheapest method
-// (dae/constraint_treatment.hpp), the reduced system keeps the multiplier schemes' equations
-// (dae/eliminated_system.hpp), and results, reactions included, agree with the pure formulations
-// and with the chapter's elimination path.
+// (dae/formulations/constraint_treatment.hpp), the reduced system keeps the multiplier schemes'
+// equations (dae/formulations/eliminated_system.hpp), and results, reactions included, agree with
+// the pure formulations and with the chapter's elimination path.
 
 #include <doctest/doctest.h>
 
@@ -10,10 +10,10 @@
 #include <sstream>
 #include <string>
 
-#include "dae/constraint_treatment.hpp"
-#include "dae/eliminated_system.hpp"
-#include "models/scene_parser.hpp"
-#include "src/info_report.hpp"
+#include "dae/formulations/constraint_treatment.hpp"
+#include "dae/formulations/eliminated_system.hpp"
+#include "models/scene/scene_parser.hpp"
+#include "src/reports/info_report.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/system_check.hpp"
@@ -119,9 +119,9 @@ TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimina
   // rtol 1e-10. Displacements are of order 0.09, reactions of order 1.4. The differences
   // observed (2026-11-25) are below 1.2e-9 (u) and 2.3e-8 (v), the largest under index3, whose
   // positions are the index-3 DAE's (docs/schemes.md, schemes). Reactions and multipliers, from
-  // acceleration level at the rows (dae/row_multipliers.hpp), differ by 5.7e-8 under index3 and
-  // at most 3.3e-9 under the others (2026-11-27; index3's own λ had differed by 2.1e-6). The
-  // bounds leave a margin of 5 to 100.
+  // acceleration level at the rows (dae/formulations/row_multipliers.hpp), differ by 5.7e-8 under
+  // index3 and at most 3.3e-9 under the others (2026-11-27; index3's own λ had differed by 2.1e-6).
+  // The bounds leave a margin of 5 to 100.
   const auto scene =
       test::built(parse_scene_text(chain_scene("rtol = 1e-10\natol = 1e-12\n"), "chain.toml"));
   const SolveResult reference =

@@ -7,18 +7,18 @@
 #include <optional>
 #include <sstream>
 
-#include "dae/baumgarte_gains.hpp"
-#include "dae/multiplier_dae.hpp"
-#include "dae/penalty_ode.hpp"
-#include "dae/solve.hpp"
-#include "models/linear_system.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/baumgarte_gains.hpp"
+#include "dae/formulations/multiplier_dae.hpp"
+#include "dae/formulations/penalty_ode.hpp"
+#include "dae/run/solve.hpp"
+#include "models/core/linear_system.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
-#include "validation/embedded_scenes.hpp"
-#include "validation/exact_solution.hpp"
-#include "validation/suite.hpp"
+#include "validation/references/accuracy.hpp"
+#include "validation/references/embedded_scenes.hpp"
+#include "validation/references/exact_solution.hpp"
+#include "validation/references/suite.hpp"
 
 using namespace condyn;
 
@@ -242,7 +242,7 @@ TEST_CASE("index2 and index3 follow the exact solution at their own accuracy" *
     const TrajectoryError err = relative_error(run, exact);
     MESSAGE(std::string(to_string(scheme)) << ": err u " << err.displacement << ", v "
                                            << err.velocity << ", f_con " << err.reaction);
-    // States as accurate as the other schemes (validation/suite.hpp's factor). index3's
+    // States as accurate as the other schemes (validation/references/suite.hpp's factor). index3's
     // multipliers are index-3 variables, out of the error test: observed 3.6e-7 at rtol 1e-10,
     // bounded here by 1e4 x rtol; index2's are index 2 and meet the common factor.
     const double tol = kGlobalErrorFactor * spec.solve.rtol;

@@ -5,15 +5,15 @@
 // 2828) the same (user trial of 2026-11-28). At L = 1000, where the first test happened to pass
 // at the steps, the output rows' projections failed and kept the interpolated state: drift 3.5e-4.
 // Now an iteration whose corrections stop shrinking counts as converged once they are within a
-// tenth of the error test's tolerance (dae/projected_ode.cpp).
+// tenth of the error test's tolerance (dae/formulations/projected_ode.cpp).
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <sstream>
 #include <string>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;

@@ -1,13 +1,13 @@
-// An equation that cannot be evaluated at a trial state (dae/recoverable_error.hpp) makes the
-// integrator cut its step, not end the run: the trampolines return +1 for a RecoverableError.
+// An equation that cannot be evaluated at a trial state (dae/interface/recoverable_error.hpp) makes
+// the integrator cut its step, not end the run: the trampolines return +1 for a RecoverableError.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "dae/cvode_integrator.hpp"
-#include "dae/ode_problem.hpp"
-#include "dae/recoverable_error.hpp"
-#include "dae/step_driver.hpp"
+#include "dae/integrators/cvode_integrator.hpp"
+#include "dae/integrators/step_driver.hpp"
+#include "dae/interface/ode_problem.hpp"
+#include "dae/interface/recoverable_error.hpp"
 
 using namespace condyn;
 

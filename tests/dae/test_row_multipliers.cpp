@@ -1,5 +1,6 @@
-// λ at output rows from the constraints at acceleration level (dae/row_multipliers.hpp): the same
-// reaction under every multiplier scheme, whatever the scheme's own λ is.
+// λ at output rows from the constraints at acceleration level
+// (dae/formulations/row_multipliers.hpp): the same reaction under every multiplier scheme, whatever
+// the scheme's own λ is.
 
 #include <doctest/doctest.h>
 
@@ -8,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"

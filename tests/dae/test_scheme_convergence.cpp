@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
-#include "validation/embedded_scenes.hpp"
-#include "validation/exact_solution.hpp"
+#include "validation/references/accuracy.hpp"
+#include "validation/references/embedded_scenes.hpp"
+#include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
 
@@ -59,10 +59,10 @@ TEST_CASE("every multiplier scheme and projection: error shrinks in proportion t
       CHECK(order_u >= 0.7);
       CHECK(order_u <= 1.3);
       // Every scheme's reactions come from λ at acceleration level at the rows
-      // (dae/row_multipliers.hpp), so they converge with u. index3's own λ, an index-3 unknown
-      // out of the error test in which BDF loses order under variable steps (Brenan, Campbell &
-      // Petzold, Numerical Solution of IVPs in DAEs, 1996, ch. 3), had given 0.57 on §5.5.1 and
-      // 0.61 on §5.6.2; from acceleration level 0.82 on both.
+      // (dae/formulations/row_multipliers.hpp), so they converge with u. index3's own λ, an index-3
+      // unknown out of the error test in which BDF loses order under variable steps (Brenan,
+      // Campbell & Petzold, Numerical Solution of IVPs in DAEs, 1996, ch. 3), had given 0.57 on
+      // §5.5.1 and 0.61 on §5.6.2; from acceleration level 0.82 on both.
       CHECK(order_r >= 0.7);
       CHECK(order_r <= 1.3);
     }

@@ -1,4 +1,4 @@
-// The memory estimate per scheme (dae/scheme_memory.hpp): each scheme's from the system it
+// The memory estimate per scheme (dae/run/scheme_memory.hpp): each scheme's from the system it
 // integrates, ordered as those systems' sizes are.
 
 #include <doctest/doctest.h>
@@ -6,8 +6,8 @@
 #include <map>
 #include <string>
 
-#include "dae/scheme_memory.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/scheme_memory.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"
 

@@ -7,11 +7,11 @@
 #include <sstream>
 #include <string>
 
-#include "dae/baumgarte_gains.hpp"
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/baumgarte_gains.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
+#include "validation/references/accuracy.hpp"
 
 using namespace condyn;
 
@@ -105,7 +105,7 @@ TEST_CASE("index1 on a mechanism at a tight tolerance: steps of the order of GGL
 
 TEST_CASE("Baumgarte's default gains come from the model, not from output_step") {
   // A pendulum has no elastic stiffness: its time scale is the gravity stiffness m g / L of the
-  // rod force (dae/model_scales.hpp), so β = α = √(g/L) — before, 2π / output_step.
+  // rod force (dae/formulations/model_scales.hpp), so β = α = √(g/L) — before, 2π / output_step.
   for (const double length : {1.0, 2.5}) {
     CAPTURE(length);
     const BaumgarteGains a = gains_of(pendulum({length, 0.0}, "", 0.001));

@@ -1,4 +1,4 @@
-// Passages near a singular configuration (dae/singular_passages.hpp): the conditioning estimate
+// Passages near a singular configuration (dae/run/singular_passages.hpp): the conditioning estimate
 // against a dense SVD, both passages of the parallelogram four-bar reported without a change of
 // branch, and the N-four-bar's change of branch under index2 reported where projection stays.
 #include <doctest/doctest.h>
@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "dae/singular_passages.hpp"
+#include "dae/run/singular_passages.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 

@@ -1,6 +1,6 @@
 // The elimination path at real size (issue 12): the master-slave transform built group by group
-// (dae/master_slave.hpp), sparse T and G, sparse reduced loads, and a 20,000-DOF lattice that runs
-// under elimination as under index1.
+// (dae/formulations/master_slave.hpp), sparse T and G, sparse reduced loads, and a 20,000-DOF
+// lattice that runs under elimination as under index1.
 
 #include <doctest/doctest.h>
 
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "dae/constraint_treatment.hpp"
-#include "dae/elimination.hpp"
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/constraint_treatment.hpp"
+#include "dae/run/elimination.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/sparse_elimination_scene.hpp"
 

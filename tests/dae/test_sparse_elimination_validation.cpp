@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/sparse_elimination_scene.hpp"
 

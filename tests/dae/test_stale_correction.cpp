@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "dae/solve.hpp"
-#include "dae/stale_correction.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/integrators/stale_correction.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"
 

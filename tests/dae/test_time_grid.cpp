@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "dae/solve.hpp"
-#include "dae/step_driver.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/integrators/step_driver.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;

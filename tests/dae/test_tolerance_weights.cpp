@@ -3,7 +3,7 @@
 // harmonic displacement, a rigid top floor tying two DOFs) failed to start under index1 at every
 // rtol with one scalar atol (IDA_ERR_FAIL at t = 0, h = 5e-15: the multipliers, tens of kN, and
 // the velocities were held to the displacements' 1e-10). Each kind now has its own atol, derived
-// from the model's scales (dae/model_scales.hpp) or set in [solve].
+// from the model's scales (dae/formulations/model_scales.hpp) or set in [solve].
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,13 +11,13 @@
 #include <sstream>
 #include <string>
 
-#include "dae/model_scales.hpp"
-#include "dae/multiplier_dae.hpp"
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/model_scales.hpp"
+#include "dae/formulations/multiplier_dae.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
-#include "validation/exact_solution.hpp"
+#include "validation/references/accuracy.hpp"
+#include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
 
@@ -81,10 +81,10 @@ TEST_CASE("SI shear frame: every scheme starts and agrees with the exact solutio
   // rtol 1e-4 … 1e-10. First with the default atol (1e-10 m), where index1 failed at t = 0: every
   // scheme must reach t_end. Then with atol = 1e-2 rtol (m: the base amplitude is 2e-2 m, so the
   // displacements' atol does not cap the accuracy), against the closed-form modal solution
-  // (validation/exact_solution.hpp), relative to the largest displacement: 200 × rtol bounds the
-  // global error of a BDF run over 2 s and ~8 periods of the base motion (observed up to 101 ×
-  // rtol, by index3 at rtol 1e-10; the others up to 36 × rtol). Penalty is left out: its error is
-  // |f_con|/w by design.
+  // (validation/references/exact_solution.hpp), relative to the largest displacement: 200 × rtol
+  // bounds the global error of a BDF run over 2 s and ~8 periods of the base motion (observed up to
+  // 101 × rtol, by index3 at rtol 1e-10; the others up to 36 × rtol). Penalty is left out: its
+  // error is |f_con|/w by design.
   for (const double rtol : {1e-4, 1e-6, 1e-8, 1e-10}) {
     CAPTURE(rtol);
     const test::BuiltScene scene = frame(1.0, rtol);
@@ -143,10 +143,10 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
   const Model& model = scene.model;
   const AbsoluteTolerances a = absolute_tolerances(model, scene.spec.solve);
   const ModelScales s = model_scales(model);
-  // T = 1 / ω_min (below t_end = 2 s here); the rule of dae/model_scales.hpp: velocities atol /
-  // t_end (the run, shorter than 1e3 / ω_min), multipliers atol m / T². Closed forms of the same
-  // few operations: 8 eps. (With doctest's default Approx, 1e-5 absolute for values this small,
-  // the velocity check could not fail and still expected the older atol / T.)
+  // T = 1 / ω_min (below t_end = 2 s here); the rule of dae/formulations/model_scales.hpp:
+  // velocities atol / t_end (the run, shorter than 1e3 / ω_min), multipliers atol m / T². Closed
+  // forms of the same few operations: 8 eps. (With doctest's default Approx, 1e-5 absolute for
+  // values this small, the velocity check could not fail and still expected the older atol / T.)
   REQUIRE(s.omega_min > 1.0 / 2.0);
   const double T = 1.0 / s.omega_min;
   CHECK(a.displacement == 1e-10);

@@ -3,10 +3,10 @@
 // a), r = L sin a). Its height u_z stays at 0, so its error weight is 1/atol, while the projection
 // onto the member's row (GGL's μ, index3's φ = 0) hands it a share of the horizontal DOFs' local
 // errors (rtol |u|). Before the floors of the error weights (MultiplierDae::error_scale_floors,
-// engaged by the weight function in dae/ida_integrator.cpp), GGL and index3 collapsed to order 1
-// (order 3 at atol 1e-13) with an error-test failure at every step: at a = 60°, rtol 1e-8, atol
-// 1e-10 and t_end 3, GGL took 98,715 steps and ended 1.5e-3 off the circle (user trial of
-// 2026-11-28; at t_end 10, 2.5·10⁵ steps, 4e-3 off). docs/schemes.md, "Error weights on rows".
+// engaged by the weight function in dae/integrators/ida_integrator.cpp), GGL and index3 collapsed
+// to order 1 (order 3 at atol 1e-13) with an error-test failure at every step: at a = 60°, rtol
+// 1e-8, atol 1e-10 and t_end 3, GGL took 98,715 steps and ended 1.5e-3 off the circle (user trial
+// of 2026-11-28; at t_end 10, 2.5·10⁵ steps, 4e-3 off). docs/schemes.md, "Error weights on rows".
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -14,9 +14,9 @@
 #include <sstream>
 #include <string>
 
-#include "dae/multiplier_dae.hpp"
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/multiplier_dae.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 

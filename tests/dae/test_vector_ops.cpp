@@ -1,5 +1,5 @@
-// condyn's serial N_Vector operations (dae/vector_ops.hpp) against SUNDIALS' own serial ones on
-// the same data, fused operations included.
+// condyn's serial N_Vector operations (dae/integrators/vector_ops.hpp) against SUNDIALS' own serial
+// ones on the same data, fused operations included.
 
 #include <doctest/doctest.h>
 
@@ -12,7 +12,7 @@
 #include <memory>
 #include <vector>
 
-#include "dae/vector_ops.hpp"
+#include "dae/integrators/vector_ops.hpp"
 
 namespace {
 

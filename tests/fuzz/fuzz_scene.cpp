@@ -27,8 +27,8 @@
 #include <exception>
 #include <string>
 
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "models/benchmarks.hpp"
+#include "models/systems/benchmarks.hpp"
 #include "tests/compare.hpp"
 #include "tests/system_check.hpp"
 

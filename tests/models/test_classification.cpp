@@ -1,6 +1,6 @@
-// Constraint classification (models/classification.hpp): the classes of a mixed scene of linear
-// and nonlinear rows, and its cost: `info` classified every nonlinear row with a clone of the
-// whole system and full evaluations of A and the residuals, quadratic in the rows (35 s at
+// Constraint classification (models/core/classification.hpp): the classes of a mixed scene of
+// linear and nonlinear rows, and its cost: `info` classified every nonlinear row with a clone of
+// the whole system and full evaluations of A and the residuals, quadratic in the rows (35 s at
 // 10,000 chain links, issue 42).
 #include <doctest/doctest.h>
 
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "models/classification.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/classification.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 

@@ -11,10 +11,10 @@
 #include <sstream>
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/exact_solution.hpp"
+#include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
 using condyn::test::Sandbox;

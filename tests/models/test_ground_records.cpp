@@ -1,7 +1,7 @@
 // Issue 42, item 1: a ground motion record's peak in the run's summary, and warnings when its name
 // says g but its scale is not g (a record in g run without a scale acted 9.81 times too small;
 // scale = 981, cm/s² in an SI scene, moved a roof by 13 m), or when an SI peak exceeds 5 g
-// (models/ground_records.hpp).
+// (models/assembly/ground_records.hpp).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "models/ground_records.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/assembly/ground_records.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 

@@ -8,9 +8,9 @@
 #include <limits>
 #include <string>
 
-#include "models/constraint_drift.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/constraint_drift.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 

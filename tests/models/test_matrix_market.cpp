@@ -7,11 +7,11 @@
 #include <cmath>
 #include <string>
 
-#include "dae/solve.hpp"
-#include "models/matrix_market.hpp"
-#include "models/memory_estimate.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/core/memory_estimate.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/matrix_market.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"

@@ -2,8 +2,9 @@
 // |d| ~ 1e154 the squares overflow, so a pendulum of length 1e200 was refused with "residual
 // -nan" (issue 42); a large-displacement bar's length |d| overflowed the same way (its force
 // NaN), and below 1e-154 the squares underflow. Lengths and residuals are now computed on values
-// scaled by a power of 2 (models/point_mass_system.cpp): every length from 1e-80 to 1e300 runs as
-// the unit one does, and a residual that does overflow is named so in the message, never "nan".
+// scaled by a power of 2 (models/systems/point_mass_system.cpp): every length from 1e-80 to 1e300
+// runs as the unit one does, and a residual that does overflow is named so in the message, never
+// "nan".
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -12,8 +13,8 @@
 #include <sstream>
 #include <string>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
@@ -44,7 +45,7 @@ std::string pendulum(double length, double atol_floor = 0.0) {
   return s.str();
 }
 
-/// The least atol the parser takes (kMinAtol, models/read_solve.cpp).
+/// The least atol the parser takes (kMinAtol, models/scene/read_solve.cpp).
 constexpr double kLeastAtol = 1e-100;
 
 /// A bar of length `length` with large-displacement geometry between a support and a unit mass.

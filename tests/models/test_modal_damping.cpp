@@ -1,5 +1,6 @@
-// Modal damping ratios (issue 13, models/modal_damping.cpp): damping = { modal = ... } gives each
-// mode of the constrained model its ratio, as a C the exact modal reference takes as classical.
+// Modal damping ratios (issue 13, models/assembly/modal_damping.cpp): damping = { modal = ... }
+// gives each mode of the constrained model its ratio, as a C the exact modal reference takes as
+// classical.
 
 #include <doctest/doctest.h>
 
@@ -7,10 +8,10 @@
 #include <cmath>
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/exact_solution.hpp"
+#include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
 

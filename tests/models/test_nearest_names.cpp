@@ -1,16 +1,16 @@
-// "Did you mean" (models/nearest_names.hpp): the measure every refusal that suggests names
+// "Did you mean" (models/core/nearest_names.hpp): the measure every refusal that suggests names
 // shares, and what it suggests (issue 42: check listed the first five DOFs, not the nearest).
-#include "models/nearest_names.hpp"
+#include "models/core/nearest_names.hpp"
 
 #include <doctest/doctest.h>
 
 #include <string>
 #include <vector>
 
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
-#include "validation/user_checks.hpp"
+#include "validation/studies/user_checks.hpp"
 
 using condyn::name_distance;
 using condyn::nearest_names;

@@ -9,12 +9,12 @@
 #include <limits>
 #include <string>
 
-#include "dae/multiplier_dae.hpp"
-#include "dae/solve.hpp"
-#include "models/classification.hpp"
-#include "models/constraint_drift.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/formulations/multiplier_dae.hpp"
+#include "dae/run/solve.hpp"
+#include "models/core/classification.hpp"
+#include "models/core/constraint_drift.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/system_check.hpp"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;

@@ -5,9 +5,9 @@
 #include <numbers>
 #include <string>
 
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
-#include "models/zero_sum.hpp"
+#include "models/core/model.hpp"
+#include "models/core/zero_sum.hpp"
+#include "models/scene/scene_parser.hpp"
 
 using namespace condyn;
 

@@ -7,8 +7,8 @@
 #include <limits>
 #include <string>
 
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace condyn;

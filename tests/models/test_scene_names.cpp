@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 
 using namespace condyn;
 

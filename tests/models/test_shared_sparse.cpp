@@ -1,9 +1,10 @@
-// One stiffness matrix for the model and its linear system (models/shared_sparse.hpp, issue 12).
+// One stiffness matrix for the model and its linear system (models/core/shared_sparse.hpp, issue
+// 12).
 
 #include <doctest/doctest.h>
 
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 

@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "models/memory_estimate.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
+#include "models/core/memory_estimate.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/lattice_scene.hpp"
 

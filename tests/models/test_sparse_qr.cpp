@@ -1,4 +1,4 @@
-// SuiteSparseQR through its C interface (models/sparse_qr.cpp): the rank and column order of a
+// SuiteSparseQR through its C interface (models/core/sparse_qr.cpp): the rank and column order of a
 // deficient matrix, and least-squares solutions, checked against what the matrices are built to be.
 
 #include <doctest/doctest.h>
@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "models/sparse_qr.hpp"
+#include "models/core/sparse_qr.hpp"
 
 using namespace condyn;
 

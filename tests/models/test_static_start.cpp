@@ -7,10 +7,10 @@
 #include <limits>
 #include <string>
 
-#include "dae/solve.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
-#include "models/static_equilibrium.hpp"
+#include "dae/run/solve.hpp"
+#include "models/assembly/static_equilibrium.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"

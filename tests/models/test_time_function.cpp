@@ -5,7 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "models/time_function.hpp"
+#include "models/core/time_function.hpp"
 
 using condyn::TimeFunction;
 using condyn::TimeTerm;

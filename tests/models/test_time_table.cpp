@@ -11,10 +11,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "dae/solve.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
-#include "models/time_table.hpp"
+#include "dae/run/solve.hpp"
+#include "models/core/model.hpp"
+#include "models/core/time_table.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"

@@ -240,7 +240,7 @@ TEST_CASE("cli check: a reference's first column is the time, headed t") {
   // A row number first was read as the times: correct data gave FAIL (0.337), and a file
   // without a t column passed as if its first values column were time.
   Sandbox box;
-  // A row index before a column t is refused as for every table (models/time_table.cpp).
+  // A row index before a column t is refused as for every table (models/core/time_table.cpp).
   box.write("bad.csv", "idx,t,x\n0,0,1\n1,0.5,0.8775825618903728\n");
   box.write("bad.toml", scene("[[check]]\nquantity = \"x\"\nreference = { file = \"bad.csv\" }\n"
                               "tolerance = 1e-7\n"));

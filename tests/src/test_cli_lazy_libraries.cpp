@@ -1,6 +1,6 @@
-// SuiteSparseQR is loaded only by the scenes that need it (models/sparse_qr.hpp): a small scene
-// runs without it, a constraint group beyond the dense rank check loads it. The dynamic loader's
-// own trace (LD_DEBUG=files) says which libraries a process opened.
+// SuiteSparseQR is loaded only by the scenes that need it (models/core/sparse_qr.hpp): a small
+// scene runs without it, a constraint group beyond the dense rank check loads it. The dynamic
+// loader's own trace (LD_DEBUG=files) says which libraries a process opened.
 
 #include <doctest/doctest.h>
 

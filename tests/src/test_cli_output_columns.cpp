@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "models/scene_parser.hpp"
-#include "models/scene_spec.hpp"
+#include "models/scene/scene_parser.hpp"
+#include "models/scene/scene_spec.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/solve_helpers.hpp"
 

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string>
 
-#include "src/escaped_streams.hpp"
+#include "src/output/escaped_streams.hpp"
 
 using condyn::EscapingStreambuf;
 

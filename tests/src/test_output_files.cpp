@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "src/output_files.hpp"
+#include "src/output/output_files.hpp"
 #include "tests/cli_sandbox.hpp"
 
 namespace fs = std::filesystem;

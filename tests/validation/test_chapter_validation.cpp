@@ -6,16 +6,16 @@
 #include <set>
 #include <sstream>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
-#include "validation/benchmark_suite.hpp"
-#include "validation/chapter_report.hpp"
-#include "validation/embedded_scenes.hpp"
-#include "validation/exact_solution.hpp"
-#include "validation/suite.hpp"
+#include "validation/references/accuracy.hpp"
+#include "validation/references/benchmark_suite.hpp"
+#include "validation/references/chapter_report.hpp"
+#include "validation/references/embedded_scenes.hpp"
+#include "validation/references/exact_solution.hpp"
+#include "validation/references/suite.hpp"
 
 using namespace condyn;
 

@@ -10,15 +10,15 @@
 #include <sstream>
 #include <vector>
 
-#include "dae/penalty_ode.hpp"
-#include "dae/solve.hpp"
-#include "models/model.hpp"
-#include "models/scene_parser.hpp"
-#include "src/compare_output.hpp"
-#include "src/report_format.hpp"
+#include "dae/formulations/penalty_ode.hpp"
+#include "dae/run/solve.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_parser.hpp"
+#include "src/reports/compare_output.hpp"
+#include "src/reports/report_format.hpp"
 #include "tests/scene_text.hpp"
-#include "validation/compare.hpp"
-#include "validation/embedded_scenes.hpp"
+#include "validation/references/embedded_scenes.hpp"
+#include "validation/studies/compare.hpp"
 
 using namespace condyn;
 

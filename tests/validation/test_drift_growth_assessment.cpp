@@ -1,13 +1,13 @@
-// When compare may print a drift-growth law (validation/drift_growth.hpp): only for a steady power
-// law over at least a decade of time above roundoff, in a run of many oscillations; otherwise the
-// reason. Synthetic drift logs with known laws.
+// When compare may print a drift-growth law (validation/studies/drift_growth.hpp): only for a
+// steady power law over at least a decade of time above roundoff, in a run of many oscillations;
+// otherwise the reason. Synthetic drift logs with known laws.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "dae/trajectory.hpp"
-#include "validation/drift_growth.hpp"
+#include "dae/run/trajectory.hpp"
+#include "validation/studies/drift_growth.hpp"
 
 using namespace condyn;
 

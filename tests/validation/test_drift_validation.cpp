@@ -7,10 +7,10 @@
 
 #include <cmath>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/drift_growth.hpp"
+#include "validation/studies/drift_growth.hpp"
 
 using namespace condyn;
 
@@ -93,8 +93,8 @@ TEST_CASE("pendulum over 1000 periods: the fitted drift growth follows theory, p
   // errors, so it grows like t²; at velocity level like t; GGL and index 3 hold it at the Newton
   // tolerance, Baumgarte makes the manifold attracting, projection resets it every step. The
   // exponent is fitted to the running maximum of the per-step drift over the last 99% of the run
-  // (validation/drift_growth.hpp). Observed at rtol 1e-6, atol 1e-8: index1 2.15, index2 0.99,
-  // GGL 0.11, index3 0.20, Baumgarte 0.30 (α = β = 25, the scene's).
+  // (validation/studies/drift_growth.hpp). Observed at rtol 1e-6, atol 1e-8: index1 2.15, index2
+  // 0.99, GGL 0.11, index3 0.20, Baumgarte 0.30 (α = β = 25, the scene's).
   SceneSpec spec =
       parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/pendulum_period2.toml");
   spec.solve.t_end = 2000.0;  // 1000 periods

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
-#include "validation/exact_solution.hpp"
+#include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
 

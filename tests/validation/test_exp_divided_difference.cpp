@@ -1,6 +1,6 @@
 // The divided differences of exp behind the modal solver: explicit formulas, confluent limits,
 // time derivatives.
-#include "validation/modal_exact.hpp"
+#include "validation/references/modal_exact.hpp"
 
 #include <doctest/doctest.h>
 

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <limits>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
-#include "validation/exact_solution.hpp"
-#include "validation/suite.hpp"
+#include "validation/references/accuracy.hpp"
+#include "validation/references/exact_solution.hpp"
+#include "validation/references/suite.hpp"
 
 using namespace condyn;
 

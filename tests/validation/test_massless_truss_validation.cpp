@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;

@@ -1,5 +1,5 @@
 // The exact modal solver on single-DOF systems against closed forms.
-#include "validation/modal_exact.hpp"
+#include "validation/references/modal_exact.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // The exact modal solver on multi-DOF systems: frequencies, the equation of motion, damping
 // (classical accepted, non-classical refused), invalid systems.
-#include "validation/modal_exact.hpp"
+#include "validation/references/modal_exact.hpp"
 
 #include <doctest/doctest.h>
 

@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "dae/solve.hpp"
-#include "models/scene_parser.hpp"
+#include "dae/run/solve.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
-#include "validation/accuracy.hpp"
+#include "validation/references/accuracy.hpp"
 
 using namespace condyn;
 

@@ -7,7 +7,7 @@
 #include <regex>
 #include <string>
 
-#include "validation/benchmark_suite.hpp"
+#include "validation/references/benchmark_suite.hpp"
 
 TEST_CASE("published-benchmark requirement texts carry no stale figures or internal references") {
   const std::regex stale(R"(observed|issue\s*[0-9]|shared/|item\s*[0-9])", std::regex::icase);

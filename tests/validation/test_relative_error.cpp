@@ -1,10 +1,10 @@
-// validation/accuracy.hpp: relative max-norm errors, and the velocity floor that keeps a structure
-// at rest from reading an error of 1 against its reference's roundoff velocities.
+// validation/references/accuracy.hpp: relative max-norm errors, and the velocity floor that keeps a
+// structure at rest from reading an error of 1 against its reference's roundoff velocities.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "validation/accuracy.hpp"
+#include "validation/references/accuracy.hpp"
 
 using namespace condyn;
 

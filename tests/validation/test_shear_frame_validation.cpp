@@ -1,13 +1,14 @@
 // The five-storey shear frame of issue 13's "Done when" (models/scenes/shear_frame_el_centro.toml:
 // SI units, rigid floors as constraints, Rayleigh damping from two (frequency, ratio) pairs, the
 // El Centro 1940 NS record as a tabulated ground acceleration) under every scheme that applies,
-// against the exact modal solution for piecewise-linear excitation (validation/modal_exact.hpp).
+// against the exact modal solution for piecewise-linear excitation
+// (validation/references/modal_exact.hpp).
 
 #include <doctest/doctest.h>
 
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/exact_cases.hpp"
 
 using namespace condyn;

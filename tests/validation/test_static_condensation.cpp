@@ -1,6 +1,7 @@
-// The exact modal reference with massless DOFs (validation/static_condensation.hpp): a singular
-// M is condensed statically, and the result matches the closed form of the condensed system.
-#include "validation/static_condensation.hpp"
+// The exact modal reference with massless DOFs (validation/references/static_condensation.hpp): a
+// singular M is condensed statically, and the result matches the closed form of the condensed
+// system.
+#include "validation/references/static_condensation.hpp"
 
 #include <doctest/doctest.h>
 

@@ -10,9 +10,9 @@
 #include <map>
 #include <sstream>
 
-#include "src/report_format.hpp"
-#include "src/stress_output.hpp"
-#include "validation/stress.hpp"
+#include "src/reports/report_format.hpp"
+#include "src/reports/stress_output.hpp"
+#include "validation/studies/stress.hpp"
 
 using namespace condyn;
 
@@ -63,8 +63,8 @@ TEST_CASE("stress: the findings docs/validation.md reports") {
   // whether a run damps the chain's 1e6 rad/s mode or resolves it (steps of 4e-7, out of steps)
   // turns on its step sequence: of 28 variants (R = 1, 2, 3, 5 x 1e12, rtol 1e-7 to 1e-9) 18
   // reach t_end, 16 before Newton corrections kept GGL's constraint rows exact
-  // (dae/stale_correction.hpp), and this one no longer does. Either way it never returns an
-  // inaccurate result.
+  // (dae/integrators/stale_correction.hpp), and this one no longer does. Either way it never
+  // returns an inaccurate result.
   CHECK(record("stiffness", "R = 1e+12", Scheme::elimination).status == "holds");
   CHECK(record("stiffness", "R = 1e+08", Scheme::ggl).status == "holds");
   const auto& stiffest_ggl = record("stiffness", "R = 1e+12", Scheme::ggl);

@@ -3,13 +3,13 @@
 // floor masses at the nodes, the base supported), each floor's two horizontal DOFs tied by a
 // rigid-floor constraint, Rayleigh damping from two (frequency, ratio) pairs and the El Centro
 // 1940 NS record as ground motion along x, under every scheme that applies, against the exact
-// modal solution for piecewise-linear excitation (validation/modal_exact.hpp).
+// modal solution for piecewise-linear excitation (validation/references/modal_exact.hpp).
 
 #include <doctest/doctest.h>
 
 #include <string>
 
-#include "models/scene_parser.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "tests/exact_cases.hpp"
 
 using namespace condyn;

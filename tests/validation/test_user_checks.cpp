@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "models/scene_parser.hpp"
-#include "validation/user_checks.hpp"
+#include "models/scene/scene_parser.hpp"
+#include "validation/studies/user_checks.hpp"
 
 using namespace condyn;
 

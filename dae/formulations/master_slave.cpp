@@ -1,0 +1,206 @@
+// The master-slave transformation, group by group (dae/formulations/master_slave.hpp).
+
+#include "dae/formulations/master_slave.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "models/core/constraint_groups.hpp"
+
+namespace condyn {
+
+namespace {
+
+// A named slave block whose condition number exceeds this is refused: the slave displacements
+// would carry cond * eps relative error from roundoff alone.
+constexpr double kMaxSlaveCondition = 1e12;
+// Column-pivoting rank threshold on the row-normalised A (same meaning as in build_model).
+constexpr double kRankTolerance = 1e-10;
+
+using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// The group's block of A: its rows, and the given DOFs as columns (in their order).
+Eigen::MatrixXd block(const RowMajor& a, const std::vector<int>& rows, const std::vector<int>& cols,
+                      std::vector<int>& local) {
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    local[static_cast<std::size_t>(cols[k])] = static_cast<int>(k);
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()),
+                                            static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (RowMajor::InnerIterator it(a, rows[i]); it; ++it) {
+      const int c = local[static_cast<std::size_t>(it.col())];
+      if (c >= 0) b(static_cast<Eigen::Index>(i), c) = it.value();
+    }
+  }
+  for (int c : cols) local[static_cast<std::size_t>(c)] = -1;
+  return b;
+}
+
+/// The Euclidean norm of row r of `a` (compressed), without overflow or underflow.
+double row_norm(const RowMajor& a, int r) {
+  const auto begin = a.outerIndexPtr()[r], end = a.outerIndexPtr()[r + 1];
+  return Eigen::Map<const Eigen::VectorXd>(a.valuePtr() + begin, end - begin).stableNorm();
+}
+
+}  // namespace
+
+MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
+                                   const std::vector<int>& preferred_slaves) {
+  const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols());
+  MasterSlave out;
+  if (m == 0) {
+    out.T.resize(n, n);
+    out.T.setIdentity();
+    out.G.resize(n, 0);
+    for (int i = 0; i < n; ++i) out.masters.push_back(i);
+    return out;
+  }
+  const RowMajor a(A);
+  const std::vector<ConstraintGroup> groups = constraint_groups(a);
+  std::vector<int> local(static_cast<std::size_t>(n), -1);
+  for (const auto& g : groups) {
+    const double entries = static_cast<double>(g.rows.size()) * static_cast<double>(g.dofs.size());
+    if (entries > kMaxDenseGroupEntries) {
+      std::ostringstream s;
+      s << g.rows.size() << " constraints coupled through shared DOFs over " << g.dofs.size()
+        << " DOFs: beyond the master-slave transform's dense block per group ("
+        << kMaxDenseGroupEntries << " entries); use index1 or ggl";
+      throw CoupledGroupTooLarge(g.rows.front(), static_cast<int>(g.rows.size()),
+                                 static_cast<int>(g.dofs.size()), s.str());
+    }
+    // Few rows over many DOFs (a floor's average): each slave is replaced by all the group's
+    // masters, which then couple with each other in T^T M T, T^T C T and T^T K T, a dense
+    // block of masters^2 entries that nothing else bounds (3,000 masters: 9e6, 836 MB and a
+    // run that could not start, where GGL with the row as a multiplier takes 84 MB).
+    const double masters = static_cast<double>(g.dofs.size() - g.rows.size());
+    if (masters * masters > kMaxDenseGroupEntries) {
+      std::ostringstream s;
+      s << g.rows.size() << " constraint(s) over " << g.dofs.size()
+        << " DOFs; eliminating their slaves couples the " << masters
+        << " masters with each other, a dense block of " << masters * masters
+        << " entries in the reduced M, C and K (beyond " << kMaxDenseGroupEntries
+        << "); use index1 or ggl, or auto, whose mixed treatment keeps such rows as multipliers";
+      throw CoupledGroupTooLarge(g.rows.front(), static_cast<int>(g.rows.size()),
+                                 static_cast<int>(g.dofs.size()), s.str());
+    }
+  }
+  if (preferred_slaves.empty()) {
+    // Pivot on each group's row-normalised block so that a constraint's scale does not bias the
+    // choice: the columns a global column-pivoted QR of A would pick, group by group (pivoting
+    // on one group never changes another's column norms).
+    int rank = 0;
+    for (const auto& g : groups) {
+      Eigen::MatrixXd scaled = block(a, g.rows, g.dofs, local);
+      for (Eigen::Index i = 0; i < scaled.rows(); ++i) {
+        const double norm = scaled.row(i).stableNorm();  // no underflow
+        if (norm > 0.0) scaled.row(i) /= norm;
+      }
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled.rows(), scaled.cols());
+      qr.setThreshold(kRankTolerance);
+      qr.compute(scaled);
+      const auto r = static_cast<int>(qr.rank());
+      rank += r;
+      for (int k = 0; k < r; ++k) {
+        out.slaves.push_back(g.dofs[static_cast<std::size_t>(qr.colsPermutation().indices()[k])]);
+      }
+    }
+    if (rank < m) {
+      throw std::invalid_argument("constraint matrix is rank deficient (rank " +
+                                  std::to_string(rank) + " < " + std::to_string(m) + ")");
+    }
+  } else {
+    out.slaves = preferred_slaves;
+  }
+  std::sort(out.slaves.begin(), out.slaves.end());
+  if (static_cast<int>(out.slaves.size()) != m ||
+      std::adjacent_find(out.slaves.begin(), out.slaves.end()) != out.slaves.end()) {
+    throw std::invalid_argument("need " + std::to_string(m) +
+                                " distinct slave DOFs, one per constraint");
+  }
+  std::vector<int> slave_at(static_cast<std::size_t>(n), -1),
+      master_at(static_cast<std::size_t>(n), -1);
+  for (std::size_t k = 0; k < out.slaves.size(); ++k) {
+    const int s = out.slaves[k];
+    if (s < 0 || s >= n) throw std::invalid_argument("a slave DOF index is out of range");
+    slave_at[static_cast<std::size_t>(s)] = static_cast<int>(k);
+  }
+  for (int i = 0; i < n; ++i) {
+    if (slave_at[static_cast<std::size_t>(i)] < 0) {
+      master_at[static_cast<std::size_t>(i)] = static_cast<int>(out.masters.size());
+      out.masters.push_back(i);
+    }
+  }
+  // Per group: A_S (its rows, its slaves) and A_R (its rows, its masters). Each group's slaves are
+  // solved from its own rows, so what roundoff does to them is that group's condition number,
+  // of its rows normalised (a row's scale is the user's choice of units: 1e12 u1 = 0 beside
+  // u2 = 0 is two well-posed supports, not a condition of 1e12). A group with fewer slaves than
+  // rows leaves its block singular (and one with more leaves another short).
+  std::vector<Eigen::Triplet<double>> t, gt;
+  t.reserve(out.masters.size());
+  for (std::size_t k = 0; k < out.masters.size(); ++k) {
+    t.emplace_back(out.masters[k], static_cast<int>(k), 1.0);
+  }
+  double worst = 1.0;  // the largest condition number of a group's row-normalised slave block
+  std::vector<int> slaves_in, masters_in;
+  for (const auto& g : groups) {
+    slaves_in.clear();
+    masters_in.clear();
+    for (int d : g.dofs)
+      (slave_at[static_cast<std::size_t>(d)] >= 0 ? slaves_in : masters_in).push_back(d);
+    if (slaves_in.size() != g.rows.size()) {
+      worst = INFINITY;
+      continue;
+    }
+    // The group's rows normalised, D A with D = 1 / |row|: the slave block's condition is the
+    // user's constraints', not their units', and the LU below solves D A_S x = D b. On A_S itself
+    // FullPivLU's rank threshold (relative to its largest pivot) took a tie written at 1e-150
+    // beside a row at 1 for a zero pivot, and its solve set that slave to 0: the tie was broken
+    // without a word.
+    Eigen::VectorXd inverse_norm(static_cast<Eigen::Index>(g.rows.size()));
+    for (Eigen::Index i = 0; i < inverse_norm.size(); ++i) {
+      const double norm = row_norm(a, g.rows[static_cast<std::size_t>(i)]);
+      inverse_norm[i] = norm > 0.0 ? 1.0 / norm : 1.0;
+    }
+    const Eigen::MatrixXd normalised =
+        inverse_norm.asDiagonal() * block(a, g.rows, slaves_in, local);
+    const Eigen::MatrixXd a_r = inverse_norm.asDiagonal() * block(a, g.rows, masters_in, local);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(normalised);
+    const auto& sv = svd.singularValues();
+    const double smin = sv(sv.size() - 1);
+    worst = std::max(worst, smin > 0.0 ? sv(0) / smin : INFINITY);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(normalised);
+    // A_S⁻¹ A_R; a group without masters (a support, say) has none to solve for: Eigen's solve
+    // with an empty right-hand side binds a reference through a null pointer (UBSan).
+    const Eigen::MatrixXd s_r =
+        masters_in.empty() ? Eigen::MatrixXd(normalised.rows(), 0) : Eigen::MatrixXd(lu.solve(a_r));
+    // A_S⁻¹ = (D A_S)⁻¹ D.
+    const Eigen::MatrixXd s_g = lu.solve(Eigen::MatrixXd(inverse_norm.asDiagonal()));
+    for (std::size_t i = 0; i < slaves_in.size(); ++i) {
+      const auto ii = static_cast<Eigen::Index>(i);
+      for (std::size_t j = 0; j < masters_in.size(); ++j) {
+        const double v = -s_r(ii, static_cast<Eigen::Index>(j));
+        if (v != 0.0)
+          t.emplace_back(slaves_in[i], master_at[static_cast<std::size_t>(masters_in[j])], v);
+      }
+      for (std::size_t j = 0; j < g.rows.size(); ++j) {
+        const double v = s_g(ii, static_cast<Eigen::Index>(j));
+        if (v != 0.0) gt.emplace_back(slaves_in[i], g.rows[j], v);
+      }
+    }
+  }
+  if (!(worst <= kMaxSlaveCondition)) {
+    std::ostringstream s;
+    s << "the slave DOFs do not determine the constraints (slave block condition number " << worst
+      << ", rows normalised): choose other slaves";
+    throw std::invalid_argument(s.str());
+  }
+  out.T.resize(n, static_cast<Eigen::Index>(out.masters.size()));
+  out.T.setFromTriplets(t.begin(), t.end());
+  out.G.resize(n, m);
+  out.G.setFromTriplets(gt.begin(), gt.end());
+  return out;
+}
+
+}  // namespace condyn

@@ -1,0 +1,207 @@
+#include "dae/formulations/model_scales.hpp"
+
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include "dae/formulations/largest_frequency.hpp"
+#include "dae/linsolve/kkt.hpp"
+
+namespace condyn {
+
+namespace {
+
+/// Frequencies² (absolute values, ascending) of K x = ω² M x on null(A), or nothing when the
+/// reduced mass is not positive definite.
+std::optional<Eigen::VectorXd> constrained_eigenvalues(const Eigen::MatrixXd& M,
+                                                       const Eigen::MatrixXd& K,
+                                                       const Eigen::MatrixXd& A) {
+  const Eigen::Index n = M.rows();
+  Eigen::MatrixXd N;
+  if (A.rows() == 0) {
+    N = Eigen::MatrixXd::Identity(n, n);
+  } else {
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A.transpose());
+    const Eigen::Index rank = qr.rank();
+    const Eigen::MatrixXd Q = qr.householderQ();
+    N = Q.rightCols(n - rank);
+  }
+  if (N.cols() == 0) return Eigen::VectorXd();
+  const Eigen::MatrixXd Mr = N.transpose() * M * N;
+  const Eigen::MatrixXd Kt = N.transpose() * K * N;
+  const Eigen::MatrixXd Kr = 0.5 * Kt + 0.5 * Kt.transpose();  // no overflow at 1e308
+  const Eigen::LLT<Eigen::MatrixXd> llt(Mr);
+  if (llt.info() != Eigen::Success) return std::nullopt;
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Kr, Mr,
+                                                                      Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return std::nullopt;
+  Eigen::VectorXd w = eig.eigenvalues().cwiseAbs();
+  std::sort(w.begin(), w.end());
+  return w;
+}
+
+/// ω² estimates K_ii / M_ii over the DOFs with mass (Rayleigh quotients of unit vectors).
+Eigen::VectorXd diagonal_estimates(const Eigen::SparseMatrix<double>& M,
+                                   const Eigen::SparseMatrix<double>& K) {
+  const Eigen::VectorXd m = M.diagonal(), k = K.diagonal();
+  std::vector<double> out;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    if (m[i] > 0.0) out.push_back(std::abs(k[i]) / m[i]);
+  }
+  std::sort(out.begin(), out.end());
+  return Eigen::Map<const Eigen::VectorXd>(out.data(), static_cast<Eigen::Index>(out.size()));
+}
+
+}  // namespace
+
+ModelScales model_scales(const Model& model) {
+  const auto evaluator = model.evaluator();
+  MechanicalSystem& system = *evaluator;
+  const int n = system.dofs(), m = system.constraints();
+  const double t = 0.0;
+  ModelScales s;
+  const Eigen::SparseMatrix<double> M = system.mass(t, model.u0);
+  {
+    double total = 0.0;
+    int count = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (M.coeff(i, i) > 0.0) {
+        total += M.coeff(i, i);
+        ++count;
+      }
+    }
+    if (count > 0) s.mass = total / count;
+  }
+  Eigen::VectorXd f(n);
+  system.force(t, model.u0, model.v0, f);
+  Eigen::SparseMatrix<double> K = system.stiffness(t, model.u0, model.v0);
+  Eigen::SparseMatrix<double> A;
+  if (m > 0) {
+    A = system.constraint_jacobian(t, model.u0);
+    s.coefficient = 0.0;
+    for (Eigen::Index k = 0; k < A.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+        s.coefficient = std::max(s.coefficient, std::abs(it.value()));
+    if (!(s.coefficient > 0.0)) s.coefficient = 1.0;
+  }
+  if (m > 0 && system.has_curvature()) {
+    // The geometric stiffness of the constraint forces, with each multiplier at least the size
+    // the applied forces give it (see the header).
+    Eigen::VectorXd lambda0 = Eigen::VectorXd::Zero(m), gamma(m);
+    system.acceleration_bias(t, model.u0, model.v0, gamma);
+    KktLu lu(kkt_matrix(M, A));
+    if (lu.info() == Eigen::Success) {
+      Eigen::VectorXd rhs(n + m);
+      rhs << f, gamma;
+      const Eigen::VectorXd sol = lu.solve(rhs);
+      if (sol.allFinite()) lambda0 = sol.tail(m);
+    }
+    const Eigen::SparseMatrix<double> At = A.transpose();
+    Eigen::VectorXd w(m);
+    for (int i = 0; i < m; ++i) {
+      // The force that gives the row's lightest DOF the largest acceleration the loads give any
+      // of its DOFs, over the row's largest coefficient (λ A is a force): a rod between a 1e6 kg
+      // and a 1e-6 kg mass under gravity carries about 1e-6 g, not the heavy mass's 1e6 g
+      // (which made ω 3e6 for a double pendulum whose frequencies are 3.1: user trial,
+      // 2026-11-28). Rows over massless DOFs alone: the largest force on them.
+      double force = 0.0, acceleration = 0.0, lightest = 0.0, coefficient = 0.0;
+      for (Eigen::SparseMatrix<double>::InnerIterator it(At, i); it; ++it) {
+        const double load = std::abs(f[it.row()]), mass = M.coeff(it.row(), it.row());
+        force = std::max(force, load);
+        if (mass > 0.0) {
+          acceleration = std::max(acceleration, load / mass);
+          lightest = lightest > 0.0 ? std::min(lightest, mass) : mass;
+        }
+        coefficient = std::max(coefficient, std::abs(it.value()));
+      }
+      const double carried = lightest > 0.0 ? acceleration * lightest : force;
+      w[i] = std::max(std::abs(lambda0[i]), coefficient > 0.0 ? carried / coefficient : 0.0);
+    }
+    const auto& G = system.constraint_force_jacobian(t, model.u0, w);
+    if (G.size() > 0) K += G;
+  }
+  std::optional<Eigen::VectorXd> w2;
+  if (n <= kDenseScaleLimit) {
+    w2 = constrained_eigenvalues(Eigen::MatrixXd(M), Eigen::MatrixXd(K),
+                                 m > 0 ? Eigen::MatrixXd(A) : Eigen::MatrixXd(0, n));
+  }
+  s.method = w2 ? "constrained eigenvalues" : "diagonal estimate";
+  // Beyond the dense solver, the top of the spectrum by Lanczos: the diagonal estimates are
+  // Rayleigh quotients of unit vectors, lower bounds of ω²_max that can be far below it.
+  std::optional<double> lanczos;
+  if (!w2) {
+    w2 = diagonal_estimates(M, K);
+    lanczos = largest_eigenvalue(K, M);
+    if (lanczos) s.method_max = "Lanczos";
+  }
+  if (w2->size() > 0 && std::max(w2->maxCoeff(), lanczos.value_or(0.0)) > 0.0) {
+    const double top = std::max(w2->maxCoeff(), lanczos.value_or(0.0));
+    s.omega_max = std::sqrt(top);
+    // Rigid-body modes come out at roundoff relative to the largest: they set no time scale.
+    const double floor = 1e-10 * top;
+    for (const double v : *w2) {
+      if (v > floor) {
+        s.omega_min = std::sqrt(v);
+        break;
+      }
+    }
+  }
+  return s;
+}
+
+namespace {
+
+/// The largest derived absolute tolerance: its error weight, 1e-300, still a normal double.
+constexpr double kMaxDerivedAtol = 1e300;
+
+}  // namespace
+
+AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& settings) {
+  const ModelScales s = model_scales(model);
+  const double t_end = settings.t_end > 0.0 ? settings.t_end : 1.0;
+  // The slowest time scale: the lowest natural period's 1/ω, at most the run's length.
+  const double T = s.omega_min > 0.0 ? std::min(1.0 / s.omega_min, t_end) : t_end;
+  AbsoluteTolerances a;
+  a.displacement = settings.atol;
+  // Never below the velocities' own roundoff: the four-bar (|v0| = 6) at atol 1e-15 over 2 s
+  // (atol_v 5e-16) had Newton fail at t = 6e-8; 16 eps |v0| is 2e-14 there.
+  const double v_roundoff = 16.0 * std::numeric_limits<double>::epsilon() *
+                            (model.v0.size() > 0 ? model.v0.cwiseAbs().maxCoeff() : 0.0);
+  // Sustained over the run, but over no more than a thousand of the slowest natural time
+  // scales (an oscillator turns a velocity error into a displacement of Δv/ω, not Δv·t_end), and
+  // never below 1e-30 atol per unit time: t_end = 1e300 gave 1e-310, an infinite error weight.
+  const double sustained = s.omega_min > 0.0 ? std::min(t_end, 1e3 / s.omega_min) : t_end;
+  a.velocity = settings.atol_velocity.value_or(
+      std::max({a.displacement / sustained, v_roundoff, 1e-30 * a.displacement}));
+  // The derived ones never below kMinAtol, where error weights stop fitting in a double's
+  // error norm (a tiny mass or a huge coefficient could take them there), nor above
+  // kMaxDerivedAtol: masses of 1e308 or an atol of 1e307 made them infinite, and the run
+  // stopped on 'atol_multiplier must be > 0 and finite', a key nobody set.
+  const auto usable = [](double atol) {
+    return std::isnan(atol) ? kMaxDerivedAtol : std::clamp(atol, kMinAtol, kMaxDerivedAtol);
+  };
+  a.velocity = usable(a.velocity);
+  a.multiplier =
+      settings.atol_multiplier.value_or(usable(a.displacement * s.mass / (T * T * s.coefficient)));
+  a.mu = settings.atol_mu.value_or(usable(a.velocity / s.coefficient));
+  a.time_scale = T;
+  a.mass = s.mass;
+  const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;
+  a.first_step = std::sqrt(settings.rtol) * fast;
+  std::ostringstream r;
+  r.precision(3);
+  r << "atol displacement " << a.displacement << ", velocity " << a.velocity
+    << (settings.atol_velocity ? " (scene)" : "") << ", multiplier " << a.multiplier
+    << (settings.atol_multiplier ? " (scene)" : "") << ", mu " << a.mu
+    << (settings.atol_mu ? " (scene)" : "") << "; time scale T = " << T << " (lowest " << s.method
+    << " frequency " << s.omega_min << ", t_end " << t_end << "), highest frequency " << s.omega_max
+    << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", mass " << s.mass
+    << ", coefficient " << s.coefficient;
+  a.rule = r.str();
+  return a;
+}
+
+}  // namespace condyn

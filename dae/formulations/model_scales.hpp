@@ -1,0 +1,71 @@
+#pragma once
+/// The model's own scales: natural frequencies, a mass and a constraint coefficient, from which
+/// the defaults that must not depend on units or on the output step are derived (absolute
+/// tolerances per kind of unknown, Baumgarte's gains).
+///
+/// Frequencies are those of the linearization at t = 0 and (u0, v0) on the constraint manifold:
+///   (Nᵀ K_T N) x = ω² (Nᵀ M N) x,   N an orthonormal basis of null(A),
+///   K_T = −∂f/∂u + Σ_i w_i ∂(A_iᵀ)/∂u   (the geometric stiffness of the constraint forces),
+/// with w_i = max(|λ_i(0)|, F_i / a_i), a_i the largest coefficient |A_ij| over the DOFs j row i
+/// touches and F_i = min_j M_jj · max_j |f_j(0)| / M_jj over those with mass (the force that gives
+/// the lightest the largest acceleration; max_j |f_j(0)| if all are massless): a pendulum released
+/// from rest with its rod horizontal (λ(0) = 0) still gets its gravity stiffness m g / L, hence
+/// ω = √(g/L), and a rod from a heavy mass to a light one carries the light one's weight. |ω²| is
+/// taken (compressed members and inverted pendulums give negative ones: their time scale counts all
+/// the same). Models with more than kDenseScaleLimit DOFs, or whose reduced mass is singular
+/// (massless DOFs held by springs), get the diagonal estimates ω² ∈ {K_T,ii / M_ii : M_ii > 0}
+/// instead, and ω_max from a few Lanczos iterations on the unconstrained pencil when M is positive
+/// definite (dae/formulations/largest_frequency.hpp; the larger of it and the diagonal estimates).
+
+#include <string>
+
+#include "models/core/model.hpp"
+
+namespace condyn {
+
+struct ModelScales {
+  double omega_min = 0.0;    ///< lowest nonzero |ω| (0: none, e.g. no stiffness nor force)
+  double omega_max = 0.0;    ///< highest |ω| (0: none)
+  double mass = 1.0;         ///< mean of the positive diagonal entries of M
+  double coefficient = 1.0;  ///< largest |A_ij| at t = 0 (1 without constraints)
+  std::string method;        ///< "constrained eigenvalues" or "diagonal estimate"
+  std::string method_max;    ///< how ω_max was found when not as `method` ("Lanczos")
+};
+
+/// Above this many DOFs the frequencies are diagonal estimates: the eigenproblem is dense (QR of
+/// Aᵀ and a generalized eigensolve, O(n³): about 0.1 s at 400 DOFs) and runs before every solve.
+inline constexpr int kDenseScaleLimit = 400;
+
+[[nodiscard]] ModelScales model_scales(const Model& model);
+
+/// Absolute tolerances per kind of unknown. Displacements: [solve] atol (model units). The others,
+/// unless the scene sets them, follow from it so that an error of that size moves the
+/// displacements by atol:
+///   velocity    atol_v = atol / t_end            (sustained over the run; a looser atol / T cost
+///                                                 the car axis a digit at rtol 1e-10: its motion
+///                                                 is forced, slower than its lowest mode), but at
+///                                                 least 16 eps max|v(0)|, the roundoff of v
+///   multiplier  atol_λ = atol · m / (T² · a)     (a force error Δf sustained over the model's
+///                                                 slowest natural time scale T = min(1/ω_min,
+///                                                 t_end) displaces a mass m by Δf T²/m; λ is a
+///                                                 force per unit coefficient a = max|A_ij|)
+///   GGL's μ     atol_μ = atol_v / a              (A_pᵀ μ is a velocity correction)
+struct AbsoluteTolerances {
+  double displacement = 0.0, velocity = 0.0, multiplier = 0.0, mu = 0.0;
+  /// T above: the higher-index Newton weights use (h/T)^(k−1), a pure number, instead of h^(k−1),
+  /// whose size depended on the unit of time.
+  double time_scale = 1.0;
+  /// m above (ModelScales::mass): rows whose lightest mass lies far below it get a smaller
+  /// multiplier atol (IntegratorOptions::multiplier_mass).
+  double mass = 1.0;
+  /// First step of the higher-index schemes: √rtol / ω_max (at most t_end), the step at which
+  /// BDF1's local error h² |y''| / 2 is about rtol |y| on the model's fastest time scale. A step
+  /// far below it makes index3's Newton matrix singular in double precision (its condition grows
+  /// like 1/h²): the oblique pendulum failed to start at h = 1e-10.
+  double first_step = 0.0;
+  std::string rule;  ///< one line for `condyn info`
+};
+
+[[nodiscard]] AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& settings);
+
+}  // namespace condyn

@@ -1,0 +1,108 @@
+#include "dae/formulations/reduced_ode.hpp"
+
+#include "dae/linsolve/condensed_newton.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace condyn {
+
+ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
+    : model_(model), reduced_(reduced), nm_(static_cast<int>(reduced.M.rows())) {
+  held_ = held_massless(reduced.M, model.has_damping() ? reduced.C : Eigen::SparseMatrix<double>(),
+                        reduced.K, Eigen::SparseMatrix<double>(0, nm_));
+  // With held DOFs, their consistency system stands in for M̂ (regular on the rest).
+  if (!held_) {
+    mass_.compute(reduced.M);
+    bool ok = mass_.info() == Eigen::Success;
+    if (ok && nm_ > 0) {
+      const Eigen::VectorXd d = mass_.vectorD();
+      // Positive definite beyond roundoff of the largest pivot: the model's own check warns
+      // from a spread of 1/eps (models/assembly/input_checks.cpp). 1e-14 of the largest refused a
+      // sound mass of 1e-14 kg beside 2 kg, which every multiplier scheme integrates.
+      ok = d.minCoeff() > std::numeric_limits<double>::epsilon() * d.cwiseAbs().maxCoeff();
+    }
+    if (!ok) {
+      // The named slaves decide the reduction: one whose coefficient is small beside its row's
+      // others (1e-11 u_b against u_a) made it singular to roundoff where the automatic choice
+      // (the largest coefficients) runs (review of 2026-11-27).
+      throw SchemeNotApplicable(
+          std::string("the reduced mass matrix is singular to roundoff: elimination needs "
+                      "inertia on every motion of the master DOFs that their stiffness does not "
+                      "hold; the multiplier schemes (ggl, index1) integrate such a model") +
+          (reduced.named_slaves
+               ? ". The slaves are those of [solve] slaves: one whose coefficient is small "
+                 "beside the others of its constraint makes the reduction ill-conditioned; "
+                 "leave slaves out for the automatic choice"
+               : ""));
+    }
+  }
+  jacobian_ = BlockJacobian(size());
+  jacobian_.declare_identity(0, 0, nm_);
+  jacobian_.declare_identity(0, nm_, nm_);
+  jacobian_.declare(nm_, 0, reduced.K);
+  jacobian_.declare(nm_, nm_, reduced.C);
+  jacobian_.declare(nm_, nm_, reduced.M);
+  jacobian_.finish();
+}
+
+void ReducedOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
+  const auto x = y.head(nm_), w = y.tail(nm_);
+  r.head(nm_) = yp.head(nm_) - w;
+  r.tail(nm_) = reduced_.M * yp.tail(nm_) + reduced_.K * x -
+                reduced_.forces(model_, t, segment_start_.value_or(t));
+  if (model_.has_damping()) r.tail(nm_) += reduced_.C * w;
+}
+
+void ReducedOde::fill_jacobian(double /*t*/, ConstRef /*y*/, ConstRef /*yp*/, double cj,
+                               JacobianMap J) const {
+  std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
+  BlockJacobian::add_identity(J, 0, 0, nm_, cj);
+  BlockJacobian::add_identity(J, 0, nm_, nm_, -1.0);
+  BlockJacobian::add(J, nm_, 0, reduced_.K);
+  BlockJacobian::add(J, nm_, nm_, reduced_.C);
+  BlockJacobian::add(J, nm_, nm_, reduced_.M, cj);
+}
+
+void ReducedOde::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const {
+  yp.resize(size());
+  if (held_) {
+    Eigen::VectorXd x = y.head(nm_), w = y.tail(nm_);
+    const Eigen::VectorXd f = reduced_.forces(model_, t, t);
+    const Eigen::VectorXd fdot =
+        time_derivative(t, f, [&](double s) { return reduced_.forces(model_, s, t); });
+    const Eigen::VectorXd a = held_->consistent(rhs_at(f, x, w), fdot, x, w);
+    y << x, w;
+    yp << w, a;
+    return;
+  }
+  yp.head(nm_) = y.tail(nm_);
+  yp.tail(nm_) = acceleration(t, y.head(nm_), y.tail(nm_));
+}
+
+Eigen::VectorXd ReducedOde::rhs_at(const Eigen::VectorXd& f, const Eigen::VectorXd& x,
+                                   const Eigen::VectorXd& w) const {
+  Eigen::VectorXd rhs = f - reduced_.K * x;
+  if (model_.has_damping()) rhs -= reduced_.C * w;
+  return rhs;
+}
+
+Eigen::VectorXd ReducedOde::acceleration(double t, const Eigen::VectorXd& x,
+                                         const Eigen::VectorXd& w) const {
+  const Eigen::VectorXd rhs = rhs_at(reduced_.forces(model_, t, t), x, w);
+  if (!held_) return mass_.solve(rhs);
+  Eigen::VectorXd xs = x, ws = w;  // consistent already: the changes are roundoff
+  Eigen::VectorXd a = held_->consistent(rhs, Eigen::VectorXd::Zero(nm_), xs, ws);
+  for (int h : held_->dofs()) a[h] = 0.0;
+  return a;
+}
+
+std::unique_ptr<NewtonSystem> ReducedOde::newton_system() const {
+  return std::make_unique<CondensedNewton>(
+      Scheme::index1,
+      LinearMatrices{reduced_.M, reduced_.C, reduced_.K, Eigen::SparseMatrix<double>(0, nm_)},
+      Eigen::SparseMatrix<double>(0, 0));
+}
+
+}  // namespace condyn

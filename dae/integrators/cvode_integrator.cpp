@@ -1,0 +1,278 @@
+#include "dae/integrators/cvode_integrator.hpp"
+
+#include "dae/integrators/newton_linear_solver.hpp"
+#include "dae/integrators/sundials_raii.hpp"
+#include "dae/integrators/sundials_stepper.hpp"
+#include "dae/integrators/vector_ops.hpp"
+
+#include <cvode/cvode.h>
+#include <cvode/cvode_proj.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <exception>
+#include <memory>
+#include <sstream>
+
+namespace condyn {
+
+namespace {
+
+using sundials::ContextPtr;
+using sundials::MatrixPtr;
+using sundials::SolverPtr;
+using sundials::VectorPtr;
+using sundials::view;
+
+// The integrator memory's owner; the others come from dae/integrators/sundials_raii.hpp.
+struct CvodeDeleter {
+  void operator()(void* mem) const { CVodeFree(&mem); }
+};
+using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
+
+/// What the C callbacks need; exceptions go to `report`, never through CVODE's C frames.
+struct CallbackData {
+  OdeProblem* problem = nullptr;
+  sundials::CallbackReport* report = nullptr;
+  /// Calls of the projection, never reset: CVODE's own count (CVodeGetNumProjEvals) restarts
+  /// at the first step after CVodeReInit, after the segment's baseline was read, so a run with a
+  /// load step lost the projections before it.
+  long projections = 0;
+  double rtol = 0.0;
+  Eigen::VectorXd atol;     ///< per component, as CVODE has it
+  Eigen::VectorXd settled;  ///< kProjectionSettled (rtol |y_i| + atol_i), per projection
+};
+
+/// The fraction of the error test's tolerance at which a projection that no longer shrinks its
+/// corrections counts as converged (OdeProblem::project): CVODE's own default for the
+/// projection's stopping test (epsProj, 0.1).
+constexpr double kProjectionSettled = 0.1;
+
+/// kProjectionSettled (rtol |y_i| + atol_i) at y, into data.settled.
+const Eigen::VectorXd& settled_at(CallbackData& data, const Eigen::Ref<const Eigen::VectorXd>& y) {
+  data.settled = kProjectionSettled * (data.rtol * y.array().abs() + data.atol.array()).matrix();
+  return data.settled;
+}
+
+int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user) {
+  auto* data = static_cast<CallbackData*>(user);
+  return sundials::guarded(*data->report, [&] {
+    auto out = view(ydot);
+    data->problem->rhs(t, view(y), out);
+    return out.allFinite() ? 0 : 1;  // recoverable: CVODE retries with a smaller step
+  });
+}
+
+int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N_Vector err,
+                          void* user) {
+  auto* data = static_cast<CallbackData*>(user);
+  ++data->projections;
+  return sundials::guarded(*data->report, [&] {
+    auto c = view(corr);
+    if (!data->problem->project(t, view(y), c, settled_at(*data, view(y)))) {
+      return 1;  // recoverable: smaller step
+    }
+    if (err != nullptr) {
+      auto e = view(err);
+      data->problem->project_error(e);
+    }
+    return c.allFinite() ? 0 : 1;
+  });
+}
+
+/// What a CVODE return flag says happened (by its code, never its text).
+FailureKind failure_kind(int flag) {
+  switch (flag) {
+    case CV_TOO_MUCH_WORK:
+      return FailureKind::steps_per_output;
+    case CV_TOO_MUCH_ACC:
+      return FailureKind::tolerance_too_tight;
+    case CV_ERR_FAILURE:
+      return FailureKind::error_test;
+    case CV_CONV_FAILURE:
+    case CV_NLS_FAIL:
+    case CV_NLS_SETUP_FAIL:
+    case CV_PROJFUNC_FAIL:
+    case CV_REPTD_PROJFUNC_ERR:
+      return FailureKind::convergence;
+    case CV_LINIT_FAIL:
+    case CV_LSETUP_FAIL:
+    case CV_LSOLVE_FAIL:
+      return FailureKind::linear_solver;
+    case CV_FIRST_RHSFUNC_ERR:  // the right-hand side stayed non-finite
+    case CV_REPTD_RHSFUNC_ERR:
+      return FailureKind::residual_non_finite;
+    case CV_ILL_INPUT:
+    case CV_TOO_CLOSE:
+    case CV_BAD_T:
+    case CV_BAD_K:
+    case CV_BAD_DKY:
+      return FailureKind::bad_input;
+    default:
+      return FailureKind::unknown;
+  }
+}
+
+const sundials::Api kCvodeApi{
+    "CVode",     CVodeGetReturnFlagName, CVodeGetCurrentTime, CVodeGetLastStep,
+    CVodeGetDky, CVodeGetLastOrder,      failure_kind};
+
+// CVODE's γ = h β changes with nearly every step: the projection scheme's saddle point is
+// refactored when γ moves by more than CVODE's own threshold for a new matrix (dgmax_lsetup), and
+// solves in between are scaled as CVODE scales them (validated: condyn validate, the stress
+// suite).
+constexpr double kNewtonGammaChange = 0.3;
+
+class Cvode final : public sundials::SundialsStepper {
+ public:
+  Cvode(OdeProblem& problem, const Eigen::VectorXd& y0, double t0, const IntegratorOptions& options)
+      : SundialsStepper(kCvodeApi), n_(problem.size()) {
+    data_.problem = &problem;
+    data_.report = &report_;
+    SUNContext raw = nullptr;
+    if (SUNContext_Create(nullptr, &raw) != 0) throw IntegrationError("SUNContext_Create failed");
+    ctx_.reset(raw);
+    y_.reset(sundials::new_vector(n_, ctx_.get()));
+    work_.reset(sundials::new_vector(n_, ctx_.get()));
+    if (!y_ || !work_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
+    view(y_.get()) = y0;
+    mem_.reset(CVodeCreate(CV_BDF, ctx_.get()));
+    if (!mem_) throw IntegrationError("CVodeCreate failed");
+    // The problem's own sparse Newton solve when it has one, else a dense difference-quotient
+    // Jacobian ((n_)² entries).
+    newton_ = problem.newton_system();
+    if (newton_) {
+      void* mem = mem_.get();
+      solver_.reset(sundials::make_newton_solver(
+          *newton_,
+          [mem](double& gamma) { return CVodeGetCurrentGamma(mem, &gamma) == CV_SUCCESS; },
+          kNewtonGammaChange, ctx_.get()));
+      if (!solver_) throw IntegrationError("could not create the sparse Newton solver");
+    } else {
+      matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
+      if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
+      if (!matrix_ || !solver_) throw IntegrationError("could not create the dense linear solver");
+    }
+    attach(mem_.get(), work_.get());
+    check(CVodeSetErrHandlerFn(mem_.get(), sundials::record_message, &report_),
+          "CVodeSetErrHandlerFn");
+    check(CVodeInit(mem_.get(), rhs_trampoline, t0, y_.get()), "CVodeInit");
+    check(CVodeSetUserData(mem_.get(), &data_), "CVodeSetUserData");
+    check(CVodeSetMaxOrd(mem_.get(), options.max_order), "CVodeSetMaxOrd");
+    data_.rtol = options.rtol;
+    data_.atol = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
+    view(work_.get()) = data_.atol;
+    check(CVodeSVtolerances(mem_.get(), options.rtol, work_.get()),
+          "CVodeSVtolerances");  // copies the vector
+    check(CVodeSetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
+    if (problem.has_projection()) {
+      check(CVodeSetProjFn(mem_.get(), projection_trampoline), "CVodeSetProjFn");
+      check(CVodeSetProjErrEst(mem_.get(), SUNTRUE), "CVodeSetProjErrEst");
+    }
+  }
+
+  double step(double tout) override {
+    double tret = 0.0;
+    after_step(CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP));
+    return tret;
+  }
+
+  /// Between steps CVODE's interpolant leaves the constraints by the local error (1e-3 on the
+  /// period-2 pendulum at rtol 1e-4, where the steps are on them to roundoff): an output or a
+  /// quadrature point is projected as the steps are, and its y' is the right-hand side there.
+  /// A projection that fails (a singular configuration) leaves the interpolated state.
+  void interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) override {
+    SundialsStepper::interpolate(t, y, yp);
+    if (!data_.problem->has_projection()) return;
+    correction_.resize(n_);
+    try {
+      if (!data_.problem->project(t, y, correction_, settled_at(data_, y))) return;
+    } catch (const RecoverableError&) {
+      return;
+    }
+    y += correction_;
+    data_.problem->rhs(t, y, yp);
+  }
+
+  [[nodiscard]] Eigen::VectorXd y() override { return view(y_.get()); }
+  [[nodiscard]] Eigen::VectorXd yp() override {
+    double t = 0.0;
+    check(CVodeGetCurrentTime(mem_.get(), &t), "CVodeGetCurrentTime");
+    Eigen::VectorXd out(n_);
+    data_.problem->rhs(t, view(y_.get()), out);
+    return out;
+  }
+  void restart(double t) override {
+    collect();  // CVodeReInit may reset the counters: keep what this segment did
+    data_.problem->begin_segment(t);
+    Eigen::VectorXd y = view(y_.get());
+    data_.problem->settle(t, y);  // a load step may move what the rows fix
+    view(y_.get()) = y;
+    check(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
+    rebase();
+  }
+  void set_stop_time(double t) override {
+    check(CVodeSetStopTime(mem_.get(), t), "CVodeSetStopTime");
+  }
+  /// Entries of the matrix the Newton iterations factor: the problem's sparse one, else dense.
+  [[nodiscard]] long jacobian_nonzeros() const {
+    return newton_ ? newton_->nonzeros() : static_cast<long>(n_) * static_cast<long>(n_);
+  }
+
+ private:
+  [[nodiscard]] sundials::Counters read_counters() const override {
+    sundials::Counters c;
+    check(CVodeGetNumSteps(mem_.get(), &c.steps), "CVodeGetNumSteps");
+    check(CVodeGetNumRhsEvals(mem_.get(), &c.evaluations), "CVodeGetNumRhsEvals");
+    if (newton_) {
+      c.jacobians = sundials::newton_solver_setups(solver_.get());  // one matrix per setup
+    } else {
+      check(CVodeGetNumJacEvals(mem_.get(), &c.jacobians), "CVodeGetNumJacEvals");
+    }
+    check(CVodeGetNumNonlinSolvIters(mem_.get(), &c.newton), "CVodeGetNumNonlinSolvIters");
+    check(CVodeGetNumNonlinSolvConvFails(mem_.get(), &c.newton_failures),
+          "CVodeGetNumNonlinSolvConvFails");
+    check(CVodeGetNumErrTestFails(mem_.get(), &c.error_tests), "CVodeGetNumErrTestFails");
+    c.projections = data_.projections;
+    return c;
+  }
+  [[nodiscard]] std::string notes(const sundials::Counters& totals) const override {
+    return std::to_string(totals.projections) + " projections onto the constraints";
+  }
+
+  sunindextype n_;
+  CallbackData data_;
+  Eigen::VectorXd correction_;  ///< an interpolated state's projection
+  // Declared in creation order: destroyed in reverse (CVODE memory first, context last).
+  ContextPtr ctx_;
+  VectorPtr y_, work_;
+  std::unique_ptr<NewtonSystem> newton_;  ///< outlives solver_, which points to it
+  MatrixPtr matrix_;
+  SolverPtr solver_;
+  CvodePtr mem_;  ///< destroyed first
+};
+
+}  // namespace
+
+RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
+                            const IntegratorOptions& options, SolveSummary& summary) {
+  options.validate();
+  if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
+  const WallTimer timer(summary);
+  const double t0 = options.output_times.front();
+  problem.begin_segment(t0);
+  Eigen::VectorXd y_start = y0;
+  problem.settle(t0, y_start);
+  Cvode cvode(problem, y_start, t0, options);
+  Eigen::VectorXd yp0(problem.size());
+  problem.rhs(t0, y_start, yp0);
+  summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
+  summary.jacobian_nonzeros = cvode.jacobian_nonzeros();
+  RawTrajectory out = drive(cvode, y_start, yp0, options, summary);
+  summary.set_reached(options.output_times.back());
+  return out;
+}
+
+}  // namespace condyn

@@ -1,0 +1,16 @@
+#pragma once
+/// The only place that talks to SUNDIALS CVODE: BDF with Newton and a dense linear solver
+/// (difference-quotient Jacobian), and CVODE's projection after every step (CVodeSetProjFn,
+/// with the error estimate projected too). Same loop as IDA (dae/integrators/step_driver.hpp).
+
+#include "dae/integrators/step_driver.hpp"
+#include "dae/interface/ode_problem.hpp"
+
+namespace condyn {
+
+/// Integrates y' = F(t, y) from y0 at options.output_times.front(). Fills the summary (the number
+/// of projections goes into notes). Throws IntegrationError on solver failure.
+[[nodiscard]] RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
+                                          const IntegratorOptions& options, SolveSummary& summary);
+
+}  // namespace condyn

@@ -1,0 +1,31 @@
+#pragma once
+/// A SUNDIALS linear solver (matrix-embedded: the integrator passes it no matrix) over a problem's
+/// own NewtonSystem, for CVODE's BDF Newton iteration (scalar γ: I − γ ∂F/∂y) and IDA's (scalar
+/// cj: ∂F/∂y + cj ∂F/∂y'). SUNDIALS types stay inside dae/.
+
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+
+#include <functional>
+
+#include "dae/linsolve/newton_system.hpp"
+
+namespace condyn::sundials {
+
+/// The solver keeps a pointer to `system` (which must outlive it) and asks `current` for the
+/// integrator's current scalar (CVodeGetCurrentGamma, IDAGetCurrentCj; false when it cannot).
+/// It factors for the current scalar when asked to set up and, since SUNDIALS 6.4 never asks a
+/// solver without a matrix or preconditioner (cvLsInitialize and idaLsInitialize set lsetup to
+/// NULL), whenever a solve finds the scalar moved by more than `max_change` (relative) from the
+/// factored one; a solve at another scalar than the factored one is scaled by
+/// 2 / (1 + c/c_setup), as both integrators scale the solves of their matrix-based solvers (they
+/// do not for matrix-embedded ones). max_change 0: every solve is exact (a new factorization
+/// whenever the scalar changes). Returns nullptr when out of memory.
+[[nodiscard]] SUNLinearSolver make_newton_solver(NewtonSystem& system,
+                                                 std::function<bool(double&)> current,
+                                                 double max_change, SUNContext ctx);
+
+/// Setups (factorizations) the solver has made: the integrators count no Jacobian evaluations.
+[[nodiscard]] long newton_solver_setups(SUNLinearSolver solver);
+
+}  // namespace condyn::sundials

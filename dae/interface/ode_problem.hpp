@@ -1,0 +1,44 @@
+#pragma once
+/// An ODE y' = F(t, y) with an invariant manifold it should stay on, as CVODE sees it.
+
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+#include "dae/interface/unknown_kind.hpp"
+#include "dae/linsolve/newton_system.hpp"
+
+namespace condyn {
+
+class OdeProblem {
+ public:
+  using ConstRef = Eigen::Ref<const Eigen::VectorXd>;
+  using Ref = Eigen::Ref<Eigen::VectorXd>;
+
+  virtual ~OdeProblem() = default;
+  [[nodiscard]] virtual int size() const = 0;
+  /// The integration segment starting at t0 begins (at the start of the run and at every load
+  /// step): load steps with start <= t0 are on until the next call.
+  virtual void begin_segment(double t0) = 0;
+  /// ydot = F(t, y) in the current segment.
+  virtual void rhs(double t, ConstRef y, Ref ydot) const = 0;
+  /// The kind of each unknown, for its absolute tolerance; empty: all get the displacement atol.
+  [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
+  /// True when the problem has an invariant to project onto after each step.
+  [[nodiscard]] virtual bool has_projection() const = 0;
+  /// corr such that y + corr lies on the manifold (CVodeSetProjFn). `settled`: per component of
+  /// y, a correction small enough to stop an iteration that no longer shrinks it (one at the
+  /// roundoff of large coordinates), a fraction of the error test's rtol |y_i| + atol_i.
+  /// Returns false when the projection did not converge (CVODE then retries with a smaller step).
+  virtual bool project(double t, ConstRef y, Ref corr, const Eigen::VectorXd& settled) const = 0;
+  /// Places y on the invariant's algebraic rows at a segment start (t), before the integrator
+  /// takes it: the rows that fix some unknowns outright (massless DOFs held by stiffness, which a
+  /// load step may move). Nothing by default.
+  virtual void settle(double /*t*/, Eigen::VectorXd& /*y*/) const {}
+  /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
+  virtual void project_error(Ref err) const = 0;
+  /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian.
+  [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }
+};
+
+}  // namespace condyn

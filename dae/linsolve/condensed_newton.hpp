@@ -1,0 +1,55 @@
+#pragma once
+/// IDA's Newton systems of the index1 and GGL formulations of a linear model (constant M, C, K,
+/// A), condensed from [u; v; λ (; μ)] to [u; λ (; μ)] (issue 12, item 6). With
+/// J = ∂F/∂y + cj ∂F/∂y' of dae/formulations/multiplier_dae.hpp, K = −∂f/∂u, C = −∂f/∂v, S = K + cj
+/// C + cj² M, and J x = r, x = [du; dv; dλ (; dμ)], r = [r1; r2; r3 (; r4)]:
+///
+///   index1: dv = cj du − r1,
+///     [S  Aᵀ] [du]   [r2 + (C + cj M) r1   ]
+///     [A  0 ] [dλ] = [(r3 + cj A r1) / cj² ]
+///   GGL (A_p the position rows): dv = cj du + A_pᵀ dμ − r1,
+///     [S     Aᵀ  (C + cj M) A_pᵀ] [du]   [r2 + (C + cj M) r1]
+///     [cj A  0   A A_pᵀ         ] [dλ] = [r3 + A r1         ]
+///     [A_p   0   0              ] [dμ]   [r4                ]
+///
+/// n + m (+ p) unknowns for KLU instead of 2n + m (+ p), and IDA never forms its Jacobian. The
+/// pattern is the union of the blocks' patterns, fixed, analysed once; each setup fills its values
+/// in place (dae/linsolve/block_jacobian.hpp) and refactors with the pivots kept
+/// (dae/linsolve/fixed_pattern_klu.hpp), and solves use buffers allocated once: at 10⁶ unknowns a
+/// setup built the matrix from triplets and a solve allocated six vectors, seconds of page faults
+/// per run (issue 12).
+
+#include <Eigen/Sparse>
+
+#include "dae/linsolve/block_jacobian.hpp"
+#include "dae/linsolve/fixed_pattern_klu.hpp"
+#include "dae/linsolve/kkt.hpp"
+#include "dae/linsolve/newton_system.hpp"
+#include "models/core/scheme.hpp"
+
+namespace condyn {
+
+class CondensedNewton final : public NewtonSystem {
+ public:
+  /// scheme index1 or ggl (else std::invalid_argument); select_p (p x m) picks GGL's position
+  /// rows. C may be empty (no damping). The matrices are taken over (left empty).
+  CondensedNewton(Scheme scheme, LinearMatrices&& matrices,
+                  const Eigen::SparseMatrix<double>& select_p);
+
+  bool setup(double cj) override;
+  void solve(Eigen::Ref<Eigen::VectorXd> b) override;
+  [[nodiscard]] long nonzeros() const override { return matrix_.nonZeros(); }
+
+ private:
+  using Sparse = Eigen::SparseMatrix<double>;
+
+  Scheme scheme_;
+  Sparse M_, C_, K_, A_, At_, Ap_, ApT_, CApT_, MApT_, AApT_;
+  int n_, m_, p_;
+  double cj_ = 0.0;
+  Sparse matrix_;  ///< the condensed matrix on its fixed pattern, values for cj_
+  Eigen::VectorXd rhs_, r1_, work_;
+  FixedPatternKlu klu_;
+};
+
+}  // namespace condyn

@@ -1,0 +1,21 @@
+#pragma once
+/// A Newton system an integrator asks for, solved by the problem itself (sparse, condensed,
+/// without forming the integrator's Jacobian): CVODE's (I − γ ∂F/∂y) x = b, IDA's
+/// (∂F/∂y + cj ∂F/∂y') x = b. dae/integrators/newton_linear_solver.hpp wraps one for SUNDIALS.
+
+#include <Eigen/Dense>
+
+namespace condyn {
+
+class NewtonSystem {
+ public:
+  virtual ~NewtonSystem() = default;
+  /// Prepares solves with this scalar (γ or cj: a factorization); false when singular.
+  virtual bool setup(double scalar) = 0;
+  /// b ← (Newton matrix)⁻¹ b for the scalar of the last setup.
+  virtual void solve(Eigen::Ref<Eigen::VectorXd> b) = 0;
+  /// Nonzeros of the matrix factored (for the summary's Jacobian size).
+  [[nodiscard]] virtual long nonzeros() const = 0;
+};
+
+}  // namespace condyn

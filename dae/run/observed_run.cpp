@@ -1,0 +1,159 @@
+#include "dae/run/observed_run.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "dae/run/energy_balance.hpp"
+#include "dae/run/singular_passages.hpp"
+#include "models/core/constraint_drift.hpp"
+
+namespace condyn {
+
+namespace {
+
+/// The summary's drifts: the largest over the internal steps and the output rows, after a
+/// failure as after a whole run (`max_relative`: ConstraintDrift::relative_position's); and the
+/// largest displacement of the rows (`streamed_max_u` for a streamed run, whose trajectory holds
+/// no u).
+void summarize_drift(SolveResult& result, double max_dp, double max_dv, double max_relative,
+                     double streamed_max_u) {
+  const auto max_of = [](const Eigen::VectorXd& x) { return x.size() ? x.maxCoeff() : 0.0; };
+  result.summary.max_relative_drift_position = max_relative;
+  result.summary.max_drift_position = std::max(max_dp, max_of(result.trajectory.drift_position));
+  result.summary.max_drift_velocity = std::max(max_dv, max_of(result.trajectory.drift_velocity));
+  const Eigen::MatrixXd& u = result.trajectory.u;
+  result.summary.max_abs_displacement =
+      std::max(streamed_max_u, u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0);
+}
+
+}  // namespace
+
+Observation::FullState full_state_prefix(int n) {
+  return [n](double, const Eigen::VectorXd& y) {
+    return std::make_pair(Eigen::VectorXd(y.head(n)), Eigen::VectorXd(y.segment(n, n)));
+  };
+}
+
+void run_observed(const Model& model, const IntegratorOptions& options,
+                  const std::function<RawTrajectory(const IntegratorOptions&)>& run,
+                  const Observation& observe, SolveResult& result) {
+  double max_dp = 0.0, max_dv = 0.0, max_relative = 0.0;
+  std::vector<StepRecord> steps;
+  VelocityReversals reversals;
+  ConstraintDrift drift(model);
+  // The drift relative to each row's scale, at every step seen and every output row (elimination
+  // and runs without a step log are judged at their rows).
+  const auto track_relative = [&](double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+    (void)drift(t, u, v);
+    max_relative = std::max(max_relative, drift.relative_position());
+  };
+  IntegratorOptions observed = options;
+  // The energy balance's integrals, over every internal step (EnergyTerms::powers at the
+  // quadrature points of the loop).
+  std::optional<EnergyTerms> energy;
+  if (options.energy_balance) {
+    energy.emplace(model);
+    observed.integrand_size = EnergyTerms::kIntegrals;
+    observed.integrand = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
+      const auto [u, v] = observe.full_state(t, y);
+      return energy->powers(t, u, v, observe.multipliers(t, y, yp, u, v));
+    };
+    // At a load step a massless DOF held by stiffness jumps to its new equilibrium: the load,
+    // at its new value, does f_ext(t+)ᵀΔu over the jump (the work the quadrature cannot see).
+    observed.integrand_jump = [&](double t, const Eigen::VectorXd& before,
+                                  const Eigen::VectorXd& after) {
+      const Eigen::VectorXd u_after = observe.full_state(t, after).first;
+      return energy->jump_work(t, u_after, u_after - observe.full_state(t, before).first);
+    };
+  }
+  // Passages near a singular configuration, at every step, for models whose A depends on the
+  // state (a linear model's rank is checked once, when it is built).
+  std::optional<SingularPassageMonitor> passages;
+  if (model.nonlinear && model.constraint_count() > 0) passages.emplace(*model.system);
+  if (observe.drift_at_every_step || options.record_steps || observe.on_state || passages) {
+    observed.on_step = [&](double t, const Eigen::VectorXd& y) {
+      if (observe.on_state) observe.on_state(y);
+      if (!observe.drift_at_every_step && !options.record_steps && !passages) return;
+      const auto [u, v] = observe.full_state(t, y);
+      if (passages) passages->step(t, u, v);
+      if (!observe.drift_at_every_step && !options.record_steps) return;
+      const auto [dp, dv] = drift(t, u, v);
+      max_dp = std::max(max_dp, dp);
+      max_dv = std::max(max_dv, dv);
+      max_relative = std::max(max_relative, drift.relative_position());
+      if (options.record_steps) steps.push_back({t, dp, dv, reversals(v)});
+    };
+  }
+  const auto& row_lambda = observe.row_multipliers ? observe.row_multipliers : observe.multipliers;
+  const auto assemble = [&](const RawTrajectory& raw) {
+    std::vector<Eigen::VectorXd> u, v, lambda;
+    for (std::size_t k = 0; k < raw.t.size(); ++k) {
+      auto [uk, vk] = observe.full_state(raw.t[k], raw.y[k]);
+      track_relative(raw.t[k], uk, vk);
+      lambda.push_back(row_lambda(raw.t[k], raw.y[k], raw.yp[k], uk, vk));
+      u.push_back(std::move(uk));
+      v.push_back(std::move(vk));
+    }
+    Trajectory traj =
+        assemble_trajectory(model, raw.t, u, v, lambda, options.accelerations, raw.integrals);
+    traj.steps = steps;
+    return traj;
+  };
+  // Streamed: each output row is assembled as the loop reaches it and handed to the sink; the
+  // trajectory keeps its times, drifts and energies only.
+  const bool streamed = static_cast<bool>(options.on_row);
+  std::optional<RowAssembler> rows;
+  RowLog log;
+  if (streamed) {
+    rows.emplace(model, options.accelerations, options.energy_balance);
+    observed.on_output = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                             const Eigen::VectorXd& integrals) {
+      auto [u, v] = observe.full_state(t, y);
+      track_relative(t, u, v);
+      Eigen::VectorXd lambda = row_lambda(t, y, yp, u, v);
+      const TrajectoryRow row =
+          (*rows)(t, std::move(u), std::move(v), std::move(lambda), integrals);
+      options.on_row(row);
+      log.add(row);
+    };
+  }
+  RawTrajectory raw;
+  try {
+    raw = run(observed);
+  } catch (const IntegrationError& e) {
+    result.failure = failure_of(e);
+    if (e.in_loop) {
+      std::ostringstream s;
+      s << "stopped at t = " << std::fixed << std::setprecision(6) << e.t_reached;
+      result.summary.termination = s.str();
+    }
+    if (streamed) {
+      result.trajectory = log.trajectory();
+      result.trajectory.steps = steps;
+    } else if (e.raw_partial && !e.raw_partial->t.empty()) {
+      try {
+        result.trajectory = assemble(*e.raw_partial);
+      } catch (const std::exception&) {
+        // Best effort: a partial result that cannot be assembled (a singular KKT matrix at the
+        // last row, say) is dropped; the failure reported is the integrator's, not this one.
+      }
+    }
+    summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
+    if (passages) result.summary.singular_passages = passages->passages();
+    return;
+  }
+  if (streamed) {
+    result.trajectory = log.trajectory();
+    result.trajectory.steps = steps;
+  } else {
+    result.trajectory = assemble(raw);
+  }
+  summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
+  if (passages) result.summary.singular_passages = passages->passages();
+}
+
+}  // namespace condyn

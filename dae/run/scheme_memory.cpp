@@ -1,0 +1,67 @@
+// Per-scheme memory estimates (dae/run/scheme_memory.hpp).
+
+#include "dae/run/scheme_memory.hpp"
+
+#include <stdexcept>
+
+#include "dae/linsolve/fixed_pattern_klu.hpp"
+#include "dae/linsolve/kkt.hpp"
+#include "models/scene/scene_parser.hpp"
+
+namespace condyn {
+
+MemoryEstimate SchemeMemory::operator()(const SystemSize& size) {
+  if (!condensed_factor_) {
+    // The union of the patterns of M, C and K, whatever the scalars the Newton matrix weighs
+    // them with (a sum keeps every stored entry).
+    Eigen::SparseMatrix<double> S = model_.M + *model_.K;
+    if (model_.has_damping()) S += model_.C;
+    condensed_factor_ =
+        predicted_factor_entries(model_.constraint_count() > 0 ? kkt_matrix(S, model_.A) : S);
+  }
+  IntegratedSizes sizes;
+  sizes.unknowns = size.unknowns;
+  sizes.newton_nonzeros = static_cast<double>(size.jacobian_nonzeros);
+  sizes.factor_entries =
+      size.condensed ? *condensed_factor_ : sizes.newton_nonzeros + *condensed_factor_;
+  sizes.dense = size.dense;
+  sizes.condensed = size.condensed;
+  sizes.reduced = size.reduced;
+  return integration_memory_estimate(model_sizes(model_), sizes);
+}
+
+std::optional<RunMemory> run_memory_estimate(const Model& model, const SolveSpec& settings) {
+  SystemSize size;
+  Scheme scheme = settings.scheme;
+  try {
+    try {
+      if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
+      size = system_size(model, settings);
+    } catch (const SchemeNotApplicable&) {
+      // auto's elimination refused when built: solve() runs GGL with every multiplier instead.
+      if (settings.scheme != Scheme::automatic) throw;
+      SolveSpec ggl = settings;
+      ggl.scheme = Scheme::ggl;
+      ggl.treatment = SolveSpec::Treatment::multipliers;
+      scheme = Scheme::ggl;
+      size = system_size(model, ggl);
+    }
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;  // solve() refuses the scheme or its settings, and says why
+  }
+  return RunMemory{scheme, SchemeMemory(model)(size)};
+}
+
+std::optional<std::string> check_run_memory(const Model& model, const SolveSpec& settings) {
+  const std::optional<double> available = available_memory_bytes();
+  if (!available) return std::nullopt;
+  const std::optional<RunMemory> run = run_memory_estimate(model, settings);
+  if (!run) return std::nullopt;
+  const std::string what = "scheme " + std::string(to_string(run->scheme));
+  if (const auto refusal = memory_refusal(model_sizes(model), run->estimate, what, *available)) {
+    throw SceneError(scene_message(model.file, settings.scheme_where, *refusal));
+  }
+  return memory_warning(run->estimate, what, *available);
+}
+
+}  // namespace condyn

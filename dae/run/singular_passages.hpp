@@ -1,0 +1,107 @@
+#pragma once
+/// Passages of a run near a singular configuration, where the constraint Jacobian A(t, u) loses
+/// rank (a parallelogram four-bar with its links collinear, the N-four-bar with its cranks
+/// horizontal). There λ is not determined by the state, the reactions at output rows read far
+/// off (10³ to 10⁵ times the exact ones on the parallelogram), and a scheme may leave the branch
+/// it was on for another that meets it there (index1, Baumgarte and index2 on the N-four-bar),
+/// with the energy balance intact. The monitor measures how close each internal step is to such a
+/// configuration and whether the free motions after a passage still hold the motion before it.
+/// Only models whose A depends on the state pay for it (a linear model's rank is checked once,
+/// when it is built).
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dae/interface/singular_passage.hpp"
+#include "models/core/mechanical_system.hpp"
+
+namespace condyn {
+
+/// The conditioning of the constraint rows at a configuration: σ_min of Â = N A W, W = M_d^(-1/2)
+/// (M_d: M's diagonal; a massless column weighs as the lightest massive one) and N scaling each
+/// row of A W to unit length. 1 for orthogonal rows, 0 where they are dependent; it does not
+/// depend on the rows' or the masses' units. Estimated by inverse iteration on Â Âᵀ (a dense
+/// Cholesky up to 64 rows, a sparse LDLᵀ above, its pattern analysed once; warm started from the
+/// last call), which converges in one or two solves where it matters, near a singular
+/// configuration.
+class ConstraintConditioning {
+ public:
+  explicit ConstraintConditioning(const MechanicalSystem& system);
+  /// σ_min at (t, u) (0 when Â Âᵀ is singular to its factorization).
+  double operator()(double t, const Eigen::VectorXd& u);
+  /// After operator(): the share of the kinetic energy of velocity v in the directions the rows
+  /// at that configuration forbid, ‖P p‖² / ‖p‖² with p = W⁻¹ v and P the projection on the row
+  /// space of Â; −1 when v carries no kinetic energy or the rows were singular.
+  [[nodiscard]] double forbidden_share(const Eigen::VectorXd& v) const;
+
+ private:
+  /// Up to this many rows the Gram matrix is dense (m² doubles, 32 KB at 64).
+  static constexpr Eigen::Index kDenseRows = 64;
+  void weigh(double t, const Eigen::VectorXd& u);
+  bool factor_gram();
+  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& x) const;
+
+  std::unique_ptr<MechanicalSystem> system_;
+  const Eigen::SparseMatrix<double>* rows_ = nullptr;  ///< A at the last call (system_'s)
+  Eigen::VectorXd weight_;                             ///< W's diagonal at the last call
+  Eigen::VectorXd norms_;                              ///< N's diagonal at the last call
+  Eigen::MatrixXd dense_gram_;
+  Eigen::LLT<Eigen::MatrixXd> dense_;
+  Eigen::SparseMatrix<double> scaled_, sparse_gram_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> sparse_;
+  bool analysed_ = false, factored_ = false;
+  Eigen::Index gram_nonzeros_ = 0;
+  Eigen::VectorXd start_;  ///< the last left singular vector estimate
+};
+
+/// Follows a run step by step and gathers its passages.
+class SingularPassageMonitor {
+ public:
+  explicit SingularPassageMonitor(const MechanicalSystem& system) : conditioning_(system) {}
+  /// At every internal step: the step's exact time and state.
+  void step(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v);
+  /// The passages so far (the one the run is inside, if any, marked left_open).
+  [[nodiscard]] std::vector<SingularPassage> passages() const;
+
+ private:
+  ConstraintConditioning conditioning_;
+  double best_ = 0.0;  ///< the largest conditioning of the steps so far
+  std::vector<SingularPassage> passages_;
+  bool inside_ = false;
+  /// The velocity the motion before the passage would have at t: the last two steps outside it
+  /// extrapolated linearly (their acceleration turns the velocity as the configuration turns, so
+  /// that a smooth passage, even one crossed in a few long steps, keeps its free motion).
+  [[nodiscard]] Eigen::VectorXd velocity_before(double t) const;
+  /// The last two steps outside a passage (the last in [1]); times below t0 while unset.
+  std::array<double, 2> outside_t_{-1.0, -1.0};
+  std::array<Eigen::VectorXd, 2> outside_v_;
+  std::array<double, 2> before_t_{-1.0, -1.0};  ///< those of the passage the run is in
+  std::array<Eigen::VectorXd, 2> before_v_;
+};
+
+/// The summary's note: "passed 2 near-singular configurations (...): t = 1 (closest 2.1e-05,
+/// rows t = 0.9 to 1.1), ...", the first five in full (empty without one). `row_times`: the
+/// output times, to name the rows inside.
+[[nodiscard]] std::string singular_passage_note(const std::vector<SingularPassage>& passages,
+                                                const std::vector<double>& row_times);
+
+/// A warning naming the first passage that left its branch (and how many more did), and one for
+/// a run that ended inside a passage.
+[[nodiscard]] std::vector<std::string> singular_passage_warnings(
+    const std::vector<SingularPassage>& passages);
+
+/// For a failed run that ended inside a passage: "; it failed inside a near-singular
+/// configuration entered at t = ... (conditioning ... at t = ...)", else empty.
+[[nodiscard]] std::string singular_failure_advice(const std::vector<SingularPassage>& passages);
+
+/// For each output time, whether it lies inside a passage (between its first and last step
+/// below kNearSingular times the best before it, both included): the rows whose reactions and
+/// multipliers are not to be trusted.
+[[nodiscard]] std::vector<bool> near_singular_rows(const std::vector<SingularPassage>& passages,
+                                                   const std::vector<double>& row_times);
+
+}  // namespace condyn

@@ -1,0 +1,163 @@
+#pragma once
+// Internal to build_model(): the state the stages of turning a SceneSpec into a Model share, and
+// the stages themselves, each defined in the file named above its group. The order in which
+// build_model() calls them, and why, is written down in models/assembly/build_model.cpp.
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/core/linear_system.hpp"
+#include "models/core/model.hpp"
+#include "models/core/time_function.hpp"
+#include "models/scene/scene_spec.hpp"
+#include "models/systems/point_mass_system.hpp"
+
+namespace condyn {
+
+class InconsistentGivenValues;
+
+// Relative size below which a (row-normalised) constraint set counts as rank deficient.
+// Rows are scaled to unit norm first, so this compares directions: 1e-10 keeps constraints whose
+// normals differ by more than ~1e-10 rad, far below anything a scene means on purpose.
+constexpr double kRankTolerance = 1e-10;
+// [initial] project and the mass and slave checks still factor dense matrices (constraints x DOFs):
+// refuse or skip sizes whose memory and time would look like a hang (4e6 doubles = 32 MB; a QR of
+// about 10 s).
+constexpr double kMaxDenseEntries = 4e6;
+// A connected group of constraints up to this many constraint-DOF pairs is rank-checked by a
+// dense column-pivoted QR (at most 80 KB and ~1e6 flops per row of the group, so linear in the
+// rows), larger groups by SuiteSparseQR: small scenes keep the dense QR's exact decisions.
+constexpr double kDenseBlockEntries = 1e4;
+
+// input_checks.cpp
+std::string fmt(double v);
+/// A figure computed from the scene (a residual, a norm) for a message: fmt(v), or, when it is
+/// not finite, "not a number (CAUSE overflow the double range)" or "infinite (...)": a message
+/// never shows "nan" or "-nan", and says what overflowed.
+std::string computed_fmt(double v, const std::string& cause);
+double magnitude_bound(const TimeTerm& term, int order, double t_end);
+double magnitude_bound(const TimeFunction& f, double t_end);
+bool all_finite(const Eigen::SparseMatrix<double>& m);
+
+class ModelBuilder {
+ public:
+  ModelBuilder(const SceneSpec& spec, BuildReport& report) : spec_(spec), report_(report) {}
+
+  /// The stages in their order: models/assembly/build_model.cpp.
+  Model build();
+
+  /// An evaluator of the model as built so far: its nonlinear system, or the linear system of its
+  /// matrices and rows (the Model's own LinearSystem is made last, from the final model).
+  [[nodiscard]] std::unique_ptr<MechanicalSystem> evaluator() const {
+    if (model_.nonlinear) return model_.evaluator();
+    return std::make_unique<LinearSystem>(model_);
+  }
+
+  // dofs_and_loads.cpp
+  [[noreturn]] void fail(const SourcePoint& where, const std::string& problem) const;
+  int dof(const std::string& name, const SourcePoint& where) const;
+  void set_dofs(std::vector<std::string> names);
+  void build_loads();
+  void add_pattern_load(const LoadSpec& l, const TimeFunction& value, double bound,
+                        std::vector<double>& total);
+  // ground_motion.cpp
+  void add_ground_motion(std::vector<double>& total);
+  // ground_records.cpp
+  void report_ground_records(const TimeFunction& acceleration);
+
+  // input_checks.cpp
+  void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
+  /// A load's, ground motion's or constraint's time function as the run sees it: steps after
+  /// t_end left out, with a warning naming `where`; a warning too for a table that ends before
+  /// t_end on a nonzero value, which the contract holds from there on (a record cut short).
+  TimeFunction acting_in_run(const TimeFunction& f, const SourcePoint& where);
+  void check_finite() const;
+  void check_magnitudes();
+  /// Warns of an rtol above 1e-2 (fewer than two correct digits), wherever it was set: the
+  /// scene, `--rtol` or Python's rtol.
+  void check_tolerance();
+  void check_size();
+  void check_degenerate_dofs() const;
+  [[nodiscard]] SourcePoint quantity_key(Quantity q) const;
+  /// Refuses DOF `name`: nothing in the system acts on it, so its motion is undefined.
+  [[noreturn]] void fail_undefined_motion(const std::string& name) const;
+
+  // truss_assembly.cpp
+  void build_truss();
+
+  // matrix_model.cpp
+  Eigen::SparseMatrix<double> sparse_psd(const std::vector<std::vector<double>>& rows,
+                                         const std::string& key, const SourcePoint& where) const;
+  Eigen::SparseMatrix<double> file_psd(const FileMatrix& m, const std::string& key) const;
+  void check_sparse_inertia(const FileMatrix& m, const std::string& key) const;
+  void check_psd(const Eigen::MatrixXd& dense, const SourcePoint& where,
+                 const std::string& file = "") const;
+  void check_unreached_dofs() const;
+  void build_matrix();
+  void apply_rayleigh();
+  void apply_modal_damping();  // modal_damping.cpp
+
+  // nonlinear_systems.cpp
+  void build_benchmark();
+  void build_sleigh();
+  void finish_sleigh();
+  void finish_point_masses();
+  void keep_reference_only_at_published_start();
+  void linearize();
+
+  // constraint_rows.cpp
+  void check_coefficients(const ConstraintSpec& cs) const;
+  void refuse_table_rhs(const TimeFunction& f, const SourcePoint& where, bool velocity_level) const;
+  void build_constraints();
+  // constraint_blocks.cpp
+  void append_constraint_blocks(std::vector<Eigen::Triplet<double>>& trip);
+
+  // rank_check.cpp
+  /// A redundant constraint (a combination of others, right-hand sides compatible) that the scene
+  /// asks to drop.
+  struct Dependent {
+    int row = 0;
+    std::string others;  ///< the constraints it combines, quoted
+  };
+  void drop_constraint(const Dependent& d);
+  [[nodiscard]] std::optional<Dependent> check_rank() const;
+
+  // initial_state.cpp
+  void build_initial();
+  void check_initial_consistency() const;
+  void settle_initial_roundoff();
+  void check_nonlinear_consistency() const;
+  [[noreturn]] void refuse_given_values(const InconsistentGivenValues& e) const;
+  void project_initial();
+  // static_start.cpp
+  void solve_static_initial();
+
+  // mass_regularity.cpp
+  void check_massless_dofs();
+  void report_massless_dofs(const std::vector<bool>& held);
+  void warn_given_held_values(const std::vector<bool>& held);
+  [[nodiscard]] std::vector<bool> held_massless() const;
+  void check_singular_mass(const std::vector<bool>& held);
+
+  // solve_settings_checks.cpp
+  void check_energy_output() const;
+  void check_absolute_acceleration() const;
+  void check_output() const;
+  void check_output_dofs() const;
+  void check_slaves() const;
+
+ private:
+  const SceneSpec& spec_;
+  BuildReport& report_;
+  Model model_;
+  PointMassLayout layout_;
+  bool nonlinear_truss_ = false;
+  std::vector<SourcePoint> rod_where_;
+  Eigen::VectorXd base_u0_, base_v0_;  ///< built-in models' published initial state
+};
+
+}  // namespace condyn

@@ -1,0 +1,24 @@
+#include "models/core/row_scales.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace condyn {
+
+Eigen::VectorXd row_scales(const Eigen::SparseMatrix<double>& A) {
+  Eigen::VectorXd largest = Eigen::VectorXd::Zero(A.rows());
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      largest[it.row()] = std::max(largest[it.row()], std::abs(it.value()));
+    }
+  }
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(A.rows());
+  for (Eigen::Index i = 0; i < largest.size(); ++i) {
+    int exponent = 0;
+    if (largest[i] > 0.0) (void)std::frexp(largest[i], &exponent);
+    scale[i] = std::ldexp(1.0, -exponent);
+  }
+  return scale;
+}
+
+}  // namespace condyn

@@ -1,0 +1,45 @@
+#pragma once
+/// The schemes a scene can be solved with, and their names as scenes, the command line and the
+/// reports write them: one table for the parser, the CLI and the solver's dispatch.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace condyn {
+
+/// The formulation used to solve the scene (docs/schemes.md).
+enum class Scheme {
+  automatic,
+  elimination,
+  index1,
+  baumgarte,
+  ggl,
+  index2,
+  index3,
+  penalty,
+  projection
+};
+
+/// Every runnable scheme, the chapter's reference path first (automatic is not one: it resolves
+/// to one of these).
+inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Scheme::baumgarte,
+                                      Scheme::ggl,         Scheme::index2,    Scheme::index3,
+                                      Scheme::penalty,     Scheme::projection};
+
+[[nodiscard]] const char* to_string(Scheme s);
+/// The schemes with a multiplier per kept row, which the mixed treatment applies to
+/// ([solve] constraints, dae/formulations/constraint_treatment.hpp), and auto.
+[[nodiscard]] constexpr bool mixes(Scheme s) {
+  return s == Scheme::automatic || s == Scheme::index1 || s == Scheme::baumgarte ||
+         s == Scheme::ggl || s == Scheme::index2 || s == Scheme::index3;
+}
+/// Why [solve] constraints (--constraints) does not go with the scheme s, which does not mix:
+/// "applies to the multiplier schemes (index1, ...) and to auto, not to s".
+[[nodiscard]] std::string treatment_refusal(Scheme s);
+/// The scheme named s ("auto" included), or nothing.
+[[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view s);
+/// "auto, elimination, index1, ..." for messages.
+[[nodiscard]] std::string scheme_names();
+
+}  // namespace condyn

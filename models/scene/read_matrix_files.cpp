@@ -1,0 +1,433 @@
+// Scene keys that name Matrix Market files (scene-format.md, "Matrices and vectors from files"):
+// the matrix model's M, K, C given by files, Rayleigh damping, and [[constraint_block]]. Files are
+// read here, at parse time, so a bad file is refused with the scene's key and line.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "models/core/number_cell.hpp"
+#include "models/scene/matrix_market.hpp"
+#include "models/scene/scene_readers.hpp"
+
+namespace condyn {
+
+namespace {
+
+/// The first pair (i, j) where a differs from aᵀ by more than a few ulps of the pair's size; none
+/// when a is symmetric. Sparse: O(nnz log nnz), no dense n x n.
+std::optional<std::array<Eigen::Index, 2>> asymmetry(const Eigen::SparseMatrix<double>& a) {
+  const Eigen::SparseMatrix<double> at = a.transpose();
+  for (Eigen::Index k = 0; k < a.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, k); it; ++it) {
+      const double x = it.value(), y = at.coeff(it.row(), it.col());
+      // The inline rows' rule (read_model.cpp): a few ulps of the entries' size.
+      if (std::abs(x - y) > 1e-12 * std::max({std::abs(x), std::abs(y), 1e-300})) {
+        return std::array<Eigen::Index, 2>{it.row(), it.col()};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+/// "entry (i,j) = a but (j,i) = b (…)", 1-based, each value to round-trip precision and their
+/// difference relative to the tolerance, so that values alike to ten digits are told apart.
+std::string asymmetry_text(Eigen::Index i, Eigen::Index j, double a, double b) {
+  const double size = std::max({std::abs(a), std::abs(b), 1e-300});
+  return "entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+         ") = " + shortest_number(a) + " but (" + std::to_string(j + 1) + "," +
+         std::to_string(i + 1) + ") = " + shortest_number(b) + " (they differ by " +
+         shortest_number(std::abs(a - b) / size) + " of their size; symmetric means within 1e-12)";
+}
+
+}  // namespace
+
+FileMatrix SceneReader::matrix_file(const toml::node& node, const std::string& path,
+                                    const MarketExpectation& expect) const {
+  const auto& t = table(node, path);
+  check_keys(t, path, {"file"});
+  const auto& file_node = required(t, path, "file");
+  return read_market(file_node, join(path, "file"), expect);
+}
+
+MarketExpectation SceneReader::pattern_size() const {
+  MarketExpectation e;
+  if (matrix_dofs_ == 0) return e;
+  e.rows = matrix_dofs_;
+  e.cols = 1;
+  e.because = "a load pattern is n x 1 (n = " + std::to_string(matrix_dofs_) + " DOFs)";
+  return e;
+}
+
+MarketExpectation SceneReader::block_size() const {
+  MarketExpectation e;
+  e.rows_need_entries = true;
+  if (matrix_dofs_ == 0) return e;
+  e.cols = matrix_dofs_;
+  e.because = "a constraint block needs one column per DOF (" + std::to_string(matrix_dofs_) + ")";
+  return e;
+}
+
+FileMatrix SceneReader::read_market(const toml::node& file_node, const std::string& key,
+                                    const MarketExpectation& expect) const {
+  const bool rows_need_entries = expect.rows_need_entries;
+  FileMatrix out;
+  out.file = file_name(file_node, key);
+  out.where = at(file_node, key);
+  if (arrays_ != nullptr) {
+    if (const auto it = arrays_->matrices.find(out.file); it != arrays_->matrices.end()) {
+      // A matrix handed over in memory: the file reader's own check of entries, finiteness,
+      // reported under the key the array was given for (its name is "<array KEY>"), not the
+      // `file` key the module put in its place.
+      out.matrix = it->second;
+      const std::size_t prefix = std::string_view("<array ").size();
+      const std::string array_key = out.in_memory() && out.file.ends_with('>')
+                                        ? out.file.substr(prefix, out.file.size() - prefix - 1)
+                                        : key;
+      // A block's or a pattern's size first, as a file's size line is checked before its
+      // entries (the model's matrices are checked against each other once all are read).
+      if (!expect.rows_are_dofs && ((expect.rows > 0 && out.matrix.rows() != expect.rows) ||
+                                    (expect.cols > 0 && out.matrix.cols() != expect.cols))) {
+        fail(file_node, array_key,
+             "is " + std::to_string(out.matrix.rows()) + " x " + std::to_string(out.matrix.cols()) +
+                 " but " + expect.because);
+      }
+      if (rows_need_entries && out.matrix.nonZeros() < out.matrix.rows()) {
+        fail(file_node, array_key,
+             "has " + std::to_string(out.matrix.rows()) + " rows but " +
+                 std::to_string(out.matrix.nonZeros()) +
+                 " stored entries, so some row has none: every constraint row needs a coefficient");
+      }
+      for (Eigen::Index k = 0; k < out.matrix.outerSize(); ++k) {
+        for (Eigen::SparseMatrix<double>::InnerIterator e(out.matrix, k); e; ++e) {
+          if (!std::isfinite(e.value())) {
+            fail(file_node, array_key,
+                 "entry (" + std::to_string(e.row() + 1) + "," + std::to_string(e.col() + 1) +
+                     ") is " + fmt(e.value()) + ": entries must be finite");
+          }
+        }
+      }
+      return out;
+    }
+  }
+  // Relative to the scene file's folder (a scene given as text: the working directory).
+  const std::filesystem::path resolved =
+      std::filesystem::path(file_).parent_path() / std::filesystem::path(out.file);
+  input_files_.push_back(resolved.string());
+  try {
+    out.matrix = read_matrix_market(resolved.string(), expect).matrix;
+  } catch (const MatrixMarketError& e) {
+    const std::string where =
+        resolved.string() + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string());
+    fail(file_node, key, where + ": " + e.what());
+  }
+  return out;
+}
+
+void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
+                                ModelSpec& model) const {
+  const auto& t = table(node, path);
+  if (const auto* file = t.get("file")) {  // not "file: unknown key": the pair is the mistake
+    if (!t.contains("rayleigh") && !t.contains("modal")) {  // a model type without matrices
+      fail(*file, join(path, "file"),
+           "a damping matrix from a file is for matrix models (type = \"matrix\"): give "
+           "rayleigh or modal damping");
+    }
+    fail(*file, join(path, "file"),
+         "give either a damping matrix (file) or rayleigh or modal damping, not both");
+  }
+  check_keys(t, path, {"rayleigh", "modal"});
+  if (const auto* modal = t.get("modal")) {
+    const std::string p = join(path, "modal");
+    if (t.contains("rayleigh")) fail(*modal, p, "give either rayleigh or modal damping, not both");
+    model.modal_ratios =
+        modal->is_array() ? numbers(*modal, p) : std::vector<double>{number(*modal, p)};
+    if (model.modal_ratios.empty()) fail(*modal, p, "expected a damping ratio or a list of them");
+    for (std::size_t i = 0; i < model.modal_ratios.size(); ++i) {
+      const double z = model.modal_ratios[i];
+      if (!(z >= 0.0) || !std::isfinite(z)) {
+        fail(modal->is_array() ? *array(*modal, p).get(i) : *modal,
+             modal->is_array() ? index(p, i) : p,
+             "a damping ratio must be finite and >= 0 (a negative one feeds energy in)");
+      }
+      // As Rayleigh's ratios: 5 for 5 % is the likelier meaning of a ratio of 1 or more.
+      if (z >= 1.0) {
+        fail(modal->is_array() ? *array(*modal, p).get(i) : *modal,
+             modal->is_array() ? index(p, i) : p,
+             "must be a damping ratio in [0, 1) (0.05 is 5 %)");
+      }
+    }
+    model.modal_where = at(*modal, p);
+    return;
+  }
+  const std::string p = join(path, "rayleigh");
+  const auto& r = required(t, path, "rayleigh");
+  if (r.is_table()) return read_rayleigh_pairs(r, p, model);
+  const auto a = numbers(r, p);
+  if (a.size() != 2) {
+    fail(r, p,
+         "expected [a0, a1] (C = a0 M + a1 K) or { frequencies = [f1, f2], ratios = [z1, z2] }");
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (a[i] < 0.0) {
+      fail(*array(r, p).get(i), index(p, i), "must be >= 0 (a negative one feeds energy in)");
+    }
+  }
+  model.rayleigh = std::array<double, 2>{a[0], a[1]};
+  model.rayleigh_where = at(r, p);
+}
+
+/// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] }: the a0, a1 that give damping ratio
+/// z_i at frequency f_i (cycles per time unit), from z(ω) = a0 / (2ω) + a1 ω / 2 at ω_i = 2π f_i:
+///   a0 = 2 ω1 ω2 (z1 ω2 − z2 ω1) / (ω2² − ω1²),   a1 = 2 (z2 ω2 − z1 ω1) / (ω2² − ω1²).
+void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string& path,
+                                      ModelSpec& model) const {
+  const auto& t = table(node, path);
+  check_keys(t, path, {"frequencies", "ratios"});
+  const auto pair_of = [&](const char* key, const char* what) {
+    const auto& n = required(t, path, key);
+    auto v = numbers(n, join(path, key));
+    if (v.size() != 2) fail(n, join(path, key), std::string("expected two ") + what);
+    return v;
+  };
+  const auto f = pair_of("frequencies", "frequencies [f1, f2] (cycles per time unit)");
+  const auto z = pair_of("ratios", "damping ratios [z1, z2]");
+  const auto& fn = required(t, path, "frequencies");
+  const auto& zn = required(t, path, "ratios");
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (!(f[i] > 0.0) || !std::isfinite(f[i])) {
+      fail(*array(fn, join(path, "frequencies")).get(i), index(join(path, "frequencies"), i),
+           "must be a finite frequency > 0");
+    }
+    if (!(z[i] >= 0.0 && z[i] < 1.0)) {
+      fail(*array(zn, join(path, "ratios")).get(i), index(join(path, "ratios"), i),
+           "must be a damping ratio in [0, 1) (0.05 is 5 %)");
+    }
+  }
+  if (f[0] == f[1]) {
+    fail(fn, join(path, "frequencies"),
+         "the two frequencies must differ: one (frequency, ratio) pair does not fix a0 and a1");
+  }
+  const double pi = 3.14159265358979323846;
+  const double w1 = 2.0 * pi * f[0], w2 = 2.0 * pi * f[1];
+  // a0 = 2 w1 w2 (z1 w2 - z2 w1) / (w2² - w1²), a1 = 2 (z2 w2 - z1 w1) / (w2² - w1²), divided
+  // through by w2² (r = w1/w2): no square of a frequency, which overflowed from 1e154 and
+  // underflowed below 1e-154 where a0 and a1 themselves are representable. With d = 1 - r,
+  // 1 - r² = d (1 + r) and z1 - z2 r = (z1 - z2) + z2 d: d from f2 - f1, exact for close
+  // frequencies, where 1 - r * r lost their difference (f and f + 1 ulp gave a ratio of 0.0417
+  // for 0.05).
+  const double r = f[0] / f[1];
+  const double d = (f[1] - f[0]) / f[1];
+  const double a0 = 2.0 * w1 * ((z[0] - z[1]) / d + z[1]) / (1.0 + r);
+  const double a1 = 2.0 * ((z[1] - z[0]) / d + z[0]) / (w2 * (1.0 + r));
+  if (!std::isfinite(a0) || !std::isfinite(a1)) {
+    fail(fn, join(path, "frequencies"),
+         "these frequencies give a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +
+             ", beyond the double range: check their unit (cycles per time unit)");
+  }
+  if (a0 < 0.0 || a1 < 0.0) {
+    fail(node, path,
+         "these pairs need a negative " + std::string(a0 < 0.0 ? "a0" : "a1") +
+             " (a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +
+             "), which feeds energy in: Rayleigh damping z(ω) = a0/(2ω) + a1 ω/2 cannot have "
+             "those ratios at those frequencies");
+  }
+  model.rayleigh = std::array<double, 2>{a0, a1};
+  model.rayleigh_where = at(node, path);
+  model.rayleigh_rule = "Rayleigh damping C = a0 M + a1 K with a0 = " + fmt(a0) +
+                        ", a1 = " + fmt(a1) + ", from ratio " + fmt(z[0]) + " at frequency " +
+                        fmt(f[0]) + " and ratio " + fmt(z[1]) + " at frequency " + fmt(f[1]) +
+                        " (cycles per time unit)";
+}
+
+void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) const {
+  const std::string path = "model";
+  check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
+  model.type = ModelSpec::Type::matrix;
+  const auto is_file = [&](std::string_view key) {
+    const auto* n = t.get(key);
+    return n != nullptr && n->is_table() && n->as_table()->contains("file") &&
+           !n->as_table()->contains("rayleigh") && !n->as_table()->contains("modal");
+  };
+  // A table that is none of the forms (an empty one, a misspelt key): name every form.
+  for (const std::string_view key : {"mass", "stiffness", "damping"}) {
+    const auto* n = t.get(key);
+    if (n == nullptr || !n->is_table()) continue;
+    const auto& entries = *n->as_table();
+    if (entries.contains("file") ||
+        (key == "damping" && (entries.contains("rayleigh") || entries.contains("modal")))) {
+      continue;
+    }
+    fail(*n, join(path, std::string(key)),
+         std::string(entries.empty() ? "is an empty table" : "is a table without a known key") +
+             ": expected rows ([[...], ...]) or { file = \"" +
+             (key == "mass"        ? "M"
+              : key == "stiffness" ? "K"
+                                   : "C") +
+             ".mtx\" }" +
+             (key == "damping" ? std::string(", { rayleigh = [a0, a1] } or { modal = ratio }")
+                               : std::string()));
+  }
+  // Files first: when `dofs` is omitted their size fixes n.
+  const std::pair<std::string_view, FileMatrix*> files[] = {{"mass", &model.mass_file},
+                                                            {"stiffness", &model.stiffness_file},
+                                                            {"damping", &model.damping_file}};
+  const FileMatrix* first = nullptr;
+  // The size each must declare, checked at its size line: the names' count, else the first's.
+  MarketExpectation expected;
+  expected.rows_are_dofs = true;
+  if (const auto* d = t.get("dofs"); d != nullptr && d->is_array() && !d->as_array()->empty()) {
+    expected.rows = expected.cols = static_cast<long long>(d->as_array()->size());
+    expected.because = "model.dofs names " + std::to_string(expected.rows) + " DOFs";
+  }
+  for (const auto& [key, out] : files) {
+    if (key != "damping") (void)required(t, path, key);
+    if (!is_file(key)) continue;
+    *out = matrix_file(*t.get(key), join(path, std::string(key)), expected);
+    if (first == nullptr) {
+      first = out;
+      if (expected.rows == 0 && out->matrix.rows() == out->matrix.cols()) {
+        expected.rows = expected.cols = out->matrix.rows();
+        const SourcePoint where = at(*t.get(key), join(path, std::string(key)));
+        expected.because = out->file + " (" + where.path +
+                           (where.line > 0 ? ", line " + std::to_string(where.line) : "") +
+                           ") is " + std::to_string(expected.rows) + " x " +
+                           std::to_string(expected.rows);
+        expected.advice =
+            "mass, stiffness and damping must have one size; is one of the two files the wrong "
+            "one, or its size line wrong?";
+      }
+    }
+  }
+  if (const auto* d = t.get("dofs"); d != nullptr || first == nullptr) {
+    const auto& dofs = array(required(t, path, "dofs"), "model.dofs");
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      const std::string name = string(*dofs.get(i), index("model.dofs", i));
+      if (name.empty()) fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
+      check_name(*dofs.get(i), index("model.dofs", i), name, "DOF");
+      if (!seen.insert(name).second) {
+        fail(*dofs.get(i), index("model.dofs", i), "duplicate DOF name '" + name + "'");
+      }
+      model.dofs.push_back(name);
+    }
+    if (model.dofs.empty()) fail(dofs, "model.dofs", "at least one DOF is needed");
+  } else {
+    const auto n = static_cast<std::size_t>(first->matrix.rows());
+    model.dofs.reserve(n);
+    for (std::size_t i = 1; i <= n; ++i) model.dofs.push_back("u" + std::to_string(i));
+  }
+  const auto n = static_cast<Eigen::Index>(model.dofs.size());
+  matrix_dofs_ = n;  // load patterns and constraint blocks are checked against it as read
+  for (const auto& [key, out] : files) {
+    if (!out->given()) continue;
+    const auto& node = *t.get(key)->as_table()->get("file");
+    // A matrix handed over in memory (Python) is named by its own key, not the `file` key the
+    // module put in its place.
+    const bool in_memory = out->in_memory();
+    const std::string p =
+        in_memory ? join(path, std::string(key)) : join(join(path, std::string(key)), "file");
+    const std::string name = in_memory ? "the array" : out->file;
+    const auto& a = out->matrix;
+    if (a.rows() != n || a.cols() != n) {
+      const std::string size =
+          name + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols());
+      if (t.contains("dofs")) fail(node, p, size + " for " + std::to_string(n) + " DOFs");
+      if (out == first) fail(node, p, size + ": a square matrix is needed");
+      fail(node, p,
+           size + " but " + first->file + " is " + std::to_string(n) + " x " + std::to_string(n));
+    }
+    if (const auto ij = asymmetry(a)) {
+      const auto [i, j] = *ij;
+      fail(node, p,
+           name + " is not symmetric: " + asymmetry_text(i, j, a.coeff(i, j), a.coeff(j, i)));
+    }
+  }
+  const auto square = [&](std::string_view key, std::vector<std::vector<double>>& out,
+                          SourcePoint& where) {
+    const std::string p = join(path, std::string(key));
+    const auto& mat = required(t, path, key);
+    where = at(mat, p);
+    out = dense_matrix(mat, p);
+    const std::size_t rows = model.dofs.size();
+    if (out.size() != rows) {
+      fail(mat, p,
+           "has " + std::to_string(out.size()) + " rows for " + std::to_string(rows) + " DOFs");
+    }
+    for (std::size_t i = 0; i < rows; ++i) {
+      if (out[i].size() != rows) {
+        fail(*array(mat, p).get(i), index(p, i),
+             "has " + std::to_string(out[i].size()) + " entries for " + std::to_string(rows) +
+                 " DOFs");
+      }
+    }
+    for (std::size_t i = 0; i < rows; ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        const double a = out[i][j], b = out[j][i];
+        // Symmetry to a few ulps of the entries' size: a scene writes these by hand.
+        if (std::abs(a - b) > 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) {
+          fail(mat, p,
+               "is not symmetric: " + asymmetry_text(static_cast<Eigen::Index>(i),
+                                                     static_cast<Eigen::Index>(j), a, b));
+        }
+      }
+    }
+  };
+  if (!model.mass_file.given()) square("mass", model.mass, model.mass_where);
+  if (!model.stiffness_file.given()) square("stiffness", model.stiffness, model.stiffness_where);
+  if (const auto* d = t.get("damping"); d != nullptr && !model.damping_file.given()) {
+    if (d->is_table()) {
+      read_rayleigh(*d, "model.damping", model);
+    } else {
+      square("damping", model.damping, model.damping_where);
+    }
+  }
+}
+
+void SceneReader::read_constraint_blocks(const toml::node& node,
+                                         std::vector<ConstraintBlockSpec>& out) const {
+  const auto& blocks = array(node, "constraint_block");
+  std::set<std::string> prefixes;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const std::string p = index("constraint_block", i);
+    const auto& t = table(*blocks.get(i), p);
+    check_keys(t, p, {"file", "name", "value", "scale"});
+    ConstraintBlockSpec b;
+    b.where = at(*blocks.get(i), p);
+    b.prefix = "block" + std::to_string(i + 1) + "_";
+    if (const auto* nm = t.get("name")) {
+      b.prefix = string(*nm, join(p, "name"));
+      if (b.prefix.empty()) fail(*nm, join(p, "name"), "must not be empty");
+      check_name(*nm, join(p, "name"), b.prefix, "constraint");
+    }
+    if (!prefixes.insert(b.prefix).second) {
+      fail(*blocks.get(i), p, "duplicate constraint block name '" + b.prefix + "'");
+    }
+    b.A = read_market(required(t, p, "file"), join(p, "file"), block_size());
+    if (const auto* v = t.get("value")) {
+      MarketExpectation value;
+      value.rows = b.A.matrix.rows();
+      value.cols = 1;
+      value.because = "the right-hand side of " + b.A.file + " (" +
+                      std::to_string(b.A.matrix.rows()) + " rows) must be " +
+                      std::to_string(b.A.matrix.rows()) + " x 1";
+      b.g = matrix_file(*v, join(p, "value"), value);
+      if (b.g.matrix.cols() != 1 || b.g.matrix.rows() != b.A.matrix.rows()) {
+        fail(*v->as_table()->get("file"), join(join(p, "value"), "file"),
+             b.g.file + " is " + std::to_string(b.g.matrix.rows()) + " x " +
+                 std::to_string(b.g.matrix.cols()) + ": the right-hand side of " + b.A.file + " (" +
+                 std::to_string(b.A.matrix.rows()) + " rows) must be " +
+                 std::to_string(b.A.matrix.rows()) + " x 1");
+      }
+    }
+    if (const auto* s = t.get("scale")) b.scale = time_function(*s, join(p, "scale"));
+    out.push_back(std::move(b));
+  }
+}
+
+}  // namespace condyn

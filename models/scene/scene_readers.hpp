@@ -1,0 +1,102 @@
+#pragma once
+/// The scene's section readers (internal to models/): each reads one section of the scene into
+/// its part of SceneSpec, through the typed getters of TomlAccess, and is defined in the file
+/// named for what it reads. parse_scene_text() (scene_parser.cpp) calls them in order.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "models/scene/matrix_market.hpp"
+#include "models/scene/scene_spec.hpp"
+#include "models/scene/scene_table.hpp"
+#include "models/scene/toml_access.hpp"
+
+namespace condyn {
+
+class SceneReader : public TomlAccess {
+ public:
+  using TomlAccess::TomlAccess;
+  /// A reader whose `{ file = NAME }` keys may name matrices in `arrays`
+  /// (models/scene/scene_table.hpp).
+  SceneReader(std::string file, const ArrayInputs& arrays)
+      : TomlAccess(std::move(file)), arrays_(&arrays) {}
+
+  /// The whole scene: its top-level keys, then every section in order (scene_parser.cpp).
+  /// What `needs` asks for is checked first.
+  [[nodiscard]] SceneSpec read(const toml::table& root, SceneNeeds needs = {}) const;
+
+  /// [model] (read_model.cpp); trusses by read_truss().
+  void read_model(const toml::node& node, ModelSpec& model) const;
+  void read_truss(const toml::table& t, int dim, ModelSpec& model) const;
+  /// The matrix model, Matrix Market files and Rayleigh damping (read_matrix_files.cpp).
+  void read_matrix_model(const toml::table& t, ModelSpec& model) const;
+  /// `{ file = "K.mtx" }` at `path`, read (relative to the scene's folder) and held sparse.
+  /// `expect`: the size it must declare (checked at its size line, before it is read).
+  [[nodiscard]] FileMatrix matrix_file(const toml::node& node, const std::string& path,
+                                       const MarketExpectation& expect = {}) const;
+  /// The string at `node` (key path `key`) as a file name: not empty, no NUL character
+  /// (read_time_function.cpp).
+  [[nodiscard]] std::string file_name(const toml::node& node, const std::string& key) const;
+  /// The Matrix Market file named by the string `file_node` (key path `key`).
+  /// `expect`: as read_matrix_market's (a constraint block's rows need entries, a size known).
+  [[nodiscard]] FileMatrix read_market(const toml::node& file_node, const std::string& key,
+                                       const MarketExpectation& expect = {}) const;
+  /// What a file sized by the matrix model's n DOFs must declare: a load pattern n x 1, a
+  /// constraint block n columns; {} (any size) for other models.
+  [[nodiscard]] MarketExpectation pattern_size() const;
+  [[nodiscard]] MarketExpectation block_size() const;
+  /// damping = { rayleigh = [a0, a1] } at `path`.
+  void read_rayleigh(const toml::node& node, const std::string& path, ModelSpec& model) const;
+  /// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] } at `path`: a0, a1 derived.
+  void read_rayleigh_pairs(const toml::node& node, const std::string& path, ModelSpec& model) const;
+  /// [[constraint_block]].
+  void read_constraint_blocks(const toml::node& node, std::vector<ConstraintBlockSpec>& out) const;
+  /// [[load]] (read_loads.cpp).
+  void read_loads(const toml::node& node, std::vector<LoadSpec>& out) const;
+  /// [ground_motion] (read_ground_motion.cpp); the model (read first) decides its keys.
+  void read_ground_motion(const toml::node& node, const ModelSpec& model,
+                          std::optional<GroundMotionSpec>& out) const;
+  /// [[constraint]] (read_constraints.cpp).
+  void read_constraints(const toml::node& node, std::vector<ConstraintSpec>& out) const;
+  /// [initial] (read_initial.cpp).
+  void read_initial(const toml::node& node, InitialSpec& initial) const;
+  /// [solve] (read_solve.cpp).
+  void read_solve(const toml::node& node, SolveSpec& solve) const;
+  [[nodiscard]] Scheme parse_scheme(const toml::node& node, const std::string& path) const;
+  /// [output] (read_output.cpp).
+  void read_output(const toml::node& node, OutputSpec& output) const;
+  /// [[check]] (read_checks.cpp), after [solve]: `at` must be one of its output times.
+  void read_checks(const toml::node& node, const SolveSpec& solve,
+                   std::vector<CheckSpec>& out) const;
+
+  /// A load's or a constraint's value: a number, one term table or a list of terms
+  /// (read_time_function.cpp).
+  [[nodiscard]] TimeFunction time_function(const toml::node& node, const std::string& path) const;
+  [[nodiscard]] TimeTerm term(const toml::node& node, const std::string& path) const;
+  /// A table's CSV file named by the string `file_node` (key path `key`), relative to the scene's
+  /// folder; a bad file is refused naming the key, the file and its line. At least `min_samples`
+  /// rows (models/core/time_table.hpp).
+  [[nodiscard]] std::shared_ptr<const TimeTable> table_file(const toml::node& file_node,
+                                                            const std::string& key,
+                                                            const std::string& column,
+                                                            std::size_t min_samples = 2) const;
+
+  /// DOF and constraint names, which become CSV column names (scene_names.cpp): check_name()
+  /// refuses what would break a CSV field; check_columns() refuses two names that give the same
+  /// column under any quantity.
+  void check_name(const toml::node& node, const std::string& path, const std::string& name,
+                  const char* what) const;
+  void check_columns(const toml::table& root, const SceneSpec& spec) const;
+
+ private:
+  const ArrayInputs* arrays_ = nullptr;  ///< matrices and tables given in memory (none: files only)
+  /// The files read so far (SceneSpec::input_files), noted by the readers of files.
+  mutable std::vector<std::string> input_files_;
+  /// The matrix model's DOF count once [model] is read (0: not a matrix model, or not yet).
+  mutable long long matrix_dofs_ = 0;
+};
+
+}  // namespace condyn

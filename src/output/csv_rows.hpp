@@ -1,0 +1,38 @@
+#pragma once
+/// The CSV of the contract (scene-format.md, "Output"), one line at a time: the header, and a data
+/// row from one output time's values. Used by the whole-trajectory writer and by the row writer
+/// of a streamed run alike, so both write the same bytes.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "dae/run/energy_balance.hpp"
+#include "models/core/model.hpp"
+
+namespace condyn {
+
+/// One output time's values, viewed (columns of a trajectory or a streamed row).
+struct CsvRow {
+  double t = 0.0;
+  /// `acceleration` may be empty when the output does not ask for it.
+  /// `absolute_acceleration` (u'' + r a_g under ground motion) may be empty when not asked for.
+  Eigen::Ref<const Eigen::VectorXd> u, v, acceleration, absolute_acceleration, reaction, multiplier;
+  double drift_position = 0.0, drift_velocity = 0.0;
+  /// The energy balance (docs/energy.md) when the output asks for `energy`.
+  const EnergyBalance* balance = nullptr;
+};
+
+/// "t,..." for the [output] quantities over the `shown` DOFs, without the newline.
+[[nodiscard]] std::string csv_header(const Model& model, const OutputSpec& output,
+                                     const std::vector<int>& shown);
+
+/// Appends the data row (without newline) to `line`; numbers in the shortest form that reads back
+/// as the same double.
+void append_csv_row(std::string& line, const OutputSpec& output, const std::vector<int>& shown,
+                    const CsvRow& row);
+
+/// Appends v in the shortest round-trip form (std::to_chars).
+void append_number(std::string& line, double v);
+
+}  // namespace condyn

@@ -1,0 +1,117 @@
+#include "src/output/hdf5_output.hpp"
+
+#include <hdf5.h>
+
+#include "src/output/hdf5_parts.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+namespace condyn {
+
+namespace {
+
+using hdf5::check;
+using hdf5::Handle;
+using hdf5::put_strings;
+
+/// A rows x cols dataset of doubles, row-major (HDF5's order), entry (r, c) = get(r, c); cols = 0
+/// makes a vector of `rows` entries get(r, 0).
+template <class Get>
+void put_matrix(hid_t file, const char* name, hsize_t rows, hsize_t cols, const Get& get) {
+  const hsize_t width = cols == 0 ? 1 : cols;
+  std::vector<double> data(static_cast<std::size_t>(rows * width));
+  for (hsize_t r = 0; r < rows; ++r) {
+    for (hsize_t c = 0; c < width; ++c) data[static_cast<std::size_t>(r * width + c)] = get(r, c);
+  }
+  const hsize_t dims[2] = {rows, cols};
+  const Handle space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr), H5Sclose,
+                     "H5Screate_simple");
+  const Handle set(
+      H5Dcreate2(file, name, H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose, "H5Dcreate2");
+  if (!data.empty()) {
+    check(H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+          "H5Dwrite");
+  }
+}
+
+}  // namespace
+
+void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
+                const RunAttributes& run, const Trajectory& traj) {
+  // The file lives in memory (the core driver, no backing store); its image is then written to
+  // `out`, so the caller's checked temporary file and atomic rename apply to it as to a CSV.
+  const Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate");
+  check(H5Pset_fapl_core(access.id(), 1 << 20, 0), "H5Pset_fapl_core");
+  const Handle file(H5Fcreate("condyn-output.h5", H5F_ACC_TRUNC, H5P_DEFAULT, access.id()),
+                    H5Fclose, "H5Fcreate");
+  const hid_t f = file.id();
+  const auto nt = static_cast<hsize_t>(traj.t.size());
+  const std::vector<int> shown = selected_dofs(output, model.dof_names);
+  std::vector<std::string> dof_names, constraint_names;
+  for (int d : shown) dof_names.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+  for (const auto& c : model.constraints) constraint_names.push_back(c.name);
+  put_matrix(f, "t", nt, 0, [&](hsize_t r, hsize_t) { return traj.t[r]; });
+  const auto dofs = [&](const char* name, const Eigen::MatrixXd& m) {
+    put_matrix(f, name, nt, shown.size(),
+               [&](hsize_t r, hsize_t c) { return m(shown[c], static_cast<Eigen::Index>(r)); });
+  };
+  for (Quantity q : output.quantities) {
+    switch (q) {
+      case Quantity::displacement:
+        dofs("displacement", traj.u);
+        break;
+      case Quantity::velocity:
+        dofs("velocity", traj.v);
+        break;
+      case Quantity::acceleration:
+        dofs("acceleration", traj.acceleration);
+        break;
+      case Quantity::absolute_acceleration: {
+        Eigen::MatrixXd absolute(traj.acceleration.rows(), traj.acceleration.cols());
+        for (Eigen::Index k = 0; k < absolute.cols(); ++k) {
+          absolute.col(k) = model.absolute_acceleration(traj.t[static_cast<std::size_t>(k)],
+                                                        traj.acceleration.col(k));
+        }
+        dofs("absolute_acceleration", absolute);
+        break;
+      }
+      case Quantity::reaction:
+        dofs("reaction", traj.reaction);
+        break;
+      case Quantity::multiplier:
+        put_matrix(f, "multiplier", nt, static_cast<hsize_t>(traj.multiplier.rows()),
+                   [&](hsize_t r, hsize_t c) {
+                     return traj.multiplier(static_cast<Eigen::Index>(c),
+                                            static_cast<Eigen::Index>(r));
+                   });
+        break;
+      case Quantity::drift:
+        put_matrix(f, "drift", nt, 2, [&](hsize_t r, hsize_t c) {
+          const auto k = static_cast<Eigen::Index>(r);
+          return c == 0 ? traj.drift_position[k] : traj.drift_velocity[k];
+        });
+        break;
+      case Quantity::energy:  // build_model refuses 'energy' where no balance can be drawn
+        if (traj.balance.size() != nt) throw std::logic_error("energy rows without a balance");
+        put_matrix(f, "energy", nt, kEnergyColumns.size(),
+                   [&](hsize_t r, hsize_t c) { return energy_column(traj.balance[r], c); });
+        put_strings(f, "energy_columns", energy_column_names());
+        break;
+    }
+  }
+  put_strings(f, "dof_names", dof_names);
+  put_strings(f, "constraint_names", constraint_names);
+  hdf5::put_run_attributes(f, run);
+  check(H5Fflush(f, H5F_SCOPE_GLOBAL), "H5Fflush");
+  const ssize_t size = H5Fget_file_image(f, nullptr, 0);
+  if (size < 0) throw std::runtime_error("HDF5: H5Fget_file_image failed");
+  std::vector<char> image(static_cast<std::size_t>(size));
+  if (H5Fget_file_image(f, image.data(), image.size()) != size) {
+    throw std::runtime_error("HDF5: H5Fget_file_image failed");
+  }
+  out.write(image.data(), static_cast<std::streamsize>(image.size()));
+}
+
+}  // namespace condyn

@@ -1,0 +1,81 @@
+#pragma once
+// The HDF5 pieces both writers use (src/output/hdf5_output.cpp whole, src/output/row_writer.cpp row
+// by row): handles closed on scope exit, checked calls, string datasets and root attributes.
+
+#include <hdf5.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "src/output/hdf5_output.hpp"
+
+namespace condyn::hdf5 {
+
+/// Closes an HDF5 handle with its own close function when it leaves scope.
+class Handle {
+ public:
+  Handle(hid_t id, herr_t (*close)(hid_t), const char* call) : id_(id), close_(close) {
+    if (id_ < 0) throw std::runtime_error(std::string("HDF5: ") + call + " failed");
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { close_(id_); }
+  [[nodiscard]] hid_t id() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+inline void check(herr_t status, const char* call) {
+  if (status < 0) throw std::runtime_error(std::string("HDF5: ") + call + " failed");
+}
+
+inline void put_strings(hid_t file, const char* name, const std::vector<std::string>& values) {
+  std::vector<const char*> pointers;
+  pointers.reserve(values.size());
+  for (const auto& v : values) pointers.push_back(v.c_str());
+  const Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
+  check(H5Tset_size(type.id(), H5T_VARIABLE), "H5Tset_size");
+  check(H5Tset_cset(type.id(), H5T_CSET_UTF8), "H5Tset_cset");
+  const hsize_t dims[1] = {values.size()};
+  const Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose, "H5Screate_simple");
+  const Handle set(
+      H5Dcreate2(file, name, type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose, "H5Dcreate2");
+  if (!values.empty()) {
+    check(H5Dwrite(set.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()),
+          "H5Dwrite");
+  }
+}
+
+inline void put_attribute(hid_t file, const char* name, double value) {
+  const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate");
+  const Handle attr(H5Acreate2(file, name, H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT),
+                    H5Aclose, "H5Acreate2");
+  check(H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, &value), "H5Awrite");
+}
+
+/// A variable-length UTF-8 string, as the name datasets: h5py reads it as str (a fixed-length
+/// ASCII one came back as bytes, b'ggl', unequal to 'ggl').
+inline void put_attribute(hid_t file, const char* name, const std::string& value) {
+  const Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
+  check(H5Tset_size(type.id(), H5T_VARIABLE), "H5Tset_size");
+  check(H5Tset_cset(type.id(), H5T_CSET_UTF8), "H5Tset_cset");
+  const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate");
+  const Handle attr(H5Acreate2(file, name, type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
+                    H5Aclose, "H5Acreate2");
+  const char* text = value.c_str();
+  check(H5Awrite(attr.id(), type.id(), static_cast<const void*>(&text)), "H5Awrite");
+}
+
+/// The root attributes of a result file: scheme, rtol, atol, and constraints when it is set.
+inline void put_run_attributes(hid_t file, const RunAttributes& run) {
+  put_attribute(file, "scheme", run.scheme);
+  put_attribute(file, "rtol", run.rtol);
+  put_attribute(file, "atol", run.atol);
+  if (!run.constraints.empty()) put_attribute(file, "constraints", run.constraints);
+}
+
+}  // namespace condyn::hdf5

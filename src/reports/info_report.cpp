@@ -1,0 +1,330 @@
+#include "src/reports/info_report.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <map>
+#include <new>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "dae/formulations/baumgarte_gains.hpp"
+#include "dae/formulations/constraint_treatment.hpp"
+#include "dae/formulations/model_scales.hpp"
+#include "dae/run/elimination.hpp"
+#include "dae/run/scheme_memory.hpp"
+#include "dae/run/solve.hpp"
+#include "models/core/classification.hpp"
+#include "models/core/number_cell.hpp"
+
+namespace condyn {
+
+namespace {
+
+// Lines of the report stay within this width (a terminal, a log viewer, a diff).
+constexpr std::size_t kWidth = 100;
+// Long lists (hundreds of masters) are shown in full up to this many lines, then counted.
+constexpr std::size_t kMaxListLines = 8;
+
+/// Up to this many constraints the table lists each; beyond, the first kShortenedConstraints
+/// and a count per class (10⁴ ties of a 10⁶-DOF lattice are not read row by row).
+constexpr std::size_t kMaxListedConstraints = 60;
+constexpr std::size_t kShortenedConstraints = 40;
+
+/// "label: text" with the words of text wrapped at kWidth columns, continuation lines indented
+/// by the label's width. Text of several lines is printed as it is.
+std::string wrapped_text(const std::string& label, const std::string& text) {
+  if (text.find('\n') != std::string::npos) return label + text + "\n";
+  const std::string indent(label.size(), ' ');
+  std::string out = label, word;
+  std::size_t width = label.size();
+  std::istringstream words(text);
+  bool first = true;
+  while (words >> word) {
+    if (!first && width + 1 + word.size() > kWidth) {
+      out += "\n" + indent;
+      width = indent.size();
+      first = true;
+    }
+    out += (first ? "" : " ") + word;
+    width += (first ? 0 : 1) + word.size();
+    first = false;
+  }
+  return out + "\n";
+}
+
+/// "label: a, b, c" wrapped at kWidth columns, continuation lines indented by the label's width;
+/// beyond kMaxListLines lines the rest is counted ("... and 290 more (598 in all)").
+std::string wrapped_list(const std::string& label, const std::vector<std::string>& names) {
+  if (names.empty()) return label + "none\n";
+  const std::string indent(label.size(), ' ');
+  std::vector<std::vector<std::string>> lines(1);
+  std::size_t width = label.size();
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string item = names[k] + (k + 1 < names.size() ? "," : "");
+    if (!lines.back().empty() && width + 1 + item.size() > kWidth) {
+      lines.emplace_back();
+      width = indent.size();
+    }
+    width += (lines.back().empty() ? 0 : 1) + item.size();
+    lines.back().push_back(item);
+  }
+  std::string suffix;
+  if (lines.size() > kMaxListLines) {
+    lines.resize(kMaxListLines);
+    auto& last = lines.back();
+    std::size_t shown = 0;
+    for (const auto& l : lines) shown += l.size();
+    const auto line_width = [&last, &indent] {
+      std::size_t w = indent.size();
+      for (const auto& item : last) w += item.size() + 1;
+      return w;
+    };
+    do {
+      suffix = "... and " + std::to_string(names.size() - shown) + " more (" +
+               std::to_string(names.size()) + " in all)";
+      if (line_width() + suffix.size() <= kWidth || last.size() <= 1) break;
+      last.pop_back();
+      --shown;
+    } while (true);
+  }
+  std::string out;
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    std::string line = l == 0 ? label : indent;
+    for (std::size_t k = 0; k < lines[l].size(); ++k) line += (k ? " " : "") + lines[l][k];
+    if (l + 1 == lines.size() && !suffix.empty()) line += " " + suffix;
+    out += line + "\n";
+  }
+  return out;
+}
+
+/// The loads and their time functions (the first kMaxListedLoads; a table as
+/// table(FILE:COLUMN, N samples)*scale), and the ground motion's acceleration.
+void print_loads(std::ostream& out, const Model& model) {
+  constexpr std::size_t kMaxListedLoads = 10;
+  if (model.ground) {
+    out << wrapped_text("ground motion: ", "a_g(t) = " + model.ground->acceleration.describe() +
+                                               " (its load −M r a_g(t) is among the loads)");
+  }
+  if (model.loads.empty()) return;
+  out << "loads: " << model.loads.size() << "\n";
+  for (std::size_t i = 0; i < std::min(model.loads.size(), kMaxListedLoads); ++i) {
+    const Load& load = model.loads[i];
+    const std::string target =
+        load.dof >= 0 ? model.dof_names[static_cast<std::size_t>(load.dof)]
+                      : "pattern (" + std::to_string(load.pattern.nonZeros()) + " DOFs)";
+    out << wrapped_text("  " + target + ": ", load.value.describe());
+  }
+  if (model.loads.size() > kMaxListedLoads) {
+    out << "  ... and " << model.loads.size() - kMaxListedLoads << " more\n";
+  }
+}
+
+std::vector<std::string> names_of(const Model& model, const std::vector<int>& dofs) {
+  std::vector<std::string> out;
+  out.reserve(dofs.size());
+  for (int d : dofs) out.push_back(model.dof_names[static_cast<std::size_t>(d)]);
+  return out;
+}
+
+/// A constraint's DOFs in its table row: the first few, then counted.
+std::string short_list(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 8;
+  std::string s;
+  for (std::size_t k = 0; k < names.size() && k < kShown; ++k) s += (k ? ", " : "") + names[k];
+  if (names.size() > kShown) s += " ... and " + std::to_string(names.size() - kShown) + " more";
+  return s;
+}
+
+/// The selected scheme's memory estimate against the machine's available memory.
+void print_memory(std::ostream& out, const std::optional<MemoryEstimate>& selected) {
+  if (!selected) return;
+  const std::optional<double> available = available_memory_bytes();
+  out << wrapped_text(
+      "memory: ", "about " + format_bytes(selected->bytes) + " to integrate under the selected " +
+                      "scheme (at least " + format_bytes(selected->lower_bound) +
+                      "; KLU's factors predicted at " + shortest_number(selected->factor_entries) +
+                      " entries)" +
+                      (available ? ", " + format_bytes(*available) + " available" : std::string()));
+}
+
+}  // namespace
+
+void print_info(std::ostream& out, const Model& model, const BuildReport& report,
+                const SolveSpec& settings, bool every_constraint) {
+  out << wrapped_text("scene: ", model.file + (model.name.empty() ? "" : " (" + model.name + ")"));
+  if (!model.description.empty()) out << wrapped_text("model: ", model.description);
+  // One line per DOF the projection moved: printed as it is.
+  if (!report.initial_projection.empty())
+    out << "initial state: " << report.initial_projection << "\n";
+  for (const auto& w : report.warnings) out << wrapped_text("warning: ", w);
+  for (const auto& d : report.dropped_constraints)
+    out << "dropped redundant constraint " << d << "\n";
+  if (!report.damping.empty()) out << wrapped_text("damping: ", report.damping);
+  if (!report.massless_dofs.empty()) out << wrapped_text("massless DOFs: ", report.massless_dofs);
+  for (const auto& r : report.ground_records) out << wrapped_text("ground motion record: ", r);
+  out << "\n";
+  const auto classes = classify_constraints(model, settings.t_end);
+  if (classes.empty()) {
+    out << "constraints: none (the model is unconstrained)\n";
+  } else {
+    out << "constraints (classes of the chapter's Tables 5.1-5.2):\n";
+    // A large model's table is its first rows and a count per class, unless every row is asked.
+    const bool shortened = !every_constraint && classes.size() > kMaxListedConstraints;
+    const std::size_t listed = shortened ? kShortenedConstraints : classes.size();
+    int width = 6;
+    for (std::size_t i = 0; i < listed; ++i) {
+      width = std::max(width, static_cast<int>(classes[i].name.size()) + 2);
+    }
+    // The kind column as wide as its longest entry ("pseudo-nonholonomic (integrable)" is 32).
+    int kind_width = 6;
+    for (const auto& c : classes) {
+      kind_width = std::max(kind_width, static_cast<int>(c.holonomy().size()) + 2);
+    }
+    const auto class_columns = [kind_width](std::ostream& o, const ConstraintClass& c) {
+      o << std::setw(5) << (c.single_freedom ? "SFC" : "MFC") << std::setw(kind_width)
+        << c.holonomy() << std::setw(12) << (c.rheonomic ? "rheonomic" : "scleronomic")
+        << std::setw(16) << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
+        << (c.linear ? "linear" : "nonlinear");
+    };
+    out << "  " << std::left << std::setw(width) << "name" << std::setw(5) << ""
+        << std::setw(kind_width) << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs"
+        << std::setw(11) << "form"
+        << "DOFs\n";
+    for (std::size_t i = 0; i < listed; ++i) {
+      const ConstraintClass& c = classes[i];
+      std::ostringstream row;
+      row << "  " << std::left << std::setw(width) << c.name;
+      class_columns(row, c);
+      out << wrapped_text(row.str(), short_list(c.dofs));
+      if (!c.note.empty()) {
+        out << wrapped_text(std::string(static_cast<std::size_t>(width) + 4, ' '), c.note);
+      }
+    }
+    if (shortened) {
+      out << "  ... and " << classes.size() - listed << " more (" << classes.size()
+          << " in all; info --all-constraints lists every one); count per class:\n";
+      std::map<std::string, std::size_t> count;
+      for (const auto& c : classes) {
+        std::ostringstream key;
+        key << std::left;
+        class_columns(key, c);
+        std::string text = key.str();
+        text.erase(text.find_last_not_of(' ') + 1);
+        ++count[text];
+      }
+      for (const auto& [key, number] : count) {
+        out << "  " << std::left << std::setw(width) << number << key << "\n";
+      }
+    }
+    const bool integrable_velocity_rows =
+        std::any_of(model.constraints.begin(), model.constraints.end(), [](const Constraint& c) {
+          return c.level == ConstraintSpec::Level::velocity && !c.nonholonomic;
+        });
+    if (integrable_velocity_rows) {
+      out << "  (linear velocity-level constraints are classed by their integrated form a·u = "
+             "a·u(0) + ∫h)\n";
+    }
+  }
+  const int n = model.dofs(), m = model.constraint_count();
+  std::ostringstream model_size;
+  model_size << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
+             << " DOFs, " << m << (m == 1 ? " constraint" : " constraints") << "; nonzeros M "
+             << model.M.nonZeros() << ", C " << model.C.nonZeros() << ", K " << model.K->nonZeros()
+             << ", A " << model.A.nonZeros();
+  out << "\n" << wrapped_text("model: ", model_size.str());
+  print_loads(out, model);
+  SchemeChoice choice = choose_scheme(model, settings);
+  SystemSizer sizer(model);
+  // Elimination sized once, before the choice is printed: auto falls back to GGL when the
+  // reduction cannot be integrated (dae/run/solve.cpp), and says so here as run does.
+  std::optional<SystemSize> elimination_size;
+  std::string elimination_refused;
+  bool elimination_inapplicable = false;  // SchemeNotApplicable: what auto falls back on
+  {
+    SolveSpec as_elimination = settings;
+    as_elimination.scheme = Scheme::elimination;
+    as_elimination.treatment = SolveSpec::Treatment::multipliers;
+    try {
+      if (!scheme_refusal(model, Scheme::elimination)) elimination_size = sizer(as_elimination);
+    } catch (const SchemeNotApplicable& e) {
+      elimination_refused = e.what();
+      elimination_inapplicable = true;
+    } catch (const std::exception& e) {
+      elimination_refused = e.what();
+    }
+  }
+  const bool fell_back = settings.scheme == Scheme::automatic &&
+                         choice.scheme == Scheme::elimination && elimination_inapplicable;
+  if (fell_back) {
+    choice = {Scheme::ggl, "auto: elimination refused (" + elimination_refused + "), GGL instead"};
+  }
+  const auto refusal = scheme_refusal(model, choice.scheme);
+  out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
+      << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";
+  if (choice.scheme == Scheme::elimination && !refusal) {
+    const ReducedSystem& reduced = sizer.reduced(settings.slaves);
+    const auto& ms = reduced.transform;
+    out << "elimination: " << ms.slaves.size() << (ms.slaves.size() == 1 ? " slave (" : " slaves (")
+        << (settings.slaves.empty() ? "chosen by column pivoting on A" : "named in [solve] slaves")
+        << "), " << ms.masters.size() << (ms.masters.size() == 1 ? " master\n" : " masters\n")
+        << wrapped_list("  slaves: ", names_of(model, ms.slaves))
+        << wrapped_list("  masters: ", names_of(model, ms.masters));
+  }
+  sizer.release_reduced();  // elimination is sized already: the other schemes' peak without it
+  const bool chose_mixed = !fell_back && uses_mixed_treatment(model, choice.scheme, settings);
+  if (chose_mixed && !refusal) {
+    out << "constraint treatment (mixed): " << treatment_report(model, treat_constraints(model));
+  }
+  if (choice.scheme == Scheme::baumgarte)
+    out << wrapped_text("baumgarte: ", baumgarte_gains(model, settings).rule);
+  std::ostringstream rtol;
+  rtol << "rtol " << settings.rtol << "; ";
+  out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model, settings).rule);
+  out << "\nsystem each scheme integrates:\n";
+  out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
+      << std::setw(19) << "Jacobian nonzeros"
+      << "memory\n";
+  SchemeMemory scheme_memory(model);
+  std::optional<MemoryEstimate> selected;
+  // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
+  for (Scheme s : kSchemes) {
+    for (const bool mixed : {false, true}) {
+      if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
+      std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
+      name.resize(std::max<std::size_t>(name.size(), 17), ' ');
+      out << "  " << name;
+      const char* marker = s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "";
+      try {
+        SolveSpec as_scheme = settings;
+        as_scheme.scheme = s;
+        as_scheme.treatment =
+            mixed ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
+        if (s == Scheme::elimination && !elimination_refused.empty()) {
+          throw std::invalid_argument(elimination_refused);
+        }
+        const SystemSize size =
+            s == Scheme::elimination && elimination_size ? *elimination_size : sizer(as_scheme);
+        const MemoryEstimate estimate = scheme_memory(size);
+        if (*marker != '\0') selected = estimate;
+        out << std::setw(10) << size.unknowns << std::setw(19) << size.jacobian_nonzeros
+            << format_bytes(estimate.bytes) << marker << "\n";
+      } catch (const std::exception& e) {
+        // Out of memory while building it says nothing of the scheme's applicability.
+        const bool memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
+        // Continuation lines indented under the reason; the marker ends the first line.
+        std::string wrapped =
+            wrapped_text("  " + name + (memory ? "not sized: " : "not applicable: "),
+                         memory ? "out of memory while building its system (the run would need "
+                                  "more than this process may have)"
+                                : e.what())
+                .substr(2 + name.size());
+        wrapped.insert(wrapped.find('\n'), marker);
+        out << wrapped;
+      }
+    }
+  }
+  print_memory(out, selected);
+}
+
+}  // namespace condyn

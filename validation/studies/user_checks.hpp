@@ -1,0 +1,98 @@
+#pragma once
+/// A user's own checks ([[check]] tables, scene-format.md "Checks for a user's own validation
+/// suite"): run a scene and evaluate each check on the rows as they are computed, keeping only the
+/// figures the checks need (nothing of size DOFs x output times). Used by `condyn check`
+/// (src/reports/check_report.hpp) and the Python module.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dae/run/trajectory.hpp"
+#include "models/core/model.hpp"
+#include "models/scene/scene_spec.hpp"
+
+namespace condyn {
+
+/// Where a check's column comes from in a row.
+struct CheckColumn {
+  Quantity quantity = Quantity::displacement;
+  int index = 0;  ///< the DOF, the constraint, drift position/velocity (0/1), kEnergyColumns
+};
+
+/// The column `name` of a run of `model`, or nothing when no quantity gives it. Column names as
+/// the CSV writes them: a DOF's name, vel_, acc_, reaction_ + DOF, lambda_ + constraint,
+/// drift_position, drift_velocity and the energy columns (kEnergyColumns).
+[[nodiscard]] std::optional<CheckColumn> find_column(const Model& model, const std::string& name);
+
+/// The outcome of one check.
+struct CheckOutcome {
+  std::string quantity;
+  CheckSpec::Form form = CheckSpec::Form::max_abs;
+  double computed = 0.0;  ///< the figure compared with `bound` (NaN when it could not be formed)
+  double bound = 0.0;     ///< tolerance or max_abs
+  bool passed = false;
+  std::string text;  ///< one line: what was computed against what
+};
+
+/// Evaluates checks on rows as they come (RunHooks::on_row). The columns are resolved when it is
+/// made: an unknown one is refused with SceneError naming the scene, the check's line and key.
+class CheckEvaluator {
+ public:
+  CheckEvaluator(const Model& model, const std::vector<CheckSpec>& checks, const std::string& file);
+  void add(const TrajectoryRow& row);
+  [[nodiscard]] std::vector<CheckOutcome> outcomes() const;
+  /// The output quantities the checks read (to switch on in [output] before the run).
+  [[nodiscard]] std::vector<Quantity> quantities() const;
+
+ private:
+  struct State {
+    CheckColumn column;
+    double figure = 0.0;    ///< running max, or the value at `at`
+    bool seen = false;      ///< `at` reached / any row seen
+    double distance = 0.0;  ///< `at`: |t − at| of the row kept
+    std::size_t next = 0;   ///< reference: its next row to compare
+    double previous_t = 0.0, previous_value = 0.0;
+    bool has_previous = false;
+  };
+  [[nodiscard]] double value(const TrajectoryRow& row, const CheckColumn& c) const;
+
+  const Model* model_;
+  std::vector<CheckSpec> checks_;
+  std::vector<State> states_;
+};
+
+/// One outcome per check of a run that failed before t_end: computed NaN, the check's bound,
+/// passed false, and text saying it was not evaluated (condyn.check's `checks`; the command
+/// prints the failure alone).
+[[nodiscard]] std::vector<CheckOutcome> unevaluated_outcomes(const std::vector<CheckSpec>& checks);
+
+struct SceneCheckOptions {
+  std::optional<Scheme> scheme;  ///< overrides [solve] scheme
+  SourcePoint scheme_where;      ///< where the override comes from (`--scheme`), for refusals
+};
+
+/// One scene's run and its checks.
+struct SceneCheckResult {
+  std::string scene;
+  std::string scheme;  ///< the scheme that ran
+  long steps = 0;
+  double wall_s = 0.0;  ///< the solver's wall time
+  std::string failure;  ///< the integration failure's message, empty when the run reached t_end
+  std::vector<std::string> warnings;  ///< what building the model warned of, as run prints it
+  /// The run's drift warning (SolveSummary::drift_warning), empty when none: the constraints
+  /// were not held to the tolerance, a failed verdict of its own whatever the checks say.
+  std::string drift;
+  std::vector<CheckOutcome> outcomes;  ///< empty when the run failed
+  [[nodiscard]] bool passed() const;
+};
+
+/// Parses the scene, switches on the quantities its checks read, builds, runs and evaluates.
+/// Throws SceneError for bad input (a scene without [[check]] included), and what solve() throws.
+[[nodiscard]] SceneCheckResult run_scene_checks(const std::string& path,
+                                                const SceneCheckOptions& options = {});
+/// The same for a scene already parsed (its `file` names it in messages).
+[[nodiscard]] SceneCheckResult run_scene_checks(SceneSpec spec,
+                                                const SceneCheckOptions& options = {});
+
+}  // namespace condyn
