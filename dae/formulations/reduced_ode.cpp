@@ -1,5 +1,6 @@
 #include "dae/formulations/reduced_ode.hpp"
 
+#include "dae/interface/scheme_not_applicable.hpp"
 #include "dae/linsolve/condensed_newton.hpp"
 
 #include <algorithm>

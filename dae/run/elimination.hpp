@@ -40,7 +40,7 @@ struct ReducedSystem {
 };
 
 /// `preferred_slaves` ([solve] slaves: DOF names, size m, or empty) as master_slave_transform.
-/// Its CoupledGroupTooLarge is rethrown as SchemeNotApplicable (dae/run/solve.hpp) naming the
+/// Its CoupledGroupTooLarge is rethrown as SchemeNotApplicable (dae/interface/scheme_not_applicable.hpp) naming the
 /// group's first constraint.
 [[nodiscard]] ReducedSystem reduce(const Model& model,
                                    const std::vector<std::string>& preferred_slaves = {});

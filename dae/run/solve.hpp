@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "dae/interface/scheme_not_applicable.hpp"
 #include "dae/run/solve_result.hpp"
 #include "models/core/model.hpp"
 
@@ -15,20 +16,6 @@ namespace condyn {
 struct SchemeChoice {
   Scheme scheme = Scheme::elimination;
   std::string reason;  ///< why this scheme (printed by `condyn info`)
-};
-
-/// Thrown when a scheme cannot treat a model (the reason is scheme_refusal's): the request, not the
-/// solver, is at fault, so the CLI answers it as bad input (exit 2).
-class SchemeNotApplicable : public std::invalid_argument {
- public:
-  explicit SchemeNotApplicable(const std::string& why, SourcePoint where = {})
-      : std::invalid_argument(why), where_(std::move(where)) {}
-  /// Where the refused scheme was chosen (SolveSpec::scheme_where) once solve() or system_size()
-  /// has passed it on; empty before, and for a scheme nobody named (auto).
-  [[nodiscard]] const SourcePoint& where() const { return where_; }
-
- private:
-  SourcePoint where_;
 };
 
 /// Why `scheme` cannot treat this model (elimination and penalty on nonlinear models), or
