@@ -80,12 +80,12 @@ lint_sources=$(find src dae models validation -name '*.cpp' | sort)
 # too, which looks only there. The other checks match a unity batch as they match its files one by
 # one (a batch of eight dae files under every bugprone, performance, modernize, readability, misc
 # and cppcoreguidelines check: the same 302 findings, in 68 s against 234 s), so they read build/'s
-# batches of the library files and the files kept out of batches.
+# batches of the library files and the files kept out of batches (in any sub-folder).
 cmake -S . -B build-lint -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
   >/dev/null
 root="$(pwd -P)"  # as CMake writes the paths
 batches=$(grep -o '"file": "[^"]*"' build/compile_commands.json | cut -d'"' -f4 | grep -E \
-  "/CMakeFiles/condyn(_cli|_models|_dae|_validation)?\.dir/Unity/unity_[0-9]+_cxx\.cxx$|^$root/(src|dae|models|validation)/[^/]*\.cpp$" \
+  "/CMakeFiles/condyn(_cli|_models|_dae|_validation)?\.dir/Unity/unity_[0-9]+_cxx\.cxx$|^$root/(src|dae|models|validation)/.*\.cpp$" \
   | sort -u)
 for f in $lint_sources; do  # every library file is in one pass's batches, or linted alone
   grep -qF "\"$root/$f\"" $(echo "$batches" | grep "/Unity/") /dev/null || echo "$batches" |
