@@ -4,10 +4,11 @@
 #   bash scripts/bootstrap.sh main   runs the main job: condyn validate (the chapter's five cases)
 #                                    and condyn compare on the chapter truss (tables, CSV, JSON and
 #                                    plots in condyn-out/compare-chapter_5_5_1/)
-#   bash scripts/bootstrap.sh test   builds with warnings as errors, lints, runs the unit tier again
-#                                    under AddressSanitizer and UndefinedBehaviorSanitizer
+#   bash scripts/bootstrap.sh test   builds with warnings as errors, lints, runs the unit and e2e
+#                                    tiers again under AddressSanitizer and UndefinedBehaviorSanitizer
 #                                    (build-asan/, clang), fuzzes the scene parser and model builder
-#                                    for 60 s, then runs every test tier (ctest)
+#                                    for 60 s, then runs every test tier (ctest; the unit, python and
+#                                    plots tests beside the fuzzer)
 set -euo pipefail
 
 mode="${1:-}"
@@ -48,12 +49,15 @@ if ((${#missing[@]})); then
 fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
+# Each stage says when it starts (UTC, and seconds since the command began), so a CI log shows
+# where the time goes (docs/benchmarks.md, "The test command").
+stage() { echo "bootstrap: $(date -u +%H:%M:%S) (${SECONDS} s) $*"; }
 # The main job builds the program and the Python module (build/python/condyn); the test command
 # builds every test executable too, with warnings as errors. Both as a unity build: the library
 # files are compiled in batches, which parse Eigen's and SUNDIALS' headers and instantiate their
-# templates once per batch (a full build of the test command: 11 minutes of wall time on 2 cores,
-# 1318 s of compiler time against 1747 s file by file; 2026-11-27). Test files stay one by one,
-# at -O1 with their common headers precompiled (CMakeLists.txt).
+# templates once per batch. Test files stay one by one, at -O1 with their common headers
+# precompiled (CMakeLists.txt).
+stage "build/: configure and build"
 if [ "$mode" = main ]; then
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=OFF -DCONDYN_TESTS=OFF \
     -DCMAKE_UNITY_BUILD=ON >/dev/null
@@ -71,16 +75,15 @@ if [ "$mode" = main ]; then
 fi
 
 # Lint: .clang-format and .clang-tidy are the project's rules, enforced here.
+stage "lint: clang-format, then clang-tidy"
 sources=$(find src dae models validation tests python -name '*.cpp' -o -name '*.hpp' | sort)
 clang-format --dry-run -Werror $sources
 lint_sources=$(find src dae models validation -name '*.cpp' | sort)
-# clang-tidy in two passes (one pass file by file took 24 minutes on 2 cores, 2026-11-27). The
-# path-sensitive analyzer looks only at functions of the file it is given, so it reads each file's
-# own command, from a tree configured file by file (build-lint/, not built); misc-unused-using-decls
-# too, which looks only there. The other checks match a unity batch as they match its files one by
-# one (a batch of eight dae files under every bugprone, performance, modernize, readability, misc
-# and cppcoreguidelines check: the same 302 findings, in 68 s against 234 s), so they read build/'s
-# batches of the library files and the files kept out of batches (in any sub-folder).
+# clang-tidy in two passes. The path-sensitive analyzer looks only at functions of the file it is
+# given, so it reads each file's own command, from a tree configured file by file (build-lint/, not
+# built); misc-unused-using-decls too, which looks only there. The other checks match a unity batch
+# as they match its files one by one (docs/contributing.md), so they read build/'s batches of the
+# library files and the files kept out of batches (in any sub-folder).
 cmake -S . -B build-lint -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
   >/dev/null
 root="$(pwd -P)"  # as CMake writes the paths
@@ -102,7 +105,7 @@ run-clang-tidy -quiet -p build-lint -j "$jobs" -extra-arg=-Wno-unknown-warning-o
 run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option \
   -checks='-clang-analyzer-*,-bugprone-suspicious-include' $batches \
   >build/clang-tidy.log 2>&1 || lint_failed build/clang-tidy.log
-echo "bootstrap: clang-format and clang-tidy clean"
+stage "lint: clang-format and clang-tidy clean"
 # ctest registers each doctest case by name and CMake splits a name at ';': such a case was
 # registered as one that matches nothing, and "passed" without running.
 for t in build/condyn_tests_*; do
@@ -116,24 +119,37 @@ done
 # Sanitizers: the unit and e2e tiers again, built by clang with ASan and UBSan into build-asan/ (its
 # CONDYN_BINARY is build-asan/condyn, sanitized too, so the CLI tests run under them as well).
 # Any report aborts the test. The same build has the libFuzzer harness (CONDYN_FUZZ). A unity build
-# as above: 14.7 min instead of 20.4 on 2 cores (2026-11-27). Line tables are all the debug
-# information the reports need (file and line of each frame): a library batch compiles in 42 s of
-# CPU instead of 54 with full -g, its object 5.2 MB instead of 13.2 (2026-11-27).
+# as above; line tables are all the debug information the reports need (file and line of each
+# frame). The library is compiled at -O1, where the tests and the fuzzer run; the test files at -O0
+# (CONDYN_TESTS_OPT), in well under half the compiler time: clang's warnings do not depend on the
+# optimizer, and unoptimized code keeps every memory access of the test code for ASan to check.
+stage "build-asan/: configure and build (clang, ASan and UBSan)"
 sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS="$sanitize" -DCONDYN_TESTS=ON \
-  -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS="$sanitize" \
+  -DCONDYN_TESTS=ON -DCONDYN_TESTS_OPT=-O0 -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF \
+  -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
+stage "build-asan/: the unit and e2e tiers under the sanitizers"
 (cd build-asan && ctest -L "unit|e2e" --output-on-failure -j "$jobs")
 
 # Fuzz the scene parser and model builder for 60 s from the seed corpus. A finding (crash,
 # sanitizer report, uncaught exception, refusal without the file name, non-finite model, input over
 # 10 s or 2 GB) fails the command; the input is left in build-asan/fuzz-crash-* or -timeout-*.
+# The fuzzer is one process on one core: the tests of build/ that run one at a time anyway (the
+# python and plots suites, one process each) and the unit tier run beside it on the other core,
+# about as long; the rest of ctest follows on every core.
+beside_fuzz='^(unit|python|plots)$'
+stage "fuzzing for 60 s, and beside it ctest -L '$beside_fuzz' on one core"
 rm -rf build-asan/fuzz-corpus && mkdir -p build-asan/fuzz-corpus
-if build-asan/condyn_fuzz_scene -max_total_time=60 -timeout=10 -rss_limit_mb=2048 \
+build-asan/condyn_fuzz_scene -max_total_time=60 -timeout=10 -rss_limit_mb=2048 \
   -dict=tests/fuzz/scene.dict -print_final_stats=1 -artifact_prefix=build-asan/fuzz- \
   build-asan/fuzz-corpus tests/fuzz/corpus models/scenes validation/scenes \
-  >build-asan/fuzz.log 2>&1; then
+  >build-asan/fuzz.log 2>&1 &
+fuzzer=$!
+beside_status=0
+(cd build && ctest -L "$beside_fuzz" --output-on-failure -j 1) || beside_status=$?
+if wait "$fuzzer"; then
   echo "bootstrap: fuzzing found nothing in 60 s ($(grep -o 'number_of_executed_units: *[0-9]*' \
     build-asan/fuzz.log | grep -o '[0-9]*$') inputs; log build-asan/fuzz.log)"
 else
@@ -142,6 +158,9 @@ else
   echo "bootstrap: the scene fuzzer found a problem (log build-asan/fuzz.log; input above)" >&2
   exit 1
 fi
+((beside_status == 0)) || { echo "bootstrap: ctest -L '$beside_fuzz' failed (above)" >&2; exit 1; }
 
+stage "ctest: every other test of build/"
 cd build
-exec ctest --output-on-failure -j "$jobs"
+ctest --output-on-failure -j "$jobs" -LE "$beside_fuzz"
+stage "done"
