@@ -72,10 +72,9 @@ void print_progress(const Progress& p) {
 }
 
 /// info builds a formulation per scheme and drops it. glibc serves each large block by mmap and
-/// unmaps it at free, so the next build faulted it in again, zeroed page by page: 45% of info's
-/// time at 10⁶ DOFs (perf). Served from the heap and kept for reuse instead: at 10⁶ DOFs
-/// 15.0 -> 8.5 s, peak 2.17 -> 2.30 GB; at 10⁵ 0.90 -> 0.71 s, 296 -> 244 MB. Runs gain nothing
-/// from it (their large blocks live to the end; measured at 10⁵: the same time and peak).
+/// unmaps it at free, so the next build would fault it in again, zeroed page by page: on large
+/// models most of info's time. Served from the heap and kept for reuse instead (figures in
+/// docs/benchmarks.md). Runs gain nothing from it: their large blocks live to the end.
 void keep_freed_memory() {
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
@@ -109,8 +108,7 @@ int run(const RunArgs& args) {
     std::cerr << "warning: " << args.scene << ": " << *warning << "\n";
   release_model_input(spec);
   // The scene's parse tree and its copy of the model are freed in the middle of the heap, where
-  // glibc keeps their pages: on the 10³-DOF inline lattice the heap stayed 2.36 MB resident to the
-  // end, 1.88 MB when they are returned (smaps at exit).
+  // glibc would keep their pages resident to the end: return them (docs/benchmarks.md).
   malloc_trim(0);
 
   RunHooks hooks = hooks_for(spec.output.quantities);

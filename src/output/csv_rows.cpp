@@ -8,8 +8,8 @@
 
 namespace condyn {
 
-/// Shortest round-trip form: exact, and several times faster than a 17-digit printf, which took a
-/// fifth of a large run's time.
+/// Shortest round-trip form: exact, and much cheaper than a 17-digit printf, whose formatting
+/// weighed on a large run's writing (docs/benchmarks.md).
 void append_number(std::string& line, double v) {
   std::array<char, 32> buf{};
   const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr;
