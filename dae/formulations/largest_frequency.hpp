@@ -17,9 +17,8 @@ namespace condyn {
                                                        const Eigen::SparseMatrix<double>& M);
 
 /// Relative accuracy asked of the Ritz value: a scale, not a result (it sets Baumgarte's gains and
-/// the first step of the higher-index schemes). On the benchmark lattice of 10^5 DOFs, 1e-2 took
-/// 21 products and 0.05 s, with ω² 0.17% below the value at 1e-3 (81 products, 0.2 s); at 10^6
-/// DOFs 1e-3 took 6 s.
+/// the first step of the higher-index schemes): a tighter one costs several times the products
+/// for a change far below what a scale needs (docs/benchmarks.md).
 inline constexpr double kLargestFrequencyTolerance = 1e-2;
 
 }  // namespace condyn

@@ -72,8 +72,8 @@ MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
     }
     // Few rows over many DOFs (a floor's average): each slave is replaced by all the group's
     // masters, which then couple with each other in T^T M T, T^T C T and T^T K T, a dense
-    // block of masters^2 entries that nothing else bounds (3,000 masters: 9e6, 836 MB and a
-    // run that could not start, where GGL with the row as a multiplier takes 84 MB).
+    // block of masters^2 entries that nothing else bounds (3,000 masters: 9e6 entries, where GGL
+    // with the row as a multiplier keeps the model sparse; docs/schemes.md).
     const double masters = static_cast<double>(g.dofs.size() - g.rows.size());
     if (masters * masters > kMaxDenseGroupEntries) {
       std::ostringstream s;

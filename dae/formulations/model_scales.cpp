@@ -105,8 +105,8 @@ ModelScales model_scales(const Model& model) {
       // The force that gives the row's lightest DOF the largest acceleration the loads give any
       // of its DOFs, over the row's largest coefficient (λ A is a force): a rod between a 1e6 kg
       // and a 1e-6 kg mass under gravity carries about 1e-6 g, not the heavy mass's 1e6 g
-      // (which made ω 3e6 for a double pendulum whose frequencies are 3.1: user trial,
-      // 2026-11-28). Rows over massless DOFs alone: the largest force on them.
+      // (which made ω 3e6 for a double pendulum whose frequencies are 3.1). Rows over massless
+      // DOFs alone: the largest force on them.
       double force = 0.0, acceleration = 0.0, lightest = 0.0, coefficient = 0.0;
       for (Eigen::SparseMatrix<double>::InnerIterator it(At, i); it; ++it) {
         const double load = std::abs(f[it.row()]), mass = M.coeff(it.row(), it.row());

@@ -33,7 +33,7 @@ struct ModelScales {
 };
 
 /// Above this many DOFs the frequencies are diagonal estimates: the eigenproblem is dense (QR of
-/// Aᵀ and a generalized eigensolve, O(n³): about 0.1 s at 400 DOFs) and runs before every solve.
+/// Aᵀ and a generalized eigensolve, O(n³); docs/benchmarks.md) and runs before every solve.
 inline constexpr int kDenseScaleLimit = 400;
 
 [[nodiscard]] ModelScales model_scales(const Model& model);

@@ -58,10 +58,10 @@ class MultiplierDae final : public DaeProblem {
   /// moves DOF i by up to |a_i| Σ_j |a_j| |u_j| / |a|²: that is u_i's floor (the largest over
   /// its rows); GGL's v the same over every row (ψ = 0 through λ). A DOF at 0 beside moving ones
   /// (a conical pendulum's height in steady rotation) cannot be held to its own atol: GGL's μ,
-  /// which grows with h, made every change of step size fail the error test, and 2.5·10⁵ steps
-  /// at order 1 ended 0.5 % off. The integrator applies the floors only once a run is caught
-  /// that way (dae/integrators/ida_integrator.cpp): applied always, they cost Andrews' mechanism 7
-  /// times its accuracy at rtol 1e-8 (docs/schemes.md).
+  /// which grows with h, made every change of step size fail the error test, and the run
+  /// crawled at order 1 to a result far off. The integrator applies the floors only once a run is
+  /// caught that way (dae/integrators/ida_integrator.cpp): applied always, they cost Andrews'
+  /// mechanism much of its accuracy (docs/schemes.md).
   bool error_scale_floors(double t, const ConstRef& y, Eigen::VectorXd& floor) const override;
   [[nodiscard]] Eigen::VectorXd variable_index() const override;
   /// index1 and GGL of a linear model: dae/linsolve/condensed_newton.hpp; else nothing.
@@ -72,13 +72,12 @@ class MultiplierDae final : public DaeProblem {
   [[nodiscard]] std::vector<bool> algebraic_equations() const override;
   /// Baumgarte: λ carries the stabilization terms 2αψ + β²φ, which amplify the local errors of
   /// u and v by up to β²; in the error test it would force u's local error below tol/β²
-  /// (observed on the pendulum with α = β = 628: a million steps, each with an error-test
-  /// failure, for 2 s). λ is left out of the error test; its accuracy follows from u's and v's.
+  /// (the pendulum with large gains failed the error test at every step: docs/schemes.md). λ is
+  /// left out of the error test; its accuracy follows from u's and v's.
   /// index1: λ is left out as well. It is an index-1 function of (u, v) (the KKT system), so its
   /// error follows from theirs; in the test its estimate carries the drift index1 lets grow, and
-  /// the slider-crank (models/scenes/slider_crank.toml) at rtol 1e-10 took 316,635 steps (40,595
-  /// Newton and 39,213 error-test failures) against 4,643 without, and was less accurate (1.9e-4
-  /// against 6.6e-6 from a tight GGL run): docs/schemes.md.
+  /// the slider-crank (models/scenes/slider_crank.toml) at rtol 1e-10 took many times the steps,
+  /// most of them failing, and ended less accurate (docs/schemes.md).
   [[nodiscard]] bool suppress_algebraic_error() const override {
     return scheme_ == Scheme::baumgarte || scheme_ == Scheme::index1;
   }

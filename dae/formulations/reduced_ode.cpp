@@ -27,7 +27,7 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
     if (!ok) {
       // The named slaves decide the reduction: one whose coefficient is small beside its row's
       // others (1e-11 u_b against u_a) made it singular to roundoff where the automatic choice
-      // (the largest coefficients) runs (review of 2026-11-27).
+      // (the largest coefficients) runs.
       throw SchemeNotApplicable(
           std::string("the reduced mass matrix is singular to roundoff: elimination needs "
                       "inertia on every motion of the master DOFs that their stiffness does not "

@@ -44,8 +44,7 @@ class ReducedOde final : public DaeProblem {
   }
   /// The held masters' velocities (algebraic) are left out of the error test, as under every
   /// multiplier scheme: their accuracy follows from the differential unknowns'. In the test, a
-  /// damped one (index 1) took 29,987 steps with 28,037 error-test failures where the schemes
-  /// that leave it out took 1,400-1,500 (a 4-DOF chain with a massless node, rtol 1e-10).
+  /// damped one (index 1) made nearly every step fail it (docs/benchmarks.md).
   [[nodiscard]] bool suppress_algebraic_error() const override { return held_ != nullptr; }
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
   /// IDA's Newton systems condensed to û: (K̂ + cj Ĉ + cj² M̂) dû = r2 + (Ĉ + cj M̂) r1,

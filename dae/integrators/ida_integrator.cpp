@@ -150,8 +150,8 @@ int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   if (data->mem != nullptr) IDAGetCurrentStep(data->mem, &h);
   h = std::abs(h);
   if (!(h > 0.0)) h = data->first_step;
-  // One power per index, not per component: std::pow for each of 2·10⁶ unknowns was a few per
-  // cent of a GGL step (issue 12).
+  // One power per index, not per component: std::pow per unknown is a visible part of a large
+  // GGL step (issue 12).
   for (std::size_t k = 0; k < data->scale.size(); ++k) {
     data->scale[k] = std::pow(h / data->time_scale, static_cast<double>(k));
   }

@@ -10,8 +10,8 @@
 /// fused ones (linear combinations, vector arrays) included so that IDA's predictor reads each
 /// vector once. Written here because no Debian package has an optimized build of them.
 ///
-/// Not threaded: OpenMP over two threads did not change a 10⁶-DOF GGL step (0.25 s per step with
-/// one thread or two, 2026-11-25), where the operations are bound by memory bandwidth.
+/// Not threaded: the operations are bound by memory bandwidth, and OpenMP over two threads did not
+/// shorten a large GGL step (docs/benchmarks.md).
 ///
 /// Vectors cloned from one that has these operations have them too (N_VClone copies the table).
 

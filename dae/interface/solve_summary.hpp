@@ -147,21 +147,21 @@ struct SolveSummary {
   /// Passages near a singular configuration (models whose constraint Jacobian depends on the
   /// state; dae/run/singular_passages.hpp), in time order.
   std::vector<SingularPassage> singular_passages;
-  /// A warning when at least half of 10,000 or more steps failed the error test, no normal run
-  /// (the scenes of models/ and validation/ fail 1 to 12 % of their steps): a conical pendulum
-  /// in steady rotation ended 0.5 % off under GGL after 248,279 steps, 245,905 of them such
-  /// failures, exit 0 and not a word (user trial of 2026-11-28, docs/limitations.md).
+  /// A warning when at least half of 10,000 or more steps failed the error test, which no normal
+  /// run does (the scenes of models/ and validation/ fail a small fraction of their steps): a
+  /// run trapped that way (a conical pendulum in steady rotation under GGL) can end far off
+  /// with exit 0 (docs/limitations.md; figures in docs/benchmarks.md).
   [[nodiscard]] std::optional<std::string> error_test_warning() const;
   /// A warning when `atol` exceeds the largest displacement of a run that moved: the error
-  /// test then held none of the motion (an SI oscillator peaking at 2 mm, run at atol 10, was
-  /// 85 to 224 % off under every scheme, exit 0: user trial of 2026-11-28).
+  /// test then holds none of the motion (an SI oscillator peaking at 2 mm, run at atol 10, ends
+  /// wrong by its own size under every scheme, with exit 0).
   [[nodiscard]] std::optional<std::string> atol_warning(double atol) const;
   /// How far beyond the error test's own tolerance a drift may grow before it is warned of.
   static constexpr double kDriftMultiple = 100.0;
   /// A warning when the position drift relative to each row's scale exceeds kDriftMultiple
   /// (rtol max|u| + atol), the displacement error the error test allows: the constraints are
-  /// then held to far less than the tolerance asked (index1's pendulum 10 % too long after
-  /// 2,000 s at rtol 1e-8, exit 0: user trial of 2026-11-28). `condyn check` fails on it.
+  /// then held to far less than the tolerance asked (index1's pendulum grows visibly longer over
+  /// a long run, with exit 0). `condyn check` fails on it.
   [[nodiscard]] std::optional<std::string> drift_warning(double rtol, double atol) const;
   int unknowns = 0;
   long jacobian_nonzeros = 0;

@@ -5,8 +5,8 @@
 /// such an ordering keeps as few factor entries as the fill-reducing ones (COLAMD, AMD) while each
 /// column of the factor touches rows close to its own: the triangular solves then walk the
 /// solution vector in order instead of across it. On the benchmark lattice's index-1 Newton
-/// matrix at 10⁵ and 10⁶ DOFs (2·10⁵ and 2·10⁶ unknowns), whose factor is far larger than the
-/// cache, a solve took 25 to 35% less time per factor entry (docs/benchmarks.md).
+/// matrix at 10⁵ DOFs and more, whose factor is far larger than the cache, a solve takes markedly
+/// less time per factor entry (figures in docs/benchmarks.md).
 ///
 /// Written here: neither SuiteSparse nor Eigen, the project's sparse libraries, has a
 /// bandwidth-reducing ordering (they order for fill: AMD, COLAMD, CAMD, METIS's nested

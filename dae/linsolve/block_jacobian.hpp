@@ -18,8 +18,8 @@ using JacobianMap = Eigen::Map<Eigen::SparseMatrix<double>>;
 }
 
 /// A fixed sparsity pattern in compressed columns, indices only: the values live in the
-/// integrator's own matrix (KLU's), so the pattern keeps no value array of its own (at 10⁵ DOFs
-/// 15 MB written with zeros and never read, issue 12).
+/// integrator's own matrix (KLU's), so the pattern keeps no value array of its own (one would be
+/// written with zeros and never read, issue 12).
 struct JacobianPattern {
   int size = 0;            ///< rows = columns
   std::vector<int> outer;  ///< size + 1 column starts
@@ -57,8 +57,8 @@ class BlockJacobian {
 
  private:
   /// A declared block's pattern at (row0, col0): its compressed column starts and row indices
-  /// (4 bytes an entry where triplets took 16: at 10⁶ DOFs the triplets and their sort were most
-  /// of `info`'s time and the build's largest transient, issue 12).
+  /// (4 bytes an entry where triplets take 16: on large models the triplets and their sort were
+  /// most of `info`'s time and the build's largest transient, issue 12).
   struct Block {
     int row0 = 0, col0 = 0;
     std::vector<int> starts, rows;

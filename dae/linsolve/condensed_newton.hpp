@@ -15,9 +15,9 @@
 /// n + m (+ p) unknowns for KLU instead of 2n + m (+ p), and IDA never forms its Jacobian. The
 /// pattern is the union of the blocks' patterns, fixed, analysed once; each setup fills its values
 /// in place (dae/linsolve/block_jacobian.hpp) and refactors with the pivots kept
-/// (dae/linsolve/fixed_pattern_klu.hpp), and solves use buffers allocated once: at 10⁶ unknowns a
-/// setup built the matrix from triplets and a solve allocated six vectors, seconds of page faults
-/// per run (issue 12).
+/// (dae/linsolve/fixed_pattern_klu.hpp), and solves use buffers allocated once: a matrix rebuilt
+/// from triplets at each setup and vectors allocated at each solve cost large runs most of their
+/// time in page faults (issue 12).
 
 #include <Eigen/Sparse>
 

@@ -7,8 +7,8 @@
 /// ε^(2/3), the test SUNDIALS' own KLU solver applies). KLU stays out of the header.
 ///
 /// Called through KLU's C interface rather than Eigen's KLUSupport, which frees and reallocates
-/// the numeric factors at every factorization: at 10⁶ unknowns that was seconds of page faults
-/// per Newton matrix (issue 12).
+/// the numeric factors at every factorization: on large systems the page faults of those fresh
+/// allocations outweighed the factorization (issue 12; docs/benchmarks.md).
 
 #include <Eigen/Sparse>
 #include <memory>
@@ -25,16 +25,14 @@ namespace condyn {
 /// ordering (dae/linsolve/band_ordering.hpp) and keeps it when its factor has no more entries than
 /// the fill-reducing one's: no more memory or work, and solves that read the vector in order. The
 /// trial costs one factorization more at the first call. Below that size the factor is small
-/// enough for the cache and the order of its reads gained nothing measurable (the benchmark
-/// lattice's index-1 matrix: nothing at 2·10⁴ unknowns, 10⁴ DOFs; 25 to 35% of a solve's time
-/// at 2·10⁵ and 2·10⁶; docs/benchmarks.md), so small systems keep KLU's ordering alone.
+/// enough for the cache and the order of its reads gains nothing (the benchmark lattice's figures
+/// are in docs/benchmarks.md), so small systems keep KLU's ordering alone.
 ///
 /// From `streamed_solve_from` entries in L and U on, the factors are also copied in the order the
 /// triangular solves read them, and solves read the copy (dae/linsolve/klu_streamed_solve.hpp):
 /// KLU's own layout makes each solve stream the whole factor from memory twice once it is larger
 /// than the cache. The copy doubles the factor's memory, so factors that fit in a cache (2.4 MB at
-/// 200,000 entries) keep klu_solve: on the lattice's 45,000 entries at 10³ DOFs the copy gained
-/// nothing measurable.
+/// 200,000 entries) keep klu_solve, where the copy gains nothing (docs/benchmarks.md).
 struct KluSettings {
   int ordering = 0;
   bool confirm_with_condest = false;

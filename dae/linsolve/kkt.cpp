@@ -13,7 +13,7 @@ Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
   using Sparse = Eigen::SparseMatrix<double>;
   const Eigen::Index n = M.rows(), m = A.rows();
   // Column by column into the compressed arrays (rows ascending: M's below n, A's from n on),
-  // no triplets: at 10^6 DOFs they were 300 MB and a sort. Aᵀ's columns are A's rows.
+  // no triplets (16 bytes an entry and a sort; docs/benchmarks.md). Aᵀ's columns are A's rows.
   const Sparse At = m > 0 ? Sparse(A.transpose()) : Sparse(n, 0);
   Sparse kkt(n + m, n + m);
   kkt.resizeNonZeros(M.nonZeros() + 2 * At.nonZeros());

@@ -18,11 +18,9 @@ namespace condyn {
 /// (AMD order, block triangular form, partial pivoting), with Eigen::SparseLU's calls: compute,
 /// info, solve. Why not Eigen::SparseLU, which these factorizations used before: a constraint over
 /// many DOFs (a floor's average drift) is a dense row and column of the KKT matrix, and Eigen's
-/// supernodal LU filled in around it under either of its orders: under COLAMD, 2.5·10⁷ factor
-/// entries and 9 s for one row over 4,995 of 10,000 DOFs (GGL's consistent start took 10 s,
-/// projection 24 s, `condyn info` 16 s), under AMD 5.8·10⁵ for a row over 3,000 DOFs beside 750
-/// ties (the multipliers' block dense). KLU: 3·10⁴ and 1.7·10⁴ entries (a throwaway program,
-/// 2026-11-28; tests/dae/test_dense_constraint_rows.cpp).
+/// supernodal LU filled in around it under either of its orders (the multipliers' block dense),
+/// where KLU's factors stay sparse (figures in docs/benchmarks.md;
+/// tests/dae/test_dense_constraint_rows.cpp).
 class KktLu {
  public:
   KktLu();

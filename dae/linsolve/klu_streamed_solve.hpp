@@ -10,10 +10,9 @@
 /// the cache, a solve streams it from memory twice. This copy holds, per block in the order the
 /// solve takes them (the last block first), L's columns ascending then U's descending, indices and
 /// values in two arrays: each solve streams it once, forward. The arithmetic is klu_solve's, in
-/// its order, so the results are bitwise equal. On the lattice's index-1 Newton matrix (a
-/// throwaway program timing 21 solves of each, 2026-11-28): 0.95 of klu_solve's time at 2·10³
-/// unknowns, 0.70 at 2·10⁴, 0.45 at 2·10⁵. It costs the factor's memory again (12 bytes per
-/// entry), which is why only large factors get it (KluSettings::streamed_solve_from).
+/// its order, so the results are bitwise equal. The gain grows with the factor's size beyond the
+/// cache (the lattice's figures: docs/benchmarks.md). It costs the factor's memory again (12 bytes
+/// per entry), which is why only large factors get it (KluSettings::streamed_solve_from).
 
 #include <klu.h>
 

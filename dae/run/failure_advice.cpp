@@ -40,7 +40,7 @@ std::string scheme_advice(Scheme scheme) {
       return "; index3 is the least robust formulation: try ggl";
     case Scheme::ggl:
       // The pendulum at rtol 1e-13 collapsed at t = 5e-5 and ran with atol_mu = 1e-10; the
-      // message blamed a singular configuration alone (user trial of 2026-11-28).
+      // message blamed a singular configuration alone.
       return "; at rtol 1e-10 and tighter, GGL's derived μ and λ tolerances (`condyn info`) can "
              "ask for roundoff: set [solve] atol_mu and atol_multiplier larger (models/scenes/"
              "pendulum.toml at rtol 1e-13 runs with atol_mu = 1e-10)";

@@ -16,9 +16,9 @@ namespace condyn {
 /// convergence failures, a failure before the first step): when the displacements' atol lies
 /// within 100 ulps of the largest of 1, the model's `coordinates`
 /// (MechanicalSystem::coordinate_scale, which the constraint rows compute with) and the largest
-/// displacement the run reached (`max_displacement`), the advice to raise it; else nothing. A
-/// conical pendulum at atol 1e-16 failed under GGL with advice about singular configurations and
-/// tight rtol alone (user trial of 2026-11-28).
+/// displacement the run reached (`max_displacement`), the advice to raise it; else nothing. Without
+/// it, a conical pendulum failing under GGL at atol 1e-16 was advised about singular
+/// configurations and a tight rtol alone.
 [[nodiscard]] std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement,
                                           double coordinates);
 

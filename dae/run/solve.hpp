@@ -64,7 +64,8 @@ struct SystemSize {
 
 /// system_size for many settings of one model (`info`'s table): the mixed treatment's reduced
 /// system (dae/formulations/eliminated_system.hpp), the same under every multiplier scheme, is
-/// built once. At 10⁶ DOFs it was 27% of `info`, built five times.
+/// built once, not once per scheme: on large models it is a large part of `info`'s time
+/// (docs/benchmarks.md).
 class SystemSizer {
  public:
   explicit SystemSizer(const Model& model) : model_(model) {}
