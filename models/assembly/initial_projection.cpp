@@ -32,7 +32,8 @@ constexpr double kMaxVelocityGain = 1e4;
 constexpr double kSideStep = 1e-3;
 // A least-change step whose block (rows x free DOFs) has more entries than this is solved
 // sparse, by the normal equations of the minimum-norm problem (below); smaller ones keep the
-// dense complete orthogonal decomposition, which also treats rank-deficient rows (32 MB, ~10 s).
+// dense complete orthogonal decomposition, which also treats rank-deficient rows (32 MB, and
+// seconds of factorization).
 constexpr double kMaxDenseStepEntries = 4e6;
 
 using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
@@ -388,7 +389,7 @@ std::string project_initial_state(MechanicalSystem& system, double t, Eigen::Vec
   // Velocities the rows barely depend on where the positions landed: those that meet them are
   // the residual over that small rate. A pendulum written horizontal, given uy2 = -1 (straight
   // down: a double root, found to about √tol, ux2 = -0.99999237) and vy2 = 1, got vx2 = 131072
-  // and an exit 0 (user trial of 2026-11-28); at the exact configuration no velocity meets the
+  // and an exit 0; at the exact configuration no velocity meets the
   // given speed.
   Eigen::VectorXd projected = v;
   p.project_velocities(u, projected, plain);

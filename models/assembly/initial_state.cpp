@@ -208,8 +208,8 @@ void ModelBuilder::project_initial() {
     // A linear model's rows are dependent or not whatever the state: the rank check, which
     // otherwise comes later (models/assembly/build_model.cpp), names a dependent set and says
     // whether it conflicts; with redundant = "drop" the projection runs again without the dropped
-    // rows. A conflicting block was reported as a projection whose velocities no state satisfies
-    // (user trial, 2026-11-28).
+    // rows. Without it a conflicting block was reported as a projection whose velocities no state
+    // satisfies.
     if (!model_.is_nonlinear()) {
       check_finite();
       bool dropped = false;

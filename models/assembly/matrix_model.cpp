@@ -122,8 +122,8 @@ void ModelBuilder::check_sparse_inertia(const FileMatrix& m, const std::string& 
 
 /// check_degenerate_dofs' test on what the scene wrote, before the work that grows with n (the
 /// names' index, the definiteness checks): O(nnz + n). A size line that declares far more DOFs
-/// than the files fill (4·10⁷ DOFs with two entries took 32 s and 7 GB to reach a refusal) is
-/// refused here, after reading.
+/// than the files fill (whose later checks would take time and memory that grow with the
+/// declared size before refusing it) is refused here, after reading.
 void ModelBuilder::check_unreached_dofs() const {
   const auto& m = spec_.model;
   std::vector<bool> reached(m.dofs.size(), false);

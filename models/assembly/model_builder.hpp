@@ -25,8 +25,8 @@ class InconsistentGivenValues;
 // normals differ by more than ~1e-10 rad, far below anything a scene means on purpose.
 constexpr double kRankTolerance = 1e-10;
 // [initial] project and the mass and slave checks still factor dense matrices (constraints x DOFs):
-// refuse or skip sizes whose memory and time would look like a hang (4e6 doubles = 32 MB; a QR of
-// about 10 s).
+// refuse or skip sizes whose memory and time would look like a hang (4e6 doubles = 32 MB, and
+// seconds of dense QR).
 constexpr double kMaxDenseEntries = 4e6;
 // A connected group of constraints up to this many constraint-DOF pairs is rank-checked by a
 // dense column-pivoted QR (at most 80 KB and ~1e6 flops per row of the group, so linear in the

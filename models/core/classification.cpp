@@ -102,7 +102,7 @@ std::vector<std::vector<int>> dependent_dofs(MechanicalSystem& s, const Eigen::V
 
 /// What the nonlinear rows share: one evaluator, the rows' DOFs, and the residuals at two times
 /// with the same state, each evaluated once for every row (per row, they made `info` quadratic
-/// in the rows: 35 s at 10,000 chain links).
+/// in the rows).
 struct NonlinearProbe {
   std::unique_ptr<MechanicalSystem> system;
   std::vector<std::vector<int>> dofs;

@@ -75,7 +75,7 @@ struct Model {
   std::string file, name;
   std::vector<std::string> dof_names;
   /// The DOF indices sorted by name, for find_dof's binary search (index_dofs() sets it): 4 bytes
-  /// a DOF where a std::map<std::string, int> took about 70 (7 MB at 10⁵ DOFs, issue 12).
+  /// a DOF where a std::map<std::string, int> takes about 70 (issue 12).
   std::vector<int> dof_order;
   Eigen::SparseMatrix<double> M, C;  ///< C has no nonzeros when the scene has no damping
   /// The stiffness, held once for the model and its LinearSystem (read *K, write K.edit()).
@@ -172,9 +172,7 @@ struct BuildReport {
 [[nodiscard]] Model build_model(const SceneSpec& spec);
 /// Frees what build_model copied into the Model (the model's description, loads, constraints,
 /// ground motion and initial values; `file`, `name`, `solve`, `output` and `checks` stay), so that
-/// a run holds the model once, not twice: at 10⁵ DOFs the scene's Matrix Market matrices were 24
-/// of the run's 290 MB, and at 10³ DOFs the inline truss's members and loads 0.25 MB of a 9 MB
-/// peak. For callers done with building.
+/// a run holds the model once, not twice (docs/benchmarks.md). For callers done with building.
 void release_model_input(SceneSpec& spec);
 
 }  // namespace condyn

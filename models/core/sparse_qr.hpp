@@ -4,8 +4,8 @@
 //
 // Only groups above kDenseBlockEntries need it. Linking it would load SuiteSparseQR with CHOLMOD,
 // METIS, LAPACK, BLAS and the gfortran, quadmath and OpenMP runtimes into every process, used or
-// not: 1.8 MB resident and half of condyn's start-up time, for scenes that never factor a large
-// group. Loaded on first use, a scene pays for it only when it needs it.
+// not: resident memory and start-up time (docs/benchmarks.md) for scenes that never factor a
+// large group. Loaded on first use, a scene pays for it only when it needs it.
 
 #include <Eigen/SparseCore>
 #include <memory>

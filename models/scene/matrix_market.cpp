@@ -268,7 +268,7 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
     throw MatrixMarketError(line_no, "the entry count " + std::to_string(entries) + " is negative");
   }
   // Fewer entries than rows leaves a row empty: refused here, before rows of index arrays are
-  // filled (2·10⁹ rows with 2 entries ran for minutes in 16 GB before "row 3 has no entry").
+  // filled (2·10⁹ rows with 2 entries would fill gigabytes before "row 3 has no entry").
   if (!dense && expect.rows_need_entries && entries < rows) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) +
                                          " rows but " + std::to_string(entries) +

@@ -36,8 +36,8 @@ std::vector<int> selected_dofs(const OutputSpec& output, const std::vector<std::
     for (std::size_t d = 0; d < names.size(); ++d) all[d] = static_cast<int>(d);
     return all;
   }
-  // Names by lookup, patterns by matching: 20,000 names of a 200,000-DOF model took 36 s when
-  // every entry was matched against every DOF.
+  // Names by lookup, patterns by matching: matching every entry against every DOF is quadratic,
+  // minutes on large models (docs/benchmarks.md).
   std::unordered_set<std::string_view> exact;
   std::vector<const std::string*> patterns;
   for (const auto& entry : output.dofs) {

@@ -50,8 +50,8 @@ void SceneReader::read_truss(const toml::table& t, int dim, ModelSpec& model) co
   };
   const auto& members = array(required(t, path, "members"), "model.members");
   // The rigid member already joining each pair of nodes (smaller node first): a second one
-  // repeats its constraint, dependent everywhere, and took the same row name (user trial,
-  // 2026-11-28: two lambda_rigid_1_2 and a "singular configuration" message).
+  // repeats its constraint, dependent everywhere, and took the same row name (two
+  // lambda_rigid_1_2 and a "singular configuration" message).
   std::map<std::pair<int, int>, std::size_t> rigid_pairs;
   for (std::size_t i = 0; i < members.size(); ++i) {
     const std::string p = index("model.members", i);
