@@ -6,8 +6,8 @@
 /// matrix's inverse on the differential equations. An equation without y' (GGL's ψ = 0 and φ = 0,
 /// index2's and index3's constraint rows) has the same row in J₀ as at any cj, so δ satisfies its
 /// linearization exactly and the scaled sδ leaves (1 − s) of its residual; the multipliers and the
-/// constraint rows then converge only geometrically. On the 10⁵-DOF benchmark lattice under GGL
-/// that was 1.27 Newton iterations a step.
+/// constraint rows then converge only geometrically, costing Newton iterations at every step
+/// (docs/benchmarks.md has the benchmark lattice's).
 ///
 /// Here the differential part x of δ is split along the rows W = J₀[algebraic equations,
 /// differential unknowns]: the component P x, P = Wᵀ(WWᵀ)⁻¹W, is what those equations see and

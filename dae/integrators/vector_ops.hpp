@@ -4,8 +4,8 @@
 /// Debian 12's SUNDIALS 6.4 packages are built without optimization: the serial vector's
 /// operations compile to -O0 code (objdump of libsundials_ida.so.6.4.1 and
 /// libsundials_nvecserial.so.6.4.1: every local on the stack), about 20 to 30 instructions per
-/// entry, and they were half of a step's instructions on the lattice benchmark (callgrind, 10⁴
-/// DOFs, GGL with the condensed Newton solve). SUNDIALS lets a program set a vector's operation
+/// entry, and they are a large part of a step's instructions on large models (docs/benchmarks.md,
+/// from callgrind). SUNDIALS lets a program set a vector's operation
 /// table: these are the same operations, compiled with the project's optimization, the
 /// fused ones (linear combinations, vector arrays) included so that IDA's predictor reads each
 /// vector once. Written here because no Debian package has an optimized build of them.
