@@ -90,7 +90,7 @@ SolveSpec budgeted(SolveSpec s, const CompareOptions& options) {
 /// The first of elimination, GGL, projection and index1 that applies and reaches t_end at `rtol`
 /// (atol rtol/100), without the scene's budget ([solve] max_steps, max_wall_time) as without
 /// compare's: a reference at rtol/100 takes more steps than the runs it scores (the scene's 450
-/// steps failed all three fallbacks of a nonlinear scene, user trial of 2026-11-28). Each in turn,
+/// steps failed all three fallbacks of a nonlinear scene). Each in turn,
 /// the next when one fails or does not apply: GGL at tight tolerances can ask its derived μ and λ
 /// tolerances for roundoff (the pendulum at rtol 1e-13 failed, where projection and index1 run
 /// it). Nothing when all fail; `failures` then says why, scheme by scheme.
