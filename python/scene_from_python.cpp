@@ -102,7 +102,7 @@ std::vector<long long> indices(const py::handle& data) {
 
 /// A matrix's size refused before anything of it is held, by the checks a file's size line gets
 /// (models/scene/matrix_market.hpp): a scipy.sparse matrix of 10⁸ x 10⁸ with 3 entries was held
-/// (and its 10⁸ DOFs named) to 5.4 GB before the scene was refused for another reason.
+/// (and its 10⁸ DOFs named) in full before the scene was refused for another reason.
 void check_size(long long rows, long long cols, double entries, bool rows_are_dofs,
                 const std::string& path) {
   if (rows < 1 || cols < 1) {

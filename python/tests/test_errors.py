@@ -243,7 +243,7 @@ def test_a_dict_scenes_inconsistent_start_is_blamed_on_initial():
 HUGE = 10**8
 
 # Each call runs in a child limited to 4 GB of address space: were the check lost, the model's
-# 10⁸ DOFs (5.4 GB before this check) would fail there, not take the machine's memory.
+# 10⁸ DOFs (gigabytes before this check) would fail there, not take the machine's memory.
 SIZED_CALL = """
 import resource, sys
 import numpy as np, scipy.sparse as sp
@@ -283,7 +283,7 @@ def without_available(message):
 @pytest.mark.parametrize("route", ["sparse", "dense"])
 def test_a_model_matrix_too_large_to_integrate_is_refused_as_the_cli_refuses(cli, tmp_path,
                                                                              route):
-    # A scipy.sparse matrix of 10⁸ x 10⁸ with 3 entries took 5.4 GB before a refusal for
+    # A scipy.sparse matrix of 10⁸ x 10⁸ with 3 entries was held in full before a refusal for
     # another reason, where the CLI refuses the same .mtx at its size line: the same check, the
     # same words, before anything of the matrix is held.
     mtx = tmp_path / "K.mtx"
