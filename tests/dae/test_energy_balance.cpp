@@ -106,7 +106,7 @@ TEST_CASE("a load step on a preloaded massless DOF: the jump's work, and the hal
   // (P + 2)/9. The load, already at P + 2, does (P + 2) Δy over the jump; the spring stores
   // P Δy + 2 Δy / 2; the balance misses −2 Δy / 2 = −2/9 J whatever P (the jump's own loss, as
   // any damping however small would dissipate). Without the jump's work the error was
-  // P Δy + 2 Δy / 2: +1.33 J for P = 5, −0.89 J for P = −5 (review, 2026-11-26).
+  // P Δy + 2 Δy / 2: +1.33 J for P = 5, −0.89 J for P = −5.
   for (const double preload : {5.0, -5.0, 0.0}) {
     const std::string text = scene(R"([model]
 type = "matrix"
@@ -217,8 +217,8 @@ project = true
 TEST_CASE("nonlinear models under time-dependent loading: the balance closes with the tolerance") {
   // The car axis (its road moves the right spring's anchor: the road's work is reported as the
   // loads'; its rheonomic road row's as the constraints'), a pendulum (rigid member) pushed by a
-  // harmonic load, and the Chaplygin sleigh (nonholonomic) pushed the same way. Measured
-  // (2026-11-25, ggl, rtol 1e-10, atol 1e-12): errors 4.2e-8 (car axis), 1.7e-9 and 8e-10 of
+  // harmonic load, and the Chaplygin sleigh (nonholonomic) pushed the same way. Observed
+  // (ggl, rtol 1e-10, atol 1e-12): errors 4.2e-8 (car axis), 1.7e-9 and 8e-10 of
   // the largest term, and 1,400 to 900,000 times smaller than at rtol 1e-6.
   const std::string harmonic = "value = { type = \"harmonic\", amplitude = 1.0, omega = 2.0 }\n";
   const std::string models[] = {

@@ -165,7 +165,7 @@ TEST_CASE("each failure kind gets its own advice, worded from the facts") {
 
 TEST_CASE("a collapse at an atol near roundoff says to raise atol") {
   // A conical pendulum at rtol 1e-8 and atol 1e-16 collapsed under GGL with advice about
-  // singular configurations and rtol 1e-10 alone (user trial of 2026-11-28).
+  // singular configurations and rtol 1e-10 alone.
   const RunFailure collapsed = failure(FailureKind::step_size_collapsed, 0.02, 1e-18, 10.0, 1000);
   const std::string tiny = roundoff_advice(collapsed, 1e-16, 0.01, 0.0);
   CHECK(contains(tiny,
@@ -190,7 +190,7 @@ TEST_CASE("a collapse at an atol near roundoff says to raise atol") {
 
 TEST_CASE("a run whose atol exceeds its whole motion is flagged") {
   // An SI oscillator (m = 1e4 kg, k = 1e8 N/m, a step of 1e5 N: peak 2 mm) at atol 10 was 85 to
-  // 224 % off under every scheme, exit 0 and no word (user trial of 2026-11-28).
+  // 224 % off under every scheme, exit 0 and no word.
   SolveSummary summary;
   summary.max_abs_displacement = 0.002;
   const auto loose = summary.atol_warning(10.0);

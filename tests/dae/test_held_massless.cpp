@@ -138,7 +138,7 @@ TEST_CASE("a massless DOF held by stiffness: every DAE scheme agrees with the ha
           std::max(acc2, std::abs(300.0 * d.acceleration(1, col) - 100.0 * d.acceleration(0, col) -
                                   200.0 * d.acceleration(2, col) - fdd));
     }
-    // Scales: |u| <= 0.16, |v| <= 1.3, |u''| <= 4.1, |reaction| <= 9.7. Measured (2026-11-25):
+    // Scales: |u| <= 0.16, |v| <= 1.3, |u''| <= 4.1, |reaction| <= 9.7. Observed:
     // u 2.5e-10 (elimination) to 2.8e-9 (index3); the condensed model itself under ggl differs
     // from its elimination run by 7.4e-10 in u and 1.6e-7 in u''. Penalty holds the tie only to
     // its weight (w = 3.5e6): u 5e-6, v 4.9e-4; its accelerations and reactions ring with the
@@ -180,7 +180,7 @@ TEST_CASE("a damped massless DOF: first order in u, every DAE scheme agrees, ene
     const SolveResult r = test::solved(s.model, test::under(s.spec.solve, scheme), hooks);
     const Trajectory& d = r.trajectory;
     REQUIRE(d.t.size() == e.t.size());
-    // Measured <= 4e-9 (2026-11-25, rtol 1e-10), scale 0.15; penalty to its weight.
+    // Observed <= 4e-9 (rtol 1e-10), scale 0.15; penalty to its weight.
     CHECK(max_abs(d.u - e.u) <= (scheme == Scheme::penalty ? 5e-5 : 2e-8));
     for (std::size_t k = 0; k < d.t.size(); ++k) {
       const auto col = static_cast<Eigen::Index>(k);
@@ -235,7 +235,7 @@ TEST_CASE(
        {Scheme::index1, Scheme::ggl, Scheme::elimination, Scheme::penalty, Scheme::projection})
     CHECK_FALSE(scheme_refusal(s.model, scheme).has_value());
   // A static start rules penalty out: its refusal names no scheme, and projection runs it (it
-  // refused every model with held massless DOFs before 2026-11-28).
+  // used to refuse every model with held massless DOFs).
   const auto preloaded = test::built(parse_scene_text(
       test::replace(kChain, "[solve]", "[initial]\nstatic = true\n[solve]"), "chain.toml"));
   REQUIRE(scheme_refusal(preloaded.model, Scheme::penalty).has_value());

@@ -117,10 +117,10 @@ TEST_CASE("the reduced system's derivatives agree with central differences") {
 
 TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimination path") {
   // rtol 1e-10. Displacements are of order 0.09, reactions of order 1.4. The differences
-  // observed (2026-11-25) are below 1.2e-9 (u) and 2.3e-8 (v), the largest under index3, whose
+  // observed are below 1.2e-9 (u) and 2.3e-8 (v), the largest under index3, whose
   // positions are the index-3 DAE's (docs/schemes.md, schemes). Reactions and multipliers, from
   // acceleration level at the rows (dae/formulations/row_multipliers.hpp), differ by 5.7e-8 under
-  // index3 and at most 3.3e-9 under the others (2026-11-27; index3's own λ had differed by 2.1e-6).
+  // index3 and at most 3.3e-9 under the others (index3's own λ had differed by 2.1e-6).
   // The bounds leave a margin of 5 to 100.
   const auto scene =
       test::built(parse_scene_text(chain_scene("rtol = 1e-10\natol = 1e-12\n"), "chain.toml"));

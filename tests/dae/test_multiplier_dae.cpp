@@ -256,7 +256,7 @@ TEST_CASE("index3: only the velocities a multiplier reaches are index 2") {
   // a and b share a mass entry, c is held alone, d and e are free: λ reaches a, b (through M⁻¹)
   // and c. All n velocities were index 2 (out of the error test), free DOFs included: an
   // unconstrained oscillator under a recorded base motion was 20 times less accurate under
-  // index3 than under index1 at the same rtol (review of 2026-11-27).
+  // index3 than under index1 at the same rtol.
   const char* text = R"([model]
 type = "matrix"
 dofs = ["a", "b", "c", "d", "e"]
@@ -346,10 +346,10 @@ TEST_CASE("penalty and projection: a row's scale does not change what it holds" 
           doctest::test_suite("smoke")) {
   // 2 q'' + 200 q = 1 for the tied pair (u1 = u2 = q, unit load on u1): q(1) = (1 - cos 10)/200.
   // Under penalty, a row written as 0.001 u1 = 0.001 u2 got a millionth of the weight: u1 =
-  // 0.0179, u2 = 0.00047 at t = 1 (review of 2026-11-26). Near the double range, 1/|a|²
+  // 0.0179, u2 = 0.00047 at t = 1. Near the double range, 1/|a|²
   // overflowed or underflowed: a row at 1e200 got no weight (u1 = 0.0179 and u2 = 0.00047
   // again, reactions 0, exit 0) and one at 1e-160 gave NaN at t = 0; projection's KKT matrix
-  // was singular to roundoff with a row at 1e-200 (CV_ERR_FAILURE; review of 2026-11-27).
+  // was singular to roundoff with a row at 1e-200 (CV_ERR_FAILURE).
   const double q = (1.0 - std::cos(10.0)) / 200.0;
   for (const Scheme scheme : {Scheme::penalty, Scheme::projection}) {
     CAPTURE(to_string(scheme));
@@ -379,8 +379,8 @@ TEST_CASE("penalty and projection: a row's scale does not change what it holds" 
 TEST_CASE("multiplier schemes: rows 1e40 apart in scale get tolerances of their own units") {
   // A driven row at 1e20 and a tie at 1e-20: one λ tolerance for both, set by the largest
   // coefficient, asked the small row's multiplier for roundoff, and index1, Baumgarte, GGL and
-  // index3 failed before their first step (GGL at 2e9 against 1 failed at t = 1.59; user trial
-  // of 2026-11-27). Reference: elimination at rtol 1e-12.
+  // index3 failed before their first step (GGL at 2e9 against 1 failed at t = 1.59). Reference:
+  // elimination at rtol 1e-12.
   const char* text = R"([model]
 type = "matrix"
 dofs = ["a", "b", "c"]

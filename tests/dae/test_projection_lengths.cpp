@@ -2,7 +2,7 @@
 // below 1e-14 (1 + |u|), in displacement units; a member of length L holds |x2 − x1| only to
 // about 2e-16 L, so from L ≈ 250 no projection converged: a pendulum of length 300 stalled at
 // t = 7e-4 with 10⁵ steps, ever smaller, and a slider-crank in millimetres (lengths 1000 and
-// 2828) the same (user trial of 2026-11-28). At L = 1000, where the first test happened to pass
+// 2828) the same. At L = 1000, where the first test happened to pass
 // at the steps, the output rows' projections failed and kept the interpolated state: drift 3.5e-4.
 // Now an iteration whose corrections stop shrinking counts as converged once they are within a
 // tenth of the error test's tolerance (dae/formulations/projected_ode.cpp).

@@ -20,7 +20,7 @@ namespace {
 
 /// a (held at 0 by `row`) -- k = 1 -- b -- k = 1e6 -- c, masses (1, `mass_b`, 1), a unit load
 /// on c: the stiff chain on which index3's own λ gave a reaction off by 2.7 where the exact one
-/// peaks at 0.24 (docs/limitations.md before 2026-11-27).
+/// peaks at 0.24 (listed in docs/limitations.md until the multipliers were taken at the rows).
 std::string stiff_chain(const std::string& scheme, const std::string& mass_b = "1.0",
                         const std::string& row = "a = 1.0") {
   return R"([model]

@@ -209,7 +209,7 @@ TEST_CASE("output times: a multiple of output_step is t_end only within the time
     return t;
   };
   // 1e-10 before t_end is a row of its own (it was dropped within 1e-9 output steps of t_end, and
-  // a check at that time read the row of t_end; review of 2026-11-27).
+  // a check at that time read the row of t_end).
   CHECK(times(1.0, 0.9999999999) == std::vector<double>{0.0, 0.9999999999, 1.0});
   CHECK(times(0.3000000001, 0.1) == std::vector<double>{0.0, 0.1, 0.2, 3 * 0.1, 0.3000000001});
   CHECK(times(1000.0, 999.9999999) == std::vector<double>{0.0, 999.9999999, 1000.0});

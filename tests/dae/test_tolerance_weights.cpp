@@ -219,7 +219,7 @@ TEST_CASE("model_scales: a light mass on a heavy one keeps its own frequency") {
   // natural frequencies are √(g/L) = 3.132 to within m2/m1 (linearized about hanging). Released
   // with its rods horizontal, λ(0) = 0 and each rod's tension is estimated from the loads: the
   // tip's rod from the tip's weight, not the knee's 1e6 times larger one (which gave ω = 3.1e6,
-  // Baumgarte gains of 3e6 and 2.5 million steps: user trial, 2026-11-28). Hanging and swinging,
+  // Baumgarte gains of 3e6 and 2.5 million steps). Hanging and swinging,
   // from λ(0).
   const std::string rods = R"(masses = [0.0, 1e6, 1e-6]
 supports = [1]

@@ -5,8 +5,8 @@
 // errors (rtol |u|). Before the floors of the error weights (MultiplierDae::error_scale_floors,
 // engaged by the weight function in dae/integrators/ida_integrator.cpp), GGL and index3 collapsed
 // to order 1 (order 3 at atol 1e-13) with an error-test failure at every step: at a = 60°, rtol
-// 1e-8, atol 1e-10 and t_end 3, GGL took 98,715 steps and ended 1.5e-3 off the circle (user trial
-// of 2026-11-28; at t_end 10, 2.5·10⁵ steps, 4e-3 off). docs/schemes.md, "Error weights on rows".
+// 1e-8, atol 1e-10 and t_end 3, GGL took 98,715 steps and ended 1.5e-3 off the circle (at t_end
+// 10, 2.5·10⁵ steps, 4e-3 off). docs/schemes.md, "Error weights on rows".
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -72,9 +72,8 @@ TEST_CASE(
 TEST_CASE("steady conical pendulum at a tight atol and in millimetres: GGL stays on the circle") {
   // With floors on the displacements only, the velocities' row (GGL's λ) trapped the run at a
   // tighter atol: atol 1e-13 took 70,195 steps over 10 s and ended 2.5e-3 R off, millimetres
-  // (atol 1e-10, L = 1000) 111,477 steps and 4.0e-3 R, exit 0 without a warning (user trial of
-  // 2026-11-28). Now within 2e-5 R (measured over 10 s: 1.2e-5 and 1.6e-5 R in 3,321 and
-  // 3,333 steps; index2 1.3e-6 and 1.7e-6 R).
+  // (atol 1e-10, L = 1000) 111,477 steps and 4.0e-3 R, exit 0 without a warning. Now within 2e-5 R
+  // (measured over 10 s: 1.2e-5 and 1.6e-5 R in 3,321 and 3,333 steps; index2 1.3e-6 and 1.7e-6 R).
   struct Case {
     double atol, length;
   };

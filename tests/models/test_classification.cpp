@@ -1,7 +1,7 @@
 // Constraint classification (models/core/classification.hpp): the classes of a mixed scene of
 // linear and nonlinear rows, and its cost: `info` classified every nonlinear row with a clone of
-// the whole system and full evaluations of A and the residuals, quadratic in the rows (35 s at
-// 10,000 chain links, issue 42).
+// the whole system and full evaluations of A and the residuals, quadratic in the rows (issue 42;
+// docs/benchmarks.md).
 #include <doctest/doctest.h>
 
 #include <memory>

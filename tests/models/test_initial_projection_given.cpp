@@ -157,8 +157,8 @@ output_step = 0.5
 TEST_CASE("a start where the rod does not change along the free DOFs names both sides") {
   // The rod along x, ux2 given: the rod's row has no first-order term in uy2 at uy2 = 0, so
   // Gauss-Newton could not move it, and the scene was refused as inconsistent ("no initial state
-  // satisfies constraint 'rigid_1_2'") though uy2 = ±√(1 − 0.6²) = ±0.8 both satisfy it (user
-  // trial of 2026-11-28). Which side is meant is the scene's to say.
+  // satisfies constraint 'rigid_1_2'") though uy2 = ±√(1 − 0.6²) = ±0.8 both satisfy it. Which
+  // side is meant is the scene's to say.
   const std::string msg = error_of(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = -0.4 }"));
   CHECK(msg.find("cannot project the initial state: at the given state constraint 'rigid_1_2' "
                  "does not change to first order along the DOFs left free") != std::string::npos);
@@ -190,8 +190,8 @@ output_step = 0.1
 TEST_CASE("given velocities that fit only next to a singular configuration are refused") {
   // The rod written along x, given uy2 = -1 (straight down: ux2 = -1 is a double root, found to
   // about √1e-10, ux2 = -0.99999237) and vy2 = 1: the rod's velocity row there depends on vx2
-  // by 7.6e-6 only, and the projection gave vx2 = 131072 with exit 0 (user trial of
-  // 2026-11-28). At the exact configuration no velocity meets vy2 = 1.
+  // by 7.6e-6 only, and the projection gave vx2 = 131072 with exit 0. At the exact configuration
+  // no velocity meets vy2 = 1.
   const std::string msg =
       error_of(replace(kPendulum, "displacement = { uy2 = -0.2 }",
                        "displacement = { uy2 = -1.0 }\nvelocity = { uy2 = 1.0 }"));
@@ -207,7 +207,7 @@ TEST_CASE("given velocities that fit only next to a singular configuration are r
 
 TEST_CASE("given values that put a rod's ends together name the keys and the rod") {
   // ux2 = -1, uy2 = 0 puts node 2 on the support: the rod has no direction there (0/0) and the
-  // scene got "Gauss-Newton did not converge in 50 iterations" at key `initial` (user trial).
+  // scene got "Gauss-Newton did not converge in 50 iterations" at key `initial`.
   const std::string msg = error_of(replace(kPendulum, "displacement = { uy2 = -0.2 }",
                                            "displacement = { ux2 = -1.0, uy2 = 0.0 }"));
   CHECK(msg.find("initial.displacement.ux2: project = true keeps the values given in [initial], "

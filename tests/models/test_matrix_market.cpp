@@ -214,7 +214,7 @@ TEST_CASE("matrix market: malformed files are refused with their line") {
       {general + "2 2 1\n+-1 1 1\n", 3, "not an integer"},
       {"%%MatrixMarket matrix coordinate integer general\n2 2 1\n1 1 100.9\n", 3,
        "'100.9' is not an integer"},
-      // Beyond 2^53 an integer may have no double: it was rounded silently before 2026-11-28.
+      // Beyond 2^53 an integer may have no double: it used to be rounded silently.
       {"%%MatrixMarket matrix coordinate integer general\n2 2 1\n1 1 9007199254740993\n", 3,
        "the integer '9007199254740993' is beyond 2^53 and not held exactly by a double (it "
        "would be 9007199254740992); write the value meant, or the field 'real'"},
@@ -278,7 +278,8 @@ TEST_CASE("matrix market: a model matrix's size line is refused when its DOFs co
 TEST_CASE(
     "matrix market: a constraint block with fewer entries than rows is refused at its size "
     "line") {
-  // 2·10⁹ rows and 2 entries fit the memory estimate (16 GB here) and ran for minutes.
+  // 2·10⁹ rows and 2 entries fit the memory estimate of a large machine and ran for minutes
+  // (docs/benchmarks.md).
   const std::string text =
       "%%MatrixMarket matrix coordinate real general\n2000000000 3 2\n"
       "1 1 1.0\n2 2 1.0\n";
@@ -329,8 +330,8 @@ TEST_CASE("matrix market: a byte order mark, lone CR endings, messages show no c
 }
 
 TEST_CASE("matrix market: a size the caller knows is checked at the size line") {
-  // 3·10⁸ for 3 (the model's size known from M) was allocated in full, 4.7 GB and 8 s, before
-  // the size was compared with M's.
+  // 3·10⁸ for 3 (the model's size known from M) was allocated in full, gigabytes, before the
+  // size was compared with M's (docs/benchmarks.md).
   MarketExpectation three;
   three.rows = three.cols = 3;
   three.because = "M.mtx is 3 x 3";

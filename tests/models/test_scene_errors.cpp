@@ -106,7 +106,7 @@ TEST_CASE("values out of range") {
   check_error(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0]"), "has 1 entries for 2 nodes");
   check_error(replace(kBase, "t_end = 1.0", "t_end = 0.0"), "solve.t_end: must be > 0");
   // A nonzero number below the double range was read as 0 without a word: a check's value of
-  // 1e-400 at tolerance 0 then passed on a computed 0 (review of 2026-11-27).
+  // 1e-400 at tolerance 0 then passed on a computed 0.
   check_error(replace(kBase, "masses = [1.0, 1.0]", "masses = [1.0, -2.5e-400]"),
               "bad.toml:5: model.masses[2]: -2.5e-400 is nonzero but below the smallest double");
   check_error(replace(kBase, "value = 1.0", "value = 1_0e-4_00"),
@@ -206,7 +206,7 @@ output_step = 0.5
 TEST_CASE("a velocity row that conflicts through the initial displacements says so") {
   // v is p's derivative: they agree as written, but v's position form a + b = 0.06 + 0.1 t takes
   // a + b = 0.06 from [initial] where p asks 0.05. "Conflicting" alone sent the user to the
-  // constraints (review of 2026-11-27).
+  // constraints.
   const std::string scene = R"([model]
 type = "matrix"
 dofs = ["a", "b", "c"]
@@ -294,7 +294,7 @@ output_step = 0.1
 TEST_CASE("a nonlinear set dependent at the start is a singular configuration, not a conflict") {
   // A pendulum driven along x from the horizontal: the rod's row and the drive are parallel at
   // t = 0 only (x = 1 − t²/2, y = −t √(1 − t²/4) is a motion), and the set was refused as
-  // "conflicting: no motion satisfies it" (user trial of 2026-11-28).
+  // "conflicting: no motion satisfies it".
   const std::string msg = error_of(kDrivenPendulum);
   CAPTURE(msg);
   CHECK(msg.find("are linearly dependent at the initial configuration") != std::string::npos);
@@ -318,8 +318,8 @@ TEST_CASE("redundant = drop on dependent nonlinear rows says drop does not apply
 
 TEST_CASE("a second rigid member between the same nodes is refused, naming the first") {
   // It repeats the first's row (dependent everywhere), and both took the name rigid_1_2: the
-  // message spoke of a singular configuration, two columns lambda_rigid_1_2 (user trial,
-  // 2026-11-28). Either order of the nodes; an elastic member beside a rigid one is allowed.
+  // message spoke of a singular configuration, two columns lambda_rigid_1_2. Either order of the
+  // nodes; an elastic member beside a rigid one is allowed.
   const std::string scene = R"([model]
 type = "truss2d"
 nodes = [[0.0, 0.0], [1.0, 0.0]]
@@ -343,8 +343,8 @@ output_step = 0.1
 }
 
 TEST_CASE("with an initial projection a conflicting linear set is named as such") {
-  // The projection met the dependent rows first and said only that no velocity satisfies them
-  // (user trial, 2026-11-28): the rank check, which does not depend on the state for linear
+  // The projection met the dependent rows first and said only that no velocity satisfies them:
+  // the rank check, which does not depend on the state for linear
   // rows, now names them and says they conflict.
   const std::string drives = R"([[constraint]]
 name = "drive"
@@ -479,7 +479,7 @@ TEST_CASE("constraint right-hand sides may not jump after t = 0") {
     CHECK(model.constraints[2].position_value.is_zero());
   }
   // A load's step after t_end, on a DOF or a pattern, is warned about as a constraint's is; it
-  // was left out silently before 2026-11-27.
+  // used to be left out silently.
   {
     BuildReport report;
     const Model model = build_model(

@@ -80,8 +80,7 @@ TEST_CASE("[solve] slaves repeated, too many or on unconstrained DOFs: refused w
 
 TEST_CASE("a massless DOF nothing holds is bad input under every scheme, DOFs named") {
   // A triangle, node 1 pinned; node 3 without mass, held by two bars: its stiffness holds it, so
-  // every scheme runs it (tests/dae/test_held_massless.cpp; projection refused it before
-  // 2026-11-28).
+  // every scheme runs it, projection included (tests/dae/test_held_massless.cpp).
   const std::string triangle = condyn::test::kMasslessTriangleScene;
   for (const std::string scheme :
        {"ggl", "index1", "elimination", "penalty", "projection", "auto"}) {

@@ -336,7 +336,7 @@ TEST_CASE(
 
 TEST_CASE("cli check: a run killed by a time limit keeps the verdicts already printed") {
   // stdout to a file is fully buffered, and SIGTERM discards the buffer: every PASS/FAIL line
-  // of the scenes done was lost before each scene's lines were flushed (2026-11-28).
+  // of the scenes done was lost before each scene's lines were flushed.
   Sandbox box;
   box.write("quick.toml", scene(kHolds));
   // The oscillator for 10^6 s at rtol 1e-10: millions of steps, stopped long before its end.

@@ -79,7 +79,7 @@ TEST_CASE("run: a ground motion record's peak, and a scale of 981 in an SI scene
                  "ground motion record: table(data/el_centro_1940_ns.csv:acceleration_g, "
                  "1559 samples)*9.81: peak 3.13 m/s^2 (0.319 g) at t = 2.02 s\n"));
   CHECK_FALSE(contains(r.err, "warning"));
-  // The user trial's slip, g to cm/s²: it ran silently to a roof displacement 100 times too large.
+  // A slip of units, g to cm/s²: it ran silently to a roof displacement 100 times too large.
   std::string text = slurp(frame);
   text = replace(text, "scale = 9.81", "scale = 981.0");
   text = replace(text, "data/el_centro_1940_ns.csv",
@@ -109,7 +109,7 @@ std::string drifting_pendulum(const std::string& scheme) {
 TEST_CASE("run and check: a drift beyond 100 (rtol max|u| + atol) is warned of, and fails check") {
   const Sandbox box;
   // index1 lets the rod's length drift: 0.0437 by t = 100 against a bound of 2.0e-4 (rtol 1e-6
-  // times max|u| = 2, plus atol 1e-10, times 100); GGL holds it to 1.9e-6 (observed, 2026-11-28).
+  // times max|u| = 2, plus atol 1e-10, times 100); GGL holds it to 1.9e-6 (observed).
   box.write("i.toml", drifting_pendulum("index1"));
   box.write("g.toml", drifting_pendulum("ggl"));
   const Result i = box.run("run i.toml --out i.csv");

@@ -175,7 +175,7 @@ output_step = 0.5
 TEST_CASE("compare: when the tight GGL run fails another scheme gives the reference") {
   // The pendulum of models/scenes at --tolerances 1e-11: GGL at rtol 1e-13 takes 10⁵ steps
   // before t = 4.6e-5 (its derived μ and λ tolerances ask for roundoff), and compare ended with
-  // "no reference solution" though projection and index1 run it (user trial of 2026-11-28).
+  // "no reference solution" though projection and index1 run it.
   // Now the next scheme that applies gives it, and the description says what failed.
   const SceneSpec spec =
       parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/pendulum.toml");
@@ -195,8 +195,8 @@ TEST_CASE("compare: when the tight GGL run fails another scheme gives the refere
 
 TEST_CASE("compare: a run that takes long reports its progress under its own name") {
   // A conical pendulum in steady rotation at atol 1e-13 crawls under projection (steps of 3e-7
-  // s); `condyn compare` without a budget ran for minutes with no hint of which run (user trial
-  // of 2026-11-28). Each run's progress now comes through options.progress, led by its place in
+  // s); `condyn compare` without a budget ran for minutes with no hint of which run. Each run's
+  // progress now comes through options.progress, led by its place in
   // the sweep. Here with a 3 s budget per run: a line at 2 s, then the failure. (compare keeps
   // the scene's atol/rtol: 1e-15/1e-8 runs at 1e-13/1e-6. At 1e-11/1e-6 it crawled too until
   // the KKT factorizations moved to KLU: now 9,197 steps.)
@@ -224,7 +224,7 @@ TEST_CASE("compare: a run that takes long reports its progress under its own nam
 TEST_CASE("compare: the scene's own budget does not bound the reference") {
   // [solve] max_steps = 450 on the pendulum: the runs at rtol 1e-4 and 1e-6 fit in it, the
   // tight references (ggl, projection, index1 at 1e-8) did not, and compare failed with "no
-  // reference solution" (user trial of 2026-11-28), though --max-steps exempts the reference.
+  // reference solution", though --max-steps exempts the reference.
   const std::string text = test::pendulum_scene(
       "t_end = 2.0\noutput_step = 0.01\nrtol = 1e-8\natol = 1e-10\nmax_steps = 450\n");
   CompareOptions o;

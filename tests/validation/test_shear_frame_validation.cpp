@@ -19,11 +19,11 @@ TEST_CASE("shear frame under El Centro: every scheme agrees with the exact solut
   scene.spec.solve.rtol = 1e-10;
   scene.spec.solve.atol = 1e-12;
   scene.spec.solve.output_step = 0.1;  // 313 rows: the record's kinks fall between outputs too
-  // Relative max-norm errors over all DOFs and outputs, observed 2026-11-25 with this scene at
+  // Relative max-norm errors over all DOFs and outputs, observed with this scene at
   // rtol 1e-10 (`condyn compare ... --tolerances 1e-10`): u 1.3e-9 to 1.7e-9 for elimination,
   // index1, Baumgarte, GGL and index2, 3.5e-8 for projection, 4.2e-7 for index3 (its positions
   // are the index-3 DAE's: least accurate per tolerance, docs/schemes.md); reactions 1e-8 to
-  // 1e-7, and 6.5e-7 for index3 since its rows take λ from acceleration level (2026-11-27; 6e-6
+  // 1e-7, and 6.5e-7 for index3 since its rows take λ from acceleration level (6e-6
   // from its own λ). The issue asks 1e-7 on displacements at tight tolerance.
   const test::ExactPeaks peak = test::check_against_exact(scene.model, scene.spec.solve,
                                                           {{Scheme::elimination, 1e-7, 1e-6},

@@ -54,7 +54,7 @@ atol = 1e-12
 
 TEST_CASE("truss frame under El Centro: every scheme agrees with the exact solution") {
   const auto scene = test::built(parse_scene_text(frame_scene(), "truss_frame.toml"));
-  // Bounds: the 1e-7 on displacements at tight tolerance. Measured 2026-11-25 (peak
+  // Bounds: the 1e-7 on displacements at tight tolerance. Observed (peak
   // sway 0.103 m, peak reaction 2.9e6 N): u 1.4e-9 to 2.1e-9 (elimination, index1, Baumgarte,
   // GGL, index2), 2.9e-8 projection, 1.3e-6 index3 (its positions are the index-3 DAE's),
   // 5.1e-5 penalty (its weight's error); reactions 1.5e-9 to 3.1e-8, 1.4e-6, 5.7e-5.
