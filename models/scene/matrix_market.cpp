@@ -2,6 +2,7 @@
 
 #include "models/scene/matrix_market.hpp"
 
+#include "models/core/line_reader.hpp"
 #include "models/core/memory_estimate.hpp"
 #include "models/core/number_cell.hpp"
 
@@ -146,37 +147,18 @@ std::optional<std::string> holding_refusal(long long rows, long long cols, doubl
 
 namespace {
 
-/// Reads the file line by line from `in`: never more than one line of it in memory (a stiffness
-/// file of a million DOFs is 300 MB of text).
-MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expect) {
-  int line_no = 0;
-  // Lines end in LF, CRLF or a lone CR (a classic Mac ending, as tables accept): what getline
-  // reads up to an LF is served in parts at each CR inside it.
-  std::string buffer;
-  std::size_t at = 0;
-  bool serving = false;
-  const auto next_line = [&](std::string_view& line) {
-    if (!serving || at > buffer.size()) {
-      if (!std::getline(in, buffer)) return false;
-      at = 0;
-      serving = true;
-    }
-    const auto cr = buffer.find('\r', at);
-    if (cr == std::string::npos || cr + 1 == buffer.size()) {  // the last part (CRLF: its CR)
-      line =
-          std::string_view(buffer).substr(at, (cr == std::string::npos ? buffer.size() : cr) - at);
-      serving = false;
-    } else {
-      line = std::string_view(buffer).substr(at, cr - at);
-      at = cr + 1;
-    }
-    ++line_no;
-    return true;
-  };
+/// What the header line says of the values.
+struct MarketHeader {
+  bool dense = false;      ///< format 'array': every value, column by column
+  bool integer = false;    ///< field 'integer'
+  bool symmetric = false;  ///< the lower triangle only
+};
+
+/// The first line: '%%MatrixMarket matrix FORMAT FIELD SYMMETRY', of the formats, fields and
+/// symmetries read here.
+MarketHeader read_header(LineReader& lines) {
   std::string_view line;
-  if (!next_line(line)) throw MatrixMarketError(0, "the file is empty");
-  // A UTF-8 byte order mark before the header (Windows editors write one), as tables allow.
-  if (line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
+  if (!lines.next(line)) throw MatrixMarketError(0, "the file is empty");
   const auto head = tokens(line);
   if (head.empty() || lower(head[0]) != "%%matrixmarket") {
     throw MatrixMarketError(1, "the first line is not a Matrix Market header (%%MatrixMarket ...)");
@@ -194,26 +176,35 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                                    "' is not supported: only 'coordinate' (sparse) or 'array' "
                                    "(dense, column by column)");
   }
-  const bool dense = format == "array";
   if (field != "real" && field != "integer") {
     throw MatrixMarketError(1,
                             "field '" + field + "' is not supported: only 'real' (or 'integer')");
   }
-  const bool integer = field == "integer";
   if (symmetry != "general" && symmetry != "symmetric") {
     throw MatrixMarketError(
         1, "symmetry '" + symmetry + "' is not supported: only 'general' or 'symmetric'");
   }
-  MarketMatrix out;
-  out.symmetric = symmetry == "symmetric";
+  return {format == "array", field == "integer", symmetry == "symmetric"};
+}
 
-  // The size line: the first line that is neither a comment nor blank.
+/// What the size line declares, and its line.
+struct MarketSize {
+  long long rows = 0, cols = 0, entries = 0;
+  int line = 0;
+};
+
+/// The size line: the first line after the header that is neither a comment nor blank; rows and
+/// columns in range, and a symmetric matrix square. The entry count is checked by check_size.
+MarketSize read_size_line(LineReader& lines, const MarketHeader& header) {
+  std::string_view line;
   Tokens size;
-  while (next_line(line)) {
+  while (lines.next(line)) {
     if (!line.empty() && line.front() == '%') continue;
     size = tokens(line);
     if (!size.empty()) break;
   }
+  const int line_no = lines.line_number();
+  const bool dense = header.dense;
   if (size.empty())
     throw MatrixMarketError(line_no, "the size line (rows cols entries) is missing");
   if (size.size() != (dense ? 2U : 3U)) {
@@ -222,7 +213,6 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                                            : "the size line must hold three integers: rows cols "
                                              "entries");
   }
-  const int size_line = line_no;
   // A size line of the right length but not of integers is most often an entry where the size
   // line was left out: say so (the entry count '1.0' alone sent users to the wrong line).
   for (std::size_t k = 0; k < size.size(); ++k) {
@@ -236,20 +226,32 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
                        "place?");
     }
   }
-  const long long rows = to_integer(size[0], line_no, "the row count");
-  const long long cols = to_integer(size[1], line_no, "the column count");
+  MarketSize out;
+  out.line = line_no;
+  out.rows = to_integer(size[0], line_no, "the row count");
+  out.cols = to_integer(size[1], line_no, "the column count");
+  const long long rows = out.rows, cols = out.cols;
   if (const auto refusal = size_range_refusal(rows, cols)) {
     throw MatrixMarketError(line_no, *refusal);
   }
-  if (out.symmetric && rows != cols) {
+  if (header.symmetric && rows != cols) {
     throw MatrixMarketError(line_no, "a symmetric matrix must be square (the file says " +
                                          std::to_string(rows) + " x " + std::to_string(cols) + ")");
   }
   // An array holds every value (the lower triangle when symmetric): rows, cols < 2^31, so the
   // product fits in 63 bits.
-  const long long entries = !dense          ? to_integer(size[2], line_no, "the entry count")
-                            : out.symmetric ? rows * (rows + 1) / 2
-                                            : rows * cols;
+  out.entries = !dense             ? to_integer(size[2], line_no, "the entry count")
+                : header.symmetric ? rows * (rows + 1) / 2
+                                   : rows * cols;
+  return out;
+}
+
+/// The declared size against what the caller expects and what this machine can hold, before
+/// anything is allocated.
+void check_size(const MarketSize& size, const MarketHeader& header,
+                const MarketExpectation& expect) {
+  const long long rows = size.rows, cols = size.cols, entries = size.entries;
+  const int line_no = size.line;
   if ((expect.rows > 0 && rows != expect.rows) || (expect.cols > 0 && cols != expect.cols)) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
                                          std::to_string(cols) + " but " + expect.because + ": " +
@@ -257,7 +259,7 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   }
   // What holding it takes, before anything is allocated: a size line of 2·10⁹ (a typo, or
   // another file's) had the kernel kill the process while the index arrays were filled.
-  const double stored_entries = static_cast<double>(entries) * (out.symmetric ? 2.0 : 1.0);
+  const double stored_entries = static_cast<double>(entries) * (header.symmetric ? 2.0 : 1.0);
   if (const auto refusal = holding_refusal(rows, cols, stored_entries, expect.rows_are_dofs)) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) + " x " +
                                          std::to_string(cols) + " with " + std::to_string(entries) +
@@ -269,24 +271,45 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
   }
   // Fewer entries than rows leaves a row empty: refused here, before rows of index arrays are
   // filled (2·10⁹ rows with 2 entries would fill gigabytes before "row 3 has no entry").
-  if (!dense && expect.rows_need_entries && entries < rows) {
+  if (!header.dense && expect.rows_need_entries && entries < rows) {
     throw MatrixMarketError(line_no, "the size line declares " + std::to_string(rows) +
                                          " rows but " + std::to_string(entries) +
                                          " entries, so some row has none: every constraint row "
                                          "needs a coefficient; is the size line right?");
   }
+}
 
+/// The value of an entry: finite, and a whole number held exactly when the field is 'integer'.
+double entry_value(std::string_view text, const MarketHeader& header, int line_no) {
+  const double v = to_double(text, line_no);
+  if (header.integer && v != std::trunc(v)) {
+    throw MatrixMarketError(line_no, "the value '" + std::string(text) +
+                                         "' is not an integer, as the header's field "
+                                         "'integer' says every value is");
+  }
+  if (header.integer && std::abs(v) >= kMaxExactInteger) inexact_integer(text, v, line_no);
+  return v;
+}
+
+/// The entries after the size line, as triplets (both triangles of a symmetric matrix; an
+/// array's zeros left out): exactly as many as the size line declares, each inside the matrix.
+std::vector<Eigen::Triplet<double>> read_entries(LineReader& lines, const MarketHeader& header,
+                                                 const MarketSize& size) {
+  const bool dense = header.dense, symmetric = header.symmetric;
+  const long long rows = size.rows, cols = size.cols, entries = size.entries;
   std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(std::min(entries * (out.symmetric ? 2 : 1), kMaxReserve)));
+  trip.reserve(static_cast<std::size_t>(std::min(entries * (symmetric ? 2 : 1), kMaxReserve)));
   long long read = 0;
   long long next_row = 1, next_col = 1;  // an array's next position, column by column
-  while (next_line(line)) {
+  std::string_view line;
+  while (lines.next(line)) {
+    const int line_no = lines.line_number();
     if (!line.empty() && line.front() == '%') continue;
     const auto tok = tokens(line);
     if (tok.empty()) continue;
     if (read == entries) {
       throw MatrixMarketError(line_no, "more entries than the " + std::to_string(entries) +
-                                           " the size line (line " + std::to_string(size_line) +
+                                           " the size line (line " + std::to_string(size.line) +
                                            ") declares");
     }
     if (tok.size() != (dense ? 1U : 3U)) {
@@ -298,40 +321,48 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
     const long long j = dense ? next_col : to_integer(tok[1], line_no, "the column index");
     if (dense && ++next_row > rows) {
       ++next_col;
-      next_row = out.symmetric ? next_col : 1;
+      next_row = symmetric ? next_col : 1;
     }
     if (i < 1 || i > rows || j < 1 || j > cols) {
       throw MatrixMarketError(line_no, "the index (" + std::to_string(i) + ", " +
                                            std::to_string(j) + ") lies outside the " +
                                            std::to_string(rows) + " x " + std::to_string(cols) +
                                            " matrix of the size line, line " +
-                                           std::to_string(size_line) + " (indices are 1-based)");
+                                           std::to_string(size.line) + " (indices are 1-based)");
     }
-    if (out.symmetric && j > i) {
+    if (symmetric && j > i) {
       throw MatrixMarketError(line_no, "the entry (" + std::to_string(i) + ", " +
                                            std::to_string(j) +
                                            ") lies above the diagonal: a symmetric file holds the "
                                            "lower triangle only");
     }
-    const double v = to_double(tok[dense ? 0 : 2], line_no);
-    if (integer && v != std::trunc(v)) {
-      throw MatrixMarketError(line_no, "the value '" + std::string(tok[dense ? 0 : 2]) +
-                                           "' is not an integer, as the header's field "
-                                           "'integer' says every value is");
-    }
-    if (integer && std::abs(v) >= kMaxExactInteger) inexact_integer(tok[dense ? 0 : 2], v, line_no);
+    const double v = entry_value(tok[dense ? 0 : 2], header, line_no);
     const auto r = static_cast<int>(i - 1), c = static_cast<int>(j - 1);
     ++read;
     if (dense && v == 0.0) continue;
     trip.emplace_back(r, c, v);
-    if (out.symmetric && r != c) trip.emplace_back(c, r, v);
+    if (symmetric && r != c) trip.emplace_back(c, r, v);
   }
   if (read != entries) {
-    throw MatrixMarketError(line_no, "the file ends after " + std::to_string(read) + " of the " +
-                                         std::to_string(entries) + " entries the size line (line " +
-                                         std::to_string(size_line) + ") declares");
+    throw MatrixMarketError(lines.line_number(), "the file ends after " + std::to_string(read) +
+                                                     " of the " + std::to_string(entries) +
+                                                     " entries the size line (line " +
+                                                     std::to_string(size.line) + ") declares");
   }
-  out.matrix.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  return trip;
+}
+
+/// Reads the file line by line from `in`: never more than one line of it in memory (a stiffness
+/// file of a million DOFs is 300 MB of text).
+MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expect) {
+  LineReader lines(in);
+  const MarketHeader header = read_header(lines);
+  const MarketSize size = read_size_line(lines, header);
+  check_size(size, header, expect);
+  const auto trip = read_entries(lines, header, size);
+  MarketMatrix out;
+  out.symmetric = header.symmetric;
+  out.matrix.resize(static_cast<Eigen::Index>(size.rows), static_cast<Eigen::Index>(size.cols));
   out.matrix.setFromTriplets(trip.begin(), trip.end());  // duplicates are summed
   out.matrix.makeCompressed();
   for (Eigen::Index k = 0; k < out.matrix.nonZeros(); ++k) {
@@ -339,7 +370,7 @@ MarketMatrix parse_market_stream(std::istream& in, const MarketExpectation& expe
       throw MatrixMarketError(0, "duplicate entries add up beyond the double range");
     }
   }
-  if (in.bad()) throw MatrixMarketError(line_no, "cannot read the file");
+  if (lines.failed()) throw MatrixMarketError(lines.line_number(), "cannot read the file");
   return out;
 }
 
