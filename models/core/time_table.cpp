@@ -7,7 +7,9 @@
 #include <fstream>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
+#include "models/core/line_reader.hpp"
 #include "models/core/number_cell.hpp"
 
 namespace condyn {
@@ -65,21 +67,6 @@ std::vector<std::string> cells(const std::string& line, int line_no) {
   }
 }
 
-/// Lines ended by LF, CRLF or a lone CR (the classic Mac ending some spreadsheets still write).
-std::string with_lf_endings(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '\r') {
-      out += '\n';
-      if (i + 1 < text.size() && text[i + 1] == '\n') ++i;
-    } else {
-      out += text[i];
-    }
-  }
-  return out;
-}
-
 /// For a row read as one cell: the separator it seems to use instead of commas, said with what to
 /// do, or "" when it holds none. Spreadsheets write CSV with semicolons where the decimal mark is
 /// a comma, and tab-separated text when asked for text.
@@ -124,135 +111,167 @@ double TimeTable::slope(double t) const {
   return (values[k + 1] - values[k]) / (times[k + 1] - times[k]);
 }
 
-TimeTable parse_time_table(const std::string& text, const std::string& column,
-                           std::size_t min_samples) {
-  TimeTable table;
-  // A UTF-8 byte order mark (spreadsheets write one) is no part of the first cell.
-  const bool bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0;
-  std::istringstream in(with_lf_endings(bom ? text.substr(3) : text));
-  std::string line;
-  int line_no = 0;
-  bool first_row = true;
-  std::size_t value_col = 1;
+namespace {
+
+/// What the first row fixes for the rows after it.
+struct TableLayout {
+  std::size_t value_col = 1;  ///< the values' column (0-based)
   // The first row's cells (the header's, else the first sample's) and its line: every sample
   // has as many. A longer row is a shifted one as often as a short one is (a decimal comma,
   // 0,5 for 0.5, splits a value in two), and its cells would be read from the wrong columns.
   std::size_t width = 0;
   int width_line = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
+};
+
+/// A header row: the time column (first, and not a row index) and the values' column (`column`,
+/// or the second when empty), named in `table`; returns the values' column.
+std::size_t read_header_row(const std::vector<std::string>& row, int line_no,
+                            const std::string& column, TimeTable& table) {
+  table.time_column = row.front();
+  // R's write.csv and pandas' to_csv put a row index first by default: an unnamed first
+  // column, or a later one named as time is. Read as time, it stretches the record.
+  const auto named_time = [](std::string name) {
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return name == "t" || name == "time";
+  };
+  const auto later_time = std::find_if(row.begin() + 1, row.end(), named_time);
+  if (trim(row.front()).empty() || (!named_time(row.front()) && later_time != row.end())) {
+    throw TimeTableError(
+        line_no, "the first column holds the time, but it is " +
+                     (trim(row.front()).empty() ? std::string("unnamed")
+                                                : "'" + shown_cell(row.front()) + "'") +
+                     (later_time != row.end()
+                          ? " and column " + std::to_string(later_time - row.begin() + 1) +
+                                " is '" + shown_cell(*later_time) + "'"
+                          : std::string()) +
+                     ": a row index, as R's write.csv and pandas' to_csv write by default? Write "
+                     "the table without it (write.csv(..., row.names = FALSE), "
+                     "to_csv(..., index = False)) or with time first");
+  }
+  if (column.empty()) {
+    table.column = row[1];
+    return 1;
+  }
+  const auto it = std::find(row.begin() + 1, row.end(), column);
+  if (it == row.end()) {
+    std::string names;
+    for (std::size_t c = 1; c < row.size(); ++c) names += (c > 1 ? ", " : "") + shown_cell(row[c]);
+    throw TimeTableError(line_no,
+                         "no column '" + column + "' (the value columns are: " + names + ")");
+  }
+  if (std::find(it + 1, row.end(), column) != row.end()) {
+    throw TimeTableError(line_no, "two columns are named '" + column +
+                                      "': rename one (which is meant is not clear)");
+  }
+  table.column = column;
+  return static_cast<std::size_t>(it - row.begin());
+}
+
+/// The first row (`trimmed` its text): its width, and whether it is a header (its first cell not
+/// a number), read by read_header_row; else the values are in column 2.
+bool read_first_row(const std::vector<std::string>& row, const std::string& trimmed, int line_no,
+                    const std::string& column, TimeTable& table, TableLayout& layout) {
+  layout.width = row.size();
+  layout.width_line = line_no;
+  double ignored = 0.0;
+  const bool header = !parse_number(row.front(), ignored);
+  if (row.size() < 2) {
+    throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
+                                      " column: a table needs time and a column of values" +
+                                      other_separator(trimmed));
+  }
+  if (header) {
+    layout.value_col = read_header_row(row, line_no, column, table);
+    return true;
+  }
+  if (!column.empty()) {
+    // A check's reference names its column by the check's quantity, a time function by
+    // `column`: the remedy that serves both is the header.
+    throw TimeTableError(line_no, "has no header line naming its columns, so no column '" + column +
+                                      "' (add a header line such as t," + column + ")");
+  }
+  table.column = "column 2";
+  return false;
+}
+
+/// A sample row's time and value: as many cells as the first row, both numbers and finite.
+std::pair<double, double> read_sample(const std::vector<std::string>& row,
+                                      const std::string& trimmed, int line_no,
+                                      const TableLayout& layout) {
+  if (row.size() <= layout.value_col) {
+    throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
+                                      " cell(s) but the values are in column " +
+                                      std::to_string(layout.value_col + 1) +
+                                      (row.size() == 1 ? other_separator(trimmed) : ""));
+  }
+  if (row.size() != layout.width) {
+    throw TimeTableError(line_no, "has " + std::to_string(row.size()) + " cells, line " +
+                                      std::to_string(layout.width_line) + " has " +
+                                      std::to_string(layout.width) +
+                                      ": every row needs one cell per column (a decimal "
+                                      "comma, as in 0,5, splits a value in two)");
+  }
+  double t = 0.0, v = 0.0;
+  for (const auto& [cell, out, what] :
+       {std::tuple{row[0], &t, "time"}, std::tuple{row[layout.value_col], &v, "value"}}) {
+    if (const NumberCell kind = parse_number_cell(cell, *out); kind != NumberCell::ok) {
+      throw TimeTableError(line_no, std::string("the ") + what + " '" + shown_cell(cell) + "' " +
+                                        number_cell_problem(kind));
+    }
+    if (!std::isfinite(*out)) {
+      throw TimeTableError(
+          line_no, std::string("the ") + what + " '" + shown_cell(cell) + "' is not finite");
+    }
+  }
+  return {t, v};
+}
+
+/// Appends the sample (t, v) after the previous one, whose time it must follow.
+void add_sample(TimeTable& table, double t, double v, int line_no) {
+  if (!table.times.empty() && !(t > table.times.back())) {
+    throw TimeTableError(
+        line_no, "the time " + shortest_number(t) + " is not after the previous sample's " +
+                     shortest_number(table.times.back()) + " (times must increase strictly)");
+  }
+  if (!table.times.empty() && !std::isfinite(t - table.times.back())) {
+    // −1e308 then 1e308: the interval overflows, and interpolation across it gave the first
+    // value where the line between the samples is meant.
+    throw TimeTableError(line_no, "the time " + shortest_number(t) +
+                                      " is too far from the previous sample's " +
+                                      shortest_number(table.times.back()) +
+                                      ": their interval overflows the double range");
+  }
+  if (!table.times.empty()) {
+    const double slope = (v - table.values.back()) / (t - table.times.back());
+    table.max_abs_slope = std::max(table.max_abs_slope, std::abs(slope));
+  }
+  table.times.push_back(t);
+  table.values.push_back(v);
+  table.max_abs_value = std::max(table.max_abs_value, std::abs(v));
+}
+
+}  // namespace
+
+TimeTable parse_time_table(const std::string& text, const std::string& column,
+                           std::size_t min_samples) {
+  TimeTable table;
+  std::istringstream in(text);
+  LineReader lines(in);  // LF, CRLF or CR endings; a byte order mark is no part of the first cell
+  std::string_view line;
+  bool first_row = true;
+  TableLayout layout;
+  while (lines.next(line)) {
+    const int line_no = lines.line_number();
     const std::string trimmed = trim(line);
     if (trimmed.empty() || trimmed.front() == '#') continue;
-    auto row = cells(trimmed, line_no);
+    const auto row = cells(trimmed, line_no);
     if (first_row) {
       first_row = false;
-      width = row.size();
-      width_line = line_no;
-      double ignored = 0.0;
-      const bool header = !parse_number(row.front(), ignored);
-      if (row.size() < 2) {
-        throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
-                                          " column: a table needs time and a column of values" +
-                                          other_separator(trimmed));
-      }
-      if (header) {
-        table.time_column = row.front();
-        // R's write.csv and pandas' to_csv put a row index first by default: an unnamed first
-        // column, or a later one named as time is. Read as time, it stretches the record.
-        const auto named_time = [](std::string name) {
-          std::transform(name.begin(), name.end(), name.begin(),
-                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-          return name == "t" || name == "time";
-        };
-        const auto later_time = std::find_if(row.begin() + 1, row.end(), named_time);
-        if (trim(row.front()).empty() || (!named_time(row.front()) && later_time != row.end())) {
-          throw TimeTableError(
-              line_no,
-              "the first column holds the time, but it is " +
-                  (trim(row.front()).empty() ? std::string("unnamed")
-                                             : "'" + shown_cell(row.front()) + "'") +
-                  (later_time != row.end()
-                       ? " and column " + std::to_string(later_time - row.begin() + 1) + " is '" +
-                             shown_cell(*later_time) + "'"
-                       : std::string()) +
-                  ": a row index, as R's write.csv and pandas' to_csv write by default? Write "
-                  "the table without it (write.csv(..., row.names = FALSE), "
-                  "to_csv(..., index = False)) or with time first");
-        }
-        if (column.empty()) {
-          table.column = row[1];
-        } else {
-          const auto it = std::find(row.begin() + 1, row.end(), column);
-          if (it == row.end()) {
-            std::string names;
-            for (std::size_t c = 1; c < row.size(); ++c)
-              names += (c > 1 ? ", " : "") + shown_cell(row[c]);
-            throw TimeTableError(
-                line_no, "no column '" + column + "' (the value columns are: " + names + ")");
-          }
-          if (std::find(it + 1, row.end(), column) != row.end()) {
-            throw TimeTableError(line_no, "two columns are named '" + column +
-                                              "': rename one (which is meant is not clear)");
-          }
-          value_col = static_cast<std::size_t>(it - row.begin());
-          table.column = column;
-        }
-        continue;
-      }
-      if (!column.empty()) {
-        // A check's reference names its column by the check's quantity, a time function by
-        // `column`: the remedy that serves both is the header.
-        throw TimeTableError(line_no, "has no header line naming its columns, so no column '" +
-                                          column + "' (add a header line such as t," + column +
-                                          ")");
-      }
-      table.column = "column 2";
+      if (read_first_row(row, trimmed, line_no, column, table, layout)) continue;
     }
-    if (row.size() <= value_col) {
-      throw TimeTableError(line_no, "has " + std::to_string(row.size()) +
-                                        " cell(s) but the values are in column " +
-                                        std::to_string(value_col + 1) +
-                                        (row.size() == 1 ? other_separator(trimmed) : ""));
-    }
-    if (row.size() != width) {
-      throw TimeTableError(line_no, "has " + std::to_string(row.size()) + " cells, line " +
-                                        std::to_string(width_line) + " has " +
-                                        std::to_string(width) +
-                                        ": every row needs one cell per column (a decimal "
-                                        "comma, as in 0,5, splits a value in two)");
-    }
-    double t = 0.0, v = 0.0;
-    for (const auto& [cell, out, what] :
-         {std::tuple{row[0], &t, "time"}, std::tuple{row[value_col], &v, "value"}}) {
-      if (const NumberCell kind = parse_number_cell(cell, *out); kind != NumberCell::ok) {
-        throw TimeTableError(line_no, std::string("the ") + what + " '" + shown_cell(cell) + "' " +
-                                          number_cell_problem(kind));
-      }
-      if (!std::isfinite(*out)) {
-        throw TimeTableError(
-            line_no, std::string("the ") + what + " '" + shown_cell(cell) + "' is not finite");
-      }
-    }
-    if (!table.times.empty() && !(t > table.times.back())) {
-      throw TimeTableError(
-          line_no, "the time " + shortest_number(t) + " is not after the previous sample's " +
-                       shortest_number(table.times.back()) + " (times must increase strictly)");
-    }
-    if (!table.times.empty() && !std::isfinite(t - table.times.back())) {
-      // −1e308 then 1e308: the interval overflows, and interpolation across it gave the first
-      // value where the line between the samples is meant.
-      throw TimeTableError(line_no, "the time " + shortest_number(t) +
-                                        " is too far from the previous sample's " +
-                                        shortest_number(table.times.back()) +
-                                        ": their interval overflows the double range");
-    }
-    if (!table.times.empty()) {
-      const double slope = (v - table.values.back()) / (t - table.times.back());
-      table.max_abs_slope = std::max(table.max_abs_slope, std::abs(slope));
-    }
-    table.times.push_back(t);
-    table.values.push_back(v);
-    table.max_abs_value = std::max(table.max_abs_value, std::abs(v));
+    const auto [t, v] = read_sample(row, trimmed, line_no, layout);
+    add_sample(table, t, v, line_no);
   }
   if (table.times.size() < min_samples) {
     throw TimeTableError(0, "has " + std::to_string(table.times.size()) +
