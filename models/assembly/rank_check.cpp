@@ -124,6 +124,154 @@ std::string nonlinear_dependence(const std::string& names, const std::string& ra
          "elsewhere), or remove one of the constraints if they are dependent everywhere";
 }
 
+using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using Combination = std::vector<std::pair<int, double>>;  ///< (constraint row, weight)
+
+/// The Euclidean norm of each row of `a` (0 for a row without nonzeros).
+std::vector<double> row_norms(const RowMajor& a) {
+  std::vector<double> out;
+  for (int j = 0; j < a.rows(); ++j) {
+    Eigen::VectorXd values(a.row(j).nonZeros());
+    Eigen::Index k = 0;
+    for (RowMajor::InnerIterator it(a, j); it; ++it) values[k++] = it.value();
+    // stableNorm: coefficients near the double range neither overflow nor underflow.
+    out.push_back(values.size() ? values.stableNorm() : 0.0);
+  }
+  return out;
+}
+
+/// The rank of the rows of `a` (none of norm 0), and the first dependent row found with the
+/// combination sum_k w_k c_k = 0 of normalised rows that shows it (dep -1 when of full rank).
+struct Dependence {
+  int rank = 0;
+  int dep = -1;
+  Combination combo;
+};
+
+/// The rank of one connected group of rows, factored as the columns of its normalised transpose:
+/// small groups by a dense column-pivoted QR, larger ones by SuiteSparseQR. `local` maps every
+/// DOF to -1 on entry and on return.
+GroupRank group_rank(const RowMajor& a, const std::vector<double>& row_norm,
+                     const ConstraintGroup& group, std::vector<int>& local) {
+  const auto& rows = group.rows;
+  const auto& dofs = group.dofs;
+  for (std::size_t i = 0; i < dofs.size(); ++i) {
+    local[static_cast<std::size_t>(dofs[i])] = static_cast<int>(i);
+  }
+  const auto mc = static_cast<Eigen::Index>(rows.size());
+  const auto nc = static_cast<Eigen::Index>(dofs.size());
+  // n_c x m_c, a column per constraint, normalised.
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index c = 0; c < mc; ++c) {
+    const int j = rows[static_cast<std::size_t>(c)];
+    for (RowMajor::InnerIterator it(a, j); it; ++it) {
+      entries.emplace_back(local[static_cast<std::size_t>(it.col())], static_cast<int>(c),
+                           it.value() / row_norm[static_cast<std::size_t>(j)]);
+    }
+  }
+  for (int d : dofs) local[static_cast<std::size_t>(d)] = -1;
+  Eigen::SparseMatrix<double> at(nc, mc);
+  at.setFromTriplets(entries.begin(), entries.end());
+  return static_cast<double>(mc) * static_cast<double>(nc) <= kDenseBlockEntries
+             ? dense_group_rank(at)
+             : sparse_group_rank(at);
+}
+
+/// Constraints that share no DOF, even through others, are independent of each other: each
+/// connected group is factored on its own, so the cost follows the nonzeros.
+Dependence first_dependence(const RowMajor& a, const std::vector<double>& row_norm, int dofs) {
+  Dependence out;
+  std::vector<int> local(static_cast<std::size_t>(dofs), -1);
+  for (const auto& group : constraint_groups(a)) {
+    const GroupRank g = group_rank(a, row_norm, group, local);
+    out.rank += g.rank;
+    if (g.dep < 0 || out.dep >= 0) continue;
+    const auto& rows = group.rows;
+    out.dep = rows[static_cast<std::size_t>(g.dep)];
+    // Combination sum_k w_k c_k = 0 over the involved constraints (normalised rows).
+    out.combo = {{out.dep, 1.0}};
+    for (const auto& [k, y] : g.combo) {
+      if (std::abs(y) > 1e-12) out.combo.emplace_back(rows[static_cast<std::size_t>(k)], -y);
+    }
+  }
+  return out;
+}
+
+/// The constraints of the combination but row `skip`, quoted; beyond kNamed, counted (a chain of
+/// 4,000 tied rows named every one on a single 35 kB line).
+std::string quoted_names(const Combination& combo, const std::vector<Constraint>& constraints,
+                         int skip) {
+  constexpr std::size_t kNamed = 12;
+  std::string text;
+  std::size_t shown = 0, all = 0;
+  for (const auto& [j, w] : combo) {
+    if (j == skip) continue;
+    ++all;
+    if (shown == kNamed) continue;
+    text += (text.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
+    ++shown;
+  }
+  if (all > shown) {
+    text += " and " + std::to_string(all - shown) + " more (" + std::to_string(all) + " in all)";
+  }
+  return text;
+}
+
+/// The constraints of the combination for which `pick` holds, all quoted.
+template <class Pick>
+std::string picked_names(const Combination& combo, const std::vector<Constraint>& constraints,
+                         Pick pick) {
+  std::string text;
+  for (const auto& [j, w] : combo) {
+    const auto& c = constraints[static_cast<std::size_t>(j)];
+    if (pick(c)) text += (text.empty() ? "'" : ", '") + c.name + "'";
+  }
+  return text;
+}
+
+/// The member of a redundant combination to drop. Any member may go: the others span it. A
+/// velocity-level row goes before a position-level one, whatever their order in the scene: a
+/// position row holds the motion at position level under every scheme, and its drift stays
+/// measured. A member of small weight stays (the rest would span it only by that margin).
+int row_to_drop(const Combination& combo, const std::vector<Constraint>& constraints, int dep) {
+  constexpr double kSwapWeight = 1e-3;
+  const auto level = [&](int j) { return constraints[static_cast<std::size_t>(j)].level; };
+  int drop = dep;
+  for (const auto& [j, w] : combo) {
+    if (level(drop) == ConstraintSpec::Level::position &&
+        level(j) == ConstraintSpec::Level::velocity && std::abs(w) >= kSwapWeight) {
+      drop = j;
+    }
+  }
+  return drop;
+}
+
+/// The refusal of a dependent set of linear rows: redundant (`compatible`, with what would let
+/// condyn drop one) or conflicting (`detail`: what the combination leaves on the right).
+std::string linear_dependence(const std::string& names, const std::string& rank_text,
+                              bool compatible, const std::string& drop_hint,
+                              const std::string& detail, const std::string& velocity_rows) {
+  // A velocity row's position form a·u = a·u(0) + ∫ h dt takes a·u(0) from [initial]: rows that
+  // agree as written (one the other's derivative) conflict through the initial displacements.
+  const std::string through_initial =
+      velocity_rows.empty()
+          ? std::string()
+          : ". The velocity row" +
+                std::string(velocity_rows.find(',') == std::string::npos ? " " : "s ") +
+                velocity_rows +
+                " holds at position level as a·u = a·u(0) + the integral of its value, with "
+                "a·u(0) from the initial displacements: if the rows agree as written, the "
+                "initial displacements ([initial]) are what conflicts with them";
+  return "the constraints " + names + " are linearly dependent (" + rank_text +
+         "); their right-hand sides are " +
+         (compatible
+              ? std::string("compatible, so the set is redundant: remove one of them") + drop_hint
+              : "incompatible (the combination that vanishes on the left leaves " + detail +
+                    " on the right), so the set is conflicting: no motion "
+                    "satisfies it" +
+                    through_initial);
+}
+
 }  // namespace
 
 /// Rank of the row-normalised constraint matrix; a dependent set is named with the
@@ -137,58 +285,16 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   const int m = model_.constraint_count();
   if (m == 0) return std::nullopt;
   const auto& constraints = model_.constraints;
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
-  std::vector<double> row_norm;
+  const RowMajor a(model_.A);
+  const std::vector<double> row_norm = row_norms(a);
   for (int j = 0; j < m; ++j) {
-    Eigen::VectorXd values(a.row(j).nonZeros());
-    Eigen::Index k = 0;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it)
-      values[k++] = it.value();
-    // stableNorm: coefficients near the double range neither overflow nor underflow.
-    const double norm = values.size() ? values.stableNorm() : 0.0;
-    row_norm.push_back(norm);
-    if (norm == 0.0) {
+    if (row_norm[static_cast<std::size_t>(j)] == 0.0) {
       fail(constraints[static_cast<std::size_t>(j)].where,
            "constraint '" + constraints[static_cast<std::size_t>(j)].name +
                "' has no nonzero coefficient");
     }
   }
-  int rank = 0;
-  int dep = -1;  // the first dependent constraint, and the combination that shows it
-  std::vector<std::pair<int, double>> combo;
-  std::vector<int> local(static_cast<std::size_t>(model_.dofs()), -1);
-  for (const auto& group : constraint_groups(a)) {
-    const auto& rows = group.rows;
-    const auto& dofs = group.dofs;
-    for (std::size_t i = 0; i < dofs.size(); ++i) {
-      local[static_cast<std::size_t>(dofs[i])] = static_cast<int>(i);
-    }
-    const auto mc = static_cast<Eigen::Index>(rows.size());
-    const auto nc = static_cast<Eigen::Index>(dofs.size());
-    // n_c x m_c, a column per constraint, normalised.
-    std::vector<Eigen::Triplet<double>> entries;
-    for (Eigen::Index c = 0; c < mc; ++c) {
-      const int j = rows[static_cast<std::size_t>(c)];
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
-        entries.emplace_back(local[static_cast<std::size_t>(it.col())], static_cast<int>(c),
-                             it.value() / row_norm[static_cast<std::size_t>(j)]);
-      }
-    }
-    for (int d : dofs) local[static_cast<std::size_t>(d)] = -1;
-    Eigen::SparseMatrix<double> at(nc, mc);
-    at.setFromTriplets(entries.begin(), entries.end());
-    const GroupRank g = static_cast<double>(mc) * static_cast<double>(nc) <= kDenseBlockEntries
-                            ? dense_group_rank(at)
-                            : sparse_group_rank(at);
-    rank += g.rank;
-    if (g.dep < 0 || dep >= 0) continue;
-    dep = rows[static_cast<std::size_t>(g.dep)];
-    // Combination sum_k w_k c_k = 0 over the involved constraints (normalised rows).
-    combo = {{dep, 1.0}};
-    for (const auto& [k, y] : g.combo) {
-      if (std::abs(y) > 1e-12) combo.emplace_back(rows[static_cast<std::size_t>(k)], -y);
-    }
-  }
+  const auto [rank, dep, combo] = first_dependence(a, row_norm, model_.dofs());
   if (dep < 0) return std::nullopt;
   // "rank r < m", and when more than one row depends on others, that these are the first found.
   const std::string rank_text =
@@ -196,38 +302,16 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
       (m - rank > 1 ? ": " + std::to_string(m - rank) +
                           " constraints depend on others, these are the first found"
                     : std::string());
-  // The constraints of the combination, quoted; beyond kNamed, counted (a chain of 4,000 tied
-  // rows named every one on a single 35 kB line).
-  const auto quoted = [&](int skip) {
-    constexpr std::size_t kNamed = 12;
-    std::string text;
-    std::size_t shown = 0, all = 0;
-    for (const auto& [j, w] : combo) {
-      if (j == skip) continue;
-      ++all;
-      if (shown == kNamed) continue;
-      text += (text.empty() ? "'" : ", '") + constraints[static_cast<std::size_t>(j)].name + "'";
-      ++shown;
-    }
-    if (all > shown) {
-      text += " and " + std::to_string(all - shown) + " more (" + std::to_string(all) + " in all)";
-    }
-    return text;
-  };
-  const std::string names = quoted(-1);
+  const std::string names = quoted_names(combo, constraints, -1);
+  const SourcePoint& where = constraints[static_cast<std::size_t>(dep)].where;
   // A nonlinear row's coefficients are those of the initial configuration: dependent there, the
   // set may be independent at every other one (a pendulum driven along x from the horizontal:
   // the rod's row and the drive are parallel at t = 0 only), and its right-hand sides say
   // nothing about a conflict. The schemes need independent rows where they start.
-  std::string nonlinear_rows;
-  for (const auto& [j, w] : combo) {
-    const auto& c = constraints[static_cast<std::size_t>(j)];
-    if (!c.nonlinear_kind.empty())
-      nonlinear_rows += (nonlinear_rows.empty() ? "'" : ", '") + c.name + "'";
-  }
+  const std::string nonlinear_rows = picked_names(
+      combo, constraints, [](const Constraint& c) { return !c.nonlinear_kind.empty(); });
   if (!nonlinear_rows.empty()) {
-    fail(constraints[static_cast<std::size_t>(dep)].where,
-         nonlinear_dependence(names, rank_text, nonlinear_rows, spec_.solve.drop_redundant));
+    fail(where, nonlinear_dependence(names, rank_text, nonlinear_rows, spec_.solve.drop_redundant));
   }
   // Compatible when the same combination of the right-hand sides vanishes identically over
   // [0, t_end]: decided from the terms (zero_sum.hpp), never from samples, which two
@@ -239,29 +323,16 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   }
   const ZeroSumVerdict verdict = weighted_sum_vanishes(sum, spec_.solve.t_end);
   if (verdict.kind == ZeroSumVerdict::Kind::undecided) {
-    fail(constraints[static_cast<std::size_t>(dep)].where,
-         "the constraints " + names + " are linearly dependent (" + rank_text +
-             "), and condyn cannot decide whether their right-hand sides are compatible: " +
-             verdict.detail +
-             "; write the same numbers where the functions are meant to be equal, or remove "
-             "one of the constraints");
+    fail(where, "the constraints " + names + " are linearly dependent (" + rank_text +
+                    "), and condyn cannot decide whether their right-hand sides are compatible: " +
+                    verdict.detail +
+                    "; write the same numbers where the functions are meant to be equal, or "
+                    "remove one of the constraints");
   }
   const bool compatible = verdict.kind == ZeroSumVerdict::Kind::zero;
   if (compatible && spec_.solve.drop_redundant && !model_.is_nonlinear()) {
-    // Any member of the combination may go: the others span it. A velocity-level row goes before
-    // a position-level one, whatever their order in the scene: a position row holds the motion
-    // at position level under every scheme, and its drift stays measured. A member of small
-    // weight stays (the rest would span it only by that margin).
-    constexpr double kSwapWeight = 1e-3;
-    const auto level = [&](int j) { return constraints[static_cast<std::size_t>(j)].level; };
-    int drop = dep;
-    for (const auto& [j, w] : combo) {
-      if (level(drop) == ConstraintSpec::Level::position &&
-          level(j) == ConstraintSpec::Level::velocity && std::abs(w) >= kSwapWeight) {
-        drop = j;
-      }
-    }
-    return Dependent{drop, quoted(drop)};
+    const int drop = row_to_drop(combo, constraints, dep);
+    return Dependent{drop, quoted_names(combo, constraints, drop)};
   }
   std::string drop_hint;
   if (!model_.is_nonlinear()) {
@@ -273,33 +344,11 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
         " ([solve] redundant = \"drop\" drops rows of linear models only: a nonlinear "
         "model's rows may depend on each other at t = 0 and not later)";
   }
-  // A velocity row's position form a·u = a·u(0) + ∫ h dt takes a·u(0) from [initial]: rows that
-  // agree as written (one the other's derivative) conflict through the initial displacements.
-  std::string velocity_rows;
-  for (const auto& [j, w] : combo) {
-    const auto& c = constraints[static_cast<std::size_t>(j)];
-    if (c.level == ConstraintSpec::Level::velocity)
-      velocity_rows += (velocity_rows.empty() ? "'" : ", '") + c.name + "'";
-  }
-  const std::string through_initial =
-      velocity_rows.empty()
-          ? std::string()
-          : ". The velocity row" +
-                std::string(velocity_rows.find(',') == std::string::npos ? " " : "s ") +
-                velocity_rows +
-                " holds at position level as a·u = a·u(0) + the integral of its value, with "
-                "a·u(0) from the initial displacements: if the rows agree as written, the "
-                "initial displacements ([initial]) are what conflicts with them";
-  fail(constraints[static_cast<std::size_t>(dep)].where,
-       "the constraints " + names + " are linearly dependent (" + rank_text +
-           "); their right-hand sides are " +
-           (compatible
-                ? std::string("compatible, so the set is redundant: remove one of them") + drop_hint
-                : "incompatible (the combination that vanishes on the left leaves " +
-                      verdict.detail +
-                      " on the right), so the set is conflicting: no motion "
-                      "satisfies it" +
-                      through_initial));
+  const std::string velocity_rows = picked_names(combo, constraints, [](const Constraint& c) {
+    return c.level == ConstraintSpec::Level::velocity;
+  });
+  fail(where,
+       linear_dependence(names, rank_text, compatible, drop_hint, verdict.detail, velocity_rows));
 }
 
 }  // namespace condyn
