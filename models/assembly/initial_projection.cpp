@@ -1,6 +1,7 @@
 #include "models/assembly/initial_projection.hpp"
 
-#include <Eigen/SparseCholesky>
+#include "models/assembly/least_change.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,8 +15,6 @@ namespace condyn {
 namespace {
 
 constexpr int kMaxIterations = 50;
-// Rank threshold of the weighted, row-normalised free-column block (as build_model's rank check).
-constexpr double kRankTolerance = 1e-10;
 // A row counts as met when its residual is below this relative size (as build_model's initial
 // consistency check: hand-written decimals, a few hundred ulps of the terms).
 constexpr double kConsistencyTolerance = 1e-10;
@@ -30,11 +29,6 @@ constexpr double kMaxVelocityGain = 1e4;
 // How far off a stalled start the projection starts again on each side, relative to 1 + max|u|
 // (Projector::sides).
 constexpr double kSideStep = 1e-3;
-// A least-change step whose block (rows x free DOFs) has more entries than this is solved
-// sparse, by the normal equations of the minimum-norm problem (below); smaller ones keep the
-// dense complete orthogonal decomposition, which also treats rank-deficient rows (32 MB, and
-// seconds of factorization).
-constexpr double kMaxDenseStepEntries = 4e6;
 
 using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
@@ -108,7 +102,7 @@ class Projector {
       if (violated(u, nullptr).empty()) break;  // met: leave the state as it is, no roundoff moves
       s_.position_residual(t_, u, all);
       const Eigen::VectorXd du = least_change_step(s_.constraint_jacobian(t_, u), position_rows_,
-                                                   free_u_, all, row_weight);
+                                                   free_u_, all, row_weight, w_inv_sqrt_);
       u += du;
       if (!u.allFinite()) break;
       if (du.lpNorm<Eigen::Infinity>() <= 1e-14 * (1.0 + u.lpNorm<Eigen::Infinity>())) {
@@ -130,7 +124,7 @@ class Projector {
     for (int pass = 0; pass < 2; ++pass) {
       if (violated(u, &v).empty()) break;
       s_.velocity_residual(t_, u, v, psi);
-      v += least_change_step(A, rows, free_v_, psi, row_weight);
+      v += least_change_step(A, rows, free_v_, psi, row_weight, w_inv_sqrt_);
     }
   }
 
@@ -217,84 +211,6 @@ class Projector {
   }
 
  private:
-  /// min ‖W^½ dx_F‖ over the free DOFs F subject to A(rows, F) dx_F = −r(rows) in the
-  /// (row-weighted) least-squares sense; dx is zero on the given DOFs. With B the weighted,
-  /// row-normalised block and z = W^½ dx_F: z = B⁺ rhs.
-  [[nodiscard]] Eigen::VectorXd least_change_step(const Eigen::SparseMatrix<double>& A,
-                                                  const std::vector<int>& rows,
-                                                  const std::vector<int>& free,
-                                                  const Eigen::VectorXd& r,
-                                                  const Eigen::VectorXd& row_weight) const {
-    Eigen::VectorXd dx = Eigen::VectorXd::Zero(n_);
-    if (free.empty() || rows.empty()) return dx;
-    const auto nr = static_cast<Eigen::Index>(rows.size());
-    const auto nf = static_cast<Eigen::Index>(free.size());
-    // B from A's entries on (rows, free): local indices, -1 outside.
-    std::vector<int> row_at(static_cast<std::size_t>(m_), -1),
-        col_at(static_cast<std::size_t>(n_), -1);
-    for (Eigen::Index k = 0; k < nr; ++k)
-      row_at[static_cast<std::size_t>(rows[static_cast<std::size_t>(k)])] = static_cast<int>(k);
-    for (Eigen::Index c = 0; c < nf; ++c)
-      col_at[static_cast<std::size_t>(free[static_cast<std::size_t>(c)])] = static_cast<int>(c);
-    std::vector<Eigen::Triplet<double>> entries;
-    for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
-        const int k = row_at[static_cast<std::size_t>(it.row())],
-                  c = col_at[static_cast<std::size_t>(it.col())];
-        if (k >= 0 && c >= 0) entries.emplace_back(k, c, it.value() * w_inv_sqrt_[it.col()]);
-      }
-    }
-    SparseRowMajor B(nr, nf);
-    B.setFromTriplets(entries.begin(), entries.end());
-    Eigen::VectorXd rhs(nr);
-    for (Eigen::Index k = 0; k < nr; ++k) {
-      const int i = rows[static_cast<std::size_t>(k)];
-      const double norm = B.row(k).blueNorm();  // no overflow of the squares of large rows
-      if (norm > 0.0) {  // a row on given DOFs only: nothing free can change its residual
-        B.row(k) *= row_weight[i] / norm;
-        rhs[k] = -r[i] * row_weight[i] / norm;
-      } else {
-        rhs[k] = 0.0;
-      }
-    }
-    const Eigen::VectorXd z =
-        static_cast<double>(nr) * static_cast<double>(nf) <= kMaxDenseStepEntries
-            ? dense_min_norm(B, rhs)
-            : sparse_min_norm(B, rhs);
-    for (Eigen::Index c = 0; c < nf; ++c) {
-      const int d = free[static_cast<std::size_t>(c)];
-      dx[d] = w_inv_sqrt_[d] * z[c];
-    }
-    return dx;
-  }
-
-  /// B⁺ rhs by a complete orthogonal decomposition: rank-deficient rows are treated as well.
-  [[nodiscard]] static Eigen::VectorXd dense_min_norm(const SparseRowMajor& B,
-                                                      const Eigen::VectorXd& rhs) {
-    const Eigen::MatrixXd b(B);
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(b.rows(), b.cols());
-    cod.setThreshold(kRankTolerance);
-    cod.compute(b);
-    return cod.solve(rhs);
-  }
-
-  /// z = Bᵀ (B Bᵀ)⁻¹ rhs by a sparse LDLᵀ of B Bᵀ: the minimum-norm solution when the rows are
-  /// independent (build_model's rank check has made them so). Its error grows with cond(B)²,
-  /// not cond(B): the Gauss-Newton loop iterates on the residual, and violated() judges the
-  /// result, so a step that lost digits is corrected or refused, never kept silently.
-  [[nodiscard]] static Eigen::VectorXd sparse_min_norm(const SparseRowMajor& B,
-                                                       const Eigen::VectorXd& rhs) {
-    const Eigen::SparseMatrix<double> Bt = B.transpose();
-    const Eigen::SparseMatrix<double> BBt = B * Bt;
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(BBt);
-    if (ldlt.info() != Eigen::Success) {
-      throw std::runtime_error(
-          "cannot project the initial state: the constraints are dependent at the projected "
-          "configuration (singular B Bt in the sparse least-change step)");
-    }
-    return Bt * ldlt.solve(rhs);
-  }
-
   MechanicalSystem& s_;
   double t_;
   int n_, m_;
@@ -325,93 +241,33 @@ std::vector<int> given_in(MechanicalSystem& s, double t, const Eigen::VectorXd& 
   return {out.begin(), out.end()};
 }
 
-}  // namespace
-
-std::string project_initial_state(MechanicalSystem& system, double t, Eigen::VectorXd& u,
-                                  Eigen::VectorXd& v, const std::vector<bool>& given_u,
-                                  const std::vector<bool>& given_v,
-                                  const std::vector<std::string>& dof_names,
+/// The refusal of a start where the violated `rows` do not change to first order along the free
+/// DOFs, with the states on either side (`sides`, from Projector::sides) that meet them.
+std::string stalled_start_refusal(const std::vector<std::pair<int, double>>& rows,
+                                  const std::vector<std::string>& sides,
                                   const std::vector<std::string>& constraint_names) {
-  const int n = system.dofs(), m = system.constraints();
-  const Eigen::VectorXd u_in = u, v_in = v;
-  const Projector p(system, t, u_in, given_u, given_v);
-  const Eigen::VectorXd plain = Eigen::VectorXd::Ones(m);
-
-  // Inconsistent: diagnose with the rows that involve no given value held (nearly) exactly, so
-  // the residual is reported on the rows that do; name the given values there.
-  const auto refuse = [&](bool velocity, const std::vector<std::pair<int, double>>& first) {
-    Eigen::VectorXd uu = u_in, vv = v_in;
-    p.project_positions(uu, velocity ? plain : p.hard_rows(false));
-    if (velocity) p.project_velocities(uu, vv, p.hard_rows(true));
-    auto rows = p.violated(uu, velocity ? &vv : nullptr);
-    if (rows.empty()) rows = first;
-    const auto& given = velocity ? given_v : given_u;
-    std::vector<int> named = given_in(system, t, uu, rows, given);
-    if (named.empty()) {  // the constraints alone cannot be met (or the diagnosis moved them)
-      named = given_in(system, t, uu, first, given);
-      if (named.empty()) return;  // not the given values: the caller's generic message
-      rows = first;
-    }
-    throw InconsistentGivenValues("the given initial values are inconsistent", velocity, rows,
-                                  named);
-  };
-
-  const int iterations = p.project_positions(u, plain);
-  if (const auto bad = p.violated(u, nullptr); !bad.empty() || !u.allFinite()) {
-    // A start where the rows do not change to first order along some free DOFs (a rod given its
-    // x and left its y at 0: the closest states lie at ±y): Gauss-Newton cannot leave it, and
-    // which side is meant is not the projection's to choose. Found by starting again a little
-    // off, on each side, along the free DOFs of the violated rows.
-    const auto start_rows = p.violated(u_in, nullptr);
-    const auto sides = p.sides(u_in, start_rows, dof_names);
-    if (!sides.empty()) {
-      std::ostringstream s;
-      s.precision(10);
-      s << "cannot project the initial state: at the given state constraint";
-      for (std::size_t k = 0; k < start_rows.size() && k < 3; ++k) {
-        s << (k ? ", '" : (start_rows.size() == 1 ? " '" : "s '"))
-          << constraint_names[static_cast<std::size_t>(start_rows[k].first)] << "'";
-      }
-      if (start_rows.size() > 3) s << " and " << start_rows.size() - 3 << " more";
-      s << (start_rows.size() == 1 ? " does" : " do")
-        << " not change to first order along the DOFs left free, so the least change is not "
-           "determined: the constraints are met on either side, e.g. with ";
-      for (std::size_t k = 0; k < sides.size(); ++k) s << (k ? " or with " : "") << sides[k];
-      s << "; give the one meant in [initial] displacement (project = true keeps it)";
-      throw std::runtime_error(s.str());
-    }
-    refuse(false, bad);
-    std::ostringstream s;
-    s << "cannot project the initial state: Gauss-Newton did not converge in " << kMaxIterations
-      << " iterations (no configuration near the given one satisfies the constraints)";
-    throw std::runtime_error(s.str());
+  std::ostringstream s;
+  s.precision(10);
+  s << "cannot project the initial state: at the given state constraint";
+  for (std::size_t k = 0; k < rows.size() && k < 3; ++k) {
+    s << (k ? ", '" : (rows.size() == 1 ? " '" : "s '"))
+      << constraint_names[static_cast<std::size_t>(rows[k].first)] << "'";
   }
-  // Velocities the rows barely depend on where the positions landed: those that meet them are
-  // the residual over that small rate. A pendulum written horizontal, given uy2 = -1 (straight
-  // down: a double root, found to about √tol, ux2 = -0.99999237) and vy2 = 1, got vx2 = 131072
-  // and an exit 0; at the exact configuration no velocity meets the
-  // given speed.
-  Eigen::VectorXd projected = v;
-  p.project_velocities(u, projected, plain);
-  if (const double gain = p.velocity_amplification(u, v, projected); gain > kMaxVelocityGain) {
-    std::ostringstream s;
-    s.precision(3);
-    s << "cannot project the initial velocities: where the positions meet the constraints, the "
-         "rows barely depend on the velocities left free (meeting them moves those "
-      << gain
-      << " times the rows' residual: a singular configuration, or next to one), so the given "
-         "velocities do not fit this configuration; change them, or give displacements away "
-         "from it";
-    throw std::runtime_error(s.str());
-  }
-  v = projected;
-  if (const auto bad = p.violated(u, &v); !bad.empty() || !v.allFinite()) {
-    refuse(true, bad);
-    throw std::runtime_error(
-        "cannot project the initial velocities: the constraints are dependent (singular) at the "
-        "projected configuration, and no velocity satisfies them all");
-  }
+  if (rows.size() > 3) s << " and " << rows.size() - 3 << " more";
+  s << (rows.size() == 1 ? " does" : " do")
+    << " not change to first order along the DOFs left free, so the least change is not "
+       "determined: the constraints are met on either side, e.g. with ";
+  for (std::size_t k = 0; k < sides.size(); ++k) s << (k ? " or with " : "") << sides[k];
+  s << "; give the one meant in [initial] displacement (project = true keeps it)";
+  return s.str();
+}
 
+/// What the projection from (u_in, v_in) to (u, v) did, as project_initial_state returns it.
+std::string projection_report(const Eigen::VectorXd& u_in, const Eigen::VectorXd& v_in,
+                              const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                              const std::vector<bool>& given_u, const std::vector<bool>& given_v,
+                              const std::vector<std::string>& dof_names, int iterations) {
+  const auto n = static_cast<int>(u.size());
   int kept = 0;
   for (int i = 0; i < n; ++i) {
     kept += static_cast<int>(given_u[static_cast<std::size_t>(i)]) +
@@ -454,6 +310,83 @@ std::string project_initial_state(MechanicalSystem& system, double t, Eigen::Vec
   }
   if (roundoff > 0) s << "\n  (" << roundoff << " more by roundoff only)";
   return s.str();
+}
+
+}  // namespace
+
+std::string project_initial_state(MechanicalSystem& system, double t, Eigen::VectorXd& u,
+                                  Eigen::VectorXd& v, const std::vector<bool>& given_u,
+                                  const std::vector<bool>& given_v,
+                                  const std::vector<std::string>& dof_names,
+                                  const std::vector<std::string>& constraint_names) {
+  const int m = system.constraints();
+  const Eigen::VectorXd u_in = u, v_in = v;
+  const Projector p(system, t, u_in, given_u, given_v);
+  const Eigen::VectorXd plain = Eigen::VectorXd::Ones(m);
+
+  // Inconsistent: diagnose with the rows that involve no given value held (nearly) exactly, so
+  // the residual is reported on the rows that do; name the given values there.
+  const auto refuse = [&](bool velocity, const std::vector<std::pair<int, double>>& first) {
+    Eigen::VectorXd uu = u_in, vv = v_in;
+    p.project_positions(uu, velocity ? plain : p.hard_rows(false));
+    if (velocity) p.project_velocities(uu, vv, p.hard_rows(true));
+    auto rows = p.violated(uu, velocity ? &vv : nullptr);
+    if (rows.empty()) rows = first;
+    const auto& given = velocity ? given_v : given_u;
+    std::vector<int> named = given_in(system, t, uu, rows, given);
+    if (named.empty()) {  // the constraints alone cannot be met (or the diagnosis moved them)
+      named = given_in(system, t, uu, first, given);
+      if (named.empty()) return;  // not the given values: the caller's generic message
+      rows = first;
+    }
+    throw InconsistentGivenValues("the given initial values are inconsistent", velocity, rows,
+                                  named);
+  };
+
+  const int iterations = p.project_positions(u, plain);
+  if (const auto bad = p.violated(u, nullptr); !bad.empty() || !u.allFinite()) {
+    // A start where the rows do not change to first order along some free DOFs (a rod given its
+    // x and left its y at 0: the closest states lie at ±y): Gauss-Newton cannot leave it, and
+    // which side is meant is not the projection's to choose. Found by starting again a little
+    // off, on each side, along the free DOFs of the violated rows.
+    const auto start_rows = p.violated(u_in, nullptr);
+    const auto sides = p.sides(u_in, start_rows, dof_names);
+    if (!sides.empty()) {
+      throw std::runtime_error(stalled_start_refusal(start_rows, sides, constraint_names));
+    }
+    refuse(false, bad);
+    std::ostringstream s;
+    s << "cannot project the initial state: Gauss-Newton did not converge in " << kMaxIterations
+      << " iterations (no configuration near the given one satisfies the constraints)";
+    throw std::runtime_error(s.str());
+  }
+  // Velocities the rows barely depend on where the positions landed: those that meet them are
+  // the residual over that small rate. A pendulum written horizontal, given uy2 = -1 (straight
+  // down: a double root, found to about √tol, ux2 = -0.99999237) and vy2 = 1, got vx2 = 131072
+  // and an exit 0; at the exact configuration no velocity meets the
+  // given speed.
+  Eigen::VectorXd projected = v;
+  p.project_velocities(u, projected, plain);
+  if (const double gain = p.velocity_amplification(u, v, projected); gain > kMaxVelocityGain) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "cannot project the initial velocities: where the positions meet the constraints, the "
+         "rows barely depend on the velocities left free (meeting them moves those "
+      << gain
+      << " times the rows' residual: a singular configuration, or next to one), so the given "
+         "velocities do not fit this configuration; change them, or give displacements away "
+         "from it";
+    throw std::runtime_error(s.str());
+  }
+  v = projected;
+  if (const auto bad = p.violated(u, &v); !bad.empty() || !v.allFinite()) {
+    refuse(true, bad);
+    throw std::runtime_error(
+        "cannot project the initial velocities: the constraints are dependent (singular) at the "
+        "projected configuration, and no velocity satisfies them all");
+  }
+
+  return projection_report(u_in, v_in, u, v, given_u, given_v, dof_names, iterations);
 }
 
 }  // namespace condyn
