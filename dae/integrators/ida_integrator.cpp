@@ -2,6 +2,7 @@
 
 #include "dae/integrators/klu_linear_solver.hpp"
 #include "dae/integrators/newton_linear_solver.hpp"
+#include "dae/integrators/no_unknowns.hpp"
 #include "dae/integrators/stale_correction.hpp"
 #include "dae/integrators/step_driver.hpp"
 #include "dae/integrators/sundials_raii.hpp"
@@ -213,44 +214,6 @@ FailureKind failure_kind(int flag) {
       return FailureKind::unknown;
   }
 }
-
-/// A DAE without unknowns: master-slave elimination of a model whose every DOF is fixed or
-/// prescribed. Nothing is integrated (IDA refuses an empty vector: "initial ewt component = 0.0");
-/// the rows follow from the time alone, which the loop visits as it would an integrator's steps.
-/// Each step ends at the next output time or load step, or after 1/32 of the mean output interval:
-/// the loop integrates the energy balance's work terms over each step by 3-point Gauss-Legendre
-/// (a prescribed sin(2t) over steps of 0.25 left 6.5e-7 of the constraints' work).
-class NoUnknowns final : public Stepper {
- public:
-  NoUnknowns(DaeProblem& problem, const std::vector<double>& output_times)
-      : problem_(problem),
-        max_step_((output_times.back() - output_times.front()) /
-                  (32.0 * static_cast<double>(std::max<std::size_t>(output_times.size() - 1, 1)))),
-        t_(output_times.front()) {}
-  double step(double tout) override {
-    t_ = std::min({tout, stop_, t_ + max_step_});
-    return t_;
-  }
-  void interpolate(double /*t*/, Eigen::VectorXd& y, Eigen::VectorXd& yp) override {
-    y.resize(0);
-    yp.resize(0);
-  }
-  [[nodiscard]] Eigen::VectorXd y() override { return {}; }
-  [[nodiscard]] Eigen::VectorXd yp() override { return {}; }
-  void restart(double t) override {
-    problem_.begin_segment(t);
-    t_ = t;
-  }
-  void set_stop_time(double t) override { stop_ = t; }
-  void fill_summary(SolveSummary& summary) override {
-    summary.steps = 0;
-    summary.notes = "no unknowns: every DOF is fixed or prescribed, nothing was integrated";
-  }
-
- private:
-  DaeProblem& problem_;
-  double max_step_, t_, stop_ = 0.0;
-};
 
 const sundials::Api kIdaApi{"IDASolve", IDAGetReturnFlagName, IDAGetCurrentTime, IDAGetLastStep,
                             IDAGetDky,  IDAGetLastOrder,      failure_kind};
