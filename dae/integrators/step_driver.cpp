@@ -93,36 +93,124 @@ TimeGrid make_time_grid(const std::vector<double>& output_times,
   return grid;
 }
 
-RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0,
-                    const IntegratorOptions& options, SolveSummary& summary) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  const TimeGrid grid = make_time_grid(options.output_times, options.breakpoints);
-  const auto& times = grid.outputs;
-  const auto& stops = grid.stops;
-  const double t0 = times.front(), t_end = times.back();
-  RawTrajectory out;
-  // The integrand's integrals from t0 to `from`, the start of the current internal step.
-  Eigen::VectorXd done = Eigen::VectorXd::Zero(options.integrand ? options.integrand_size : 0);
-  double from = t0;
-  Eigen::VectorXd yq, ypq;
-  // ∫ from `from` to b over the last step's interpolant: 3-point Gauss-Legendre.
-  auto integral_to = [&](double b) -> Eigen::VectorXd {
-    Eigen::VectorXd sum = Eigen::VectorXd::Zero(done.size());
-    if (done.size() == 0 || b <= from) return sum;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// One run of the integration loop: the time grid, where the integrator stands, the budgets
+/// spent, the outputs so far and the integrand's integrals.
+class StepLoop {
+ public:
+  StepLoop(Stepper& stepper, const IntegratorOptions& options, SolveSummary& summary)
+      : stepper_(stepper),
+        options_(options),
+        summary_(summary),
+        start_(Clock::now()),
+        grid_(make_time_grid(options.output_times, options.breakpoints)),
+        t0_(grid_.outputs.front()),
+        t_end_(grid_.outputs.back()),
+        done_(Eigen::VectorXd::Zero(options.integrand ? options.integrand_size : 0)),
+        from_(t0_),
+        reached_(t0_),
+        next_progress_(options.progress_after_seconds) {}
+
+  /// From (y0, yp0) at t0 to t_end, one internal step at a time: every step is seen exactly
+  /// (drift, μ), outputs are interpolated. Throws IntegrationError.
+  void run(const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0) {
+    const auto& times = grid_.outputs;
+    record(t0_, y0, yp0, done_);
+    // A load step within roundoff after t0 switches on before the first step.
+    if (grid_.initial_stop) restart_at(*grid_.initial_stop);
+    stepper_.set_stop_time(stop_ahead());
+    while (k_ < times.size()) {
+      // Never a first output within roundoff of where the integrator stands (SUNDIALS refuses
+      // it after a (re)initialisation; the grid keeps outputs and stops apart, this is the guard).
+      const double tout = times[k_] - reached_ > grid_.tolerance ? times[k_] : stop_ahead();
+      const double t = stepper_.step(tout);
+      ++total_steps_;
+      reached_ = t;  // the step succeeded: a budget that ends the run here ends it at t
+      check_step_budgets(t);
+      if (options_.on_step) options_.on_step(t, stepper_.y());
+      const auto& stops = grid_.stops;
+      const bool at_stop = next_stop_ < stops.size() && t >= stops[next_stop_];
+      record_outputs_in_step(t, at_stop);
+      if (done_.size() > 0) done_ += integral_to(t);
+      from_ = t;
+      if (at_stop) {
+        restart_at(stops[next_stop_++]);
+        steps_since_output_ = 0;
+      }
+      check_interrupt();
+      if (const int signal = stop_requested(); signal != 0) {
+        std::ostringstream s;
+        s << "stopped by " << signal_name(signal) << " at t = " << t;
+        throw IntegrationError(FailureKind::interrupted, s.str());
+      }
+      report_progress_and_check_wall_time(t);
+    }
+  }
+
+  /// Keeps what was computed in the failure `e`: the rows so far, where the run stopped and its
+  /// last step; and refines the integrator's word by the facts (refine_failure_kind).
+  void keep_partial(IntegrationError& e) {
+    e.in_loop = true;
+    e.t_reached = reached_;
+    e.t0 = t0_;
+    e.t_end = t_end_;
+    e.steps = total_steps_;
+    e.elapsed_seconds = elapsed();
+    try {
+      stepper_.fill_summary(summary_);
+      e.last_step = summary_.last_step;
+    } catch (const IntegrationError&) {
+      // The counters are lost with the integrator's state; the failure itself is what matters.
+    }
+    refine_failure_kind(e);
+    e.raw_partial = std::make_shared<const RawTrajectory>(std::move(out_));
+  }
+
+  [[nodiscard]] RawTrajectory take() { return std::move(out_); }
+
+ private:
+  /// A failure before any step is a failure to start; failures (or a stall) with the last step
+  /// at roundoff of the time reached are a collapse. A residual that stays non-finite
+  /// (IDA_REP_RES_ERR) at a step cut to roundoff is the collapse's consequence
+  /// (y' = cj (y − y_pred) overflows), not a blow-up of the solution.
+  void refine_failure_kind(IntegrationError& e) const {
+    const bool residual_failure = e.kind == FailureKind::residual_non_finite;
+    const bool solver_failure =
+        e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
+        e.kind == FailureKind::linear_solver || e.kind == FailureKind::unknown;
+    constexpr double kCollapsedStep = 1e-12;  // relative to |t_reached|: a few thousand ulps
+    if (solver_failure && total_steps_ == 0) {
+      e.kind = FailureKind::first_step;
+    } else if ((e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
+                e.kind == FailureKind::steps_per_output || residual_failure) &&
+               total_steps_ > 0 &&
+               std::abs(e.last_step) <= kCollapsedStep * std::abs(e.t_reached)) {
+      e.kind = FailureKind::step_size_collapsed;
+    }
+  }
+
+  /// ∫ from `from_` (the start of the last internal step) to b over the step's interpolant:
+  /// 3-point Gauss-Legendre.
+  Eigen::VectorXd integral_to(double b) {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(done_.size());
+    if (done_.size() == 0 || b <= from_) return sum;
     static constexpr double kNode = 0.7745966692414833770;  // sqrt(3/5)
     static constexpr std::array<std::pair<double, double>, 3> kRule{
         {{-kNode, 5.0 / 9.0}, {0.0, 8.0 / 9.0}, {kNode, 5.0 / 9.0}}};
-    const double mid = 0.5 * (from + b), half = 0.5 * (b - from);
+    const double mid = 0.5 * (from_ + b), half = 0.5 * (b - from_);
     for (const auto& [x, w] : kRule) {
       const double tq = mid + half * x;
-      stepper.interpolate(tq, yq, ypq);
-      sum += (half * w) * options.integrand(tq, yq, ypq);
+      stepper_.interpolate(tq, yq_, ypq_);
+      sum += (half * w) * options_.integrand(tq, yq_, ypq_);
     }
     return sum;
-  };
-  auto record = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
-                    const Eigen::VectorXd& integrals) {
+  }
+
+  void record(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+              const Eigen::VectorXd& integrals) {
     if (!y.allFinite() || !yp.allFinite()) {
       std::ostringstream s;
       s << "the solution became non-finite (NaN or inf) at t = " << t;
@@ -137,143 +225,124 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
         << "for this run (leave it out of [output] quantities)";
       throw IntegrationError(FailureKind::non_finite, s.str());
     }
-    out.t.push_back(t);
-    if (options.on_output) {
-      options.on_output(t, y, yp, integrals);
+    out_.t.push_back(t);
+    if (options_.on_output) {
+      options_.on_output(t, y, yp, integrals);
     } else {
-      out.y.push_back(y);
-      out.yp.push_back(yp);
-      if (integrals.size() > 0) out.integrals.push_back(integrals);
+      out_.y.push_back(y);
+      out_.yp.push_back(yp);
+      if (integrals.size() > 0) out_.integrals.push_back(integrals);
     }
-  };
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  }
 
-  std::size_t next_stop = 0;
-  auto stop_ahead = [&] { return next_stop < stops.size() ? stops[next_stop] : t_end; };
-  std::size_t k = 1;  // next output
-  long steps_since_output = 0, total_steps = 0;
-  double reached = t0;
-  double next_progress = options.progress_after_seconds;
-  Eigen::VectorXd yo, ypo;
+  /// Outputs inside the step that ended at t; one at a load step's time waits for the state
+  /// after the step.
+  void record_outputs_in_step(double t, bool at_stop) {
+    const auto& times = grid_.outputs;
+    while (k_ < times.size() && (times[k_] < t || (times[k_] == t && !at_stop))) {
+      const Eigen::VectorXd integrals = done_ + integral_to(times[k_]);
+      if (times[k_] == t) {
+        record(t, stepper_.y(), stepper_.yp(), integrals);
+      } else {
+        stepper_.interpolate(times[k_], yo_, ypo_);
+        record(times[k_], yo_, ypo_, integrals);
+      }
+      ++k_;
+      steps_since_output_ = 0;
+    }
+  }
+
+  /// Restarts at a load step's time: the state after it, and the outputs merged into it.
+  void restart_at(double b) {
+    const auto& times = grid_.outputs;
+    const Eigen::VectorXd before = options_.integrand_jump ? stepper_.y() : Eigen::VectorXd();
+    stepper_.restart(b);
+    if (options_.integrand_jump && done_.size() > 0) {
+      done_ += options_.integrand_jump(b, before, stepper_.y());
+    }
+    stepper_.set_stop_time(stop_ahead());
+    ++summary_.restarts;
+    reached_ = b;
+    from_ = b;
+    while (k_ < times.size() && times[k_] <= b) {
+      record(times[k_], stepper_.y(), stepper_.yp(), done_);
+      ++k_;
+    }
+  }
+
+  [[nodiscard]] double stop_ahead() const {
+    return next_stop_ < grid_.stops.size() ? grid_.stops[next_stop_] : t_end_;
+  }
+
+  /// The budgets of steps between two outputs and in all, after a step that ended at t.
+  void check_step_budgets(double t) {
+    if (++steps_since_output_ > options_.max_steps_per_output) {
+      std::ostringstream s;
+      s << "took " << options_.max_steps_per_output << " steps without reaching the output time "
+        << grid_.outputs[k_] << " (at t = " << t
+        << "; the budget of steps between two outputs, [solve] max_steps_per_output)";
+      throw IntegrationError(FailureKind::steps_per_output, s.str());
+    }
+    if (options_.max_steps > 0 && total_steps_ > options_.max_steps) {
+      std::ostringstream s;
+      s << "took more than " << options_.max_steps << " steps in all (at t = " << t
+        << ", the step budget of this run)";
+      throw IntegrationError(FailureKind::step_budget, s.str());
+    }
+  }
+
+  /// The progress callback when it is due, and the wall-time budget, after a step that ended at t.
+  void report_progress_and_check_wall_time(double t) {
+    if (!(options_.max_wall_seconds > 0.0 || options_.on_progress)) return;
+    const std::size_t outputs = grid_.outputs.size();
+    const double seconds = elapsed();
+    if (options_.on_progress && seconds >= next_progress_ && k_ < outputs) {
+      options_.on_progress({t0_, reached_, t_end_, total_steps_, seconds});
+      next_progress_ = seconds + options_.progress_every_seconds;
+    }
+    if (options_.max_wall_seconds > 0.0 && seconds > options_.max_wall_seconds && k_ < outputs) {
+      std::ostringstream s;
+      s << "ran longer than " << options_.max_wall_seconds << " s of wall time (at t = " << t
+        << ", the wall-time budget of this run)";
+      throw IntegrationError(FailureKind::wall_time_budget, s.str());
+    }
+  }
+
+  [[nodiscard]] double elapsed() const {
+    return std::chrono::duration<double>(Clock::now() - start_).count();
+  }
+
+  Stepper& stepper_;
+  const IntegratorOptions& options_;
+  SolveSummary& summary_;
+  const Clock::time_point start_;
+  const TimeGrid grid_;
+  const double t0_, t_end_;
+  RawTrajectory out_;
+  /// The integrand's integrals from t0 to `from_`, the start of the current internal step.
+  Eigen::VectorXd done_;
+  double from_;
+  Eigen::VectorXd yq_, ypq_, yo_, ypo_;  // interpolated states (quadrature nodes, outputs)
+  std::size_t next_stop_ = 0;
+  std::size_t k_ = 1;  // next output
+  long steps_since_output_ = 0, total_steps_ = 0;
+  double reached_;
+  double next_progress_;
+};
+
+}  // namespace
+
+RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0,
+                    const IntegratorOptions& options, SolveSummary& summary) {
+  StepLoop loop(stepper, options, summary);
   try {
-    record(t0, y0, yp0, done);
-    // Restarts at a load step's time: the state after it, and the outputs merged into it.
-    auto restart_at = [&](double b) {
-      const Eigen::VectorXd before = options.integrand_jump ? stepper.y() : Eigen::VectorXd();
-      stepper.restart(b);
-      if (options.integrand_jump && done.size() > 0) {
-        done += options.integrand_jump(b, before, stepper.y());
-      }
-      stepper.set_stop_time(stop_ahead());
-      ++summary.restarts;
-      reached = b;
-      from = b;
-      while (k < times.size() && times[k] <= b) {
-        record(times[k], stepper.y(), stepper.yp(), done);
-        ++k;
-      }
-    };
-    // A load step within roundoff after t0 switches on before the first step.
-    if (grid.initial_stop) restart_at(*grid.initial_stop);
-    stepper.set_stop_time(stop_ahead());
-
-    // One internal step at a time: every step is seen exactly (drift, μ), outputs are interpolated.
-    while (k < times.size()) {
-      // Never a first output within roundoff of where the integrator stands (SUNDIALS refuses
-      // it after a (re)initialisation; the grid keeps outputs and stops apart, this is the guard).
-      const double tout = times[k] - reached > grid.tolerance ? times[k] : stop_ahead();
-      const double t = stepper.step(tout);
-      ++total_steps;
-      reached = t;  // the step succeeded: a budget that ends the run here ends it at t
-      if (++steps_since_output > options.max_steps_per_output) {
-        std::ostringstream s;
-        s << "took " << options.max_steps_per_output << " steps without reaching the output time "
-          << times[k] << " (at t = " << t
-          << "; the budget of steps between two outputs, [solve] max_steps_per_output)";
-        throw IntegrationError(FailureKind::steps_per_output, s.str());
-      }
-      if (options.max_steps > 0 && total_steps > options.max_steps) {
-        std::ostringstream s;
-        s << "took more than " << options.max_steps << " steps in all (at t = " << t
-          << ", the step budget of this run)";
-        throw IntegrationError(FailureKind::step_budget, s.str());
-      }
-      if (options.on_step) options.on_step(t, stepper.y());
-      const bool at_stop = next_stop < stops.size() && t >= stops[next_stop];
-      // Outputs inside the step; one at a load step's time waits for the state after the step.
-      while (k < times.size() && (times[k] < t || (times[k] == t && !at_stop))) {
-        const Eigen::VectorXd integrals = done + integral_to(times[k]);
-        if (times[k] == t) {
-          record(t, stepper.y(), stepper.yp(), integrals);
-        } else {
-          stepper.interpolate(times[k], yo, ypo);
-          record(times[k], yo, ypo, integrals);
-        }
-        ++k;
-        steps_since_output = 0;
-      }
-      if (done.size() > 0) done += integral_to(t);
-      from = t;
-      if (at_stop) {
-        restart_at(stops[next_stop++]);
-        steps_since_output = 0;
-      }
-      check_interrupt();
-      if (const int signal = stop_requested(); signal != 0) {
-        std::ostringstream s;
-        s << "stopped by " << signal_name(signal) << " at t = " << t;
-        throw IntegrationError(FailureKind::interrupted, s.str());
-      }
-      if (options.max_wall_seconds > 0.0 || options.on_progress) {
-        const double seconds = elapsed();
-        if (options.on_progress && seconds >= next_progress && k < times.size()) {
-          options.on_progress({t0, reached, t_end, total_steps, seconds});
-          next_progress = seconds + options.progress_every_seconds;
-        }
-        if (options.max_wall_seconds > 0.0 && seconds > options.max_wall_seconds &&
-            k < times.size()) {
-          std::ostringstream s;
-          s << "ran longer than " << options.max_wall_seconds << " s of wall time (at t = " << t
-            << ", the wall-time budget of this run)";
-          throw IntegrationError(FailureKind::wall_time_budget, s.str());
-        }
-      }
-    }
+    loop.run(y0, yp0);
   } catch (IntegrationError& e) {
-    // Keep what was computed: the rows so far, where the run stopped and its last step.
-    e.in_loop = true;
-    e.t_reached = reached;
-    e.t0 = t0;
-    e.t_end = t_end;
-    e.steps = total_steps;
-    e.elapsed_seconds = elapsed();
-    try {
-      stepper.fill_summary(summary);
-      e.last_step = summary.last_step;
-    } catch (const IntegrationError&) {
-      // The counters are lost with the integrator's state; the failure itself is what matters.
-    }
-    // The facts refine the integrator's word: a failure before any step is a failure to start;
-    // failures (or a stall) with the last step at roundoff of the time reached are a collapse.
-    // A residual that stays non-finite (IDA_REP_RES_ERR) at a step cut to roundoff is the
-    // collapse's consequence (y' = cj (y − y_pred) overflows), not a blow-up of the solution.
-    const bool residual_failure = e.kind == FailureKind::residual_non_finite;
-    const bool solver_failure =
-        e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
-        e.kind == FailureKind::linear_solver || e.kind == FailureKind::unknown;
-    constexpr double kCollapsedStep = 1e-12;  // relative to |t_reached|: a few thousand ulps
-    if (solver_failure && total_steps == 0) {
-      e.kind = FailureKind::first_step;
-    } else if ((e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
-                e.kind == FailureKind::steps_per_output || residual_failure) &&
-               total_steps > 0 && std::abs(e.last_step) <= kCollapsedStep * std::abs(e.t_reached)) {
-      e.kind = FailureKind::step_size_collapsed;
-    }
-    e.raw_partial = std::make_shared<const RawTrajectory>(std::move(out));
+    loop.keep_partial(e);
     throw;
   }
   stepper.fill_summary(summary);
-  return out;
+  return loop.take();
 }
 
 }  // namespace condyn
