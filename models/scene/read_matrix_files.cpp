@@ -9,6 +9,8 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "models/core/number_cell.hpp"
@@ -245,16 +247,13 @@ void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string&
                         " (cycles per time unit)";
 }
 
-void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) const {
-  const std::string path = "model";
-  check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
-  model.type = ModelSpec::Type::matrix;
-  const auto is_file = [&](std::string_view key) {
-    const auto* n = t.get(key);
-    return n != nullptr && n->is_table() && n->as_table()->contains("file") &&
-           !n->as_table()->contains("rayleigh") && !n->as_table()->contains("modal");
-  };
-  // A table that is none of the forms (an empty one, a misspelt key): name every form.
+namespace {
+
+using MatrixFiles = std::array<std::pair<std::string_view, FileMatrix*>, 3>;
+
+/// Refuses a table under mass, stiffness or damping that is none of the forms (an empty one, a
+/// misspelt key), naming every form.
+void refuse_unknown_tables(const TomlAccess& r, const toml::table& t, const std::string& path) {
   for (const std::string_view key : {"mass", "stiffness", "damping"}) {
     const auto* n = t.get(key);
     if (n == nullptr || !n->is_table()) continue;
@@ -263,20 +262,28 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
         (key == "damping" && (entries.contains("rayleigh") || entries.contains("modal")))) {
       continue;
     }
-    fail(*n, join(path, std::string(key)),
-         std::string(entries.empty() ? "is an empty table" : "is a table without a known key") +
-             ": expected rows ([[...], ...]) or { file = \"" +
-             (key == "mass"        ? "M"
-              : key == "stiffness" ? "K"
-                                   : "C") +
-             ".mtx\" }" +
-             (key == "damping" ? std::string(", { rayleigh = [a0, a1] } or { modal = ratio }")
-                               : std::string()));
+    r.fail(*n, TomlAccess::join(path, std::string(key)),
+           std::string(entries.empty() ? "is an empty table" : "is a table without a known key") +
+               ": expected rows ([[...], ...]) or { file = \"" +
+               (key == "mass"        ? "M"
+                : key == "stiffness" ? "K"
+                                     : "C") +
+               ".mtx\" }" +
+               (key == "damping" ? std::string(", { rayleigh = [a0, a1] } or { modal = ratio }")
+                                 : std::string()));
   }
-  // Files first: when `dofs` is omitted their size fixes n.
-  const std::pair<std::string_view, FileMatrix*> files[] = {{"mass", &model.mass_file},
-                                                            {"stiffness", &model.stiffness_file},
-                                                            {"damping", &model.damping_file}};
+}
+
+/// The matrices given by files, read in the order of `files`, each checked at its size line
+/// against the names' count, else against the first file's size; returns the first (null when
+/// none is a file).
+const FileMatrix* read_matrix_files(const SceneReader& r, const toml::table& t,
+                                    const std::string& path, const MatrixFiles& files) {
+  const auto is_file = [&](std::string_view key) {
+    const auto* n = t.get(key);
+    return n != nullptr && n->is_table() && n->as_table()->contains("file") &&
+           !n->as_table()->contains("rayleigh") && !n->as_table()->contains("modal");
+  };
   const FileMatrix* first = nullptr;
   // The size each must declare, checked at its size line: the names' count, else the first's.
   MarketExpectation expected;
@@ -286,37 +293,119 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
     expected.because = "model.dofs names " + std::to_string(expected.rows) + " DOFs";
   }
   for (const auto& [key, out] : files) {
-    if (key != "damping") (void)required(t, path, key);
+    if (key != "damping") (void)r.required(t, path, key);
     if (!is_file(key)) continue;
-    *out = matrix_file(*t.get(key), join(path, std::string(key)), expected);
-    if (first == nullptr) {
-      first = out;
-      if (expected.rows == 0 && out->matrix.rows() == out->matrix.cols()) {
-        expected.rows = expected.cols = out->matrix.rows();
-        const SourcePoint where = at(*t.get(key), join(path, std::string(key)));
-        expected.because = out->file + " (" + where.path +
-                           (where.line > 0 ? ", line " + std::to_string(where.line) : "") +
-                           ") is " + std::to_string(expected.rows) + " x " +
-                           std::to_string(expected.rows);
-        expected.advice =
-            "mass, stiffness and damping must have one size; is one of the two files the wrong "
-            "one, or its size line wrong?";
+    *out = r.matrix_file(*t.get(key), TomlAccess::join(path, std::string(key)), expected);
+    if (first != nullptr) continue;
+    first = out;
+    if (expected.rows == 0 && out->matrix.rows() == out->matrix.cols()) {
+      expected.rows = expected.cols = out->matrix.rows();
+      const SourcePoint where = r.at(*t.get(key), TomlAccess::join(path, std::string(key)));
+      expected.because = out->file + " (" + where.path +
+                         (where.line > 0 ? ", line " + std::to_string(where.line) : "") + ") is " +
+                         std::to_string(expected.rows) + " x " + std::to_string(expected.rows);
+      expected.advice =
+          "mass, stiffness and damping must have one size; is one of the two files the wrong "
+          "one, or its size line wrong?";
+    }
+  }
+  return first;
+}
+
+/// model.dofs: names, each a valid and distinct DOF name, at least one.
+std::vector<std::string> read_dof_names(const SceneReader& r, const toml::table& t,
+                                        const std::string& path) {
+  std::vector<std::string> names;
+  const auto& dofs = r.array(r.required(t, path, "dofs"), "model.dofs");
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < dofs.size(); ++i) {
+    const std::string at = TomlAccess::index("model.dofs", i);
+    const std::string name = r.string(*dofs.get(i), at);
+    if (name.empty()) r.fail(*dofs.get(i), at, "a DOF name must not be empty");
+    r.check_name(*dofs.get(i), at, name, "DOF");
+    if (!seen.insert(name).second) r.fail(*dofs.get(i), at, "duplicate DOF name '" + name + "'");
+    names.push_back(name);
+  }
+  if (names.empty()) r.fail(dofs, "model.dofs", "at least one DOF is needed");
+  return names;
+}
+
+/// Each matrix given by a file: n x n (`first` the first file read) and symmetric.
+void check_file_matrices(const TomlAccess& r, const toml::table& t, const std::string& path,
+                         const MatrixFiles& files, const FileMatrix* first, Eigen::Index n) {
+  for (const auto& [key, out] : files) {
+    if (!out->given()) continue;
+    const auto& node = *t.get(key)->as_table()->get("file");
+    // A matrix handed over in memory (Python) is named by its own key, not the `file` key the
+    // module put in its place.
+    const bool in_memory = out->in_memory();
+    const std::string p = in_memory
+                              ? TomlAccess::join(path, std::string(key))
+                              : TomlAccess::join(TomlAccess::join(path, std::string(key)), "file");
+    const std::string name = in_memory ? "the array" : out->file;
+    const auto& a = out->matrix;
+    if (a.rows() != n || a.cols() != n) {
+      const std::string size =
+          name + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols());
+      if (t.contains("dofs")) r.fail(node, p, size + " for " + std::to_string(n) + " DOFs");
+      if (out == first) r.fail(node, p, size + ": a square matrix is needed");
+      r.fail(node, p,
+             size + " but " + first->file + " is " + std::to_string(n) + " x " + std::to_string(n));
+    }
+    if (const auto ij = asymmetry(a)) {
+      const auto [i, j] = *ij;
+      r.fail(node, p,
+             name + " is not symmetric: " + asymmetry_text(i, j, a.coeff(i, j), a.coeff(j, i)));
+    }
+  }
+}
+
+/// The inline matrix at `key`: `rows` rows of `rows` entries, symmetric.
+void read_square(const TomlAccess& r, const toml::table& t, const std::string& path,
+                 std::string_view key, std::size_t rows, std::vector<std::vector<double>>& out,
+                 SourcePoint& where) {
+  const std::string p = TomlAccess::join(path, std::string(key));
+  const auto& mat = r.required(t, path, key);
+  where = r.at(mat, p);
+  out = r.dense_matrix(mat, p);
+  if (out.size() != rows) {
+    r.fail(mat, p,
+           "has " + std::to_string(out.size()) + " rows for " + std::to_string(rows) + " DOFs");
+  }
+  for (std::size_t i = 0; i < rows; ++i) {
+    if (out[i].size() != rows) {
+      r.fail(*r.array(mat, p).get(i), TomlAccess::index(p, i),
+             "has " + std::to_string(out[i].size()) + " entries for " + std::to_string(rows) +
+                 " DOFs");
+    }
+  }
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const double a = out[i][j], b = out[j][i];
+      // Symmetry to a few ulps of the entries' size: a scene writes these by hand.
+      if (std::abs(a - b) > 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) {
+        r.fail(mat, p,
+               "is not symmetric: " + asymmetry_text(static_cast<Eigen::Index>(i),
+                                                     static_cast<Eigen::Index>(j), a, b));
       }
     }
   }
+}
+
+}  // namespace
+
+void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) const {
+  const std::string path = "model";
+  check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
+  model.type = ModelSpec::Type::matrix;
+  refuse_unknown_tables(*this, t, path);
+  // Files first: when `dofs` is omitted their size fixes n.
+  const MatrixFiles files{{{"mass", &model.mass_file},
+                           {"stiffness", &model.stiffness_file},
+                           {"damping", &model.damping_file}}};
+  const FileMatrix* first = read_matrix_files(*this, t, path, files);
   if (const auto* d = t.get("dofs"); d != nullptr || first == nullptr) {
-    const auto& dofs = array(required(t, path, "dofs"), "model.dofs");
-    std::set<std::string> seen;
-    for (std::size_t i = 0; i < dofs.size(); ++i) {
-      const std::string name = string(*dofs.get(i), index("model.dofs", i));
-      if (name.empty()) fail(*dofs.get(i), index("model.dofs", i), "a DOF name must not be empty");
-      check_name(*dofs.get(i), index("model.dofs", i), name, "DOF");
-      if (!seen.insert(name).second) {
-        fail(*dofs.get(i), index("model.dofs", i), "duplicate DOF name '" + name + "'");
-      }
-      model.dofs.push_back(name);
-    }
-    if (model.dofs.empty()) fail(dofs, "model.dofs", "at least one DOF is needed");
+    model.dofs = read_dof_names(*this, t, path);
   } else {
     const auto n = static_cast<std::size_t>(first->matrix.rows());
     model.dofs.reserve(n);
@@ -324,67 +413,18 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
   }
   const auto n = static_cast<Eigen::Index>(model.dofs.size());
   matrix_dofs_ = n;  // load patterns and constraint blocks are checked against it as read
-  for (const auto& [key, out] : files) {
-    if (!out->given()) continue;
-    const auto& node = *t.get(key)->as_table()->get("file");
-    // A matrix handed over in memory (Python) is named by its own key, not the `file` key the
-    // module put in its place.
-    const bool in_memory = out->in_memory();
-    const std::string p =
-        in_memory ? join(path, std::string(key)) : join(join(path, std::string(key)), "file");
-    const std::string name = in_memory ? "the array" : out->file;
-    const auto& a = out->matrix;
-    if (a.rows() != n || a.cols() != n) {
-      const std::string size =
-          name + " is " + std::to_string(a.rows()) + " x " + std::to_string(a.cols());
-      if (t.contains("dofs")) fail(node, p, size + " for " + std::to_string(n) + " DOFs");
-      if (out == first) fail(node, p, size + ": a square matrix is needed");
-      fail(node, p,
-           size + " but " + first->file + " is " + std::to_string(n) + " x " + std::to_string(n));
-    }
-    if (const auto ij = asymmetry(a)) {
-      const auto [i, j] = *ij;
-      fail(node, p,
-           name + " is not symmetric: " + asymmetry_text(i, j, a.coeff(i, j), a.coeff(j, i)));
-    }
+  check_file_matrices(*this, t, path, files, first, n);
+  const std::size_t rows = model.dofs.size();
+  if (!model.mass_file.given())
+    read_square(*this, t, path, "mass", rows, model.mass, model.mass_where);
+  if (!model.stiffness_file.given()) {
+    read_square(*this, t, path, "stiffness", rows, model.stiffness, model.stiffness_where);
   }
-  const auto square = [&](std::string_view key, std::vector<std::vector<double>>& out,
-                          SourcePoint& where) {
-    const std::string p = join(path, std::string(key));
-    const auto& mat = required(t, path, key);
-    where = at(mat, p);
-    out = dense_matrix(mat, p);
-    const std::size_t rows = model.dofs.size();
-    if (out.size() != rows) {
-      fail(mat, p,
-           "has " + std::to_string(out.size()) + " rows for " + std::to_string(rows) + " DOFs");
-    }
-    for (std::size_t i = 0; i < rows; ++i) {
-      if (out[i].size() != rows) {
-        fail(*array(mat, p).get(i), index(p, i),
-             "has " + std::to_string(out[i].size()) + " entries for " + std::to_string(rows) +
-                 " DOFs");
-      }
-    }
-    for (std::size_t i = 0; i < rows; ++i) {
-      for (std::size_t j = 0; j < i; ++j) {
-        const double a = out[i][j], b = out[j][i];
-        // Symmetry to a few ulps of the entries' size: a scene writes these by hand.
-        if (std::abs(a - b) > 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) {
-          fail(mat, p,
-               "is not symmetric: " + asymmetry_text(static_cast<Eigen::Index>(i),
-                                                     static_cast<Eigen::Index>(j), a, b));
-        }
-      }
-    }
-  };
-  if (!model.mass_file.given()) square("mass", model.mass, model.mass_where);
-  if (!model.stiffness_file.given()) square("stiffness", model.stiffness, model.stiffness_where);
   if (const auto* d = t.get("damping"); d != nullptr && !model.damping_file.given()) {
     if (d->is_table()) {
       read_rayleigh(*d, "model.damping", model);
     } else {
-      square("damping", model.damping, model.damping_where);
+      read_square(*this, t, path, "damping", rows, model.damping, model.damping_where);
     }
   }
 }
