@@ -1,6 +1,7 @@
 // Scene keys that name Matrix Market files (scene-format.md, "Matrices and vectors from files"):
-// the matrix model's M, K, C given by files, Rayleigh damping, and [[constraint_block]]. Files are
-// read here, at parse time, so a bad file is refused with the scene's key and line.
+// the matrix model's M, K, C given by files and [[constraint_block]] (Rayleigh damping:
+// read_rayleigh.cpp). Files are read here, at parse time, so a bad file is refused with the
+// scene's key and line.
 
 #include <algorithm>
 #include <array>
@@ -129,122 +130,6 @@ FileMatrix SceneReader::read_market(const toml::node& file_node, const std::stri
     fail(file_node, key, where + ": " + e.what());
   }
   return out;
-}
-
-void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
-                                ModelSpec& model) const {
-  const auto& t = table(node, path);
-  if (const auto* file = t.get("file")) {  // not "file: unknown key": the pair is the mistake
-    if (!t.contains("rayleigh") && !t.contains("modal")) {  // a model type without matrices
-      fail(*file, join(path, "file"),
-           "a damping matrix from a file is for matrix models (type = \"matrix\"): give "
-           "rayleigh or modal damping");
-    }
-    fail(*file, join(path, "file"),
-         "give either a damping matrix (file) or rayleigh or modal damping, not both");
-  }
-  check_keys(t, path, {"rayleigh", "modal"});
-  if (const auto* modal = t.get("modal")) {
-    const std::string p = join(path, "modal");
-    if (t.contains("rayleigh")) fail(*modal, p, "give either rayleigh or modal damping, not both");
-    model.modal_ratios =
-        modal->is_array() ? numbers(*modal, p) : std::vector<double>{number(*modal, p)};
-    if (model.modal_ratios.empty()) fail(*modal, p, "expected a damping ratio or a list of them");
-    for (std::size_t i = 0; i < model.modal_ratios.size(); ++i) {
-      const double z = model.modal_ratios[i];
-      if (!(z >= 0.0) || !std::isfinite(z)) {
-        fail(modal->is_array() ? *array(*modal, p).get(i) : *modal,
-             modal->is_array() ? index(p, i) : p,
-             "a damping ratio must be finite and >= 0 (a negative one feeds energy in)");
-      }
-      // As Rayleigh's ratios: 5 for 5 % is the likelier meaning of a ratio of 1 or more.
-      if (z >= 1.0) {
-        fail(modal->is_array() ? *array(*modal, p).get(i) : *modal,
-             modal->is_array() ? index(p, i) : p,
-             "must be a damping ratio in [0, 1) (0.05 is 5 %)");
-      }
-    }
-    model.modal_where = at(*modal, p);
-    return;
-  }
-  const std::string p = join(path, "rayleigh");
-  const auto& r = required(t, path, "rayleigh");
-  if (r.is_table()) return read_rayleigh_pairs(r, p, model);
-  const auto a = numbers(r, p);
-  if (a.size() != 2) {
-    fail(r, p,
-         "expected [a0, a1] (C = a0 M + a1 K) or { frequencies = [f1, f2], ratios = [z1, z2] }");
-  }
-  for (std::size_t i = 0; i < 2; ++i) {
-    if (a[i] < 0.0) {
-      fail(*array(r, p).get(i), index(p, i), "must be >= 0 (a negative one feeds energy in)");
-    }
-  }
-  model.rayleigh = std::array<double, 2>{a[0], a[1]};
-  model.rayleigh_where = at(r, p);
-}
-
-/// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] }: the a0, a1 that give damping ratio
-/// z_i at frequency f_i (cycles per time unit), from z(ω) = a0 / (2ω) + a1 ω / 2 at ω_i = 2π f_i:
-///   a0 = 2 ω1 ω2 (z1 ω2 − z2 ω1) / (ω2² − ω1²),   a1 = 2 (z2 ω2 − z1 ω1) / (ω2² − ω1²).
-void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string& path,
-                                      ModelSpec& model) const {
-  const auto& t = table(node, path);
-  check_keys(t, path, {"frequencies", "ratios"});
-  const auto pair_of = [&](const char* key, const char* what) {
-    const auto& n = required(t, path, key);
-    auto v = numbers(n, join(path, key));
-    if (v.size() != 2) fail(n, join(path, key), std::string("expected two ") + what);
-    return v;
-  };
-  const auto f = pair_of("frequencies", "frequencies [f1, f2] (cycles per time unit)");
-  const auto z = pair_of("ratios", "damping ratios [z1, z2]");
-  const auto& fn = required(t, path, "frequencies");
-  const auto& zn = required(t, path, "ratios");
-  for (std::size_t i = 0; i < 2; ++i) {
-    if (!(f[i] > 0.0) || !std::isfinite(f[i])) {
-      fail(*array(fn, join(path, "frequencies")).get(i), index(join(path, "frequencies"), i),
-           "must be a finite frequency > 0");
-    }
-    if (!(z[i] >= 0.0 && z[i] < 1.0)) {
-      fail(*array(zn, join(path, "ratios")).get(i), index(join(path, "ratios"), i),
-           "must be a damping ratio in [0, 1) (0.05 is 5 %)");
-    }
-  }
-  if (f[0] == f[1]) {
-    fail(fn, join(path, "frequencies"),
-         "the two frequencies must differ: one (frequency, ratio) pair does not fix a0 and a1");
-  }
-  const double pi = 3.14159265358979323846;
-  const double w1 = 2.0 * pi * f[0], w2 = 2.0 * pi * f[1];
-  // a0 = 2 w1 w2 (z1 w2 - z2 w1) / (w2² - w1²), a1 = 2 (z2 w2 - z1 w1) / (w2² - w1²), divided
-  // through by w2² (r = w1/w2): no square of a frequency, which overflowed from 1e154 and
-  // underflowed below 1e-154 where a0 and a1 themselves are representable. With d = 1 - r,
-  // 1 - r² = d (1 + r) and z1 - z2 r = (z1 - z2) + z2 d: d from f2 - f1, exact for close
-  // frequencies, where 1 - r * r lost their difference (f and f + 1 ulp gave a ratio of 0.0417
-  // for 0.05).
-  const double r = f[0] / f[1];
-  const double d = (f[1] - f[0]) / f[1];
-  const double a0 = 2.0 * w1 * ((z[0] - z[1]) / d + z[1]) / (1.0 + r);
-  const double a1 = 2.0 * ((z[1] - z[0]) / d + z[0]) / (w2 * (1.0 + r));
-  if (!std::isfinite(a0) || !std::isfinite(a1)) {
-    fail(fn, join(path, "frequencies"),
-         "these frequencies give a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +
-             ", beyond the double range: check their unit (cycles per time unit)");
-  }
-  if (a0 < 0.0 || a1 < 0.0) {
-    fail(node, path,
-         "these pairs need a negative " + std::string(a0 < 0.0 ? "a0" : "a1") +
-             " (a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +
-             "), which feeds energy in: Rayleigh damping z(ω) = a0/(2ω) + a1 ω/2 cannot have "
-             "those ratios at those frequencies");
-  }
-  model.rayleigh = std::array<double, 2>{a0, a1};
-  model.rayleigh_where = at(node, path);
-  model.rayleigh_rule = "Rayleigh damping C = a0 M + a1 K with a0 = " + fmt(a0) +
-                        ", a1 = " + fmt(a1) + ", from ratio " + fmt(z[0]) + " at frequency " +
-                        fmt(f[0]) + " and ratio " + fmt(z[1]) + " at frequency " + fmt(f[1]) +
-                        " (cycles per time unit)";
 }
 
 namespace {

@@ -31,7 +31,8 @@ class SceneReader : public TomlAccess {
   /// [model] (read_model.cpp); trusses by read_truss().
   void read_model(const toml::node& node, ModelSpec& model) const;
   void read_truss(const toml::table& t, int dim, ModelSpec& model) const;
-  /// The matrix model, Matrix Market files and Rayleigh damping (read_matrix_files.cpp).
+  /// The matrix model and Matrix Market files (read_matrix_files.cpp; Rayleigh damping:
+  /// read_rayleigh.cpp).
   void read_matrix_model(const toml::table& t, ModelSpec& model) const;
   /// `{ file = "K.mtx" }` at `path`, read (relative to the scene's folder) and held sparse.
   /// `expect`: the size it must declare (checked at its size line, before it is read).
