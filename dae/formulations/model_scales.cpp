@@ -5,10 +5,12 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <random>
 #include <sstream>
 
 #include "dae/formulations/largest_frequency.hpp"
 #include "dae/linsolve/kkt.hpp"
+#include "models/systems/point_mass_system.hpp"
 
 namespace condyn {
 
@@ -53,6 +55,45 @@ Eigen::VectorXd diagonal_estimates(const Eigen::SparseMatrix<double>& M,
   }
   std::sort(out.begin(), out.end());
   return Eigen::Map<const Eigen::VectorXd>(out.data(), static_cast<Eigen::Index>(out.size()));
+}
+
+/// The length the position rows compute with: the rods' of a truss (PointMassSystem), else 1
+/// (angles in radians, a model in metres).
+double row_length(const MechanicalSystem& system) {
+  const auto* truss = dynamic_cast<const PointMassSystem*>(&system);
+  const double length = truss != nullptr ? truss->row_length_scale() : 0.0;
+  return length > 0.0 ? length : 1.0;
+}
+
+/// ModelScales::row_noise: y = −(A Aᵀ)⁻¹ δφ from [I Aᵀ; A 0][x; y] = [0; δφ] (x = −Aᵀ y), the
+/// matrix of GGL's rows u' − v + Aᵀμ and φ(u) = 0 once the velocities are set aside.
+double row_noise(const Eigen::SparseMatrix<double>& A, double length) {
+  const Eigen::Index n = A.cols(), m = A.rows();
+  Eigen::SparseMatrix<double> identity(n, n);
+  identity.setIdentity();
+  const KktLu lu(kkt_matrix(identity, A));
+  if (lu.info() != Eigen::Success) return 0.0;  // dependent rows: no estimate
+  Eigen::VectorXd largest = Eigen::VectorXd::Zero(m);
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+      largest[it.row()] = std::max(largest[it.row()], std::abs(it.value()));
+  // Roundoff has no pattern the rows could cancel: signs from a fixed seed, so that every run
+  // and platform gets the same estimate (std::mt19937's sequence is the standard's). The
+  // amplified part is a few smooth modes' share of the signs, which varies from one draw to the
+  // next (five times between two draws on a chain of 10⁵ links): the rms over kNoiseDraws.
+  constexpr int kNoiseDraws = 4;
+  std::mt19937 signs(1);
+  const double ulp = std::numeric_limits<double>::epsilon() * length;
+  double sum = 0.0;
+  for (int draw = 0; draw < kNoiseDraws; ++draw) {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
+    for (Eigen::Index i = 0; i < m; ++i)
+      rhs[n + i] = ((signs() & 1U) != 0 ? ulp : -ulp) * largest[i];
+    const Eigen::VectorXd y = lu.solve(rhs).tail(m);
+    if (!y.allFinite()) return 0.0;
+    sum += y.squaredNorm();
+  }
+  return std::sqrt(sum / (kNoiseDraws * static_cast<double>(m)));
 }
 
 }  // namespace
@@ -122,6 +163,7 @@ ModelScales model_scales(const Model& model) {
     }
     const auto& G = system.constraint_force_jacobian(t, model.u0, w);
     if (G.size() > 0) K += G;
+    s.row_noise = row_noise(A, row_length(system));
   }
   std::optional<Eigen::VectorXd> w2;
   if (n <= kDenseScaleLimit) {
@@ -157,6 +199,10 @@ namespace {
 /// The largest derived absolute tolerance: its error weight, 1e-300, still a normal double.
 constexpr double kMaxDerivedAtol = 1e300;
 
+/// How many times the rows' roundoff GGL's μ atol must be (ModelScales::row_noise): the chains
+/// measured ran from about twice it; 16 as for the velocities' roundoff.
+constexpr double kRowNoiseUlps = 16.0;
+
 }  // namespace
 
 AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& settings) {
@@ -186,7 +232,12 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   a.velocity = usable(a.velocity);
   a.multiplier =
       settings.atol_multiplier.value_or(usable(a.displacement * s.mass / (T * T * s.coefficient)));
-  a.mu = settings.atol_mu.value_or(usable(a.velocity / s.coefficient));
+  // μ's weight is (h/T) / atol_μ, and a step of size h needs μ of row_noise / h to correct the
+  // rows' roundoff: below 16 row_noise / T (16 ulps, as the velocities'), Newton cannot converge
+  // on μ. A 30° hanging chain of 30,000 links (row_noise about 1e-10) failed at t = 9.4e-6 with
+  // atol_μ = atol_v = 1e-10 and ran from 1e-9; 100,000 links failed at 1e-8 and ran at 1e-7.
+  a.mu_floor = kRowNoiseUlps * s.row_noise / T;
+  a.mu = settings.atol_mu.value_or(usable(std::max(a.velocity / s.coefficient, a.mu_floor)));
   a.time_scale = T;
   a.mass = s.mass;
   const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;
@@ -196,8 +247,15 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   r << "atol displacement " << a.displacement << ", velocity " << a.velocity
     << (settings.atol_velocity ? " (scene)" : "") << ", multiplier " << a.multiplier
     << (settings.atol_multiplier ? " (scene)" : "") << ", mu " << a.mu
-    << (settings.atol_mu ? " (scene)" : "") << "; time scale T = " << T << " (lowest " << s.method
-    << " frequency " << s.omega_min << ", t_end " << t_end << "), highest frequency " << s.omega_max
+    << (settings.atol_mu ? " (scene)" : "");
+  // Said only where it decides: the floor raised the derived value, or a scene's lies below it.
+  if (a.mu < a.mu_floor) {
+    r << " (below the constraint rows' roundoff floor " << a.mu_floor << ")";
+  } else if (!settings.atol_mu && a.mu_floor > a.velocity / s.coefficient) {
+    r << " (the constraint rows' roundoff floor)";
+  }
+  r << "; time scale T = " << T << " (lowest " << s.method << " frequency " << s.omega_min
+    << ", t_end " << t_end << "), highest frequency " << s.omega_max
     << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", mass " << s.mass
     << ", coefficient " << s.coefficient;
   a.rule = r.str();

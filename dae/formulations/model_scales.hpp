@@ -28,8 +28,14 @@ struct ModelScales {
   double omega_max = 0.0;    ///< highest |ω| (0: none)
   double mass = 1.0;         ///< mean of the positive diagonal entries of M
   double coefficient = 1.0;  ///< largest |A_ij| at t = 0 (1 without constraints)
-  std::string method;        ///< "constrained eigenvalues" or "diagonal estimate"
-  std::string method_max;    ///< how ω_max was found when not as `method` ("Lanczos")
+  /// rms of (A Aᵀ)⁻¹ δφ, δφ_i = ±eps ℓ a_i the position rows' roundoff (ℓ the rods' longest
+  /// length, PointMassSystem::row_length_scale, else 1; a_i a row's largest |A_ij|; signs from a
+  /// fixed pseudo-random sequence): the displacement a Newton correction cannot resolve, which A Aᵀ
+  /// amplifies as it grows ill-conditioned (about N^1.5 on a chain of N links). Computed for
+  /// systems with curvature (nonlinear rows); 0 otherwise or when A Aᵀ is singular.
+  double row_noise = 0.0;
+  std::string method;      ///< "constrained eigenvalues" or "diagonal estimate"
+  std::string method_max;  ///< how ω_max was found when not as `method` ("Lanczos")
 };
 
 /// Above this many DOFs the frequencies are diagonal estimates: the eigenproblem is dense (QR of
@@ -49,9 +55,15 @@ inline constexpr int kDenseScaleLimit = 400;
 ///                                                 slowest natural time scale T = min(1/ω_min,
 ///                                                 t_end) displaces a mass m by Δf T²/m; λ is a
 ///                                                 force per unit coefficient a = max|A_ij|)
-///   GGL's μ     atol_μ = atol_v / a              (A_pᵀ μ is a velocity correction)
+///   GGL's μ     atol_μ = atol_v / a              (A_pᵀ μ is a velocity correction), but at
+///                                                 least 16 row_noise / T: μ's weight is
+///                                                 (h/T) / atol_μ and the μ a step needs to
+///                                                 correct the rows' roundoff is row_noise / h
 struct AbsoluteTolerances {
   double displacement = 0.0, velocity = 0.0, multiplier = 0.0, mu = 0.0;
+  /// The smallest atol_μ the position rows' roundoff allows (16 row_noise / T; 0: none known),
+  /// which a scene's own atol_mu may go below (the failure advice then names it).
+  double mu_floor = 0.0;
   /// T above: the higher-index Newton weights use (h/T)^(k−1), a pure number, instead of h^(k−1),
   /// whose size depended on the unit of time.
   double time_scale = 1.0;

@@ -49,20 +49,25 @@ std::string scheme_advice(Scheme scheme) {
   }
 }
 
-}  // namespace
-
-std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement,
-                            double coordinates) {
-  switch (e.kind) {
+/// Whether a tolerance below roundoff can explain a failure of this kind: those of the step size.
+bool step_size_failure(FailureKind kind) {
+  switch (kind) {
     case FailureKind::step_size_collapsed:
     case FailureKind::steps_per_output:
     case FailureKind::error_test:
     case FailureKind::convergence:
     case FailureKind::first_step:
-      break;
+      return true;
     default:
-      return "";
+      return false;
   }
+}
+
+}  // namespace
+
+std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement,
+                            double coordinates) {
+  if (!step_size_failure(e.kind)) return "";
   constexpr double kUlps = 100.0;
   // The constraint rows compute with the coordinates even where the displacements are small;
   // where the model does not say how large they are, of order 1 (a model in metres).
@@ -167,6 +172,35 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
                                "start or a load step: check the state there and the tolerances; "
                                "a looser rtol or another scheme may pass";
   return s + scheme_advice(scheme);
+}
+
+std::string mu_roundoff_advice(const RunFailure& e, double atol_mu, double mu_floor) {
+  if (!step_size_failure(e.kind) || !(atol_mu < mu_floor)) return "";
+  std::ostringstream s;
+  s.precision(2);
+  s << "; atol_mu " << atol_mu << " lies below " << mu_floor
+    << ", the smallest GGL's μ can be held to: the μ a step needs to correct the constraint "
+       "rows' roundoff (its derivation is in `condyn info`); remove [solve] atol_mu (the derived "
+       "value respects that floor) or set it to "
+    << mu_floor << " or more";
+  return s.str();
+}
+
+std::string failure_suggestion(Scheme scheme, const RunFailure& e, const std::string& causes) {
+  if (causes.empty()) return failure_suggestion(scheme, e);
+  switch (e.kind) {
+    case FailureKind::step_size_collapsed:
+      return "the step size collapsed to roundoff of the time reached because a tolerance asks for "
+             "more than double precision holds" +
+             causes;
+    case FailureKind::convergence:
+    case FailureKind::error_test:
+      return "repeated convergence or error-test failures because a tolerance asks for more than "
+             "double precision holds" +
+             causes;
+    default:
+      return failure_suggestion(scheme, e) + causes;
+  }
 }
 
 }  // namespace condyn

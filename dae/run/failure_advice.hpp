@@ -12,6 +12,14 @@ namespace condyn {
 
 [[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e);
 
+/// The same, for a failure that `causes` (what roundoff_advice and mu_roundoff_advice return,
+/// joined) may explain: when they are not empty, a collapse or repeated convergence or error-test
+/// failures are put down to the tolerance they name, with no guess at singular configurations
+/// (a hanging chain of 30,000 links under GGL got that guess while its atol_mu asked for less than
+/// roundoff); the other kinds keep their own advice with the causes after it.
+[[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e,
+                                             const std::string& causes);
+
 /// After a failure of the step size (collapsed, tiny for many steps, repeated error-test or
 /// convergence failures, a failure before the first step): when the displacements' atol lies
 /// within 100 ulps of the largest of 1, the model's `coordinates`
@@ -21,5 +29,11 @@ namespace condyn {
 /// configurations and a tight rtol alone.
 [[nodiscard]] std::string roundoff_advice(const RunFailure& e, double atol, double max_displacement,
                                           double coordinates);
+
+/// After a failure of the kinds roundoff_advice takes, under GGL: when atol_mu (a scene's: the
+/// derived one is never below it) lies below `mu_floor`, the smallest the constraint rows'
+/// roundoff allows (AbsoluteTolerances::mu_floor), the advice to raise `[solve] atol_mu` to it;
+/// else nothing.
+[[nodiscard]] std::string mu_roundoff_advice(const RunFailure& e, double atol_mu, double mu_floor);
 
 }  // namespace condyn

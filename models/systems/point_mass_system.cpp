@@ -269,4 +269,10 @@ double PointMassSystem::coordinate_scale() const {
   return scale;
 }
 
+double PointMassSystem::row_length_scale() const {
+  double scale = 0.0;
+  for (const auto& b : layout_.rods) scale = std::max(scale, b.length);
+  return scale;
+}
+
 }  // namespace condyn

@@ -73,6 +73,10 @@ class PointMassSystem final : public MechanicalSystem {
   [[nodiscard]] std::optional<EnergyParts> energy_parts(double t, ConstRef u, ConstRef v) override;
   /// The largest |reference coordinate| of the nodes and the longest member.
   [[nodiscard]] double coordinate_scale() const override;
+  /// The size of the values the rod rows compute at the start, their longest length: a row takes
+  /// X_j − X_i + u_j − u_i (the nodes' exact difference) and its length, so its roundoff is eps
+  /// times it (dae/formulations/model_scales.hpp, GGL's μ); 0 without rods.
+  [[nodiscard]] double row_length_scale() const;
 
  private:
   /// d = x_j + u_j − x_i − u_i for a member (dimension entries).

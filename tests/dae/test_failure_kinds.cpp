@@ -188,6 +188,39 @@ TEST_CASE("a collapse at an atol near roundoff says to raise atol") {
                "; atol 1e-20 is within 100 ulps of 1"));
 }
 
+TEST_CASE("a failure a tolerance below roundoff explains names the tolerance, not a singularity") {
+  // A hanging chain of 30,000 links under GGL failed at t = 9.4e-6 (IDA_CONV_FAIL) with advice
+  // about singular configurations while its atol_mu (1e-10) lay below what the constraint rows'
+  // roundoff allows (about 3e-10, dae/formulations/model_scales.hpp).
+  const RunFailure conv = failure(FailureKind::convergence, 9.4e-6, 1e-6, 1.0, 9);
+  const std::string cause = mu_roundoff_advice(conv, 1e-10, 4.8e-9);
+  CHECK(contains(cause, "; atol_mu 1e-10 lies below 4.8e-09, the smallest GGL's μ can be held to"));
+  CHECK(contains(cause, "set it to 4.8e-09 or more"));
+  const std::string advice = failure_suggestion(Scheme::ggl, conv, cause);
+  CHECK(advice.find("repeated convergence or error-test failures because a tolerance asks for more "
+                    "than double precision holds; atol_mu 1e-10") == 0);
+  CHECK_FALSE(contains(advice, "singular configuration"));
+  const RunFailure collapsed = failure(FailureKind::step_size_collapsed, 607.0, 1e-13, 700.0, 9);
+  CHECK(failure_suggestion(Scheme::ggl, collapsed, cause)
+            .find("the step size collapsed to roundoff of the time reached because a tolerance") ==
+        0);
+  // At or above the floor, or a failure no tolerance explains: nothing.
+  CHECK(mu_roundoff_advice(conv, 4.8e-9, 4.8e-9).empty());
+  CHECK(mu_roundoff_advice(conv, 1e-10, 0.0).empty());  // no floor known (linear rows)
+  CHECK(mu_roundoff_advice(failure(FailureKind::step_budget, 0.02, 1e-3, 10.0, 1000), 1e-10, 4.8e-9)
+            .empty());
+  // Without a cause the same failure keeps its guess at a singular configuration: a genuinely
+  // singular passage still hears of it.
+  CHECK(failure_suggestion(Scheme::ggl, conv, "") == failure_suggestion(Scheme::ggl, conv));
+  CHECK(contains(failure_suggestion(Scheme::ggl, conv, ""), "singular configuration"));
+  CHECK(contains(failure_suggestion(Scheme::ggl, collapsed, ""), "singular configuration"));
+  // Kinds whose own advice guesses no singularity keep it, the cause after it.
+  const std::string start =
+      failure_suggestion(Scheme::ggl, failure(FailureKind::first_step, 0.0, 0.0, 1.0, 0), cause);
+  CHECK(contains(start, "before its first step"));
+  CHECK(contains(start, cause));
+}
+
 TEST_CASE("a run whose atol exceeds its whole motion is flagged") {
   // An SI oscillator (m = 1e4 kg, k = 1e8 N/m, a step of 1e5 N: peak 2 mm) at atol 10 was 85 to
   // 224 % off under every scheme, exit 0 and no word.
