@@ -30,9 +30,6 @@ struct IntegratorOptions {
   /// Absolute tolerances of the other kinds of unknown ([solve] atol_velocity, atol_multiplier,
   /// atol_mu); unset means atol (integrator_options(model) sets them from the model's scales).
   std::optional<double> atol_velocity, atol_multiplier, atol_mu;
-  /// The smallest atol_mu the constraint rows' roundoff allows (AbsoluteTolerances::mu_floor;
-  /// 0: none known): the failure advice names a scene's atol_mu below it.
-  double mu_floor = 0.0;
   /// The model's time scale T (dae/formulations/model_scales.hpp): higher-index components' Newton
   /// weights are scaled by (h/T)^(k−1), a pure number. 1 when the caller knows no model.
   double time_scale = 1.0;

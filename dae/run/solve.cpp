@@ -225,7 +225,6 @@ IntegratorOptions integrator_options(const Model& model, const SolveSpec& settin
   o.atol_velocity = atol.velocity;
   o.atol_multiplier = atol.multiplier;
   o.atol_mu = atol.mu;
-  o.mu_floor = atol.mu_floor;
   o.multiplier_atol_per_row = !settings.atol_multiplier;
   o.multiplier_mass = atol.mass;
   o.mu_atol_per_row = !settings.atol_mu;
@@ -487,10 +486,9 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     options.on_row = hooks.on_row;
     return options;
   };
-  const IntegratorOptions options = options_for(settings);
   try {
     try {
-      solve_resolved(model, scheme, settings, options, result);
+      solve_resolved(model, scheme, settings, options_for(settings), result);
     } catch (const SchemeNotApplicable& why) {
       // auto chose elimination for its cost. A model its reduction cannot integrate (a reduced
       // mass matrix singular to roundoff: a mass of 1e-20 beside 2) goes to GGL with a multiplier
@@ -540,9 +538,11 @@ SolveResult solve(const Model& model, const SolveSpec& settings, const RunHooks&
     std::string causes =
         roundoff_advice(failure, settings.atol, result.summary.max_abs_displacement,
                         model.system->coordinate_scale());
-    if (scheme == Scheme::ggl) {
-      causes +=
-          mu_roundoff_advice(failure, options.atol_mu.value_or(options.atol), options.mu_floor);
+    // Only a scene's atol_mu can lie below the rows' floor (the derived one never does): the
+    // model's scales are computed again for it, on this failure's path alone.
+    if (scheme == Scheme::ggl && settings.atol_mu) {
+      causes += mu_roundoff_advice(failure, *settings.atol_mu,
+                                   absolute_tolerances(model, settings).mu_floor);
     }
     failure.suggestion = failure_suggestion(scheme, failure, causes);
     failure.suggestion += singular_failure_advice(result.summary.singular_passages);

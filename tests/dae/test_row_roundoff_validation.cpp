@@ -44,10 +44,9 @@ TEST_CASE("a hanging chain of 30,000 links runs under GGL at the derived toleran
   constexpr int kLinks = 30000;
   constexpr double kEnd = 1e-3;
   const auto scene = chain(kLinks, kEnd);
-  const IntegratorOptions options = integrator_options(scene.model, scene.spec.solve);
-  REQUIRE(options.atol_mu.has_value());
-  CHECK(*options.atol_mu == options.mu_floor);  // the floor decides here
-  CHECK(options.mu_floor > *options.atol_velocity);
+  const AbsoluteTolerances atol = absolute_tolerances(scene.model, scene.spec.solve);
+  CHECK(atol.mu == atol.mu_floor);  // the floor decides here
+  CHECK(atol.mu_floor > atol.velocity);
   const SolveResult result = test::solved(scene.model, scene.spec.solve);
   REQUIRE(result.trajectory.t.size() == 2);
   CHECK(result.trajectory.t.back() == kEnd);
