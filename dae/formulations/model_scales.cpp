@@ -199,8 +199,9 @@ namespace {
 /// The largest derived absolute tolerance: its error weight, 1e-300, still a normal double.
 constexpr double kMaxDerivedAtol = 1e300;
 
-/// How many times the rows' roundoff GGL's μ atol must be (ModelScales::row_noise): the chains
-/// measured ran from about twice it; 16 as for the velocities' roundoff.
+/// How many times the rows' roundoff over T GGL's μ atol must be (ModelScales::row_noise): the
+/// hanging chains measured (docs/schemes.md) needed from 0.25 to some 20 times it; 16, as the
+/// velocities' roundoff floor.
 constexpr double kRowNoiseUlps = 16.0;
 
 }  // namespace
@@ -233,9 +234,9 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   a.multiplier =
       settings.atol_multiplier.value_or(usable(a.displacement * s.mass / (T * T * s.coefficient)));
   // μ's weight is (h/T) / atol_μ, and a step of size h needs μ of row_noise / h to correct the
-  // rows' roundoff: below 16 row_noise / T (16 ulps, as the velocities'), Newton cannot converge
-  // on μ. A 30° hanging chain of 30,000 links (row_noise about 1e-10) failed at t = 9.4e-6 with
-  // atol_μ = atol_v = 1e-10 and ran from 1e-9; 100,000 links failed at 1e-8 and ran at 1e-7.
+  // rows' roundoff: far below row_noise / T Newton cannot converge on μ. A 30° hanging chain of
+  // 30,000 links (row_noise 4.4e-10, T = 0.21) failed at t = 9.4e-6 with atol_μ = atol_v = 1e-10
+  // and ran from 1e-9.
   a.mu_floor = kRowNoiseUlps * s.row_noise / T;
   a.mu = settings.atol_mu.value_or(usable(std::max(a.velocity / s.coefficient, a.mu_floor)));
   a.time_scale = T;

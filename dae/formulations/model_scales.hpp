@@ -31,7 +31,7 @@ struct ModelScales {
   /// rms of (A Aᵀ)⁻¹ δφ, δφ_i = ±eps ℓ a_i the position rows' roundoff (ℓ the rods' longest
   /// length, PointMassSystem::row_length_scale, else 1; a_i a row's largest |A_ij|; signs from a
   /// fixed pseudo-random sequence): the displacement a Newton correction cannot resolve, which A Aᵀ
-  /// amplifies as it grows ill-conditioned (about N^1.5 on a chain of N links). Computed for
+  /// amplifies as it grows ill-conditioned (a chain's, with its number of links). Computed for
   /// systems with curvature (nonlinear rows); 0 otherwise or when A Aᵀ is singular.
   double row_noise = 0.0;
   std::string method;      ///< "constrained eigenvalues" or "diagonal estimate"
