@@ -6,7 +6,7 @@
 
 #include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "dae/linsolve/kkt.hpp"
-#include "models/scene/scene_parser.hpp"
+#include "models/core/source_point.hpp"
 
 namespace condyn {
 

@@ -12,15 +12,6 @@
 
 namespace condyn {
 
-std::string scene_message(const std::string& file, const SourcePoint& where,
-                          const std::string& problem) {
-  std::string msg = file;
-  if (where.line > 0) msg += ":" + std::to_string(where.line);
-  msg += ": ";
-  if (!where.path.empty()) msg += where.path + ": ";
-  return msg + problem;
-}
-
 std::string no_checks_message(const std::string& file) {
   return scene_message(file, {}, "has no [[check]] table: nothing to check");
 }

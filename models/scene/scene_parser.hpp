@@ -2,24 +2,13 @@
 /// Scene file → SceneSpec. Every key is checked: unknown keys, wrong types, non-finite numbers and
 /// out-of-range values are errors that name the file, the line and the key path.
 
-#include <stdexcept>
 #include <string>
 
+#include "models/core/source_point.hpp"
 #include "models/scene/scene_needs.hpp"
 #include "models/scene/scene_spec.hpp"
 
 namespace condyn {
-
-/// A problem with the user's input. what() reads "FILE:LINE: PATH: problem" (LINE omitted when
-/// unknown). Indices in paths are 1-based, as in the scene: load[2] is the second [[load]].
-class SceneError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-/// Formats an input error in the one house style.
-[[nodiscard]] std::string scene_message(const std::string& file, const SourcePoint& where,
-                                        const std::string& problem);
 
 /// "FILE: has no [[check]] table: nothing to check".
 [[nodiscard]] std::string no_checks_message(const std::string& file);

@@ -14,16 +14,11 @@
 #include <vector>
 
 #include "models/core/scheme.hpp"
+#include "models/core/source_point.hpp"
 #include "models/core/time_function.hpp"
 #include "models/core/time_table.hpp"
 
 namespace condyn {
-
-/// Where a value came from, for error messages: "constraint[3].terms.ux9" and line 41.
-struct SourcePoint {
-  std::string path;
-  int line = 0;  ///< 1-based; 0 when unknown
-};
 
 /// A matrix or vector read from a Matrix Market file ({ file = "K.mtx" }): held sparse from the
 /// file on, never dense.
