@@ -14,6 +14,7 @@
 #include <string>
 
 #include "models/core/model.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 

@@ -19,6 +19,7 @@
 #include "dae/linsolve/block_jacobian.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/model.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "models/core/number_cell.hpp"
-#include "models/scene/scene_spec.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 

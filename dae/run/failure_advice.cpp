@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "models/scene/scene_spec.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 

@@ -2,6 +2,8 @@
 // and line; callers that set them in code, such as compare's tolerance sweep and the Python
 // module, get the same rules here) and the output times they ask for.
 
+#include "models/core/solve_spec.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,7 +12,6 @@
 #include <string>
 
 #include "models/core/time_roundoff.hpp"
-#include "models/scene/scene_spec.hpp"
 
 namespace condyn {
 
