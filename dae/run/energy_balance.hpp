@@ -16,6 +16,7 @@
 
 #include "models/core/mechanical_system.hpp"
 #include "models/core/model.hpp"
+#include "models/core/output_quantity.hpp"
 
 namespace condyn {
 
@@ -35,7 +36,7 @@ struct EnergyBalance {
 /// kEnergyColumns as strings (HDF5's energy_columns dataset).
 [[nodiscard]] std::vector<std::string> energy_column_names();
 
-/// Column k of kEnergyColumns (models/scene/scene_spec.hpp) of a balance.
+/// Column k of kEnergyColumns (models/core/output_quantity.hpp) of a balance.
 [[nodiscard]] double energy_column(const EnergyBalance& b, std::size_t k);
 
 /// The balance's integrands and terms, on an evaluator of the model's own.

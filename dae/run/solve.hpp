@@ -10,6 +10,7 @@
 #include "dae/interface/scheme_not_applicable.hpp"
 #include "dae/run/solve_result.hpp"
 #include "models/core/model.hpp"
+#include "models/core/output_quantity.hpp"
 #include "models/core/solve_spec.hpp"
 
 namespace condyn {

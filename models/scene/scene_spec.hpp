@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/core/output_quantity.hpp"
 #include "models/core/scheme.hpp"
 #include "models/core/solve_spec.hpp"
 #include "models/core/source_point.hpp"
@@ -133,23 +134,6 @@ struct InitialSpec {
   [[nodiscard]] bool given() const { return !where.path.empty(); }
 };
 
-enum class Quantity {
-  displacement,
-  velocity,
-  acceleration,
-  absolute_acceleration,  ///< u'' + r a_g(t) under [ground_motion] (columns acc_abs_<dof>)
-  reaction,
-  multiplier,
-  drift,
-  energy
-};
-
-/// The columns of the `energy` quantity, in order (docs/energy.md): T + V, the balance's error,
-/// T, V, the energy dissipated, the work of the loads and of the constraint forces.
-inline constexpr std::array<std::string_view, 7> kEnergyColumns = {
-    "energy",     "energy_error",    "energy_kinetic", "energy_potential", "energy_dissipated",
-    "work_loads", "work_constraints"};
-
 struct OutputSpec {
   std::vector<Quantity> quantities = {Quantity::displacement, Quantity::drift};
   std::vector<int> quantities_lines;  ///< the line of each `quantities` entry (0: not from a file)
@@ -206,7 +190,5 @@ struct SceneSpec {
   /// references), as opened (relative to the scene's folder): outputs must not replace them.
   std::vector<std::string> input_files;
 };
-
-[[nodiscard]] const char* to_string(Quantity q);
 
 }  // namespace condyn
