@@ -135,7 +135,7 @@ ConstraintClass classify_nonlinear(const Model& model, int row, NonlinearProbe& 
   ConstraintClass k;
   k.name = c.name;
   k.linear = false;
-  k.velocity_level = c.level == ConstraintSpec::Level::velocity;
+  k.velocity_level = c.level == ConstraintLevel::velocity;
   // The DOFs the row depends on: those where ∂φ/∂u is not identically zero. A value at u0 may
   // vanish by accident (the knife edge's -sin(theta) at theta = 0), and the stored pattern may
   // hold more than the row uses (small dense blocks keep every entry: Andrews, the car axis). So:
@@ -175,7 +175,7 @@ std::vector<ConstraintClass> classify_constraints(const Model& model, double t_e
     ConstraintClass k;
     k.name = c.name;
     k.single_freedom = c.coefficients.size() == 1;
-    k.velocity_level = c.level == ConstraintSpec::Level::velocity;
+    k.velocity_level = c.level == ConstraintLevel::velocity;
     // A linear velocity constraint with constant coefficients, a·u' = h(t), integrates to
     // a·u = a·u(0) + ∫h (§5.5.3): every velocity constraint a scene can state today is integrable.
     k.integrable = true;

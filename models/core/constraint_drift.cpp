@@ -44,7 +44,7 @@ std::pair<double, double> ConstraintDrift::operator()(double t, const Eigen::Vec
       au += a * u[d];
       av += a * v[d];
     }
-    if (c.level == ConstraintSpec::Level::position) {
+    if (c.level == ConstraintLevel::position) {
       const double phi = std::abs(au - c.value.value(t));
       pos = std::max(pos, phi);
       relative_position_ =

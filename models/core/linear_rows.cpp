@@ -6,7 +6,7 @@ namespace condyn {
 
 LinearRows::LinearRows(std::vector<Constraint> rows) : rows_(std::move(rows)) {
   for (const auto& c : rows_) {
-    position_.push_back(c.level == ConstraintSpec::Level::position);
+    position_.push_back(c.level == ConstraintLevel::position);
     has_rhs_.push_back(!c.value.is_zero());
   }
 }

@@ -11,7 +11,7 @@ LinearSystem::LinearSystem(const Model& model) {
   d->loads = model.loads;
   d->rows = LinearRows(model.constraints);
   for (const auto& c : model.constraints) {
-    d->position.push_back(c.level == ConstraintSpec::Level::position);
+    d->position.push_back(c.level == ConstraintLevel::position);
   }
   d->damped = model.has_damping();
   d->conservative = model.is_conservative();

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/core/constraint_level.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/shared_sparse.hpp"
 #include "models/scene/scene_spec.hpp"
@@ -57,7 +58,7 @@ void add_load_energy(const std::vector<Load>& loads, double t, double steps,
 
 struct Constraint {
   std::string name;
-  ConstraintSpec::Level level = ConstraintSpec::Level::position;
+  ConstraintLevel level = ConstraintLevel::position;
   std::vector<std::pair<int, double>> coefficients;  ///< (dof index, a_i), dof ascending
   TimeFunction value;                                ///< right-hand side as written: g(t) or h(t)
   /// Position-level right-hand side. For a position constraint, `value`. For a velocity

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/core/constraint_level.hpp"
 #include "models/core/output_quantity.hpp"
 #include "models/core/scheme.hpp"
 #include "models/core/solve_spec.hpp"
@@ -91,7 +92,7 @@ struct LoadSpec {
 }
 
 struct ConstraintSpec {
-  enum class Level { position, velocity };
+  using Level = ConstraintLevel;  ///< the Model's name for it (models/core/constraint_level.hpp)
   std::string name;
   std::vector<std::pair<std::string, double>> terms;  ///< in the order written
   std::vector<int> term_lines;                        ///< each term's line

@@ -219,7 +219,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
     }
     const bool integrable_velocity_rows =
         std::any_of(model.constraints.begin(), model.constraints.end(), [](const Constraint& c) {
-          return c.level == ConstraintSpec::Level::velocity && !c.nonholonomic;
+          return c.level == ConstraintLevel::velocity && !c.nonholonomic;
         });
     if (integrable_velocity_rows) {
       out << "  (linear velocity-level constraints are classed by their integrated form a·u = "
