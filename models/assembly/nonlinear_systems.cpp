@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/systems/benchmarks.hpp"
 #include "models/systems/point_mass_system.hpp"
 #include "models/systems/sleigh.hpp"
 

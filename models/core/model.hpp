@@ -15,11 +15,11 @@
 #include <string_view>
 #include <vector>
 
+#include "models/core/benchmark_model.hpp"
 #include "models/core/constraint_level.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/shared_sparse.hpp"
 #include "models/scene/scene_spec.hpp"
-#include "models/systems/benchmarks.hpp"
 
 namespace condyn {
 
