@@ -15,6 +15,7 @@
 
 #include "dae/interface/interrupt.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "models/scene/toml_access.hpp"

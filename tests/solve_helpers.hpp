@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 
 namespace condyn::test {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "models/assembly/build_model.hpp"
 #include "models/core/linear_system.hpp"
 #include "models/core/model.hpp"
 #include "models/core/time_function.hpp"

@@ -19,7 +19,8 @@
 #include "models/core/constraint_level.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/shared_sparse.hpp"
-#include "models/scene/scene_spec.hpp"
+#include "models/core/source_point.hpp"
+#include "models/core/time_function.hpp"
 
 namespace condyn {
 
@@ -146,7 +147,7 @@ struct Model {
 };
 
 /// What building a model found worth telling, kept apart from the model (run prints it to the
-/// terminal, info to its report).
+/// terminal, info to its report; build_model: models/assembly/build_model.hpp).
 struct BuildReport {
   /// What [initial] project = true changed, or what static = true solved (empty when neither).
   std::string initial_projection;
@@ -164,16 +165,5 @@ struct BuildReport {
   /// uy1, u5): 2 in constraints, 1 held by its stiffness ..."); empty when every DOF has mass.
   std::string massless_dofs;
 };
-
-/// Builds and checks the model: DOF names, geometry, matrix properties, constraint rank and
-/// compatibility, initial consistency. Throws SceneError naming file, line and key. `report`
-/// receives what the build found worth telling.
-[[nodiscard]] Model build_model(const SceneSpec& spec, BuildReport& report);
-/// The same, for callers that do not print the report.
-[[nodiscard]] Model build_model(const SceneSpec& spec);
-/// Frees what build_model copied into the Model (the model's description, loads, constraints,
-/// ground motion and initial values; `file`, `name`, `solve`, `output` and `checks` stay), so that
-/// a run holds the model once, not twice (docs/benchmarks.md). For callers done with building.
-void release_model_input(SceneSpec& spec);
 
 }  // namespace condyn

@@ -11,6 +11,7 @@
 
 #include "dae/run/trajectory.hpp"
 #include "models/core/model.hpp"
+#include "models/scene/scene_spec.hpp"
 #include "src/output/hdf5_output.hpp"
 #include "src/output/output_files.hpp"
 #include "src/output/output_format.hpp"

@@ -9,6 +9,7 @@
 
 #include "dae/run/energy_balance.hpp"
 #include "models/core/model.hpp"
+#include "models/scene/scene_spec.hpp"
 
 namespace condyn {
 

@@ -12,6 +12,7 @@
 
 #include "dae/run/trajectory.hpp"
 #include "models/core/model.hpp"
+#include "models/scene/scene_spec.hpp"
 
 namespace condyn {
 

@@ -9,6 +9,7 @@
 
 #include "dae/run/trajectory.hpp"
 #include "models/core/model.hpp"
+#include "models/scene/scene_spec.hpp"
 #include "src/output/hdf5_output.hpp"
 
 namespace condyn {

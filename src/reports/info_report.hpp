@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "models/core/model.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 

@@ -7,6 +7,7 @@
 #include "dae/formulations/reduced_ode.hpp"
 #include "dae/run/elimination.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/scene_text.hpp"

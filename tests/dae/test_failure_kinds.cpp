@@ -15,6 +15,7 @@
 #include "dae/integrators/step_driver.hpp"
 #include "dae/run/failure_advice.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 

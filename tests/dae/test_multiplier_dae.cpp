@@ -11,6 +11,7 @@
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/formulations/penalty_ode.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/linear_system.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"

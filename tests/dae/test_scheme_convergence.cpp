@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dae/run/scheme_memory.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"

@@ -9,6 +9,7 @@
 
 #include "dae/formulations/baumgarte_gains.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/references/accuracy.hpp"

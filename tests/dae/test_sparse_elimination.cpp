@@ -13,6 +13,7 @@
 #include "dae/formulations/constraint_treatment.hpp"
 #include "dae/run/elimination.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/sparse_elimination_scene.hpp"

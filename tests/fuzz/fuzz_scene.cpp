@@ -27,6 +27,7 @@
 #include <exception>
 #include <string>
 
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "models/assembly/build_model.hpp"
 #include "models/assembly/ground_records.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"

@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "models/assembly/build_model.hpp"
 #include "models/core/constraint_drift.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"

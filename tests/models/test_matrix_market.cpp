@@ -8,6 +8,7 @@
 #include <string>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/memory_estimate.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/matrix_market.hpp"

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"

@@ -11,6 +11,7 @@
 
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/classification.hpp"
 #include "models/core/constraint_drift.hpp"
 #include "models/core/model.hpp"

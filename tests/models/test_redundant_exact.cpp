@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/core/zero_sum.hpp"
 #include "models/scene/scene_parser.hpp"

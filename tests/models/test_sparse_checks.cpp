@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "models/assembly/build_model.hpp"
 #include "models/core/memory_estimate.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/assembly/static_equilibrium.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"

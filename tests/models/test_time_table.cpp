@@ -12,6 +12,7 @@
 #include <string>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/core/time_table.hpp"
 #include "models/scene/scene_parser.hpp"

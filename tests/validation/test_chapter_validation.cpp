@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/solve_helpers.hpp"

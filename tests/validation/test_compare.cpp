@@ -12,6 +12,7 @@
 
 #include "dae/formulations/penalty_ode.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "src/reports/compare_output.hpp"

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/studies/drift_growth.hpp"

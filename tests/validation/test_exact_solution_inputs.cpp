@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "validation/references/exact_solution.hpp"

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "dae/run/elimination.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "validation/references/embedded_scenes.hpp"
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "validation/references/accuracy.hpp"
 #include "validation/references/benchmark_suite.hpp"

@@ -9,6 +9,7 @@
 #include "dae/formulations/baumgarte_gains.hpp"
 #include "dae/formulations/penalty_ode.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/toml_access.hpp"
 #include "validation/references/accuracy.hpp"
 #include "validation/references/exact_solution.hpp"

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "validation/references/accuracy.hpp"
 #include "validation/references/exact_solution.hpp"

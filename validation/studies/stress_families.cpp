@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dae/formulations/baumgarte_gains.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "validation/references/embedded_scenes.hpp"

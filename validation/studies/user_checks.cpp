@@ -10,6 +10,7 @@
 
 #include "dae/run/singular_passages.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/core/nearest_names.hpp"
 #include "models/core/number_cell.hpp"
 #include "models/scene/scene_parser.hpp"
