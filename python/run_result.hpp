@@ -7,7 +7,7 @@
 
 #include "dae/run/solve_result.hpp"
 #include "models/core/model.hpp"
-#include "models/scene/scene_spec.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn::python {
 

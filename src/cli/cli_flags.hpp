@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "models/scene/scene_spec.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 

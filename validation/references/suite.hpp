@@ -5,7 +5,7 @@
 
 #include <ostream>
 
-#include "models/scene/scene_spec.hpp"
+#include "models/core/scheme.hpp"
 
 namespace condyn {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "dae/run/trajectory.hpp"
-#include "models/scene/scene_spec.hpp"
+#include "models/core/scheme.hpp"
 
 namespace condyn {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "models/scene/scene_spec.hpp"
+#include "models/core/scheme.hpp"
 
 namespace condyn {
 
