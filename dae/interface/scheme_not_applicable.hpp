@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "models/core/model.hpp"
+#include "models/core/source_point.hpp"
 
 namespace condyn {
 
