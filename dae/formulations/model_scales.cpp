@@ -10,7 +10,6 @@
 
 #include "dae/formulations/largest_frequency.hpp"
 #include "dae/linsolve/kkt.hpp"
-#include "models/systems/point_mass_system.hpp"
 
 namespace condyn {
 
@@ -57,11 +56,10 @@ Eigen::VectorXd diagonal_estimates(const Eigen::SparseMatrix<double>& M,
   return Eigen::Map<const Eigen::VectorXd>(out.data(), static_cast<Eigen::Index>(out.size()));
 }
 
-/// The length the position rows compute with: the rods' of a truss (PointMassSystem), else 1
-/// (angles in radians, a model in metres).
+/// The length the position rows compute with: the rods' of a truss, else 1 (angles in radians, a
+/// model in metres).
 double row_length(const MechanicalSystem& system) {
-  const auto* truss = dynamic_cast<const PointMassSystem*>(&system);
-  const double length = truss != nullptr ? truss->row_length_scale() : 0.0;
+  const double length = system.row_length_scale();
   return length > 0.0 ? length : 1.0;
 }
 

@@ -136,6 +136,10 @@ class MechanicalSystem {
   /// whose roundoff bounds what the displacements can be held to; 0 when the system has none
   /// beyond the displacements (matrix models, angles).
   [[nodiscard]] virtual double coordinate_scale() const { return 0.0; }
+  /// The size of the values the position rows compute with at the start (the longest rod of a
+  /// truss), whose roundoff eps times it is the rows' own (dae/formulations/model_scales.hpp,
+  /// GGL's μ); 0 when the rows compute with the displacements alone.
+  [[nodiscard]] virtual double row_length_scale() const { return 0.0; }
 
  protected:
   MechanicalSystem() = default;

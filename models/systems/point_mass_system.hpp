@@ -76,7 +76,7 @@ class PointMassSystem final : public MechanicalSystem {
   /// The size of the values the rod rows compute at the start, their longest length: a row takes
   /// X_j − X_i + u_j − u_i (the nodes' exact difference) and its length, so its roundoff is eps
   /// times it (dae/formulations/model_scales.hpp, GGL's μ); 0 without rods.
-  [[nodiscard]] double row_length_scale() const;
+  [[nodiscard]] double row_length_scale() const override;
 
  private:
   /// d = x_j + u_j − x_i − u_i for a member (dimension entries).
