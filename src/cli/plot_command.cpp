@@ -2,11 +2,13 @@
 
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "src/cli/cli_flags.hpp"
+#include "src/cli/commands.hpp"
 #include "src/output/output_files.hpp"
 #include "src/output/output_format.hpp"
 #include "src/reports/report_format.hpp"
@@ -118,6 +120,22 @@ int plot_result(const PlotArgs& args) {
       std::cerr << "error: the plotting script failed (exit " << code << ")\n";
       return 1;
   }
+}
+
+Command add_plot_command(CLI::App& app) {
+  auto args = std::make_shared<PlotArgs>();
+  auto* cmd = app.add_subcommand(
+      "plot", "figures of one run's CSV or HDF5: displacements, drift, energy (docs/plots.md)");
+  cmd->add_option("result", args->result, "the CSV or HDF5 file that condyn run wrote")->required();
+  cmd->add_option("--dofs", args->dofs,
+                  "DOFs to draw, names or globs, comma-separated (default: the four with the "
+                  "largest peaks)")
+      ->check(non_empty_check());
+  cmd->add_option("--out-dir", args->out_dir, "folder for the figures (default: beside RESULT)")
+      ->check(non_empty_check());
+  cmd->add_option("--format", args->formats, "comma-separated: png, pdf, svg (default: png,pdf)")
+      ->check(non_empty_check());
+  return {cmd, [args] { return plot_result(*args); }};
 }
 
 }  // namespace condyn
