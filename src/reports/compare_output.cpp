@@ -214,140 +214,128 @@ void write_compare_files(const std::string& dir, const CompareResult& result) {
   write_compare_files(plan, dir, result);
 }
 
-void write_compare_files(OutputPlan& plan, const std::string& dir, const CompareResult& result) {
-  namespace fs = std::filesystem;
-  plan_compare_files(plan, dir, result.options.schemes, result.options.baumgarte_study);
-  plan.check();
-  plan.create_folders();
-  const fs::path base(dir);
-  const auto put = [&](const std::string& path, OutputPlan::Writer writer) {
-    plan.write(plan.add_output(path, kOutDir), std::move(writer));
-  };
+namespace {
 
-  std::vector<ReportFields> rows;
-  for (const auto& r : result.runs) rows.push_back(fields(r));
-  put((base / "runs.csv").string(),
-      [&](std::ostream& out) { write_csv_table(out, fields(RunRecord{}), rows); });
-
-  put((base / "runs.json").string(), [&](std::ostream& out) {
-    out << "{\n  \"scene\": " << json_string(result.scene_name)
-        << ",\n  \"reference\": {\"kind\": " << json_string(result.reference_kind)
-        << ", \"description\": " << json_string(result.reference_description);
-    if (result.reference_kind == "published") {
-      out << ", \"trusted_digits_u\": " << result.trusted_digits_u
-          << ", \"trusted_digits_v\": " << result.trusted_digits_v;
-    }
-    const ErrorScales& sc = result.error_scales;
-    out << ", \"scales\": {\"displacement\": " << full_precision(sc.displacement)
-        << ", \"velocity\": " << full_precision(sc.velocity)
-        << ", \"reaction\": " << full_precision(sc.reaction)
-        << ", \"energy\": " << full_precision(sc.energy)
-        << ", \"source\": " << json_string(result.scale_source) << "}";
-    out << "},\n  \"skipped\": [";
-    for (std::size_t k = 0; k < result.skipped.size(); ++k) {
-      out << (k ? ", " : "") << "{\"scheme\": " << json_string(to_string(result.skipped[k].first))
-          << ", \"reason\": " << json_string(result.skipped[k].second) << "}";
-    }
-    out << "],\n  \"drift_growth\": {";
-    bool first_growth = true;
-    for (const auto& h : result.histories) {
-      const std::string reason = h.ok ? h.growth.reason : "the run failed";
-      out << (first_growth ? "" : ", ") << json_string(to_string(h.scheme))
-          << ": {\"exponent\": " << (h.growth.fit ? full_precision(h.growth.fit->exponent) : "null")
-          << ", \"predicted\": " << json_string(predicted_drift_growth(h.scheme))
-          << ", \"not_fitted_because\": " << (h.growth.fit ? "null" : json_string(reason)) << "}";
-      first_growth = false;
-    }
-    out << "},\n  \"histories\": {";
-    for (std::size_t k = 0; k < result.histories.size(); ++k) {
-      const auto& h = result.histories[k];
-      out << (k ? ", " : "") << json_string(to_string(h.scheme))
-          << ": {\"status\": " << (h.ok ? "\"ok\"" : "\"failed\"")
-          << ", \"t_reached\": " << full_precision(h.t_reached)
-          << ", \"message\": " << json_string(h.message) << "}";
-    }
-    out << "},\n  \"tolerances\": [";
-    for (std::size_t k = 0; k < result.options.tolerances.size(); ++k) {
-      out << (k ? ", " : "") << full_precision(result.options.tolerances[k]);
-    }
-    out << "],\n  \"repeats\": " << result.options.repeats
-        << ",\n  \"drift_rtol\": " << full_precision(result.options.drift_rtol)
-        << ",\n  \"mark_factor\": " << full_precision(result.options.mark_factor)
-        << ",\n  \"runs\": [\n";
-    write_json_records(out, rows, {"scheme", "status", "message"}, "    ");
-    out << "  ]\n}\n";
-  });
-
-  // A failed run's files hold its rows and steps before the failure (runs.json "histories").
+/// runs.json: the reference and its scales, skipped schemes, drift growth, histories, the
+/// options, and the runs (`rows`, runs.csv's fields).
+void write_runs_json(std::ostream& out, const CompareResult& result,
+                     const std::vector<ReportFields>& rows) {
+  out << "{\n  \"scene\": " << json_string(result.scene_name)
+      << ",\n  \"reference\": {\"kind\": " << json_string(result.reference_kind)
+      << ", \"description\": " << json_string(result.reference_description);
+  if (result.reference_kind == "published") {
+    out << ", \"trusted_digits_u\": " << result.trusted_digits_u
+        << ", \"trusted_digits_v\": " << result.trusted_digits_v;
+  }
+  const ErrorScales& sc = result.error_scales;
+  out << ", \"scales\": {\"displacement\": " << full_precision(sc.displacement)
+      << ", \"velocity\": " << full_precision(sc.velocity)
+      << ", \"reaction\": " << full_precision(sc.reaction)
+      << ", \"energy\": " << full_precision(sc.energy)
+      << ", \"source\": " << json_string(result.scale_source) << "}";
+  out << "},\n  \"skipped\": [";
+  for (std::size_t k = 0; k < result.skipped.size(); ++k) {
+    out << (k ? ", " : "") << "{\"scheme\": " << json_string(to_string(result.skipped[k].first))
+        << ", \"reason\": " << json_string(result.skipped[k].second) << "}";
+  }
+  out << "],\n  \"drift_growth\": {";
+  bool first_growth = true;
   for (const auto& h : result.histories) {
-    if (!h.ok && h.trajectory.t.empty()) continue;
-    put((base / drift_file(h.scheme)).string(), [&](std::ostream& out) {
-      out.precision(17);
-      out << "t,drift_position,drift_velocity\n";
-      for (const auto& s : h.trajectory.steps) {
-        out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
-      }
-    });
-    put((base / history_file(h.scheme)).string(), [&](std::ostream& out) {
-      out.precision(17);
-      const auto& tr = h.trajectory;
-      out << "t";
-      for (const auto& name : result.constraint_names) out << ",lambda_" << name;
-      for (const auto& [name, index] : result.constrained_dofs) out << ",reaction_" << name;
-      out << "\n";
-      for (std::size_t k = 0; k < tr.t.size(); ++k) {
-        const auto col = static_cast<Eigen::Index>(k);
-        out << tr.t[k];
-        for (Eigen::Index i = 0; i < tr.multiplier.rows(); ++i) out << "," << tr.multiplier(i, col);
-        for (const auto& [name, index] : result.constrained_dofs) {
-          out << "," << tr.reaction(index, col);
-        }
-        out << "\n";
-      }
-    });
+    const std::string reason = h.ok ? h.growth.reason : "the run failed";
+    out << (first_growth ? "" : ", ") << json_string(to_string(h.scheme))
+        << ": {\"exponent\": " << (h.growth.fit ? full_precision(h.growth.fit->exponent) : "null")
+        << ", \"predicted\": " << json_string(predicted_drift_growth(h.scheme))
+        << ", \"not_fitted_because\": " << (h.growth.fit ? "null" : json_string(reason)) << "}";
+    first_growth = false;
   }
-
-  if (!result.reference_t.empty()) {
-    put((base / "history_reference.csv").string(), [&](std::ostream& out) {
-      out.precision(17);
-      out << "t";
-      for (const auto& name : result.constraint_names) out << ",lambda_" << name;
-      out << "\n";
-      const Eigen::MatrixXd& lambda = result.reference_multiplier;
-      for (std::size_t k = 0; k < result.reference_t.size(); ++k) {
-        out << result.reference_t[k];
-        for (Eigen::Index i = 0; i < lambda.rows(); ++i) {
-          out << "," << lambda(i, static_cast<Eigen::Index>(k));
-        }
-        out << "\n";
-      }
-    });
+  out << "},\n  \"histories\": {";
+  for (std::size_t k = 0; k < result.histories.size(); ++k) {
+    const auto& h = result.histories[k];
+    out << (k ? ", " : "") << json_string(to_string(h.scheme))
+        << ": {\"status\": " << (h.ok ? "\"ok\"" : "\"failed\"")
+        << ", \"t_reached\": " << full_precision(h.t_reached)
+        << ", \"message\": " << json_string(h.message) << "}";
   }
+  out << "},\n  \"tolerances\": [";
+  for (std::size_t k = 0; k < result.options.tolerances.size(); ++k) {
+    out << (k ? ", " : "") << full_precision(result.options.tolerances[k]);
+  }
+  out << "],\n  \"repeats\": " << result.options.repeats
+      << ",\n  \"drift_rtol\": " << full_precision(result.options.drift_rtol)
+      << ",\n  \"mark_factor\": " << full_precision(result.options.mark_factor)
+      << ",\n  \"runs\": [\n";
+  write_json_records(out, rows, {"scheme", "status", "message"}, "    ");
+  out << "  ]\n}\n";
+}
 
-  if (result.options.baumgarte_study)
-    put((base / "baumgarte_study.csv").string(), [&](std::ostream& out) {
-      out.precision(17);
-      out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s,"
-             "error_u\n";
-      for (const auto& p : result.baumgarte_study) {
-        out << p.alpha << "," << p.beta << "," << (p.is_default ? 1 : 0) << ","
-            << (p.ok ? "ok" : "failed") << ",";
-        if (p.ok) {
-          out << p.max_drift_position << "," << p.max_drift_velocity << "," << p.steps << ","
-              << p.wall << ",";
-          if (std::isfinite(p.error_u)) out << p.error_u;
-        } else {
-          out << ",,,,";
-        }
-        out << "\n";
-      }
-    });
+/// drift_<scheme>.csv: the drift at every internal step of a history run.
+void write_drift_csv(std::ostream& out, const SchemeHistory& h) {
+  out.precision(17);
+  out << "t,drift_position,drift_velocity\n";
+  for (const auto& s : h.trajectory.steps) {
+    out << s.t << "," << s.drift_position << "," << s.drift_velocity << "\n";
+  }
+}
 
-  put((base / "summary.txt").string(),
-      [&](std::ostream& out) { print_compare_table(out, result); });
-  plan.commit_all();
-  // The folder describes this comparison only: a study an earlier run left there would be drawn
-  // beside runs it does not belong to.
+/// history_<scheme>.csv: a history run's multipliers and constrained DOFs' reactions at its rows.
+void write_history_csv(std::ostream& out, const CompareResult& result, const SchemeHistory& h) {
+  out.precision(17);
+  const auto& tr = h.trajectory;
+  out << "t";
+  for (const auto& name : result.constraint_names) out << ",lambda_" << name;
+  for (const auto& [name, index] : result.constrained_dofs) out << ",reaction_" << name;
+  out << "\n";
+  for (std::size_t k = 0; k < tr.t.size(); ++k) {
+    const auto col = static_cast<Eigen::Index>(k);
+    out << tr.t[k];
+    for (Eigen::Index i = 0; i < tr.multiplier.rows(); ++i) out << "," << tr.multiplier(i, col);
+    for (const auto& [name, index] : result.constrained_dofs) {
+      out << "," << tr.reaction(index, col);
+    }
+    out << "\n";
+  }
+}
+
+/// history_reference.csv: the reference's multipliers at its times.
+void write_reference_history_csv(std::ostream& out, const CompareResult& result) {
+  out.precision(17);
+  out << "t";
+  for (const auto& name : result.constraint_names) out << ",lambda_" << name;
+  out << "\n";
+  const Eigen::MatrixXd& lambda = result.reference_multiplier;
+  for (std::size_t k = 0; k < result.reference_t.size(); ++k) {
+    out << result.reference_t[k];
+    for (Eigen::Index i = 0; i < lambda.rows(); ++i) {
+      out << "," << lambda(i, static_cast<Eigen::Index>(k));
+    }
+    out << "\n";
+  }
+}
+
+/// baumgarte_study.csv: one row per pair of gains.
+void write_baumgarte_csv(std::ostream& out, const CompareResult& result) {
+  out.precision(17);
+  out << "alpha,beta,default,status,max_drift_position,max_drift_velocity,steps,wall_s,"
+         "error_u\n";
+  for (const auto& p : result.baumgarte_study) {
+    out << p.alpha << "," << p.beta << "," << (p.is_default ? 1 : 0) << ","
+        << (p.ok ? "ok" : "failed") << ",";
+    if (p.ok) {
+      out << p.max_drift_position << "," << p.max_drift_velocity << "," << p.steps << "," << p.wall
+          << ",";
+      if (std::isfinite(p.error_u)) out << p.error_u;
+    } else {
+      out << ",,,,";
+    }
+    out << "\n";
+  }
+}
+
+/// Removes from the folder `base` what an earlier comparison left there and this one did not
+/// write: the folder describes this comparison only.
+void remove_stale_files(OutputPlan& plan, const std::filesystem::path& base,
+                        const CompareResult& result) {
+  // A study an earlier run left there would be drawn beside runs it does not belong to.
   if (!result.options.baumgarte_study) plan.remove_stale(base / "baumgarte_study.csv");
   // Figures are drawn after this from these files (validation/plot_compare.py), or not at all
   // (--no-plots): one an earlier comparison drew would show its schemes and tolerances.
@@ -368,6 +356,46 @@ void write_compare_files(OutputPlan& plan, const std::string& dir, const Compare
     plan.remove_stale(base / drift_file(s));
     plan.remove_stale(base / history_file(s));
   }
+}
+
+}  // namespace
+
+void write_compare_files(OutputPlan& plan, const std::string& dir, const CompareResult& result) {
+  namespace fs = std::filesystem;
+  plan_compare_files(plan, dir, result.options.schemes, result.options.baumgarte_study);
+  plan.check();
+  plan.create_folders();
+  const fs::path base(dir);
+  const auto put = [&](const std::string& path, OutputPlan::Writer writer) {
+    plan.write(plan.add_output(path, kOutDir), std::move(writer));
+  };
+
+  std::vector<ReportFields> rows;
+  for (const auto& r : result.runs) rows.push_back(fields(r));
+  put((base / "runs.csv").string(),
+      [&](std::ostream& out) { write_csv_table(out, fields(RunRecord{}), rows); });
+  put((base / "runs.json").string(),
+      [&](std::ostream& out) { write_runs_json(out, result, rows); });
+  // A failed run's files hold its rows and steps before the failure (runs.json "histories").
+  for (const auto& h : result.histories) {
+    if (!h.ok && h.trajectory.t.empty()) continue;
+    put((base / drift_file(h.scheme)).string(),
+        [&](std::ostream& out) { write_drift_csv(out, h); });
+    put((base / history_file(h.scheme)).string(),
+        [&](std::ostream& out) { write_history_csv(out, result, h); });
+  }
+  if (!result.reference_t.empty()) {
+    put((base / "history_reference.csv").string(),
+        [&](std::ostream& out) { write_reference_history_csv(out, result); });
+  }
+  if (result.options.baumgarte_study) {
+    put((base / "baumgarte_study.csv").string(),
+        [&](std::ostream& out) { write_baumgarte_csv(out, result); });
+  }
+  put((base / "summary.txt").string(),
+      [&](std::ostream& out) { print_compare_table(out, result); });
+  plan.commit_all();
+  remove_stale_files(plan, base, result);
 }
 
 std::string draw_compare_plots(const std::string& dir) {
