@@ -148,10 +148,8 @@ void print_memory(std::ostream& out, const std::optional<MemoryEstimate>& select
                       (available ? ", " + format_bytes(*available) + " available" : std::string()));
 }
 
-}  // namespace
-
-void print_info(std::ostream& out, const Model& model, const BuildReport& report,
-                const SolveSpec& settings, bool every_constraint) {
+/// The scene, its description, and what building the model noted and warned of.
+void print_build_notes(std::ostream& out, const Model& model, const BuildReport& report) {
   out << wrapped_text("scene: ", model.file + (model.name.empty() ? "" : " (" + model.name + ")"));
   if (!model.description.empty()) out << wrapped_text("model: ", model.description);
   // One line per DOF the projection moved: printed as it is.
@@ -163,69 +161,160 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   if (!report.damping.empty()) out << wrapped_text("damping: ", report.damping);
   if (!report.massless_dofs.empty()) out << wrapped_text("massless DOFs: ", report.massless_dofs);
   for (const auto& r : report.ground_records) out << wrapped_text("ground motion record: ", r);
-  out << "\n";
+}
+
+/// The table of constraint classes: every row, or above kMaxListedConstraints (unless
+/// `every_constraint`) the first kShortenedConstraints and a count per class.
+void print_constraints(std::ostream& out, const Model& model, const SolveSpec& settings,
+                       bool every_constraint) {
   const auto classes = classify_constraints(model, settings.t_end);
   if (classes.empty()) {
     out << "constraints: none (the model is unconstrained)\n";
-  } else {
-    out << "constraints (classes of the chapter's Tables 5.1-5.2):\n";
-    // A large model's table is its first rows and a count per class, unless every row is asked.
-    const bool shortened = !every_constraint && classes.size() > kMaxListedConstraints;
-    const std::size_t listed = shortened ? kShortenedConstraints : classes.size();
-    int width = 6;
-    for (std::size_t i = 0; i < listed; ++i) {
-      width = std::max(width, static_cast<int>(classes[i].name.size()) + 2);
-    }
-    // The kind column as wide as its longest entry ("pseudo-nonholonomic (integrable)" is 32).
-    int kind_width = 6;
-    for (const auto& c : classes) {
-      kind_width = std::max(kind_width, static_cast<int>(c.holonomy().size()) + 2);
-    }
-    const auto class_columns = [kind_width](std::ostream& o, const ConstraintClass& c) {
-      o << std::setw(5) << (c.single_freedom ? "SFC" : "MFC") << std::setw(kind_width)
-        << c.holonomy() << std::setw(12) << (c.rheonomic ? "rheonomic" : "scleronomic")
-        << std::setw(16) << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
-        << (c.linear ? "linear" : "nonlinear");
-    };
-    out << "  " << std::left << std::setw(width) << "name" << std::setw(5) << ""
-        << std::setw(kind_width) << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs"
-        << std::setw(11) << "form"
-        << "DOFs\n";
-    for (std::size_t i = 0; i < listed; ++i) {
-      const ConstraintClass& c = classes[i];
-      std::ostringstream row;
-      row << "  " << std::left << std::setw(width) << c.name;
-      class_columns(row, c);
-      out << wrapped_text(row.str(), short_list(c.dofs));
-      if (!c.note.empty()) {
-        out << wrapped_text(std::string(static_cast<std::size_t>(width) + 4, ' '), c.note);
-      }
-    }
-    if (shortened) {
-      out << "  ... and " << classes.size() - listed << " more (" << classes.size()
-          << " in all; info --all-constraints lists every one); count per class:\n";
-      std::map<std::string, std::size_t> count;
-      for (const auto& c : classes) {
-        std::ostringstream key;
-        key << std::left;
-        class_columns(key, c);
-        std::string text = key.str();
-        text.erase(text.find_last_not_of(' ') + 1);
-        ++count[text];
-      }
-      for (const auto& [key, number] : count) {
-        out << "  " << std::left << std::setw(width) << number << key << "\n";
-      }
-    }
-    const bool integrable_velocity_rows =
-        std::any_of(model.constraints.begin(), model.constraints.end(), [](const Constraint& c) {
-          return c.level == ConstraintLevel::velocity && !c.nonholonomic;
-        });
-    if (integrable_velocity_rows) {
-      out << "  (linear velocity-level constraints are classed by their integrated form a·u = "
-             "a·u(0) + ∫h)\n";
+    return;
+  }
+  out << "constraints (classes of the chapter's Tables 5.1-5.2):\n";
+  // A large model's table is its first rows and a count per class, unless every row is asked.
+  const bool shortened = !every_constraint && classes.size() > kMaxListedConstraints;
+  const std::size_t listed = shortened ? kShortenedConstraints : classes.size();
+  int width = 6;
+  for (std::size_t i = 0; i < listed; ++i) {
+    width = std::max(width, static_cast<int>(classes[i].name.size()) + 2);
+  }
+  // The kind column as wide as its longest entry ("pseudo-nonholonomic (integrable)" is 32).
+  int kind_width = 6;
+  for (const auto& c : classes) {
+    kind_width = std::max(kind_width, static_cast<int>(c.holonomy().size()) + 2);
+  }
+  const auto class_columns = [kind_width](std::ostream& o, const ConstraintClass& c) {
+    o << std::setw(5) << (c.single_freedom ? "SFC" : "MFC") << std::setw(kind_width) << c.holonomy()
+      << std::setw(12) << (c.rheonomic ? "rheonomic" : "scleronomic") << std::setw(16)
+      << (c.homogeneous ? "homogeneous" : "nonhomogeneous") << std::setw(11)
+      << (c.linear ? "linear" : "nonlinear");
+  };
+  out << "  " << std::left << std::setw(width) << "name" << std::setw(5) << ""
+      << std::setw(kind_width) << "kind" << std::setw(12) << "time" << std::setw(16) << "rhs"
+      << std::setw(11) << "form"
+      << "DOFs\n";
+  for (std::size_t i = 0; i < listed; ++i) {
+    const ConstraintClass& c = classes[i];
+    std::ostringstream row;
+    row << "  " << std::left << std::setw(width) << c.name;
+    class_columns(row, c);
+    out << wrapped_text(row.str(), short_list(c.dofs));
+    if (!c.note.empty()) {
+      out << wrapped_text(std::string(static_cast<std::size_t>(width) + 4, ' '), c.note);
     }
   }
+  if (shortened) {
+    out << "  ... and " << classes.size() - listed << " more (" << classes.size()
+        << " in all; info --all-constraints lists every one); count per class:\n";
+    std::map<std::string, std::size_t> count;
+    for (const auto& c : classes) {
+      std::ostringstream key;
+      key << std::left;
+      class_columns(key, c);
+      std::string text = key.str();
+      text.erase(text.find_last_not_of(' ') + 1);
+      ++count[text];
+    }
+    for (const auto& [key, number] : count) {
+      out << "  " << std::left << std::setw(width) << number << key << "\n";
+    }
+  }
+  const bool integrable_velocity_rows =
+      std::any_of(model.constraints.begin(), model.constraints.end(), [](const Constraint& c) {
+        return c.level == ConstraintLevel::velocity && !c.nonholonomic;
+      });
+  if (integrable_velocity_rows) {
+    out << "  (linear velocity-level constraints are classed by their integrated form a·u = "
+           "a·u(0) + ∫h)\n";
+  }
+}
+
+/// Elimination sized once, before the choice is printed: auto falls back to GGL when the
+/// reduction cannot be integrated (dae/run/solve.cpp), and says so here as run does.
+struct EliminationSizing {
+  std::optional<SystemSize> size;
+  std::string refused;
+  bool inapplicable = false;  // SchemeNotApplicable: what auto falls back on
+};
+
+EliminationSizing size_elimination(const Model& model, const SolveSpec& settings,
+                                   SystemSizer& sizer) {
+  EliminationSizing elimination;
+  SolveSpec as_elimination = settings;
+  as_elimination.scheme = Scheme::elimination;
+  as_elimination.treatment = SolveSpec::Treatment::multipliers;
+  try {
+    if (!scheme_refusal(model, Scheme::elimination)) elimination.size = sizer(as_elimination);
+  } catch (const SchemeNotApplicable& e) {
+    elimination.refused = e.what();
+    elimination.inapplicable = true;
+  } catch (const std::exception& e) {
+    elimination.refused = e.what();
+  }
+  return elimination;
+}
+
+/// The table of the system each scheme integrates (unknowns, Jacobian nonzeros, memory), the
+/// chosen one marked; returns the chosen one's memory estimate, when it could be sized.
+std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model& model,
+                                                 const SolveSpec& settings, SystemSizer& sizer,
+                                                 const SchemeChoice& choice, bool chose_mixed,
+                                                 const EliminationSizing& elimination) {
+  out << "\nsystem each scheme integrates:\n";
+  out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
+      << std::setw(19) << "Jacobian nonzeros"
+      << "memory\n";
+  SchemeMemory scheme_memory(model);
+  std::optional<MemoryEstimate> selected;
+  // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
+  for (Scheme s : kSchemes) {
+    for (const bool mixed : {false, true}) {
+      if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
+      std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
+      name.resize(std::max<std::size_t>(name.size(), 17), ' ');
+      out << "  " << name;
+      const char* marker = s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "";
+      try {
+        SolveSpec as_scheme = settings;
+        as_scheme.scheme = s;
+        as_scheme.treatment =
+            mixed ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
+        if (s == Scheme::elimination && !elimination.refused.empty()) {
+          throw std::invalid_argument(elimination.refused);
+        }
+        const SystemSize size =
+            s == Scheme::elimination && elimination.size ? *elimination.size : sizer(as_scheme);
+        const MemoryEstimate estimate = scheme_memory(size);
+        if (*marker != '\0') selected = estimate;
+        out << std::setw(10) << size.unknowns << std::setw(19) << size.jacobian_nonzeros
+            << format_bytes(estimate.bytes) << marker << "\n";
+      } catch (const std::exception& e) {
+        // Out of memory while building it says nothing of the scheme's applicability.
+        const bool memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
+        // Continuation lines indented under the reason; the marker ends the first line.
+        std::string wrapped =
+            wrapped_text("  " + name + (memory ? "not sized: " : "not applicable: "),
+                         memory ? "out of memory while building its system (the run would need "
+                                  "more than this process may have)"
+                                : e.what())
+                .substr(2 + name.size());
+        wrapped.insert(wrapped.find('\n'), marker);
+        out << wrapped;
+      }
+    }
+  }
+  return selected;
+}
+
+}  // namespace
+
+void print_info(std::ostream& out, const Model& model, const BuildReport& report,
+                const SolveSpec& settings, bool every_constraint) {
+  print_build_notes(out, model, report);
+  out << "\n";
+  print_constraints(out, model, settings, every_constraint);
   const int n = model.dofs(), m = model.constraint_count();
   std::ostringstream model_size;
   model_size << (model.is_nonlinear() ? "nonlinear (matrices: linearization at t = 0), " : "") << n
@@ -236,28 +325,11 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   print_loads(out, model);
   SchemeChoice choice = choose_scheme(model, settings);
   SystemSizer sizer(model);
-  // Elimination sized once, before the choice is printed: auto falls back to GGL when the
-  // reduction cannot be integrated (dae/run/solve.cpp), and says so here as run does.
-  std::optional<SystemSize> elimination_size;
-  std::string elimination_refused;
-  bool elimination_inapplicable = false;  // SchemeNotApplicable: what auto falls back on
-  {
-    SolveSpec as_elimination = settings;
-    as_elimination.scheme = Scheme::elimination;
-    as_elimination.treatment = SolveSpec::Treatment::multipliers;
-    try {
-      if (!scheme_refusal(model, Scheme::elimination)) elimination_size = sizer(as_elimination);
-    } catch (const SchemeNotApplicable& e) {
-      elimination_refused = e.what();
-      elimination_inapplicable = true;
-    } catch (const std::exception& e) {
-      elimination_refused = e.what();
-    }
-  }
+  const EliminationSizing elimination = size_elimination(model, settings, sizer);
   const bool fell_back = settings.scheme == Scheme::automatic &&
-                         choice.scheme == Scheme::elimination && elimination_inapplicable;
+                         choice.scheme == Scheme::elimination && elimination.inapplicable;
   if (fell_back) {
-    choice = {Scheme::ggl, "auto: elimination refused (" + elimination_refused + "), GGL instead"};
+    choice = {Scheme::ggl, "auto: elimination refused (" + elimination.refused + "), GGL instead"};
   }
   const auto refusal = scheme_refusal(model, choice.scheme);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
@@ -281,50 +353,8 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   std::ostringstream rtol;
   rtol << "rtol " << settings.rtol << "; ";
   out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model, settings).rule);
-  out << "\nsystem each scheme integrates:\n";
-  out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
-      << std::setw(19) << "Jacobian nonzeros"
-      << "memory\n";
-  SchemeMemory scheme_memory(model);
-  std::optional<MemoryEstimate> selected;
-  // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
-  for (Scheme s : kSchemes) {
-    for (const bool mixed : {false, true}) {
-      if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
-      std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
-      name.resize(std::max<std::size_t>(name.size(), 17), ' ');
-      out << "  " << name;
-      const char* marker = s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "";
-      try {
-        SolveSpec as_scheme = settings;
-        as_scheme.scheme = s;
-        as_scheme.treatment =
-            mixed ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
-        if (s == Scheme::elimination && !elimination_refused.empty()) {
-          throw std::invalid_argument(elimination_refused);
-        }
-        const SystemSize size =
-            s == Scheme::elimination && elimination_size ? *elimination_size : sizer(as_scheme);
-        const MemoryEstimate estimate = scheme_memory(size);
-        if (*marker != '\0') selected = estimate;
-        out << std::setw(10) << size.unknowns << std::setw(19) << size.jacobian_nonzeros
-            << format_bytes(estimate.bytes) << marker << "\n";
-      } catch (const std::exception& e) {
-        // Out of memory while building it says nothing of the scheme's applicability.
-        const bool memory = dynamic_cast<const std::bad_alloc*>(&e) != nullptr;
-        // Continuation lines indented under the reason; the marker ends the first line.
-        std::string wrapped =
-            wrapped_text("  " + name + (memory ? "not sized: " : "not applicable: "),
-                         memory ? "out of memory while building its system (the run would need "
-                                  "more than this process may have)"
-                                : e.what())
-                .substr(2 + name.size());
-        wrapped.insert(wrapped.find('\n'), marker);
-        out << wrapped;
-      }
-    }
-  }
-  print_memory(out, selected);
+  print_memory(out,
+               print_scheme_table(out, model, settings, sizer, choice, chose_mixed, elimination));
 }
 
 }  // namespace condyn
