@@ -121,100 +121,92 @@ std::vector<MatrixComparison> compare_case(const PrintedCase& pc, const CaseMode
   return out;
 }
 
-}  // namespace
-
-ChapterReport chapter_report() {
-  ChapterReport report;
-  const auto& printed = chapter_printed();
-  for (const auto& pc : printed) {
-    ChapterCaseReport cr{pc.scene, pc.section, {}, {}};
-    const CaseModel cm = case_model(pc.scene);
-    const Model& model = cm.model;
-    cr.comparisons = compare_case(pc, cm, false);
-    for (const auto& c : cr.comparisons) {
-      if (c.differing.empty()) continue;
-      std::string d = c.printed.what + ":";
-      for (const auto& [i, j] : c.differing) {
-        if (i < 0) {
-          d += " shape differs";
-          continue;
-        }
-        d += " entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") printed " +
-             num(printed_at(c.printed, i, j)) + ", assembled " + num(c.computed(i, j)) + ";";
+/// The printed entries that differ from the assembled ones, one erratum per matrix.
+void entry_errata(const std::vector<MatrixComparison>& comparisons, ChapterReport& report) {
+  for (const auto& c : comparisons) {
+    if (c.differing.empty()) continue;
+    std::string d = c.printed.what + ":";
+    for (const auto& [i, j] : c.differing) {
+      if (i < 0) {
+        d += " shape differs";
+        continue;
       }
-      report.errata.push_back({c.printed.equation, d});
+      d += " entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") printed " +
+           num(printed_at(c.printed, i, j)) + ", assembled " + num(c.computed(i, j)) + ";";
     }
-
-    if (pc.scene == "chapter_5_5_3") {
-      // Eq. 5.14: the velocity constraints integrated with zero initial values.
-      const auto& eq = chapter_eq_5_14();
-      for (std::size_t k = 0; k < eq.size() && k < model.constraints.size(); ++k) {
-        const auto& c = model.constraints[k];
-        const std::string dof =
-            model.dof_names[static_cast<std::size_t>(c.coefficients.front().first)];
-        TimeTerm poly;
-        poly.coefficients = eq[k].coefficients;
-        double worst = 0.0;
-        for (double t : {0.5, 1.0, 2.0, 3.0}) {
-          worst = std::max(worst, std::abs(poly.value(t) - c.position_value.value(t)));
-        }
-        std::string note = "5.14: " + dof + "(t) = " + c.position_value.describe() + "; printed '" +
-                           eq[k].dof + " = " + poly.describe() + "'";
-        if (worst > kPrintedTolerance) note += " [function differs by " + num(worst) + "]";
-        if (eq[k].dof != dof) {
-          note += " [label differs]";
-          std::string d = "printed '" + eq[k].dof + " = " + poly.describe();
-          d += "', but integrating the constraint on " + dof + " gives " + dof + " = ";
-          d += c.position_value.describe();
-          report.errata.push_back({"5.14", d});
-        }
-        cr.notes.push_back(note);
-      }
-    }
-    if (pc.scene == "chapter_5_6_1") {
-      // §5.6.1 says "The transformed stiffness matrix M̂ has rank 2 and nullity 1".
-      const ReducedSystem r = reduce(model, cm.slaves);
-      const auto rank = [](const Eigen::SparseMatrix<double>& s) {
-        Eigen::FullPivLU<Eigen::MatrixXd> lu{Eigen::MatrixXd(s)};
-        lu.setThreshold(1e-10);
-        return static_cast<int>(lu.rank());
-      };
-      const int rm = rank(r.M), rk = rank(r.K);
-      cr.notes.push_back("§5.6.1 text: rank M̂ = " + std::to_string(rm) + ", rank K̂ = " +
-                         std::to_string(rk) + " (printed: \"M̂ has rank 2 and nullity 1\")");
-      if (rm != 2 && rk == 2) {
-        report.errata.push_back(
-            {"§5.6.1 text",
-             "says M̂ has rank 2 and nullity 1; assembled rank M̂ = " + std::to_string(rm) +
-                 ", rank K̂ = " + std::to_string(rk) + ": the claim holds for K̂"});
-      }
-    }
-    if (pc.scene == "chapter_5_6_2") {
-      // Eq. 5.26 as printed, Tᵀ(f − Kg), has no g'' term; 5.28 prints g'' coefficients.
-      const ReducedSystem r = reduce(model, cm.slaves);
-      for (const auto& p : pc.matrices) {
-        if (p.quantity != ChapterQuantity::reduced_transfer_gdd) continue;
-        const Eigen::MatrixXd formula_5_26 = Eigen::MatrixXd::Zero(r.FM.rows(), r.FM.cols());
-        const bool printed_matches_5_26 = compare(p, formula_5_26).differing.empty();
-        const bool printed_matches_full = compare(p, Eigen::MatrixXd(r.FM)).differing.empty();
-        cr.notes.push_back(
-            std::string("5.26 vs 5.28: printed 5.28 g'' coefficients ") +
-            (printed_matches_full ? "match" : "do not match") + " Tᵀ(f − Kg − M g''), and " +
-            (printed_matches_5_26 ? "match" : "do not match") + " 5.26's Tᵀ(f − Kg)");
-        if (printed_matches_full && !printed_matches_5_26) {
-          report.errata.push_back(
-              {"5.26",
-               "prints Tᵀ(f − Kg); the reduced force is Tᵀ(f − Kg − M g''), as 5.28's own "
-               "g'' terms show"});
-        }
-      }
-    }
-    report.cases.push_back(std::move(cr));
+    report.errata.push_back({c.printed.equation, d});
   }
+}
 
-  // Masses: each section's mass-dependent printed matrices, evaluated with the other section's
-  // masses. If both sections agree with their own masses and disagree with the other's, no single
-  // M satisfies the chapter.
+/// Eq. 5.14 (§5.5.3): the velocity constraints integrated with zero initial values.
+void check_eq_5_14(const Model& model, ChapterCaseReport& cr, ChapterReport& report) {
+  const auto& eq = chapter_eq_5_14();
+  for (std::size_t k = 0; k < eq.size() && k < model.constraints.size(); ++k) {
+    const auto& c = model.constraints[k];
+    const std::string dof = model.dof_names[static_cast<std::size_t>(c.coefficients.front().first)];
+    TimeTerm poly;
+    poly.coefficients = eq[k].coefficients;
+    double worst = 0.0;
+    for (double t : {0.5, 1.0, 2.0, 3.0}) {
+      worst = std::max(worst, std::abs(poly.value(t) - c.position_value.value(t)));
+    }
+    std::string note = "5.14: " + dof + "(t) = " + c.position_value.describe() + "; printed '" +
+                       eq[k].dof + " = " + poly.describe() + "'";
+    if (worst > kPrintedTolerance) note += " [function differs by " + num(worst) + "]";
+    if (eq[k].dof != dof) {
+      note += " [label differs]";
+      std::string d = "printed '" + eq[k].dof + " = " + poly.describe();
+      d += "', but integrating the constraint on " + dof + " gives " + dof + " = ";
+      d += c.position_value.describe();
+      report.errata.push_back({"5.14", d});
+    }
+    cr.notes.push_back(note);
+  }
+}
+
+/// §5.6.1 says "The transformed stiffness matrix M̂ has rank 2 and nullity 1".
+void check_rank_claim_5_6_1(const CaseModel& cm, ChapterCaseReport& cr, ChapterReport& report) {
+  const ReducedSystem r = reduce(cm.model, cm.slaves);
+  const auto rank = [](const Eigen::SparseMatrix<double>& s) {
+    Eigen::FullPivLU<Eigen::MatrixXd> lu{Eigen::MatrixXd(s)};
+    lu.setThreshold(1e-10);
+    return static_cast<int>(lu.rank());
+  };
+  const int rm = rank(r.M), rk = rank(r.K);
+  cr.notes.push_back("§5.6.1 text: rank M̂ = " + std::to_string(rm) + ", rank K̂ = " +
+                     std::to_string(rk) + " (printed: \"M̂ has rank 2 and nullity 1\")");
+  if (rm != 2 && rk == 2) {
+    report.errata.push_back({"§5.6.1 text", "says M̂ has rank 2 and nullity 1; assembled rank M̂ = " +
+                                                std::to_string(rm) + ", rank K̂ = " +
+                                                std::to_string(rk) + ": the claim holds for K̂"});
+  }
+}
+
+/// Eq. 5.26 as printed, Tᵀ(f − Kg), has no g'' term; 5.28 prints g'' coefficients (§5.6.2).
+void check_eq_5_26(const PrintedCase& pc, const CaseModel& cm, ChapterCaseReport& cr,
+                   ChapterReport& report) {
+  const ReducedSystem r = reduce(cm.model, cm.slaves);
+  for (const auto& p : pc.matrices) {
+    if (p.quantity != ChapterQuantity::reduced_transfer_gdd) continue;
+    const Eigen::MatrixXd formula_5_26 = Eigen::MatrixXd::Zero(r.FM.rows(), r.FM.cols());
+    const bool printed_matches_5_26 = compare(p, formula_5_26).differing.empty();
+    const bool printed_matches_full = compare(p, Eigen::MatrixXd(r.FM)).differing.empty();
+    cr.notes.push_back(std::string("5.26 vs 5.28: printed 5.28 g'' coefficients ") +
+                       (printed_matches_full ? "match" : "do not match") +
+                       " Tᵀ(f − Kg − M g''), and " +
+                       (printed_matches_5_26 ? "match" : "do not match") + " 5.26's Tᵀ(f − Kg)");
+    if (printed_matches_full && !printed_matches_5_26) {
+      report.errata.push_back({"5.26",
+                               "prints Tᵀ(f − Kg); the reduced force is Tᵀ(f − Kg − M g''), as "
+                               "5.28's own g'' terms show"});
+    }
+  }
+}
+
+/// Masses: each section's mass-dependent printed matrices, evaluated with the other section's
+/// masses. If both sections agree with their own masses and disagree with the other's, no single
+/// M satisfies the chapter.
+void check_masses(const std::vector<PrintedCase>& printed, ChapterReport& report) {
   auto masses_of = [](const std::string& scene) {
     return parse_scene_text(embedded_scene(scene).text, scene).model.masses;
   };
@@ -238,6 +230,24 @@ ChapterReport chapter_report() {
                        "; neither set reproduces the other "
                        "section's printed mass terms"});
   }
+}
+
+}  // namespace
+
+ChapterReport chapter_report() {
+  ChapterReport report;
+  const auto& printed = chapter_printed();
+  for (const auto& pc : printed) {
+    ChapterCaseReport cr{pc.scene, pc.section, {}, {}};
+    const CaseModel cm = case_model(pc.scene);
+    cr.comparisons = compare_case(pc, cm, false);
+    entry_errata(cr.comparisons, report);
+    if (pc.scene == "chapter_5_5_3") check_eq_5_14(cm.model, cr, report);
+    if (pc.scene == "chapter_5_6_1") check_rank_claim_5_6_1(cm, cr, report);
+    if (pc.scene == "chapter_5_6_2") check_eq_5_26(pc, cm, cr, report);
+    report.cases.push_back(std::move(cr));
+  }
+  check_masses(printed, report);
   return report;
 }
 
