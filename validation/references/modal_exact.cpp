@@ -225,19 +225,14 @@ Motion table_response(const TimeTerm& term, const std::vector<double>& knots,
                         term.derivative(1, t0), s1, s2, t - t0);
 }
 
-}  // namespace
-
-DividedDifference exp_divided_difference(const std::vector<std::complex<double>>& z, double t) {
-  return exp_divided_difference_column(z, t).row(0);
-}
-
-ModalSolution::ModalSolution(const LtiSystem& system) {
+/// Refuses a system whose matrices and vectors are of the wrong size, not finite or (M, K, C) not
+/// symmetric, naming the part; empty C, q0 and v0 mean none and rest.
+void check_system(const LtiSystem& system) {
   const Eigen::Index n = system.M.rows();
   if (n == 0) throw std::invalid_argument("the system has no coordinates (M is empty)");
   require_size(system.M, n, n, "mass matrix M");
   require_size(system.K, n, n, "stiffness matrix K");
-  const bool damped = system.C.size() != 0;
-  if (damped) require_size(system.C, n, n, "damping matrix C");
+  if (system.C.size() != 0) require_size(system.C, n, n, "damping matrix C");
   // Empty initial conditions mean rest.
   if (system.q0.size() != 0) require_size(system.q0, n, 1, "initial position q0");
   if (system.v0.size() != 0) require_size(system.v0, n, 1, "initial velocity v0");
@@ -254,14 +249,11 @@ ModalSolution::ModalSolution(const LtiSystem& system) {
   require_symmetric(system.M, "mass matrix M");
   require_symmetric(system.K, "stiffness matrix K");
   require_symmetric(system.C, "damping matrix C");
+}
 
-  if (auto condensed = condense_massless(system)) {
-    condensation_ = std::make_shared<const StaticCondensation>(std::move(*condensed));
-    reduced_ = std::make_shared<const ModalSolution>(condensation_->reduced);
-    omega_ = reduced_->omega_;
-    return;
-  }
-  const Eigen::LLT<Eigen::MatrixXd> mass_factor(system.M);
+/// Throws ExactSolutionUnavailable unless M is positive definite to working precision.
+void require_positive_mass(const Eigen::MatrixXd& M) {
+  const Eigen::LLT<Eigen::MatrixXd> mass_factor(M);
   if (mass_factor.info() != Eigen::Success) {
     throw ExactSolutionUnavailable("mass matrix is not positive definite (Cholesky failed)");
   }
@@ -272,6 +264,75 @@ ModalSolution::ModalSolution(const LtiSystem& system) {
         "number " +
         to_text(mass_rcond));
   }
+}
+
+/// Modal stiffnesses `k` within roundoff of 0 (relative to `k_scale`, the largest |k|) set to 0;
+/// throws ExactSolutionUnavailable for a negative one (K not positive semi-definite).
+void clamp_modal_stiffness(Eigen::VectorXd& k, double k_scale) {
+  for (Eigen::Index i = 0; i < k.size(); ++i) {
+    if (std::abs(k(i)) <= kZeroStiffnessTolerance * k_scale) {
+      k(i) = 0.0;
+    } else if (k(i) < 0.0) {
+      throw ExactSolutionUnavailable(
+          "stiffness matrix is not positive semi-definite: modal stiffness " + to_text(k(i)) +
+          ", ratio " + to_text(k(i) / k_scale) + " to the largest |k|");
+    }
+  }
+}
+
+/// The modal damping of C in the modes `phi` (of stiffnesses `k`, largest |k| `k_scale`): its
+/// diagonal, after rotating each block of repeated stiffness onto its eigenvectors. Throws
+/// ExactSolutionUnavailable when C couples the modes (damping not classical).
+Eigen::VectorXd modal_damping(Eigen::MatrixXd& phi, const Eigen::VectorXd& k, double k_scale,
+                              const Eigen::MatrixXd& C) {
+  const Eigen::Index n = k.size();
+  // Within a repeated eigenvalue any orthonormal basis is modal, and the solver's choice need
+  // not diagonalize C even when C is classical (e.g. dashpots on a free body, K = 0). Rotating
+  // each such block onto the eigenvectors of its modal damping removes that false coupling.
+  Eigen::MatrixXd modal_c = phi.transpose() * C * phi;
+  for (Eigen::Index begin = 0; begin < n;) {
+    Eigen::Index end = begin + 1;
+    while (end < n && k(end) - k(end - 1) <= kRepeatedStiffnessTolerance * k_scale) ++end;
+    const Eigen::Index count = end - begin;
+    if (count > 1) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> block(
+          modal_c.block(begin, begin, count, count));
+      phi.middleCols(begin, count) = (phi.middleCols(begin, count) * block.eigenvectors()).eval();
+    }
+    begin = end;
+  }
+  modal_c = phi.transpose() * C * phi;
+
+  const Eigen::VectorXd diagonal = modal_c.diagonal();
+  const Eigen::MatrixXd off_diagonal = modal_c - Eigen::MatrixXd(diagonal.asDiagonal());
+  const double coupling = off_diagonal.cwiseAbs().maxCoeff();
+  const double scale = std::max(diagonal.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  if (coupling > kDampingCouplingTolerance * scale) {
+    throw ExactSolutionUnavailable(
+        "damping is not classical: max off-diagonal |Phi^T C Phi| = " + to_text(coupling) +
+        ", ratio " + to_text(coupling / scale) + " to the largest modal damping (tolerance " +
+        to_text(kDampingCouplingTolerance) + ")");
+  }
+  return diagonal;
+}
+
+}  // namespace
+
+DividedDifference exp_divided_difference(const std::vector<std::complex<double>>& z, double t) {
+  return exp_divided_difference_column(z, t).row(0);
+}
+
+ModalSolution::ModalSolution(const LtiSystem& system) {
+  check_system(system);
+  const Eigen::Index n = system.M.rows();
+  const bool damped = system.C.size() != 0;
+  if (auto condensed = condense_massless(system)) {
+    condensation_ = std::make_shared<const StaticCondensation>(std::move(*condensed));
+    reduced_ = std::make_shared<const ModalSolution>(condensation_->reduced);
+    omega_ = reduced_->omega_;
+    return;
+  }
+  require_positive_mass(system.M);
 
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(
       system.K, system.M, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
@@ -280,52 +341,10 @@ ModalSolution::ModalSolution(const LtiSystem& system) {
   }
   phi_ = modes.eigenvectors();
   k_ = modes.eigenvalues();
-
   const double k_scale = k_.cwiseAbs().maxCoeff();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (std::abs(k_(i)) <= kZeroStiffnessTolerance * k_scale) {
-      k_(i) = 0.0;
-    } else if (k_(i) < 0.0) {
-      throw ExactSolutionUnavailable(
-          "stiffness matrix is not positive semi-definite: modal stiffness " + to_text(k_(i)) +
-          ", ratio " + to_text(k_(i) / k_scale) + " to the largest |k|");
-    }
-  }
-
+  clamp_modal_stiffness(k_, k_scale);
   c_ = Eigen::VectorXd::Zero(n);
-  if (damped) {
-    // Within a repeated eigenvalue any orthonormal basis is modal, and the solver's choice need
-    // not diagonalize C even when C is classical (e.g. dashpots on a free body, K = 0). Rotating
-    // each such block onto the eigenvectors of its modal damping removes that false coupling.
-    Eigen::MatrixXd modal_c = phi_.transpose() * system.C * phi_;
-    for (Eigen::Index begin = 0; begin < n;) {
-      Eigen::Index end = begin + 1;
-      while (end < n && k_(end) - k_(end - 1) <= kRepeatedStiffnessTolerance * k_scale) ++end;
-      const Eigen::Index count = end - begin;
-      if (count > 1) {
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> block(
-            modal_c.block(begin, begin, count, count));
-        phi_.middleCols(begin, count) =
-            (phi_.middleCols(begin, count) * block.eigenvectors()).eval();
-      }
-      begin = end;
-    }
-    modal_c = phi_.transpose() * system.C * phi_;
-
-    const Eigen::VectorXd diagonal = modal_c.diagonal();
-    const Eigen::MatrixXd off_diagonal = modal_c - Eigen::MatrixXd(diagonal.asDiagonal());
-    const double coupling = off_diagonal.cwiseAbs().maxCoeff();
-    const double scale =
-        std::max(diagonal.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
-    if (coupling > kDampingCouplingTolerance * scale) {
-      throw ExactSolutionUnavailable(
-          "damping is not classical: max off-diagonal |Phi^T C Phi| = " + to_text(coupling) +
-          ", ratio " + to_text(coupling / scale) + " to the largest modal damping (tolerance " +
-          to_text(kDampingCouplingTolerance) + ")");
-    }
-    c_ = diagonal;
-  }
-
+  if (damped) c_ = modal_damping(phi_, k_, k_scale, system.C);
   omega_ = k_.cwiseSqrt();
 
   const Eigen::MatrixXd phi_t_m = phi_.transpose() * system.M;
