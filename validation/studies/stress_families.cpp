@@ -175,6 +175,135 @@ const std::vector<StressFamily>& stress_families() {
   return families;
 }
 
+namespace {
+
+/// The cases of the wanted families (all when none is named), in the order stress runs them.
+class CaseList {
+ public:
+  explicit CaseList(const std::vector<std::string>& families) : families_(families) {}
+
+  [[nodiscard]] bool wanted(const std::string& f) const {
+    if (families_.empty()) return true;
+    for (const auto& name : families_)
+      if (name == f) return true;
+    return false;
+  }
+
+  /// Adds a case of a wanted family; returns it for family-specific settings (nullptr otherwise).
+  StressCase* add(const std::string& family, const std::string& label, double parameter,
+                  const std::string& text, std::vector<Scheme> schemes = {},
+                  long max_steps = 1000000) {
+    if (!wanted(family)) return nullptr;
+    StressCase c;
+    c.family = family;
+    c.id = family + "_" +
+           std::to_string(1 + std::count_if(cases.begin(), cases.end(), [&](const StressCase& o) {
+                            return o.family == family;
+                          }));
+    c.label = label;
+    c.parameter = parameter;
+    // The file stress writes is this text: the lines its messages name are the file's.
+    c.scene_text = "# condyn stress, family " + family + ", " + label +
+                   ": run it with build/condyn run FILE --scheme S\n" + text;
+    c.schemes = std::move(schemes);
+    c.max_steps = max_steps;
+    cases.push_back(std::move(c));
+    return &cases.back();
+  }
+
+  std::vector<StressCase> cases;
+
+ private:
+  const std::vector<std::string>& families_;
+};
+
+/// stiffness and mass_ratio: the chain with springs, then masses, spanning a ratio.
+void add_chain_cases(CaseList& list) {
+  for (double R : {1.0, 1e4, 1e8, 1e12}) {
+    const double k[4] = {1.0, std::cbrt(R), std::cbrt(R) * std::cbrt(R), R};
+    const double m[4] = {1.0, 1.0, 1.0, 1.0};
+    list.add("stiffness", "R = " + scientific(R, 0), R,
+             chain_scene("chain, stiffness ratio " + scientific(R, 0), k, m, 5.0));
+  }
+  const double k_mass[4] = {1.0, 10.0, 10.0, 10.0};
+  for (double r : {1.0, 1e4, 1e8}) {
+    const double m[4] = {1.0, 1.0 / std::cbrt(r), 1.0 / (std::cbrt(r) * std::cbrt(r)), 1.0 / r};
+    list.add("mass_ratio", "r = " + scientific(r, 0), r,
+             chain_scene("chain, mass ratio " + scientific(r, 0), k_mass, m, 5.0));
+  }
+  const double massless[4] = {1.0, 1.0, 0.0, 1.0};
+  list.add("mass_ratio", "m3 = 0", 0.0, chain_scene("chain, massless x3", k_mass, massless, 5.0));
+}
+
+/// penalty_weight: the chapter truss under penalty, its weight a multiple of the stiffest K_ii.
+void add_penalty_weight_cases(CaseList& list) {
+  if (!list.wanted("penalty_weight")) return;
+  const std::string solve = "[solve]\nt_end = 5.0\noutput_step = 0.1\nrtol = 1e-8\natol = 1e-10\n";
+  const Model truss = build_model(parse_scene_text(chapter_truss("", solve), "chapter"));
+  double kmax = 0.0;
+  for (int i = 0; i < truss.dofs(); ++i) kmax = std::max(kmax, truss.K->coeff(i, i));
+  for (double f : {1e2, 1e4, 1e6, 1e8, 1e10, 1e12}) {
+    list.add("penalty_weight", "w = " + scientific(f, 0) + " max K_ii", f,
+             chapter_truss("", solve + "penalty = { weight = " + num(f * kmax) + " }\n"),
+             {Scheme::penalty});
+  }
+}
+
+/// baumgarte_gains: the pendulum of period 2 under Baumgarte, its gains a multiple of its
+/// frequency scale.
+void add_baumgarte_cases(CaseList& list) {
+  for (double f : {1.0, 1e1, 1e2, 1e3, 1e4, 1e6, 1e8, 1e10, 1e12}) {
+    // The pendulum of period 2: its constraint is nonlinear, so there is drift to correct; its
+    // frequency scale is 2π / period = π rad/s.
+    const std::string g = num(f * std::numbers::pi);
+    list.add("baumgarte_gains", "gains = " + scientific(f, 0) + " omega", f,
+             "name = \"pendulum of period 2, Baumgarte gains " + scientific(f, 0) +
+                 " x pi\"\n[model]\ntype = \"pendulum\"\n[solve]\nt_end = 2.0\n"
+                 "output_step = 0.02\nrtol = 1e-8\natol = 1e-10\nbaumgarte = { alpha = " +
+                 g + ", beta = " + g + " }\n",
+             {Scheme::baumgarte}, 200000);
+  }
+}
+
+/// long_horizon, redundancy and dead_point: drift over many periods, nearly dependent
+/// constraints, a four-bar near its dead point.
+void add_constraint_cases(CaseList& list) {
+  for (double periods : {1e4, 1e5}) {
+    if (StressCase* c = list.add("long_horizon", scientific(periods, 0) + " periods", periods,
+                                 long_scene(periods), {}, 20000000)) {
+      c->drift_limit = 1e-6;
+    }
+  }
+  for (double theta : {1e-2, 1e-4, 1e-6, 1e-8, 0.0}) {
+    list.add("redundancy", "theta = " + (theta > 0 ? scientific(theta, 0) : std::string("0")),
+             theta, redundant_scene(theta));
+  }
+  list.add("redundancy", "theta = 0, dropped", 0.0,
+           redundant_scene(0.0) + "redundant = \"drop\"\n");  // the [solve] table ends the text
+  for (double eps : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    list.add("dead_point", "eps = " + scientific(eps, 0), eps, four_bar_scene(eps), {}, 400000);
+  }
+}
+
+/// high_frequency: the chapter truss under a harmonic load at multiples of its highest natural
+/// frequency, and a step load.
+void add_high_frequency_cases(CaseList& list) {
+  if (!list.wanted("high_frequency")) return;
+  const double omega = chapter_frequency();
+  for (double f : {1.0, 10.0, 100.0, 1000.0}) {
+    std::ostringstream loads;
+    loads << "[[load]]\ndof = \"ux3\"\nvalue = { type = \"harmonic\", amplitude = 1.0, "
+          << "omega = " << num(f * omega) << " }\n[[load]]\ndof = \"uy3\"\n"
+          << "value = { type = \"step\", amplitude = 0.5, start = 1.0 }\n";
+    list.add("high_frequency", "omega = " + scientific(f, 0) + " omega_max", f,
+             chapter_truss(loads.str(),
+                           "[solve]\nt_end = 3.0\noutput_step = 0.05\n"
+                           "rtol = 1e-8\natol = 1e-10\n"));
+  }
+}
+
+}  // namespace
+
 std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
   for (const auto& f : families) {
     bool known = false;
@@ -185,101 +314,13 @@ std::vector<StressCase> stress_cases(const std::vector<std::string>& families) {
       throw std::invalid_argument("unknown stress family '" + f + "' (expected " + names + ")");
     }
   }
-  const auto wanted = [&](const std::string& f) {
-    if (families.empty()) return true;
-    for (const auto& name : families)
-      if (name == f) return true;
-    return false;
-  };
-  std::vector<StressCase> out;
-  // Adds a case of a wanted family; returns it for family-specific settings (nullptr otherwise).
-  const auto add = [&](const std::string& family, const std::string& label, double parameter,
-                       const std::string& text, std::vector<Scheme> schemes = {},
-                       long max_steps = 1000000) -> StressCase* {
-    if (!wanted(family)) return nullptr;
-    StressCase c;
-    c.family = family;
-    c.id = family + "_" +
-           std::to_string(1 + std::count_if(out.begin(), out.end(), [&](const StressCase& o) {
-                            return o.family == family;
-                          }));
-    c.label = label;
-    c.parameter = parameter;
-    // The file stress writes is this text: the lines its messages name are the file's.
-    c.scene_text = "# condyn stress, family " + family + ", " + label +
-                   ": run it with build/condyn run FILE --scheme S\n" + text;
-    c.schemes = std::move(schemes);
-    c.max_steps = max_steps;
-    out.push_back(std::move(c));
-    return &out.back();
-  };
-  for (double R : {1.0, 1e4, 1e8, 1e12}) {
-    const double k[4] = {1.0, std::cbrt(R), std::cbrt(R) * std::cbrt(R), R};
-    const double m[4] = {1.0, 1.0, 1.0, 1.0};
-    add("stiffness", "R = " + scientific(R, 0), R,
-        chain_scene("chain, stiffness ratio " + scientific(R, 0), k, m, 5.0));
-  }
-  const double k_mass[4] = {1.0, 10.0, 10.0, 10.0};
-  for (double r : {1.0, 1e4, 1e8}) {
-    const double m[4] = {1.0, 1.0 / std::cbrt(r), 1.0 / (std::cbrt(r) * std::cbrt(r)), 1.0 / r};
-    add("mass_ratio", "r = " + scientific(r, 0), r,
-        chain_scene("chain, mass ratio " + scientific(r, 0), k_mass, m, 5.0));
-  }
-  const double massless[4] = {1.0, 1.0, 0.0, 1.0};
-  add("mass_ratio", "m3 = 0", 0.0, chain_scene("chain, massless x3", k_mass, massless, 5.0));
-
-  if (wanted("penalty_weight")) {
-    const std::string solve =
-        "[solve]\nt_end = 5.0\noutput_step = 0.1\nrtol = 1e-8\natol = 1e-10\n";
-    const Model truss = build_model(parse_scene_text(chapter_truss("", solve), "chapter"));
-    double kmax = 0.0;
-    for (int i = 0; i < truss.dofs(); ++i) kmax = std::max(kmax, truss.K->coeff(i, i));
-    for (double f : {1e2, 1e4, 1e6, 1e8, 1e10, 1e12}) {
-      add("penalty_weight", "w = " + scientific(f, 0) + " max K_ii", f,
-          chapter_truss("", solve + "penalty = { weight = " + num(f * kmax) + " }\n"),
-          {Scheme::penalty});
-    }
-  }
-  for (double f : {1.0, 1e1, 1e2, 1e3, 1e4, 1e6, 1e8, 1e10, 1e12}) {
-    // The pendulum of period 2: its constraint is nonlinear, so there is drift to correct; its
-    // frequency scale is 2π / period = π rad/s.
-    const std::string g = num(f * std::numbers::pi);
-    add("baumgarte_gains", "gains = " + scientific(f, 0) + " omega", f,
-        "name = \"pendulum of period 2, Baumgarte gains " + scientific(f, 0) +
-            " x pi\"\n[model]\ntype = \"pendulum\"\n[solve]\nt_end = 2.0\n"
-            "output_step = 0.02\nrtol = 1e-8\natol = 1e-10\nbaumgarte = { alpha = " +
-            g + ", beta = " + g + " }\n",
-        {Scheme::baumgarte}, 200000);
-  }
-  for (double periods : {1e4, 1e5}) {
-    if (StressCase* c = add("long_horizon", scientific(periods, 0) + " periods", periods,
-                            long_scene(periods), {}, 20000000)) {
-      c->drift_limit = 1e-6;
-    }
-  }
-  for (double theta : {1e-2, 1e-4, 1e-6, 1e-8, 0.0}) {
-    add("redundancy", "theta = " + (theta > 0 ? scientific(theta, 0) : std::string("0")), theta,
-        redundant_scene(theta));
-  }
-  add("redundancy", "theta = 0, dropped", 0.0,
-      redundant_scene(0.0) + "redundant = \"drop\"\n");  // the [solve] table ends the text
-  for (double eps : {1e-1, 1e-2, 1e-3, 1e-4}) {
-    add("dead_point", "eps = " + scientific(eps, 0), eps, four_bar_scene(eps), {}, 400000);
-  }
-  if (wanted("high_frequency")) {
-    const double omega = chapter_frequency();
-    for (double f : {1.0, 10.0, 100.0, 1000.0}) {
-      std::ostringstream loads;
-      loads << "[[load]]\ndof = \"ux3\"\nvalue = { type = \"harmonic\", amplitude = 1.0, "
-            << "omega = " << num(f * omega) << " }\n[[load]]\ndof = \"uy3\"\n"
-            << "value = { type = \"step\", amplitude = 0.5, start = 1.0 }\n";
-      add("high_frequency", "omega = " + scientific(f, 0) + " omega_max", f,
-          chapter_truss(loads.str(),
-                        "[solve]\nt_end = 3.0\noutput_step = 0.05\n"
-                        "rtol = 1e-8\natol = 1e-10\n"));
-    }
-  }
-  return out;
+  CaseList list(families);
+  add_chain_cases(list);
+  add_penalty_weight_cases(list);
+  add_baumgarte_cases(list);
+  add_constraint_cases(list);
+  add_high_frequency_cases(list);
+  return std::move(list.cases);
 }
 
 }  // namespace condyn
