@@ -303,7 +303,7 @@ Eigen::VectorXd modal_damping(Eigen::MatrixXd& phi, const Eigen::VectorXd& k, do
   }
   modal_c = phi.transpose() * C * phi;
 
-  const Eigen::VectorXd diagonal = modal_c.diagonal();
+  Eigen::VectorXd diagonal = modal_c.diagonal();
   const Eigen::MatrixXd off_diagonal = modal_c - Eigen::MatrixXd(diagonal.asDiagonal());
   const double coupling = off_diagonal.cwiseAbs().maxCoeff();
   const double scale = std::max(diagonal.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
