@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "src/cli/cli_flags.hpp"
 #include "src/cli/commands.hpp"

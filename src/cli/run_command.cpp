@@ -11,6 +11,7 @@
 #include "dae/run/scheme_memory.hpp"
 #include "dae/run/singular_passages.hpp"
 #include "dae/run/solve.hpp"
+#include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "src/cli/cli_flags.hpp"
 #include "src/cli/commands.hpp"
