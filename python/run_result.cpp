@@ -90,7 +90,7 @@ py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const Bu
   d["unknowns"] = s.unknowns;
   d["jacobian_nonzeros"] = s.jacobian_nonzeros;
   d["termination"] = s.termination;
-  d["notes"] = s.notes;
+  d["notes"] = s.notes_text();
   d["brief"] = s.brief();
   std::vector<std::string> warnings = r.warnings;
   for (auto& w : singular_passage_warnings(s.singular_passages)) warnings.push_back(std::move(w));

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
 namespace condyn {
 
@@ -15,10 +17,10 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
                         reduced.K, Eigen::SparseMatrix<double>(0, nm_));
   // With held DOFs, their consistency system stands in for M̂ (regular on the rest).
   if (!held_) {
-    mass_.compute(reduced.M);
-    bool ok = mass_.info() == Eigen::Success;
+    auto mass = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(reduced.M);
+    bool ok = mass->info() == Eigen::Success;
     if (ok && nm_ > 0) {
-      const Eigen::VectorXd d = mass_.vectorD();
+      const Eigen::VectorXd d = mass->vectorD();
       // Positive definite beyond roundoff of the largest pivot: the model's own check warns
       // from a spread of 1/eps (models/assembly/input_checks.cpp). 1e-14 of the largest refused a
       // sound mass of 1e-14 kg beside 2 kg, which every multiplier scheme integrates.
@@ -38,6 +40,7 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
                  "leave slaves out for the automatic choice"
                : ""));
     }
+    mass_ = std::move(mass);
   }
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(0, 0, nm_);
@@ -92,7 +95,7 @@ Eigen::VectorXd ReducedOde::rhs_at(const Eigen::VectorXd& f, const Eigen::Vector
 Eigen::VectorXd ReducedOde::acceleration(double t, const Eigen::VectorXd& x,
                                          const Eigen::VectorXd& w) const {
   const Eigen::VectorXd rhs = rhs_at(reduced_.forces(model_, t, t), x, w);
-  if (!held_) return mass_.solve(rhs);
+  if (!held_) return mass_->solve(rhs);
   Eigen::VectorXd xs = x, ws = w;  // consistent already: the changes are roundoff
   Eigen::VectorXd a = held_->consistent(rhs, Eigen::VectorXd::Zero(nm_), xs, ws);
   for (int h : held_->dofs()) a[h] = 0.0;

@@ -7,12 +7,13 @@
 /// Its Jacobian is dF/dy + cj dF/dy' = [[cj I, −I], [K̂, Ĉ + cj M̂]].
 
 #include <Eigen/SparseCholesky>
+#include <memory>
 #include <optional>
 
+#include "dae/formulations/reduced_system.hpp"
 #include "dae/interface/dae_problem.hpp"
 #include "dae/interface/held_massless.hpp"
 #include "dae/linsolve/block_jacobian.hpp"
-#include "dae/run/elimination.hpp"
 
 namespace condyn {
 
@@ -63,7 +64,9 @@ class ReducedOde final : public DaeProblem {
   const Model& model_;
   const ReducedSystem& reduced_;
   int nm_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass_;  ///< M̂ when no master is massless
+  /// M̂ factored, when no master is massless; constant, shared by copies (a plan's ODE and the
+  /// copy each run integrates).
+  std::shared_ptr<const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> mass_;
   std::shared_ptr<const HeldMassless> held_;  ///< massless masters held by stiffness, or null
   BlockJacobian jacobian_;
   /// Load steps with start <= it are on (begin_segment); before any segment, those at t.

@@ -27,7 +27,9 @@ void NoUnknowns::restart(double t) {
 
 void NoUnknowns::fill_summary(SolveSummary& summary) {
   summary.steps = 0;
-  summary.notes = "no unknowns: every DOF is fixed or prescribed, nothing was integrated";
+  summary.notes.assign(1, RunNote{RunNote::Kind::integrator,
+                                  "no unknowns: every DOF is fixed or prescribed, nothing was "
+                                  "integrated"});
 }
 
 }  // namespace condyn

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <sstream>
+#include <string>
+#include <utility>
 
 namespace condyn::sundials {
 
@@ -70,7 +72,11 @@ void SundialsStepper::fill_summary(SolveSummary& summary) {
   summary.error_test_failures = totals_.error_tests;
   summary.last_step = last_step_;
   summary.max_order_used = max_order_used_;
-  if (const std::string n = notes(totals_); !n.empty()) summary.notes = n;
+  // The integrator's note replaces what the run noted before it (kept as it always was: the
+  // scheme's setting notes are not printed beside it).
+  if (std::string n = notes(totals_); !n.empty()) {
+    summary.notes.assign(1, RunNote{RunNote::Kind::integrator, std::move(n)});
+  }
 }
 
 }  // namespace condyn::sundials

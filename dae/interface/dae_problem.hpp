@@ -1,6 +1,6 @@
 #pragma once
 /// A DAE F(t, y, y') = 0 as the integrator sees it. Implementations: the reduced ODE of the
-/// elimination path (dae/run/elimination.hpp) and, later, the multiplier formulations.
+/// elimination path (dae/formulations/reduced_ode.hpp) and, later, the multiplier formulations.
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>

@@ -16,7 +16,7 @@ class SchemeNotApplicable : public std::invalid_argument {
  public:
   explicit SchemeNotApplicable(const std::string& why, SourcePoint where = {})
       : std::invalid_argument(why), where_(std::move(where)) {}
-  /// Where the refused scheme was chosen (SolveSpec::scheme_where) once solve() or system_size()
+  /// Where the refused scheme was chosen (SolveSpec::scheme_where) once plan() or system_size()
   /// has passed it on; empty before, and for a scheme nobody named (auto).
   [[nodiscard]] const SourcePoint& where() const { return where_; }
 

@@ -7,13 +7,14 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "models/core/number_cell.hpp"
 #include "models/core/solve_spec.hpp"
 
 namespace condyn {
 
-void IntegratorOptions::validate() const {
+void IntegratorSettings::validate() const {
   auto bad = [](const std::string& what) { throw std::invalid_argument("integrator: " + what); };
   if (!(rtol > 0.0) || !std::isfinite(rtol)) bad("rtol must be > 0");
   if (!(atol > 0.0) || !std::isfinite(atol)) bad("atol must be > 0");
@@ -37,7 +38,7 @@ void IntegratorOptions::validate() const {
     bad("first_step must be > 0");
 }
 
-double IntegratorOptions::atol_of(UnknownKind kind) const {
+double IntegratorSettings::atol_of(UnknownKind kind) const {
   switch (kind) {
     case UnknownKind::displacement:
       break;
@@ -51,9 +52,9 @@ double IntegratorOptions::atol_of(UnknownKind kind) const {
   return atol;
 }
 
-Eigen::VectorXd IntegratorOptions::atol_vector(const std::vector<UnknownKind>& kinds, int size,
-                                               const Eigen::VectorXd& row_scales,
-                                               const Eigen::VectorXd& row_masses) const {
+Eigen::VectorXd IntegratorSettings::atol_vector(const std::vector<UnknownKind>& kinds, int size,
+                                                const Eigen::VectorXd& row_scales,
+                                                const Eigen::VectorXd& row_masses) const {
   if (kinds.empty()) return Eigen::VectorXd::Constant(size, atol);
   if (static_cast<int>(kinds.size()) != size)
     throw std::logic_error("integrator: unknown kinds do not match the problem size");
@@ -149,8 +150,18 @@ std::string SolveSummary::brief() const {
   }
   s << " ms, max drift position " << max_drift_position << " velocity " << max_drift_velocity;
   if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
-  if (!notes.empty()) s << "; " << notes;
+  if (!notes.empty()) s << "; " << notes_text();
   return s.str();
+}
+
+std::string SolveSummary::notes_text() const {
+  std::string text;
+  for (const RunNote& note : notes) text += (text.empty() ? "" : "; ") + note.text;
+  return text;
+}
+
+void SolveSummary::add_note(RunNote::Kind kind, std::string text) {
+  notes.push_back({kind, std::move(text)});
 }
 
 void SolveSummary::set_reached(double t) {

@@ -23,12 +23,14 @@ struct Progress {
   double elapsed_seconds = 0.0;           ///< wall time since the loop started
 };
 
-struct IntegratorOptions {
+/// What the integrator is asked to do, in numbers only: tolerances per kind of unknown, first
+/// step, output times, load steps, budgets (a run plan holds these: dae/run/run_plan.hpp).
+struct IntegratorSettings {
   double rtol = 1e-8;
   /// Absolute tolerance of the displacements ([solve] atol, in the model's length unit).
   double atol = 1e-10;
   /// Absolute tolerances of the other kinds of unknown ([solve] atol_velocity, atol_multiplier,
-  /// atol_mu); unset means atol (integrator_options(model) sets them from the model's scales).
+  /// atol_mu); unset means atol (plan() sets them from the model's scales).
   std::optional<double> atol_velocity, atol_multiplier, atol_mu;
   /// The model's time scale T (dae/formulations/model_scales.hpp): higher-index components' Newton
   /// weights are scaled by (h/T)^(k−1), a pure number. 1 when the caller knows no model.
@@ -66,11 +68,30 @@ struct IntegratorOptions {
   long max_steps_per_output = 100000;  ///< between two output times; more is a failure
   long max_steps = 0;                  ///< over the whole run (0: no limit); more is a failure
   double max_wall_seconds = 0.0;       ///< wall time of the loop (0: no limit); more is a failure
+  /// IntegratorOptions::on_progress is called after this much wall time, then every
+  /// progress_every_seconds.
+  double progress_after_seconds = 2.0;
+  double progress_every_seconds = 2.0;
+  /// Throws std::invalid_argument naming the bad field.
+  void validate() const;
+  /// The absolute tolerance of one kind of unknown.
+  [[nodiscard]] double atol_of(UnknownKind kind) const;
+  /// One absolute tolerance per unknown (`kinds` empty: atol for all `size` unknowns).
+  /// `row_scales`: per unknown, the largest |coefficient| of its constraint row for multipliers
+  /// and μ (0 for other unknowns, empty for none), which the per-row flags above apply.
+  /// `row_masses`: per unknown, the lightest mass of a multiplier's row (DaeProblem::
+  /// multiplier_row_masses; 0 for other unknowns, empty for none), applied with multiplier_mass.
+  [[nodiscard]] Eigen::VectorXd atol_vector(const std::vector<UnknownKind>& kinds, int size,
+                                            const Eigen::VectorXd& row_scales = {},
+                                            const Eigen::VectorXd& row_masses = {}) const;
+};
+
+/// The settings and what the caller observes of the run: the callbacks and the outputs a run
+/// computes only when asked (execute() adds them to a plan's settings).
+struct IntegratorOptions : IntegratorSettings {
   /// Called from the loop once a run has taken progress_after_seconds of wall time, then every
   /// progress_every_seconds (dae/ never prints: the caller decides what to show).
   std::function<void(const Progress&)> on_progress;
-  double progress_after_seconds = 2.0;
-  double progress_every_seconds = 2.0;
   /// Called after every internal step with the step's exact t and y (not interpolated).
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;
   /// Keep a per-step drift log (Trajectory::steps) for drift plots; off by default.
@@ -105,21 +126,25 @@ struct IntegratorOptions {
       integrand_jump;
   /// Compute the energy balance at the output rows (TrajectoryRow::balance; docs/energy.md).
   bool energy_balance = false;
-  /// Set by solve() from RunHooks::on_row: the observed run streams full-space rows there (and
+  /// Set by execute() from RunHooks::on_row: the observed run streams full-space rows there (and
   /// sets on_output itself).
   std::function<void(const TrajectoryRow&)> on_row;
-  /// Throws std::invalid_argument naming the bad field.
-  void validate() const;
-  /// The absolute tolerance of one kind of unknown.
-  [[nodiscard]] double atol_of(UnknownKind kind) const;
-  /// One absolute tolerance per unknown (`kinds` empty: atol for all `size` unknowns).
-  /// `row_scales`: per unknown, the largest |coefficient| of its constraint row for multipliers
-  /// and μ (0 for other unknowns, empty for none), which the per-row flags above apply.
-  /// `row_masses`: per unknown, the lightest mass of a multiplier's row (DaeProblem::
-  /// multiplier_row_masses; 0 for other unknowns, empty for none), applied with multiplier_mass.
-  [[nodiscard]] Eigen::VectorXd atol_vector(const std::vector<UnknownKind>& kinds, int size,
-                                            const Eigen::VectorXd& row_scales = {},
-                                            const Eigen::VectorXd& row_masses = {}) const;
+};
+
+/// One remark on a run: what it is about, and its text.
+struct RunNote {
+  enum class Kind {
+    integrator,      ///< the integrator's (projections made, error weights floored, nothing to do)
+    scheme_setting,  ///< the scheme's parameters (Baumgarte's gains, penalty's weights)
+    treatment,       ///< the mixed treatment's rows eliminated and kept
+    fallback,        ///< auto's elimination refused, GGL instead
+    order_cap,       ///< [solve] max_order below 5, and the highest order used
+    warning,         ///< a result to doubt (error tests, atol, drift)
+    singular_passage,  ///< passages near a singular configuration
+  };
+  Kind kind = Kind::integrator;
+  std::string text;
+  bool operator==(const RunNote&) const = default;
 };
 
 struct SolveSummary {
@@ -143,7 +168,13 @@ struct SolveSummary {
   double max_abs_mu = -1.0;
   /// max |u| over the output rows (those before a failure included).
   double max_abs_displacement = 0.0;
-  std::string notes;  ///< scheme settings worth printing (Baumgarte gains)
+  /// Remarks on the run in the order printed (brief(), notes_text()): what the scheme was set up
+  /// with, what the integrator did of note, warnings.
+  std::vector<RunNote> notes;
+  /// The notes as one line, joined by "; " (what `condyn run` prints and Python's "notes").
+  [[nodiscard]] std::string notes_text() const;
+  /// Appends a note of `kind`.
+  void add_note(RunNote::Kind kind, std::string text);
   /// Passages near a singular configuration (models whose constraint Jacobian depends on the
   /// state; dae/run/singular_passages.hpp), in time order.
   std::vector<SingularPassage> singular_passages;

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "dae/run/energy_balance.hpp"
@@ -30,17 +31,41 @@ void summarize_drift(SolveResult& result, double max_dp, double max_dv, double m
       std::max(streamed_max_u, u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0);
 }
 
-}  // namespace
-
-Observation::FullState full_state_prefix(int n) {
-  return [n](double, const Eigen::VectorXd& y) {
-    return std::make_pair(Eigen::VectorXd(y.head(n)), Eigen::VectorXd(y.segment(n, n)));
+/// The energy balance's integrals over every internal step (EnergyTerms::powers at the
+/// quadrature points of the loop), added to `observed`.
+void add_energy_integrals(const Observation& observe, EnergyTerms& energy,
+                          IntegratorOptions& observed) {
+  observed.integrand_size = EnergyTerms::kIntegrals;
+  observed.integrand = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
+    const auto [u, v] = observe.full_state(t, y);
+    return energy.powers(t, u, v, observe.multipliers(t, y, yp, u, v));
+  };
+  // At a load step a massless DOF held by stiffness jumps to its new equilibrium: the load,
+  // at its new value, does f_ext(t+)ᵀΔu over the jump (the work the quadrature cannot see).
+  observed.integrand_jump = [&](double t, const Eigen::VectorXd& before,
+                                const Eigen::VectorXd& after) {
+    const Eigen::VectorXd u_after = observe.full_state(t, after).first;
+    return energy.jump_work(t, u_after, u_after - observe.full_state(t, before).first);
   };
 }
 
-void run_observed(const Model& model, const IntegratorOptions& options,
-                  const std::function<RawTrajectory(const IntegratorOptions&)>& run,
-                  const Observation& observe, SolveResult& result) {
+/// The facts of an integrator's failure in the result, and where the loop stopped.
+void record_failure(const IntegrationError& e, SolveResult& result) {
+  result.failure = failure_of(e);
+  if (e.in_loop) {
+    std::ostringstream s;
+    s << "stopped at t = " << std::fixed << std::setprecision(6) << e.t_reached;
+    result.summary.termination = s.str();
+  }
+}
+
+}  // namespace
+
+SolveResult run_observed(const Model& model, const IntegratorOptions& options,
+                         const Integrate& integrate, const Observation& observe,
+                         SolveSummary summary) {
+  SolveResult result;
+  result.summary = std::move(summary);
   double max_dp = 0.0, max_dv = 0.0, max_relative = 0.0;
   std::vector<StepRecord> steps;
   VelocityReversals reversals;
@@ -52,24 +77,9 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     max_relative = std::max(max_relative, drift.relative_position());
   };
   IntegratorOptions observed = options;
-  // The energy balance's integrals, over every internal step (EnergyTerms::powers at the
-  // quadrature points of the loop).
+  // The energy balance's integrals, over every internal step.
   std::optional<EnergyTerms> energy;
-  if (options.energy_balance) {
-    energy.emplace(model);
-    observed.integrand_size = EnergyTerms::kIntegrals;
-    observed.integrand = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp) {
-      const auto [u, v] = observe.full_state(t, y);
-      return energy->powers(t, u, v, observe.multipliers(t, y, yp, u, v));
-    };
-    // At a load step a massless DOF held by stiffness jumps to its new equilibrium: the load,
-    // at its new value, does f_ext(t+)ᵀΔu over the jump (the work the quadrature cannot see).
-    observed.integrand_jump = [&](double t, const Eigen::VectorXd& before,
-                                  const Eigen::VectorXd& after) {
-      const Eigen::VectorXd u_after = observe.full_state(t, after).first;
-      return energy->jump_work(t, u_after, u_after - observe.full_state(t, before).first);
-    };
-  }
+  if (options.energy_balance) add_energy_integrals(observe, energy.emplace(model), observed);
   // Passages near a singular configuration, at every step, for models whose A depends on the
   // state (a linear model's rank is checked once, when it is built).
   std::optional<SingularPassageMonitor> passages;
@@ -122,19 +132,13 @@ void run_observed(const Model& model, const IntegratorOptions& options,
     };
   }
   RawTrajectory raw;
+  bool failed = false;
   try {
-    raw = run(observed);
+    raw = integrate(observed, result.summary);
   } catch (const IntegrationError& e) {
-    result.failure = failure_of(e);
-    if (e.in_loop) {
-      std::ostringstream s;
-      s << "stopped at t = " << std::fixed << std::setprecision(6) << e.t_reached;
-      result.summary.termination = s.str();
-    }
-    if (streamed) {
-      result.trajectory = log.trajectory();
-      result.trajectory.steps = steps;
-    } else if (e.raw_partial && !e.raw_partial->t.empty()) {
+    failed = true;
+    record_failure(e, result);
+    if (!streamed && e.raw_partial && !e.raw_partial->t.empty()) {
       try {
         result.trajectory = assemble(*e.raw_partial);
       } catch (const std::exception&) {
@@ -142,18 +146,17 @@ void run_observed(const Model& model, const IntegratorOptions& options,
         // last row, say) is dropped; the failure reported is the integrator's, not this one.
       }
     }
-    summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
-    if (passages) result.summary.singular_passages = passages->passages();
-    return;
   }
   if (streamed) {
     result.trajectory = log.trajectory();
     result.trajectory.steps = steps;
-  } else {
+  } else if (!failed) {
     result.trajectory = assemble(raw);
   }
   summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
   if (passages) result.summary.singular_passages = passages->passages();
+  if (observe.on_finish) observe.on_finish(result.summary);
+  return result;
 }
 
 }  // namespace condyn

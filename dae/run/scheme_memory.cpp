@@ -30,36 +30,34 @@ MemoryEstimate SchemeMemory::operator()(const SystemSize& size) {
   return integration_memory_estimate(model_sizes(model_), sizes);
 }
 
-std::optional<RunMemory> run_memory_estimate(const Model& model, const SolveSpec& settings) {
-  SystemSize size;
-  Scheme scheme = settings.scheme;
+std::optional<RunMemory> run_memory_estimate(const RunPlan& plan, SchemeDecisions& decisions) {
+  if (plan.refusal) return std::nullopt;  // execute() refuses the scheme, and says why
   try {
-    try {
-      if (scheme == Scheme::automatic) scheme = choose_scheme(model, settings).scheme;
-      size = system_size(model, settings);
-    } catch (const SchemeNotApplicable&) {
-      // auto's elimination refused when built: solve() runs GGL with every multiplier instead.
-      if (settings.scheme != Scheme::automatic) throw;
-      SolveSpec ggl = settings;
-      ggl.scheme = Scheme::ggl;
-      ggl.treatment = SolveSpec::Treatment::multipliers;
-      scheme = Scheme::ggl;
-      size = system_size(model, ggl);
-    }
+    const SystemSize size = decisions.size_as(plan.scheme, plan.settings);
+    return RunMemory{plan.scheme, SchemeMemory(*plan.model)(size)};
   } catch (const std::invalid_argument&) {
-    return std::nullopt;  // solve() refuses the scheme or its settings, and says why
+    return std::nullopt;  // the scheme cannot be set up for the model: execute() says why
   }
-  return RunMemory{scheme, SchemeMemory(model)(size)};
 }
 
-std::optional<std::string> check_run_memory(const Model& model, const SolveSpec& settings) {
+std::optional<RunMemory> run_memory_estimate(const Model& model, const SolveSpec& settings) {
+  SchemeDecisions decisions(model);
+  try {
+    return run_memory_estimate(plan(model, settings, decisions), decisions);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;  // plan() refuses the settings, and says why
+  }
+}
+
+std::optional<std::string> check_run_memory(const RunPlan& plan, SchemeDecisions& decisions) {
   const std::optional<double> available = available_memory_bytes();
   if (!available) return std::nullopt;
-  const std::optional<RunMemory> run = run_memory_estimate(model, settings);
+  const std::optional<RunMemory> run = run_memory_estimate(plan, decisions);
   if (!run) return std::nullopt;
+  const Model& model = *plan.model;
   const std::string what = "scheme " + std::string(to_string(run->scheme));
   if (const auto refusal = memory_refusal(model_sizes(model), run->estimate, what, *available)) {
-    throw SceneError(scene_message(model.file, settings.scheme_where, *refusal));
+    throw SceneError(scene_message(model.file, plan.settings.scheme_where, *refusal));
   }
   return memory_warning(run->estimate, what, *available);
 }

@@ -8,7 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "dae/run/solve.hpp"
+#include "dae/run/run_plan.hpp"
+#include "dae/run/scheme_choice.hpp"
 #include "models/core/memory_estimate.hpp"
 
 namespace condyn {
@@ -36,20 +37,25 @@ class SchemeMemory {
   std::optional<double> condensed_factor_;  ///< F_c, analysed at the first call
 };
 
-/// The scheme a run of `model` under `settings` integrates (auto resolved as solve() resolves
-/// it) and its estimate, or nothing when the scheme cannot be sized (solve() then says why).
+/// The scheme a run of `plan` integrates and its estimate, sized with `decisions` (those the plan
+/// was made with, so nothing is decided twice), or nothing when the scheme cannot be sized
+/// (execute() then says why).
 struct RunMemory {
   Scheme scheme = Scheme::ggl;
   MemoryEstimate estimate;
 };
+[[nodiscard]] std::optional<RunMemory> run_memory_estimate(const RunPlan& plan,
+                                                           SchemeDecisions& decisions);
+/// The same for a run of `model` under `settings`, planned here; nothing when plan() refuses the
+/// settings.
 [[nodiscard]] std::optional<RunMemory> run_memory_estimate(const Model& model,
                                                            const SolveSpec& settings);
 
-/// What a run under `settings` is told before it starts: throws SceneError when even the lower
-/// bound of its scheme's estimate exceeds the available memory (`where` the scheme's source, as
+/// What a run of `plan` is told before it starts: throws SceneError when even the lower bound of
+/// its scheme's estimate exceeds the available memory (`where` the scheme's source, as
 /// memory_refusal says), and returns memory_warning's text when the estimate does; nothing when
 /// it fits, when /proc/meminfo cannot be read, or when the scheme cannot be sized.
-[[nodiscard]] std::optional<std::string> check_run_memory(const Model& model,
-                                                          const SolveSpec& settings);
+[[nodiscard]] std::optional<std::string> check_run_memory(const RunPlan& plan,
+                                                          SchemeDecisions& decisions);
 
 }  // namespace condyn

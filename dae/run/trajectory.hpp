@@ -99,24 +99,6 @@ struct Trajectory {
   std::vector<StepRecord> steps;  ///< every internal step, when IntegratorOptions::record_steps
 };
 
-/// Multipliers recovered from the full equations at one time: ρ = M u'' + C u' + K u − f(t)
-/// (the chapter's reaction recovery, eqs. 5.8 and 5.12, for every DOF at once) and
-/// λ = −(A Aᵀ)⁻¹ A ρ, exact when ρ lies in range(Aᵀ), as it does for a solution of the
-/// constrained equations. Used by the paths that do not carry λ (elimination, exact solution).
-class MultiplierRecovery {
- public:
-  explicit MultiplierRecovery(const Model& model);
-  [[nodiscard]] Eigen::VectorXd operator()(double t, const Eigen::VectorXd& u,
-                                           const Eigen::VectorXd& v,
-                                           const Eigen::VectorXd& a) const;
-
- private:
-  const Model& model_;
-  Eigen::VectorXd scale_;                                   ///< D: a power of two per row
-  Eigen::SparseMatrix<double> scaled_;                      ///< Â = D A
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> aat_;  ///< of Â Âᵀ
-};
-
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
 /// (T the kinetic energy; the scale is never zero for a moving model). −1 without energies; NaN
 /// when an energy leaves the double range (no figure can be given).

@@ -125,10 +125,16 @@ int run(const RunArgs& args) {
   // [[check]] tables are checked as `condyn check` checks them (their reference files already
   // are, when read), though run does not evaluate them: a bad one is bad input here too.
   if (!spec.checks.empty()) (void)CheckEvaluator(model, spec.checks, args.scene);
-  // The chosen scheme's memory against the machine's: refused when even its lower bound cannot
-  // fit, warned about now (before a run that may be killed) when its estimate cannot.
-  if (const auto warning = check_run_memory(model, spec.solve))
-    std::cerr << "warning: " << args.scene << ": " << *warning << "\n";
+  // The run's plan: every decision made once (dae/run/run_plan.hpp). Its scheme's memory against
+  // the machine's: refused when even its lower bound cannot fit, warned about now (before a run
+  // that may be killed) when its estimate cannot. The sizes are freed with `decisions`.
+  RunPlan run_plan;
+  {
+    SchemeDecisions decisions(model);
+    run_plan = plan(model, spec.solve, decisions);
+    if (const auto warning = check_run_memory(run_plan, decisions))
+      std::cerr << "warning: " << args.scene << ": " << *warning << "\n";
+  }
   release_model_input(spec);
   // The scene's parse tree and its copy of the model are freed in the middle of the heap, where
   // glibc would keep their pages resident to the end: return them (docs/benchmarks.md).
@@ -153,7 +159,7 @@ int run(const RunArgs& args) {
   // From here a first SIGINT, SIGTERM or SIGHUP stops the run as a failure that keeps its rows
   // (or, had it finished, its whole result); main then ends the process by the signal.
   keep_rows_on_signal(true);
-  const SolveResult result = solve(model, spec.solve, hooks);
+  const SolveResult result = execute(run_plan, hooks);
   const Trajectory& traj = result.trajectory;
   const char* treatment = treatment_name(model, result.scheme, spec.solve);
   const RunAttributes attributes{to_string(result.scheme), spec.solve.rtol, spec.solve.atol,

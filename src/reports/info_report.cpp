@@ -11,7 +11,7 @@
 #include "dae/formulations/baumgarte_gains.hpp"
 #include "dae/formulations/constraint_treatment.hpp"
 #include "dae/formulations/model_scales.hpp"
-#include "dae/run/elimination.hpp"
+#include "dae/formulations/reduced_system.hpp"
 #include "dae/run/scheme_memory.hpp"
 #include "dae/run/solve.hpp"
 #include "models/core/classification.hpp"
@@ -221,35 +221,32 @@ void print_constraints(std::ostream& out, const Model& model, const SolveSpec& s
       out << "  " << std::left << std::setw(width) << number << key << "\n";
     }
   }
-  const bool integrable_velocity_rows =
-      std::any_of(model.constraints.begin(), model.constraints.end(), [](const Constraint& c) {
-        return c.level == ConstraintLevel::velocity && !c.nonholonomic;
-      });
+  const bool integrable_velocity_rows = std::any_of(
+      model.constraints.begin(), model.constraints.end(),
+      [](const Constraint& c) { return c.level == ConstraintLevel::velocity && !c.nonholonomic; });
   if (integrable_velocity_rows) {
     out << "  (linear velocity-level constraints are classed by their integrated form a·u = "
            "a·u(0) + ∫h)\n";
   }
 }
 
-/// Elimination sized once, before the choice is printed: auto falls back to GGL when the
-/// reduction cannot be integrated (dae/run/solve.cpp), and says so here as run does.
+/// Elimination sized once, before the choice is printed: its row in the table of schemes (the
+/// plan has made auto's fallback to GGL when the reduction cannot be integrated).
 struct EliminationSizing {
   std::optional<SystemSize> size;
   std::string refused;
-  bool inapplicable = false;  // SchemeNotApplicable: what auto falls back on
 };
 
 EliminationSizing size_elimination(const Model& model, const SolveSpec& settings,
-                                   SystemSizer& sizer) {
+                                   SchemeDecisions& decisions) {
   EliminationSizing elimination;
   SolveSpec as_elimination = settings;
   as_elimination.scheme = Scheme::elimination;
   as_elimination.treatment = SolveSpec::Treatment::multipliers;
   try {
-    if (!scheme_refusal(model, Scheme::elimination)) elimination.size = sizer(as_elimination);
-  } catch (const SchemeNotApplicable& e) {
-    elimination.refused = e.what();
-    elimination.inapplicable = true;
+    if (!scheme_refusal(model, Scheme::elimination)) {
+      elimination.size = decisions.size(as_elimination);
+    }
   } catch (const std::exception& e) {
     elimination.refused = e.what();
   }
@@ -259,7 +256,8 @@ EliminationSizing size_elimination(const Model& model, const SolveSpec& settings
 /// The table of the system each scheme integrates (unknowns, Jacobian nonzeros, memory), the
 /// chosen one marked; returns the chosen one's memory estimate, when it could be sized.
 std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model& model,
-                                                 const SolveSpec& settings, SystemSizer& sizer,
+                                                 const SolveSpec& settings,
+                                                 SchemeDecisions& decisions,
                                                  const SchemeChoice& choice, bool chose_mixed,
                                                  const EliminationSizing& elimination) {
   out << "\nsystem each scheme integrates:\n";
@@ -284,8 +282,9 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
         if (s == Scheme::elimination && !elimination.refused.empty()) {
           throw std::invalid_argument(elimination.refused);
         }
-        const SystemSize size =
-            s == Scheme::elimination && elimination.size ? *elimination.size : sizer(as_scheme);
+        const SystemSize size = s == Scheme::elimination && elimination.size
+                                    ? *elimination.size
+                                    : decisions.size(as_scheme);
         const MemoryEstimate estimate = scheme_memory(size);
         if (*marker != '\0') selected = estimate;
         out << std::setw(10) << size.unknowns << std::setw(19) << size.jacobian_nonzeros
@@ -323,19 +322,17 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
              << ", A " << model.A.nonZeros();
   out << "\n" << wrapped_text("model: ", model_size.str());
   print_loads(out, model);
-  SchemeChoice choice = choose_scheme(model, settings);
-  SystemSizer sizer(model);
-  const EliminationSizing elimination = size_elimination(model, settings, sizer);
-  const bool fell_back = settings.scheme == Scheme::automatic &&
-                         choice.scheme == Scheme::elimination && elimination.inapplicable;
-  if (fell_back) {
-    choice = {Scheme::ggl, "auto: elimination refused (" + elimination.refused + "), GGL instead"};
-  }
+  // The plan a run would make, from the decisions `info` sizes every scheme with (the treatment,
+  // the reduction: each made once).
+  SchemeDecisions decisions(model);
+  RunPlan run_plan = plan(model, settings, decisions);
+  const EliminationSizing elimination = size_elimination(model, settings, decisions);
+  const SchemeChoice choice{run_plan.scheme, run_plan.reason};
   const auto refusal = scheme_refusal(model, choice.scheme);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
       << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";
   if (choice.scheme == Scheme::elimination && !refusal) {
-    const ReducedSystem& reduced = sizer.reduced(settings.slaves);
+    const ReducedSystem& reduced = *decisions.reduced(settings.slaves);
     const auto& ms = reduced.transform;
     out << "elimination: " << ms.slaves.size() << (ms.slaves.size() == 1 ? " slave (" : " slaves (")
         << (settings.slaves.empty() ? "chosen by column pivoting on A" : "named in [solve] slaves")
@@ -343,18 +340,20 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         << wrapped_list("  slaves: ", names_of(model, ms.slaves))
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
-  sizer.release_reduced();  // elimination is sized already: the other schemes' peak without it
-  const bool chose_mixed = !fell_back && uses_mixed_treatment(model, choice.scheme, settings);
+  // Elimination is sized already: the other schemes' peak without it.
+  decisions.release_reduced();
+  run_plan.reduced.reset();
+  run_plan.reduced_ode.reset();
+  const bool chose_mixed = run_plan.mixed();
   if (chose_mixed && !refusal) {
-    out << "constraint treatment (mixed): " << treatment_report(model, treat_constraints(model));
+    out << "constraint treatment (mixed): " << treatment_report(model, *run_plan.treatment);
   }
-  if (choice.scheme == Scheme::baumgarte)
-    out << wrapped_text("baumgarte: ", baumgarte_gains(model, settings).rule);
+  if (choice.scheme == Scheme::baumgarte) out << wrapped_text("baumgarte: ", run_plan.gains.rule);
   std::ostringstream rtol;
   rtol << "rtol " << settings.rtol << "; ";
-  out << wrapped_text("tolerances: ", rtol.str() + absolute_tolerances(model, settings).rule);
-  print_memory(out,
-               print_scheme_table(out, model, settings, sizer, choice, chose_mixed, elimination));
+  out << wrapped_text("tolerances: ", rtol.str() + run_plan.tolerances.rule);
+  print_memory(
+      out, print_scheme_table(out, model, settings, decisions, choice, chose_mixed, elimination));
 }
 
 }  // namespace condyn

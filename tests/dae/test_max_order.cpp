@@ -40,7 +40,7 @@ TEST_CASE("max_order caps the BDF order of every scheme's integrator, and the ru
         parse_scene_text(stiff_pair(std::string("scheme = \"") + scheme + "\"\n"), "pair.toml"));
     const SolveResult unlimited = test::solved(free_order.model, free_order.spec.solve);
     CHECK(unlimited.summary.max_order_used > 2);  // BDF climbs on the smooth soft mode
-    CHECK(unlimited.summary.notes.find("BDF order") == std::string::npos);
+    CHECK(unlimited.summary.notes_text().find("BDF order") == std::string::npos);
     for (int cap : {1, 2}) {
       CAPTURE(cap);
       const auto capped =
@@ -50,7 +50,8 @@ TEST_CASE("max_order caps the BDF order of every scheme's integrator, and the ru
       const SolveResult r = test::solved(capped.model, capped.spec.solve);
       CHECK(r.summary.max_order_used >= 1);
       CHECK(r.summary.max_order_used <= cap);
-      CHECK(r.summary.notes.find("BDF order at most " + std::to_string(cap)) != std::string::npos);
+      CHECK(r.summary.notes_text().find("BDF order at most " + std::to_string(cap)) !=
+            std::string::npos);
     }
   }
 }

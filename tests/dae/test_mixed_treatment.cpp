@@ -133,8 +133,8 @@ TEST_CASE("mixed treatment under every multiplier scheme agrees with the elimina
     SolveSpec settings = test::under(scene.spec.solve, s);
     settings.treatment = SolveSpec::Treatment::mixed;
     const SolveResult mixed = test::solved(scene.model, settings);
-    CHECK(mixed.summary.notes.find("mixed treatment: 2 rows eliminated, 1 with multipliers") !=
-          std::string::npos);
+    CHECK(mixed.summary.notes_text().find(
+              "mixed treatment: 2 rows eliminated, 1 with multipliers") != std::string::npos);
     const auto& r = reference.trajectory;
     const auto& x = mixed.trajectory;
     CHECK(max_abs_difference(x.u, r.u) < 1e-7);
@@ -157,8 +157,8 @@ TEST_CASE("mixed and pure multipliers agree on a nonlinear model with driven lin
     mixed.treatment = SolveSpec::Treatment::mixed;
     const SolveResult a = test::solved(scene.model, pure);
     const SolveResult b = test::solved(scene.model, mixed);
-    CHECK(a.summary.notes.find("mixed") == std::string::npos);
-    CHECK(b.summary.notes.find("mixed treatment: 2 rows eliminated, 1 with multipliers") !=
+    CHECK(a.summary.notes_text().find("mixed") == std::string::npos);
+    CHECK(b.summary.notes_text().find("mixed treatment: 2 rows eliminated, 1 with multipliers") !=
           std::string::npos);
     // Unit rod, g = 9.81: displacements of order 1, reactions up to 28. Both runs approximate the
     // same solution at rtol 1e-10; their differences observed are below 8e-9 (u) and 1.6e-6
@@ -208,9 +208,9 @@ TEST_CASE("info names each row's treatment and sizes the mixed systems") {
   CHECK(text.find("ggl mixed") != std::string::npos);
 }
 
-TEST_CASE("one SystemSizer sizes every scheme as system_size does, pure and mixed") {
+TEST_CASE("one SchemeDecisions sizes every scheme as system_size does, pure and mixed") {
   const auto chain = test::built(parse_scene_text(chain_scene(""), "chain.toml"));
-  SystemSizer sizer(chain.model);  // its mixed system built on first use, then shared
+  SchemeDecisions decisions(chain.model);  // its mixed system built on first use, then shared
   for (const Scheme scheme : {Scheme::index1, Scheme::ggl, Scheme::baumgarte, Scheme::index2,
                               Scheme::index3, Scheme::projection, Scheme::elimination}) {
     for (const auto treatment : {SolveSpec::Treatment::mixed, SolveSpec::Treatment::multipliers}) {
@@ -218,7 +218,8 @@ TEST_CASE("one SystemSizer sizes every scheme as system_size does, pure and mixe
       CAPTURE(to_string(scheme));
       SolveSpec settings = test::under(chain.spec.solve, scheme);
       settings.treatment = treatment;
-      const SystemSize shared = sizer(settings), alone = system_size(chain.model, settings);
+      const SystemSize shared = decisions.size(settings),
+                       alone = system_size(chain.model, settings);
       CHECK(shared.unknowns == alone.unknowns);
       CHECK(shared.jacobian_nonzeros == alone.jacobian_nonzeros);
       // Two rows eliminated (28 DOFs left), one kept: the mixed systems are the smaller ones.

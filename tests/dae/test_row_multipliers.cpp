@@ -210,7 +210,8 @@ atol = 1e-10
     SolveSpec settings = test::under(s.spec.solve, scheme);
     settings.treatment = SolveSpec::Treatment::mixed;
     const SolveResult mixed = test::solved(model, settings);
-    REQUIRE(mixed.summary.notes.find("1 rows eliminated, 0 with multipliers") != std::string::npos);
+    REQUIRE(mixed.summary.notes_text().find("1 rows eliminated, 0 with multipliers") !=
+            std::string::npos);
     const Trajectory& traj = mixed.trajectory;
     const double peak = traj.multiplier.cwiseAbs().maxCoeff();
     REQUIRE(peak > 1e-4);

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "dae/formulations/constraint_treatment.hpp"
-#include "dae/run/elimination.hpp"
+#include "dae/formulations/reduced_system.hpp"
 #include "dae/run/solve.hpp"
 #include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"

@@ -159,7 +159,7 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
 
   const test::BuiltScene set =
       frame(1.0, 1e-6, "atol_velocity = 1e-7\natol_multiplier = 1e-3\natol_mu = 2e-9\n");
-  const IntegratorOptions o = integrator_options(set.model, set.spec.solve);
+  const IntegratorSettings o = integrator_settings(set.model, set.spec.solve);
   CHECK(o.atol_of(UnknownKind::displacement) == 1e-10);
   CHECK(o.atol_of(UnknownKind::velocity) == 1e-7);
   CHECK(o.atol_of(UnknownKind::multiplier) == 1e-3);
@@ -172,7 +172,7 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
 
   // Derived multiplier tolerances per row: rows more than 1e3 below the largest coefficient
   // get the common figure times how far below they lie ([u u v v | λ λ λ λ | μ]).
-  IntegratorOptions per_row = o;
+  IntegratorSettings per_row = o;
   const std::vector<UnknownKind> kinds = unknown_kinds(2, 4, 1);
   Eigen::VectorXd scales(9);
   scales << 0, 0, 0, 0, 2e9, 2e6, 1.0, 0.0, 1.0;
@@ -198,7 +198,7 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
   CHECK(h.velocity <= 1e300);
   CHECK(h.multiplier == 1e300);
   CHECK(h.mu <= 1e300);
-  CHECK_NOTHROW(integrator_options(model, huge).validate());
+  CHECK_NOTHROW(integrator_settings(model, huge).validate());
 
   for (const char* key : {"atol_velocity", "atol_multiplier", "atol_mu"}) {
     CAPTURE(std::string(key));
@@ -260,7 +260,7 @@ scheme = "ggl"
 )",
                                                   "tip.toml"));
   const Model& model = built.model;
-  const IntegratorOptions o = integrator_options(model, built.spec.solve);
+  const IntegratorSettings o = integrator_settings(model, built.spec.solve);
   const MultiplierDae dae(*model.system, Scheme::ggl, 0.0, 0.0);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(dae.size());
   const Eigen::VectorXd masses = dae.multiplier_row_masses(0.0, y);
@@ -284,7 +284,7 @@ scheme = "ggl"
   // A scene's own atol_multiplier holds for every row.
   SolveSpec given = built.spec.solve;
   given.atol_multiplier = 1e-3;
-  const IntegratorOptions g = integrator_options(model, given);
+  const IntegratorSettings g = integrator_settings(model, given);
   CHECK(g.atol_vector(dae.unknown_kinds(), dae.size(), dae.multiplier_row_scales(0.0, y),
                       masses)[kTipRod] == 1e-3);
 }

@@ -103,16 +103,17 @@ TEST_CASE("the floors engage only in a trapped run and the summary says when") {
   const test::BuiltScene trapped =
       test::built(parse_scene_text(test::conical_pendulum_scene(60.0, 3.0), "conical"));
   const SolveResult ggl = test::solved(trapped.model, test::under(trapped.spec.solve, Scheme::ggl));
-  CHECK(ggl.summary.notes.find("error weights of the DOFs on constraint rows floored by their rows "
-                               "from t = ") != std::string::npos);
+  CHECK(ggl.summary.notes_text().find(
+            "error weights of the DOFs on constraint rows floored by their rows "
+            "from t = ") != std::string::npos);
   const SolveResult index2 =
       test::solved(trapped.model, test::under(trapped.spec.solve, Scheme::index2));
-  CHECK(index2.summary.notes.find("floored") == std::string::npos);  // no floors to engage
+  CHECK(index2.summary.notes_text().find("floored") == std::string::npos);  // no floors to engage
   const test::BuiltScene swinging =  // 10 % faster: an orbit that swings up and down
       test::built(parse_scene_text(test::conical_pendulum_scene(60.0, 3.0, 1.1), "swinging"));
   const SolveResult free_run =
       test::solved(swinging.model, test::under(swinging.spec.solve, Scheme::ggl));
-  CHECK(free_run.summary.notes.find("floored") == std::string::npos);
+  CHECK(free_run.summary.notes_text().find("floored") == std::string::npos);
 }
 
 TEST_CASE("error_scale_floors: each DOF's share of its rows' reach") {

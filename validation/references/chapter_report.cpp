@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "dae/run/elimination.hpp"
+#include "dae/formulations/reduced_system.hpp"
 #include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "validation/references/embedded_scenes.hpp"

@@ -1,5 +1,6 @@
 #include "validation/references/exact_solution.hpp"
 
+#include "dae/formulations/multiplier_recovery.hpp"
 #include "dae/interface/interrupt.hpp"
 
 #include "models/core/null_space.hpp"

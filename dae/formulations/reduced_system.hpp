@@ -9,8 +9,9 @@
 ///   M̂ û'' + Ĉ û' + K̂ û = f̂(t),  M̂ = TᵀMT, Ĉ = TᵀCT, K̂ = TᵀKT,
 ///   f̂(t) = Tᵀ f(t) + Tᵀ f_tra(t),  f_tra = −K G g − C G g' − M G g''  (eqs. 5.10, 5.26 corrected)
 ///
-/// is integrated with IDA as an ODE; full displacements and velocities are reconstructed, and the
-/// reactions come from the full equations: f_con = M u'' + C u' + K u − f (eqs. 5.8, 5.12).
+/// is integrated with IDA as an ODE (dae/formulations/reduced_ode.hpp, run by
+/// dae/formulations/elimination_run.cpp); full displacements and velocities are reconstructed, and
+/// the reactions come from the full equations: f_con = M u'' + C u' + K u − f (eqs. 5.8, 5.12).
 
 #include <Eigen/Sparse>
 #include <memory>
@@ -18,7 +19,6 @@
 #include <vector>
 
 #include "dae/formulations/master_slave.hpp"
-#include "dae/run/solve_result.hpp"
 #include "models/core/model.hpp"
 
 namespace condyn {
@@ -40,15 +40,9 @@ struct ReducedSystem {
 };
 
 /// `preferred_slaves` ([solve] slaves: DOF names, size m, or empty) as master_slave_transform.
-/// Its CoupledGroupTooLarge is rethrown as SchemeNotApplicable (dae/interface/scheme_not_applicable.hpp) naming the
-/// group's first constraint.
+/// Its CoupledGroupTooLarge is rethrown as SchemeNotApplicable
+/// (dae/interface/scheme_not_applicable.hpp) naming the group's first constraint.
 [[nodiscard]] ReducedSystem reduce(const Model& model,
                                    const std::vector<std::string>& preferred_slaves = {});
-
-/// Runs the elimination path with IDA into `result` (dae/run/observed_run.hpp), slaves as reduce().
-/// Throws std::invalid_argument when the reduced mass matrix is singular (massless master DOFs are
-/// not supported on this path).
-void solve_elimination(const Model& model, const std::vector<std::string>& preferred_slaves,
-                       const IntegratorOptions& options, SolveResult& result);
 
 }  // namespace condyn

@@ -1,12 +1,8 @@
-#include "dae/run/elimination.hpp"
+#include "dae/formulations/reduced_system.hpp"
 
-#include <algorithm>
-#include <stdexcept>
+#include <string>
 
-#include "dae/formulations/reduced_ode.hpp"
-#include "dae/integrators/ida_integrator.hpp"
-#include "dae/run/observed_run.hpp"
-#include "dae/run/solve.hpp"
+#include "dae/interface/scheme_not_applicable.hpp"
 
 namespace condyn {
 
@@ -77,44 +73,6 @@ Eigen::VectorXd ReducedSystem::forces(const Model& model, double t, double step_
     if (model.has_damping()) f += FC * model.position_rhs(1, t);
   }
   return f;
-}
-
-void solve_elimination(const Model& model, const std::vector<std::string>& preferred_slaves,
-                       const IntegratorOptions& options, SolveResult& result) {
-  const ReducedSystem reduced = reduce(model, preferred_slaves);
-  ReducedOde ode(model, reduced);
-  const auto& masters = reduced.transform.masters;
-  const int nm = static_cast<int>(masters.size());
-  Eigen::VectorXd y0(2 * nm);
-  for (int k = 0; k < nm; ++k) {
-    y0[k] = model.u0[masters[static_cast<std::size_t>(k)]];
-    y0[nm + k] = model.v0[masters[static_cast<std::size_t>(k)]];
-  }
-  result.summary.scheme = "elimination";
-  const auto& T = reduced.transform.T;
-  const auto& G = reduced.transform.G;
-  const Observation::FullState full_state = [&](double t, const Eigen::VectorXd& y) {
-    Eigen::VectorXd u = T * y.head(nm), v = T * y.tail(nm);
-    if (reduced.rheonomic) {
-      u += G * model.position_rhs(0, t);
-      v += G * model.position_rhs(1, t);
-    }
-    return std::make_pair(u, v);
-  };
-  const MultiplierRecovery recover(model);
-  Observation observe;
-  observe.full_state = full_state;
-  observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
-                            const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
-    Eigen::VectorXd a = T * ode.acceleration(t, y.head(nm), y.tail(nm));
-    if (reduced.rheonomic) a += G * model.position_rhs(2, t);
-    return recover(t, u, v, a);
-  };
-  observe.drift_at_every_step = false;
-  run_observed(
-      model, options,
-      [&](const IntegratorOptions& o) { return integrate(ode, y0, o, result.summary); }, observe,
-      result);
 }
 
 }  // namespace condyn

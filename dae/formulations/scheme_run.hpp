@@ -1,0 +1,79 @@
+#pragma once
+/// Each scheme's runner, beside its formulation: it builds the formulation a plan names, its
+/// initial state and how its state maps to what the model observes, and hands them to the one
+/// observed run (dae/run/observed_run.hpp) that execute() passes in. The runners decide nothing:
+/// the scheme, its parameters and the constraint treatment come from the plan
+/// (dae/run/run_plan.hpp).
+
+#include <Eigen/Dense>
+#include <functional>
+#include <utility>
+
+#include "dae/formulations/baumgarte_gains.hpp"
+#include "dae/formulations/constraint_treatment.hpp"
+#include "dae/formulations/penalty_ode.hpp"
+#include "dae/formulations/reduced_ode.hpp"
+#include "dae/integrators/step_driver.hpp"
+#include "models/core/model.hpp"
+
+namespace condyn {
+
+/// How a scheme's state y maps to what the model observes.
+struct Observation {
+  using FullState = std::function<std::pair<Eigen::VectorXd, Eigen::VectorXd>(
+      double t, const Eigen::VectorXd& y)>;
+  /// u and u' in full DOF space at (t, y).
+  FullState full_state;
+  /// λ at an output (t, y, y'), whose full-space u and u' are given.
+  std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                const Eigen::VectorXd& u, const Eigen::VectorXd& v)>
+      multipliers;
+  /// λ at an output row, when it differs from `multipliers` (which the energy balance's
+  /// integrand keeps at every quadrature point); optional.
+  std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                const Eigen::VectorXd& u, const Eigen::VectorXd& v)>
+      row_multipliers;
+  /// Further per-step observation of y (GGL's μ); optional.
+  std::function<void(const Eigen::VectorXd& y)> on_state;
+  /// What the per-step observation adds to the run's summary once the run has ended, failed or
+  /// not (GGL's largest |μ|); optional.
+  std::function<void(SolveSummary& summary)> on_finish;
+  /// Measure the drift at every internal step even without a drift log (the multiplier schemes,
+  /// whose drift between outputs is what they are judged by). Elimination satisfies the
+  /// constraints by construction and pays for the per-step map only when a log is asked for.
+  bool drift_at_every_step = true;
+};
+
+/// Integrates a scheme's formulation with `options` (the observed run's: its observers added),
+/// counting into `summary`.
+using Integrate =
+    std::function<RawTrajectory(const IntegratorOptions& options, SolveSummary& summary)>;
+/// Runs `integrate` observed by `observe` into the run's result (execute() binds it to the model,
+/// the options and the result: dae/run/observed_run.hpp).
+using ObservedRun = std::function<void(const Integrate& integrate, const Observation& observe)>;
+
+/// The full-state map of a scheme whose state starts with [u; v] (every scheme but elimination).
+[[nodiscard]] Observation::FullState full_state_prefix(int n);
+
+/// The multiplier schemes (index1, baumgarte, ggl, index2, index3) with IDA
+/// (dae/formulations/multiplier_dae.hpp). `gains`: Baumgarte's (zero for the others). `mixed`:
+/// the mixed treatment's rows (dae/formulations/eliminated_system.hpp), or null for a multiplier
+/// per row. `row_multipliers`: λ at the output rows from acceleration level
+/// (dae/formulations/row_multipliers.hpp).
+void run_multipliers(const Model& model, Scheme scheme, const BaumgarteGains& gains,
+                     const ConstraintTreatment* mixed, bool row_multipliers,
+                     const ObservedRun& run);
+
+/// Penalty with IDA (dae/formulations/penalty_ode.hpp); linear models only.
+void run_penalty(const Model& model, const PenaltyWeights& weights, const ObservedRun& run);
+
+/// Projection with CVODE (dae/formulations/projected_ode.hpp).
+void run_projection(const Model& model, const ObservedRun& run);
+
+/// Elimination with IDA: `ode` integrates `reduced` (dae/formulations/reduced_ode.hpp), the
+/// reduction it was built on; its state is mapped back to full DOF space and the reactions come
+/// from the full equations.
+void run_elimination(const Model& model, const ReducedSystem& reduced, ReducedOde& ode,
+                     const ObservedRun& run);
+
+}  // namespace condyn

@@ -1,0 +1,241 @@
+#include "dae/run/run_plan.hpp"
+
+#include <algorithm>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "dae/formulations/scheme_run.hpp"
+#include "dae/run/failure_advice.hpp"
+#include "dae/run/observed_run.hpp"
+#include "dae/run/singular_passages.hpp"
+
+namespace condyn {
+
+namespace {
+
+IntegratorSettings settings_from(const Model& model, const SolveSpec& settings,
+                                 const AbsoluteTolerances& atol) {
+  IntegratorSettings o;
+  o.rtol = settings.rtol;
+  o.atol = atol.displacement;
+  o.atol_velocity = atol.velocity;
+  o.atol_multiplier = atol.multiplier;
+  o.atol_mu = atol.mu;
+  o.multiplier_atol_per_row = !settings.atol_multiplier;
+  o.multiplier_mass = atol.mass;
+  o.mu_atol_per_row = !settings.atol_mu;
+  o.time_scale = atol.time_scale;
+  o.first_step = atol.first_step;
+  o.first_kink = model.first_kink(0.0);
+  o.dense_linear_solver = settings.dense_linear_solver;
+  o.max_order = settings.max_order;
+  o.condensed_newton = settings.condensed_newton;
+  o.output_times = settings.output_times();
+  o.breakpoints = model.breakpoints(settings.t_end);
+  o.max_steps = settings.max_steps;
+  o.max_steps_per_output = settings.steps_per_output_budget();
+  o.max_wall_seconds = settings.max_wall_time;
+  return o;
+}
+
+/// The tolerances and the integrator's settings of `settings` (again after a fallback).
+void plan_tolerances(RunPlan& p) {
+  p.tolerances = absolute_tolerances(*p.model, p.settings);
+  p.integrator = settings_from(*p.model, p.settings, p.tolerances);
+}
+
+/// Elimination's reduction and its ODE; when they are refused, auto falls back to GGL with a
+/// multiplier for every row (which integrates such a model), and a named elimination is refused.
+void plan_elimination(RunPlan& p, SchemeDecisions& decisions) {
+  try {
+    p.reduced_ode = decisions.reduced_ode(p.settings.slaves);
+    p.reduced = decisions.reduced(p.settings.slaves);
+    return;
+  } catch (const SchemeNotApplicable& why) {
+    if (p.settings.scheme != Scheme::automatic) {
+      p.refusal = why.what();
+      return;
+    }
+    p.fallback = std::string("auto: elimination refused (") + why.what() + "), GGL instead";
+  }
+  p.scheme = Scheme::ggl;
+  p.reason = *p.fallback;
+  p.settings.scheme = Scheme::ggl;
+  p.settings.treatment = SolveSpec::Treatment::multipliers;
+  plan_tolerances(p);
+}
+
+/// The parameters of a multiplier scheme or penalty, and the mixed treatment's rows: computed
+/// once here, noted in the summary before the run.
+void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
+  const Model& model = *p.model;
+  if (p.scheme == Scheme::baumgarte) {
+    p.gains = baumgarte_gains(model, p.settings);
+    p.notes.push_back({RunNote::Kind::scheme_setting, p.gains.rule});
+  }
+  if (p.scheme == Scheme::penalty) {
+    p.weights = penalty_weights(model, p.settings);
+    p.notes.push_back({RunNote::Kind::scheme_setting, p.weights.rule});
+  }
+  if (uses_mixed_treatment(model, p.scheme, p.settings)) {
+    p.treatment = decisions.treatment();
+    p.notes.push_back({RunNote::Kind::treatment,
+                       "mixed treatment: " + std::to_string(p.treatment->eliminated.size()) +
+                           " rows eliminated, " + std::to_string(p.treatment->kept.size()) +
+                           " with multipliers"});
+  }
+}
+
+}  // namespace
+
+IntegratorSettings integrator_settings(const Model& model, const SolveSpec& settings) {
+  return settings_from(model, settings, absolute_tolerances(model, settings));
+}
+
+RunPlan plan(const Model& model, const SolveSpec& settings) {
+  SchemeDecisions decisions(model);
+  return plan(model, settings, decisions);
+}
+
+RunPlan plan(const Model& model, const SolveSpec& settings, SchemeDecisions& decisions) {
+  settings.validate();
+  RunPlan p;
+  p.model = &model;
+  p.settings = settings;
+  p.scheme = settings.scheme;
+  p.reason = "requested";
+  if (auto why = scheme_refusal(model, settings.scheme)) {
+    p.refusal = std::move(why);
+    plan_tolerances(p);
+    return p;
+  }
+  if (settings.scheme == Scheme::automatic) {
+    SchemeChoice choice = decisions.choose(settings);
+    p.scheme = choice.scheme;
+    p.reason = std::move(choice.reason);
+  }
+  plan_tolerances(p);
+  if (p.scheme == Scheme::elimination) plan_elimination(p, decisions);
+  if (!p.refusal) plan_parameters(p, decisions);
+  return p;
+}
+
+RunHooks hooks_for(const std::vector<Quantity>& quantities) {
+  const auto has = [&quantities](Quantity q) {
+    return std::find(quantities.begin(), quantities.end(), q) != quantities.end();
+  };
+  RunHooks hooks;
+  hooks.accelerations = has(Quantity::acceleration) || has(Quantity::absolute_acceleration);
+  hooks.energy_balance = has(Quantity::energy);
+  hooks.reactions = hooks.accelerations || has(Quantity::reaction) || has(Quantity::multiplier);
+  return hooks;
+}
+
+namespace {
+
+/// The plan's integrator settings with what the caller observes.
+IntegratorOptions options_of(const RunPlan& plan, const RunHooks& hooks) {
+  IntegratorOptions options;
+  static_cast<IntegratorSettings&>(options) = plan.integrator;
+  options.record_steps = hooks.record_steps;
+  options.accelerations = hooks.accelerations;
+  options.row_multipliers = hooks.reactions;
+  options.energy_balance = hooks.energy_balance;
+  options.on_progress = hooks.on_progress;
+  options.on_row = hooks.on_row;
+  return options;
+}
+
+/// Runs the plan's scheme through its runner (dae/formulations/scheme_run.hpp).
+void run_scheme(const RunPlan& plan, const IntegratorOptions& options, const ObservedRun& run) {
+  const Model& model = *plan.model;
+  switch (plan.scheme) {
+    case Scheme::elimination: {
+      ReducedOde ode = *plan.reduced_ode;  // this run's own copy
+      return run_elimination(model, *plan.reduced, ode, run);
+    }
+    case Scheme::automatic:
+      break;  // resolved by plan()
+    case Scheme::index1:
+    case Scheme::baumgarte:
+    case Scheme::ggl:
+    case Scheme::index2:
+    case Scheme::index3:
+      return run_multipliers(model, plan.scheme, plan.gains, plan.treatment.get(),
+                             options.row_multipliers, run);
+    case Scheme::penalty:
+      return run_penalty(model, plan.weights, run);
+    case Scheme::projection:
+      return run_projection(model, run);
+  }
+  throw std::logic_error("unknown scheme");
+}
+
+/// What is noted after the run, in this order: the order cap, the warnings (of a run that
+/// ended), the singular passages.
+void note_after(const RunPlan& plan, SolveResult& result) {
+  const SolveSpec& settings = plan.settings;
+  SolveSummary& summary = result.summary;
+  if (settings.max_order < 5) {
+    summary.add_note(RunNote::Kind::order_cap,
+                     "BDF order at most " + std::to_string(settings.max_order) +
+                         " (highest used: " + std::to_string(summary.max_order_used) + ")");
+  }
+  for (const auto& note : {summary.error_test_warning(), summary.atol_warning(settings.atol),
+                           summary.drift_warning(settings.rtol, settings.atol)}) {
+    if (note && !result.failure) summary.add_note(RunNote::Kind::warning, *note);
+  }
+  if (std::string note = singular_passage_note(summary.singular_passages, result.trajectory.t);
+      !note.empty()) {
+    summary.add_note(RunNote::Kind::singular_passage, std::move(note));
+  }
+}
+
+/// What to try instead, after a failure.
+void advise(const RunPlan& plan, SolveResult& result) {
+  RunFailure& failure = *result.failure;
+  std::string causes =
+      roundoff_advice(failure, plan.settings.atol, result.summary.max_abs_displacement,
+                      plan.model->system->coordinate_scale());
+  // Only a scene's atol_mu can lie below the rows' floor (the derived one never does).
+  if (plan.scheme == Scheme::ggl && plan.settings.atol_mu) {
+    causes += mu_roundoff_advice(failure, *plan.settings.atol_mu, plan.tolerances.mu_floor);
+  }
+  failure.suggestion = failure_suggestion(plan.scheme, failure, causes);
+  failure.suggestion += singular_failure_advice(result.summary.singular_passages);
+}
+
+}  // namespace
+
+SolveResult execute(const RunPlan& plan, const RunHooks& hooks) {
+  if (plan.refusal) throw SchemeNotApplicable(*plan.refusal, plan.settings.scheme_where);
+  const Model& model = *plan.model;
+  const IntegratorOptions options = options_of(plan, hooks);
+  SolveResult result;
+  result.scheme = plan.scheme;
+  result.summary.scheme = to_string(plan.scheme);
+  result.summary.notes = plan.notes;
+  try {
+    run_scheme(plan, options, [&](const Integrate& integrate, const Observation& observe) {
+      result = run_observed(model, options, integrate, observe, result.summary);
+      result.scheme = plan.scheme;
+    });
+    if (plan.fallback) {
+      result.summary.notes.insert(result.summary.notes.begin(),
+                                  {RunNote::Kind::fallback, *plan.fallback});
+    }
+  } catch (const SchemeNotApplicable& why) {
+    throw SchemeNotApplicable(why.what(), plan.settings.scheme_where);
+  } catch (const IntegrationError& e) {
+    // Outside the loop (the loop's own failures come back as data): the integrator could not be
+    // created or initialised.
+    result.failure = failure_of(e);
+  }
+  note_after(plan, result);
+  if (result.failure) advise(plan, result);
+  return result;
+}
+
+}  // namespace condyn
