@@ -19,6 +19,7 @@
 #include "dae/run/scheme_choice.hpp"
 #include "dae/run/solve_result.hpp"
 #include "models/core/model.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 

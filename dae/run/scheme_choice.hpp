@@ -13,6 +13,7 @@
 #include "dae/formulations/reduced_system.hpp"
 #include "dae/interface/scheme_not_applicable.hpp"
 #include "models/core/model.hpp"
+#include "models/core/solve_spec.hpp"
 
 namespace condyn {
 
