@@ -154,7 +154,8 @@ TEST_CASE("a scheme refused outright is planned with its refusal, which execute 
   CHECK_THROWS_WITH_AS((void)execute(p), p.refusal->c_str(), SchemeNotApplicable);
 }
 
-TEST_CASE("notes are entries of a kind, printed joined by a semicolon, in the order they were made") {
+TEST_CASE(
+    "notes are entries of a kind, printed joined by a semicolon, in the order they were made") {
   const auto scene = test::built(parse_scene_text(
       driven_pendulum_scene("scheme = \"baumgarte\"\nconstraints = \"mixed\"\nmax_order = 2\n"),
       "driven.toml"));
