@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+"""IFToMM A01, the planar simple pendulum, in its one minimal coordinate.
+
+Specification (http://lim.ii.udc.es/mbsbenchmark/dist/A01/A01_specification.xml): a lumped mass
+of 1 kg on a massless link of 1 m, gravity 9.81 N/kg along -y, released at rest with P1 at
+x = +1 m (link horizontal), 2000 s sampled in 4000 output steps. theta is the link's angle from
+the downward vertical: P1 = (L sin theta, -L cos theta), theta(0) = pi/2, and
+theta'' = -(g/L) sin theta. The scene's body "pendulum" has its centre of mass at P1 and its
+frame along the link at t = 0, so its angle is theta - pi/2.
+
+The CSV holds the closed form (exact); the SciPy integration at rtol 1e-12 checks it:
+energy conserved, the motion against the closed form
+sin(theta/2) = k sn(K - w t | k^2), k = sin(theta0/2), w = sqrt(g/L); the period between
+successive turning points against 4 K(k^2) / w.
+Run: /usr/bin/python3 validation/references/iftomm/reference_A01.py  (writes A01_reference.csv)
+"""
+import sys
+
+import numpy as np
+from scipy.special import ellipj, ellipk
+
+import iftomm_common as ic
+
+MASS, LENGTH, G = 1.0, 1.0, 9.81
+THETA0 = np.pi / 2.0
+T_END, STEPS = 2000.0, 4000
+
+
+def rhs(_t, y):
+    theta, theta_dot = y
+    return [theta_dot, -(G / LENGTH) * np.sin(theta)]
+
+
+def closed_form(t):
+    """theta(t) by Jacobi's sn, its argument reduced modulo the period 4K."""
+    k = np.sin(THETA0 / 2.0)
+    m = k * k
+    quarter = ellipk(m)
+    u = np.mod(quarter - np.sqrt(G / LENGTH) * t, 4.0 * quarter)
+    sn = ellipj(u, m)[0]
+    return 2.0 * np.arcsin(k * sn)
+
+
+def closed_form_rate(t):
+    """theta'(t) from the closed form: (1/2) cos(theta/2) theta' = -k w cn dn."""
+    k = np.sin(THETA0 / 2.0)
+    m = k * k
+    quarter = ellipk(m)
+    w = np.sqrt(G / LENGTH)
+    u = np.mod(quarter - w * t, 4.0 * quarter)
+    _, cn, dn, _ = ellipj(u, m)
+    return -2.0 * k * w * cn * dn / np.cos(closed_form(t) / 2.0)
+
+
+def energy(theta, theta_dot):
+    return 0.5 * MASS * LENGTH**2 * theta_dot**2 - MASS * G * LENGTH * np.cos(theta)
+
+
+def turning_point(_t, y):
+    return y[1]
+
+
+def compute(t_end=T_END):
+    """The reference columns at the benchmark's output times up to t_end (the closed form, which
+    is exact) and the self-checks (the SciPy integration against it among them)."""
+    t = np.linspace(0.0, t_end, int(round(t_end / T_END * STEPS)) + 1)
+    y, sol = ic.integrate(rhs, [THETA0, 0.0], t, events=turning_point)
+    theta, theta_dot = closed_form(t), closed_form_rate(t)
+    x, yy = LENGTH * np.sin(theta), -LENGTH * np.cos(theta)
+    columns = {"pendulum.x": x, "pendulum.y": yy, "pendulum.angle": theta - np.pi / 2.0,
+               "pendulum.omega": theta_dot, "pendulum.P1.x": x, "pendulum.P1.y": yy}
+    period = 4.0 * ellipk(np.sin(THETA0 / 2.0) ** 2) / np.sqrt(G / LENGTH)
+    turns = sol.t_events[0]
+    turns = turns[turns > 1e-9]  # the release at t = 0 is a turning point too
+    checks = [
+        ("energy drift of the integration / m g L",
+         ic.relative_drift(energy(y[:, 0], y[:, 1]), MASS * G * LENGTH), 1e-10,
+         "conserved; 100 rtol"),
+        ("energy drift of the closed form / m g L",
+         ic.relative_drift(energy(theta, theta_dot), MASS * G * LENGTH), 1e-12,
+         "exact up to ellipj's roundoff"),
+        ("max |theta (SciPy, rtol 1e-12) - closed form| (rad)", np.max(np.abs(y[:, 0] - theta)),
+         1e-7, "global error over 845 periods grows linearly: 1e5 rtol"),
+        ("max |2 (t_turn,i+1 - t_turn,i) - 4K/w| / period",
+         np.max(np.abs(2.0 * np.diff(turns) - period)) / period, 1e-10, "100 rtol"),
+    ]
+    return t, columns, checks, f"A01 simple pendulum: {len(t)} rows to {t_end} s, period 4K/w = {period:.15f} s"
+
+
+def main(out_dir=ic.HERE):
+    t, columns, checks, title = compute()
+    ic.write_csv("A01_reference.csv", t, columns, out_dir)
+    return ic.report(title, checks)
+
+
+if __name__ == "__main__":
+    sys.exit(0 if main() else 1)
