@@ -116,3 +116,24 @@ def rot_z(a):
 def box_inertia(mass, a, b, c):
     """Principal inertia [Ixx, Iyy, Izz] about the centre of a homogeneous box a x b x c."""
     return np.array([b * b + c * c, a * a + c * c, a * a + b * b]) * mass / 12.0
+
+
+def pendulum_closed_form(t, theta0, w):
+    """The pendulum theta'' = -w^2 sin theta released at rest from theta0 (|theta0| < pi),
+    theta from the stable equilibrium: sin(theta/2) = k sn(K - w t | k^2), k = sin(theta0/2),
+    and (1/2) cos(theta/2) theta' = -k w cn dn; Jacobi's argument reduced modulo the period 4K.
+    Returns (theta, theta') at the times t."""
+    from scipy.special import ellipj, ellipk
+    k = np.sin(theta0 / 2.0)
+    m = k * k
+    quarter = ellipk(m)
+    u = np.mod(quarter - w * np.asarray(t), 4.0 * quarter)
+    sn, cn, dn, _ = ellipj(u, m)
+    theta = 2.0 * np.arcsin(k * sn)
+    return theta, -2.0 * k * w * cn * dn / np.cos(theta / 2.0)
+
+
+def pendulum_period(theta0, w):
+    """4 K(k^2) / w, k = sin(theta0/2): the period of pendulum_closed_form."""
+    from scipy.special import ellipk
+    return 4.0 * ellipk(np.sin(theta0 / 2.0) ** 2) / w

@@ -17,8 +17,6 @@ Run: /usr/bin/python3 validation/references/iftomm/reference_A01.py  (writes A01
 import sys
 
 import numpy as np
-from scipy.special import ellipj, ellipk
-
 import iftomm_common as ic
 
 MASS, LENGTH, G = 1.0, 1.0, 9.81
@@ -29,27 +27,6 @@ T_END, STEPS = 2000.0, 4000
 def rhs(_t, y):
     theta, theta_dot = y
     return [theta_dot, -(G / LENGTH) * np.sin(theta)]
-
-
-def closed_form(t):
-    """theta(t) by Jacobi's sn, its argument reduced modulo the period 4K."""
-    k = np.sin(THETA0 / 2.0)
-    m = k * k
-    quarter = ellipk(m)
-    u = np.mod(quarter - np.sqrt(G / LENGTH) * t, 4.0 * quarter)
-    sn = ellipj(u, m)[0]
-    return 2.0 * np.arcsin(k * sn)
-
-
-def closed_form_rate(t):
-    """theta'(t) from the closed form: (1/2) cos(theta/2) theta' = -k w cn dn."""
-    k = np.sin(THETA0 / 2.0)
-    m = k * k
-    quarter = ellipk(m)
-    w = np.sqrt(G / LENGTH)
-    u = np.mod(quarter - w * t, 4.0 * quarter)
-    _, cn, dn, _ = ellipj(u, m)
-    return -2.0 * k * w * cn * dn / np.cos(closed_form(t) / 2.0)
 
 
 def energy(theta, theta_dot):
@@ -65,11 +42,12 @@ def compute(t_end=T_END):
     is exact) and the self-checks (the SciPy integration against it among them)."""
     t = np.linspace(0.0, t_end, int(round(t_end / T_END * STEPS)) + 1)
     y, sol = ic.integrate(rhs, [THETA0, 0.0], t, events=turning_point)
-    theta, theta_dot = closed_form(t), closed_form_rate(t)
+    w = np.sqrt(G / LENGTH)
+    theta, theta_dot = ic.pendulum_closed_form(t, THETA0, w)
     x, yy = LENGTH * np.sin(theta), -LENGTH * np.cos(theta)
     columns = {"pendulum.x": x, "pendulum.y": yy, "pendulum.angle": theta - np.pi / 2.0,
                "pendulum.omega": theta_dot, "pendulum.P1.x": x, "pendulum.P1.y": yy}
-    period = 4.0 * ellipk(np.sin(THETA0 / 2.0) ** 2) / np.sqrt(G / LENGTH)
+    period = ic.pendulum_period(THETA0, w)
     turns = sol.t_events[0]
     turns = turns[turns > 1e-9]  # the release at t = 0 is a turning point too
     checks = [
