@@ -111,11 +111,16 @@ def derive():
     f = sp.Matrix([sp.diff(lag, qi) - sum(sp.diff(p, qj) * vj for qj, vj in zip(q, qd))
                    - sp.diff(rayleigh, vi) for p, qi, vi in zip(dl_dqd, q, qd)])
     args = (q, qd)
+    power = 2 * rayleigh
     return {
+        "dmass": [sp.lambdify(args, mass.diff(qi), "numpy", cse=True) for qi in q],
+        "df_dq": sp.lambdify(args, f.jacobian(q), "numpy", cse=True),
+        "df_dqd": sp.lambdify(args, f.jacobian(qd), "numpy", cse=True),
+        "dpower": sp.lambdify(args, [power.diff(v) for v in q + qd], "numpy", cse=True),
         "mass": sp.lambdify(args, mass, "numpy", cse=True),
         "force": sp.lambdify(args, f, "numpy", cse=True),
         "energy": sp.lambdify(args, t_kin + v_pot, "numpy", cse=True),
-        "power": sp.lambdify(args, 2 * rayleigh, "numpy", cse=True),
+        "power": sp.lambdify(args, power, "numpy", cse=True),
         "momentum": sp.lambdify(args, dl_dqd[0], "numpy", cse=True),
         "lengths": sp.lambdify(args, springs, "numpy", cse=True),
     }
@@ -130,6 +135,19 @@ class Governor:
         acc = np.linalg.solve(np.array(self.f["mass"](q, qd), dtype=float),
                               np.array(self.f["force"](q, qd), dtype=float).ravel())
         return np.concatenate([qd, acc, [self.f["power"](q, qd)]])
+
+    def jacobian(self, _t, y):
+        """d rhs / d y, exact: d(M^-1 f)/dq = M^-1 (df/dq - dM/dq_i M^-1 f)."""
+        q, qd = y[:4], y[4:8]
+        m = np.array(self.f["mass"](q, qd), dtype=float)
+        acc = np.linalg.solve(m, np.array(self.f["force"](q, qd), dtype=float).ravel())
+        dm_acc = np.column_stack([np.array(d(q, qd), dtype=float) @ acc for d in self.f["dmass"]])
+        jac = np.zeros((9, 9))
+        jac[:4, 4:8] = np.eye(4)
+        jac[4:8, :4] = np.linalg.solve(m, np.array(self.f["df_dq"](q, qd), dtype=float) - dm_acc)
+        jac[4:8, 4:8] = np.linalg.solve(m, np.array(self.f["df_dqd"](q, qd), dtype=float))
+        jac[8, :8] = np.array(self.f["dpower"](q, qd), dtype=float)
+        return jac
 
 
 def columns(y):
@@ -150,7 +168,7 @@ def compute(t_end=T_END):
     t = np.linspace(0.0, t_end, int(round(t_end / T_END * STEPS)) + 1)
     model = Governor()
     y0 = np.array([0.0, S0, ALPHA0, ALPHA0, OMEGA0, 0.0, 0.0, 0.0, 0.0])
-    y, sol = ic.integrate(model.rhs, y0, t, method="Radau")
+    y, sol = ic.integrate(model.rhs, y0, t, method="Radau", jac=model.jacobian)
     q, qd = y[:, :4].T, y[:, 4:8].T
     energy = model.f["energy"](q, qd) + y[:, 8]
     momentum = model.f["momentum"](q, qd)
