@@ -37,7 +37,7 @@ import iftomm_common as ic
 
 RHO, G = 3000.0, 9.81
 M_BAR = RHO * 1.0 * 0.01 * 0.01          # shaft and each rod, 0.3 kg
-M_SLIDER = RHO * 0.1**3                  # 3 kg
+M_SLIDER = RHO * 0.001                  # 3 kg (0.1 m cube)
 M_BALL = 5.0
 K, C, REST = 8e5, 4e4, 0.5
 HINGE_X, HINGE_Z, HALF_SLIDER = 0.05, 1.0, 0.05
