@@ -76,3 +76,19 @@ def test_every_benchmark_scene_is_checked():
     expected = {"A01_simple_pendulum.toml", "A02_n_four_bar.toml", "A04_bricard.toml",
                 "A05_flyball_governor.toml", "heavy_top.toml", "inclined_revolute.toml"}
     assert expected <= checked, f"unchecked: {sorted(expected - checked)}"
+
+
+@pytest.mark.parametrize("module,scene_name", [("write_A02_scene", "A02_n_four_bar.toml"),
+                                               ("write_A03_scene", "A03_andrews.toml")])
+def test_written_scenes_are_current(module, scene_name):
+    """The generated scenes are what their writers write (edit the writer, not the scene)."""
+    mod = importlib.import_module(module)
+    text = mod.scene(40) if module == "write_A02_scene" else mod.scene()
+    with open(os.path.join(ROOT, "models", "scenes", "iftomm", scene_name)) as f:
+        assert f.read() == text, f"{scene_name} differs from {module}.py's output: rerun it"
+
+
+def test_andrews_bodies_carry_the_test_sets_mass_matrix():
+    """A03 as rigid bodies has the test set's mass matrix at its start (see write_A03_scene.py)."""
+    import write_A03_scene
+    assert write_A03_scene.check_mass_matrix() < 1e-8
