@@ -20,6 +20,7 @@ Run: /usr/bin/python3 validation/references/iftomm/reference_A01.py  (writes A01
 import sys
 
 import numpy as np
+
 import iftomm_common as ic
 
 MASS, LENGTH, G = 1.0, 1.0, 9.81
