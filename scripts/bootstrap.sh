@@ -34,9 +34,10 @@ packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libeigen3-dev
 # HDF5 results with h5py.
 packages+=(python3-matplotlib python3-numpy python3-h5py)
 # The Python module condyn (python/, docs/python.md): pybind11 and the Python headers to build it,
-# scipy for sparse models, pytest for its tests.
+# scipy for sparse models, pytest for its tests; sympy derives the IFToMM A05 reference's
+# equations (validation/references/iftomm/, ctest validation/iftomm_references).
 packages+=(pybind11-dev python3-dev python3-scipy)
-[ "$mode" = test ] && packages+=(python3-pytest)
+[ "$mode" = test ] && packages+=(python3-pytest python3-sympy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
