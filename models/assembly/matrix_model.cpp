@@ -178,16 +178,39 @@ void ModelBuilder::build_matrix() {
 
 void ModelBuilder::apply_rayleigh() {
   if (!spec_.model.rayleigh) return;
-  if (model_.is_nonlinear() || nonlinear_truss_) {
+  if (model_.is_nonlinear()) {
     fail(spec_.model.rayleigh_where,
-         "Rayleigh damping needs a linear model: this truss has large displacements or rigid "
-         "members, whose system has no damping matrix");
+         "Rayleigh damping needs a linear model or a truss: this model's system has no damping "
+         "matrix");
   }
   const auto [a0, a1] = *spec_.model.rayleigh;
   report_.damping = spec_.model.rayleigh_rule;
-  // M and K are positive semi-definite, a0 and a1 >= 0: so is C.
-  model_.C = (a0 * model_.M + a1 * *model_.K).pruned();
+  if (nonlinear_truss_) return rayleigh_on_members(a0, a1);
+  // M and K are positive semi-definite, a0 and a1 >= 0: so is C. A truss's member dampers are
+  // already in C.
+  model_.C = (a0 * model_.M + a1 * *model_.K + model_.C).pruned();
   model_.C.makeCompressed();
+}
+
+void ModelBuilder::rayleigh_on_members(double a0, double a1) {
+  // a0 M as it is (constant, and it dissipates a0 vᵀMv >= 0 in any configuration); a1 K as the
+  // dashpot c = a1 EA/L along each bar's current axis: the material part of a1 times the bar's
+  // tangent, equal to a1 K at the unloaded reference configuration and, unlike a1 K(u(0)) frozen,
+  // following the bar as it turns. Rigid members get none (they keep their length).
+  layout_.mass_damping = a0;
+  for (auto& b : layout_.bars) {
+    const double added = a1 * b.EA / b.length;
+    if (!std::isfinite(b.c + added)) {
+      fail(spec_.model.rayleigh_where, "a1 EA / L of the bar joining nodes " +
+                                           std::to_string(b.i + 1) + " and " +
+                                           std::to_string(b.j + 1) + " overflows the double range");
+    }
+    b.c += added;
+  }
+  const std::string rule =
+      "on a truss with rigid members or large displacements: a0 M, and a1 K as dashpots of "
+      "a1 EA/L along the bars";
+  report_.damping = report_.damping.empty() ? rule : report_.damping + " (" + rule + ")";
 }
 
 }  // namespace condyn

@@ -26,6 +26,11 @@ void ModelBuilder::apply_modal_damping() {
          "modal damping needs a linear model: this one has no constant modes (large "
          "displacements, rigid members or a built-in nonlinear model)");
   }
+  if (model_.has_damping()) {  // a truss's member dampers: C would replace them
+    fail(where,
+         "modal damping gives every mode its ratio, and the members' dampers (c) would be "
+         "lost: give one or the other");
+  }
   const int n = model_.dofs();
   if (static_cast<double>(n) * n > kMaxDenseEntries) {
     fail(where, "modal damping is built from the model's modes, dense n x n: " + std::to_string(n) +

@@ -100,6 +100,8 @@ class ModelBuilder {
   void check_unreached_dofs() const;
   void build_matrix();
   void apply_rayleigh();
+  /// Rayleigh damping of a truss with rigid members or large displacements (its system's).
+  void rayleigh_on_members(double a0, double a1);
   void apply_modal_damping();  // modal_damping.cpp
 
   // nonlinear_systems.cpp

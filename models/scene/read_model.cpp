@@ -50,6 +50,34 @@ void read_nodes(const TomlAccess& r, const toml::table& t, const std::string& pa
   }
 }
 
+/// A member's optional `length` (> 0) and dashpot `c` (>= 0, bars only). A bar's rest length
+/// other than its nodes' distance is a pre-stress, which only the large-displacement bar carries
+/// (the small-displacement bar's force is K u, zero at u = 0).
+void read_member_extras(const TomlAccess& r, const toml::table& m, const std::string& p,
+                        ModelSpec::Geometry geometry, MemberSpec& member) {
+  if (const auto* length = m.get("length")) {
+    member.length = r.positive(*length, TomlAccess::join(p, "length"));
+    if (!member.rigid && geometry != ModelSpec::Geometry::nonlinear) {
+      r.fail(*length, TomlAccess::join(p, "length"),
+             "a bar's rest length needs geometry = \"nonlinear\" (a small-displacement bar has "
+             "no pre-stress: its length is its nodes' distance)");
+    }
+  }
+  if (const auto* c = m.get("c")) {
+    if (member.rigid) {
+      r.fail(*c, TomlAccess::join(p, "c"),
+             "a rigid member keeps its length, so a damper along it does nothing: remove c or "
+             "rigid");
+    }
+    member.c = r.number(*c, TomlAccess::join(p, "c"));
+    if (member.c < 0.0) {
+      r.fail(
+          *c, TomlAccess::join(p, "c"),
+          "must be >= 0 (got " + TomlAccess::fmt(member.c) + "; a negative one feeds energy in)");
+    }
+  }
+}
+
 /// model.members: two different nodes each, elastic (EA) or rigid, no two rigid members on one
 /// pair of nodes.
 void read_members(const TomlAccess& r, const toml::table& t, const std::string& path,
@@ -62,7 +90,7 @@ void read_members(const TomlAccess& r, const toml::table& t, const std::string& 
   for (std::size_t i = 0; i < members.size(); ++i) {
     const std::string p = TomlAccess::index("model.members", i);
     const auto& m = r.table(*members.get(i), p);
-    r.check_keys(m, p, {"nodes", "EA", "rigid"});
+    r.check_keys(m, p, {"nodes", "EA", "rigid", "length", "c"});
     MemberSpec member;
     member.where = r.at(*members.get(i), p);
     const auto& ends_node = r.required(m, p, "nodes");
@@ -96,6 +124,7 @@ void read_members(const TomlAccess& r, const toml::table& t, const std::string& 
     } else {
       member.EA = r.positive(r.required(m, p, "EA"), TomlAccess::join(p, "EA"));
     }
+    read_member_extras(r, m, p, model.geometry, member);
     model.members.push_back(member);
   }
 }
@@ -110,14 +139,14 @@ void SceneReader::read_truss(const toml::table& t, int dim, ModelSpec& model) co
   model.type = dim == 3 ? ModelSpec::Type::truss3d : ModelSpec::Type::truss2d;
   model.dimension = dim;
   read_nodes(*this, t, path, dim, model);
-  read_members(*this, t, path, model);
-  if (const auto* g = t.get("geometry")) {
+  if (const auto* g = t.get("geometry")) {  // before the members: a bar's rest length needs it
     const std::string s = string(*g, "model.geometry");
     if (s != "linear" && s != "nonlinear") {
       fail(*g, "model.geometry", "expected 'linear' or 'nonlinear' (got '" + s + "')");
     }
     model.geometry = s == "linear" ? ModelSpec::Geometry::linear : ModelSpec::Geometry::nonlinear;
   }
+  read_members(*this, t, path, model);
   if (const auto* g = t.get("gravity")) {
     model.gravity = numbers(*g, "model.gravity");
     if (static_cast<int>(model.gravity.size()) != dim) {

@@ -40,6 +40,10 @@ struct MemberSpec {
   int node_i = 0, node_j = 0;  ///< 1-based node numbers as written in the scene
   double EA = 0.0;             ///< axial stiffness (0 for a rigid member)
   bool rigid = false;  ///< a distance constraint |x_j + u_j − x_i − u_i| = L instead of a bar
+  /// `length`: a bar's rest length or a rigid member's length L (> 0); none: the nodes' distance.
+  std::optional<double> length;
+  /// `c`: an axial dashpot (>= 0) along a bar, force c l' (l' its rate of lengthening).
+  double c = 0.0;
   SourcePoint where;
 };
 

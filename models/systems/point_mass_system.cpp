@@ -42,14 +42,23 @@ PointMassSystem::PointMassSystem(PointMassLayout layout)
   M_.setFromTriplets(trip.begin(), trip.end());
   trip.clear();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
-  for (const auto& b : layout_.bars) {  // small-displacement stiffness (EA/L) e eᵀ
-    const Eigen::VectorXd e = separation(b, zero) / b.length;
+  std::vector<Eigen::Triplet<double>> c_trip;
+  for (const auto& b : layout_.bars) {  // small-displacement stiffness (EA/L) e eᵀ, damping c e eᵀ
+    const Eigen::VectorXd d = separation(b, zero);
+    const Eigen::VectorXd e = d / distance(d);
     add_block_pair(trip, b, (b.EA / b.length) * e * e.transpose());
+    if (b.c != 0.0) add_block_pair(c_trip, b, b.c * e * e.transpose());
+    damped_ = damped_ || b.c != 0.0;
   }
   K_linear_.resize(n_, n_);
   K_linear_.setFromTriplets(trip.begin(), trip.end());
   no_damping_.resize(n_, n_);
-  conservative_ = true;
+  damped_ = damped_ || layout_.mass_damping != 0.0;
+  C_linear_.resize(n_, n_);
+  C_linear_.setFromTriplets(c_trip.begin(), c_trip.end());
+  C_linear_ += layout_.mass_damping * M_;
+  C_linear_.makeCompressed();
+  conservative_ = !damped_;
   for (const auto& l : layout_.loads) conservative_ = conservative_ && l.value.is_constant();
   for (const auto& c : layout_.linear_rows) {
     conservative_ = conservative_ && c.position_value.is_constant();
@@ -107,17 +116,21 @@ const MechanicalSystem::Sparse& PointMassSystem::assemble(
   return S;
 }
 
-void PointMassSystem::force(double t, ConstRef u, ConstRef /*v*/, Ref f) {
+void PointMassSystem::force(double t, ConstRef u, ConstRef v, Ref f) {
   f.setZero();
   for (const auto& l : layout_.loads) l.add_to(f, l.value.derivative(0, t, steps_at(t)));
   if (!layout_.nonlinear_geometry) {
     f.noalias() -= K_linear_ * u;
+    if (damped_) f.noalias() -= C_linear_ * v;
     return;
   }
+  if (layout_.mass_damping != 0.0) f.noalias() -= layout_.mass_damping * (M_ * v);
   for (const auto& b : layout_.bars) {
     const Eigen::VectorXd d = separation(b, u);
     const double l = distance(d);
-    const Eigen::VectorXd pull = (b.EA * (l - b.length) / b.length / l) * d;  // N e
+    const Eigen::VectorXd e = d / l;
+    const double N = b.EA * (l - b.length) / b.length + dashpot_force(b, e, v);
+    const Eigen::VectorXd pull = N * e;
     for (int k = 0; k < layout_.dimension; ++k) {
       f[dof(b.i, k)] += pull[k];
       f[dof(b.j, k)] -= pull[k];
@@ -125,8 +138,7 @@ void PointMassSystem::force(double t, ConstRef u, ConstRef /*v*/, Ref f) {
   }
 }
 
-const MechanicalSystem::Sparse& PointMassSystem::stiffness(double /*t*/, ConstRef u,
-                                                           ConstRef /*v*/) {
+const MechanicalSystem::Sparse& PointMassSystem::stiffness(double /*t*/, ConstRef u, ConstRef v) {
   if (!layout_.nonlinear_geometry) {
     return K_linear_;
   }
@@ -135,13 +147,34 @@ const MechanicalSystem::Sparse& PointMassSystem::stiffness(double /*t*/, ConstRe
     const Eigen::VectorXd d = separation(b, u);
     const double l = distance(d);
     const Eigen::VectorXd e = d / l;
-    const double N = b.EA * (l - b.length) / b.length;
-    const Eigen::MatrixXd tangent =
-        (b.EA / b.length) * e * e.transpose() +
-        (N / l) * (Eigen::MatrixXd::Identity(dim, dim) - e * e.transpose());
+    const Eigen::VectorXd w = relative(b, v);
+    const double lengthening = e.dot(w);  // l'
+    const double N = b.EA * (l - b.length) / b.length + b.c * lengthening;
+    Eigen::MatrixXd tangent = (b.EA / b.length) * e * e.transpose() +
+                              (N / l) * (Eigen::MatrixXd::Identity(dim, dim) - e * e.transpose());
+    // The dashpot's force c l' e turns with the axis (within the N/l term) and changes with
+    // l' = e·d', whose derivative along d is (d' − l' e)ᵀ/l.
+    if (b.c != 0.0) tangent += (b.c / l) * e * (w - lengthening * e).transpose();
     add_block_pair(trip_, b, tangent);
   }
   return assemble(stiffness_, n_, n_, trip_);
+}
+
+const MechanicalSystem::Sparse& PointMassSystem::damping(double /*t*/, ConstRef u, ConstRef /*v*/) {
+  if (!damped_) return no_damping_;
+  if (!layout_.nonlinear_geometry) return C_linear_;
+  // a0 M on the diagonal, c e eᵀ per dashpot on the current axis (every entry kept: a fixed
+  // pattern).
+  for (int k = 0; k < n_ && layout_.mass_damping != 0.0; ++k) {
+    trip_.emplace_back(k, k, layout_.mass_damping * M_.coeff(k, k));
+  }
+  for (const auto& b : layout_.bars) {
+    if (b.c == 0.0) continue;
+    const Eigen::VectorXd d = separation(b, u);
+    const Eigen::VectorXd e = d / distance(d);
+    add_block_pair(trip_, b, b.c * e * e.transpose());
+  }
+  return assemble(damping_, n_, n_, trip_);
 }
 
 const MechanicalSystem::Sparse& PointMassSystem::constraint_jacobian(double /*t*/, ConstRef u) {
@@ -248,10 +281,15 @@ std::optional<MechanicalSystem::EnergyParts> PointMassSystem::energy_parts(doubl
   EnergyParts parts;
   if (!layout_.nonlinear_geometry) {
     parts.potential = 0.5 * u.dot(K_linear_ * u);
+    if (damped_) parts.dissipation_power = v.dot(C_linear_ * v);
   } else {
+    parts.dissipation_power = layout_.mass_damping * v.dot(M_ * v);
     for (const auto& b : layout_.bars) {
-      const double stretch = distance(separation(b, u)) - b.length;
+      const Eigen::VectorXd d = separation(b, u);
+      const double l = distance(d);
+      const double stretch = l - b.length;  // from the rest length: a pre-stress stores energy
       parts.potential += 0.5 * b.EA / b.length * stretch * stretch;
+      parts.dissipation_power += dashpot_force(b, d / l, v) * (d / l).dot(relative(b, v));
     }
   }
   add_load_energy(layout_.loads, t, steps_at(t), u, v, parts.potential, parts.load_power);

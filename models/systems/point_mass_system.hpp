@@ -1,9 +1,13 @@
 #pragma once
 /// Point masses at truss nodes, in 2D or 3D, with large displacements:
 ///
-///   bars      (geometry = "nonlinear") axial force N = EA (l − L)/L from the exact current length
-///             l = |x_j + u_j − x_i − u_i|, consistent tangent (EA/L) e eᵀ + (N/l)(I − e eᵀ);
-///             (geometry = "linear") the small-displacement stiffness K u;
+///   bars      (geometry = "nonlinear") axial force N = EA (l − L)/L + c l' from the exact current
+///             length l = |d|, d = x_j + u_j − x_i − u_i, L the rest length, e = d/l, l' = e·d'
+///             (a dashpot c along the bar); tangent stiffness −∂f/∂u per node pair
+///             (EA/L) e eᵀ + (N/l)(I − e eᵀ) + (c/l) e (d' − l' e)ᵀ, damping c e eᵀ;
+///             (geometry = "linear") the small-displacement K u and C u' (c e₀e₀ᵀ, e₀ at the
+///             reference positions, where the rest length is the nodes' distance);
+///   mass      damping a0 M (Rayleigh's mass part: a drag on every node);
 ///   rigid     distance constraints φ = (|d|² − L²)/(2L), d = x_j + u_j − x_i − u_i, which equals
 ///             |d| − L to second order, so the drift reads as a length error; A = ±dᵀ/L,
 ///             γ = −|d'|²/L (the centripetal term);
@@ -29,11 +33,14 @@ struct PointMassLayout {
   std::vector<double> masses;
   struct Bar {
     int i = 0, j = 0;  ///< 0-based nodes
-    double EA = 0.0, length = 0.0;
+    double EA = 0.0;
+    double length = 0.0;  ///< rest length (bar) or length (rigid member), > 0
+    double c = 0.0;       ///< axial dashpot (bars; >= 0)
   };
   std::vector<Bar> bars;
   bool nonlinear_geometry = false;
-  std::vector<Bar> rods;  ///< rigid members (EA unused)
+  std::vector<Bar> rods;      ///< rigid members (EA and c unused)
+  double mass_damping = 0.0;  ///< a0 of the damping a0 M (>= 0)
   std::vector<Load> loads;
   std::vector<Constraint> linear_rows;  ///< scene order, before the rods
 };
@@ -52,9 +59,7 @@ class PointMassSystem final : public MechanicalSystem {
   [[nodiscard]] const Sparse& mass(double /*t*/, ConstRef /*u*/) override { return M_; }
   void force(double t, ConstRef u, ConstRef v, Ref f) override;
   [[nodiscard]] const Sparse& stiffness(double t, ConstRef u, ConstRef v) override;
-  [[nodiscard]] const Sparse& damping(double /*t*/, ConstRef /*u*/, ConstRef /*v*/) override {
-    return no_damping_;
-  }
+  [[nodiscard]] const Sparse& damping(double t, ConstRef u, ConstRef v) override;
   [[nodiscard]] const Sparse& constraint_jacobian(double t, ConstRef u) override;
   void position_residual(double t, ConstRef u, Ref phi) override;
   void velocity_residual(double t, ConstRef u, ConstRef v, Ref psi) override;
@@ -68,8 +73,9 @@ class PointMassSystem final : public MechanicalSystem {
   [[nodiscard]] const Sparse& acceleration_bias_jacobian_v(double t, ConstRef u,
                                                            ConstRef v) override;
   [[nodiscard]] std::optional<double> energy(double t, ConstRef u, ConstRef v) override;
-  /// The strain energy of the bars with the potential of the constant loads (gravity), and the
-  /// power of the time-dependent ones: the balance of any loading (no damping here).
+  /// The strain energy of the bars (from their rest lengths) with the potential of the constant
+  /// loads (gravity), the power the dashpots and a0 M dissipate (vᵀC v), and the power of the
+  /// time-dependent loads: the balance of any loading.
   [[nodiscard]] std::optional<EnergyParts> energy_parts(double t, ConstRef u, ConstRef v) override;
   /// The largest |reference coordinate| of the nodes and the longest member.
   [[nodiscard]] double coordinate_scale() const override;
@@ -92,6 +98,11 @@ class PointMassSystem final : public MechanicalSystem {
   /// Adds c · (row vector r) at row `row`, columns of node j (+r) and node i (−r).
   void add_row_pair(std::vector<Eigen::Triplet<double>>& trip, int row,
                     const PointMassLayout::Bar& b, const Eigen::VectorXd& r) const;
+  /// The damping force's magnitude c l' along a bar (0 when c = 0), and l' itself.
+  [[nodiscard]] double dashpot_force(const PointMassLayout::Bar& b, const Eigen::VectorXd& e,
+                                     const ConstRef& v) const {
+    return b.c == 0.0 ? 0.0 : b.c * e.dot(relative(b, v));
+  }
   /// Adds the 2x2 block pattern [B −B; −B B] on the DOFs of nodes i and j.
   void add_block_pair(std::vector<Eigen::Triplet<double>>& trip, const PointMassLayout::Bar& b,
                       const Eigen::MatrixXd& B) const;
@@ -103,8 +114,11 @@ class PointMassSystem final : public MechanicalSystem {
   LinearRows linear_;
   std::vector<bool> position_;
   Sparse M_, K_linear_, no_damping_;
+  /// Damped at all (a dashpot or a0 > 0); C of linear geometry (a0 M + Σ c e₀e₀ᵀ), constant.
+  bool damped_ = false;
+  Sparse C_linear_;
   bool conservative_ = false;
-  Sparse stiffness_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
+  Sparse stiffness_, damping_, A_, force_jac_, product_jac_, psi_jac_, gamma_jac_v_;
   std::vector<Eigen::Triplet<double>> trip_;
 };
 

@@ -236,3 +236,15 @@ TEST_CASE("output_step refusals name its own line, not [solve]'s") {
   check_refused(run_scene(replace(kScene, "output_step = 0.5", "output_step = 0.99999e-7")),
                 "bad.toml:17: solve.output_step: would write 10000102 rows (limit 1e+07)");
 }
+
+TEST_CASE("a member's rest length or damper out of range: exit 2 naming the key") {
+  // Issue 44: `length` and `c` on truss members; a nonlinear bar needs geometry = "nonlinear".
+  const std::string nonlinear =
+      replace(kScene, "type = \"truss2d\"\n", "type = \"truss2d\"\ngeometry = \"nonlinear\"\n");
+  check_refused(run_scene(replace(nonlinear, "EA = 10.0 }", "EA = 10.0, c = -1.0 }")),
+                "bad.toml:6: model.members[1].c: must be >= 0 (got -1");
+  check_refused(run_scene(replace(nonlinear, "EA = 10.0 }", "EA = 10.0, length = 0.0 }")),
+                "bad.toml:6: model.members[1].length: must be > 0 (got 0)");
+  check_refused(run_scene(replace(kScene, "EA = 10.0 }", "EA = 10.0, length = 1.5 }")),
+                "bad.toml:5: model.members[1].length: a bar's rest length needs geometry");
+}
