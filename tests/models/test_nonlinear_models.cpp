@@ -54,9 +54,10 @@ State generic_state(const Model& model) {
   return s;
 }
 
-const char* kNonlinearScenes[] = {
-    "pendulum.toml",        "double_pendulum.toml",    "four_bar.toml",        "hanging_chain.toml",
-    "von_mises_truss.toml", "spherical_pendulum.toml", "chaplygin_sleigh.toml"};
+const char* kNonlinearScenes[] = {"pendulum.toml",         "double_pendulum.toml",
+                                  "four_bar.toml",         "hanging_chain.toml",
+                                  "von_mises_truss.toml",  "spherical_pendulum.toml",
+                                  "chaplygin_sleigh.toml", "damped_spring_pendulum.toml"};
 
 }  // namespace
 
