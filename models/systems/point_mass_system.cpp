@@ -289,7 +289,10 @@ std::optional<MechanicalSystem::EnergyParts> PointMassSystem::energy_parts(doubl
       const double l = distance(d);
       const double stretch = l - b.length;  // from the rest length: a pre-stress stores energy
       parts.potential += 0.5 * b.EA / b.length * stretch * stretch;
-      parts.dissipation_power += dashpot_force(b, d / l, v) * (d / l).dot(relative(b, v));
+      if (b.c != 0.0) {  // c l'²
+        const double lengthening = (d / l).dot(relative(b, v));
+        parts.dissipation_power += b.c * lengthening * lengthening;
+      }
     }
   }
   add_load_energy(layout_.loads, t, steps_at(t), u, v, parts.potential, parts.load_power);
