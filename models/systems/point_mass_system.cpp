@@ -130,7 +130,7 @@ void PointMassSystem::force(double t, ConstRef u, ConstRef v, Ref f) {
     const double l = distance(d);
     const Eigen::VectorXd e = d / l;
     const double N = b.EA * (l - b.length) / b.length + dashpot_force(b, e, v);
-    const Eigen::VectorXd pull = N * e;
+    const Eigen::VectorXd pull = (N / l) * d;  // N e, rounded as before the dashpots
     for (int k = 0; k < layout_.dimension; ++k) {
       f[dof(b.i, k)] += pull[k];
       f[dof(b.j, k)] -= pull[k];
