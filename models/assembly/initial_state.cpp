@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <memory>
 
 #include "models/assembly/initial_projection.hpp"
@@ -133,25 +134,32 @@ void ModelBuilder::settle_initial_roundoff() {
 
 /// φ(0, u0) and ψ(0, u0, v0) of a nonlinear model, relative to the size of the state.
 void ModelBuilder::check_nonlinear_consistency() const {
+  std::vector<int> all(static_cast<std::size_t>(model_.constraint_count()));
+  std::iota(all.begin(), all.end(), 0);
+  check_nonlinear_rows(all);
+}
+
+void ModelBuilder::check_nonlinear_rows(const std::vector<int>& rows) const {
   const auto evaluator = model_.evaluator();
   MechanicalSystem& s = *evaluator;
-  const int m = model_.constraint_count();
+  const int m = s.constraints();
   Eigen::VectorXd phi(m), psi(m);
   s.position_residual(0.0, model_.u0, phi);
   s.velocity_residual(0.0, model_.u0, model_.v0, psi);
   const double u_scale = std::max(1.0, model_.u0.lpNorm<Eigen::Infinity>());
   const double v_scale = std::max(1.0, model_.v0.lpNorm<Eigen::Infinity>());
-  for (int i = 0; i < m; ++i) {
+  for (const int i : rows) {
     const auto& c = model_.constraints[static_cast<std::size_t>(i)];
+    const int r = system_row(i);
     // Negated comparisons: a NaN residual is a violation, never a pass.
-    const bool bad_u = !(std::abs(phi[i]) <= kConsistencyTolerance * u_scale);
-    const bool bad_v = !(std::abs(psi[i]) <= kConsistencyTolerance * v_scale * u_scale);
+    const bool bad_u = !(std::abs(phi[r]) <= kConsistencyTolerance * u_scale);
+    const bool bad_v = !(std::abs(psi[r]) <= kConsistencyTolerance * v_scale * u_scale);
     if (!bad_u && !bad_v) continue;
     fail(spec_.initial.given() ? spec_.initial.where : c.where,
          std::string("initial ") + (bad_u ? "displacements" : "velocities") +
              " violate constraint '" + c.name + "'" +
              (c.nonlinear_kind.empty() ? "" : " (" + c.nonlinear_kind + ")") + ": residual " +
-             computed_fmt(bad_u ? phi[i] : psi[i],
+             computed_fmt(bad_u ? phi[r] : psi[r],
                           "products of the initial coordinates, lengths and velocities") +
              "; fix [initial], or set [initial] project = true to project the initial state "
              "onto the constraints");

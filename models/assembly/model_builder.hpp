@@ -12,6 +12,7 @@
 
 #include "models/assembly/build_model.hpp"
 #include "models/core/linear_system.hpp"
+#include "models/core/constraint_groups.hpp"
 #include "models/core/model.hpp"
 #include "models/core/time_function.hpp"
 #include "models/scene/scene_spec.hpp"
@@ -128,12 +129,29 @@ class ModelBuilder {
   };
   void drop_constraint(const Dependent& d);
   [[nodiscard]] std::optional<Dependent> check_rank() const;
+  /// Whether the dependent rows `combo` of a nonlinear model (weights of the normalised rows,
+  /// rows of `group`) stay dependent at second order along the motions the rows allow at t = 0:
+  /// redundant, or only singular there. Refuses them when they are not (naming them).
+  void check_redundant_at_second_order(const std::vector<std::pair<int, double>>& combo,
+                                       const std::vector<double>& row_norm,
+                                       const ConstraintGroup& group, const std::string& names,
+                                       const std::string& rank_text) const;
+  /// A nonlinear model that dropped rows integrates the others only: its system becomes a
+  /// RowSubsetSystem of the kept rows.
+  void keep_independent_rows();
+  /// The row of the model's system that constraint j is (the same until rows of a nonlinear model
+  /// are dropped, and again once keep_independent_rows has wrapped its system).
+  [[nodiscard]] int system_row(int j) const {
+    return kept_rows_.empty() ? j : kept_rows_[static_cast<std::size_t>(j)];
+  }
 
   // initial_state.cpp
   void build_initial();
   void check_initial_consistency() const;
   void settle_initial_roundoff();
   void check_nonlinear_consistency() const;
+  /// Refuses the first of constraints `rows` that (u0, v0) violate (nonlinear models).
+  void check_nonlinear_rows(const std::vector<int>& rows) const;
   [[noreturn]] void refuse_given_values(const InconsistentGivenValues& e) const;
   void project_initial();
   // static_start.cpp
@@ -161,6 +179,9 @@ class ModelBuilder {
   bool nonlinear_truss_ = false;
   std::vector<SourcePoint> rod_where_;
   Eigen::VectorXd base_u0_, base_v0_;  ///< built-in models' published initial state
+  /// A nonlinear model's rows left after drops, in its system's numbering (empty: none dropped,
+  /// or the system already restricted to them).
+  std::vector<int> kept_rows_;
 };
 
 }  // namespace condyn

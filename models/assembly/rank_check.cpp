@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 
@@ -13,11 +14,25 @@
 
 namespace condyn {
 
-/// Removes constraint `d.row` from the linear model and reports it.
+/// Removes constraint `d.row` from the model and reports it. A nonlinear model's system keeps
+/// every row until the set is final (keep_independent_rows); the dropped row must hold at the
+/// start like the others, or the set conflicts there (its force is carried by the rest, but its
+/// violation would go unseen).
 void ModelBuilder::drop_constraint(const Dependent& d) {
   const auto row = static_cast<std::size_t>(d.row);
+  if (model_.is_nonlinear()) {
+    if (kept_rows_.empty()) {
+      kept_rows_.resize(static_cast<std::size_t>(model_.constraint_count()));
+      std::iota(kept_rows_.begin(), kept_rows_.end(), 0);
+    }
+    check_nonlinear_rows({d.row});
+    kept_rows_.erase(kept_rows_.begin() + d.row);
+  }
+  // The constraints it combines take its force as well: their reactions are one way of sharing
+  // the force among the redundant set, not the unique answer a determinate set gives.
   report_.dropped_constraints.push_back("'" + model_.constraints[row].name +
-                                        "' (a combination of " + d.others + ")");
+                                        "' (a combination of " + d.others +
+                                        "; their reactions carry its force too: not unique)");
   model_.dropped_constraints.push_back(model_.constraints[row].name);
   model_.constraints.erase(model_.constraints.begin() + d.row);
   // Row d.row moves to the end (the others keep their order) and is cut off.
@@ -100,28 +115,16 @@ GroupRank sparse_group_rank(const Eigen::SparseMatrix<double>& at) {
 /// The refusal of a set dependent at the initial configuration with nonlinear rows among it
 /// (`nonlinear`, quoted): their coefficients are those of t = 0, so the set may be independent
 /// at every other configuration (a singular one) or everywhere dependent (a redundant joint).
-/// [solve] redundant = "drop" does not tell the two apart yet: it drops linear rows only, and a
-/// scene asking for it is told so rather than handed the singular-configuration text alone.
 std::string nonlinear_dependence(const std::string& names, const std::string& rank_text,
-                                 const std::string& nonlinear, bool drop_asked) {
-  const std::string head =
-      "the constraints " + names + " are linearly dependent at the initial configuration (" +
-      rank_text + "): " + nonlinear + (nonlinear.find(',') == std::string::npos ? " is" : " are") +
-      " nonlinear";
-  if (drop_asked) {
-    return head +
-           ", and [solve] redundant = \"drop\" does not apply to nonlinear rows yet (it drops "
-           "linear rows only), so condyn neither drops one nor tells a redundant set from a "
-           "singular configuration here: if the constraints are dependent everywhere (a "
-           "redundant joint), remove one of them from the scene; if only here, start away from "
-           "this configuration (other [initial] displacements, or a prescribed motion that "
-           "starts elsewhere)";
-  }
-  return head +
-         ", so this is a singular configuration of the set, which may be independent everywhere "
-         "else; the multipliers are not determined there and no scheme can start from it: start "
-         "away from it (other [initial] displacements, or a prescribed motion that starts "
-         "elsewhere), or remove one of the constraints if they are dependent everywhere";
+                                 const std::string& nonlinear) {
+  return "the constraints " + names + " are linearly dependent at the initial configuration (" +
+         rank_text + "): " + nonlinear +
+         (nonlinear.find(',') == std::string::npos ? " is" : " are") +
+         " nonlinear, so this is a singular configuration of the set, which may be independent "
+         "everywhere else; the multipliers are not determined there and no scheme can start from "
+         "it: start away from it (other [initial] displacements, or a prescribed motion that "
+         "starts elsewhere); if the constraints are dependent everywhere (a redundant joint), "
+         "remove one of them or set [solve] redundant = \"drop\" to drop it";
 }
 
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
@@ -146,6 +149,7 @@ struct Dependence {
   int rank = 0;
   int dep = -1;
   Combination combo;
+  ConstraintGroup group;  ///< the connected group of the dependent row
 };
 
 /// The rank of one connected group of rows, factored as the columns of its normalised transpose:
@@ -188,6 +192,7 @@ Dependence first_dependence(const RowMajor& a, const std::vector<double>& row_no
     if (g.dep < 0 || out.dep >= 0) continue;
     const auto& rows = group.rows;
     out.dep = rows[static_cast<std::size_t>(g.dep)];
+    out.group = group;
     // Combination sum_k w_k c_k = 0 over the involved constraints (normalised rows).
     out.combo = {{out.dep, 1.0}};
     for (const auto& [k, y] : g.combo) {
@@ -294,7 +299,7 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
                "' has no nonzero coefficient");
     }
   }
-  const auto [rank, dep, combo] = first_dependence(a, row_norm, model_.dofs());
+  const auto [rank, dep, combo, group] = first_dependence(a, row_norm, model_.dofs());
   if (dep < 0) return std::nullopt;
   // "rank r < m", and when more than one row depends on others, that these are the first found.
   const std::string rank_text =
@@ -311,7 +316,12 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   const std::string nonlinear_rows = picked_names(
       combo, constraints, [](const Constraint& c) { return !c.nonlinear_kind.empty(); });
   if (!nonlinear_rows.empty()) {
-    fail(where, nonlinear_dependence(names, rank_text, nonlinear_rows, spec_.solve.drop_redundant));
+    if (!spec_.solve.drop_redundant) fail(where, nonlinear_dependence(names, rank_text, nonlinear_rows));
+    // Their right-hand sides are 0 or drives: redundant when the dependence holds along the
+    // motion, which the second-order test screens (a singular start is refused there).
+    check_redundant_at_second_order(combo, row_norm, group, names, rank_text);
+    const int drop = row_to_drop(combo, constraints, dep);
+    return Dependent{drop, quoted_names(combo, constraints, drop)};
   }
   // Compatible when the same combination of the right-hand sides vanishes identically over
   // [0, t_end]: decided from the terms (zero_sum.hpp), never from samples, which two
@@ -330,20 +340,12 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
                     "remove one of the constraints");
   }
   const bool compatible = verdict.kind == ZeroSumVerdict::Kind::zero;
-  if (compatible && spec_.solve.drop_redundant && !model_.is_nonlinear()) {
+  if (compatible && spec_.solve.drop_redundant) {
     const int drop = row_to_drop(combo, constraints, dep);
     return Dependent{drop, quoted_names(combo, constraints, drop)};
   }
-  std::string drop_hint;
-  if (!model_.is_nonlinear()) {
-    drop_hint = ", or set [solve] redundant = \"drop\" to drop it";
-    if (m - rank > 1) drop_hint += " (a run then lists each redundant constraint it drops)";
-  } else if (spec_.solve.drop_redundant) {
-    // A nonlinear model's rows are dependent here, at t = 0, and may not be elsewhere.
-    drop_hint =
-        " ([solve] redundant = \"drop\" drops rows of linear models only: a nonlinear "
-        "model's rows may depend on each other at t = 0 and not later)";
-  }
+  std::string drop_hint = ", or set [solve] redundant = \"drop\" to drop it";
+  if (m - rank > 1) drop_hint += " (a run then lists each redundant constraint it drops)";
   const std::string velocity_rows = picked_names(combo, constraints, [](const Constraint& c) {
     return c.level == ConstraintSpec::Level::velocity;
   });

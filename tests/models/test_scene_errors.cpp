@@ -306,15 +306,20 @@ TEST_CASE("a nonlinear set dependent at the start is a singular configuration, n
   CHECK(msg.find("no motion satisfies it") == std::string::npos);
 }
 
-TEST_CASE("redundant = drop on dependent nonlinear rows says drop does not apply to them yet") {
-  // The same driven pendulum asking for drop: it was handed the singular-configuration text
-  // alone, as if drop had been considered (issue 42, item 17). Drop removes linear rows only.
+TEST_CASE("redundant = drop on a set dependent at a singular start is refused: not redundant") {
+  // The same driven pendulum asking for drop: the rod's row and the drive are dependent at t = 0
+  // only, so dropping either would lose it for the rest of the motion. The second-order test
+  // (their accelerations' right-hand sides do not combine as their gradients do along the motions
+  // the rows allow) tells it from a redundant joint (tests/models/test_nonlinear_drop.cpp).
   const std::string msg = error_of(kDrivenPendulum + "redundant = \"drop\"\n");
   CAPTURE(msg);
-  CHECK(msg.find("'rigid_1_2' is nonlinear, and [solve] redundant = \"drop\" does not apply to "
-                 "nonlinear rows yet (it drops linear rows only)") != std::string::npos);
-  CHECK(msg.find("remove one of them from the scene") != std::string::npos);
-  CHECK(msg.find("so this is a singular configuration of the set") == std::string::npos);
+  CHECK(msg.rfind("bad.toml:", 0) == 0);
+  CHECK(msg.find("'rigid_1_2'") != std::string::npos);
+  CHECK(msg.find("'drive'") != std::string::npos);
+  CHECK(msg.find("[solve] redundant = \"drop\" asks to drop one, but they are not redundant: "
+                 "along a motion they allow there, their dependence fails at second order") !=
+        std::string::npos);
+  CHECK(msg.find("so this is a singular configuration of the set") != std::string::npos);
 }
 
 TEST_CASE("a second rigid member between the same nodes is refused, naming the first") {
@@ -745,7 +750,8 @@ TEST_CASE("redundant constraints are dropped with a report when the scene asks")
                          "s"),
         both);
     REQUIRE(both.dropped_constraints.size() == 1);
-    CHECK(both.dropped_constraints[0] == "'vel' (a combination of 'pos')");
+    CHECK(both.dropped_constraints[0] == "'vel' (a combination of 'pos'; their reactions carry its force too: not "
+          "unique)");
     CHECK(kept.constraints.back().name == "pos");
   }
   // A nonlinear model (a rigid member) keeps the refusal, and says why drop did not apply.
