@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <memory>
+#include <numeric>
 
 #include "models/assembly/initial_projection.hpp"
 #include "models/assembly/model_builder.hpp"

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "models/assembly/build_model.hpp"
-#include "models/core/linear_system.hpp"
 #include "models/core/constraint_groups.hpp"
+#include "models/core/linear_system.hpp"
 #include "models/core/model.hpp"
 #include "models/core/time_function.hpp"
 #include "models/scene/scene_spec.hpp"

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "models/assembly/model_builder.hpp"
 #include "models/systems/row_subset_system.hpp"
@@ -37,6 +39,53 @@ Eigen::VectorXd free_motion(const Eigen::MatrixXd& at) {
   return z;
 }
 
+/// A velocity the system's rows `rows` allow at t = 0 that moves the DOFs the rows `group` reach:
+/// zero outside those DOFs, and free_motion() on the rows' entries there (a row reaching them and
+/// others must hold on their part alone). Read from `jac`, the system's Jacobian with its stored
+/// zeros: a rod along x at t = 0 stores its y entries as 0, and the motion along y is the one that
+/// parts a singular set. Nothing when the block is too large to factor densely.
+std::optional<Eigen::VectorXd> free_velocity(
+    const Eigen::SparseMatrix<double, Eigen::RowMajor>& jac, const std::vector<int>& group,
+    const std::vector<int>& rows) {
+  using RowIterator = Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator;
+  std::vector<int> local(static_cast<std::size_t>(jac.cols()), -1);
+  std::vector<int> dofs;
+  for (const int r : group) {
+    for (RowIterator it(jac, r); it; ++it) {
+      auto& l = local[static_cast<std::size_t>(it.col())];
+      if (l < 0) {
+        l = static_cast<int>(dofs.size());
+        dofs.push_back(static_cast<int>(it.col()));
+      }
+    }
+  }
+  std::vector<int> reaching;
+  for (const int r : rows) {
+    for (RowIterator it(jac, r); it; ++it) {
+      if (local[static_cast<std::size_t>(it.col())] >= 0) {
+        reaching.push_back(r);
+        break;
+      }
+    }
+  }
+  const auto nd = static_cast<Eigen::Index>(dofs.size());
+  const auto nr = static_cast<Eigen::Index>(reaching.size());
+  if (static_cast<double>(nd) * static_cast<double>(nr) > kMaxDenseEntries) return std::nullopt;
+  Eigen::MatrixXd at = Eigen::MatrixXd::Zero(nd, nr);
+  for (Eigen::Index c = 0; c < nr; ++c) {
+    for (RowIterator it(jac, reaching[static_cast<std::size_t>(c)]); it; ++it) {
+      const int l = local[static_cast<std::size_t>(it.col())];
+      if (l >= 0) at(l, c) = it.value();
+    }
+    const double norm = at.col(c).norm();
+    if (norm > 0.0) at.col(c) /= norm;
+  }
+  const Eigen::VectorXd z = free_motion(at);
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(jac.cols());
+  for (std::size_t i = 0; i < dofs.size(); ++i) v[dofs[i]] = z[static_cast<Eigen::Index>(i)];
+  return v;
+}
+
 }  // namespace
 
 /// Along a motion the rows allow at t = 0, with velocity v, the dependent rows' second
@@ -44,39 +93,34 @@ Eigen::VectorXd free_motion(const Eigen::MatrixXd& at) {
 /// span the dropped one along the motion): sum_k w_k γ_k(u0, v) / |a_k| = 0. A singular start
 /// (a pendulum driven along x from the horizontal) fails it for almost every v; v is v0 plus a
 /// free motion of v0's size, so a rest start is tested too.
-void ModelBuilder::check_redundant_at_second_order(
-    const std::vector<std::pair<int, double>>& combo, const std::vector<double>& row_norm,
-    const ConstraintGroup& group, const std::string& names, const std::string& rank_text) const {
-  const SourcePoint& where = model_.constraints[static_cast<std::size_t>(combo.front().first)].where;
-  const auto mc = static_cast<Eigen::Index>(group.rows.size());
-  const auto nc = static_cast<Eigen::Index>(group.dofs.size());
-  if (static_cast<double>(mc) * static_cast<double>(nc) > kMaxDenseEntries) {
+void ModelBuilder::check_redundant_at_second_order(const std::vector<std::pair<int, double>>& combo,
+                                                   const std::vector<double>& row_norm,
+                                                   const ConstraintGroup& group,
+                                                   const std::string& names,
+                                                   const std::string& rank_text) const {
+  const SourcePoint& where =
+      model_.constraints[static_cast<std::size_t>(combo.front().first)].where;
+  const auto evaluator = model_.evaluator();
+  MechanicalSystem& s = *evaluator;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> jac(s.constraint_jacobian(0.0, model_.u0));
+  std::vector<int> group_rows, rows;
+  for (const int j : group.rows) group_rows.push_back(system_row(j));
+  for (int j = 0; j < model_.constraint_count(); ++j) rows.push_back(system_row(j));
+  const auto z = free_velocity(jac, group_rows, rows);
+  if (!z) {
     report_.warnings.push_back(
         "the constraints " + names + " are dependent at the initial configuration (" + rank_text +
-        ") and one is dropped, but their group is too large (" + std::to_string(mc) + " rows on " +
-        std::to_string(nc) +
-        " DOFs) to test whether they stay dependent along the motion: if they are dependent at "
-        "t = 0 only, the run loses the dropped one's constraint");
+        ") and one is dropped, but the rows around them are too many to test whether they stay "
+        "dependent along the motion: if they are dependent at t = 0 only, the run loses the "
+        "dropped one's constraint");
     return;
   }
-  std::vector<int> local(static_cast<std::size_t>(model_.dofs()), -1);
-  for (Eigen::Index i = 0; i < nc; ++i) local[static_cast<std::size_t>(group.dofs[i])] = static_cast<int>(i);
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> a(model_.A);
-  Eigen::MatrixXd at = Eigen::MatrixXd::Zero(nc, mc);
-  for (Eigen::Index c = 0; c < mc; ++c) {
-    const int j = group.rows[static_cast<std::size_t>(c)];
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a, j); it; ++it) {
-      at(local[static_cast<std::size_t>(it.col())], c) =
-          it.value() / row_norm[static_cast<std::size_t>(j)];
-    }
-  }
-  const Eigen::VectorXd z = free_motion(at);
+  // z's sign taken along v0, so that the two never cancel (a one-DOF mechanism's free motion is
+  // v0's own direction): |v| >= |z| times the speed.
   const double speed = std::max(1.0, model_.v0.lpNorm<Eigen::Infinity>());
-  Eigen::VectorXd v = model_.v0;
-  for (Eigen::Index i = 0; i < nc; ++i) v[group.dofs[static_cast<std::size_t>(i)]] += speed * z[i];
-  const auto evaluator = model_.evaluator();
-  Eigen::VectorXd gamma(evaluator->constraints());
-  evaluator->acceleration_bias(0.0, model_.u0, v, gamma);
+  const Eigen::VectorXd v = model_.v0 + (model_.v0.dot(*z) < 0.0 ? -speed : speed) * (*z);
+  Eigen::VectorXd gamma(s.constraints());
+  s.acceleration_bias(0.0, model_.u0, v, gamma);
   double sum = 0.0, size = 0.0;
   for (const auto& [j, w] : combo) {
     const double term = w * gamma[system_row(j)] / row_norm[static_cast<std::size_t>(j)];
@@ -85,16 +129,17 @@ void ModelBuilder::check_redundant_at_second_order(
   }
   // Negated: a NaN is a failure, never a pass.
   if (!(std::abs(sum) <= kSecondOrderTolerance * size)) {
-    fail(where, "the constraints " + names + " are linearly dependent at the initial configuration (" +
-                    rank_text +
-                    "), and [solve] redundant = \"drop\" asks to drop one, but they are not "
-                    "redundant: along a motion they allow there, their dependence fails at second "
-                    "order (their accelerations' right-hand sides combine to " +
-                    computed_fmt(sum, "the accelerations' right-hand sides") + " against terms of " +
-                    fmt(size) +
-                    "), so this is a singular configuration of the set, which may be independent "
-                    "everywhere else, and a dropped row would be lost there: start away from it "
-                    "(other [initial] displacements, or a prescribed motion that starts elsewhere)");
+    fail(where,
+         "the constraints " + names + " are linearly dependent at the initial configuration (" +
+             rank_text +
+             "), and [solve] redundant = \"drop\" asks to drop one, but they are not "
+             "redundant: along a motion they allow there, their dependence fails at second "
+             "order (their accelerations' right-hand sides combine to " +
+             computed_fmt(sum, "the accelerations' right-hand sides") + " against terms of " +
+             fmt(size) +
+             "), so this is a singular configuration of the set, which may be independent "
+             "everywhere else, and a dropped row would be lost there: start away from it "
+             "(other [initial] displacements, or a prescribed motion that starts elsewhere)");
   }
 }
 

@@ -316,7 +316,8 @@ std::optional<ModelBuilder::Dependent> ModelBuilder::check_rank() const {
   const std::string nonlinear_rows = picked_names(
       combo, constraints, [](const Constraint& c) { return !c.nonlinear_kind.empty(); });
   if (!nonlinear_rows.empty()) {
-    if (!spec_.solve.drop_redundant) fail(where, nonlinear_dependence(names, rank_text, nonlinear_rows));
+    if (!spec_.solve.drop_redundant)
+      fail(where, nonlinear_dependence(names, rank_text, nonlinear_rows));
     // Their right-hand sides are 0 or drives: redundant when the dependence holds along the
     // motion, which the second-order test screens (a singular start is refused there).
     check_redundant_at_second_order(combo, row_norm, group, names, rank_text);

@@ -8,14 +8,14 @@
 
 namespace condyn {
 
-RowSubsetSystem::RowSubsetSystem(const MechanicalSystem& inner, std::vector<int> kept)
-    : inner_(inner.clone()) {
+RowSubsetSystem::RowSubsetSystem(const MechanicalSystem& wrapped, std::vector<int> kept)
+    : inner_(wrapped.clone()) {
   const int m = inner_->constraints();
   for (std::size_t k = 0; k < kept.size(); ++k) {
     if (kept[k] < 0 || kept[k] >= m || (k > 0 && kept[k] <= kept[k - 1])) {
-      throw std::invalid_argument("RowSubsetSystem: the kept rows must increase strictly within [0, " +
-                                  std::to_string(m) + "); entry " + std::to_string(k) + " is " +
-                                  std::to_string(kept[k]));
+      throw std::invalid_argument(
+          "RowSubsetSystem: the kept rows must increase strictly within [0, " + std::to_string(m) +
+          "); entry " + std::to_string(k) + " is " + std::to_string(kept[k]));
     }
   }
   auto rows = std::make_shared<Rows>();
@@ -46,13 +46,13 @@ MechanicalSystem& RowSubsetSystem::inner(double t) {
 
 void RowSubsetSystem::select(Ref out) const {
   const auto& kept = rows_->kept;
-  for (std::size_t k = 0; k < kept.size(); ++k) out[static_cast<Eigen::Index>(k)] = all_rows_[kept[k]];
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    out[static_cast<Eigen::Index>(k)] = all_rows_[kept[k]];
 }
 
 void RowSubsetSystem::RowSelection::plan(const Rows& rows, const Sparse& block) {
   starts_.assign(block.outerIndexPtr(), block.outerIndexPtr() + block.outerSize() + 1);
   indices_.assign(block.innerIndexPtr(), block.innerIndexPtr() + block.nonZeros());
-  source_.clear();
   std::vector<Eigen::Triplet<double>> pattern;
   for (Eigen::Index j = 0; j < block.outerSize(); ++j) {
     for (Sparse::InnerIterator it(block, j); it; ++it) {
@@ -63,13 +63,19 @@ void RowSubsetSystem::RowSelection::plan(const Rows& rows, const Sparse& block) 
   result_.resize(static_cast<Eigen::Index>(rows.kept.size()), block.cols());
   result_.setFromTriplets(pattern.begin(), pattern.end());
   result_.makeCompressed();
-  // Entries in the block's order within each column: the kept ones keep their relative order, so
-  // the k-th kept entry of the block is the k-th of the result.
+  // Each kept entry's place in the result (whose rows are sorted within a column), found by
+  // search: nothing assumed of the order of the block's own entries.
+  source_.assign(static_cast<std::size_t>(result_.nonZeros()), 0);
+  const Sparse::StorageIndex* result_rows = result_.innerIndexPtr();
   for (Eigen::Index j = 0; j < block.outerSize(); ++j) {
     for (Sparse::InnerIterator it(block, j); it; ++it) {
-      if (rows.new_row[static_cast<std::size_t>(it.row())] >= 0) {
-        source_.push_back(static_cast<Eigen::Index>(&it.value() - block.valuePtr()));
-      }
+      const int row = rows.new_row[static_cast<std::size_t>(it.row())];
+      if (row < 0) continue;
+      const Sparse::StorageIndex* place = std::lower_bound(
+          result_rows + result_.outerIndexPtr()[j], result_rows + result_.outerIndexPtr()[j + 1],
+          static_cast<Sparse::StorageIndex>(row));
+      source_[static_cast<std::size_t>(place - result_rows)] =
+          static_cast<Eigen::Index>(&it.value() - block.valuePtr());
     }
   }
 }
@@ -136,7 +142,8 @@ const RowSubsetSystem::Sparse& RowSubsetSystem::constraint_force_jacobian(double
   // A_Kᵀ w = Aᵀ w_full with the dropped rows' multipliers 0.
   all_rows_.setZero();
   const auto& kept = rows_->kept;
-  for (std::size_t k = 0; k < kept.size(); ++k) all_rows_[kept[k]] = w[static_cast<Eigen::Index>(k)];
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    all_rows_[kept[k]] = w[static_cast<Eigen::Index>(k)];
   return inner(t).constraint_force_jacobian(t, u, all_rows_);
 }
 
@@ -169,7 +176,7 @@ std::optional<double> RowSubsetSystem::energy(double t, ConstRef u, ConstRef v) 
 }
 
 std::optional<MechanicalSystem::EnergyParts> RowSubsetSystem::energy_parts(double t, ConstRef u,
-                                                                          ConstRef v) {
+                                                                           ConstRef v) {
   return inner(t).energy_parts(t, u, v);
 }
 

@@ -19,9 +19,9 @@ namespace condyn {
 
 class RowSubsetSystem final : public MechanicalSystem {
  public:
-  /// Keeps rows `kept` of `inner` (strictly increasing indices below inner.constraints()),
+  /// Keeps rows `kept` of `wrapped` (strictly increasing indices below wrapped.constraints()),
   /// evaluating a clone of it. Throws std::invalid_argument for any other list.
-  RowSubsetSystem(const MechanicalSystem& inner, std::vector<int> kept);
+  RowSubsetSystem(const MechanicalSystem& wrapped, std::vector<int> kept);
   RowSubsetSystem(const RowSubsetSystem& other);
   ~RowSubsetSystem() override = default;
   RowSubsetSystem& operator=(const RowSubsetSystem&) = delete;
@@ -35,6 +35,8 @@ class RowSubsetSystem final : public MechanicalSystem {
   [[nodiscard]] const std::vector<bool>& position_rows() const override { return rows_->position; }
   /// The wrapped system's rows that are kept, in its numbering.
   [[nodiscard]] const std::vector<int>& kept_rows() const { return rows_->kept; }
+  /// The wrapped system, every row (this evaluator's own clone of it).
+  [[nodiscard]] const MechanicalSystem& wrapped() const { return *inner_; }
 
   [[nodiscard]] const Sparse& mass(double t, ConstRef u) override;
   void force(double t, ConstRef u, ConstRef v, Ref f) override;
@@ -79,8 +81,8 @@ class RowSubsetSystem final : public MechanicalSystem {
    private:
     void plan(const Rows& rows, const Sparse& block);
     Sparse result_;
-    std::vector<Eigen::Index> starts_, indices_;  ///< the block's pattern the plan was made for
-    std::vector<Eigen::Index> source_;         ///< per result entry, its index in the block
+    std::vector<Sparse::StorageIndex> starts_, indices_;  ///< the block's pattern at the plan
+    std::vector<Eigen::Index> source_;  ///< per result entry, its index in the block
   };
 
   /// Evaluations outside an integration segment, or inside one, reach the wrapped system alike.

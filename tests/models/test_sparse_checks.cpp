@@ -50,8 +50,10 @@ TEST_CASE("a 20,000-DOF lattice with a redundant tie builds and the redundant ro
   REQUIRE(report.dropped_constraints.size() == 1);
   // 't50' is uy9926 − ux9927; 'again' is twice it: one of the two is dropped, named with the other.
   const std::string& dropped = report.dropped_constraints.front();
-  CHECK((dropped == "'again' (a combination of 't50'; their reactions carry its force too: not unique)" ||
-         dropped == "'t50' (a combination of 'again'; their reactions carry its force too: not unique)"));
+  CHECK((dropped ==
+             "'again' (a combination of 't50'; their reactions carry its force too: not unique)" ||
+         dropped ==
+             "'t50' (a combination of 'again'; their reactions carry its force too: not unique)"));
   // Without the request, the pair is refused, both named, with the remedy.
   try {
     (void)build_model(parse_scene_text(lattice(100, 100, chain_with_duplicate(), ""), "big.toml"));
