@@ -235,7 +235,7 @@ double* QuadraticRows::start_m(Sparse& S) const {
   return S.valuePtr();
 }
 
-void QuadraticRows::residual(double t, double steps, ConstRef q, Ref phi) const {
+void QuadraticRows::residual(double t, double steps, const ConstRef& q, Ref phi) const {
   const auto d = drive_values(t, steps);
   for (int i = 0; i < rows(); ++i) {
     double sum = 0.0;
@@ -247,7 +247,7 @@ void QuadraticRows::residual(double t, double steps, ConstRef q, Ref phi) const 
   }
 }
 
-void QuadraticRows::velocity_residual(double t, double steps, ConstRef q, ConstRef v,
+void QuadraticRows::velocity_residual(double t, double steps, const ConstRef& q, const ConstRef& v,
                                       Ref psi) const {
   const auto d = drive_values(t, steps);
   for (int i = 0; i < rows(); ++i) {
@@ -263,7 +263,7 @@ void QuadraticRows::velocity_residual(double t, double steps, ConstRef q, ConstR
   }
 }
 
-void QuadraticRows::acceleration_bias(double t, double steps, ConstRef q, ConstRef v,
+void QuadraticRows::acceleration_bias(double t, double steps, const ConstRef& q, const ConstRef& v,
                                       Ref gamma) const {
   const auto d = drive_values(t, steps);
   for (int i = 0; i < rows(); ++i) {
@@ -280,7 +280,7 @@ void QuadraticRows::acceleration_bias(double t, double steps, ConstRef q, ConstR
   }
 }
 
-void QuadraticRows::jacobian(double t, double steps, ConstRef q, Sparse& S) const {
+void QuadraticRows::jacobian(double t, double steps, const ConstRef& q, Sparse& S) const {
   const auto d = drive_values(t, steps);
   double* values = start_m(S);
   for (int i = 0; i < rows(); ++i) {
@@ -291,7 +291,7 @@ void QuadraticRows::jacobian(double t, double steps, ConstRef q, Sparse& S) cons
   }
 }
 
-void QuadraticRows::force_jacobian(double t, double steps, ConstRef w, Sparse& S) const {
+void QuadraticRows::force_jacobian(double t, double steps, const ConstRef& w, Sparse& S) const {
   const auto d = drive_values(t, steps);
   if (S.rows() != n_ || S.cols() != n_ || S.nonZeros() != pattern_n_.nonZeros()) S = pattern_n_;
   std::fill(S.valuePtr(), S.valuePtr() + S.nonZeros(), 0.0);
@@ -306,7 +306,7 @@ void QuadraticRows::force_jacobian(double t, double steps, ConstRef w, Sparse& S
   }
 }
 
-void QuadraticRows::product_jacobian(double t, double steps, ConstRef a, Sparse& S) const {
+void QuadraticRows::product_jacobian(double t, double steps, const ConstRef& a, Sparse& S) const {
   const auto d = drive_values(t, steps);
   double* values = start_m(S);
   for (int i = 0; i < rows(); ++i) {
@@ -317,8 +317,8 @@ void QuadraticRows::product_jacobian(double t, double steps, ConstRef a, Sparse&
   }
 }
 
-void QuadraticRows::velocity_residual_jacobian(double t, double steps, ConstRef q, ConstRef v,
-                                               Sparse& S) const {
+void QuadraticRows::velocity_residual_jacobian(double t, double steps, const ConstRef& q,
+                                               const ConstRef& v, Sparse& S) const {
   const auto d = drive_values(t, steps);
   double* values = start_m(S);
   for (int i = 0; i < rows(); ++i) {
@@ -330,8 +330,8 @@ void QuadraticRows::velocity_residual_jacobian(double t, double steps, ConstRef 
   }
 }
 
-void QuadraticRows::acceleration_bias_jacobian_u(double t, double steps, ConstRef q, ConstRef v,
-                                                 Sparse& S) const {
+void QuadraticRows::acceleration_bias_jacobian_u(double t, double steps, const ConstRef& q,
+                                                 const ConstRef& v, Sparse& S) const {
   const auto d = drive_values(t, steps);
   double* values = start_m(S);
   for (int i = 0; i < rows(); ++i) {
@@ -343,8 +343,8 @@ void QuadraticRows::acceleration_bias_jacobian_u(double t, double steps, ConstRe
   }
 }
 
-void QuadraticRows::acceleration_bias_jacobian_v(double t, double steps, ConstRef q, ConstRef v,
-                                                 Sparse& S) const {
+void QuadraticRows::acceleration_bias_jacobian_v(double t, double steps, const ConstRef& q,
+                                                 const ConstRef& v, Sparse& S) const {
   const auto d = drive_values(t, steps);
   double* values = start_m(S);
   for (int i = 0; i < rows(); ++i) {
@@ -356,7 +356,7 @@ void QuadraticRows::acceleration_bias_jacobian_v(double t, double steps, ConstRe
   }
 }
 
-void QuadraticRows::add_gradient(double t, double steps, ConstRef q, int i, double scale,
+void QuadraticRows::add_gradient(double t, double steps, const ConstRef& q, int i, double scale,
                                  Ref f) const {
   const auto d = drive_values(t, steps);
   for (auto k = row_start_[static_cast<std::size_t>(i)];

@@ -92,24 +92,27 @@ class QuadraticRows {
   [[nodiscard]] bool rheonomic(int i) const;
 
   // Each evaluation at (t, steps): steps is the step reference of TimeFunction::derivative.
-  void residual(double t, double steps, ConstRef q, Ref phi) const;
-  void velocity_residual(double t, double steps, ConstRef q, ConstRef v, Ref psi) const;
-  void acceleration_bias(double t, double steps, ConstRef q, ConstRef v, Ref gamma) const;
+  void residual(double t, double steps, const ConstRef& q, Ref phi) const;
+  void velocity_residual(double t, double steps, const ConstRef& q, const ConstRef& v,
+                         Ref psi) const;
+  void acceleration_bias(double t, double steps, const ConstRef& q, const ConstRef& v,
+                         Ref gamma) const;
   /// A, m x n, into S (pattern fixed).
-  void jacobian(double t, double steps, ConstRef q, Sparse& S) const;
+  void jacobian(double t, double steps, const ConstRef& q, Sparse& S) const;
   /// ∂(Aᵀw)/∂q, n x n.
-  void force_jacobian(double t, double steps, ConstRef w, Sparse& S) const;
+  void force_jacobian(double t, double steps, const ConstRef& w, Sparse& S) const;
   /// ∂(A a)/∂q, m x n.
-  void product_jacobian(double t, double steps, ConstRef a, Sparse& S) const;
+  void product_jacobian(double t, double steps, const ConstRef& a, Sparse& S) const;
   /// ∂ψ/∂q, m x n.
-  void velocity_residual_jacobian(double t, double steps, ConstRef q, ConstRef v, Sparse& S) const;
+  void velocity_residual_jacobian(double t, double steps, const ConstRef& q, const ConstRef& v,
+                                  Sparse& S) const;
   /// ∂γ/∂q and ∂γ/∂v, m x n.
-  void acceleration_bias_jacobian_u(double t, double steps, ConstRef q, ConstRef v,
+  void acceleration_bias_jacobian_u(double t, double steps, const ConstRef& q, const ConstRef& v,
                                     Sparse& S) const;
-  void acceleration_bias_jacobian_v(double t, double steps, ConstRef q, ConstRef v,
+  void acceleration_bias_jacobian_v(double t, double steps, const ConstRef& q, const ConstRef& v,
                                     Sparse& S) const;
   /// f += scale · A_iᵀ: row i's gradient into an n-vector (the reactions of a joint's rows).
-  void add_gradient(double t, double steps, ConstRef q, int i, double scale, Ref f) const;
+  void add_gradient(double t, double steps, const ConstRef& q, int i, double scale, Ref f) const;
 
  private:
   /// An entry of an H_k: H(row, col) = value; slot_m, slot_n its place in the m x n pattern (row

@@ -391,3 +391,118 @@ TEST_CASE("multibody reactions: a hanging pendulum's hinge carries m g, and a he
   CHECK(std::abs(out[1] - mg) < kRoundoff * mg);
   CHECK(std::abs(out[2] - mg * 0.6) < kRoundoff * mg);
 }
+
+namespace {
+
+/// Body b placed so that the tested joint holds at t = 0: b turned about a's axis `ax` by psi
+/// (0 where the joint locks the rotation), its point P at a's point Q moved by `shift` (along
+/// the axis where the joint lets it slide, across it for point_on_plane and distance).
+Mechanism assembled(int dim, JointType type) {
+  Mechanism m = two_bodies(dim, type, false);
+  m.joints[1].length.reset();  // a distance joint: the distance at t = 0
+  auto& a = m.bodies[0];
+  auto& b = m.bodies[1];
+  const Eigen::Matrix3d Ra = a.orientation.toRotationMatrix();
+  const Eigen::Vector3d axis =
+      Ra * Eigen::Vector3d(a.axes[0].at[0], a.axes[0].at[1], a.axes[0].at[2]);
+  const bool locked = type == JointType::prismatic || type == JointType::fixed;
+  const double psi = locked ? 0.0 : 0.3;
+  const Eigen::Vector3d turn_axis = dim == 2 ? Eigen::Vector3d::UnitZ() : axis;
+  const Eigen::Matrix3d Rb = Eigen::AngleAxisd(psi, turn_axis).matrix() * Ra;
+  b.orientation = Eigen::Quaterniond(Rb);
+  b.angle = a.angle + psi;
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  if (type == JointType::prismatic || type == JointType::cylindrical ||
+      type == JointType::point_on_line)
+    shift = 0.35 * axis;
+  if (type == JointType::point_on_plane || type == JointType::distance)
+    shift = 0.35 * (dim == 2 ? Eigen::Vector3d(-axis[1], axis[0], 0.0) : axis.unitOrthogonal());
+  const Eigen::Vector3d ra(a.position[0], a.position[1], a.position[2]);
+  const Eigen::Vector3d Q(a.points[1].at[0], a.points[1].at[1], a.points[1].at[2]);
+  const Eigen::Vector3d P(b.points[0].at[0], b.points[0].at[1], b.points[0].at[2]);
+  const Eigen::Vector3d rb = ra + Ra * Q + shift - Rb * P;
+  b.position = {rb[0], rb[1], dim == 2 ? 0.0 : rb[2]};
+  return m;
+}
+
+/// The residuals of joint `joint`'s rows at (t, q).
+std::vector<double> joint_residuals(const MultibodyParts& p, int joint, double t,
+                                    const Eigen::VectorXd& q) {
+  auto s = p.system->clone();
+  Eigen::VectorXd phi(s->constraints());
+  s->position_residual(t, q, phi);
+  std::vector<double> out;
+  for (std::size_t i = 0; i < p.row_joint.size(); ++i)
+    if (p.row_joint[i] == joint) out.push_back(phi[static_cast<Eigen::Index>(i)]);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("multibody: every joint's rows vanish where the joint holds, and only there") {
+  for (int dim : {2, 3}) {
+    std::vector<JointType> types = {JointType::revolute, JointType::prismatic, JointType::fixed,
+                                    JointType::distance, JointType::point_on_line};
+    if (dim == 3) {
+      types.insert(types.end(), {JointType::spherical, JointType::universal, JointType::cylindrical,
+                                 JointType::point_on_plane});
+    }
+    for (const JointType type : types) {
+      CAPTURE(dim);
+      CAPTURE(std::string(to_string(type)));
+      const MultibodyParts p = build_multibody(assembled(dim, type));
+      for (const double r : joint_residuals(p, 1, 0.0, p.q0)) CHECK(std::abs(r) < kRoundoff * 4);
+      // Body b moved off: some row of the joint sees it (b turned about a direction no joint
+      // frees, and shifted along all three axes).
+      Eigen::VectorXd q = p.q0;
+      const int o = dim == 2 ? 4 : 12;
+      q.segment(o, dim) += Eigen::Vector3d(0.011, -0.013, 0.017).head(dim);
+      double worst = 0.0;
+      for (const double r : joint_residuals(p, 1, 0.0, q)) worst = std::max(worst, std::abs(r));
+      CHECK(worst > 1e-3);
+    }
+  }
+}
+
+TEST_CASE("multibody: a drive prescribes the relative angle or slide counted from t = 0") {
+  const double t = 0.9, theta = 0.5, slide = 0.2;
+  for (int dim : {2, 3}) {
+    for (const JointType type : {JointType::revolute, JointType::prismatic}) {
+      CAPTURE(dim);
+      CAPTURE(std::string(to_string(type)));
+      Mechanism m = assembled(dim, type);
+      m.joints[1].drive =
+          type == JointType::revolute ? harmonic(0.4, 1.7, 0.0) : polynomial_drive();
+      const MultibodyParts p = build_multibody(m);
+      const double d = m.joints[1].drive->value(t);
+      // Turn b about the joint axis by theta (right-hand rule), or slide it along the axis.
+      const auto& a = m.bodies[0];
+      const Eigen::Matrix3d Ra = a.orientation.toRotationMatrix();
+      const Eigen::Vector3d axis =
+          dim == 2 ? Eigen::Vector3d::UnitZ()
+                   : Eigen::Vector3d(
+                         Ra * Eigen::Vector3d(a.axes[0].at[0], a.axes[0].at[1], a.axes[0].at[2]));
+      Eigen::VectorXd q = p.q0;
+      const int o = dim == 2 ? 4 : 12;
+      double expected = 0.0;
+      if (type == JointType::revolute) {
+        const Eigen::Matrix3d turn = Eigen::AngleAxisd(theta, axis).matrix();
+        if (dim == 2) {
+          q.segment(o + 2, 2) = (turn * Eigen::Vector3d(q[o + 2], q[o + 3], 0.0)).head(2);
+        } else {
+          for (int k = 0; k < 3; ++k)
+            q.segment(o + 3 + 3 * k, 3) = turn * Eigen::Vector3d(q.segment(o + 3 + 3 * k, 3));
+        }
+        expected = std::sin(theta - d);
+      } else {
+        const Eigen::Vector3d along =
+            Ra * Eigen::Vector3d(a.axes[0].at[0], a.axes[0].at[1], a.axes[0].at[2]);
+        q.segment(o, dim) += slide * along.head(dim);
+        expected = slide - d;
+      }
+      const std::vector<double> rows = joint_residuals(p, 1, t, q);
+      CHECK(std::abs(rows.back() - expected) < kRoundoff);
+      CHECK(p.rows[p.rows.size() - 1].name == "tested.drive");
+    }
+  }
+}
