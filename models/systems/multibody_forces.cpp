@@ -38,13 +38,14 @@ MultibodyForces::MultibodyForces(const Mechanism& m, const MultibodyGeometry& g)
       load.pattern.insert(g.offset(static_cast<int>(b)) + r) = m.bodies[b].mass;
     loads_.push_back(std::move(load));
   }
+  const Eigen::VectorXd q0 = g.initial_coordinates(m);
   for (const auto& f : m.forces) {
     switch (f.type) {
       case ForceType::spring_damper:
-        add_spring(m, g, f);
+        add_spring(m, q0, f);
         break;
       case ForceType::rotational_spring_damper:
-        add_angle(m, g, f);
+        add_angle(m, q0, f);
         break;
       case ForceType::point_force:
         add_point_force(g, m, f);
@@ -59,8 +60,9 @@ MultibodyForces::MultibodyForces(const Mechanism& m, const MultibodyGeometry& g)
   for (const auto& l : loads_) conservative_ = conservative_ && l.value.is_constant();
 }
 
-void MultibodyForces::add_spring(const Mechanism& m, const MultibodyGeometry& g,
+void MultibodyForces::add_spring(const Mechanism& m, const Eigen::VectorXd& q0,
                                  const Mechanism::Force& f) {
+  const MultibodyGeometry& g = geometry_;
   const AffineVector x1 = g.point(f.bodies[0], g.marker(m, f.bodies[0], f.points[0]));
   const AffineVector x2 = g.point(f.bodies[1], g.marker(m, f.bodies[1], f.points[1]));
   const AffineVector d = x2 - x1;
@@ -70,13 +72,13 @@ void MultibodyForces::add_spring(const Mechanism& m, const MultibodyGeometry& g,
     for (const auto& [col, value] : d.coefficients[static_cast<std::size_t>(r)])
       local.B(r, local_index(local.cols, col)) = value;
   }
-  const double rest = f.rest_length ? *f.rest_length : d.value(g.initial_coordinates(m)).norm();
+  const double rest = f.rest_length ? *f.rest_length : d.value(q0).norm();
   springs_.push_back({std::move(local), f.k, f.c, rest});
 }
 
-void MultibodyForces::add_angle(const Mechanism& m, const MultibodyGeometry& g,
+void MultibodyForces::add_angle(const Mechanism& m, const Eigen::VectorXd& q0,
                                 const Mechanism::Force& f) {
-  const RelativeAngle angle = relative_angle(m, g, f.joint);
+  const RelativeAngle angle = relative_angle(m, geometry_, q0, f.joint);
   // The deflection δ = θ − θ_rest: X = cos δ = x cos θ_r + y sin θ_r, Y = sin δ = y cos θ_r −
   // x sin θ_r (x = cos θ, y = sin θ).
   const double cr = std::cos(f.rest_angle), sr = std::sin(f.rest_angle);

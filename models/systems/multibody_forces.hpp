@@ -79,8 +79,9 @@ class MultibodyForces {
   void add_torque(const Torque& tq, double t, double steps, const ConstRef& q, Ref f) const;
   [[nodiscard]] static Eigen::VectorXd gather(const std::vector<int>& cols, const ConstRef& x);
   static void scatter(const std::vector<int>& cols, const Eigen::MatrixXd& block, Triplets& out);
-  void add_spring(const Mechanism& m, const MultibodyGeometry& g, const Mechanism::Force& f);
-  void add_angle(const Mechanism& m, const MultibodyGeometry& g, const Mechanism::Force& f);
+  /// q0: the coordinates at t = 0 (the spring's length, the angle's zero there).
+  void add_spring(const Mechanism& m, const Eigen::VectorXd& q0, const Mechanism::Force& f);
+  void add_angle(const Mechanism& m, const Eigen::VectorXd& q0, const Mechanism::Force& f);
   void add_point_force(const MultibodyGeometry& g, const Mechanism& m, const Mechanism::Force& f);
 
   int dim_, n_;

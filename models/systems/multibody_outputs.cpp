@@ -43,15 +43,15 @@ MultibodyOutputs::MultibodyOutputs(const Mechanism& m, std::shared_ptr<const Qua
     const auto& joint = m.joints[j];
     append(reaction_, planar ? suffixed(joint.name, {"fx", "fy", "m"})
                              : suffixed(joint.name, {"fx", "fy", "fz", "mx", "my", "mz"}));
-    JointRef ref{joint.bodies[0],
-                 joint.bodies[1],
-                 geometry_.marker(m, joint.bodies[0], joint.points[0]),
-                 geometry_.marker(m, joint.bodies[1], joint.points[1]),
-                 {}};
-    for (std::size_t i = 0; i < row_joint.size(); ++i) {
-      if (row_joint[i] == static_cast<int>(j)) ref.rows.push_back(static_cast<int>(i));
-    }
-    joints_.push_back(std::move(ref));
+    joints_.push_back({joint.bodies[0],
+                       joint.bodies[1],
+                       geometry_.marker(m, joint.bodies[0], joint.points[0]),
+                       geometry_.marker(m, joint.bodies[1], joint.points[1]),
+                       {}});
+  }
+  for (std::size_t i = 0; i < row_joint.size(); ++i) {  // one pass: linear in the rows
+    if (row_joint[i] >= 0)
+      joints_[static_cast<std::size_t>(row_joint[i])].rows.push_back(static_cast<int>(i));
   }
   for (const auto& p : m.ground_points)
     points_.push_back({"ground." + p.name, Mechanism::kGround, {p.at[0], p.at[1], p.at[2]}});
@@ -159,7 +159,6 @@ void MultibodyOutputs::reaction(double t, const Vector& u, const Vector& lambda,
   Vector Q = Vector::Zero(u.size());
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     const JointRef& joint = joints_[j];
-    Q.setZero();
     for (const int i : joint.rows) rows_->add_gradient(t, t, u, i, -lambda[i], Q);
     // The body the wrench is taken on, the point it is taken about (global), and its sign.
     const bool onto_ground = joint.body2 == Mechanism::kGround;
@@ -178,6 +177,11 @@ void MultibodyOutputs::reaction(double t, const Vector& u, const Vector& lambda,
       out[c + 2] = sign * torque[2];
     } else {
       out.segment(c + 3, 3) = sign * torque;
+    }
+    // A joint's rows touch its two bodies' coordinates only: clearing them keeps the map linear
+    // in the number of joints (Q.setZero() per joint was quadratic).
+    for (const int b : {joint.body1, joint.body2}) {
+      if (b != Mechanism::kGround) Q.segment(geometry_.offset(b), geometry_.body_size()).setZero();
     }
   }
 }

@@ -284,8 +284,9 @@ MultibodyRowSet multibody_rows(const Mechanism& m, const MultibodyGeometry& g) {
   return set;
 }
 
-RelativeAngle relative_angle(const Mechanism& m, const MultibodyGeometry& g, int joint) {
-  const JointFrame f(m, g, g.initial_coordinates(m), joint);
+RelativeAngle relative_angle(const Mechanism& m, const MultibodyGeometry& g,
+                             const Eigen::VectorXd& q0, int joint) {
+  const JointFrame f(m, g, q0, joint);
   return {dot(f.e2, f.b1v), dot(f.e2, f.c1)};
 }
 

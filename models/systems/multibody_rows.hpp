@@ -3,8 +3,8 @@
 /// (models/systems/quadratic_rows.hpp): the bodies' rigid rows, then each joint's rows in scene
 /// order, scaled so that a row's drift reads as a length or an angle (radians, for small values).
 ///
-/// Notation per joint: p1, p2 its points on bodies 1 and 2, d = p2 − p1; a1 body 1's axis (2D
-/// and 3D revolute default: body 1's x axis, resp. z axis, when the scene gives none), b1, c1 a
+/// Notation per joint: p1, p2 its points on bodies 1 and 2, d = p2 − p1; a1 body 1's axis (when
+/// the scene gives none: body 1's x axis in 2D, its z axis in 3D), b1, c1 a
 /// body-1-fixed orthonormal completion (c1 = a1 × b1; 2D: b1 = u1, c1 = perp(u1)); a2 body 2's
 /// axis (default: the body-2-fixed vector equal to a1 at t = 0); e2 the body-2-fixed vector
 /// equal to b1 at t = 0.
@@ -57,7 +57,8 @@ struct MultibodyRowSet {
 struct RelativeAngle {
   QuadraticForm x, y;
 };
+/// q0: the coordinates at t = 0 (MultibodyGeometry::initial_coordinates).
 [[nodiscard]] RelativeAngle relative_angle(const Mechanism& m, const MultibodyGeometry& g,
-                                           int joint);
+                                           const Eigen::VectorXd& q0, int joint);
 
 }  // namespace condyn

@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -209,19 +210,30 @@ TEST_CASE("multibody: rows named per joint, drives rheonomic, point rows linear"
 }
 
 TEST_CASE("multibody: the mass matrix gives the rigid body's kinetic energy") {
+  std::srand(7);  // Eigen's Random: a fixed sequence of motions
   for (int dim : {2, 3}) {
-    const Mechanism m = two_bodies(dim, JointType::revolute, false);
-    const MultibodyParts p = build_multibody(m);
-    auto s = p.system->clone();
-    const double T = 0.5 * p.v0.dot(s->mass(0.0, p.q0) * p.v0);
-    double expected = 0.0;
-    for (const auto& b : m.bodies) {
-      const Eigen::Matrix3d R = b.orientation.toRotationMatrix();
-      expected += rigid_kinetic_energy(b, R);
+    for (int trial = 0; trial < 5; ++trial) {
+      Mechanism m = two_bodies(dim, JointType::revolute, false);
+      for (auto& b : m.bodies) {
+        const Eigen::Vector3d v = Eigen::Vector3d::Random(), w = Eigen::Vector3d::Random();
+        b.velocity = {v[0], v[1], dim == 3 ? v[2] : 0.0};
+        b.angular_velocity = {dim == 3 ? w[0] : 0.0, dim == 3 ? w[1] : 0.0, w[2]};
+        b.angle = 3.0 * w[0];
+        b.orientation =
+            dim == 3 ? Eigen::Quaterniond::UnitRandom()
+                     : Eigen::Quaterniond(Eigen::AngleAxisd(b.angle, Eigen::Vector3d::UnitZ()));
+      }
+      const MultibodyParts p = build_multibody(m);
+      auto s = p.system->clone();
+      const double T = 0.5 * p.v0.dot(s->mass(0.0, p.q0) * p.v0);
+      double expected = 0.0;
+      for (const auto& b : m.bodies)
+        expected += rigid_kinetic_energy(b, b.orientation.toRotationMatrix());
+      CAPTURE(dim);
+      CAPTURE(trial);
+      // Roundoff of O(1) energies summed over two bodies.
+      CHECK(std::abs(T - expected) < kRoundoff * expected);
     }
-    CAPTURE(dim);
-    // Roundoff of O(1) energies summed over two bodies.
-    CHECK(std::abs(T - expected) < kRoundoff * expected);
   }
 }
 
@@ -504,5 +516,30 @@ TEST_CASE("multibody: a drive prescribes the relative angle or slide counted fro
       CHECK(std::abs(rows.back() - expected) < kRoundoff);
       CHECK(p.rows[p.rows.size() - 1].name == "tested.drive");
     }
+  }
+}
+
+TEST_CASE("multibody energy parts: the forces' power is the loads' minus dV/dt minus dissipation") {
+  for (int dim : {2, 3}) {
+    const MultibodyParts p = build_multibody(two_bodies(dim, JointType::revolute, false));
+    auto s = p.system->clone();
+    const State st = generic_state(p);
+    const double t = 0.6;
+    Eigen::VectorXd f(st.u.size());
+    s->force(t, st.u, st.v, f);
+    const auto parts = s->energy_parts(t, st.u, st.v);
+    REQUIRE(parts);
+    CHECK_FALSE(s->energy(t, st.u, st.v));  // dampers, torques, time-dependent forces
+    const double h = 1e-6;
+    const double dV = (s->energy_parts(t, st.u + h * st.v, st.v)->potential -
+                       s->energy_parts(t, st.u - h * st.v, st.v)->potential) /
+                      (2 * h);
+    CAPTURE(dim);
+    // f·v = f_ext·v − ∇V·v − vᵀC v with C the dampers': a central difference of O(10) potentials
+    // (truncation h² |V'''|, roundoff eps |V| / h, both below 1e-8 of the powers' size, about 10).
+    CHECK(std::abs(f.dot(st.v) - (parts->load_power - dV - parts->dissipation_power)) <
+          1e-7 * 10.0);
+    CHECK(parts->dissipation_power > 0.0);
+    CHECK(parts->load_power != 0.0);
   }
 }
