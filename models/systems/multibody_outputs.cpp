@@ -19,7 +19,7 @@ std::vector<std::string> suffixed(const std::string& owner, std::initializer_lis
   return out;
 }
 
-void append(std::vector<std::string>& to, const std::vector<std::string>& from) {
+void append_names(std::vector<std::string>& to, const std::vector<std::string>& from) {
   to.insert(to.end(), from.begin(), from.end());
 }
 
@@ -31,18 +31,18 @@ MultibodyOutputs::MultibodyOutputs(const Mechanism& m, std::shared_ptr<const Qua
   const bool planar = m.dimension == 2;
   for (const auto& b : m.bodies) {
     start_angles_.push_back(b.angle);
-    append(displacement_, planar ? suffixed(b.name, {"x", "y", "angle"})
-                                 : suffixed(b.name, {"x", "y", "z", "qw", "qx", "qy", "qz"}));
-    append(velocity_, planar ? suffixed(b.name, {"vx", "vy", "omega"})
-                             : suffixed(b.name, {"vx", "vy", "vz", "wx", "wy", "wz"}));
-    append(acceleration_, planar
-                              ? suffixed(b.name, {"ax", "ay", "alpha"})
-                              : suffixed(b.name, {"ax", "ay", "az", "alphax", "alphay", "alphaz"}));
+    append_names(displacement_, planar ? suffixed(b.name, {"x", "y", "angle"})
+                                       : suffixed(b.name, {"x", "y", "z", "qw", "qx", "qy", "qz"}));
+    append_names(velocity_, planar ? suffixed(b.name, {"vx", "vy", "omega"})
+                                   : suffixed(b.name, {"vx", "vy", "vz", "wx", "wy", "wz"}));
+    append_names(acceleration_,
+                 planar ? suffixed(b.name, {"ax", "ay", "alpha"})
+                        : suffixed(b.name, {"ax", "ay", "az", "alphax", "alphay", "alphaz"}));
   }
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const auto& joint = m.joints[j];
-    append(reaction_, planar ? suffixed(joint.name, {"fx", "fy", "m"})
-                             : suffixed(joint.name, {"fx", "fy", "fz", "mx", "my", "mz"}));
+    append_names(reaction_, planar ? suffixed(joint.name, {"fx", "fy", "m"})
+                                   : suffixed(joint.name, {"fx", "fy", "fz", "mx", "my", "mz"}));
     joints_.push_back({joint.bodies[0],
                        joint.bodies[1],
                        geometry_.marker(m, joint.bodies[0], joint.points[0]),

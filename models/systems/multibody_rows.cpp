@@ -74,9 +74,9 @@ class JointFrame {
 };
 
 /// Appends rows to a set, naming them after a joint or a body.
-class RowWriter {
+class MultibodyRowWriter {
  public:
-  RowWriter(MultibodyRowSet& set, std::string owner, int joint, SourcePoint where)
+  MultibodyRowWriter(MultibodyRowSet& set, std::string owner, int joint, SourcePoint where)
       : set_(set), owner_(std::move(owner)), joint_(joint), where_(std::move(where)) {}
 
   void add(const std::string& what, const std::string& kind, QuadraticForm form) {
@@ -102,7 +102,7 @@ class RowWriter {
 void add_rigid_rows(const Mechanism& m, const MultibodyGeometry& g, MultibodyRowSet& set) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const auto& body = m.bodies[b];
-    RowWriter out(set, body.name, -1, body.where);
+    MultibodyRowWriter out(set, body.name, -1, body.where);
     const int k = static_cast<int>(b);
     if (m.dimension == 2) {
       const AffineVector u = g.direction(k, Eigen::Vector3d::UnitX());
@@ -131,7 +131,7 @@ void add_rigid_rows(const Mechanism& m, const MultibodyGeometry& g, MultibodyRow
 }
 
 /// The drive rows of a revolute or prismatic joint (drive index `k`).
-void add_drive(const Mechanism::Joint& joint, const JointFrame& f, int k, RowWriter& out) {
+void add_drive(const Mechanism::Joint& joint, const JointFrame& f, int k, MultibodyRowWriter& out) {
   if (joint.type == JointType::revolute) {
     out.add_terms("drive",
                   "relative angle of " + std::string("the revolute joint = drive(t): (e2.c1) cos "
@@ -147,7 +147,7 @@ void add_drive(const Mechanism::Joint& joint, const JointFrame& f, int k, RowWri
                  {TimeFactor::drive, k, minus_one}});
 }
 
-void add_distance(const JointFrame& f, const std::string& at, RowWriter& out) {
+void add_distance(const JointFrame& f, const std::string& at, MultibodyRowWriter& out) {
   const double L = f.length();
   if (!(L > 0.0)) throw std::invalid_argument("a distance joint of length 0 (" + at + ")");
   out.add("distance", "distance |p2 - p1| = " + std::to_string(L) + " (" + at + ")",
@@ -155,7 +155,7 @@ void add_distance(const JointFrame& f, const std::string& at, RowWriter& out) {
 }
 
 void add_planar_joint(const Mechanism::Joint& joint, const JointFrame& f, const std::string& at,
-                      RowWriter& out) {
+                      MultibodyRowWriter& out) {
   switch (joint.type) {
     case JointType::revolute:
       out.coincide(f.d, at);
@@ -180,18 +180,18 @@ void add_planar_joint(const Mechanism::Joint& joint, const JointFrame& f, const 
   }
 }
 
-void add_spatial_axis(const JointFrame& f, const std::string& at, RowWriter& out) {
+void add_spatial_axis(const JointFrame& f, const std::string& at, MultibodyRowWriter& out) {
   out.add("axis_b", "axes aligned: a2.b1 = 0 (" + at + ")", dot(f.a2, f.b1v));
   out.add("axis_c", "axes aligned: a2.c1 = 0 (" + at + ")", dot(f.a2, f.c1));
 }
 
-void add_spatial_line(const JointFrame& f, const std::string& at, RowWriter& out) {
+void add_spatial_line(const JointFrame& f, const std::string& at, MultibodyRowWriter& out) {
   out.add("offset_b", "on the axis: (p2 - p1).b1 = 0 (" + at + ")", dot(f.d, f.b1v));
   out.add("offset_c", "on the axis: (p2 - p1).c1 = 0 (" + at + ")", dot(f.d, f.c1));
 }
 
 void add_spatial_joint(const Mechanism::Joint& joint, const JointFrame& f, const std::string& at,
-                       RowWriter& out) {
+                       MultibodyRowWriter& out) {
   const JointType type = joint.type;
   if (type == JointType::spherical || type == JointType::revolute || type == JointType::universal ||
       type == JointType::fixed) {
@@ -227,7 +227,7 @@ void add_spatial_joint(const Mechanism::Joint& joint, const JointFrame& f, const
 
 /// The 3D fixed joint's orientation rows: body 2's copies of body 1's frame stay body 1's.
 void add_spatial_lock(const MultibodyGeometry& g, int b1, const JointFrame& f,
-                      const std::string& at, RowWriter& out) {
+                      const std::string& at, MultibodyRowWriter& out) {
   const AffineVector x1 = g.direction(b1, Eigen::Vector3d::UnitX());
   const AffineVector y1 = g.direction(b1, Eigen::Vector3d::UnitY());
   const AffineVector z1 = g.direction(b1, Eigen::Vector3d::UnitZ());
@@ -257,7 +257,7 @@ void add_joint_rows(const Mechanism& m, const MultibodyGeometry& g, const Eigen:
                          body_name(m, joint.bodies[1]) + " at point " +
                          point_name(m, joint.bodies[0], joint.points[0]) + " of " +
                          body_name(m, joint.bodies[0]);
-  RowWriter out(set, joint.name, j, joint.where);
+  MultibodyRowWriter out(set, joint.name, j, joint.where);
   if (m.dimension == 2) {
     add_planar_joint(joint, f, at, out);
   } else {
