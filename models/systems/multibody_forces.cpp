@@ -147,6 +147,11 @@ MultibodyForces::AngleState MultibodyForces::angle_state(const Angle& a, const C
   const double rho2 = X * X + Y * Y;
   AngleState s;
   s.delta = std::atan2(Y, X);
+  if (rho2 == 0.0) {  // no frame to measure against (q = 0, where patterns are taken): no force
+    s.grad = Eigen::VectorXd::Zero(ql.size());
+    s.hess = Eigen::MatrixXd::Zero(ql.size(), ql.size());
+    return s;
+  }
   s.grad = (X * dY - Y * dX) / rho2;
   s.hess = (dY * dX.transpose() - dX * dY.transpose() + X * a.HY - Y * a.HX) / rho2 -
            s.grad * (2.0 * X * dX + 2.0 * Y * dY).transpose() / rho2;

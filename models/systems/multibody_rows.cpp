@@ -112,6 +112,7 @@ void add_rigid_rows(const Mechanism& m, const MultibodyGeometry& g, MultibodyRow
     }
     static const char* const names[] = {"x", "y", "z"};
     std::vector<AffineVector> R;
+    R.reserve(3);
     for (int c = 0; c < 3; ++c) R.push_back(g.direction(k, Eigen::Vector3d::Unit(c)));
     for (int c = 0; c < 3; ++c) {
       const std::string n = names[c];

@@ -139,6 +139,12 @@ void check_derivatives(const Mechanism& m) {
   const auto problems = test::check_system_derivatives(*p.system, 0.37, s.u, s.v, s.a, s.w);
   for (const auto& message : problems) FAIL_CHECK(message);
   CHECK(problems.empty());
+  // At q = 0, where the formulations take their patterns, no frame exists (u = 0, R = 0): the
+  // forces' tangents are still finite (the rotational spring's angle is undefined there).
+  auto evaluator = p.system->clone();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(p.q0.size());
+  CHECK(Eigen::MatrixXd(evaluator->stiffness(0.0, zero, zero)).allFinite());
+  CHECK(Eigen::MatrixXd(evaluator->damping(0.0, zero, zero)).allFinite());
 }
 
 /// ½ m |v|² + ½ ωᵀ (R I Rᵀ) ω: the rigid body's kinetic energy, ω global.
