@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "models/core/number_cell.hpp"
+
 namespace condyn {
 
 namespace {
@@ -151,7 +153,7 @@ void add_drive(const Mechanism::Joint& joint, const JointFrame& f, int k, Multib
 void add_distance(const JointFrame& f, const std::string& at, MultibodyRowWriter& out) {
   const double L = f.length();
   if (!(L > 0.0)) throw std::invalid_argument("a distance joint of length 0 (" + at + ")");
-  out.add("distance", "distance |p2 - p1| = " + std::to_string(L) + " (" + at + ")",
+  out.add("distance", "distance |p2 - p1| = " + shortest_number(L) + " (" + at + ")",
           plus_constant(dot(f.d, f.d).scaled(0.5 / L), -0.5 * L));
 }
 

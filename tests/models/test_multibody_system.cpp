@@ -210,6 +210,11 @@ TEST_CASE("multibody: rows named per joint, drives rheonomic, point rows linear"
   CHECK_FALSE(p.rows[2].coefficients.empty());  // r + R s − O: linear, constant coefficients
   CHECK(p.rows[0].coefficients.empty());
   CHECK(p.coordinate_names[2] == "a.ux");
+  // What a row says, with its figures as written.
+  const MultibodyParts pd = build_multibody(two_bodies(2, JointType::distance, false));
+  CHECK(pd.rows[4].name == "tested.distance");
+  CHECK(pd.rows[4].nonlinear_kind.find(
+            "|p2 - p1| = 0.9 (distance joint: point P of b at point Q of a)") != std::string::npos);
   const MultibodyParts p3 = build_multibody(two_bodies(3, JointType::revolute, false));
   CHECK(p3.coordinate_names[4] == "a.R21");  // row 2 of column 1
   CHECK(p3.rows[3].name == "a.rigid_xy");
