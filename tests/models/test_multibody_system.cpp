@@ -554,3 +554,36 @@ TEST_CASE("multibody energy parts: the forces' power is the loads' minus dV/dt m
     CHECK(parts->load_power != 0.0);
   }
 }
+
+TEST_CASE("multibody outputs: angular acceleration from R'' = α × R + ω × (ω × R)") {
+  for (int dim : {2, 3}) {
+    const Mechanism m = two_bodies(dim, JointType::revolute, false);
+    const MultibodyParts p = build_multibody(m);
+    const Eigen::Vector3d alpha(dim == 3 ? 0.3 : 0.0, dim == 3 ? -0.8 : 0.0, 1.1);
+    Eigen::VectorXd a = Eigen::VectorXd::Zero(p.q0.size());
+    for (int b = 0; b < 2; ++b) {
+      const auto& w = m.bodies[static_cast<std::size_t>(b)].angular_velocity;
+      const Eigen::Vector3d omega(w[0], w[1], w[2]);
+      const int o = b * (dim == 2 ? 4 : 12);
+      a.segment(o, dim) = Eigen::Vector3d(0.4, -0.2, 0.1).head(dim);
+      for (int k = 0; k < (dim == 2 ? 1 : 3); ++k) {
+        const int at = dim == 2 ? o + 2 : o + 3 + 3 * k;
+        Eigen::Vector3d Rk = Eigen::Vector3d::Zero();
+        Rk.head(dim) = p.q0.segment(at, dim);
+        const Eigen::Vector3d second = alpha.cross(Rk) + omega.cross(omega.cross(Rk));
+        a.segment(at, dim) = second.head(dim);
+      }
+    }
+    Eigen::VectorXd out;
+    p.outputs->acceleration(0.0, p.q0, p.v0, a, out);
+    CAPTURE(dim);
+    const int cols = dim == 2 ? 3 : 6;
+    for (int b = 0; b < 2; ++b) {
+      for (int r = 0; r < dim; ++r) CHECK(out[b * cols + r] == a[b * (dim == 2 ? 4 : 12) + r]);
+      for (int r = 0; r < (dim == 2 ? 1 : 3); ++r) {
+        // Products of O(1) unit vectors and rates: roundoff.
+        CHECK(std::abs(out[b * cols + dim + r] - alpha[dim == 2 ? 2 : r]) < kRoundoff);
+      }
+    }
+  }
+}
