@@ -6,15 +6,12 @@ namespace condyn {
 
 void run_projection(const Model& model, const ObservedRun& run) {
   ProjectedOde ode(*model.system, model.u0, !model.nonlinear, &model);
-  Observation observe;
-  observe.full_state = full_state_prefix(model.dofs());
-  observe.multipliers = [&](double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
-                            const Eigen::VectorXd&,
-                            const Eigen::VectorXd&) { return ode.multipliers(t, y); };
-  Eigen::VectorXd y0(2 * model.dofs());
-  y0 << model.u0, model.v0;
-  run([&](const IntegratorOptions& o, SolveSummary& s) { return integrate_ode(ode, y0, o, s); },
-      observe);
+  run_first_order(
+      model, [&](double t, const Eigen::VectorXd& y) { return ode.multipliers(t, y); },
+      [&](const Eigen::VectorXd& y0, const IntegratorOptions& o, SolveSummary& s) {
+        return integrate_ode(ode, y0, o, s);
+      },
+      run);
 }
 
 }  // namespace condyn

@@ -55,6 +55,15 @@ using ObservedRun = std::function<void(const Integrate& integrate, const Observa
 /// The full-state map of a scheme whose state starts with [u; v] (every scheme but elimination).
 [[nodiscard]] Observation::FullState full_state_prefix(int n);
 
+/// The run of a first-order scheme (penalty, projection) whose state y = [u; v] starts at the
+/// model's u0 and v0 and whose λ at an output comes from its formulation at (t, y):
+/// `integrate_from` integrates it from a given y0.
+using StateMultipliers = std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& y)>;
+using IntegrateFrom = std::function<RawTrajectory(
+    const Eigen::VectorXd& y0, const IntegratorOptions& options, SolveSummary& summary)>;
+void run_first_order(const Model& model, const StateMultipliers& multipliers,
+                     const IntegrateFrom& integrate_from, const ObservedRun& run);
+
 /// The multiplier schemes (index1, baumgarte, ggl, index2, index3) with IDA
 /// (dae/formulations/multiplier_dae.hpp). `gains`: Baumgarte's (zero for the others). `mixed`:
 /// the mixed treatment's rows (dae/formulations/eliminated_system.hpp), or null for a multiplier
