@@ -190,8 +190,11 @@ void ProjectedOde::project_error(Ref err) const {
 }
 
 std::unique_ptr<NewtonSystem> ProjectedOde::newton_system() const {
-  if (!linear_) return nullptr;
-  return std::make_unique<KktNewton>(linear_matrices(*system_), held_);
+  if (linear_) return std::make_unique<KktNewton>(linear_matrices(*system_), held_);
+  // The run's evaluator, in the run's segment; a and λ as the right-hand side computes them.
+  return std::make_unique<KktNewton>(*system_, [this](double t, ConstRef u, ConstRef v) {
+    return accelerations(*system_, t, u, v);
+  });
 }
 
 }  // namespace condyn

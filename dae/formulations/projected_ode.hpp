@@ -30,10 +30,10 @@
 ///
 /// Costs: for constant M and A the KKT system is factored once and every right-hand side is one
 /// solve; with curvature (M or A varying) it is re-factored at every evaluation. CVODE's Newton
-/// systems: for a linear model the sparse saddle-point solve of dae/formulations/kkt_newton.hpp
-/// (exact, n + m unknowns); for a nonlinear one CVODE's dense difference-quotient Jacobian ((2n)²
-/// entries: small and medium models). Needs M positive definite on the constraints' null space (the
-/// KKT matrices nonsingular).
+/// systems are the sparse saddle-point solve of dae/formulations/kkt_newton.hpp (exact, n + m
+/// unknowns): constant for a linear model, linearised at CVODE's predicted state from the
+/// system's curvature blocks for a nonlinear one. Needs M positive definite on the constraints'
+/// null space (the KKT matrices nonsingular).
 
 #include <Eigen/SparseLU>
 
@@ -67,8 +67,9 @@ class ProjectedOde final : public OdeProblem {
   }
   bool project(double t, ConstRef y, Ref corr, const Eigen::VectorXd& settled) const override;
   void project_error(Ref err) const override;
-  /// The sparse saddle-point solve for a linear model (dae/formulations/kkt_newton.hpp); nothing
-  /// otherwise.
+  /// The sparse saddle-point solve (dae/formulations/kkt_newton.hpp): constant for a linear
+  /// model; for a nonlinear one it evaluates this ODE's own evaluator, so it must not outlive
+  /// the ODE.
   [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;
 
   /// λ at a state, from the same KKT system (f_con = −Aᵀλ), with the loads on at t as outside

@@ -141,14 +141,23 @@ class Cvode final : public sundials::SundialsStepper {
     mem_.reset(CVodeCreate(CV_BDF, ctx_.get()));
     if (!mem_) throw IntegrationError("CVodeCreate failed");
     // The problem's own sparse Newton solve when it has one, else a dense difference-quotient
-    // Jacobian ((n_)² entries).
+    // Jacobian ((n_)² entries). A state-dependent one linearises at the predicted state, where
+    // CVODE's own matrix-based solvers evaluate their Jacobians.
     newton_ = problem.newton_system();
     if (newton_) {
       void* mem = mem_.get();
       solver_.reset(sundials::make_newton_solver(
           *newton_,
           [mem](double& gamma) { return CVodeGetCurrentGamma(mem, &gamma) == CV_SUCCESS; },
-          kNewtonGammaChange, ctx_.get()));
+          kNewtonGammaChange, ctx_.get(),
+          [mem](double& t, N_Vector& y, long& steps) {
+            N_Vector yn = nullptr, fn = nullptr, zn1 = nullptr;
+            double gamma = 0.0, rl1 = 0.0;
+            void* user = nullptr;
+            return CVodeGetNonlinearSystemData(mem, &t, &y, &yn, &fn, &gamma, &rl1, &zn1, &user) ==
+                       CV_SUCCESS &&
+                   CVodeGetNumSteps(mem, &steps) == CV_SUCCESS;
+          }));
       if (!solver_) throw IntegrationError("could not create the sparse Newton solver");
     } else {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));

@@ -1,6 +1,7 @@
 #pragma once
-/// The only place that talks to SUNDIALS CVODE: BDF with Newton and a dense linear solver
-/// (difference-quotient Jacobian), and CVODE's projection after every step (CVodeSetProjFn,
+/// The only place that talks to SUNDIALS CVODE: BDF with Newton on the problem's own Newton
+/// systems (OdeProblem::newton_system; a dense difference-quotient Jacobian for a problem without
+/// one), and CVODE's projection after every step (CVodeSetProjFn,
 /// with the error estimate projected too). Same loop as IDA (dae/integrators/step_driver.hpp).
 
 #include "dae/integrators/step_driver.hpp"

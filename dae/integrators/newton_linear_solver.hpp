@@ -21,9 +21,21 @@ namespace condyn::sundials {
 /// 2 / (1 + c/c_setup), as both integrators scale the solves of their matrix-based solvers (they
 /// do not for matrix-embedded ones). max_change 0: every solve is exact (a new factorization
 /// whenever the scalar changes). Returns nullptr when out of memory.
+///
+/// A state-dependent system (NewtonSystem::state_dependent) needs `state`: the integrator's time,
+/// predicted state and step count (false when it cannot tell). Each factorization then linearises
+/// at that state first, and a solve also refactors once kStepsBetweenSetups steps have passed
+/// since the last one (SUNDIALS' own matrix-based solvers renew their matrix at most that many
+/// steps apart; a Newton iteration that fails to converge shrinks the step, which moves the
+/// scalar and so renews the matrix too).
+using NewtonState = std::function<bool(double& t, N_Vector& y, long& steps)>;
 [[nodiscard]] SUNLinearSolver make_newton_solver(NewtonSystem& system,
                                                  std::function<bool(double&)> current,
-                                                 double max_change, SUNContext ctx);
+                                                 double max_change, SUNContext ctx,
+                                                 NewtonState state = {});
+
+/// CVODE's default largest number of steps between two setups of its linear solver (msbp).
+inline constexpr long kStepsBetweenSetups = 20;
 
 /// Setups (factorizations) the solver has made: the integrators count no Jacobian evaluations.
 [[nodiscard]] long newton_solver_setups(SUNLinearSolver solver);

@@ -10,13 +10,22 @@ namespace condyn {
 
 Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
                                        const Eigen::SparseMatrix<double>& A) {
+  return kkt_matrix(M, A, A);
+}
+
+Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
+                                       const Eigen::SparseMatrix<double>& A,
+                                       const Eigen::SparseMatrix<double>& B) {
   using Sparse = Eigen::SparseMatrix<double>;
   const Eigen::Index n = M.rows(), m = A.rows();
-  // Column by column into the compressed arrays (rows ascending: M's below n, A's from n on),
+  if (B.rows() != m || (m > 0 && (A.cols() != n || B.cols() != n))) {
+    throw std::invalid_argument("kkt_matrix: the sizes of M, A and B disagree");
+  }
+  // Column by column into the compressed arrays (rows ascending: M's below n, B's from n on),
   // no triplets (16 bytes an entry and a sort; docs/benchmarks.md). Aᵀ's columns are A's rows.
   const Sparse At = m > 0 ? Sparse(A.transpose()) : Sparse(n, 0);
   Sparse kkt(n + m, n + m);
-  kkt.resizeNonZeros(M.nonZeros() + 2 * At.nonZeros());
+  kkt.resizeNonZeros(M.nonZeros() + At.nonZeros() + (m > 0 ? B.nonZeros() : 0));
   auto* outer = kkt.outerIndexPtr();
   auto* inner = kkt.innerIndexPtr();
   double* value = kkt.valuePtr();
@@ -29,7 +38,7 @@ Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
     outer[j] = static_cast<Sparse::StorageIndex>(k);
     for (Sparse::InnerIterator it(M, j); it; ++it) put(it.row(), it.value());
     if (m > 0) {
-      for (Sparse::InnerIterator it(A, j); it; ++it) put(n + it.row(), it.value());
+      for (Sparse::InnerIterator it(B, j); it; ++it) put(n + it.row(), it.value());
     }
   }
   for (Eigen::Index i = 0; i < m; ++i) {

@@ -13,6 +13,12 @@ namespace condyn {
 /// [M Aᵀ; A 0], (n + m) x (n + m), compressed. M is n x n, A is m x n.
 [[nodiscard]] Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
                                                      const Eigen::SparseMatrix<double>& A);
+/// [M Aᵀ; B 0] with lower rows B (m x n) of their own (a linearised constraint: the projection
+/// scheme's Newton matrix of a nonlinear model, dae/formulations/kkt_newton.hpp); stored zeros
+/// kept.
+[[nodiscard]] Eigen::SparseMatrix<double> kkt_matrix(const Eigen::SparseMatrix<double>& M,
+                                                     const Eigen::SparseMatrix<double>& A,
+                                                     const Eigen::SparseMatrix<double>& B);
 
 /// A sparse LU of such a matrix (or of any square one), factored afresh at each compute() by KLU
 /// (AMD order, block triangular form, partial pivoting), with Eigen::SparseLU's calls: compute,

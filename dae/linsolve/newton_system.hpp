@@ -16,6 +16,13 @@ class NewtonSystem {
   virtual void solve(Eigen::Ref<Eigen::VectorXd> b) = 0;
   /// Nonzeros of the matrix factored (for the summary's Jacobian size).
   [[nodiscard]] virtual long nonzeros() const = 0;
+  /// true when the matrix depends on the integrator's state (a nonlinear model): each setup is
+  /// then preceded by linearize_at, and the matrix is renewed every few steps even when the
+  /// scalar stays (dae/integrators/newton_linear_solver.hpp).
+  [[nodiscard]] virtual bool state_dependent() const { return false; }
+  /// The state (t, y) the next setup linearises at: the integrator's predicted state, where
+  /// SUNDIALS' own matrix-based solvers evaluate their Jacobians. Nothing by default.
+  virtual void linearize_at(double /*t*/, const Eigen::Ref<const Eigen::VectorXd>& /*y*/) {}
 };
 
 }  // namespace condyn

@@ -284,7 +284,8 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
   }
   if (scheme == Scheme::projection) {
     const ProjectedOde ode(*system, model.u0, !model.nonlinear, &model);
-    // The matrix the Newton iterations factor: the sparse saddle point, else CVODE's dense one.
+    // The matrix the Newton iterations factor: the sparse saddle point (linear or nonlinear
+    // model), else CVODE's dense one.
     size.unknowns = ode.size();
     const auto newton = ode.newton_system();
     size.condensed = newton != nullptr;

@@ -93,3 +93,71 @@ TEST_CASE("kkt_matrix: [M Aᵀ | A 0] entry by entry, stored zeros kept, no rows
   CHECK(K2.coeff(0, 3) == 1.0);
   CHECK(K2.nonZeros() == 2 + 2 * A.nonZeros());
 }
+
+namespace {
+
+/// ∂F/∂y of the projected ODE at (t, y) by central differences with steps h (|y_j| + 1).
+Eigen::MatrixXd projected_ode_jacobian(const ProjectedOde& ode, double t, const Eigen::VectorXd& y,
+                                       double h) {
+  const int N = ode.size();
+  Eigen::MatrixXd J(N, N);
+  for (int j = 0; j < N; ++j) {
+    const double step = h * (std::abs(y[j]) + 1.0);
+    Eigen::VectorXd yp = y, ym = y, fp(N), fm(N);
+    yp[j] += step;
+    ym[j] -= step;
+    ode.rhs(t, yp, fp);
+    ode.rhs(t, ym, fm);
+    J.col(j) = (fp - fm) / (2.0 * step);
+  }
+  return J;
+}
+
+}  // namespace
+
+TEST_CASE("nonlinear models: the saddle-point solve is I - gamma J at the state it linearises at") {
+  // Point masses on rigid bars (the hanging chain, a slider-crank), elastic members with large
+  // rotations (von Mises), generalized coordinates with a state-dependent M (Andrews), and a
+  // nonholonomic row whose γ depends on the velocities (the sleigh): every curvature block.
+  for (const char* name : {"hanging_chain", "slider_crank", "von_mises_truss", "andrews",
+                           "chaplygin_sleigh", "car_axis"}) {
+    CAPTURE(std::string(name));
+    const auto scene = test::built(
+        parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name + ".toml"));
+    const Model& model = scene.model;
+    REQUIRE(model.nonlinear);
+    ProjectedOde ode(*model.system, model.u0, false);
+    ode.begin_segment(0.0);
+    const auto newton = ode.newton_system();
+    REQUIRE(newton != nullptr);
+    REQUIRE(newton->state_dependent());
+    const int N = ode.size();
+    // A state near the initial one, moved in every component (off the manifold, where the
+    // Newton iterations evaluate too) by a few percent of the state's size.
+    Eigen::VectorXd y(N);
+    y << model.u0, model.v0;
+    const double size = y.lpNorm<Eigen::Infinity>() + 1.0;
+    for (int i = 0; i < N; ++i) y[i] += 0.01 * size * std::sin(1.3 * i + 0.4);
+    const double t = 0.05;
+    newton->linearize_at(t, y);
+    // Central differences with steps 1e-5 (|y_j| + 1): truncation O(h²) and roundoff
+    // eps |F| / h, both below kDifferenceError of ‖J‖ on these models.
+    constexpr double kDifferenceError = 1e-6;
+    const Eigen::MatrixXd J = projected_ode_jacobian(ode, t, y, 1e-5);
+    for (const double gamma : {1e-4, 1e-2, 0.1}) {
+      CAPTURE(gamma);
+      REQUIRE(newton->setup(gamma));
+      Eigen::VectorXd b(N);
+      for (int i = 0; i < N; ++i) b[i] = std::cos(0.7 * i) - 0.3;
+      Eigen::VectorXd x = b;
+      newton->solve(x);
+      // (I − γ J_fd) x − b = −γ δJ x for the differences' error δJ: bounded by
+      // γ kDifferenceError ‖J‖ ‖x‖ (a missing curvature block leaves γ ‖block‖ ‖x‖ or more).
+      const Eigen::VectorXd residual = x - gamma * (J * x) - b;
+      const double bound = gamma * kDifferenceError * J.norm() * x.norm();
+      CAPTURE(residual.norm());
+      CAPTURE(bound);
+      CHECK(residual.norm() <= bound);
+    }
+  }
+}
