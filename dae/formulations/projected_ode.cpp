@@ -60,8 +60,8 @@ void ProjectedOde::factor(double t, const ConstRef& u, Factors& f) const {
   f.Ap = select_p_ * f.A;
   for (auto [lu, B] : {std::pair{&f.kkt, &f.A}, std::pair{&f.kkt_p, &f.Ap}}) {
     if (B == &f.Ap && position_rows_.empty()) break;  // no position projection
-    lu->compute(kkt_matrix(M, *B));
-    if (lu->info() != Eigen::Success) {
+    lu->restart();  // pivots chosen at this state
+    if (!lu->factor(kkt_matrix(M, *B))) {
       std::ostringstream s;
       s << "the KKT system [M Aᵀ; A 0] is singular at t = " << t
         << " (a DOF without mass that no constraint fixes, dependent constraints, or a singular "
@@ -77,7 +77,8 @@ const ProjectedOde::Factors& ProjectedOde::factors(double t, const ConstRef& u) 
   return scratch_;
 }
 
-Eigen::VectorXd ProjectedOde::correction(const KktLu& kkt, const Eigen::VectorXd& r) const {
+Eigen::VectorXd ProjectedOde::correction(const FixedPatternKlu& kkt,
+                                         const Eigen::VectorXd& r) const {
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + r.size());
   rhs.tail(r.size()) = -r;
   return kkt.solve(rhs).head(n_);

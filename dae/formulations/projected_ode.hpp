@@ -39,6 +39,7 @@
 
 #include "dae/interface/held_massless.hpp"
 #include "dae/interface/ode_problem.hpp"
+#include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "dae/linsolve/kkt.hpp"
 #include "models/core/mechanical_system.hpp"
 
@@ -83,9 +84,11 @@ class ProjectedOde final : public OdeProblem {
                                               const ConstRef& u, const ConstRef& v) const;
 
   /// Everything the right-hand side and the projections need at one (t, u): the KKT matrices
-  /// with all rows and with the position rows, factored.
+  /// with all rows and with the position rows, factored. Their patterns do not change with the
+  /// state, so KLU's analysis is done once per matrix; each factorization pivots afresh (the
+  /// accelerations' accuracy must not depend on pivots chosen at another state).
   struct Factors {
-    KktLu kkt, kkt_p;
+    FixedPatternKlu kkt, kkt_p;
     /// Exact per-row powers of two (models/core/row_scales.hpp): A and Ap hold the rows scaled by
     /// them, so KKT pivots do not depend on a row's units (rows at 1e-200 left the KKT matrix
     /// singular to roundoff); residuals are scaled the same way, and multipliers back.
@@ -97,7 +100,8 @@ class ProjectedOde final : public OdeProblem {
   const Factors& factors(double t, const ConstRef& u) const;
   void factor(double t, const ConstRef& u, Factors& f) const;
   /// The M-weighted correction Δ with B Δ = −r, B = A (all rows) or A_p (position rows).
-  [[nodiscard]] Eigen::VectorXd correction(const KktLu& kkt, const Eigen::VectorXd& r) const;
+  [[nodiscard]] Eigen::VectorXd correction(const FixedPatternKlu& kkt,
+                                           const Eigen::VectorXd& r) const;
 
   /// The model the held massless DOFs' loads come from; throws std::logic_error without one.
   [[nodiscard]] const Model& loads() const;
