@@ -76,3 +76,39 @@ TEST_CASE("nonlinear scenes under every applicable scheme agree with a tight GGL
     }
   }
 }
+
+TEST_CASE("projection's exact sparse Newton matrix: the pendulum and the hanging chain as before") {
+  // Projection on nonlinear models factors the sparse saddle point of
+  // dae/formulations/kkt_newton.hpp (linearised from the curvature blocks) where it took CVODE's
+  // dense difference-quotient Jacobian before: the Newton matrix only decides how the corrector
+  // converges, so the results stay within the integration error. Against GGL at rtol 1e-12, over
+  // 1 s at rtol 1e-8 (lengths and speeds of order 1): 2e3 × rtol in u and v, the bound per rtol
+  // the scenes above allow (2e4 × rtol at 1e-10). Relative errors observed, sparse / dense
+  // Jacobian (the same settings through the CLI before the change): pendulum u 1.39e-6 / 1.39e-6,
+  // v 2.83e-6 / 2.84e-6; chain u 2.65e-8 / 2.74e-8, v 3.36e-7 / 3.38e-7. Position drift: the
+  // projection stops at corrections within a tenth of the error test's rtol |u| + atol
+  // (|u| <= 10 here, atol = rtol / 100): kProjectionStop; observed at most 5.3e-16.
+  constexpr double kRtol = 1e-8;
+  constexpr double kProjectionStop = 0.1 * (kRtol * 10.0 + kRtol * 1e-2);
+  for (const char* name : {"pendulum.toml", "hanging_chain.toml"}) {
+    CAPTURE(std::string(name));
+    const test::BuiltScene built = scene(name, 1.0, kRtol);
+    const Model& model = built.model;
+    REQUIRE(model.nonlinear);
+    SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
+    tight.rtol = 1e-12;
+    tight.atol = 1e-14;
+    const Trajectory ref = test::solved(model, tight).trajectory;
+    const SolveResult result =
+        test::solved(model, test::under(built.spec.solve, Scheme::projection));
+    // The sparse saddle point of n + m unknowns, not a dense matrix of (2n)² entries.
+    const long n = model.dofs(), m = model.system->constraints();
+    CHECK(result.summary.jacobian_nonzeros < (n + m) * (n + m));
+    const TrajectoryError err = relative_error(result.trajectory, ref);
+    MESSAGE("projection: err u " << err.displacement << ", v " << err.velocity << ", "
+                                 << result.summary.brief());
+    CHECK(err.displacement < 2e3 * kRtol);
+    CHECK(err.velocity < 2e3 * kRtol);
+    CHECK(result.summary.max_drift_position < kProjectionStop);
+  }
+}
