@@ -19,7 +19,7 @@ struct Model;
 /// What a scheme integrates (dae/run/scheme_memory.hpp fills it from SystemSize): the integrator's
 /// unknowns, the nonzeros of the matrix its Newton iterations factor, and the entries of that
 /// matrix's KLU factors L and U as predicted before factoring; `dense` for a dense Newton matrix
-/// (CVODE's own, on a nonlinear model under projection): unknowns² doubles and no KLU;
+/// (IDA's dense linear solver when asked for): unknowns² doubles and no KLU;
 /// `condensed` for a condensed Newton matrix (the projection's saddle point, [solve] newton =
 /// "condensed"), whose solver keeps its own M, C, K, A and assembles the matrix afresh beside the
 /// one it factors; `reduced` for a reduced model's system (elimination, the mixed treatment), whose
