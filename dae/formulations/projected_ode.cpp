@@ -60,7 +60,7 @@ void ProjectedOde::factor(double t, const ConstRef& u, Factors& f) const {
   f.Ap = select_p_ * f.A;
   for (auto [lu, B] : {std::pair{&f.kkt, &f.A}, std::pair{&f.kkt_p, &f.Ap}}) {
     if (B == &f.Ap && position_rows_.empty()) break;  // no position projection
-    lu->restart();  // pivots chosen at this state
+    lu->restart();                                    // pivots chosen at this state
     if (!lu->factor(kkt_matrix(M, *B))) {
       std::ostringstream s;
       s << "the KKT system [M Aᵀ; A 0] is singular at t = " << t
@@ -193,9 +193,10 @@ void ProjectedOde::project_error(Ref err) const {
 std::unique_ptr<NewtonSystem> ProjectedOde::newton_system() const {
   if (linear_) return std::make_unique<KktNewton>(linear_matrices(*system_), held_);
   // The run's evaluator, in the run's segment; a and λ as the right-hand side computes them.
-  return std::make_unique<KktNewton>(*system_, [this](double t, ConstRef u, ConstRef v) {
-    return accelerations(*system_, t, u, v);
-  });
+  return std::make_unique<KktNewton>(*system_,
+                                     [this](double t, const ConstRef& u, const ConstRef& v) {
+                                       return accelerations(*system_, t, u, v);
+                                     });
 }
 
 }  // namespace condyn
