@@ -117,10 +117,13 @@ Eigen::MatrixXd projected_ode_jacobian(const ProjectedOde& ode, double t, const 
 
 TEST_CASE("nonlinear models: the saddle-point solve is I - gamma J at the state it linearises at") {
   // Point masses on rigid bars (the hanging chain, a slider-crank), elastic members with large
-  // rotations (von Mises), generalized coordinates with a state-dependent M (Andrews), and a
-  // nonholonomic row whose γ depends on the velocities (the sleigh): every curvature block.
-  for (const char* name : {"hanging_chain", "slider_crank", "von_mises_truss", "andrews",
-                           "chaplygin_sleigh", "car_axis"}) {
+  // rotations (von Mises), a pre-stressed spring with a dashpot beside a rigid bar (damping and
+  // tangent stiffness), the rows a redundant bar leaves (redundant = "drop"), generalized
+  // coordinates with a state-dependent M (Andrews), and a nonholonomic row whose γ depends on
+  // the velocities (the sleigh): every curvature block.
+  for (const char* name :
+       {"hanging_chain", "slider_crank", "von_mises_truss", "damped_spring_pendulum",
+        "parallelogram_redundant_bar", "andrews", "chaplygin_sleigh", "car_axis"}) {
     CAPTURE(std::string(name));
     const auto scene = test::built(
         parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name + ".toml"));
