@@ -40,6 +40,13 @@ STILL = 1e-12
 # not by prefix, since a DOF may be named energy_top or work_1 (it is then a displacement).
 ENERGY_NAMES = {c for c, _ in ENERGY_TERMS} | {"energy_error"}
 DRIFT_NAMES = {"drift_position", "drift_velocity"}
+# A mechanism's CSV (docs/cli.md, "Mechanisms") names its columns per body and joint without a
+# prefix: its pose columns (`crank.angle` in 2D, `crank.qw` in 3D) mark it, and the columns
+# ending in a rate or a joint's force or torque are its velocities, accelerations and reactions,
+# not displacements. Named points (`crank.B.x`) are positions, drawn as displacements.
+MECHANISM_POSES = (".angle", ".qw")
+MECHANISM_RATES = {"vx", "vy", "vz", "omega", "wx", "wy", "wz", "ax", "ay", "az", "alpha",
+                   "alphax", "alphay", "alphaz", "fx", "fy", "fz", "m", "mx", "my", "mz"}
 # More curves than this are drawn without a legend (it would outgrow the figure).
 MAX_LEGEND = 12
 
@@ -116,6 +123,8 @@ def read_csv(np, path):
     prefixed = ("vel_", "acc_", "reaction_", "lambda_")
     dofs = [n for n in header[1:]
             if not n.startswith(prefixed) and n not in ENERGY_NAMES and n not in DRIFT_NAMES]
+    if any(n.endswith(MECHANISM_POSES) for n in dofs):
+        dofs = [n for n in dofs if "." not in n or n.rsplit(".", 1)[1] not in MECHANISM_RATES]
     # acc_abs_ columns exist only under [ground_motion]: the displacements are relative to it
     return columns, dofs, any(n.startswith("acc_abs_") for n in header)
 

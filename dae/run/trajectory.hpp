@@ -50,6 +50,8 @@ struct TrajectoryRow {
   double energy = 0.0, kinetic = 0.0;
   /// The energy balance at this row, when asked for (IntegratorOptions::energy_balance).
   std::optional<EnergyBalance> balance;
+  /// Named points' global positions (a mapped row: dae/run/mapped_rows.hpp); else empty.
+  Eigen::VectorXd points;
 };
 
 /// The per-row work of a trajectory: massless DOFs held by stiffness settled on their rows
@@ -97,6 +99,9 @@ struct Trajectory {
   /// nt energy balances (IntegratorOptions::energy_balance); empty unless asked for.
   std::vector<EnergyBalance> balance;
   std::vector<StepRecord> steps;  ///< every internal step, when IntegratorOptions::record_steps
+  /// Named points' global positions, (dimension × points) x nt, in a trajectory mapped to a
+  /// model's OutputMap (mapped_trajectory, dae/run/mapped_rows.hpp); else empty.
+  Eigen::MatrixXd points;
 };
 
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))

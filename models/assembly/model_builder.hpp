@@ -169,6 +169,7 @@ class ModelBuilder {
   void check_absolute_acceleration() const;
   void check_output() const;
   void check_output_dofs() const;
+  void check_output_points() const;
   void check_slaves() const;
 
  private:

@@ -41,6 +41,11 @@ void ModelBuilder::check_energy_output() const {
 void ModelBuilder::check_absolute_acceleration() const {
   const auto& q = spec_.output.quantities;
   if (std::find(q.begin(), q.end(), Quantity::absolute_acceleration) == q.end()) return;
+  if (model_.outputs) {
+    fail(quantity_key(Quantity::absolute_acceleration),
+         "'absolute_acceleration' is not written for a mechanism: its accelerations (crank.ax, "
+         "crank.alpha) are absolute (use 'acceleration')");
+  }
   if (!model_.ground) {
     fail(quantity_key(Quantity::absolute_acceleration),
          "'absolute_acceleration' needs [ground_motion]: without a moving ground the "
@@ -57,41 +62,79 @@ void ModelBuilder::check_output() const {
              "): increase output_step");
   }
   check_output_dofs();
+  check_output_points();
   check_absolute_acceleration();
   check_slaves();
 }
 
-/// [output] dofs: every name or pattern selects some DOF (a typo would silently drop columns).
+namespace {
+
+/// The column names [output] dofs selects among: the DOFs, or a mechanism's mapped columns of
+/// displacement, velocity, acceleration and reaction (src/output/output_columns.hpp).
+std::vector<std::string> selectable_names(const Model& model) {
+  if (!model.outputs) return model.dof_names;
+  std::vector<std::string> out;
+  for (Quantity q :
+       {Quantity::displacement, Quantity::velocity, Quantity::acceleration, Quantity::reaction}) {
+    const auto& names = model.outputs->names(q);
+    out.insert(out.end(), names.begin(), names.end());
+  }
+  return out;
+}
+
+}  // namespace
+
+/// [output] dofs: every name or pattern selects some DOF, or some column of a mechanism (a typo
+/// would silently drop columns).
 void ModelBuilder::check_output_dofs() const {
   const auto& patterns = spec_.output.dofs;
+  if (patterns.empty()) return;
+  const std::vector<std::string> names = selectable_names(model_);
+  const char* what = model_.outputs ? "column" : "DOF";
   for (std::size_t k = 0; k < patterns.size(); ++k) {
-    const bool any = patterns[k].find('*') == std::string::npos
+    const bool any = patterns[k].find('*') == std::string::npos && !model_.outputs
                          ? model_.find_dof(patterns[k]).has_value()
-                         : std::any_of(model_.dof_names.begin(), model_.dof_names.end(),
-                                       [&](const std::string& name) {
-                                         return matches_dof_pattern(patterns[k], name);
-                                       });
+                         : std::any_of(names.begin(), names.end(), [&](const std::string& name) {
+                             return matches_dof_pattern(patterns[k], name);
+                           });
     if (any) continue;
     // The names a typo most likely meant (a pattern's `*` left out of the comparison), else the
-    // model's first DOFs, said to be that.
+    // model's first DOFs (columns), said to be that.
     std::string pattern = patterns[k];
     std::erase(pattern, '*');
-    const std::vector<std::string> near = nearest_names(pattern, model_.dof_names);
+    const std::vector<std::string> near = nearest_names(pattern, names);
     std::string some;
     if (!near.empty()) {
       some = "the nearest: " + joined_names(near);
     } else {
-      some = "the model's DOFs: ";
-      for (std::size_t d = 0; d < model_.dof_names.size() && d < 6; ++d) {
-        some += (d ? ", " : "") + model_.dof_names[d];
-      }
-      if (model_.dof_names.size() > 6) some += ", ...";
+      some = std::string("the model's ") + what + "s: ";
+      for (std::size_t d = 0; d < names.size() && d < 6; ++d) some += (d ? ", " : "") + names[d];
+      if (names.size() > 6) some += ", ...";
     }
     const auto& lines = spec_.output.dofs_lines;
     const int line = k < lines.size() && lines[k] > 0 ? lines[k] : spec_.output.where.line;
     fail({"output.dofs[" + std::to_string(k + 1) + "]", line},
-         "'" + patterns[k] + "' matches no DOF (" + some +
+         "'" + patterns[k] + "' matches no " + what + " (" + some +
              "; `*` stands for any run of characters)");
+  }
+}
+
+/// [output] points: a mechanism's named markers, "body.point", each known to its output map.
+void ModelBuilder::check_output_points() const {
+  const auto& points = spec_.output.points;
+  const auto& lines = spec_.output.points_lines;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const int line = k < lines.size() && lines[k] > 0 ? lines[k] : spec_.output.where.line;
+    const SourcePoint key{"output.points[" + std::to_string(k + 1) + "]", line};
+    if (!model_.outputs) {
+      fail(key,
+           "names a point of a mechanism, but this model has none ([model] type = "
+           "\"multibody\" has bodies with named points)");
+    }
+    if (model_.outputs->point(points[k])) continue;
+    fail(key, "'" + points[k] +
+                  "' is no body's point (write \"body.point\", with a point that the body's "
+                  "`points` table names)");
   }
 }
 

@@ -18,6 +18,7 @@
 #include "models/core/benchmark_model.hpp"
 #include "models/core/constraint_level.hpp"
 #include "models/core/mechanical_system.hpp"
+#include "models/core/output_map.hpp"
 #include "models/core/shared_sparse.hpp"
 #include "models/core/source_point.hpp"
 #include "models/core/time_function.hpp"
@@ -108,6 +109,9 @@ struct Model {
   /// runs and threads.
   std::shared_ptr<const MechanicalSystem> system;
   bool nonlinear = false;  ///< `system` is not the LinearSystem of M, C, K, A
+  /// How results are shown when the columns are not the DOFs (a mechanism: poses, joint
+  /// reactions, named points; models/core/output_map.hpp); null: one column per DOF.
+  std::shared_ptr<const OutputMap> outputs;
   /// Built-in benchmarks: the published reference state at a time, when one is known there.
   std::function<std::optional<PublishedReference>(double)> reference;
   std::string description;  ///< one line for `condyn info` (built-in models)

@@ -148,6 +148,10 @@ struct OutputSpec {
   /// names or patterns where `*` stands for any run of characters; empty: every DOF.
   std::vector<std::string> dofs;
   std::vector<int> dofs_lines;  ///< the line of each `dofs` entry (0: not from a file)
+  /// [output] points (multibody): markers "body.point" whose global position gets the columns
+  /// body.point.x, .y (.z), in the order given.
+  std::vector<std::string> points;
+  std::vector<int> points_lines;  ///< the line of each `points` entry (0: not from a file)
   SourcePoint where;
 };
 

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace condyn {
@@ -22,13 +23,22 @@ namespace condyn {
 namespace {
 
 void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
-                const Trajectory& traj) {
-  const std::vector<int> shown = selected_dofs(output, model.dof_names);
-  out << csv_header(model, output, shown) << "\n";
+                const Trajectory& whole) {
+  const OutputColumns columns(model, output);
+  out << csv_header(output, columns) << "\n";
+  // A mechanism's rows in its output map's columns (a copy: the caller's trajectory stays).
+  std::optional<Trajectory> mapped;
+  if (columns.mapped())
+    mapped = mapped_trajectory(model, whole, columns.points(), reads_reactions(output.quantities));
+  const Trajectory& traj = mapped ? *mapped : whole;
   const Eigen::VectorXd none;
   std::string line;
   const bool absolute = std::find(output.quantities.begin(), output.quantities.end(),
                                   Quantity::absolute_acceleration) != output.quantities.end();
+  const auto column = [&none](const Eigen::MatrixXd& m, Eigen::Index col) {
+    return m.cols() > col ? Eigen::Ref<const Eigen::VectorXd>(m.col(col))
+                          : Eigen::Ref<const Eigen::VectorXd>(none);
+  };
   for (std::size_t k = 0; k < traj.t.size(); ++k) {
     const auto col = static_cast<Eigen::Index>(k);
     const Eigen::VectorXd absolute_acceleration =
@@ -36,17 +46,16 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
     const CsvRow row{traj.t[k],
                      traj.u.col(col),
                      traj.v.col(col),
-                     traj.acceleration.cols() > col
-                         ? Eigen::Ref<const Eigen::VectorXd>(traj.acceleration.col(col))
-                         : Eigen::Ref<const Eigen::VectorXd>(none),
+                     column(traj.acceleration, col),
                      absolute_acceleration,
                      traj.reaction.col(col),
                      traj.multiplier.col(col),
                      traj.drift_position[col],
                      traj.drift_velocity[col],
-                     traj.balance.size() > k ? &traj.balance[k] : nullptr};
+                     traj.balance.size() > k ? &traj.balance[k] : nullptr,
+                     column(traj.points, col)};
     line.clear();
-    append_csv_row(line, output, shown, row);
+    append_csv_row(line, output, columns, row);
     out << line << "\n";
   }
 }

@@ -16,32 +16,19 @@ void append_number(std::string& line, double v) {
   line.append(buf.data(), end);
 }
 
-std::string csv_header(const Model& model, const OutputSpec& output,
-                       const std::vector<int>& shown) {
+std::string csv_header(const OutputSpec& output, const OutputColumns& columns) {
   std::string line = "t";
-  const auto names = [&](const char* prefix) {
-    for (int d : shown)
-      line.append(",").append(prefix).append(model.dof_names[static_cast<std::size_t>(d)]);
-  };
   for (Quantity quantity : output.quantities) {
     switch (quantity) {
       case Quantity::displacement:
-        names("");
-        break;
       case Quantity::velocity:
-        names("vel_");
-        break;
       case Quantity::acceleration:
-        names("acc_");
-        break;
       case Quantity::absolute_acceleration:
-        names("acc_abs_");
-        break;
       case Quantity::reaction:
-        names("reaction_");
+        for (int c : columns.shown(quantity)) line.append(",").append(columns.name(quantity, c));
         break;
       case Quantity::multiplier:
-        for (const auto& c : model.constraints) line.append(",lambda_").append(c.name);
+        for (const auto& c : columns.model().constraints) line.append(",lambda_").append(c.name);
         break;
       case Quantity::drift:
         line += ",drift_position,drift_velocity";
@@ -51,35 +38,36 @@ std::string csv_header(const Model& model, const OutputSpec& output,
         break;
     }
   }
+  for (const auto& name : columns.point_columns()) line.append(",").append(name);
   return line;
 }
 
-void append_csv_row(std::string& line, const OutputSpec& output, const std::vector<int>& shown,
+void append_csv_row(std::string& line, const OutputSpec& output, const OutputColumns& columns,
                     const CsvRow& row) {
   append_number(line, row.t);
   const auto value = [&](double v) {
     line += ',';
     append_number(line, v);
   };
-  const auto dofs = [&](const Eigen::Ref<const Eigen::VectorXd>& x) {
-    for (int d : shown) value(x[d]);
+  const auto dofs = [&](Quantity q, const Eigen::Ref<const Eigen::VectorXd>& x) {
+    for (int d : columns.shown(q)) value(x[d]);
   };
   for (Quantity quantity : output.quantities) {
     switch (quantity) {
       case Quantity::displacement:
-        dofs(row.u);
+        dofs(Quantity::displacement, row.u);
         break;
       case Quantity::velocity:
-        dofs(row.v);
+        dofs(Quantity::velocity, row.v);
         break;
       case Quantity::acceleration:
-        dofs(row.acceleration);
+        dofs(Quantity::acceleration, row.acceleration);
         break;
       case Quantity::absolute_acceleration:
-        dofs(row.absolute_acceleration);
+        dofs(Quantity::absolute_acceleration, row.absolute_acceleration);
         break;
       case Quantity::reaction:
-        dofs(row.reaction);
+        dofs(Quantity::reaction, row.reaction);
         break;
       case Quantity::multiplier:
         for (Eigen::Index i = 0; i < row.multiplier.size(); ++i) value(row.multiplier[i]);
@@ -96,6 +84,7 @@ void append_csv_row(std::string& line, const OutputSpec& output, const std::vect
         break;
     }
   }
+  for (Eigen::Index k = 0; k < row.points.size(); ++k) value(row.points[k]);
 }
 
 }  // namespace condyn

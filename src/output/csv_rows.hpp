@@ -10,6 +10,7 @@
 #include "dae/run/energy_balance.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_spec.hpp"
+#include "src/output/output_columns.hpp"
 
 namespace condyn {
 
@@ -22,15 +23,17 @@ struct CsvRow {
   double drift_position = 0.0, drift_velocity = 0.0;
   /// The energy balance (docs/energy.md) when the output asks for `energy`.
   const EnergyBalance* balance = nullptr;
+  /// A mapped row's named points (OutputColumns::point_columns), written after every quantity.
+  Eigen::Ref<const Eigen::VectorXd> points;
 };
 
-/// "t,..." for the [output] quantities over the `shown` DOFs, without the newline.
-[[nodiscard]] std::string csv_header(const Model& model, const OutputSpec& output,
-                                     const std::vector<int>& shown);
+/// "t,..." for the [output] quantities over the columns shown, then the named points' columns,
+/// without the newline.
+[[nodiscard]] std::string csv_header(const OutputSpec& output, const OutputColumns& columns);
 
 /// Appends the data row (without newline) to `line`; numbers in the shortest form that reads back
-/// as the same double.
-void append_csv_row(std::string& line, const OutputSpec& output, const std::vector<int>& shown,
+/// as the same double. A mapped model's row holds the map's columns (MappedRows).
+void append_csv_row(std::string& line, const OutputSpec& output, const OutputColumns& columns,
                     const CsvRow& row);
 
 /// Appends v in the shortest round-trip form (std::to_chars).

@@ -4,6 +4,7 @@
 
 #include "src/output/hdf5_parts.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -39,7 +40,7 @@ void put_matrix(hid_t file, const char* name, hsize_t rows, hsize_t cols, const 
 }  // namespace
 
 void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
-                const RunAttributes& run, const Trajectory& traj) {
+                const RunAttributes& run, const Trajectory& whole) {
   // The file lives in memory (the core driver, no backing store); its image is then written to
   // `out`, so the caller's checked temporary file and atomic rename apply to it as to a CSV.
   const Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate");
@@ -47,26 +48,29 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
   const Handle file(H5Fcreate("condyn-output.h5", H5F_ACC_TRUNC, H5P_DEFAULT, access.id()),
                     H5Fclose, "H5Fcreate");
   const hid_t f = file.id();
+  const OutputColumns columns(model, output);
+  // A mechanism's rows in its output map's columns (a copy: the caller's trajectory stays).
+  std::optional<Trajectory> mapped;
+  if (columns.mapped())
+    mapped = mapped_trajectory(model, whole, columns.points(), reads_reactions(output.quantities));
+  const Trajectory& traj = mapped ? *mapped : whole;
   const auto nt = static_cast<hsize_t>(traj.t.size());
-  const std::vector<int> shown = selected_dofs(output, model.dof_names);
-  std::vector<std::string> dof_names, constraint_names;
-  for (int d : shown) dof_names.push_back(model.dof_names[static_cast<std::size_t>(d)]);
-  for (const auto& c : model.constraints) constraint_names.push_back(c.name);
   put_matrix(f, "t", nt, 0, [&](hsize_t r, hsize_t) { return traj.t[r]; });
-  const auto dofs = [&](const char* name, const Eigen::MatrixXd& m) {
+  const auto dofs = [&](const char* name, Quantity q, const Eigen::MatrixXd& m) {
+    const std::vector<int>& shown = columns.shown(q);
     put_matrix(f, name, nt, shown.size(),
                [&](hsize_t r, hsize_t c) { return m(shown[c], static_cast<Eigen::Index>(r)); });
   };
   for (Quantity q : output.quantities) {
     switch (q) {
       case Quantity::displacement:
-        dofs("displacement", traj.u);
+        dofs("displacement", Quantity::displacement, traj.u);
         break;
       case Quantity::velocity:
-        dofs("velocity", traj.v);
+        dofs("velocity", Quantity::velocity, traj.v);
         break;
       case Quantity::acceleration:
-        dofs("acceleration", traj.acceleration);
+        dofs("acceleration", Quantity::acceleration, traj.acceleration);
         break;
       case Quantity::absolute_acceleration: {
         Eigen::MatrixXd absolute(traj.acceleration.rows(), traj.acceleration.cols());
@@ -74,11 +78,11 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
           absolute.col(k) = model.absolute_acceleration(traj.t[static_cast<std::size_t>(k)],
                                                         traj.acceleration.col(k));
         }
-        dofs("absolute_acceleration", absolute);
+        dofs("absolute_acceleration", Quantity::absolute_acceleration, absolute);
         break;
       }
       case Quantity::reaction:
-        dofs("reaction", traj.reaction);
+        dofs("reaction", Quantity::reaction, traj.reaction);
         break;
       case Quantity::multiplier:
         put_matrix(f, "multiplier", nt, static_cast<hsize_t>(traj.multiplier.rows()),
@@ -101,8 +105,13 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
         break;
     }
   }
-  put_strings(f, "dof_names", dof_names);
-  put_strings(f, "constraint_names", constraint_names);
+  if (!columns.points().empty()) {
+    put_matrix(f, "points", nt, static_cast<hsize_t>(traj.points.rows()),
+               [&](hsize_t r, hsize_t c) {
+                 return traj.points(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(r));
+               });
+  }
+  hdf5::put_column_names(f, columns);
   hdf5::put_run_attributes(f, run);
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "H5Fflush");
   const ssize_t size = H5Fget_file_image(f, nullptr, 0);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "src/output/hdf5_output.hpp"
+#include "src/output/output_columns.hpp"
 
 namespace condyn::hdf5 {
 
@@ -68,6 +69,22 @@ inline void put_attribute(hid_t file, const char* name, const std::string& value
                     H5Aclose, "H5Acreate2");
   const char* text = value.c_str();
   check(H5Awrite(attr.id(), type.id(), static_cast<const void*>(&text)), "H5Awrite");
+}
+
+/// The column names of a result file: `dof_names` (the displacement columns shown) and
+/// `constraint_names`; for a mapped model also `velocity_names`, `acceleration_names`,
+/// `reaction_names` (each quantity's columns shown) and, with [output] points, `point_names`
+/// (the `points` dataset's columns, `crank.B.x`).
+inline void put_column_names(hid_t file, const OutputColumns& columns) {
+  put_strings(file, "dof_names", columns.shown_names(Quantity::displacement));
+  std::vector<std::string> constraint_names;
+  for (const auto& c : columns.model().constraints) constraint_names.push_back(c.name);
+  put_strings(file, "constraint_names", constraint_names);
+  if (!columns.mapped()) return;
+  put_strings(file, "velocity_names", columns.shown_names(Quantity::velocity));
+  put_strings(file, "acceleration_names", columns.shown_names(Quantity::acceleration));
+  put_strings(file, "reaction_names", columns.shown_names(Quantity::reaction));
+  if (!columns.points().empty()) put_strings(file, "point_names", columns.point_columns());
 }
 
 /// The root attributes of a result file: scheme, rtol, atol, and constraints when it is set.

@@ -4,30 +4,54 @@
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <vector>
 
 #include "src/output/csv_rows.hpp"
 #include "src/output/hdf5_parts.hpp"
+#include "src/output/output_columns.hpp"
 
 namespace condyn {
 
 namespace {
+
+/// The row a writer writes: the run's own, or its copy in the model's OutputMap columns.
+class RowView {
+ public:
+  RowView(const OutputColumns& columns, const OutputSpec& output) {
+    if (columns.mapped()) {
+      mapper_.emplace(*columns.map(), columns.points(), reads_reactions(output.quantities));
+    }
+  }
+  const TrajectoryRow& operator()(const TrajectoryRow& row) {
+    if (!mapper_) return row;
+    mapped_ = row;
+    mapper_->map(mapped_);
+    return mapped_;
+  }
+
+ private:
+  std::optional<MappedRows> mapper_;
+  TrajectoryRow mapped_;
+};
 
 class CsvRowWriter final : public RowWriter {
  public:
   CsvRowWriter(const std::string& path, const Model& model, const OutputSpec& output)
       : model_(model),
         output_(output),
-        shown_(selected_dofs(output, model.dof_names)),
+        columns_(model, output),
+        view_(columns_, output),
         absolute_(std::find(output.quantities.begin(), output.quantities.end(),
                             Quantity::absolute_acceleration) != output.quantities.end()),
         path_(path) {
     out_.open(path, std::ios::binary | std::ios::trunc);
     if (!out_) throw std::runtime_error(path + ": cannot open the output for writing");
-    out_ << csv_header(model, output, shown_) << "\n";
+    out_ << csv_header(output, columns_) << "\n";
   }
 
-  void row(const TrajectoryRow& r) override {
+  void row(const TrajectoryRow& run_row) override {
+    const TrajectoryRow& r = view_(run_row);
     if (absolute_) absolute_acceleration_ = model_.absolute_acceleration(r.t, r.acceleration);
     const CsvRow view{r.t,
                       r.u,
@@ -38,9 +62,10 @@ class CsvRowWriter final : public RowWriter {
                       r.multiplier,
                       r.drift_position,
                       r.drift_velocity,
-                      r.balance ? &*r.balance : nullptr};
+                      r.balance ? &*r.balance : nullptr,
+                      r.points};
     line_.clear();
-    append_csv_row(line_, output_, shown_, view);
+    append_csv_row(line_, output_, columns_, view);
     out_ << line_ << "\n";
     if (!out_) throw std::runtime_error(path_ + ": writing the output failed");
     ++rows_;
@@ -54,7 +79,8 @@ class CsvRowWriter final : public RowWriter {
  private:
   const Model& model_;
   const OutputSpec& output_;
-  std::vector<int> shown_;
+  OutputColumns columns_;
+  RowView view_;
   bool absolute_ = false;
   Eigen::VectorXd absolute_acceleration_;
   std::string path_, line_;
@@ -140,27 +166,29 @@ class Series {
 class Hdf5RowWriter final : public RowWriter {
  public:
   Hdf5RowWriter(const std::string& path, const Model& model, const OutputSpec& output)
-      : model_(model), shown_(selected_dofs(output, model.dof_names)), path_(path) {
+      : model_(model), columns_(model, output), view_(columns_, output), path_(path) {
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (file_ < 0) throw std::runtime_error(path + ": HDF5 cannot create the file");
-    const auto width = static_cast<hsize_t>(shown_.size());
+    const auto width = [this](Quantity q) {
+      return static_cast<hsize_t>(columns_.shown(q).size());
+    };
     t_ = std::make_unique<Series>(file_, "t", 0, true);
     for (Quantity q : output.quantities) {
       switch (q) {
         case Quantity::displacement:
-          u_ = std::make_unique<Series>(file_, "displacement", width, false);
+          u_ = std::make_unique<Series>(file_, "displacement", width(q), false);
           break;
         case Quantity::velocity:
-          v_ = std::make_unique<Series>(file_, "velocity", width, false);
+          v_ = std::make_unique<Series>(file_, "velocity", width(q), false);
           break;
         case Quantity::acceleration:
-          a_ = std::make_unique<Series>(file_, "acceleration", width, false);
+          a_ = std::make_unique<Series>(file_, "acceleration", width(q), false);
           break;
         case Quantity::absolute_acceleration:
-          a_abs_ = std::make_unique<Series>(file_, "absolute_acceleration", width, false);
+          a_abs_ = std::make_unique<Series>(file_, "absolute_acceleration", width(q), false);
           break;
         case Quantity::reaction:
-          reaction_ = std::make_unique<Series>(file_, "reaction", width, false);
+          reaction_ = std::make_unique<Series>(file_, "reaction", width(q), false);
           break;
         case Quantity::multiplier:
           multiplier_ = std::make_unique<Series>(
@@ -174,27 +202,32 @@ class Hdf5RowWriter final : public RowWriter {
           break;
       }
     }
-    std::vector<std::string> dof_names, constraint_names;
-    for (int d : shown_) dof_names.push_back(model.dof_names[static_cast<std::size_t>(d)]);
-    for (const auto& c : model.constraints) constraint_names.push_back(c.name);
-    hdf5::put_strings(file_, "dof_names", dof_names);
-    hdf5::put_strings(file_, "constraint_names", constraint_names);
+    if (!columns_.points().empty()) {
+      points_ = std::make_unique<Series>(
+          file_, "points", static_cast<hsize_t>(columns_.point_columns().size()), false);
+    }
+    hdf5::put_column_names(file_, columns_);
     if (energy_) hdf5::put_strings(file_, "energy_columns", energy_column_names());
   }
   Hdf5RowWriter(const Hdf5RowWriter&) = delete;
   Hdf5RowWriter& operator=(const Hdf5RowWriter&) = delete;
   ~Hdf5RowWriter() override { close(); }
 
-  void row(const TrajectoryRow& r) override {
+  void row(const TrajectoryRow& run_row) override {
+    const TrajectoryRow& r = view_(run_row);
     t_->append([&](hsize_t) { return r.t; });
-    const auto dofs = [this](Series& s, const Eigen::VectorXd& x) {
-      s.append([&](hsize_t c) { return x[shown_[c]]; });
+    const auto dofs = [this](Quantity q, Series& s, const Eigen::VectorXd& x) {
+      const std::vector<int>& shown = columns_.shown(q);
+      s.append([&](hsize_t c) { return x[shown[c]]; });
     };
-    if (u_) dofs(*u_, r.u);
-    if (v_) dofs(*v_, r.v);
-    if (a_) dofs(*a_, r.acceleration);
-    if (a_abs_) dofs(*a_abs_, model_.absolute_acceleration(r.t, r.acceleration));
-    if (reaction_) dofs(*reaction_, r.reaction);
+    if (u_) dofs(Quantity::displacement, *u_, r.u);
+    if (v_) dofs(Quantity::velocity, *v_, r.v);
+    if (a_) dofs(Quantity::acceleration, *a_, r.acceleration);
+    if (a_abs_) {
+      dofs(Quantity::absolute_acceleration, *a_abs_,
+           model_.absolute_acceleration(r.t, r.acceleration));
+    }
+    if (reaction_) dofs(Quantity::reaction, *reaction_, r.reaction);
     if (multiplier_) {
       multiplier_->append([&](hsize_t c) { return r.multiplier[static_cast<Eigen::Index>(c)]; });
     }
@@ -204,13 +237,14 @@ class Hdf5RowWriter final : public RowWriter {
       if (!r.balance) throw std::logic_error("an energy row without a balance");
       energy_->append([&](hsize_t c) { return energy_column(*r.balance, c); });
     }
+    if (points_) points_->append([&](hsize_t c) { return r.points[static_cast<Eigen::Index>(c)]; });
     ++rows_;
   }
 
   void finish(const RunAttributes& run) override {
     hdf5::put_run_attributes(file_, run);
     for (Series* s : {t_.get(), u_.get(), v_.get(), a_.get(), a_abs_.get(), reaction_.get(),
-                      multiplier_.get(), drift_.get(), energy_.get()}) {
+                      multiplier_.get(), drift_.get(), energy_.get(), points_.get()}) {
       if (s != nullptr) s->flush(true);
     }
     close();
@@ -228,6 +262,7 @@ class Hdf5RowWriter final : public RowWriter {
     multiplier_.reset();
     drift_.reset();
     energy_.reset();
+    points_.reset();
     if (file_ >= 0) {
       failed_ = H5Fclose(file_) < 0;
       file_ = -1;
@@ -235,10 +270,11 @@ class Hdf5RowWriter final : public RowWriter {
   }
 
   const Model& model_;
-  std::vector<int> shown_;
+  OutputColumns columns_;
+  RowView view_;
   std::string path_;
   hid_t file_ = -1;
-  std::unique_ptr<Series> t_, u_, v_, a_, a_abs_, reaction_, multiplier_, drift_, energy_;
+  std::unique_ptr<Series> t_, u_, v_, a_, a_abs_, reaction_, multiplier_, drift_, energy_, points_;
   bool failed_ = false;
 };
 
