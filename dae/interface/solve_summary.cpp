@@ -119,7 +119,8 @@ std::optional<std::string> SolveSummary::drift_warning(double rtol, double atol)
   std::ostringstream s;
   s.precision(3);
   s << "warning: the constraints drifted by " << max_relative_drift_position
-    << " (the largest |phi_i| / max_j |A_ij| over the run, a length), beyond "
+    << " (the largest |phi_i| / max_j |A_ij| over the run, a length"
+    << (worst_drift_joint.empty() ? "" : ", at joint " + worst_drift_joint) << "), beyond "
     << static_cast<int>(kDriftMultiple) << " (rtol max|u| + atol) = " << allowed
     << ": the result does not hold its constraints to the tolerance asked; ";
   if (scheme == "penalty") {
@@ -149,6 +150,7 @@ std::string SolveSummary::brief() const {
     s << wall_ms;
   }
   s << " ms, max drift position " << max_drift_position << " velocity " << max_drift_velocity;
+  if (!worst_drift_joint.empty()) s << " (worst joint " << worst_drift_joint << ")";
   if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
   if (!notes.empty()) s << "; " << notes_text();
   return s.str();

@@ -164,6 +164,9 @@ struct SolveSummary {
   /// max over the run and the position-level rows of |φ_i| / s_i, s_i the row's largest
   /// coefficient at t = 0 (ConstraintDrift::relative_position): a length in the model's unit.
   double max_relative_drift_position = 0.0;
+  /// A mechanism's joint where max_relative_drift_position was reached (its rows are named
+  /// "<joint>.<what>"); empty for other models, or when nothing drifted.
+  std::string worst_drift_joint;
   /// GGL only: max |μ| over the output times (μ vanishes on exact solutions); −1 otherwise.
   double max_abs_mu = -1.0;
   /// max |u| over the output rows (those before a failure included).

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -29,6 +30,15 @@ void summarize_drift(SolveResult& result, double max_dp, double max_dv, double m
   const Eigen::MatrixXd& u = result.trajectory.u;
   result.summary.max_abs_displacement =
       std::max(streamed_max_u, u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0);
+}
+
+/// The joint of constraint row `row` of a mechanism, whose rows are named "<joint>.<what>"
+/// (the name up to its last '.'); "" for another model's row or no row.
+std::string drift_joint(const Model& model, int row) {
+  if (!model.outputs || row < 0 || row >= model.constraint_count()) return "";
+  const std::string& name = model.constraints[static_cast<std::size_t>(row)].name;
+  const std::size_t dot = name.rfind('.');
+  return dot == std::string::npos || dot == 0 ? "" : name.substr(0, dot);
 }
 
 /// The energy balance's integrals over every internal step (EnergyTerms::powers at the
@@ -72,9 +82,16 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
   ConstraintDrift drift(model);
   // The drift relative to each row's scale, at every step seen and every output row (elimination
   // and runs without a step log are judged at their rows).
+  int worst_row = -1;  // where max_relative was reached
+  const auto note_relative = [&] {
+    if (drift.relative_position() > max_relative) {
+      max_relative = drift.relative_position();
+      worst_row = drift.worst_row();
+    }
+  };
   const auto track_relative = [&](double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
     (void)drift(t, u, v);
-    max_relative = std::max(max_relative, drift.relative_position());
+    note_relative();
   };
   IntegratorOptions observed = options;
   // The energy balance's integrals, over every internal step.
@@ -94,7 +111,7 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
       const auto [dp, dv] = drift(t, u, v);
       max_dp = std::max(max_dp, dp);
       max_dv = std::max(max_dv, dv);
-      max_relative = std::max(max_relative, drift.relative_position());
+      note_relative();
       if (options.record_steps) steps.push_back({t, dp, dv, reversals(v)});
     };
   }
@@ -154,6 +171,7 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
     result.trajectory = assemble(raw);
   }
   summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
+  result.summary.worst_drift_joint = drift_joint(model, worst_row);
   if (passages) result.summary.singular_passages = passages->passages();
   if (observe.on_finish) observe.on_finish(result.summary);
   return result;

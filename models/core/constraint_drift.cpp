@@ -27,12 +27,16 @@ ConstraintDrift::ConstraintDrift(const Model& model)
 std::pair<double, double> ConstraintDrift::operator()(double t, const Eigen::VectorXd& u,
                                                       const Eigen::VectorXd& v) {
   relative_position_ = 0.0;
+  worst_row_ = -1;
   if (nonlinear_) {
     nonlinear_->position_residual(t, u, phi_);
     nonlinear_->velocity_residual(t, u, v, psi_);
     // position_residual leaves velocity-level rows at 0.
-    if (phi_.size() == inverse_scale_.size() && phi_.size() > 0)
-      relative_position_ = phi_.cwiseAbs().cwiseProduct(inverse_scale_).maxCoeff();
+    if (phi_.size() == inverse_scale_.size() && phi_.size() > 0) {
+      Eigen::Index row = 0;
+      relative_position_ = phi_.cwiseAbs().cwiseProduct(inverse_scale_).maxCoeff(&row);
+      if (relative_position_ > 0.0) worst_row_ = static_cast<int>(row);
+    }
     return {phi_.size() ? phi_.lpNorm<Eigen::Infinity>() : 0.0,
             psi_.size() ? psi_.lpNorm<Eigen::Infinity>() : 0.0};
   }
@@ -47,8 +51,11 @@ std::pair<double, double> ConstraintDrift::operator()(double t, const Eigen::Vec
     if (c.level == ConstraintLevel::position) {
       const double phi = std::abs(au - c.value.value(t));
       pos = std::max(pos, phi);
-      relative_position_ =
-          std::max(relative_position_, phi * inverse_scale_[static_cast<Eigen::Index>(i)]);
+      const double relative = phi * inverse_scale_[static_cast<Eigen::Index>(i)];
+      if (relative > relative_position_) {
+        relative_position_ = relative;
+        worst_row_ = static_cast<int>(i);
+      }
       vel = std::max(vel, std::abs(av - c.value.derivative(1, t)));
     } else {
       vel = std::max(vel, std::abs(av - c.value.value(t)));

@@ -23,6 +23,9 @@ class ConstraintDrift {
   /// displacement error that would explain the drift, judged against the error test's rtol |u| +
   /// atol (SolveSummary::drift_warning).
   [[nodiscard]] double relative_position() const { return relative_position_; }
+  /// Of the last call: the position-level row where relative_position() is reached (−1 when it
+  /// is 0).
+  [[nodiscard]] int worst_row() const { return worst_row_; }
 
  private:
   const Model& model_;
@@ -30,6 +33,7 @@ class ConstraintDrift {
   Eigen::VectorXd phi_, psi_;
   Eigen::VectorXd inverse_scale_;  ///< 1 / s_i per row (1 for a row without a coefficient)
   double relative_position_ = 0.0;
+  int worst_row_ = -1;
 };
 
 }  // namespace condyn
