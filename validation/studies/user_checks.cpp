@@ -30,18 +30,49 @@ double bound_of(const CheckSpec& c) {
   return c.form == CheckSpec::Form::max_abs ? c.bound : c.tolerance;
 }
 
-/// Every column a run of the model can write (under some quantity).
+/// The quantities whose columns a mechanism's output map names.
+constexpr Quantity kMappedQuantities[] = {Quantity::displacement, Quantity::velocity,
+                                          Quantity::acceleration, Quantity::reaction};
+
+/// Every column a run of the model can write (under some quantity; a mechanism's named points
+/// are not listed: its map does not enumerate them).
 std::vector<std::string> all_columns(const Model& model) {
   std::vector<std::string> out = {"drift_position", "drift_velocity"};
   for (const auto column : kEnergyColumns) out.emplace_back(column);
-  for (const auto& d : model.dof_names) {
-    for (const char* prefix : {"", "vel_", "acc_", "acc_abs_", "reaction_"}) {
-      if (std::string_view(prefix) == "acc_abs_" && !model.ground) continue;
-      out.push_back(prefix + d);
+  if (model.outputs) {
+    for (Quantity q : kMappedQuantities) {
+      const auto& names = model.outputs->names(q);
+      out.insert(out.end(), names.begin(), names.end());
+    }
+  } else {
+    for (const auto& d : model.dof_names) {
+      for (const char* prefix : {"", "vel_", "acc_", "acc_abs_", "reaction_"}) {
+        if (std::string_view(prefix) == "acc_abs_" && !model.ground) continue;
+        out.push_back(prefix + d);
+      }
     }
   }
   for (const auto& c : model.constraints) out.push_back("lambda_" + c.name);
   return out;
+}
+
+/// A mechanism's column `name`: one of its output map's, or a named point's `body.point.x`.
+std::optional<CheckColumn> find_mapped_column(const OutputMap& map, const std::string& name) {
+  for (Quantity q : kMappedQuantities) {
+    const auto& names = map.names(q);
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it != names.end()) return CheckColumn{q, static_cast<int>(it - names.begin())};
+  }
+  const std::size_t dot = name.rfind('.');
+  if (dot == std::string::npos) return std::nullopt;
+  const std::string axis = name.substr(dot);
+  for (int k = 0; k < map.dimension(); ++k) {
+    if (axis != std::string(".") + "xyz"[k]) continue;
+    if (const auto point = map.point(std::string_view(name).substr(0, dot))) {
+      return CheckColumn{Quantity::displacement, k, *point};
+    }
+  }
+  return std::nullopt;
 }
 
 /// "no output column is named 'uz3' (...); the nearest: ux3, uy3" (nearest_names: the names a
@@ -56,9 +87,12 @@ std::string unknown_column(const Model& model, const std::string& name) {
   }
   const std::vector<std::string> near = nearest_names(name, all_columns(model));
   return "no output column is named '" + name +
-         "' (columns are a DOF's name, vel_, acc_, acc_abs_ or reaction_ and a DOF, lambda_ and a "
-         "constraint, drift_position, drift_velocity, energy, energy_error and the other "
-         "energy columns); " +
+         (model.outputs ? std::string("' (columns are a mechanism's body and joint columns "
+                                      "such as crank.x, crank.vx, crank.ax, hinge.fx, a named "
+                                      "point's crank.B.x, lambda_ and a constraint, ")
+                        : std::string("' (columns are a DOF's name, vel_, acc_, acc_abs_ or "
+                                      "reaction_ and a DOF, lambda_ and a constraint, ")) +
+         "drift_position, drift_velocity, energy, energy_error and the other energy columns); " +
          (near.empty() ? std::string("no column's name is near it")
                        : "the nearest: " + joined_names(near));
 }
@@ -73,6 +107,15 @@ std::optional<CheckColumn> find_column(const Model& model, const std::string& na
   for (std::size_t k = 0; k < kEnergyColumns.size(); ++k) {
     if (name == kEnergyColumns[k]) return CheckColumn{Quantity::energy, static_cast<int>(k)};
   }
+  if (name.rfind("lambda_", 0) == 0) {
+    const std::string c = name.substr(7);
+    for (std::size_t i = 0; i < model.constraints.size(); ++i) {
+      if (model.constraints[i].name == c) {
+        return CheckColumn{Quantity::multiplier, static_cast<int>(i)};
+      }
+    }
+  }
+  if (model.outputs) return find_mapped_column(*model.outputs, name);
   const auto dof = [&](const std::string& d) -> int {
     const auto it = std::find(model.dof_names.begin(), model.dof_names.end(), d);
     return it == model.dof_names.end() ? -1 : static_cast<int>(it - model.dof_names.begin());
@@ -85,14 +128,6 @@ std::optional<CheckColumn> find_column(const Model& model, const std::string& na
         {"reaction_", Quantity::reaction}}) {
     if (name.rfind(prefix, 0) == 0) {
       if (const int d = dof(name.substr(prefix.size())); d >= 0) return CheckColumn{quantity, d};
-    }
-  }
-  if (name.rfind("lambda_", 0) == 0) {
-    const std::string c = name.substr(7);
-    for (std::size_t i = 0; i < model.constraints.size(); ++i) {
-      if (model.constraints[i].name == c) {
-        return CheckColumn{Quantity::multiplier, static_cast<int>(i)};
-      }
     }
   }
   return std::nullopt;
@@ -116,7 +151,20 @@ CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>&
     }
     State s;
     s.column = *column;
+    if (s.column.point >= 0) {
+      // Its place among the points the mapped rows carry (dimension() values per point).
+      const auto it = std::find(points_.begin(), points_.end(), s.column.point);
+      const auto place = static_cast<int>(it - points_.begin());
+      if (it == points_.end()) points_.push_back(s.column.point);
+      s.column.index += place * model.outputs->dimension();
+    }
     states_.push_back(s);
+  }
+  if (model.outputs) {
+    const bool reactions = std::any_of(states_.begin(), states_.end(), [](const State& s) {
+      return s.column.quantity == Quantity::reaction && s.column.point < 0;
+    });
+    mapper_.emplace(*model.outputs, points_, reactions);
   }
 }
 
@@ -132,6 +180,7 @@ std::vector<Quantity> CheckEvaluator::quantities() const {
 
 double CheckEvaluator::value(const TrajectoryRow& row, const CheckColumn& c) const {
   const auto at = [&](const Eigen::VectorXd& x) { return c.index < x.size() ? x[c.index] : kNaN; };
+  if (c.point >= 0) return at(row.points);
   switch (c.quantity) {
     case Quantity::displacement:
       return at(row.u);
@@ -155,7 +204,14 @@ double CheckEvaluator::value(const TrajectoryRow& row, const CheckColumn& c) con
   return kNaN;
 }
 
-void CheckEvaluator::add(const TrajectoryRow& row) {
+void CheckEvaluator::add(const TrajectoryRow& run_row) {
+  const TrajectoryRow* mapped = &run_row;
+  if (mapper_) {
+    mapped_ = run_row;
+    mapper_->map(mapped_);
+    mapped = &mapped_;
+  }
+  const TrajectoryRow& row = *mapped;
   for (std::size_t k = 0; k < checks_.size(); ++k) {
     const CheckSpec& c = checks_[k];
     State& s = states_[k];

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/run/mapped_rows.hpp"
 #include "dae/run/trajectory.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_spec.hpp"
@@ -17,12 +18,17 @@ namespace condyn {
 /// Where a check's column comes from in a row.
 struct CheckColumn {
   Quantity quantity = Quantity::displacement;
-  int index = 0;  ///< the DOF, the constraint, drift position/velocity (0/1), kEnergyColumns
+  /// The DOF (a mechanism's column of the quantity), the constraint, drift position/velocity
+  /// (0/1), kEnergyColumns; for a named point, its axis (0, 1, 2 for .x, .y, .z).
+  int index = 0;
+  int point = -1;  ///< a named point's index in the model's OutputMap, else −1
 };
 
 /// The column `name` of a run of `model`, or nothing when no quantity gives it. Column names as
-/// the CSV writes them: a DOF's name, vel_, acc_, reaction_ + DOF, lambda_ + constraint,
-/// drift_position, drift_velocity and the energy columns (kEnergyColumns).
+/// the CSV writes them: a DOF's name, vel_, acc_, reaction_ + DOF (a mechanism's: its output
+/// map's columns `crank.x`, `crank.vx`, `crank.ax`, `hinge.fx`, and any named point's
+/// `crank.B.x`, listed in [output] points or not), lambda_ + constraint, drift_position,
+/// drift_velocity and the energy columns (kEnergyColumns).
 [[nodiscard]] std::optional<CheckColumn> find_column(const Model& model, const std::string& name);
 
 /// The outcome of one check.
@@ -60,6 +66,10 @@ class CheckEvaluator {
   const Model* model_;
   std::vector<CheckSpec> checks_;
   std::vector<State> states_;
+  /// A mechanism's rows in its output map's columns, with the points the checks read.
+  std::optional<MappedRows> mapper_;
+  std::vector<int> points_;  ///< the map's indices of those points, in the mapped row's order
+  TrajectoryRow mapped_;
 };
 
 /// One outcome per check of a run that failed before t_end: computed NaN, the check's bound,
