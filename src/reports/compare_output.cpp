@@ -283,13 +283,13 @@ void write_history_csv(std::ostream& out, const CompareResult& result, const Sch
   const auto& tr = h.trajectory;
   out << "t";
   for (const auto& name : result.constraint_names) out << ",lambda_" << name;
-  for (const auto& [name, index] : result.constrained_dofs) out << ",reaction_" << name;
+  for (const auto& [name, index] : result.reaction_columns) out << "," << name;
   out << "\n";
   for (std::size_t k = 0; k < tr.t.size(); ++k) {
     const auto col = static_cast<Eigen::Index>(k);
     out << tr.t[k];
     for (Eigen::Index i = 0; i < tr.multiplier.rows(); ++i) out << "," << tr.multiplier(i, col);
-    for (const auto& [name, index] : result.constrained_dofs) {
+    for (const auto& [name, index] : result.reaction_columns) {
       out << "," << tr.reaction(index, col);
     }
     out << "\n";

@@ -8,6 +8,7 @@
 
 #include "dae/formulations/baumgarte_gains.hpp"
 #include "dae/formulations/penalty_ode.hpp"
+#include "dae/run/mapped_rows.hpp"
 #include "dae/run/solve.hpp"
 #include "models/assembly/build_model.hpp"
 #include "models/scene/toml_access.hpp"
@@ -121,9 +122,16 @@ namespace {
 /// SchemeNotApplicable when none can.
 std::vector<Scheme> applicable_schemes(const Model& base, const CompareOptions& options,
                                        CompareResult& out) {
-  for (int d = 0; d < base.dofs(); ++d) {  // A holds the linearization of nonlinear models
+  if (base.outputs) {  // a mechanism's histories show its joints' reactions
+    const auto& names = base.outputs->names(Quantity::reaction);
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      out.reaction_columns.emplace_back(names[k], static_cast<int>(k));
+    }
+  }
+  for (int d = 0; d < base.dofs() && !base.outputs; ++d) {  // A: nonlinear models' linearization
     if (base.A.col(d).nonZeros() > 0) {
-      out.constrained_dofs.emplace_back(base.dof_names[static_cast<std::size_t>(d)], d);
+      out.reaction_columns.emplace_back("reaction_" + base.dof_names[static_cast<std::size_t>(d)],
+                                        d);
     }
   }
   for (const auto& c : base.constraints) out.constraint_names.push_back(c.name);
@@ -162,6 +170,14 @@ double relative_to_published(const Eigen::VectorXd& a, const Eigen::MatrixXd& b,
   return scale > 0.0 ? diff / scale : diff;
 }
 
+/// A run's errors against the reference in the columns its results show: a mechanism's output
+/// map's (poses, velocities, joint reactions: the reference is mapped alike), else per DOF.
+TrajectoryError shown_error(const Model& model, const Trajectory& run, const Trajectory& ref,
+                            const ErrorScales& scales) {
+  if (!model.outputs) return relative_error(run, ref, scales);
+  return relative_error(mapped_trajectory(model, run, {}, true), ref, scales);
+}
+
 /// The errors, drift and cost of one successful run of the sweep, into `r`.
 void score_run(RunRecord& r, const Trajectory& run, const SolveSummary& summary,
                const Yardstick& against) {
@@ -176,7 +192,7 @@ void score_run(RunRecord& r, const Trajectory& run, const SolveSummary& summary,
     r.mescd_u = score->digits_u;
     if (score->digits_v) r.mescd_v = *score->digits_v;
   } else {
-    const TrajectoryError err = relative_error(run, against.ref, against.scales);
+    const TrajectoryError err = shown_error(against.model, run, against.ref, against.scales);
     r.error_u = err.displacement;
     r.error_v = err.velocity;
     r.error_reaction = err.reaction;
@@ -284,7 +300,10 @@ void run_histories(const Model& base, const std::vector<Scheme>& schemes,
     }
     out.histories.push_back(std::move(h));
   }
-  assess_drift_growths(out.histories);
+  assess_drift_growths(out.histories);  // in the coordinates integrated (their roundoff)
+  // A mechanism's histories in its output map's columns (the reactions written per joint).
+  for (auto& h : out.histories)
+    h.trajectory = mapped_trajectory(base, std::move(h.trajectory), {}, true);
 }
 
 /// Baumgarte study: the default gains scaled over a grid, at `drift_settings`, into
@@ -311,7 +330,7 @@ void run_baumgarte_study(const Model& base, const SolveSpec& drift_settings,
         const SolveResult result = solve(base, s);
         const SolveSummary& summary = succeeded(result).summary;
         if (out.reference_kind != "published") {
-          p.error_u = relative_error(result.trajectory, ref, out.error_scales).displacement;
+          p.error_u = shown_error(base, result.trajectory, ref, out.error_scales).displacement;
         }
         p.ok = true;
         p.max_drift_position = summary.max_drift_position;

@@ -157,8 +157,10 @@ struct CompareResult {
   std::vector<double> reference_t;
   Eigen::MatrixXd reference_multiplier;
   std::vector<std::string> constraint_names;
-  /// DOFs some constraint touches (the reaction columns of the histories): name and index.
-  std::vector<std::pair<std::string, int>> constrained_dofs;
+  /// The reaction columns of the histories: name and row of Trajectory::reaction. The DOFs some
+  /// constraint touches (`reaction_ux1`), or a mechanism's joint reactions (`hinge.fx`: its
+  /// histories hold its output map's columns, dae/run/mapped_rows.hpp).
+  std::vector<std::pair<std::string, int>> reaction_columns;
   /// Runs of the sweep and histories that failed (the study's points are not counted: extreme
   /// gains are meant to find where it breaks).
   [[nodiscard]] int failed_runs() const;

@@ -1,5 +1,7 @@
 #include "validation/studies/compare_reference.hpp"
 
+#include "dae/run/mapped_rows.hpp"
+
 #include <algorithm>
 #include <sstream>
 #include <stdexcept>
@@ -168,7 +170,10 @@ std::optional<ErrorScales> published_scales(const Model& model, const SolveSpec&
 
 Trajectory reference_at_rows(const Model& base, const SolveSpec& scene,
                              const CompareOptions& options, CompareResult& out) {
-  const Trajectory dense = reference(base, refined(scene), options, out);
+  // A mechanism's reference in its output map's columns, as its runs are scored (a published
+  // state, of a built-in model, has no map).
+  const Trajectory dense =
+      mapped_trajectory(base, reference(base, refined(scene), options, out), {}, true);
   const bool published = out.reference_kind == "published";
   std::optional<ErrorScales> scales;
   if (published) {
