@@ -109,11 +109,8 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
   const py::object failure = result.ok()
                                  ? py::object(py::none())
                                  : python::system_text(describe_failure(result, spec.solve.t_end));
-  const auto& asked = spec.output.quantities;
-  const bool absolute =
-      std::find(asked.begin(), asked.end(), Quantity::absolute_acceleration) != asked.end();
   return py::make_tuple(
-      python::result_dict(std::move(result), *model, spec.solve, report, absolute), failure);
+      python::result_dict(std::move(result), *model, spec.solve, report, spec.output), failure);
 }
 
 py::tuple compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,

@@ -3,11 +3,13 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "dae/run/mapped_rows.hpp"
 #include "dae/run/singular_passages.hpp"
 #include "dae/run/solve.hpp"
 
@@ -86,6 +88,8 @@ py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const Bu
   d["last_step"] = s.last_step;
   d["max_drift_position"] = s.max_drift_position;
   d["max_drift_velocity"] = s.max_drift_velocity;
+  d["worst_drift_joint"] =
+      s.worst_drift_joint.empty() ? py::object(py::none()) : py::str(s.worst_drift_joint);
   d["max_abs_mu"] = s.max_abs_mu < 0.0 ? py::object(py::none()) : py::float_(s.max_abs_mu);
   d["unknowns"] = s.unknowns;
   d["jacobian_nonzeros"] = s.jacobian_nonzeros;
@@ -105,20 +109,31 @@ py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const Bu
 }  // namespace
 
 py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& settings,
-                     const BuildReport& report, bool absolute_acceleration) {
-  // The trajectory moves into a capsule that every array keeps alive.
-  auto* held = new Trajectory(std::move(result.trajectory));
+                     const BuildReport& report, const OutputSpec& output) {
+  const OutputMap* map = model.outputs.get();
+  const std::vector<int> points =
+      map != nullptr ? point_indices(*map, output.points) : std::vector<int>();
+  const auto& asked = output.quantities;
+  const bool absolute_acceleration =
+      std::find(asked.begin(), asked.end(), Quantity::absolute_acceleration) != asked.end();
+  // The trajectory (a mechanism's in its output map's columns, every row's reaction included:
+  // the module always asks for them) moves into a capsule that every array keeps alive.
+  auto* held = new Trajectory(mapped_trajectory(model, std::move(result.trajectory), points, true));
   const py::capsule owner(held, [](void* p) { delete static_cast<Trajectory*>(p); });
   const Trajectory& traj = *held;
   const auto nt = static_cast<Eigen::Index>(traj.t.size());
-  const auto n = static_cast<Eigen::Index>(model.dofs());
+  const auto width = [&](Quantity q) {
+    return static_cast<Eigen::Index>(map != nullptr ? map->names(q).size()
+                                                    : model.dof_names.size());
+  };
+  const auto n = width(Quantity::displacement);
   const auto m = static_cast<Eigen::Index>(model.constraint_count());
 
   py::dict d;
   d["t"] = read_only_view(traj.t.data(), nt, owner);
   d["u"] = rows_view(traj.u, nt, n, owner);
-  d["v"] = rows_view(traj.v, nt, n, owner);
-  d["reaction"] = rows_view(traj.reaction, nt, n, owner);
+  d["v"] = rows_view(traj.v, nt, width(Quantity::velocity), owner);
+  d["reaction"] = rows_view(traj.reaction, nt, width(Quantity::reaction), owner);
   d["multiplier"] = rows_view(traj.multiplier, nt, m, owner);
   py::array_t<double> drift({static_cast<py::ssize_t>(nt), py::ssize_t{2}});
   auto w = drift.mutable_unchecked<2>();
@@ -131,8 +146,9 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
     w(i, 1) = traj.drift_velocity(i);
   }
   d["drift"] = drift;
-  d["a"] = traj.acceleration.size() == 0 ? py::object(py::none())
-                                         : rows_view(traj.acceleration, nt, n, owner);
+  d["a"] = traj.acceleration.size() == 0
+               ? py::object(py::none())
+               : rows_view(traj.acceleration, nt, width(Quantity::acceleration), owner);
   d["a_abs"] = py::none();
   if (absolute_acceleration && traj.acceleration.size() > 0) {
     py::array_t<double> a_abs({static_cast<py::ssize_t>(nt), static_cast<py::ssize_t>(n)});
@@ -166,7 +182,18 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
   d["energy_columns"] = energy_column_names();
   d["energy"] = vector_view(traj.energy, owner);
   d["kinetic"] = vector_view(traj.kinetic, owner);
-  d["dof_names"] = model.dof_names;
+  d["points"] = points.empty() ? py::object(py::none())
+                               : rows_view(traj.points, nt, traj.points.rows(), owner);
+  d["point_names"] =
+      map != nullptr ? point_columns(*map, output.points) : std::vector<std::string>();
+  // Every column: [output] dofs selects the files' columns, not the result's.
+  const auto all_names = [&](Quantity q) {
+    return map != nullptr ? map->names(q) : model.dof_names;
+  };
+  d["dof_names"] = all_names(Quantity::displacement);
+  d["velocity_names"] = all_names(Quantity::velocity);
+  d["acceleration_names"] = all_names(Quantity::acceleration);
+  d["reaction_names"] = all_names(Quantity::reaction);
   std::vector<std::string> constraints;
   constraints.reserve(model.constraints.size());
   for (const auto& c : model.constraints) constraints.push_back(c.name);

@@ -32,15 +32,23 @@ class Result:
     energy_dissipated, work_loads, work_constraints) when [output] asks for "energy", else None
     (docs/energy.md); near_singular (nt booleans: the rows inside a passage near a singular
     configuration, whose reactions are not to be trusted; docs/schemes.md); dof_names,
-    constraint_names; summary (dict: scheme, steps, wall_s, rtol, atol, residual_evals,
-    jacobian_evals, ..., singular_passages).
+    velocity_names, acceleration_names, reaction_names (the columns of u, v, a and reaction:
+    each the DOFs, except for a mechanism), constraint_names; points (nt x k, the [output]
+    points' positions, columns point_names) or None; summary (dict: scheme, steps, wall_s, rtol,
+    atol, residual_evals, jacobian_evals, ..., singular_passages, worst_drift_joint).
+    A mechanism ([model] type = "multibody") shows its own columns, as the CSV does: u holds
+    the poses (crank.x, crank.y, crank.angle; in 3D a quaternion crank.qw..qz, 7 columns a body),
+    v the velocities (crank.vx, ..., crank.omega; in 3D wx, wy, wz, 6 a body), a the
+    accelerations, reaction the joints' forces and torques (hinge.fx, hinge.m), each named by
+    its own list.
     The arrays are read-only: views of the run's memory, except drift, a_abs and energy_balance
     (copies gathered from the rows).
     """
 
     __slots__ = ("t", "u", "v", "reaction", "multiplier", "drift", "a", "a_abs", "energy",
                  "kinetic", "energy_balance", "energy_columns", "near_singular", "dof_names",
-                 "constraint_names", "summary")
+                 "velocity_names", "acceleration_names", "reaction_names", "points",
+                 "point_names", "constraint_names", "summary")
 
     def __init__(self, fields):
         for key in self.__slots__:
@@ -50,7 +58,8 @@ class Result:
             setattr(self, key, value)
 
     def dof(self, name):
-        """The column index of DOF `name` (KeyError naming the DOFs otherwise)."""
+        """The column of u named `name`: a DOF, or a mechanism's pose column (KeyError naming
+        them otherwise)."""
         try:
             return self.dof_names.index(name)
         except ValueError:
