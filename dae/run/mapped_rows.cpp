@@ -8,12 +8,6 @@
 
 namespace condyn {
 
-namespace {
-
-constexpr const char* kAxes[3] = {".x", ".y", ".z"};
-
-}  // namespace
-
 std::vector<int> point_indices(const OutputMap& map, const std::vector<std::string>& points) {
   std::vector<int> out;
   for (const auto& point : points) {
@@ -28,7 +22,9 @@ std::vector<std::string> point_columns(const OutputMap& map,
                                        const std::vector<std::string>& points) {
   std::vector<std::string> out;
   for (const auto& point : points) {
-    for (int k = 0; k < map.dimension(); ++k) out.push_back(point + kAxes[k]);
+    // .x, .y (.z): the dimension's axes in order.
+    for (int k = 0; k < map.dimension(); ++k)
+      out.push_back(point + '.' + static_cast<char>('x' + k));
   }
   return out;
 }

@@ -67,7 +67,7 @@ std::optional<CheckColumn> find_mapped_column(const OutputMap& map, const std::s
   if (dot == std::string::npos) return std::nullopt;
   const std::string axis = name.substr(dot);
   for (int k = 0; k < map.dimension(); ++k) {
-    if (axis != std::string(".") + "xyz"[k]) continue;
+    if (axis != std::string(".") + static_cast<char>('x' + k)) continue;
     if (const auto point = map.point(std::string_view(name).substr(0, dot))) {
       return CheckColumn{Quantity::displacement, k, *point};
     }
