@@ -50,33 +50,87 @@ if ((${#missing[@]})); then
 fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
-# Each stage says when it starts (UTC, and seconds since the command began), so a CI log shows
-# where the time goes (docs/benchmarks.md, "The test command").
-stage() { echo "bootstrap: $(date -u +%H:%M:%S) (${SECONDS} s) $*"; }
+# Each stage says when it starts: the time (UTC), the seconds since the command began and the CPU
+# seconds (user + system) its finished processes took so far, so a CI log shows where the time
+# goes, and how well the cores were kept busy (docs/benchmarks.md, "The test command").
+ticks="$(getconf CLK_TCK 2>/dev/null || echo 100)"
+cpu_seconds() {  # of the finished (waited for) child processes of process $1
+  local stat
+  read -r stat <"/proc/$1/stat" || { echo "?"; return; }
+  local fields=(${stat##*) })  # after "pid (name) ": state is [0], cutime [13], cstime [14]
+  echo $(((fields[13] + fields[14]) / ticks))
+}
+stage() { echo "bootstrap: $(date -u +%H:%M:%S) (${SECONDS} s, CPU $(cpu_seconds $$) s) $*"; }
 # The main job builds the program and the Python module (build/python/condyn); the test command
 # builds every test executable too, with warnings as errors. Both as a unity build: the library
 # files are compiled in batches, which parse Eigen's and SUNDIALS' headers and instantiate their
 # templates once per batch. Test files stay one by one, at -O1 with their common headers
 # precompiled (CMakeLists.txt).
-stage "build/: configure and build"
 if [ "$mode" = main ]; then
+  stage "build/: configure and build"
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=OFF -DCONDYN_TESTS=OFF \
     -DCMAKE_UNITY_BUILD=ON >/dev/null
   cmake --build build -j "$jobs" --target condyn condyn_python
-else
-  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
-    -DCMAKE_UNITY_BUILD=ON >/dev/null
-  cmake --build build -j "$jobs"
-fi
-
-if [ "$mode" = main ]; then
   build/condyn validate --quiet
   echo
   exec build/condyn compare --out-dir condyn-out/compare-chapter_5_5_1
 fi
 
+# The test command keeps both cores busy: what does not depend on the step before it runs beside
+# it (docs/contributing.md, "Tests"). A process it starts in the background and has not waited
+# for when it stops (a failure) is stopped with it.
+background=()
+trap 'for p in "${background[@]}"; do kill "$p" 2>/dev/null || true; done' EXIT
+# `wait_for PID WHAT LOG`: the background step's status; on failure its log's end, then exit 1.
+wait_for() {
+  if ! wait "$1"; then
+    tail -n 60 "$3" >&2
+    echo "bootstrap: $2 failed (log $3)" >&2
+    exit 1
+  fi
+  local running=() p
+  for p in "${background[@]}"; do [ "$p" = "$1" ] || running+=("$p"); done
+  background=("${running[@]}")
+}
+
+# The sanitized build (its comment below) and the lint's file-by-file tree are configured beside
+# the build of build/ (cmake runs on one core).
+sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+mkdir -p build-lint build-asan
+cmake -S . -B build-lint -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
+  >build-lint/configure.log 2>&1 &
+lint_configure=$!
+cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS="$sanitize" \
+  -DCONDYN_TESTS=ON -DCONDYN_TESTS_OPT=-O0 -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF \
+  -DCMAKE_UNITY_BUILD=ON >build-asan/configure.log 2>&1 &
+asan_configure=$!
+background=("$lint_configure" "$asan_configure")
+stage "build/: configure and build (g++, warnings as errors); build-lint/ and build-asan/ configured beside it"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
+  -DCMAKE_UNITY_BUILD=ON >/dev/null
+cmake --build build -j "$jobs"
+wait_for "$lint_configure" "configuring build-lint/" build-lint/configure.log
+wait_for "$asan_configure" "configuring build-asan/" build-asan/configure.log
+
+# Sanitizers: the unit and e2e tiers again, built by clang with ASan and UBSan into build-asan/ (its
+# CONDYN_BINARY is build-asan/condyn, sanitized too, so the CLI tests run under them as well).
+# Any report aborts the test. The same build has the libFuzzer harness (CONDYN_FUZZ). A unity build
+# as above; line tables are all the debug information the reports need (file and line of each
+# frame). The library is compiled at -O1, where the tests and the fuzzer run; the test files at -O0
+# (CONDYN_TESTS_OPT), in well under half the compiler time: clang's warnings do not depend on the
+# optimizer, and unoptimized code keeps every memory access of the test code for ASan to check.
+# It builds beside the lint: each keeps the cores busy where the other leaves one idle (a long
+# batch, a link, clang-format's one process, the end of a clang-tidy pass).
+stage "lint (clang-format, then clang-tidy); beside it build-asan/ builds (clang, ASan and UBSan)"
+(
+  cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
+  echo "bootstrap: build-asan/ built, CPU $(cpu_seconds "$BASHPID") s"  # its own, apart from the lint's
+) >build-asan/build.log 2>&1 &
+asan_build=$!
+background+=("$asan_build")
+
 # Lint: .clang-format and .clang-tidy are the project's rules, enforced here.
-stage "lint: clang-format, then clang-tidy"
 sources=$(find src dae models validation tests python -name '*.cpp' -o -name '*.hpp' | sort)
 clang-format --dry-run -Werror $sources
 lint_sources=$(find src dae models validation -name '*.cpp' | sort)
@@ -85,8 +139,6 @@ lint_sources=$(find src dae models validation -name '*.cpp' | sort)
 # built); misc-unused-using-decls too, which looks only there. The other checks match a unity batch
 # as they match its files one by one (docs/contributing.md), so they read build/'s batches of the
 # library files and the files kept out of batches (in any sub-folder).
-cmake -S . -B build-lint -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
-  >/dev/null
 root="$(pwd -P)"  # as CMake writes the paths
 batches=$(grep -o '"file": "[^"]*"' build/compile_commands.json | cut -d'"' -f4 | grep -E \
   "/CMakeFiles/condyn(_cli|_models|_dae|_validation)?\.dir/Unity/unity_[0-9]+_cxx\.cxx$|^$root/(src|dae|models|validation)/.*\.cpp$" \
@@ -106,7 +158,7 @@ run-clang-tidy -quiet -p build-lint -j "$jobs" -extra-arg=-Wno-unknown-warning-o
 run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option \
   -checks='-clang-analyzer-*,-bugprone-suspicious-include' $batches \
   >build/clang-tidy.log 2>&1 || lint_failed build/clang-tidy.log
-stage "lint: clang-format and clang-tidy clean"
+stage "lint: clang-format and clang-tidy clean; waiting for build-asan/"
 # ctest registers each doctest case by name and CMake splits a name at ';': such a case was
 # registered as one that matches nothing, and "passed" without running.
 for t in build/condyn_tests_*; do
@@ -116,21 +168,9 @@ for t in build/condyn_tests_*; do
     exit 1
   fi
 done
+wait_for "$asan_build" "the build of build-asan/" build-asan/build.log
+tail -n 1 build-asan/build.log
 
-# Sanitizers: the unit and e2e tiers again, built by clang with ASan and UBSan into build-asan/ (its
-# CONDYN_BINARY is build-asan/condyn, sanitized too, so the CLI tests run under them as well).
-# Any report aborts the test. The same build has the libFuzzer harness (CONDYN_FUZZ). A unity build
-# as above; line tables are all the debug information the reports need (file and line of each
-# frame). The library is compiled at -O1, where the tests and the fuzzer run; the test files at -O0
-# (CONDYN_TESTS_OPT), in well under half the compiler time: clang's warnings do not depend on the
-# optimizer, and unoptimized code keeps every memory access of the test code for ASan to check.
-stage "build-asan/: configure and build (clang, ASan and UBSan)"
-sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS="$sanitize" \
-  -DCONDYN_TESTS=ON -DCONDYN_TESTS_OPT=-O0 -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF \
-  -DCMAKE_UNITY_BUILD=ON >/dev/null
-cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
 stage "build-asan/: the unit and e2e tiers under the sanitizers"
 (cd build-asan && ctest -L "unit|e2e" --output-on-failure -j "$jobs")
 
