@@ -55,9 +55,9 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 # goes, and how well the cores were kept busy (docs/benchmarks.md, "The test command").
 ticks="$(getconf CLK_TCK 2>/dev/null || echo 100)"
 cpu_seconds() {  # of the finished (waited for) child processes of process $1
-  local stat
+  local stat fields
   read -r stat <"/proc/$1/stat" || { echo "?"; return; }
-  local fields=(${stat##*) })  # after "pid (name) ": state is [0], cutime [13], cstime [14]
+  read -r -a fields <<<"${stat##*) }"  # after "pid (name) ": state [0], cutime [13], cstime [14]
   echo $(((fields[13] + fields[14]) / ticks))
 }
 stage() { echo "bootstrap: $(date -u +%H:%M:%S) (${SECONDS} s, CPU $(cpu_seconds $$) s) $*"; }
@@ -106,7 +106,8 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYP
   -DCMAKE_UNITY_BUILD=ON >build-asan/configure.log 2>&1 &
 asan_configure=$!
 background=("$lint_configure" "$asan_configure")
-stage "build/: configure and build (g++, warnings as errors); build-lint/ and build-asan/ configured beside it"
+stage "build/: configure and build (g++, warnings as errors); beside it build-lint/ and" \
+  "build-asan/ are configured"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
   -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build -j "$jobs"
@@ -125,7 +126,8 @@ wait_for "$asan_configure" "configuring build-asan/" build-asan/configure.log
 stage "lint (clang-format, then clang-tidy); beside it build-asan/ builds (clang, ASan and UBSan)"
 (
   cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
-  echo "bootstrap: build-asan/ built, CPU $(cpu_seconds "$BASHPID") s"  # its own, apart from the lint's
+  # Its own CPU seconds, apart from the lint's.
+  echo "bootstrap: build-asan/ built, CPU $(cpu_seconds "$BASHPID") s"
 ) >build-asan/build.log 2>&1 &
 asan_build=$!
 background+=("$asan_build")
