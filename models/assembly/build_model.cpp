@@ -56,6 +56,9 @@ Model ModelBuilder::build() {
     case ModelSpec::Type::pendulum:
       build_benchmark();
       break;
+    case ModelSpec::Type::multibody:
+      build_mechanism();
+      break;
   }
   apply_rayleigh();
   build_loads();
@@ -64,7 +67,11 @@ Model ModelBuilder::build() {
   if (nonlinear_truss_) finish_point_masses();
   if (spec_.model.type == ModelSpec::Type::sleigh) finish_sleigh();
   check_size();
-  if (spec_.initial.project) project_initial();
+  if (spec_.initial.project && spec_.model.mechanism) {
+    project_mechanism();
+  } else if (spec_.initial.project) {
+    project_initial();
+  }
   keep_reference_only_at_published_start();
   if (model_.is_nonlinear()) linearize();
   check_finite();

@@ -40,6 +40,10 @@ void ModelBuilder::build_initial() {
 }
 
 void ModelBuilder::check_initial_consistency() const {
+  if (spec_.model.mechanism) {  // judged against the mechanism's size: multibody_start.cpp
+    check_mechanism_start();
+    return;
+  }
   if (model_.is_nonlinear()) {
     check_nonlinear_consistency();
     return;

@@ -44,6 +44,10 @@ std::string computed_fmt(double v, const std::string& cause);
 double magnitude_bound(const TimeTerm& term, int order, double t_end);
 double magnitude_bound(const TimeFunction& f, double t_end);
 bool all_finite(const Eigen::SparseMatrix<double>& m);
+// multibody_model.cpp
+/// The model's size of the contract: the largest distance between two named points at t = 0
+/// (ground's included), 1 when there is one point (docs/scenes.md).
+double mechanism_size(const Mechanism& m);
 
 class ModelBuilder {
  public:
@@ -112,6 +116,17 @@ class ModelBuilder {
   void finish_point_masses();
   void keep_reference_only_at_published_start();
   void linearize();
+
+  // multibody_model.cpp
+  void build_mechanism();
+  void report_joints();
+  // multibody_start.cpp
+  [[nodiscard]] Eigen::VectorXd mechanism_row_gradients(double size) const;
+  [[nodiscard]] double mechanism_speed(double size) const;
+  void check_mechanism_start() const;
+  [[nodiscard]] std::string mechanism_projection_report(const Eigen::VectorXd& u_in,
+                                                        const Eigen::VectorXd& v_in) const;
+  void project_mechanism();
 
   // constraint_rows.cpp
   void check_coefficients(const ConstraintSpec& cs) const;
@@ -183,6 +198,9 @@ class ModelBuilder {
   /// A nonlinear model's rows left after drops, in its system's numbering (empty: none dropped,
   /// or the system already restricted to them).
   std::vector<int> kept_rows_;
+  /// A mechanism's rows: the joint of each (−1: a body's rigid row), and which depend on t.
+  std::vector<int> row_joint_;
+  std::vector<bool> row_rheonomic_;
 };
 
 }  // namespace condyn

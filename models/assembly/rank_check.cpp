@@ -35,6 +35,10 @@ void ModelBuilder::drop_constraint(const Dependent& d) {
                                         "; their reactions carry its force too: not unique)");
   model_.dropped_constraints.push_back(model_.constraints[row].name);
   model_.constraints.erase(model_.constraints.begin() + d.row);
+  if (!row_joint_.empty()) {  // a mechanism's rows: their joints stay aligned with the rows
+    row_joint_.erase(row_joint_.begin() + d.row);
+    row_rheonomic_.erase(row_rheonomic_.begin() + d.row);
+  }
   // Row d.row moves to the end (the others keep their order) and is cut off.
   const auto m = static_cast<int>(model_.A.rows());
   Eigen::VectorXi position(m);

@@ -168,6 +168,9 @@ struct BuildReport {
   /// The DOFs without mass, counted and the first named, and what holds them ("3 of 12 (ux1,
   /// uy1, u5): 2 in constraints, 1 held by its stiffness ..."); empty when every DOF has mass.
   std::string massless_dofs;
+  /// A mechanism's joints, one line each in the chapter's terms: "hinge_O (revolute, ground –
+  /// crank): 3 rows hinge_O.x … hinge_O.drive, holonomic, rheonomic (driven)".
+  std::vector<std::string> joints;
 };
 
 }  // namespace condyn

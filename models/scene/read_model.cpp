@@ -184,6 +184,8 @@ void SceneReader::read_model(const toml::node& node, ModelSpec& model) const {
     model.inertia = positive(required(t, path, "inertia"), "model.inertia");
     if (const auto* a = t.get("contact_offset"))
       model.contact_offset = number(*a, "model.contact_offset");
+  } else if (type == "multibody") {
+    read_mechanism_model(t, model);
   } else if (type == "andrews" || type == "car_axis" || type == "pendulum") {
     check_keys(t, path, {"type"});  // the published problem fixes every parameter
     model.type = type == "andrews"    ? ModelSpec::Type::andrews
@@ -192,7 +194,8 @@ void SceneReader::read_model(const toml::node& node, ModelSpec& model) const {
   } else {
     fail(*t.get("type"), "model.type",
          "unknown model type '" + type +
-             "' (expected truss2d, truss3d, matrix, sleigh, andrews, car_axis or pendulum)");
+             "' (expected truss2d, truss3d, matrix, multibody, sleigh, andrews, car_axis or "
+             "pendulum)");
   }
 }
 

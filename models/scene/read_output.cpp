@@ -9,7 +9,7 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
   const std::string path = "output";
   const auto& t = table(node, path);
   output.where = at(node, path);
-  check_keys(t, path, {"quantities", "file", "dofs"});
+  check_keys(t, path, {"quantities", "file", "dofs", "points"});
   if (const auto* n = t.get("quantities")) {
     output.quantities.clear();
     const auto& arr = array(*n, "output.quantities");
@@ -55,6 +55,14 @@ void SceneReader::read_output(const toml::node& node, OutputSpec& output) const 
       }
       output.dofs.push_back(s);
       output.dofs_lines.push_back(static_cast<int>(arr.get(i)->source().begin.line));
+    }
+  }
+  if (const auto* n = t.get("points")) {  // checked against the bodies: read_mechanism_names.cpp
+    const auto& arr = array(*n, "output.points");
+    if (arr.empty()) fail(*n, "output.points", "is empty: omit the key for no point columns");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      output.points.push_back(string(*arr.get(i), index("output.points", i)));
+      output.points_lines.push_back(at(*arr.get(i), index("output.points", i)).line);
     }
   }
   if (const auto* n = t.get("file")) {

@@ -55,6 +55,38 @@ class SceneReader : public TomlAccess {
   void read_rayleigh_pairs(const toml::node& node, const std::string& path, ModelSpec& model) const;
   /// [[constraint_block]].
   void read_constraint_blocks(const toml::node& node, std::vector<ConstraintBlockSpec>& out) const;
+  /// [model] type = "multibody" (read_mechanism.cpp): dimension, gravity, the ground's markers.
+  void read_mechanism_model(const toml::table& t, ModelSpec& model) const;
+  /// [[body]], [[joint]], [[force]] of a multibody model, and the sections it refuses
+  /// (read_mechanism.cpp; each table's reader: read_bodies.cpp, read_joints.cpp,
+  /// read_forces.cpp).
+  void read_mechanism_sections(const toml::table& root, ModelSpec& model) const;
+  void read_bodies(const toml::node& node, Mechanism& mechanism) const;
+  void read_joints(const toml::node& node, Mechanism& mechanism) const;
+  void read_forces(const toml::node& node, Mechanism& mechanism) const;
+  /// [initial] keep and [output] points against the mechanism's bodies (read_mechanism_names.cpp).
+  void check_mechanism_names(const toml::table& root, const SceneSpec& spec) const;
+  /// A mechanism's vector at `node`: `dim` numbers (the third 0 in 2D).
+  [[nodiscard]] Mechanism::Vec3 mechanism_vector(const toml::node& node, const std::string& path,
+                                                 int dim) const;
+  /// `{ NAME = [x, y(, z)], ... }`: a body's or the ground's points, or its axes (`axes`: nonzero
+  /// directions, normalized).
+  [[nodiscard]] std::vector<Mechanism::Marker> read_markers(const toml::node& node,
+                                                            const std::string& path, int dim,
+                                                            bool axes) const;
+  /// A body's, joint's or marker's name: a CSV-safe name without '.', which joins the names of
+  /// columns ("crank.B.x").
+  [[nodiscard]] std::string mechanism_name(const toml::node& node, const std::string& path,
+                                           const char* what) const;
+  /// The body named at `node` (Mechanism::kGround for "ground"), else refused with the nearest
+  /// names; `name`, when given, is the name to look up (part of the string at `node`).
+  [[nodiscard]] int body_index(const Mechanism& mechanism, const toml::node& node,
+                               const std::string& path, const std::string* name = nullptr) const;
+  /// The index of the point (axis when `axis`) named at `node` (or `name`) of body `body`, else
+  /// refused.
+  [[nodiscard]] int marker_index(const Mechanism& mechanism, int body, bool axis,
+                                 const toml::node& node, const std::string& path,
+                                 const std::string* name = nullptr) const;
   /// [[load]] (read_loads.cpp).
   void read_loads(const toml::node& node, std::vector<LoadSpec>& out) const;
   /// [ground_motion] (read_ground_motion.cpp); the model (read first) decides its keys.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "models/core/constraint_level.hpp"
+#include "models/core/mechanism.hpp"
 #include "models/core/output_quantity.hpp"
 #include "models/core/scheme.hpp"
 #include "models/core/solve_spec.hpp"
@@ -48,7 +49,7 @@ struct MemberSpec {
 };
 
 struct ModelSpec {
-  enum class Type { truss2d, truss3d, matrix, sleigh, andrews, car_axis, pendulum };
+  enum class Type { truss2d, truss3d, matrix, sleigh, andrews, car_axis, pendulum, multibody };
   /// Bars: small-displacement (linear stiffness) or exact length change (large displacement).
   enum class Geometry { linear, nonlinear };
   Type type = Type::truss2d;
@@ -79,6 +80,9 @@ struct ModelSpec {
   /// modal_damping.cpp). Empty when not given.
   std::vector<double> modal_ratios;
   SourcePoint modal_where;
+  /// multibody: the bodies, joints and force elements ([model], [[body]], [[joint]], [[force]];
+  /// models/scene/read_mechanism.cpp), checked against each other.
+  std::optional<Mechanism> mechanism;
   SourcePoint where;
 };
 
@@ -133,6 +137,11 @@ struct InitialSpec {
   bool project = false;
   /// [initial] static: u(0) is the constrained static equilibrium at t = 0 (linear models).
   bool static_start = false;
+  /// [initial] keep (multibody, with project = true): the values project keeps exactly, as
+  /// "body.key" (an output column such as "crank.x", "crank.omega", or a [[body]] key such as
+  /// "crank.position", "crank.angular_velocity"), checked against the bodies by the reader.
+  std::vector<std::string> keep;
+  std::vector<int> keep_lines;  ///< each entry's line (0: not from a file)
   SourcePoint where;  ///< of the [initial] table; its path is empty when there is none
   /// Whether the scene has an [initial] table (from a file or a Python dict, whose nodes have
   /// no line: testing the line sent a dict scene's start errors to other keys).

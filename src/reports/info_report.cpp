@@ -161,6 +161,7 @@ void print_build_notes(std::ostream& out, const Model& model, const BuildReport&
   if (!report.damping.empty()) out << wrapped_text("damping: ", report.damping);
   if (!report.massless_dofs.empty()) out << wrapped_text("massless DOFs: ", report.massless_dofs);
   for (const auto& r : report.ground_records) out << wrapped_text("ground motion record: ", r);
+  for (const auto& j : report.joints) out << wrapped_text("joint: ", j);
 }
 
 /// The table of constraint classes: every row, or above kMaxListedConstraints (unless
