@@ -16,7 +16,8 @@ class KeptRotations final : public MechanicalSystem {
   }
 
   [[nodiscard]] std::unique_ptr<MechanicalSystem> clone() const override {
-    return std::make_unique<KeptRotations>(std::shared_ptr<MechanicalSystem>(base_->clone()), kept_);
+    return std::make_unique<KeptRotations>(std::shared_ptr<MechanicalSystem>(base_->clone()),
+                                           kept_);
   }
   [[nodiscard]] int dofs() const override { return base_->dofs(); }
   [[nodiscard]] int constraints() const override {
@@ -30,11 +31,13 @@ class KeptRotations final : public MechanicalSystem {
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(static_cast<std::size_t>(A.nonZeros()) + 9 * kept_.size());
     for (int k = 0; k < A.outerSize(); ++k)
-      for (Sparse::InnerIterator it(A, k); it; ++it) trip.emplace_back(it.row(), it.col(), it.value());
+      for (Sparse::InnerIterator it(A, k); it; ++it)
+        trip.emplace_back(it.row(), it.col(), it.value());
     for (std::size_t r = 0; r < kept_.size(); ++r) {
       const auto row = static_cast<int>(A.rows() + static_cast<Eigen::Index>(r));
       const auto grad = gradient(kept_[r], u);
-      for (std::size_t j = 0; j < grad.size(); ++j) trip.emplace_back(row, kept_[r].axes[j], grad[j]);
+      for (std::size_t j = 0; j < grad.size(); ++j)
+        trip.emplace_back(row, kept_[r].axes[j], grad[j]);
     }
     jacobian_.resize(constraints(), dofs());
     jacobian_.setFromTriplets(trip.begin(), trip.end());
@@ -70,7 +73,8 @@ class KeptRotations final : public MechanicalSystem {
 
  private:
   [[noreturn]] static void unused() {
-    throw std::logic_error("the kept angular velocities' system serves the initial projection only");
+    throw std::logic_error(
+        "the kept angular velocities' system serves the initial projection only");
   }
 
   /// ∂ω/∂(the row's axes' velocities) at u: 2D (−u_y, u_x); 3D ½ of the component's row of

@@ -27,7 +27,8 @@ std::vector<Eigen::Vector3d> named_points(const Mechanism& m) {
   std::vector<Eigen::Vector3d> out;
   for (const auto& p : m.ground_points) out.push_back(as_vector(p.at));
   for (const auto& b : m.bodies) {
-    for (const auto& p : b.points) out.push_back(as_vector(b.position) + b.orientation * as_vector(p.at));
+    for (const auto& p : b.points)
+      out.push_back(as_vector(b.position) + b.orientation * as_vector(p.at));
   }
   return out;
 }
@@ -64,13 +65,12 @@ void ModelBuilder::build_mechanism() {
   row_rheonomic_ = std::move(parts.row_rheonomic);
   base_u0_ = std::move(parts.q0);
   base_v0_ = std::move(parts.v0);
-  model_.description = std::string(m.dimension == 2 ? "planar" : "spatial") + " mechanism: " +
-                       std::to_string(m.bodies.size()) + " rigid bod" +
-                       (m.bodies.size() == 1 ? "y" : "ies") + ", " +
-                       std::to_string(m.joints.size()) + " joint" +
-                       (m.joints.size() == 1 ? "" : "s") + ", " + std::to_string(m.forces.size()) +
-                       " force element" + (m.forces.size() == 1 ? "" : "s") +
-                       " (natural coordinates)";
+  model_.description =
+      std::string(m.dimension == 2 ? "planar" : "spatial") +
+      " mechanism: " + std::to_string(m.bodies.size()) + " rigid bod" +
+      (m.bodies.size() == 1 ? "y" : "ies") + ", " + std::to_string(m.joints.size()) + " joint" +
+      (m.joints.size() == 1 ? "" : "s") + ", " + std::to_string(m.forces.size()) +
+      " force element" + (m.forces.size() == 1 ? "" : "s") + " (natural coordinates)";
   report_joints();
   for (std::size_t k = 0; k < spec_.output.points.size(); ++k) {
     if (!model_.outputs || !model_.outputs->point(spec_.output.points[k])) {

@@ -94,9 +94,9 @@ void ModelBuilder::check_mechanism_start() const {
           << ": row '" << c.name << "'"
           << (c.nonlinear_kind.empty() ? "" : " (" + c.nonlinear_kind + ")") << " has residual "
           << computed_fmt(level == 0 ? phi[i] : psi[i], "the initial poses and velocities")
-          << ", which the " << (level == 0 ? "poses" : "velocities") << " must change by "
-          << change << " to meet; allowed: 1e-8 of the model's "
-          << (level == 0 ? "size " : "speed ") << (level == 0 ? size : speed)
+          << ", which the " << (level == 0 ? "poses" : "velocities") << " must change by " << change
+          << " to meet; allowed: 1e-8 of the model's " << (level == 0 ? "size " : "speed ")
+          << (level == 0 ? size : speed)
           << " (docs/scenes.md); fix the [[body]] tables, or set [initial] project = true";
       fail(c.where, msg.str());
     }
@@ -141,7 +141,8 @@ std::vector<std::pair<std::string, double>> columns(const OutputMap& map, const 
     } else {
       map.velocity(0.0, u, v, values);
     }
-    for (std::size_t k = 0; k < names.size(); ++k) out.emplace_back(names[k], values[static_cast<Eigen::Index>(k)]);
+    for (std::size_t k = 0; k < names.size(); ++k)
+      out.emplace_back(names[k], values[static_cast<Eigen::Index>(k)]);
   }
   return out;
 }
@@ -153,8 +154,8 @@ std::string ModelBuilder::mechanism_projection_report(const Eigen::VectorXd& u_i
                                                       const Eigen::VectorXd& v_in) const {
   const auto before = columns(*model_.outputs, u_in, v_in);
   const auto after = columns(*model_.outputs, model_.u0, model_.v0);
-  const double scale = std::max(1.0, model_.u0.lpNorm<Eigen::Infinity>() +
-                                         model_.v0.lpNorm<Eigen::Infinity>());
+  const double scale =
+      std::max(1.0, model_.u0.lpNorm<Eigen::Infinity>() + model_.v0.lpNorm<Eigen::Infinity>());
   const double noise = 64 * std::numeric_limits<double>::epsilon() * scale;
   std::ostringstream s;
   s.precision(10);
@@ -189,18 +190,21 @@ void ModelBuilder::project_mechanism() {
       const auto& body = mech.bodies[static_cast<std::size_t>(k.body)];
       switch (k.kind) {
         case KeptValue::Kind::position:
-          given_u[static_cast<std::size_t>(model_.dof_at(body.name + ".r" + "xyz"[k.component]))] = true;
+          given_u[static_cast<std::size_t>(model_.dof_at(body.name + ".r" + "xyz"[k.component]))] =
+              true;
           break;
         case KeptValue::Kind::orientation:
           for (int d : body_coordinates(model_, body.name, true, mech.dimension))
             given_u[static_cast<std::size_t>(d)] = true;
           break;
         case KeptValue::Kind::velocity:
-          given_v[static_cast<std::size_t>(model_.dof_at(body.name + ".r" + "xyz"[k.component]))] = true;
+          given_v[static_cast<std::size_t>(model_.dof_at(body.name + ".r" + "xyz"[k.component]))] =
+              true;
           break;
         case KeptValue::Kind::angular_velocity:
           rotations.push_back({body_coordinates(model_, body.name, true, mech.dimension),
-                               k.component, body.angular_velocity[static_cast<std::size_t>(k.component)]});
+                               k.component,
+                               body.angular_velocity[static_cast<std::size_t>(k.component)]});
           break;
       }
     }

@@ -71,8 +71,10 @@ std::vector<KeptValue> kept_values(const Mechanism& mechanism, const std::string
     if (k.component != -2) keys.emplace_back(k.key);
     if (key != k.key) continue;
     if (k.component == -2) {
-      problem = "'" + name + "' is one component of a quaternion, which cannot be kept alone: "
-                "keep the whole orientation, " + body + ".orientation";
+      problem = "'" + name +
+                "' is one component of a quaternion, which cannot be kept alone: "
+                "keep the whole orientation, " +
+                body + ".orientation";
       return {};
     }
     std::vector<KeptValue> out;

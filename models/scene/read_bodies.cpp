@@ -75,7 +75,8 @@ Eigen::Matrix3d read_inertia(const SceneReader& r, const toml::node& node, const
            "a 3x3 list of rows");
   }
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) I(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    for (int j = 0; j < 3; ++j)
+      I(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
   const double size = I.cwiseAbs().maxCoeff();
   for (int i = 0; i < 3; ++i) {
     for (int j = i + 1; j < 3; ++j) {
@@ -88,7 +89,8 @@ Eigen::Matrix3d read_inertia(const SceneReader& r, const toml::node& node, const
     }
   }
   I = 0.5 * (I + I.transpose()).eval();
-  check_principal_moments(r, node, p, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues());
+  check_principal_moments(r, node, p,
+                          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues());
   return I;
 }
 

@@ -28,8 +28,10 @@ std::vector<TimeFunction> components(const SceneReader& r, const toml::node& nod
   const auto& arr = r.array(node, p);
   if (static_cast<int>(arr.size()) != count) {
     r.fail(node, p,
-           "needs " + std::to_string(count) + " components (global; each a number or a time "
-           "function), got " + std::to_string(arr.size()));
+           "needs " + std::to_string(count) +
+               " components (global; each a number or a time "
+               "function), got " +
+               std::to_string(arr.size()));
   }
   std::vector<TimeFunction> out;
   for (std::size_t k = 0; k < arr.size(); ++k)
@@ -126,8 +128,8 @@ Mechanism::Force read_force(const SceneReader& r, const Mechanism& m, const toml
     f.components = m.dimension == 2 ? std::vector<TimeFunction>{r.time_function(tq, tp)}
                                     : components(r, tq, tp, 3);
   } else {
-    const std::vector<std::string> names{"spring_damper", "rotational_spring_damper",
-                                         "point_force", "torque"};
+    const std::vector<std::string> names{"spring_damper", "rotational_spring_damper", "point_force",
+                                         "torque"};
     const auto near = nearest_names(type, names, 1);
     r.fail(*t.get("type"), TomlAccess::join(p, "type"),
            "unknown force type '" + type + "' (" +

@@ -24,7 +24,7 @@ using JointType = Mechanism::JointType;
 constexpr double kDriveRoundoff = 64 * std::numeric_limits<double>::epsilon();
 
 constexpr std::array<JointType, 9> kTypes = {
-    JointType::revolute,  JointType::prismatic, JointType::fixed,
+    JointType::revolute,  JointType::prismatic,     JointType::fixed,
     JointType::distance,  JointType::point_on_line, JointType::spherical,
     JointType::universal, JointType::cylindrical,   JointType::point_on_plane};
 
@@ -64,8 +64,9 @@ JointType joint_type(const SceneReader& r, const toml::node& node, const std::st
     if (s != to_string(type)) continue;
     if (spatial_only(type) && dim == 2) {
       r.fail(node, p,
-             "a " + s + " joint is spatial: it needs [model] dimension = 3 (planar joints: "
-             "revolute, prismatic, fixed, distance, point_on_line)");
+             "a " + s +
+                 " joint is spatial: it needs [model] dimension = 3 (planar joints: "
+                 "revolute, prismatic, fixed, distance, point_on_line)");
     }
     return type;
   }
@@ -82,8 +83,10 @@ std::array<const toml::node*, 2> pair_of(const SceneReader& r, const toml::node&
   const auto& arr = r.array(node, p);
   if (arr.size() != 2) {
     r.fail(node, p,
-           std::string("a joint names two ") + what + ", one of each body, in the order of "
-           "bodies (got " + std::to_string(arr.size()) + ")");
+           std::string("a joint names two ") + what +
+               ", one of each body, in the order of "
+               "bodies (got " +
+               std::to_string(arr.size()) + ")");
   }
   return {arr.get(0), arr.get(1)};
 }
@@ -127,8 +130,7 @@ Mechanism::Joint read_joint(const SceneReader& r, const Mechanism& m, const toml
   j.type = joint_type(r, r.required(t, p, "type"), TomlAccess::join(p, "type"), m.dimension);
   const std::string bp = TomlAccess::join(p, "bodies");
   const auto bodies = pair_of(r, r.required(t, p, "bodies"), bp, "bodies");
-  for (int k = 0; k < 2; ++k)
-    j.bodies[k] = r.body_index(m, *bodies[k], TomlAccess::index(bp, k));
+  for (int k = 0; k < 2; ++k) j.bodies[k] = r.body_index(m, *bodies[k], TomlAccess::index(bp, k));
   if (j.bodies[0] == j.bodies[1]) {
     r.fail(r.required(t, p, "bodies"), bp, "a joint connects two different bodies");
   }
@@ -141,7 +143,8 @@ Mechanism::Joint read_joint(const SceneReader& r, const Mechanism& m, const toml
     if (!t.contains("axes")) {
       r.fail(node, p,
              std::string("a ") + (m.dimension == 3 ? "spatial " : "planar ") + to_string(j.type) +
-                 " joint needs axes = [axis of " + (j.bodies[0] == Mechanism::kGround ? "the ground" : "body 1") +
+                 " joint needs axes = [axis of " +
+                 (j.bodies[0] == Mechanism::kGround ? "the ground" : "body 1") +
                  ", axis of body 2] (named in [model] ground_axes or the bodies' axes)");
     }
     const auto axes = pair_of(r, *t.get("axes"), ap, "axes");
@@ -160,16 +163,17 @@ Mechanism::Joint read_joint(const SceneReader& r, const Mechanism& m, const toml
     }
     j.length = r.positive(*l, TomlAccess::join(p, "length"));
   } else if (j.type == JointType::distance) {
-    const double d = (global_point(m, j.bodies[0], j.points[0]) -
-                      global_point(m, j.bodies[1], j.points[1]))
-                         .norm();
+    const double d =
+        (global_point(m, j.bodies[0], j.points[0]) - global_point(m, j.bodies[1], j.points[1]))
+            .norm();
     if (!(d > 0.0)) {
       r.fail(node, p,
              "the distance joint's points coincide at t = 0, so the length it keeps would be 0: "
              "give length, or use a revolute (2D) or spherical (3D) joint");
     }
   }
-  if (const auto* d = t.get("drive")) j.drive = read_drive(r, *d, TomlAccess::join(p, "drive"), j.type);
+  if (const auto* d = t.get("drive"))
+    j.drive = read_drive(r, *d, TomlAccess::join(p, "drive"), j.type);
   return j;
 }
 
@@ -186,8 +190,10 @@ void SceneReader::read_joints(const toml::node& node, Mechanism& mechanism) cons
     for (const auto& b : mechanism.bodies) {
       if (b.name == j.name) {
         fail(at_node, join(p, "name"),
-             "'" + j.name + "' is also a body's name: joints and bodies name output columns "
-             "alike (" + j.name + ".x, " + j.name + ".fx), so their names must be distinct");
+             "'" + j.name +
+                 "' is also a body's name: joints and bodies name output columns "
+                 "alike (" +
+                 j.name + ".x, " + j.name + ".fx), so their names must be distinct");
       }
     }
     if (const auto [at, fresh] = seen.emplace(j.name, i); !fresh) {

@@ -23,9 +23,8 @@ Mechanism::Vec3 SceneReader::mechanism_vector(const toml::node& node, const std:
   const auto v = numbers(node, path);
   if (static_cast<int>(v.size()) != dim) {
     fail(node, path,
-         "has " + std::to_string(v.size()) + " components; a vector of a " +
-             std::to_string(dim) + "D mechanism (dimension = " + std::to_string(dim) + ") has " +
-             std::to_string(dim));
+         "has " + std::to_string(v.size()) + " components; a vector of a " + std::to_string(dim) +
+             "D mechanism (dimension = " + std::to_string(dim) + ") has " + std::to_string(dim));
   }
   return {v[0], v[1], dim == 3 ? v[2] : 0.0};
 }
@@ -54,8 +53,9 @@ std::vector<Mechanism::Marker> SceneReader::read_markers(const toml::node& node,
     if (m.name.empty()) fail(value, p, "a marker name must not be empty");
     if (m.name.find('.') != std::string::npos) {
       fail(value, p,
-           "the name '" + m.name + "' holds a '.', which joins the names of output columns: "
-           "use '_'");
+           "the name '" + m.name +
+               "' holds a '.', which joins the names of output columns: "
+               "use '_'");
     }
     m.at = mechanism_vector(value, p, dim);
     if (axes) {
@@ -101,16 +101,15 @@ int SceneReader::marker_index(const Mechanism& mechanism, int body, bool axis,
     names.push_back(markers[k].name);
   }
   const std::string owner =
-      ground ? "the ground" : "body '" + mechanism.bodies[static_cast<std::size_t>(body)].name + "'";
-  const std::string where = ground ? (axis ? "model.ground_axes" : "model.ground")
-                                   : (axis ? "its axes" : "its points");
+      ground ? "the ground"
+             : "body '" + mechanism.bodies[static_cast<std::size_t>(body)].name + "'";
+  const std::string where =
+      ground ? (axis ? "model.ground_axes" : "model.ground") : (axis ? "its axes" : "its points");
   const auto near = nearest_names(name, names, 3);
   fail(node, path,
        std::string(axis ? "unknown axis '" : "unknown point '") + name + "' of " + owner + " (" +
            (near.empty() ? std::string() : "did you mean " + joined_names(near) + "? ") +
-           (names.empty() ? where + " name none"
-                          : "known: " + joined_names(names)) +
-           ")");
+           (names.empty() ? where + " name none" : "known: " + joined_names(names)) + ")");
 }
 
 void SceneReader::read_mechanism_model(const toml::table& t, ModelSpec& model) const {
@@ -127,7 +126,8 @@ void SceneReader::read_mechanism_model(const toml::table& t, ModelSpec& model) c
     m.dimension = static_cast<int>(dim);
   }
   model.dimension = m.dimension;
-  if (const auto* g = t.get("gravity")) m.gravity = mechanism_vector(*g, "model.gravity", m.dimension);
+  if (const auto* g = t.get("gravity"))
+    m.gravity = mechanism_vector(*g, "model.gravity", m.dimension);
   if (const auto* g = t.get("ground")) {
     m.ground_points = read_markers(*g, "model.ground", m.dimension, false);
   }
@@ -143,8 +143,9 @@ void SceneReader::read_mechanism_sections(const toml::table& root, ModelSpec& mo
     for (const char* s : sections) {
       if (const auto* n = root.get(s)) {
         fail(*n, s,
-             std::string("[[") + s + "]] belongs to a mechanism: it needs [model] type = "
-                                     "\"multibody\"");
+             std::string("[[") + s +
+                 "]] belongs to a mechanism: it needs [model] type = "
+                 "\"multibody\"");
       }
     }
     return;
@@ -152,7 +153,8 @@ void SceneReader::read_mechanism_sections(const toml::table& root, ModelSpec& mo
   // What a mechanism takes from its own tables: loads as [[force]], rows as [[joint]], the start
   // from [[body]]; a key of another model silently ignored would be a model not run.
   for (const auto& [key, why] :
-       {std::pair<const char*, const char*>{"load", "apply forces with [[force]] point_force or torque"},
+       {std::pair<const char*, const char*>{"load",
+                                            "apply forces with [[force]] point_force or torque"},
         {"constraint", "connect bodies with [[joint]]"},
         {"constraint_block", "connect bodies with [[joint]]"},
         {"ground_motion", "a mechanism has no ground motion yet: drive a joint instead"}}) {

@@ -142,7 +142,7 @@ struct InitialSpec {
   /// "crank.position", "crank.angular_velocity"), checked against the bodies by the reader.
   std::vector<std::string> keep;
   std::vector<int> keep_lines;  ///< each entry's line (0: not from a file)
-  SourcePoint where;  ///< of the [initial] table; its path is empty when there is none
+  SourcePoint where;            ///< of the [initial] table; its path is empty when there is none
   /// Whether the scene has an [initial] table (from a file or a Python dict, whose nodes have
   /// no line: testing the line sent a dict scene's start errors to other keys).
   [[nodiscard]] bool given() const { return !where.path.empty(); }
