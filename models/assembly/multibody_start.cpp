@@ -125,6 +125,7 @@ std::vector<int> body_coordinates(const Model& model, const std::string& body, b
         names.push_back("R" + std::to_string(row) + std::to_string(col));
   }
   std::vector<int> out;
+  out.reserve(names.size());
   for (const auto& n : names) out.push_back(model.dof_at(body + "." + n));
   return out;
 }
