@@ -83,11 +83,12 @@ class KeptRotations final : public MechanicalSystem {
     if (row.axes.size() == 2) return {-u[row.axes[1]], u[row.axes[0]]};
     std::vector<double> g(9, 0.0);
     const int i = row.component, j = (i + 1) % 3, k = (i + 2) % 3;
-    for (int col = 0; col < 3; ++col) {
-      // (a × b)_i = a_j b_k − a_k b_j with a = R_col, b = R_col'.
-      const auto at = [&](int c) { return u[row.axes[static_cast<std::size_t>(3 * col + c)]]; };
-      g[static_cast<std::size_t>(3 * col + k)] = 0.5 * at(j);
-      g[static_cast<std::size_t>(3 * col + j)] = -0.5 * at(k);
+    for (std::size_t col = 0; col < 3; ++col) {
+      // (a × b)_i = a_j b_k − a_k b_j with a = R_col, b = R_col'; entries 3 col + c.
+      const auto entry = [col](int c) { return 3 * col + static_cast<std::size_t>(c); };
+      const auto at = [&](int c) { return u[row.axes[entry(c)]]; };
+      g[entry(k)] = 0.5 * at(j);
+      g[entry(j)] = -0.5 * at(k);
     }
     return g;
   }

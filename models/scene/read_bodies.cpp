@@ -106,7 +106,7 @@ Eigen::Quaterniond read_orientation(const SceneReader& r, const toml::node& node
     const std::string qp = TomlAccess::join(p, "quaternion");
     const auto v = r.numbers(*q, qp);
     if (v.size() != 4) r.fail(*q, qp, "a quaternion is [w, x, y, z] (4 numbers)");
-    const Eigen::Quaterniond out(v[0], v[1], v[2], v[3]);
+    Eigen::Quaterniond out(v[0], v[1], v[2], v[3]);
     if (!(std::abs(out.norm() - 1.0) <= kUnitQuaternion)) {
       r.fail(*q, qp,
              "is not a unit quaternion (norm " + TomlAccess::fmt(out.norm()) +
