@@ -72,13 +72,6 @@ void ModelBuilder::build_mechanism() {
       (m.joints.size() == 1 ? "" : "s") + ", " + std::to_string(m.forces.size()) +
       " force element" + (m.forces.size() == 1 ? "" : "s") + " (natural coordinates)";
   report_joints();
-  for (std::size_t k = 0; k < spec_.output.points.size(); ++k) {
-    if (!model_.outputs || !model_.outputs->point(spec_.output.points[k])) {
-      fail({"output.points[" + std::to_string(k + 1) + "]",
-            line_of(spec_.output.points_lines, k, spec_.output.where.line)},
-           "the mechanism has no point '" + spec_.output.points[k] + "'");
-    }
-  }
 }
 
 /// BuildReport::joints: per joint its type, bodies and rows, classed as the chapter classes
