@@ -44,9 +44,8 @@ double row_norm(const RowMajor& a, int r) {
   return Eigen::Map<const Eigen::VectorXd>(a.valuePtr() + begin, end - begin).stableNorm();
 }
 
-/// Refuses a group whose dense blocks would not fit: its rows x DOFs, or its masters coupled with
-/// each other in the reduced matrices.
-void check_group_sizes(const std::vector<ConstraintGroup>& groups) {
+/// Refuses a group whose dense block (rows x DOFs) would not fit.
+void check_block_sizes(const std::vector<ConstraintGroup>& groups) {
   for (const auto& g : groups) {
     const double entries = static_cast<double>(g.rows.size()) * static_cast<double>(g.dofs.size());
     if (entries > kMaxDenseGroupEntries) {
@@ -57,6 +56,14 @@ void check_group_sizes(const std::vector<ConstraintGroup>& groups) {
       throw CoupledGroupTooLarge(g.rows.front(), static_cast<int>(g.rows.size()),
                                  static_cast<int>(g.dofs.size()), s.str());
     }
+  }
+}
+
+/// Refuses a group whose dense blocks would not fit: its rows x DOFs, or its masters coupled with
+/// each other in the reduced matrices.
+void check_group_sizes(const std::vector<ConstraintGroup>& groups) {
+  check_block_sizes(groups);
+  for (const auto& g : groups) {
     // Few rows over many DOFs (a floor's average): each slave is replaced by all the group's
     // masters, which then couple with each other in T^T M T, T^T C T and T^T K T, a dense
     // block of masters^2 entries that nothing else bounds (3,000 masters: 9e6 entries, where GGL
@@ -159,6 +166,18 @@ double solve_group(const RowMajor& a, const ConstraintGroup& g, const DofPlaces&
 }
 
 }  // namespace
+
+std::vector<int> pivoted_slaves(const Eigen::SparseMatrix<double>& A) {
+  const int m = static_cast<int>(A.rows());
+  if (m == 0) return {};
+  const RowMajor a(A);
+  const std::vector<ConstraintGroup> groups = constraint_groups(a);
+  check_block_sizes(groups);
+  std::vector<int> local(static_cast<std::size_t>(A.cols()), -1);
+  std::vector<int> slaves = pivot_slaves(a, groups, m, local);
+  std::sort(slaves.begin(), slaves.end());
+  return slaves;
+}
 
 MasterSlave master_slave_transform(const Eigen::SparseMatrix<double>& A,
                                    const std::vector<int>& preferred_slaves) {

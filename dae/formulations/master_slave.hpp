@@ -44,6 +44,14 @@ inline constexpr double kMaxDenseGroupEntries = 4e6;
   return r * d <= kMaxDenseGroupEntries && (d - r) * (d - r) <= kMaxDenseGroupEntries;
 }
 
+/// The m columns (DOFs, ascending) a column-pivoted QR picks as slaves of A (m x n, full row
+/// rank), pivoting on each coupled group's row-normalised block so that no row's units bias the
+/// choice: the best-conditioned slave block the greedy pivoting finds. Coordinate partitioning
+/// (dae/formulations/coordinate_partition.hpp) takes its dependent coordinates from it. Throws
+/// std::invalid_argument when the rows are dependent, CoupledGroupTooLarge for a group whose
+/// rows x DOFs exceed kMaxDenseGroupEntries.
+[[nodiscard]] std::vector<int> pivoted_slaves(const Eigen::SparseMatrix<double>& A);
+
 /// Builds the transformation. `preferred_slaves` (DOF indices, size m) overrides the pivoting
 /// choice. Throws std::invalid_argument when A is rank deficient or the named slaves do not form
 /// an invertible block (naming the condition number), CoupledGroupTooLarge beyond the dense limit.

@@ -85,4 +85,12 @@ void run_projection(const Model& model, const ObservedRun& run);
 void run_elimination(const Model& model, const ReducedSystem& reduced, ReducedOde& ode,
                      const ObservedRun& run);
 
+/// Elimination of a nonlinear model by coordinate partitioning with CVODE
+/// (dae/formulations/partitioned_ode.hpp): the independent coordinates integrated, the dependent
+/// ones solved at every evaluation, a new partition where the dependent block grows
+/// ill-conditioned; the reactions from the full equations at each output (the KKT solve of the
+/// accelerations). The summary notes the partition and every re-partition. Throws
+/// SchemeNotApplicable as PartitionedOde does.
+void run_partitioned_elimination(const Model& model, const ObservedRun& run);
+
 }  // namespace condyn

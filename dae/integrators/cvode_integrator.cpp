@@ -222,6 +222,9 @@ class Cvode final : public sundials::SundialsStepper {
     check(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
     rebase();
   }
+  [[nodiscard]] bool wants_restart(double t) override {
+    return data_.problem->wants_restart(t, view(y_.get()));
+  }
   void set_stop_time(double t) override {
     check(CVodeSetStopTime(mem_.get(), t), "CVodeSetStopTime");
   }
@@ -248,6 +251,7 @@ class Cvode final : public sundials::SundialsStepper {
     return c;
   }
   [[nodiscard]] std::string notes(const sundials::Counters& totals) const override {
+    if (!data_.problem->has_projection()) return {};
     return std::to_string(totals.projections) + " projections onto the constraints";
   }
 

@@ -139,6 +139,10 @@ class StepLoop {
       if (at_stop) {
         restart_at(stops[next_stop_++]);
         steps_since_output_ = 0;
+      } else if (stepper_.wants_restart(t)) {
+        // The state is re-expressed, the motion goes on: no load switches, no work jumps.
+        stepper_.restart(t);
+        stepper_.set_stop_time(stop_ahead());
       }
       check_interrupt();
       if (const int signal = stop_requested(); signal != 0) {

@@ -79,6 +79,10 @@ class Stepper {
   [[nodiscard]] virtual Eigen::VectorXd yp() = 0;
   /// Restarts at a load step t: a consistent state for the segment starting at t, then reinit.
   virtual void restart(double t) = 0;
+  /// Whether the problem asks for a restart at t, the end of the step just taken, because it
+  /// re-expresses its state there (coordinate partitioning's new partition); restart(t) then
+  /// changes the state's meaning. Never at a load step's time. No by default.
+  [[nodiscard]] virtual bool wants_restart(double /*t*/) { return false; }
   /// SUNDIALS 6.4 cannot clear a stop time and keeps it across re-initialisation, so the loop
   /// always sets one ahead: the next load step, else the end of the run.
   virtual void set_stop_time(double t) = 0;

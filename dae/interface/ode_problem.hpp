@@ -35,6 +35,11 @@ class OdeProblem {
   /// takes it: the rows that fix some unknowns outright (massless DOFs held by stiffness, which a
   /// load step may move). Nothing by default.
   virtual void settle(double /*t*/, Eigen::VectorXd& /*y*/) const {}
+  /// Whether the integration should restart at t, the end of an accepted step at state y,
+  /// because the problem re-expresses its state there (coordinate partitioning: a new partition
+  /// when the dependent block grows ill-conditioned). settle() at that restart re-expresses y.
+  /// No by default.
+  [[nodiscard]] virtual bool wants_restart(double /*t*/, ConstRef /*y*/) const { return false; }
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
   /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian.

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "dae/formulations/partitioned_ode.hpp"
 #include "dae/formulations/scheme_run.hpp"
 #include "dae/run/failure_advice.hpp"
 #include "dae/run/observed_run.hpp"
@@ -50,6 +51,12 @@ void plan_tolerances(RunPlan& p) {
 /// multiplier for every row (which integrates such a model), and a named elimination is refused.
 void plan_elimination(RunPlan& p, SchemeDecisions& decisions) {
   try {
+    if (p.model->is_nonlinear()) {
+      // Coordinate partitioning: its refusals (rows without a position form, dependent rows at
+      // the start, a singular KKT matrix) found here, by setting it up once.
+      (void)PartitionedOde(*p.model, p.integrator.output_times.front());
+      return;
+    }
     p.reduced_ode = decisions.reduced_ode(p.settings.slaves);
     p.reduced = decisions.reduced(p.settings.slaves);
     return;
@@ -153,6 +160,7 @@ void run_scheme(const RunPlan& plan, const IntegratorOptions& options, const Obs
   const Model& model = *plan.model;
   switch (plan.scheme) {
     case Scheme::elimination: {
+      if (model.is_nonlinear()) return run_partitioned_elimination(model, run);
       ReducedOde ode = *plan.reduced_ode;  // this run's own copy
       return run_elimination(model, *plan.reduced, ode, run);
     }

@@ -25,7 +25,6 @@ enum class Refusal {
   none,
   penalty_static_start,
   elimination_nonholonomic,
-  elimination_nonlinear,
   penalty_nonlinear,
   penalty_dense_row
 };
@@ -60,9 +59,11 @@ Refusal refusal_of(const Model& model, Scheme scheme) {
                                                                  : Refusal::none;
   }
   if (scheme == Scheme::elimination) {
+    // Coordinate partitioning (dae/formulations/partitioned_ode.hpp) solves every row with a
+    // position form; a nonholonomic row has none.
     const bool nonholonomic = std::any_of(model.constraints.begin(), model.constraints.end(),
                                           [](const Constraint& c) { return c.nonholonomic; });
-    return nonholonomic ? Refusal::elimination_nonholonomic : Refusal::elimination_nonlinear;
+    return nonholonomic ? Refusal::elimination_nonholonomic : Refusal::none;
   }
   if (scheme == Scheme::penalty) return Refusal::penalty_nonlinear;
   return Refusal::none;
@@ -96,15 +97,12 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
              "rest (its supports unloaded). Use another scheme, or give the displacements";
     case Refusal::elimination_nonholonomic:
       return "elimination cannot treat a nonholonomic constraint: master-slave elimination "
-             "solves constraints for slave displacements, and a nonintegrable velocity "
-             "constraint has no displacement form to solve. The chapter says so: nonholonomic "
+             "and its nonlinear form, coordinate partitioning, solve the constraints for slave "
+             "(dependent) displacements, and a nonintegrable velocity constraint has no "
+             "displacement form to solve. The chapter says so: nonholonomic "
              "MFCs \"are non treatable by master-slave methods unless they integrate to "
              "holonomic constraints\" (§5.6), and for them \"only the Lagrange multiplier "
              "method, used with extreme care, offers hope\" (§5.3.1). Use " +
-             usable(model, dae_schemes);
-    case Refusal::elimination_nonlinear:
-      return "elimination is the chapter's linear path (constant coefficients, linear forces); "
-             "this model is nonlinear (state-dependent constraints or forces). Use " +
              usable(model, dae_schemes);
     case Refusal::penalty_nonlinear:
       return "penalty is implemented for linear models only (constant constraints, linear "
@@ -182,7 +180,9 @@ SchemeChoice SchemeDecisions::choose(const SolveSpec& settings) {
   if (model.is_nonlinear()) {
     std::string why =
         "nonlinear model: GGL (stabilized index 2) holds position and velocity constraints to "
-        "the Newton tolerance at every step, and treats nonholonomic rows too";
+        "the Newton tolerance at every step, and treats nonholonomic rows too; elimination "
+        "(coordinate partitioning, by name) solves the constraints by Newton at every "
+        "evaluation of a dense-Jacobian ODE, a check path rather than the cheaper one";
     // Said only where it happens: a sleigh or Andrews' mechanism has no such row.
     if (!pure && !treatment()->eliminated.empty()) {
       why += "; its constant linear rows eliminated where that stays sparse";
@@ -256,6 +256,14 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
   const bool condensed = settings.condensed_newton && !settings.dense_linear_solver;
   SystemSize size;
   size.dense = settings.dense_linear_solver;
+  if (scheme == Scheme::elimination && model.is_nonlinear()) {
+    // Coordinate partitioning: the independent coordinates and their velocities, n − m each for
+    // independent rows, under CVODE's dense difference-quotient Jacobian.
+    size.unknowns = 2 * (model.dofs() - model.constraint_count());
+    size.dense = true;
+    size.jacobian_nonzeros = static_cast<long>(size.unknowns) * size.unknowns;
+    return size;
+  }
   if (scheme == Scheme::elimination) {
     const ReducedOde& ode = *reduced_ode(settings.slaves);
     size.unknowns = ode.size();

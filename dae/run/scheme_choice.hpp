@@ -22,7 +22,8 @@ struct SchemeChoice {
   std::string reason;  ///< why this scheme (printed by `condyn info`)
 };
 
-/// Why `scheme` cannot treat this model (elimination and penalty on nonlinear models), or
+/// Why `scheme` cannot treat this model (elimination on nonholonomic rows, penalty on nonlinear
+/// models), or
 /// nothing when it can.
 [[nodiscard]] std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme);
 

@@ -156,9 +156,10 @@ def test_bad_arguments(quickstart_dict):
 
 
 def test_scheme_that_cannot_treat_the_scene():
-    # Elimination needs a linear model (the CLI answers exit 2: bad input).
-    with pytest.raises(condyn.SceneError, match="pendulum.toml: .*elimination"):
-        condyn.run(QUICKSTART.parent / "pendulum.toml", scheme="elimination")
+    # Elimination cannot treat a nonholonomic row (the CLI answers exit 2: bad input).
+    with pytest.raises(condyn.SceneError,
+                       match="chaplygin_sleigh.toml: .*elimination cannot treat a nonholonomic"):
+        condyn.run(QUICKSTART.parent / "chaplygin_sleigh.toml", scheme="elimination")
 
 
 def test_integration_error_carries_the_partial_result(quickstart_dict):

@@ -11,6 +11,7 @@
 #include "dae/formulations/baumgarte_gains.hpp"
 #include "dae/formulations/constraint_treatment.hpp"
 #include "dae/formulations/model_scales.hpp"
+#include "dae/formulations/partitioned_ode.hpp"
 #include "dae/formulations/reduced_system.hpp"
 #include "dae/run/scheme_memory.hpp"
 #include "dae/run/solve.hpp"
@@ -231,6 +232,19 @@ void print_constraints(std::ostream& out, const Model& model, const SolveSpec& s
   }
 }
 
+/// Coordinate partitioning's choice at the start (dae/formulations/partitioned_ode.hpp).
+void print_partition(std::ostream& out, const Model& model) {
+  const PartitionedOde ode(model, 0.0);
+  const CoordinatePartition& p = ode.partition();
+  out << "elimination: coordinate partitioning, " << p.independent.size()
+      << (p.independent.size() == 1 ? " independent coordinate (" : " independent coordinates (")
+      << "chosen by column pivoting on A(0, u0); re-partitioned where the dependent block grows "
+         "ill-conditioned), "
+      << p.dependent.size() << " dependent, solved by Newton at every evaluation\n"
+      << wrapped_list("  independent: ", names_of(model, p.independent))
+      << wrapped_list("  dependent: ", names_of(model, p.dependent));
+}
+
 /// Elimination sized once, before the choice is printed: its row in the table of schemes (the
 /// plan has made auto's fallback to GGL when the reduction cannot be integrated).
 struct EliminationSizing {
@@ -332,7 +346,10 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   const auto refusal = scheme_refusal(model, choice.scheme);
   out << "scheme: " << to_string(choice.scheme) << " (" << choice.reason
       << (refusal ? "; not applicable to this scene, see below" : "") << ")\n";
-  if (choice.scheme == Scheme::elimination && !refusal) {
+  if (choice.scheme == Scheme::elimination && !refusal && !run_plan.refusal &&
+      model.is_nonlinear()) {
+    print_partition(out, model);
+  } else if (choice.scheme == Scheme::elimination && !refusal) {
     const ReducedSystem& reduced = *decisions.reduced(settings.slaves);
     const auto& ms = reduced.transform;
     out << "elimination: " << ms.slaves.size() << (ms.slaves.size() == 1 ? " slave (" : " slaves (")

@@ -300,6 +300,26 @@ TEST_CASE("a scheme that cannot treat the scene is bad input: exit 2 with the re
   CHECK(c.err.find("penalty: penalty is implemented for linear models only") != std::string::npos);
 }
 
+TEST_CASE("elimination on a nonlinear scene: coordinate partitioning, in run and info") {
+  const Sandbox box;
+  const std::string four_bar = std::string(CONDYN_SOURCE_DIR) + "/models/scenes/four_bar.toml";
+  const Result r = box.run("run '" + four_bar + "' --scheme elimination --out r.csv");
+  CAPTURE(r.out);
+  CAPTURE(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out.find("elimination: reached t = 5") != std::string::npos);
+  CHECK(r.out.find("coordinate partitioning: 1 independent of 8 coordinates") != std::string::npos);
+  CHECK(r.out.find(" re-partition") != std::string::npos);
+  CHECK(slurp(box.path("r.csv")).find("reaction_") != std::string::npos);
+  const Result i = box.run("info '" + four_bar + "' --scheme elimination");
+  CAPTURE(i.out);
+  CHECK(i.code == 0);
+  CHECK(i.out.find("scheme: elimination (requested)") != std::string::npos);
+  CHECK(i.out.find("elimination: coordinate partitioning, 1 independent coordinate") !=
+        std::string::npos);
+  CHECK(i.out.find("  independent: ") != std::string::npos);
+}
+
 TEST_CASE("info on a nonlinear scene: classes, and a requested scheme that does not apply") {
   const Sandbox box;
   const std::string sleigh =
