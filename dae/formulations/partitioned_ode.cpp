@@ -7,6 +7,7 @@
 #include <iterator>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "dae/interface/recoverable_error.hpp"
@@ -215,14 +216,20 @@ bool PartitionedOde::wants_restart(double t, ConstRef y) const {
   (void)full(t, y);
   const double ratio = pivot_ratio(a_, partition_);
   if (ratio >= kRepartitionFraction * reference_ratio_) return false;
-  CoordinatePartition next = choose_partition(a_);
-  if (next.dependent == partition_.dependent) {
-    // The best partition here is this one: keep it, judged from now on against its ratio here.
+  std::optional<CoordinatePartition> next;
+  try {
+    next = choose_partition(a_);
+  } catch (const std::invalid_argument&) {
+    // A is rank deficient here: a singular configuration of the mechanism itself, where no
+    // partition has a regular dependent block.
+  }
+  if (!next || next->dependent == partition_.dependent) {
+    // No better partition here: keep this one, judged from now on against its ratio here.
     reference_ratio_ = ratio;
     return false;
   }
-  log_.push_back({t, minus(next.independent, partition_.independent),
-                  minus(next.dependent, partition_.dependent), ratio});
+  log_.push_back({t, minus(next->independent, partition_.independent),
+                  minus(next->dependent, partition_.dependent), ratio});
   pending_ = std::move(next);
   return true;
 }

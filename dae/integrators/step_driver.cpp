@@ -1,6 +1,7 @@
 #include "dae/integrators/step_driver.hpp"
 
 #include "dae/interface/interrupt.hpp"
+#include "dae/interface/recoverable_error.hpp"
 
 #include <algorithm>
 #include <array>
@@ -344,6 +345,13 @@ RawTrajectory drive(Stepper& stepper, const Eigen::VectorXd& y0, const Eigen::Ve
   } catch (IntegrationError& e) {
     loop.keep_partial(e);
     throw;
+  } catch (const RecoverableError& e) {
+    // An evaluation the loop makes itself, outside the integrator's retries (an output's y', an
+    // observer's state, a problem's restart test), that the problem could not complete: no step
+    // is left to cut, so the run ends here, as data, with the rows before it.
+    IntegrationError failure(FailureKind::convergence, e.what());
+    loop.keep_partial(failure);
+    throw failure;
   }
   stepper.fill_summary(summary);
   return loop.take();

@@ -376,12 +376,12 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
   const CompareResult r = run_compare(spec, o);
   CHECK(r.reference_kind == "published");
   CHECK(r.trusted_digits_u == 10);
-  // Elimination and penalty cannot treat a nonlinear model: listed with the reason, not run.
-  REQUIRE(r.skipped.size() == 2);
-  CHECK(r.skipped[0].first == Scheme::elimination);
+  // Penalty cannot treat a nonlinear model: listed with the reason, not run. Elimination runs
+  // (coordinate partitioning).
+  REQUIRE(r.skipped.size() == 1);
+  CHECK(r.skipped[0].first == Scheme::penalty);
   CHECK(r.skipped[0].second.find("nonlinear") != std::string::npos);
-  CHECK(r.skipped[1].first == Scheme::penalty);
-  REQUIRE(r.runs.size() == 2 * 2);
+  REQUIRE(r.runs.size() == 3 * 2);
   for (const auto& run : r.runs) {
     CAPTURE(std::string(to_string(run.scheme)));
     CAPTURE(run.rtol);
@@ -391,9 +391,11 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
     CHECK(run.mescd_u == doctest::Approx(-std::log10(run.error_u)).epsilon(0.5));
     CHECK(std::isfinite(run.mescd_v));
   }
-  // Four decades of tolerance buy at least two digits (observed: GGL 3.3 -> 7.0).
+  // Four decades of tolerance buy at least two digits (observed: GGL 3.3 -> 7.0), under each
+  // scheme (runs by scheme, then tolerance).
   CHECK(r.runs[1].mescd_u > r.runs[0].mescd_u + 2.0);
   CHECK(r.runs[3].mescd_u > r.runs[2].mescd_u + 2.0);
+  CHECK(r.runs[5].mescd_u > r.runs[4].mescd_u + 2.0);
 
   const fs::path dir =
       fs::temp_directory_path() / ("condyn_compare_published_" + std::to_string(::getpid()));
@@ -402,14 +404,14 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
   std::ifstream json(dir / "runs.json");
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK(text.find("\"kind\": \"published\"") != std::string::npos);
-  CHECK(text.find("\"skipped\": [{\"scheme\": \"elimination\"") != std::string::npos);
+  CHECK(text.find("\"skipped\": [{\"scheme\": \"penalty\"") != std::string::npos);
   const std::string note = draw_compare_plots(dir.string());
   CAPTURE(note);
   CHECK(note.rfind("plots written", 0) == 0);
   CHECK(fs::file_size(dir / "work_precision.png") > 1000);
   fs::remove_all(dir);
 
-  o.schemes = {Scheme::elimination};
+  o.schemes = {Scheme::penalty};
   CHECK_THROWS_AS((void)run_compare(spec, o), SchemeNotApplicable);
 }
 
