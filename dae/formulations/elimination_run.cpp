@@ -131,7 +131,7 @@ void run_partitioned_elimination(const Model& model, const ObservedRun& run) {
   // λ of the full equations at the state (the KKT solve of the accelerations), carried in y'.
   observe.multipliers = [n](double, const Eigen::VectorXd&, const Eigen::VectorXd& yp,
                             const Eigen::VectorXd&, const Eigen::VectorXd&) {
-    return Eigen::VectorXd(yp.tail(yp.size() - 2 * n));
+    return Eigen::VectorXd(yp.tail(yp.size() - 2 * static_cast<Eigen::Index>(n)));
   };
   observe.drift_at_every_step = false;
   observe.on_finish = [&](SolveSummary& summary) {

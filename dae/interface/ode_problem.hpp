@@ -39,6 +39,8 @@ class OdeProblem {
   /// because the problem re-expresses its state there (coordinate partitioning: a new partition
   /// when the dependent block grows ill-conditioned). settle() at that restart re-expresses y.
   /// No by default.
+  // By-value Ref: the signature every override shares (the default ignores it).
+  // NOLINTNEXTLINE(performance-unnecessary-value-param)
   [[nodiscard]] virtual bool wants_restart(double /*t*/, ConstRef /*y*/) const { return false; }
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
