@@ -230,7 +230,6 @@ class StepLoop {
         << "for this run (leave it out of [output] quantities)";
       throw IntegrationError(FailureKind::non_finite, s.str());
     }
-    out_.t.push_back(t);
     if (options_.on_output) {
       options_.on_output(t, y, yp, integrals);
     } else {
@@ -238,6 +237,9 @@ class StepLoop {
       out_.yp.push_back(yp);
       if (integrals.size() > 0) out_.integrals.push_back(integrals);
     }
+    // After the row is taken: a sink that fails on it (a state the problem cannot complete)
+    // leaves the times and the rows of a partial result the same length.
+    out_.t.push_back(t);
   }
 
   /// Outputs inside the step that ended at t; one at a load step's time waits for the state

@@ -177,3 +177,25 @@ TEST_CASE("elimination refuses nonholonomic rows only, saying why") {
   CHECK(choice.scheme == Scheme::ggl);
   CHECK(choice.reason.find("coordinate partitioning") != std::string::npos);
 }
+
+TEST_CASE(
+    "coordinate partitioning through a singular position of the mechanism: a failure as data") {
+  // parallelogram_four_bar.toml puts every link on the ground line at t = 1: no partition has a
+  // regular dependent block there, the Newton iteration cannot converge, and the run ends as a
+  // failure with its rows before it (it escaped the loop as an exception, rows lost, before).
+  SceneSpec spec = parse_scene_file(std::string(CONDYN_SOURCE_DIR) +
+                                    "/models/scenes/parallelogram_four_bar.toml");
+  spec.solve.t_end = 2.0;
+  const test::BuiltScene built = test::built(spec);
+  SolveResult result;
+  REQUIRE_NOTHROW(result = solve(built.model, test::under(built.spec.solve, Scheme::elimination)));
+  REQUIRE(result.failure);
+  CHECK(result.failure->in_loop);
+  CHECK(result.failure->message.find("coordinate partitioning") != std::string::npos);
+  // Ended at the singular time: within a last step of it (observed t = 1.00067, the output row
+  // at t = 1 the one that failed).
+  CHECK(result.failure->t_reached > 0.5);
+  CHECK(result.failure->t_reached < 1.01);
+  REQUIRE_FALSE(result.trajectory.t.empty());
+  CHECK(result.trajectory.t.back() <= result.failure->t_reached);
+}
