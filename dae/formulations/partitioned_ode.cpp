@@ -21,6 +21,9 @@ namespace {
 /// The Newton iteration stops once its correction is this many ulps of the coordinates' size
 /// even when the tolerance asks for less: below it the corrections are roundoff.
 constexpr double kRoundoffUlps = 16.0;
+/// A stalled iteration's correction is accepted up to this multiple of the tolerance: 1e3, the
+/// inverse of elimination_run.cpp's margin, so up to the run's displacement atol.
+constexpr double kStallAccepted = 1e3;
 
 /// The rows with no position form, refused; empty when every row has one.
 std::string rows_without_position_form(const Model& model) {
@@ -131,11 +134,16 @@ void PartitionedOde::solve_positions(double t, const ConstRef& q) const {
   const double scale = std::max(u_.lpNorm<Eigen::Infinity>(), system_->coordinate_scale());
   const double floor = kRoundoffUlps * std::numeric_limits<double>::epsilon() * scale;
   const double tolerance = std::max(tolerance_, floor);
-  double last = INFINITY;
+  double last = INFINITY, before = INFINITY;
   for (int it = 0;; ++it) {
     // A at the current u: after the last correction it serves the velocities and the KKT system.
     if (!factor_dependent(t)) throw RecoverableError("coordinate partitioning: A_d is singular");
     if (it > 0 && last <= tolerance) return;
+    // Corrections that no longer halve have reached the roundoff A_d's conditioning allows (above
+    // the floor near a singular position, or on rigid bodies' rotation coordinates): accepted
+    // while below what the error test accepts of a coordinate, kStallAccepted × the tolerance
+    // (the run's atol).
+    if (it > 1 && last > 0.5 * before && last <= kStallAccepted * tolerance) return;
     if (it == kMaxNewtonIterations) {
       std::ostringstream s;
       s << "coordinate partitioning: the dependent coordinates' Newton iteration did not "
@@ -147,6 +155,7 @@ void PartitionedOde::solve_positions(double t, const ConstRef& q) const {
     const Eigen::VectorXd step = lu_.solve(-phi_);
     if (!step.allFinite()) throw RecoverableError("coordinate partitioning: non-finite step");
     for (int k = 0; k < m_; ++k) u_[partition_.dependent[static_cast<std::size_t>(k)]] += step[k];
+    before = last;
     last = step.lpNorm<Eigen::Infinity>();
     ++iterations_;
   }
