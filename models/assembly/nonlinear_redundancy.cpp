@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/systems/row_subset_outputs.hpp"
 #include "models/systems/row_subset_system.hpp"
 
 namespace condyn {
@@ -145,6 +146,10 @@ void ModelBuilder::check_redundant_at_second_order(const std::vector<std::pair<i
 
 void ModelBuilder::keep_independent_rows() {
   if (kept_rows_.empty()) return;
+  if (model_.outputs) {  // a mechanism's map reads every row's multiplier
+    model_.outputs = std::make_shared<RowSubsetOutputs>(model_.outputs, kept_rows_,
+                                                        model_.system->constraints());
+  }
   model_.system = std::make_shared<RowSubsetSystem>(*model_.system, kept_rows_);
   kept_rows_.clear();
 }

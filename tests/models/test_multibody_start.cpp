@@ -193,7 +193,7 @@ TEST_CASE("project = true with kept values no start meets is refused at initial.
               "initial.keep: with the values [initial] keep names held exactly, no start meets");
 }
 
-TEST_CASE("the example scenes build; the slider-crank's projection keeps the crank") {
+TEST_CASE("the example scenes build, the slider-crank's projection keeps the crank") {
   for (const char* name :
        {"slider_crank.toml", "four_bar.toml", "spatial_four_bar.toml", "pendulum_a01.toml"}) {
     CAPTURE(name);

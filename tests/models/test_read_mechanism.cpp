@@ -267,7 +267,7 @@ TEST_CASE("[initial] keep and [output] points are read and checked against the b
   CHECK(omega[0].component == 2);
 }
 
-TEST_CASE("names: unknown bodies, points and axes, with the nearest names; duplicates") {
+TEST_CASE("names: unknown bodies, points and axes, with the nearest names, duplicates") {
   check_error(replace(kPlanar, R"(bodies = ["crank", "rod"])", R"(bodies = ["crank", "rood"])"),
               "joint[2].bodies[2]: unknown body 'rood' (did you mean rod?");
   check_error(replace(kPlanar, R"(points = ["B", "B"])", R"(points = ["B", "Bx"])"),
@@ -340,7 +340,7 @@ TEST_CASE("orientation: unit quaternions, nonzero axes, the dimension's keys") {
               "give either quaternion or { axis, angle }");
 }
 
-TEST_CASE("vectors: the dimension's length; axes nonzero") {
+TEST_CASE("vectors: the dimension's length, axes nonzero") {
   check_error(replace(kPlanar, "position = [0.5, 0.0]", "position = [0.5, 0.0, 0.0]"),
               "body[1].position: has 3 components; a vector of a 2D mechanism (dimension = 2) "
               "has 2");
@@ -384,7 +384,7 @@ TEST_CASE("joints: spatial types in 2D, missing or extra axes, lengths") {
                          "type = \"distance\"\nlength = 0.5\nbodies = [\"rod\"")) == "");
 }
 
-TEST_CASE("drives: only on a coordinate, starting at 0, no jumps; tables accepted") {
+TEST_CASE("drives: only on a coordinate, starting at 0, no jumps, tables accepted") {
   CHECK(error_of(replace(
             kPlanar, "points = [\"S\", \"C\"]",
             "points = [\"S\", \"C\"]\ndrive = { type = \"harmonic\", omega = 1.0 }")) == "");
