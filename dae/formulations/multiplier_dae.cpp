@@ -96,7 +96,7 @@ MultiplierDae::MultiplierDae(const MechanicalSystem& system, Scheme scheme, doub
 
 void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
                                    const BlockVisitor& visit) const {
-  using Sparse = Eigen::SparseMatrix<double>;
+  using SparseBlock = Eigen::SparseMatrix<double>;
   const auto uu = y.segment(0, n_), vv = y.segment(n_, n_);
   const auto vp = yp.segment(n_, n_);
   const int iu = 0, iv = n_, il = lambda_at(), im = mu_at();
@@ -107,7 +107,7 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
   visit(iv, iu, system_->mass_jacobian(t, uu, vp), 1.0);
   if (m_ == 0) return;
   const auto& A = system_->constraint_jacobian(t, uu);
-  visit(iv, il, Sparse(A.transpose()), 1.0);
+  visit(iv, il, SparseBlock(A.transpose()), 1.0);
   visit(iv, iu, system_->constraint_force_jacobian(t, uu, y.segment(il, m_)), 1.0);
   const auto acceleration_level = [&](double velocity_scale) {  // A v' − γ
     visit(il, iv, A, cj + velocity_scale);
@@ -122,24 +122,24 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
     case Scheme::baumgarte:  // + 2α ψ + β² φ
       acceleration_level(2.0 * alpha_);
       visit(il, iu, system_->velocity_residual_jacobian(t, uu, vv), 2.0 * alpha_);
-      visit(il, iu, Sparse(position_mask_ * A), beta_ * beta_);
+      visit(il, iu, SparseBlock(position_mask_ * A), beta_ * beta_);
       break;
     case Scheme::index2:
       visit(il, iv, A, 1.0);
       visit(il, iu, system_->velocity_residual_jacobian(t, uu, vv), 1.0);
       break;
     case Scheme::index3: {  // φ on position rows, ψ on velocity rows
-      visit(il, iu, Sparse(position_mask_ * A), 1.0);
-      visit(il, iv, Sparse(velocity_mask_ * A), 1.0);
+      visit(il, iu, SparseBlock(position_mask_ * A), 1.0);
+      visit(il, iv, SparseBlock(velocity_mask_ * A), 1.0);
       const auto& psi_u = system_->velocity_residual_jacobian(t, uu, vv);
-      if (psi_u.size() > 0) visit(il, iu, Sparse(velocity_mask_ * psi_u), 1.0);
+      if (psi_u.size() > 0) visit(il, iu, SparseBlock(velocity_mask_ * psi_u), 1.0);
       break;
     }
     case Scheme::ggl: {  // ψ = 0, φ_p = 0, and A_pᵀμ in the u rows
       visit(il, iv, A, 1.0);
       visit(il, iu, system_->velocity_residual_jacobian(t, uu, vv), 1.0);
-      const Sparse Ap = select_p_ * A;
-      visit(iu, im, Sparse(Ap.transpose()), 1.0);
+      const SparseBlock Ap = select_p_ * A;
+      visit(iu, im, SparseBlock(Ap.transpose()), 1.0);
       visit(im, iu, Ap, 1.0);
       const Eigen::VectorXd w = select_p_.transpose() * y.segment(im, p_);
       visit(iu, iu, system_->constraint_force_jacobian(t, uu, w), 1.0);

@@ -69,6 +69,30 @@ void record_failure(const IntegrationError& e, SolveResult& result) {
   }
 }
 
+/// Runs `integrate` into `raw`; true when it reached its end. A failure is recorded in `result`
+/// with the partial rows `assemble` makes of what was computed (none for a streamed run, whose
+/// rows are already out).
+template <class Assemble>
+bool integrate_or_record(const Integrate& integrate, const IntegratorOptions& observed,
+                         bool streamed, const Assemble& assemble, RawTrajectory& raw,
+                         SolveResult& result) {
+  try {
+    raw = integrate(observed, result.summary);
+    return true;
+  } catch (const IntegrationError& e) {
+    record_failure(e, result);
+    if (!streamed && e.raw_partial && !e.raw_partial->t.empty()) {
+      try {
+        result.trajectory = assemble(*e.raw_partial);
+      } catch (const std::exception&) {
+        // Best effort: a partial result that cannot be assembled (a singular KKT matrix at the
+        // last row, say) is dropped; the failure reported is the integrator's, not this one.
+      }
+    }
+    return false;
+  }
+}
+
 }  // namespace
 
 SolveResult run_observed(const Model& model, const IntegratorOptions& options,
@@ -149,21 +173,7 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
     };
   }
   RawTrajectory raw;
-  bool failed = false;
-  try {
-    raw = integrate(observed, result.summary);
-  } catch (const IntegrationError& e) {
-    failed = true;
-    record_failure(e, result);
-    if (!streamed && e.raw_partial && !e.raw_partial->t.empty()) {
-      try {
-        result.trajectory = assemble(*e.raw_partial);
-      } catch (const std::exception&) {
-        // Best effort: a partial result that cannot be assembled (a singular KKT matrix at the
-        // last row, say) is dropped; the failure reported is the integrator's, not this one.
-      }
-    }
-  }
+  const bool failed = !integrate_or_record(integrate, observed, streamed, assemble, raw, result);
   if (streamed) {
     result.trajectory = log.trajectory();
     result.trajectory.steps = steps;
