@@ -8,7 +8,8 @@ how the run ended (finished, failed with its message, refused with its reason).
 
 writes table.md (the Markdown table) and runs.csv (every figure) in --out-dir and prints the
 table. Every run has a budget (--max-steps, --max-wall-time), so the study never hangs: a run
-beyond it is reported as failed with the budget named. --scenes and --schemes select; --t-end
+beyond it is reported as failed with the budget named (--scene-budget A02=20000,120 gives a
+scene its own: 20000 steps, 120 s). --scenes and --schemes select; --t-end
 KEY=T shortens a scene (T a multiple of its output_step); --also "KEY SCHEME FLAGS..." adds a run
 with other settings (--also "A01 ggl --atol 1e-10"), after the others.
 """
@@ -39,6 +40,9 @@ def parse_args(argv):
                    help="wall-time budget of every run in seconds (default 300)")
     p.add_argument("--t-end", action="append", default=[], metavar="KEY=T",
                    help="shorten a scene's run to T seconds (repeatable)")
+    p.add_argument("--scene-budget", action="append", default=[], metavar="KEY=STEPS,SECONDS",
+                   help="a scene's own budget, instead of --max-steps and --max-wall-time "
+                        "(repeatable)")
     p.add_argument("--also", action="append", default=[], metavar="'KEY SCHEME FLAGS'",
                    help="one more run, with flags of condyn run (repeatable)")
     return p.parse_args(argv)
@@ -96,7 +100,9 @@ def main(argv=None):
     args = parse_args(argv)
     t_ends = dict(item.split("=") for item in args.t_end)
     os.makedirs(os.path.join(args.out_dir, "runs"), exist_ok=True)
-    flags = ["--max-steps", str(args.max_steps), "--max-wall-time", str(args.max_wall_time)]
+    default_budget = [str(args.max_steps), str(args.max_wall_time)]
+    budgets = {key: value.split(",") for key, value in
+               (item.split("=") for item in args.scene_budget)}
     version = subprocess.run([args.condyn, "--version"], capture_output=True, text=True,
                              check=True).stdout.strip()
     runs_csv = os.path.join(args.out_dir, "runs.csv")
@@ -108,6 +114,8 @@ def main(argv=None):
     runs = []
     for key, scheme, variant in plan:
         t_end = float(t_ends[key]) if key in t_ends else None
+        steps, seconds = budgets.get(key, default_budget)
+        flags = ["--max-steps", steps, "--max-wall-time", seconds]
         run = ir.run_scheme(args.condyn, ir.benchmark(key), scheme,
                             os.path.join(args.out_dir, "runs"), t_end, flags, variant)
         print(f"{key} {scheme} {' '.join(variant)}: {run.status}, error {figure(run.error)}, "
