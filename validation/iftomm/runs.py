@@ -136,8 +136,9 @@ class Run:
     error: the reference point's largest distance from the reference over the output rows (over
     the rows written before a failure, for a failed run); energy_drift: max |energy_error| over
     max(|E(0)|, the largest kinetic energy); drift_position, drift_velocity: the summary's max
-    constraint residuals over every step; cpu_s: user + system CPU seconds of the process;
-    variant: the flags that set this run apart from the scene's own settings (--atol 1e-10)."""
+    constraint residuals over every step (a failed run's: over its output rows); cpu_s: user +
+    system CPU seconds of the process; variant: the flags that set this run apart from the
+    scene's own settings (--atol 1e-10)."""
     key: str
     scheme: str
     status: str
@@ -196,16 +197,23 @@ def failure_message(stderr):
 
 
 def measure(run, bench):
-    """The run's trajectory error and energy drift from its output columns."""
+    """The run's trajectory error, energy drift and, for a failed run (whose summary is not
+    printed), its constraint drift over the output rows. Nothing from a run that wrote no row
+    after t = 0."""
     cols = run.columns
+    if len(cols["t"]) < 2:
+        return
     if bench.reference is not None:
         run.error = point_error(cols, read_csv(os.path.join(REFERENCES, bench.reference)),
                                 bench.points)
     else:
         run.error = check_value_error(cols, load_scene(bench))
-    if "energy_error" in cols and len(cols["t"]) > 0:
+    if "energy_error" in cols:
         scale = max(abs(cols["energy"][0]), float(np.max(cols["energy_kinetic"])))
         run.energy_drift = float(np.max(np.abs(cols["energy_error"]))) / scale
+    if math.isnan(run.drift_position) and "drift_position" in cols:
+        run.drift_position = float(np.max(cols["drift_position"]))
+        run.drift_velocity = float(np.max(cols["drift_velocity"]))
 
 
 def point_error(cols, ref, points):

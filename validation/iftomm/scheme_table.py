@@ -18,6 +18,7 @@ import csv
 import datetime
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -58,12 +59,24 @@ def short_reason(message):
     return reason.split(" (")[0].split("; ")[0]
 
 
+def short_failure(message):
+    """A failure as its kind and the solver's flag (`Newton convergence failures
+    (IDA_CONV_FAIL)`), or the budget it ran out of; runs.csv keeps the whole message."""
+    kind = re.search(r"under \w+ \(([^)]*)\)", message)
+    if kind is None:
+        return message
+    budget = re.search(r"(ran longer than [^(]*|took more than [^(]*?) \(", message)
+    flag = re.search(r"\b(IDA_[A-Z_]+|CV_[A-Z_]+)\b", message)
+    detail = budget.group(1).strip() if budget else flag.group(1) if flag else ""
+    return f"{kind.group(1)} ({detail})" if detail else kind.group(1)
+
+
 def table_row(run, bench):
     if run.status == "finished":
         status = "finished"
     elif run.status == "failed":
         reached = f" at t = {run.t_reached:.4g}" if not math.isnan(run.t_reached) else ""
-        status = f"**failed**{reached}: {run.message}"
+        status = f"**failed**{reached}: {short_failure(run.message)}"
     else:
         status = f"refused: {short_reason(run.message)}"
     error = figure(run.error)
@@ -81,7 +94,11 @@ def markdown(runs, version, when):
              "CPU s | steps | status |", "|---|---|---|---|---|---|---|---|"]
     lines += [table_row(r, ir.benchmark(r.key)) for r in runs]
     lines += ["", "Reference points: " + "; ".join(
-        f"{b.key} {b.what}" for b in ir.BENCHMARKS if any(r.key == b.key for r in runs)) + "."]
+        f"{b.key} {b.what}" for b in ir.BENCHMARKS if any(r.key == b.key for r in runs)) + ". "
+        "Error: the largest distance from the reference over the output rows (of a failed run, "
+        "over the rows before its failure). Energy drift: max |energy_error| / max(|E(0)|, max "
+        "kinetic energy). Position drift: the largest constraint residual over every step (of a "
+        "failed run, over its output rows)."]
     return "\n".join(lines) + "\n"
 
 
