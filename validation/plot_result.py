@@ -40,6 +40,8 @@ STILL = 1e-12
 # not by prefix, since a DOF may be named energy_top or work_1 (it is then a displacement).
 ENERGY_NAMES = {c for c, _ in ENERGY_TERMS} | {"energy_error"}
 DRIFT_NAMES = {"drift_position", "drift_velocity"}
+# 1 on the rows inside a passage near a singular configuration, else 0 (docs/cli.md): not a DOF.
+NEAR_SINGULAR = "near_singular"
 # A mechanism's CSV (docs/cli.md, "Mechanisms") names its columns per body and joint without a
 # prefix: its pose columns (`crank.angle` in 2D, `crank.qw` in 3D) mark it, and the columns
 # ending in a rate or a joint's force or torque are its velocities, accelerations and reactions,
@@ -121,7 +123,9 @@ def read_csv(np, path):
     data = finite_table(np, path, header, rows)
     columns = {name: data[:, k] for k, name in enumerate(header)}
     prefixed = ("vel_", "acc_", "reaction_", "lambda_")
-    dofs = [n for n in header[1:]
+    # The flag of rows near a singular configuration, when written, is the last column.
+    values = header[1:-1] if header[-1] == NEAR_SINGULAR else header[1:]
+    dofs = [n for n in values
             if not n.startswith(prefixed) and n not in ENERGY_NAMES and n not in DRIFT_NAMES]
     if any(n.endswith(MECHANISM_POSES) for n in dofs):
         dofs = [n for n in dofs if "." not in n or n.rsplit(".", 1)[1] not in MECHANISM_RATES]

@@ -166,8 +166,9 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
       auto [u, v] = observe.full_state(t, y);
       track_relative(t, u, v);
       Eigen::VectorXd lambda = row_lambda(t, y, yp, u, v);
-      const TrajectoryRow row =
-          (*rows)(t, std::move(u), std::move(v), std::move(lambda), integrals);
+      TrajectoryRow row = (*rows)(t, std::move(u), std::move(v), std::move(lambda), integrals);
+      // The monitor has seen the step that reached t: the flag is the one the whole run gives.
+      if (passages) row.near_singular = passages->covers(t);
       options.on_row(row);
       log.add(row);
     };
@@ -182,7 +183,13 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
   }
   summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
   result.summary.worst_drift_joint = drift_joint(model, worst_row);
-  if (passages) result.summary.singular_passages = passages->passages();
+  if (passages) {
+    result.summary.singular_passages = passages->passages();
+    if (!streamed) {
+      result.trajectory.near_singular =
+          near_singular_rows(result.summary.singular_passages, result.trajectory.t);
+    }
+  }
   if (observe.on_finish) observe.on_finish(result.summary);
   return result;
 }

@@ -148,6 +148,12 @@ Eigen::VectorXd SingularPassageMonitor::velocity_before(double t) const {
 
 std::vector<SingularPassage> SingularPassageMonitor::passages() const { return passages_; }
 
+bool SingularPassageMonitor::covers(double t) const {
+  // near_singular_rows' test; the latest passages first, where a row in the last step lies.
+  return std::any_of(passages_.rbegin(), passages_.rend(),
+                     [t](const SingularPassage& p) { return t >= p.t_enter && t <= p.t_leave; });
+}
+
 std::vector<bool> near_singular_rows(const std::vector<SingularPassage>& passages,
                                      const std::vector<double>& row_times) {
   std::vector<bool> near(row_times.size(), false);

@@ -66,6 +66,9 @@ class SingularPassageMonitor {
   void step(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v);
   /// The passages so far (the one the run is inside, if any, marked left_open).
   [[nodiscard]] std::vector<SingularPassage> passages() const;
+  /// Whether time t, up to the last step seen, lies inside a passage so far: for t at or before
+  /// that step, the answer near_singular_rows gives once the run is over.
+  [[nodiscard]] bool covers(double t) const;
 
  private:
   ConstraintConditioning conditioning_;

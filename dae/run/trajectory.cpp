@@ -50,6 +50,7 @@ void RowLog::add(const TrajectoryRow& row) {
   if (row.u.size() > 0) max_abs_u_ = std::max(max_abs_u_, row.u.cwiseAbs().maxCoeff());
   drift_position_.push_back(row.drift_position);
   drift_velocity_.push_back(row.drift_velocity);
+  near_singular_.push_back(row.near_singular);
   if (row.conservative) {
     energy_.push_back(row.energy);
     kinetic_.push_back(row.kinetic);
@@ -69,6 +70,7 @@ Trajectory RowLog::trajectory() const {
   out.energy = vector(energy_);
   out.kinetic = vector(kinetic_);
   out.balance = balance_;
+  out.near_singular = near_singular_;
   return out;
 }
 

@@ -52,6 +52,9 @@ struct TrajectoryRow {
   std::optional<EnergyBalance> balance;
   /// Named points' global positions (a mapped row: dae/run/mapped_rows.hpp); else empty.
   Eigen::VectorXd points;
+  /// Inside a passage near a singular configuration (dae/run/singular_passages.hpp): the row's
+  /// reactions, multipliers and accelerations are not to be trusted.
+  bool near_singular = false;
 };
 
 /// The per-row work of a trajectory: massless DOFs held by stiffness settled on their rows
@@ -102,6 +105,9 @@ struct Trajectory {
   /// Named points' global positions, (dimension × points) x nt, in a trajectory mapped to a
   /// model's OutputMap (mapped_trajectory, dae/run/mapped_rows.hpp); else empty.
   Eigen::MatrixXd points;
+  /// nt flags: the rows inside a passage near a singular configuration (near_singular_rows);
+  /// empty or all false for a run that watches for none (a constant constraint Jacobian).
+  std::vector<bool> near_singular;
 };
 
 /// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
@@ -121,6 +127,7 @@ class RowLog {
 
  private:
   std::vector<double> t_, drift_position_, drift_velocity_, energy_, kinetic_;
+  std::vector<bool> near_singular_;
   double max_abs_u_ = 0.0;
   std::vector<EnergyBalance> balance_;
 };

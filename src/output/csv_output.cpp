@@ -53,7 +53,8 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
                      traj.drift_position[col],
                      traj.drift_velocity[col],
                      traj.balance.size() > k ? &traj.balance[k] : nullptr,
-                     column(traj.points, col)};
+                     column(traj.points, col),
+                     traj.near_singular.size() > k && traj.near_singular[k]};
     line.clear();
     append_csv_row(line, output, columns, row);
     out << line << "\n";

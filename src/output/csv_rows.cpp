@@ -39,6 +39,7 @@ std::string csv_header(const OutputSpec& output, const OutputColumns& columns) {
     }
   }
   for (const auto& name : columns.point_columns()) line.append(",").append(name);
+  if (columns.near_singular()) line += ",near_singular";
   return line;
 }
 
@@ -85,6 +86,7 @@ void append_csv_row(std::string& line, const OutputSpec& output, const OutputCol
     }
   }
   for (Eigen::Index k = 0; k < row.points.size(); ++k) value(row.points[k]);
+  if (columns.near_singular()) line += row.near_singular ? ",1" : ",0";
 }
 
 }  // namespace condyn

@@ -25,10 +25,13 @@ struct CsvRow {
   const EnergyBalance* balance = nullptr;
   /// A mapped row's named points (OutputColumns::point_columns), written after every quantity.
   Eigen::Ref<const Eigen::VectorXd> points;
+  /// Inside a passage near a singular configuration: the last column, where
+  /// OutputColumns::near_singular.
+  bool near_singular = false;
 };
 
-/// "t,..." for the [output] quantities over the columns shown, then the named points' columns,
-/// without the newline.
+/// "t,..." for the [output] quantities over the columns shown, then the named points' columns and
+/// the `near_singular` flag (OutputColumns::near_singular), without the newline.
 [[nodiscard]] std::string csv_header(const OutputSpec& output, const OutputColumns& columns);
 
 /// Appends the data row (without newline) to `line`; numbers in the shortest form that reads back

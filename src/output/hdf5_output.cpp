@@ -111,6 +111,11 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
                  return traj.points(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(r));
                });
   }
+  if (columns.near_singular()) {
+    put_matrix(f, "near_singular", nt, 0, [&](hsize_t r, hsize_t) {
+      return traj.near_singular.size() > r && traj.near_singular[r] ? 1.0 : 0.0;
+    });
+  }
   hdf5::put_column_names(f, columns);
   hdf5::put_run_attributes(f, run);
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "H5Fflush");

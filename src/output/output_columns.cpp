@@ -2,6 +2,7 @@
 
 #include "src/output/output_columns.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace condyn {
@@ -45,6 +46,13 @@ bool has_dof_columns(Quantity q) {
 
 OutputColumns::OutputColumns(const Model& model, const OutputSpec& output)
     : model_(model), map_(model.outputs.get()) {
+  const auto shows = [&output](Quantity q) {
+    return std::find(output.quantities.begin(), output.quantities.end(), q) !=
+           output.quantities.end();
+  };
+  near_singular_ = model.nonlinear && model.constraint_count() > 0 &&
+                   (shows(Quantity::reaction) || shows(Quantity::multiplier) ||
+                    shows(Quantity::acceleration) || shows(Quantity::absolute_acceleration));
   if (map_ == nullptr) {
     if (!output.points.empty()) {
       throw std::invalid_argument("[output] points needs a mechanism ([model] type = multibody)");

@@ -5,7 +5,8 @@
 /// columns instead (`crank.x`, `crank.vx`, `crank.ax`, `hinge.fx`) and, for [output] points, the
 /// named points' positions (`crank.B.x`) after every quantity's columns. [output] dofs selects
 /// among each quantity's columns by name; the multipliers, drift and energy columns are the same
-/// for both.
+/// for both. A run that watches for singular configurations and writes reactions, multipliers or
+/// accelerations ends each row with the flag `near_singular` (1 inside a passage, else 0).
 
 #include <string>
 #include <vector>
@@ -44,6 +45,11 @@ class OutputColumns {
   [[nodiscard]] const Model& model() const { return model_; }
   /// The model's map, or null.
   [[nodiscard]] const OutputMap* map() const { return map_; }
+  /// True when the rows end with the `near_singular` flag: the model's constraint Jacobian
+  /// depends on the state (its runs watch for singular configurations,
+  /// dae/run/singular_passages.hpp) and the output shows a quantity that is unreliable there
+  /// (reaction, multiplier, acceleration).
+  [[nodiscard]] bool near_singular() const { return near_singular_; }
 
  private:
   const Model& model_;
@@ -53,6 +59,7 @@ class OutputColumns {
   std::vector<int> displacement_, velocity_, acceleration_, reaction_, none_;
   std::vector<int> points_;
   std::vector<std::string> point_columns_;
+  bool near_singular_ = false;
 };
 
 }  // namespace condyn

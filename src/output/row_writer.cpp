@@ -63,7 +63,8 @@ class CsvRowWriter final : public RowWriter {
                       r.drift_position,
                       r.drift_velocity,
                       r.balance ? &*r.balance : nullptr,
-                      r.points};
+                      r.points,
+                      r.near_singular};
     line_.clear();
     append_csv_row(line_, output_, columns_, view);
     out_ << line_ << "\n";
@@ -206,6 +207,9 @@ class Hdf5RowWriter final : public RowWriter {
       points_ = std::make_unique<Series>(
           file_, "points", static_cast<hsize_t>(columns_.point_columns().size()), false);
     }
+    if (columns_.near_singular()) {
+      near_singular_ = std::make_unique<Series>(file_, "near_singular", 0, true);
+    }
     hdf5::put_column_names(file_, columns_);
     if (energy_) hdf5::put_strings(file_, "energy_columns", energy_column_names());
   }
@@ -238,13 +242,16 @@ class Hdf5RowWriter final : public RowWriter {
       energy_->append([&](hsize_t c) { return energy_column(*r.balance, c); });
     }
     if (points_) points_->append([&](hsize_t c) { return r.points[static_cast<Eigen::Index>(c)]; });
+    if (near_singular_)
+      near_singular_->append([&](hsize_t) { return r.near_singular ? 1.0 : 0.0; });
     ++rows_;
   }
 
   void finish(const RunAttributes& run) override {
     hdf5::put_run_attributes(file_, run);
-    for (Series* s : {t_.get(), u_.get(), v_.get(), a_.get(), a_abs_.get(), reaction_.get(),
-                      multiplier_.get(), drift_.get(), energy_.get(), points_.get()}) {
+    for (Series* s :
+         {t_.get(), u_.get(), v_.get(), a_.get(), a_abs_.get(), reaction_.get(), multiplier_.get(),
+          drift_.get(), energy_.get(), points_.get(), near_singular_.get()}) {
       if (s != nullptr) s->flush(true);
     }
     close();
@@ -263,6 +270,7 @@ class Hdf5RowWriter final : public RowWriter {
     drift_.reset();
     energy_.reset();
     points_.reset();
+    near_singular_.reset();
     if (file_ >= 0) {
       failed_ = H5Fclose(file_) < 0;
       file_ = -1;
@@ -274,7 +282,8 @@ class Hdf5RowWriter final : public RowWriter {
   RowView view_;
   std::string path_;
   hid_t file_ = -1;
-  std::unique_ptr<Series> t_, u_, v_, a_, a_abs_, reaction_, multiplier_, drift_, energy_, points_;
+  std::unique_ptr<Series> t_, u_, v_, a_, a_abs_, reaction_, multiplier_, drift_, energy_, points_,
+      near_singular_;
   bool failed_ = false;
 };
 

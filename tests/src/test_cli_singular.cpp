@@ -5,7 +5,9 @@
 
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/cli_sandbox.hpp"
 
@@ -26,6 +28,25 @@ std::string short_n_four_bar() {
 
 bool has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
+}
+
+/// A CSV's header's last column, and the `t` of the rows whose last field is "1".
+struct Flags {
+  std::string last_column;
+  std::vector<std::string> flagged;
+};
+
+Flags flags_of(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  Flags f;
+  std::getline(in, line);
+  f.last_column = line.substr(line.rfind(',') + 1);
+  while (std::getline(in, line)) {
+    if (line.substr(line.rfind(',') + 1) == "1")
+      f.flagged.push_back(line.substr(0, line.find(',')));
+  }
+  return f;
 }
 
 }  // namespace
@@ -68,4 +89,36 @@ TEST_CASE("check prints the change of branch beside its verdicts") {
   const auto r = box.run("check n.toml --scheme index2");
   CHECK(r.code == 0);  // the check itself holds
   CHECK(has(r.out, "warning: the run left its branch"));
+}
+
+TEST_CASE("the result flags the rows inside a passage in a last column near_singular") {
+  condyn::test::Sandbox box;
+  const std::string scene = scene_text("parallelogram_four_bar.toml");  // writes reactions
+  box.write("p.toml", scene);
+  // Streamed to a file, and whole to standard output: the same rows, those the summary names
+  // (its passages at t = 1 and t = 3 each hold one output row).
+  const auto streamed = box.run("run p.toml --out p.csv");
+  REQUIRE(streamed.code == 0);
+  REQUIRE(has(streamed.out, "row t = 1)"));
+  REQUIRE(has(streamed.out, "row t = 3)"));
+  const Flags file = flags_of(condyn::test::slurp(box.path("p.csv")));
+  CHECK(file.last_column == "near_singular");
+  CHECK(file.flagged == std::vector<std::string>{"1", "3"});
+  const auto whole = box.run("run p.toml --out -");
+  REQUIRE(whole.code == 0);
+  const Flags out = flags_of(whole.out);
+  CHECK(out.last_column == "near_singular");
+  CHECK(out.flagged == file.flagged);
+  // No column where nothing it flags is written, nor for a constant constraint Jacobian.
+  std::string no_reactions = scene;
+  const std::string asked = R"(quantities = ["displacement", "velocity", "reaction", "drift"])";
+  REQUIRE(has(no_reactions, asked));
+  no_reactions.replace(no_reactions.find(asked), asked.size(),
+                       R"(quantities = ["displacement", "drift"])");
+  box.write("q.toml", no_reactions);
+  REQUIRE(box.run("run q.toml --out q.csv").code == 0);
+  CHECK(flags_of(condyn::test::slurp(box.path("q.csv"))).last_column == "drift_velocity");
+  box.write("linear.toml", scene_text("truss_inclined_roller.toml"));  // writes reactions
+  REQUIRE(box.run("run linear.toml --out linear.csv").code == 0);
+  CHECK(flags_of(condyn::test::slurp(box.path("linear.csv"))).last_column == "drift_velocity");
 }

@@ -244,7 +244,8 @@ TEST_CASE("a model's output map gives the CSV its columns, the same whole and st
   CHECK(t.header == std::vector<std::string>{"t", "bob.angle", "bob.r", "bob.omega", "bob.alpha",
                                              "rod.f", "lambda_fix_ux1", "lambda_fix_uy1",
                                              "lambda_" + p.rod_name(), "drift_position",
-                                             "drift_velocity", "bob.P.x", "bob.P.y"});
+                                             "drift_velocity", "bob.P.x", "bob.P.y",
+                                             "near_singular"});  // a rod: A depends on u
   REQUIRE(t.rows.size() == p.traj.t.size());
   // What the map computes from the row, bit for bit: its position, length and reaction.
   double lowest = 0.0, highest = 0.0;
@@ -276,16 +277,22 @@ TEST_CASE("[output] dofs selects a mechanism's columns of each quantity by their
   output.quantities = {Quantity::displacement, Quantity::velocity, Quantity::reaction};
   output.dofs = {"bob.angle", "rod.*"};
   output.points.clear();
-  CHECK(csv_header(output, OutputColumns(p.scene.model, output)) == "t,bob.angle,rod.f");
+  // The rod's A depends on u, and reactions are written: the rows end with their flag.
+  CHECK(csv_header(output, OutputColumns(p.scene.model, output)) ==
+        "t,bob.angle,rod.f,near_singular");
   output.dofs = {"bob.*"};
   output.points = {"bob.P"};
   CHECK(csv_header(output, OutputColumns(p.scene.model, output)) ==
-        "t,bob.angle,bob.r,bob.omega,bob.P.x,bob.P.y");
+        "t,bob.angle,bob.r,bob.omega,bob.P.x,bob.P.y,near_singular");
   // Without a map: per DOF, with the quantities' prefixes, as before.
   p.scene.model.outputs = nullptr;
   output.dofs = {"uy2"};
   output.points.clear();
-  CHECK(csv_header(output, OutputColumns(p.scene.model, output)) == "t,uy2,vel_uy2,reaction_uy2");
+  CHECK(csv_header(output, OutputColumns(p.scene.model, output)) ==
+        "t,uy2,vel_uy2,reaction_uy2,near_singular");
+  // Nothing the flag is about: no flag.
+  output.quantities = {Quantity::displacement, Quantity::velocity};
+  CHECK(csv_header(output, OutputColumns(p.scene.model, output)) == "t,uy2,vel_uy2");
 }
 
 TEST_CASE("a model's output map gives the HDF5 file its datasets and names, whole and streamed") {
