@@ -86,8 +86,10 @@ def test_a_mechanism_shows_its_bodies_and_joints_as_the_cli_csv(cli, tmp_path):
     # The CSV's columns are the same names, no prefix, and the same doubles.
     assert header == (["t"] + r.dof_names + r.velocity_names + r.acceleration_names
                       + r.reaction_names + ["lambda_" + c for c in r.constraint_names]
-                      + ["drift_position", "drift_velocity"] + r.point_names)
+                      + ["drift_position", "drift_velocity"] + r.point_names + ["near_singular"])
     np.testing.assert_array_equal(r.t, col["t"])
+    # The flag of rows near a singular configuration (none on a hinged bar): Python's too.
+    np.testing.assert_array_equal(r.near_singular, col["near_singular"] == 1)
     for array, names in ((r.u, r.dof_names), (r.v, r.velocity_names),
                          (r.a, r.acceleration_names), (r.reaction, r.reaction_names),
                          (r.points, r.point_names)):
