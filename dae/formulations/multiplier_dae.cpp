@@ -149,6 +149,9 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
     case Scheme::elimination:
     case Scheme::penalty:
     case Scheme::projection:
+    case Scheme::newmark:
+    case Scheme::hht:
+    case Scheme::generalized_alpha:
       break;  // not multiplier schemes: refused by the constructor
   }
 }
@@ -254,6 +257,9 @@ Eigen::VectorXd MultiplierDae::variable_index() const {
     case Scheme::elimination:
     case Scheme::penalty:
     case Scheme::projection:
+    case Scheme::newmark:
+    case Scheme::hht:
+    case Scheme::generalized_alpha:
       break;  // not multiplier schemes: refused by the constructor
   }
   if (held_) {
@@ -319,6 +325,9 @@ void MultiplierDae::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
     case Scheme::elimination:
     case Scheme::penalty:
     case Scheme::projection:
+    case Scheme::newmark:
+    case Scheme::hht:
+    case Scheme::generalized_alpha:
       break;  // not multiplier schemes: refused by the constructor
   }
 }

@@ -15,6 +15,7 @@
 #include "dae/formulations/reduced_ode.hpp"
 #include "dae/integrators/step_driver.hpp"
 #include "models/core/model.hpp"
+#include "models/core/newmark_parameters.hpp"
 
 namespace condyn {
 
@@ -78,6 +79,11 @@ void run_penalty(const Model& model, const PenaltyWeights& weights, const Observ
 
 /// Projection with CVODE (dae/formulations/projected_ode.hpp).
 void run_projection(const Model& model, const ObservedRun& run);
+
+/// The Newmark family (newmark, hht, generalized_alpha) with the fixed step `step`
+/// (dae/integrators/newmark_stepper.hpp); λ at an output is the step's own.
+void run_newmark(const Model& model, const AlphaParameters& parameters, double step,
+                 const ObservedRun& run);
 
 /// Elimination with IDA: `ode` integrates `reduced` (dae/formulations/reduced_ode.hpp), the
 /// reduction it was built on; its state is mapped back to full DOF space and the reactions come

@@ -44,6 +44,10 @@ std::string scheme_advice(Scheme scheme) {
       return "; at rtol 1e-10 and tighter, GGL's derived μ and λ tolerances (`condyn info`) can "
              "ask for roundoff: set [solve] atol_mu and atol_multiplier larger (models/scenes/"
              "pendulum.toml at rtol 1e-13 runs with atol_mu = 1e-10)";
+    case Scheme::newmark:
+    case Scheme::hht:
+    case Scheme::generalized_alpha:
+      return "; this scheme runs with the fixed [solve] step: try a smaller step";
     default:
       return "";
   }

@@ -1,6 +1,7 @@
 #include "dae/run/run_plan.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 #include "dae/run/failure_advice.hpp"
 #include "dae/run/observed_run.hpp"
 #include "dae/run/singular_passages.hpp"
+#include "models/core/number_cell.hpp"
 
 namespace condyn {
 
@@ -74,6 +76,20 @@ void plan_elimination(RunPlan& p, SchemeDecisions& decisions) {
   plan_tolerances(p);
 }
 
+/// The Newmark family's parameters and step, and the stability limit of a conditionally stable
+/// Newmark method.
+RunNote newmark_note(Scheme scheme, const SolveSpec& settings) {
+  const AlphaParameters p = alpha_parameters(scheme, settings.newmark_family);
+  std::string text =
+      describe(scheme, p) + ", fixed step " + shortest_number(settings.step.value_or(0));
+  const double limit = newmark_stability_limit(p.beta, p.gamma);
+  if (std::isfinite(limit)) {
+    text += "; conditionally stable (beta < gamma/2): stable for h omega < " +
+            shortest_number(limit) + " on every mode";
+  }
+  return {RunNote::Kind::scheme_setting, std::move(text)};
+}
+
 /// The parameters of a multiplier scheme or penalty, and the mixed treatment's rows: computed
 /// once here, noted in the summary before the run.
 void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
@@ -86,6 +102,7 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
     p.weights = penalty_weights(model, p.settings);
     p.notes.push_back({RunNote::Kind::scheme_setting, p.weights.rule});
   }
+  if (fixed_step(p.scheme)) p.notes.push_back(newmark_note(p.scheme, p.settings));
   if (uses_mixed_treatment(model, p.scheme, p.settings)) {
     p.treatment = decisions.treatment();
     p.notes.push_back({RunNote::Kind::treatment,
@@ -177,6 +194,11 @@ void run_scheme(const RunPlan& plan, const IntegratorOptions& options, const Obs
       return run_penalty(model, plan.weights, run);
     case Scheme::projection:
       return run_projection(model, run);
+    case Scheme::newmark:
+    case Scheme::hht:
+    case Scheme::generalized_alpha:
+      return run_newmark(model, alpha_parameters(plan.scheme, plan.settings.newmark_family),
+                         plan.settings.step.value_or(0.0), run);
   }
   throw std::logic_error("unknown scheme");
 }

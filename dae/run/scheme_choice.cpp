@@ -15,6 +15,7 @@
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/formulations/penalty_ode.hpp"
 #include "dae/formulations/projected_ode.hpp"
+#include "models/core/massless_dofs.hpp"
 
 namespace condyn {
 
@@ -26,7 +27,8 @@ enum class Refusal {
   penalty_static_start,
   elimination_nonholonomic,
   penalty_nonlinear,
-  penalty_dense_row
+  penalty_dense_row,
+  newmark_massless
 };
 
 /// The constraint row with the most entries, and their count (m = 0: row −1).
@@ -50,9 +52,18 @@ bool penalty_too_dense(const Model& model) {
   return entries * entries > kMaxDenseGroupEntries;
 }
 
+/// The DOFs with no mass that no constraint row touches, at the start.
+std::vector<int> unconstrained_massless(const Model& model) {
+  const auto system = model.system->clone();
+  const Eigen::SparseMatrix<double> M = system->mass(0.0, model.u0);
+  return unconstrained_massless_dofs(M, system->constraint_jacobian(0.0, model.u0));
+}
+
 Refusal refusal_of(const Model& model, Scheme scheme) {
-  if (scheme == Scheme::penalty && model.static_start && model.constraint_count() > 0) {
-    return Refusal::penalty_static_start;
+  // The Newmark family starts (and restarts at load steps) from ü solved at acceleration level,
+  // which a DOF without mass outside the constraints leaves undetermined.
+  if (fixed_step(scheme) && !unconstrained_massless(model).empty()) {
+    return Refusal::newmark_massless;
   }
   if (!model.is_nonlinear()) {
     return scheme == Scheme::penalty && penalty_too_dense(model) ? Refusal::penalty_dense_row
@@ -117,6 +128,14 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
         << " entries in the stiffness and damping (beyond " << kMaxDenseGroupEntries << "); use "
         << usable(model, {S::index1, S::ggl, S::automatic}) << ", which keep it as one multiplier";
       return s.str();
+    }
+    case Refusal::newmark_massless: {
+      const std::vector<int> dofs = unconstrained_massless(model);
+      return std::string(to_string(scheme)) + " does not treat massless DOFs outside the " +
+             "constraints yet (" + std::to_string(dofs.size()) + ", the first " +
+             model.dof_names[static_cast<std::size_t>(dofs.front())] +
+             "): its start needs the accelerations of every DOF. Use " +
+             usable(model, {S::automatic, S::ggl, S::index1});
     }
   }
   return std::nullopt;
@@ -271,6 +290,20 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
     size.reduced = true;
     size.jacobian_nonzeros =
         condensed ? ode.newton_system()->nonzeros() : ode.jacobian_pattern().nonZeros();
+    return size;
+  }
+  if (fixed_step(scheme)) {
+    // The state [u; v; λ]; the Newton matrix [M + C + K (+ curvature) Aᵀ; A 0] (its linear part's
+    // pattern at the start: dae/integrators/newmark_newton.hpp).
+    const auto system = model.system->clone();
+    const Eigen::VectorXd& u = model.u0;
+    Eigen::SparseMatrix<double> S = system->mass(0.0, u);
+    for (const auto* B :
+         {&system->stiffness(0.0, u, model.v0), &system->damping(0.0, u, model.v0)}) {
+      if (B->rows() == S.rows() && B->cols() == S.cols()) S += *B;
+    }
+    size.unknowns = 2 * model.dofs() + model.constraint_count();
+    size.jacobian_nonzeros = S.nonZeros() + 2 * system->constraint_jacobian(0.0, u).nonZeros();
     return size;
   }
   if (scheme == Scheme::penalty) {

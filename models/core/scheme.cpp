@@ -22,6 +22,12 @@ const char* to_string(Scheme s) {
       return "penalty";
     case Scheme::projection:
       return "projection";
+    case Scheme::newmark:
+      return "newmark";
+    case Scheme::hht:
+      return "hht";
+    case Scheme::generalized_alpha:
+      return "generalized_alpha";
   }
   return "?";
 }
@@ -29,6 +35,9 @@ const char* to_string(Scheme s) {
 std::optional<Scheme> scheme_from_string(std::string_view s) {
   if (s == to_string(Scheme::automatic)) return Scheme::automatic;
   for (Scheme scheme : kSchemes) {
+    if (s == to_string(scheme)) return scheme;
+  }
+  for (Scheme scheme : kFixedStepSchemes) {
     if (s == to_string(scheme)) return scheme;
   }
   return std::nullopt;
@@ -44,6 +53,7 @@ std::string treatment_refusal(Scheme s) {
 std::string scheme_names() {
   std::string names = to_string(Scheme::automatic);
   for (Scheme scheme : kSchemes) names += std::string(", ") + to_string(scheme);
+  for (Scheme scheme : kFixedStepSchemes) names += std::string(", ") + to_string(scheme);
   return names;
 }
 

@@ -18,7 +18,10 @@ enum class Scheme {
   index2,
   index3,
   penalty,
-  projection
+  projection,
+  newmark,  ///< the Newmark family (dae/integrators/newmark_stepper.hpp), fixed step
+  hht,
+  generalized_alpha
 };
 
 /// Every runnable scheme, the chapter's reference path first (automatic is not one: it resolves
@@ -26,6 +29,15 @@ enum class Scheme {
 inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Scheme::baumgarte,
                                       Scheme::ggl,         Scheme::index2,    Scheme::index3,
                                       Scheme::penalty,     Scheme::projection};
+
+/// The Newmark family: generalized-α methods at index 3 with a fixed step ([solve] step). Not in
+/// kSchemes, the schemes `compare`, `info` and the studies run by default: they need a step where
+/// the others take tolerances (docs/schemes.md "The Newmark family").
+inline constexpr Scheme kFixedStepSchemes[] = {Scheme::newmark, Scheme::hht,
+                                               Scheme::generalized_alpha};
+[[nodiscard]] constexpr bool fixed_step(Scheme s) {
+  return s == Scheme::newmark || s == Scheme::hht || s == Scheme::generalized_alpha;
+}
 
 [[nodiscard]] const char* to_string(Scheme s);
 /// The schemes with a multiplier per kept row, which the mixed treatment applies to

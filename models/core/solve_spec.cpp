@@ -37,6 +37,27 @@ void require_atol(double v, const std::string& key) {
   require(v >= kMinAtol, key, "must be at least " + text(kMinAtol), v);
 }
 
+/// The Newmark family's settings: a step in (0, t_end] for those schemes (the others ignore it),
+/// and their parameters in range (models/core/newmark_parameters.hpp).
+void validate_fixed_step(const SolveSpec& s) {
+  if (s.step) {
+    require_positive(*s.step, "step");
+    require(*s.step <= s.t_end, "step", "must be at most t_end = " + text(s.t_end), *s.step);
+  } else if (fixed_step(s.scheme)) {
+    throw std::invalid_argument(std::string("solve.step: the ") + to_string(s.scheme) +
+                                " scheme runs with a fixed step: give [solve] step (or --step)");
+  }
+  const NewmarkFamilySpec& f = s.newmark_family;
+  const auto check = [](const std::optional<std::string>& problem, const char* key) {
+    if (problem) throw std::invalid_argument(std::string("solve.") + key + " " + *problem);
+  };
+  if (f.newmark_beta) check(newmark_beta_problem(*f.newmark_beta), "newmark.beta");
+  if (f.newmark_gamma) check(newmark_gamma_problem(*f.newmark_gamma), "newmark.gamma");
+  if (f.hht_alpha) check(hht_alpha_problem(*f.hht_alpha), "hht.alpha");
+  if (f.rho_inf) check(rho_inf_problem(*f.rho_inf), "generalized_alpha.rho_inf");
+  if (f.alpha_direct) check(alpha_direct_problem(*f.alpha_direct), "generalized_alpha");
+}
+
 }  // namespace
 
 void SolveSpec::validate() const {
@@ -59,6 +80,7 @@ void SolveSpec::validate() const {
           "must be a finite number >= 0 (0: no budget)", max_wall_time);
   require(max_steps_per_output >= 0, "max_steps_per_output", "must be >= 0 (0: the default budget)",
           static_cast<double>(max_steps_per_output));
+  validate_fixed_step(*this);
 }
 
 long SolveSpec::steps_per_output_budget() const {

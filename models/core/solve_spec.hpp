@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/newmark_parameters.hpp"
 #include "models/core/scheme.hpp"
 #include "models/core/source_point.hpp"
 
@@ -44,6 +45,13 @@ struct SolveSpec {
   std::optional<double> atol_velocity, atol_multiplier, atol_mu;
   std::optional<double> baumgarte_alpha, baumgarte_beta;
   std::optional<double> penalty_weight;  ///< [solve] penalty = { weight = w }
+  /// [solve] step (--step): the fixed step of the Newmark family (fixed_step schemes), which
+  /// need it; the other schemes choose their steps by rtol and atol and leave it unused (so one
+  /// scene serves `compare` under both).
+  std::optional<double> step;
+  int step_line = 0;  ///< the line of `step` (0: not from a file)
+  /// [solve] newmark, hht, generalized_alpha: the Newmark family's parameters.
+  NewmarkFamilySpec newmark_family;
   /// [solve] constraints = "mixed" or "multipliers": under a multiplier scheme, eliminate the
   /// constant linear rows whose transform stays sparse and keep multipliers for the rest
   /// (dae/formulations/constraint_treatment.hpp), or keep a multiplier for every row. Unset: mixed

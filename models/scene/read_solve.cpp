@@ -167,15 +167,36 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
   const auto& t = table(node, path);
   solve.where = at(node, path);
   check_keys(t, path,
-             {"t_end", "output_step", "scheme", "rtol", "atol", "atol_velocity", "atol_multiplier",
-              "atol_mu", "baumgarte", "penalty", "slaves", "linear_solver", "newton", "redundant",
-              "max_steps", "max_wall_time", "constraints", "max_order", "max_steps_per_output"});
+             {"t_end",
+              "output_step",
+              "scheme",
+              "rtol",
+              "atol",
+              "atol_velocity",
+              "atol_multiplier",
+              "atol_mu",
+              "baumgarte",
+              "penalty",
+              "slaves",
+              "linear_solver",
+              "newton",
+              "redundant",
+              "max_steps",
+              "max_wall_time",
+              "constraints",
+              "max_order",
+              "max_steps_per_output",
+              "step",
+              "newmark",
+              "hht",
+              "generalized_alpha"});
   read_horizon(*this, t, path, solve);
   read_budgets(*this, t, path, solve);
   if (const auto* n = t.get("scheme")) {
     solve.scheme = parse_scheme(*n, "solve.scheme");
     solve.scheme_where = at(*n, "solve.scheme");
   }
+  read_fixed_step(t, solve);
   read_tolerances(*this, t, solve);
   read_gains(*this, t, solve);
   read_slaves(*this, t, solve);

@@ -98,6 +98,9 @@ class SceneReader : public TomlAccess {
   void read_initial(const toml::node& node, InitialSpec& initial) const;
   /// [solve] (read_solve.cpp).
   void read_solve(const toml::node& node, SolveSpec& solve) const;
+  /// [solve] step and the Newmark family's parameters (read_newmark.cpp), after the scheme and
+  /// t_end.
+  void read_fixed_step(const toml::table& t, SolveSpec& solve) const;
   [[nodiscard]] Scheme parse_scheme(const toml::node& node, const std::string& path) const;
   /// [output] (read_output.cpp).
   void read_output(const toml::node& node, OutputSpec& output) const;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "dae/run/scheme_memory.hpp"
 #include "dae/run/singular_passages.hpp"
@@ -27,6 +28,7 @@ namespace {
 struct RunArgs {
   std::string scene, scheme, constraints, out, steps_out;
   std::optional<double> rtol, atol;
+  std::optional<double> step;  ///< --step: the Newmark family's fixed step
   std::optional<long> max_steps;
   std::optional<double> max_wall_time;
 };
@@ -65,6 +67,14 @@ SceneSpec scene_with_flags(const RunArgs& args, std::string& set_aside) {
   if (args.atol) spec.solve.atol = *args.atol;
   if (args.max_steps) spec.solve.max_steps = *args.max_steps;
   if (args.max_wall_time) spec.solve.max_wall_time = *args.max_wall_time;
+  if (args.step) spec.solve.step = *args.step;
+  // The flags' settings with the file's, checked together: a --step beyond t_end, a Newmark-family
+  // --scheme without a step are bad input (exit 2), as the same values in the file are.
+  try {
+    spec.solve.validate();
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(args.scene + ": " + e.what());
+  }
   return spec;
 }
 
@@ -199,6 +209,10 @@ Command add_run_command(CLI::App& app) {
       ->check(rtol_check());
   cmd->add_option("--atol", args->atol, "absolute tolerance (overrides [solve] atol)")
       ->check(atol_check());
+  cmd->add_option("--step", args->step,
+                  "fixed step of the Newmark family (newmark, hht, generalized_alpha; overrides "
+                  "[solve] step)")
+      ->check(decimal_range_check(1e-300, 1e300));
   cmd->add_option("--max-steps", args->max_steps,
                   "step budget of the run (overrides [solve] max_steps); more is a failure")
       ->transform(whole_check(1, std::numeric_limits<int>::max()));

@@ -126,6 +126,9 @@ std::string predicted_drift_growth(Scheme scheme) {
       return "t (g' = local errors)";
     case Scheme::ggl:
     case Scheme::index3:
+    case Scheme::newmark:
+    case Scheme::hht:
+    case Scheme::generalized_alpha:
       return "bounded (Newton tolerance)";
     case Scheme::baumgarte:
       return "bounded (attracting manifold)";

@@ -1,0 +1,187 @@
+#include "dae/integrators/newmark_stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+namespace condyn {
+
+namespace {
+
+/// A stop within this fraction of h after a grid point is reached from the point before it, in
+/// one step slightly longer than h, rather than by a step of roundoff size after the grid point.
+constexpr double kGridSlack = 1e-6;
+/// An output time this many ulps of the time from a grid point is that grid point: k · output_step
+/// and j · h differ by a few ulps where they mean the same time.
+constexpr double kOutputUlps = 64.0;
+
+}  // namespace
+
+NewmarkStepper::NewmarkStepper(const MechanicalSystem& system, bool linear,
+                               const NewmarkSettings& settings, ConsistentAccelerations consistent,
+                               double t0, const Eigen::VectorXd& u0, const Eigen::VectorXd& v0)
+    : system_(system.clone()),
+      settings_(settings),
+      consistent_(std::move(consistent)),
+      linear_(linear),
+      n_(system.dofs()),
+      m_(system.constraints()),
+      newton_(*system_, linear),
+      t0_(t0),
+      stop_(t0),
+      t_(t0),
+      t_prev_(t0) {
+  system_->begin_segment(t0);
+  x_.u = u0;
+  x_.v = v0;
+  consistent_accelerations();
+  x_prev_ = x_;
+}
+
+void NewmarkStepper::consistent_accelerations() {
+  auto solved = consistent_(t_, x_.u, x_.v);
+  if (!solved) {
+    std::ostringstream s;
+    s << "the accelerations and multipliers at t = " << t_
+      << " cannot be solved from the constraints at acceleration level ([M A^T; A 0] singular)";
+    throw IntegrationError(FailureKind::linear_solver, s.str());
+  }
+  x_.acc = std::move(solved->first);
+  x_.lambda = std::move(solved->second);
+  a_ = x_.acc;
+}
+
+double NewmarkStepper::next_time(double tout) {
+  const double h = settings_.step;
+  const double slack = kGridSlack * h;
+  // The grid points at or within slack after t_ are passed (t_ is one of them, or a stop).
+  while (t0_ + static_cast<double>(grid_index_ + 1) * h <= t_ + slack) ++grid_index_;
+  const double grid_next = t0_ + static_cast<double>(grid_index_ + 1) * h;
+  if (grid_next < stop_ - slack) {
+    ++grid_index_;
+    // An output time within roundoff of the grid point (k · output_step against t0 + j h) is
+    // the step's end itself, so that the output is the step's result.
+    const double roundoff =
+        kOutputUlps * std::numeric_limits<double>::epsilon() * std::max(std::abs(grid_next), h);
+    return std::abs(tout - grid_next) <= roundoff ? tout : grid_next;
+  }
+  return stop_;
+}
+
+double NewmarkStepper::step(double tout) {
+  const double t_next = next_time(tout);
+  const double h = t_next - t_;
+  const AlphaParameters& p = settings_.parameters;
+  const StepCoefficients c{(1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f)),
+                           p.gamma / (h * p.beta)};
+  // The predictor: ü and λ kept, a, v and u from the step's formulas (consistent with them, so
+  // Newton's increments keep the formulas exact).
+  const auto algorithmic = [&](const Eigen::VectorXd& acc) -> Eigen::VectorXd {
+    return (p.alpha_f * x_.acc - p.alpha_m * a_ + (1.0 - p.alpha_f) * acc) / (1.0 - p.alpha_m);
+  };
+  StepState x = x_;
+  const Eigen::VectorXd a_pred = algorithmic(x.acc);
+  x.u = x_.u + h * x_.v + (h * h) * ((0.5 - p.beta) * a_ + p.beta * a_pred);
+  x.v = x_.v + h * ((1.0 - p.gamma) * a_ + p.gamma * a_pred);
+  solve_step(t_next, c, x);
+  a_ = algorithmic(x.acc);
+  x_prev_ = std::move(x_);
+  x_ = std::move(x);
+  t_prev_ = t_;
+  t_ = t_next;
+  last_step_ = h;
+  ++steps_;
+  return t_;
+}
+
+void NewmarkStepper::solve_step(double t_next, const StepCoefficients& c, StepState& x) {
+  Eigen::VectorXd d;
+  const auto fail = [&](FailureKind kind, const std::string& what) {
+    std::ostringstream s;
+    s << what << " at t = " << t_next << " (fixed step " << settings_.step
+      << "; a smaller [solve] step may converge)";
+    throw IntegrationError(kind, s.str());
+  };
+  for (int k = 0; k < settings_.max_newton_iterations; ++k) {
+    newton_.residual(t_next, x, c, d);
+    if (!d.allFinite()) fail(FailureKind::residual_non_finite, "the residual is not finite");
+    if (!newton_.factor(t_next, x, c)) fail(FailureKind::linear_solver, "singular Newton matrix");
+    d = -d;
+    newton_.solve_in_place(d);
+    ++newton_iterations_;
+    const auto du = d.head(n_);
+    x.u += du;
+    x.v += c.gamma_prime * du;
+    x.acc += c.beta_prime * du;
+    x.lambda += c.beta_prime * d.tail(m_);
+    // A linear model's first Newton step solves its equations up to the roundoff of the
+    // factored matrix, eps times its condition (2.5e7 |u| eps on a spring of 1e12 with h ω = 1e4);
+    // the second, on the residual it leaves, refines that to the residual's own roundoff at the
+    // cost of a solve (the factorization is kept).
+    if (linear_ && k == 1) return;
+    const double weighted =
+        (du.array().abs() / (settings_.rtol * x.u.array().abs() + settings_.atol)).maxCoeff();
+    if (!(weighted > 1.0)) {
+      if (!std::isfinite(weighted)) fail(FailureKind::non_finite, "Newton's update is not finite");
+      return;
+    }
+  }
+  fail(FailureKind::convergence, "Newton's iterations did not converge in " +
+                                     std::to_string(settings_.max_newton_iterations));
+}
+
+Eigen::VectorXd NewmarkStepper::pack(const StepState& x, bool derivative) const {
+  Eigen::VectorXd out(2 * n_ + m_);
+  if (derivative) {
+    out << x.v, x.acc, Eigen::VectorXd::Zero(m_);
+  } else {
+    out << x.u, x.v, x.lambda;
+  }
+  return out;
+}
+
+Eigen::VectorXd NewmarkStepper::y() { return pack(x_, false); }
+Eigen::VectorXd NewmarkStepper::yp() { return pack(x_, true); }
+
+void NewmarkStepper::interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) {
+  const double h = t_ - t_prev_;
+  if (!(h > 0.0)) {
+    y = pack(x_, false);
+    yp = pack(x_, true);
+    return;
+  }
+  // Cubic Hermite basis on s ∈ [0, 1] and its derivatives.
+  const double s = (t - t_prev_) / h, s2 = s * s, s3 = s2 * s;
+  const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2,
+               h11 = s3 - s2;
+  const double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -d00, d11 = 3 * s2 - 2 * s;
+  const StepState& a = x_prev_;
+  const StepState& b = x_;
+  StepState x;
+  x.u = h00 * a.u + (h10 * h) * a.v + h01 * b.u + (h11 * h) * b.v;
+  x.v = (d00 / h) * a.u + d10 * a.v + (d01 / h) * b.u + d11 * b.v;
+  x.acc = (1 - s) * a.acc + s * b.acc;
+  x.lambda = (1 - s) * a.lambda + s * b.lambda;
+  y = pack(x, false);
+  yp = pack(x, true);
+}
+
+void NewmarkStepper::restart(double t) {
+  t_ = t;
+  system_->begin_segment(t);
+  consistent_accelerations();
+  x_prev_ = x_;
+  t_prev_ = t_;
+}
+
+void NewmarkStepper::fill_summary(SolveSummary& summary) {
+  summary.steps = steps_;
+  summary.residual_evals = newton_.residuals();
+  summary.jacobian_evals = newton_.factorizations();
+  summary.newton_iterations = newton_iterations_;
+  summary.last_step = last_step_;
+}
+
+}  // namespace condyn

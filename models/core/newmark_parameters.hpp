@@ -1,0 +1,70 @@
+#pragma once
+/// The Newmark family's parameters ([solve] newmark, hht, generalized_alpha; docs/schemes.md
+/// "The Newmark family"). Every member is one generalized-α method in the notation of Chung and
+/// Hulbert (1993), "A time integration algorithm for structural dynamics with improved numerical
+/// dissipation: the generalized-α method", J. Appl. Mech. 60, 371-375:
+///
+///   M [(1 − αm) a_{n+1} + αm a_n] = (1 − αf) F_{n+1} + αf F_n
+///   u_{n+1} = u_n + h v_n + h² [(½ − β) a_n + β a_{n+1}]
+///   v_{n+1} = v_n + h [(1 − γ) a_n + γ a_{n+1}]
+///
+/// - Newmark (1959): αm = αf = 0 (β, γ as given; average acceleration β = ¼, γ = ½);
+/// - HHT-α (Hilber, Hughes and Taylor 1977), α ∈ [−⅓, 0]: αm = 0, αf = −α, γ = ½ − α,
+///   β = (1 − α)²/4;
+/// - generalized-α from ρ∞ ∈ [0, 1] (Chung and Hulbert's eq. 25): αm = (2ρ∞ − 1)/(ρ∞ + 1),
+///   αf = ρ∞/(ρ∞ + 1), γ = ½ − αm + αf, β = ¼ (1 − αm + αf)².
+
+#include <optional>
+#include <string>
+
+#include "models/core/scheme.hpp"
+
+namespace condyn {
+
+/// One generalized-α parameter set.
+struct AlphaParameters {
+  double alpha_m = 0.0, alpha_f = 0.0, beta = 0.25, gamma = 0.5;
+};
+
+/// What a scene gives of the Newmark family's parameters (each unset: its default).
+struct NewmarkFamilySpec {
+  std::optional<double> newmark_beta, newmark_gamma;  ///< newmark = { beta, gamma }
+  std::optional<double> hht_alpha;                    ///< hht = { alpha }
+  std::optional<double> rho_inf;                      ///< generalized_alpha = { rho_inf }
+  /// generalized_alpha = { alpha_m, alpha_f, beta, gamma }: all four, or none.
+  std::optional<AlphaParameters> alpha_direct;
+};
+
+inline constexpr double kDefaultNewmarkBeta = 0.25, kDefaultNewmarkGamma = 0.5;
+inline constexpr double kDefaultHhtAlpha = -0.05;
+inline constexpr double kDefaultRhoInf = 0.9;
+
+[[nodiscard]] AlphaParameters newmark_parameters(double beta, double gamma);
+[[nodiscard]] AlphaParameters hht_parameters(double alpha);
+[[nodiscard]] AlphaParameters generalized_alpha_parameters(double rho_inf);
+/// The parameter set `scheme` (newmark, hht or generalized_alpha) runs with under `spec`.
+/// Throws std::invalid_argument for another scheme.
+[[nodiscard]] AlphaParameters alpha_parameters(Scheme scheme, const NewmarkFamilySpec& spec);
+
+/// What is wrong with a value, as the last part of "FILE:LINE: key: problem", or nothing.
+/// Newmark: γ ≥ ½ (γ < ½ amplifies, Newmark 1959) and β > 0 (β = 0 is the explicit central
+/// difference, which this implicit solve cannot run); β < γ/2 is accepted, conditionally stable
+/// (linear acceleration β = 1/6: stable for h ω below newmark_stability_limit).
+[[nodiscard]] std::optional<std::string> newmark_beta_problem(double beta);
+[[nodiscard]] std::optional<std::string> newmark_gamma_problem(double gamma);
+/// HHT: α ∈ [−⅓, 0], the range of unconditional stability and second order (HHT 1977).
+[[nodiscard]] std::optional<std::string> hht_alpha_problem(double alpha);
+/// ρ∞ ∈ [0, 1].
+[[nodiscard]] std::optional<std::string> rho_inf_problem(double rho_inf);
+/// Chung and Hulbert's unconditional stability (their eq. 22): αm ≤ αf ≤ ½ and
+/// β ≥ ¼ + ½ (αf − αm); and γ ≥ ½ − αm + αf (below it the method amplifies; equal: second order).
+[[nodiscard]] std::optional<std::string> alpha_direct_problem(const AlphaParameters& p);
+
+/// The largest h ω a conditionally stable Newmark method (β < γ/2) is stable for, undamped:
+/// 1/√(γ/2 − β) (Hughes 1987, The Finite Element Method, §9.1.2); infinity when β ≥ γ/2.
+[[nodiscard]] double newmark_stability_limit(double beta, double gamma);
+
+/// "β = 0.25, γ = 0.5 (αm = 0, αf = 0)"-like words for a run's note.
+[[nodiscard]] std::string describe(Scheme scheme, const AlphaParameters& p);
+
+}  // namespace condyn

@@ -1,0 +1,84 @@
+// [solve] step and the Newmark family's parameters (newmark, hht, generalized_alpha): each value
+// checked against the method's stability range (models/core/newmark_parameters.hpp), refused with
+// its file, line and key.
+
+#include "models/scene/scene_readers.hpp"
+
+#include <string>
+
+namespace condyn {
+
+namespace {
+
+/// A number of the table `owner` at `key`, checked by `problem`; nothing when absent.
+template <class Problem>
+std::optional<double> checked(const TomlAccess& r, const toml::table& owner,
+                              const std::string& path, const char* key, const Problem& problem) {
+  const auto* n = owner.get(key);
+  if (n == nullptr) return std::nullopt;
+  const std::string key_path = TomlAccess::join(path, key);
+  const double v = r.number(*n, key_path);
+  if (const auto why = problem(v)) r.fail(*n, key_path, *why);
+  return v;
+}
+
+/// generalized_alpha = { rho_inf } or { alpha_m, alpha_f, beta, gamma } (all four).
+void read_generalized_alpha(const TomlAccess& r, const toml::node& node, NewmarkFamilySpec& f) {
+  const std::string path = "solve.generalized_alpha";
+  const auto& g = r.table(node, path);
+  r.check_keys(g, path, {"rho_inf", "alpha_m", "alpha_f", "beta", "gamma"});
+  f.rho_inf = checked(r, g, path, "rho_inf", rho_inf_problem);
+  const auto any = [](double) -> std::optional<std::string> { return std::nullopt; };
+  const auto am = checked(r, g, path, "alpha_m", any);
+  const auto af = checked(r, g, path, "alpha_f", any);
+  const auto beta = checked(r, g, path, "beta", any);
+  const auto gamma = checked(r, g, path, "gamma", any);
+  const int given =
+      int(am.has_value()) + int(af.has_value()) + int(beta.has_value()) + int(gamma.has_value());
+  if (given == 0) return;
+  if (f.rho_inf) {
+    r.fail(node, path,
+           "give rho_inf or the four parameters alpha_m, alpha_f, beta, gamma, not both");
+  }
+  if (given < 4) {
+    r.fail(node, path,
+           "parameters given directly need all four: alpha_m, alpha_f, beta and gamma (or give "
+           "rho_inf alone)");
+  }
+  const AlphaParameters p{*am, *af, *beta, *gamma};
+  if (const auto why = alpha_direct_problem(p)) r.fail(node, path, *why);
+  f.alpha_direct = p;
+}
+
+}  // namespace
+
+void SceneReader::read_fixed_step(const toml::table& t, SolveSpec& solve) const {
+  if (const auto* n = t.get("step")) {
+    solve.step = positive(*n, "solve.step");
+    solve.step_line = at(*n, "solve.step").line;
+    if (*solve.step > solve.t_end) {
+      fail(*n, "solve.step",
+           "is larger than t_end = " + fmt(solve.t_end) + " (got " + fmt(*solve.step) + ")");
+    }
+  } else if (fixed_step(solve.scheme)) {
+    fail(*t.get("scheme"), "solve.scheme",
+         std::string("'") + to_string(solve.scheme) +
+             "' runs with a fixed step: give [solve] step = h (error-controlled steps are not "
+             "implemented for the Newmark family yet)");
+  }
+  NewmarkFamilySpec& f = solve.newmark_family;
+  if (const auto* n = t.get("newmark")) {
+    const auto& nm = table(*n, "solve.newmark");
+    check_keys(nm, "solve.newmark", {"beta", "gamma"});
+    f.newmark_beta = checked(*this, nm, "solve.newmark", "beta", newmark_beta_problem);
+    f.newmark_gamma = checked(*this, nm, "solve.newmark", "gamma", newmark_gamma_problem);
+  }
+  if (const auto* n = t.get("hht")) {
+    const auto& h = table(*n, "solve.hht");
+    check_keys(h, "solve.hht", {"alpha"});
+    f.hht_alpha = checked(*this, h, "solve.hht", "alpha", hht_alpha_problem);
+  }
+  if (const auto* n = t.get("generalized_alpha")) read_generalized_alpha(*this, *n, f);
+}
+
+}  // namespace condyn
