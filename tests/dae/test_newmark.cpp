@@ -1,0 +1,314 @@
+// The Newmark family (newmark, hht, generalized_alpha; dae/integrators/newmark_stepper.hpp): on a
+// single-DOF oscillator the run equals the method's closed-form recurrence (Chung and Hulbert's
+// amplification matrix applied n times) to roundoff for every parameter set; the recurrence's
+// period elongation, algorithmic damping and spectral radius at infinity are the published ones;
+// ρ∞ is reproduced on a stiff pair; the parameters are refused out of their stable range.
+
+#include <doctest/doctest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "models/core/newmark_parameters.hpp"
+#include "models/scene/scene_parser.hpp"
+#include "tests/solve_helpers.hpp"
+
+using namespace condyn;
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// One named parameter set: the scheme and its [solve] keys.
+struct Case {
+  const char* name;
+  Scheme scheme;
+  std::string keys;  ///< the [solve] table's parameter line
+  AlphaParameters p;
+  /// The spectral radius at h ω → ∞ the method is published with: Newmark's average
+  /// acceleration 1 (the trapezoidal rule), HHT's (1 + α)/(1 − α) (Hilber, Hughes and Taylor
+  /// 1977), the generalized-α's ρ∞ (Chung and Hulbert 1993: the parameters' defining property);
+  /// NaN for linear acceleration, unstable there.
+  double rho_inf;
+};
+
+std::vector<Case> cases() {
+  return {
+      {"newmark average acceleration", Scheme::newmark, "", newmark_parameters(0.25, 0.5), 1.0},
+      {"newmark linear acceleration", Scheme::newmark, "newmark = { beta = 0.16666666666666666 }",
+       newmark_parameters(1.0 / 6.0, 0.5), std::numeric_limits<double>::quiet_NaN()},
+      {"hht alpha -0.1", Scheme::hht, "hht = { alpha = -0.1 }", hht_parameters(-0.1), 0.9 / 1.1},
+      {"hht alpha -1/3", Scheme::hht, "hht = { alpha = -0.3333333333333333 }",
+       hht_parameters(-1.0 / 3.0), 0.5},
+      {"generalized-alpha rho 0", Scheme::generalized_alpha, "generalized_alpha = { rho_inf = 0 }",
+       generalized_alpha_parameters(0.0), 0.0},
+      {"generalized-alpha rho 0.5", Scheme::generalized_alpha,
+       "generalized_alpha = { rho_inf = 0.5 }", generalized_alpha_parameters(0.5), 0.5},
+      {"generalized-alpha rho 0.9", Scheme::generalized_alpha, "",
+       generalized_alpha_parameters(0.9), 0.9},
+      {"generalized-alpha rho 1", Scheme::generalized_alpha, "generalized_alpha = { rho_inf = 1 }",
+       generalized_alpha_parameters(1.0), 1.0},
+  };
+}
+
+/// Chung and Hulbert's (1993) recurrence for m ü + c u̇ + k u = 0 on the state X = [u; v; a]:
+/// (1 − αm) a₁ + αm a₀ + c [(1 − αf) v₁ + αf v₀] + k [(1 − αf) u₁ + αf u₀] = 0 (m = 1),
+/// u₁ = u₀ + h v₀ + h² [(½ − β) a₀ + β a₁], v₁ = v₀ + h [(1 − γ) a₀ + γ a₁]: L X₁ = R X₀.
+Eigen::Matrix3d amplification(const AlphaParameters& p, double k, double c, double h) {
+  Eigen::Matrix3d L, R;
+  L << k * (1 - p.alpha_f), c * (1 - p.alpha_f), 1 - p.alpha_m,  //
+      1, 0, -p.beta * h * h,                                     //
+      0, 1, -p.gamma * h;
+  R << -k * p.alpha_f, -c * p.alpha_f, -p.alpha_m,  //
+      1, h, h * h * (0.5 - p.beta),                 //
+      0, 1, h * (1 - p.gamma);
+  return L.partialPivLu().solve(R);
+}
+
+/// The oscillator scene: unit mass, stiffness k, damping c, u(0) = 1, u'(0) = 0.5, `steps` steps
+/// of h, an output at every step.
+std::string oscillator(const Case& c, double k, double damping, double h, int steps) {
+  return "[model]\ntype = \"matrix\"\ndofs = [\"x\"]\nmass = [[1.0]]\nstiffness = [[" +
+         std::to_string(k) + "]]\ndamping = [[" + std::to_string(damping) +
+         "]]\n[initial]\ndisplacement = { x = 1.0 }\nvelocity = { x = 0.5 }\n[solve]\nt_end = " +
+         std::to_string(h * steps) + "\noutput_step = " + std::to_string(h) +
+         "\nstep = " + std::to_string(h) + "\nscheme = \"" + to_string(c.scheme) + "\"\n" + c.keys +
+         "\n";
+}
+
+}  // namespace
+
+TEST_CASE("newmark family: the SDOF run is the method's amplification matrix applied n times") {
+  // ω = 2 (k = 4), ξ = 0.05 (c = 0.2), h = 0.25 (h ω = 0.5, below linear acceleration's limit
+  // √12), 200 steps: both the step and the recurrence are one 3 x 3 solve per step, so they differ
+  // by an ulp or so per step, accumulated linearly: eps per step of the state's size (observed
+  // 8e-16 to 4.4e-15 against 1.8e-13).
+  const double k = 4.0, damping = 0.2, h = 0.25;
+  const int steps = 200;
+  for (const Case& c : cases()) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    const auto scene = test::built(parse_scene_text(oscillator(c, k, damping, h, steps), "o.toml"));
+    const SolveResult r = test::solved(scene.model, scene.spec.solve);
+    const Trajectory& traj = r.trajectory;
+    REQUIRE(traj.t.size() == static_cast<std::size_t>(steps + 1));
+    const Eigen::Matrix3d A = amplification(c.p, k, damping, h);
+    Eigen::Vector3d X(1.0, 0.5, -k * 1.0 - damping * 0.5);  // a₀ = ü₀ from the equation
+    const double tolerance = steps * kEps * X.cwiseAbs().maxCoeff();
+    double worst = 0.0;
+    for (int n = 0; n <= steps; ++n) {
+      CHECK(traj.t[static_cast<std::size_t>(n)] == doctest::Approx(n * h).epsilon(1e-15));
+      worst = std::max({worst, std::abs(traj.u(0, n) - X[0]), std::abs(traj.v(0, n) - X[1])});
+      X = A * X;
+    }
+    MESSAGE(name << ": worst |run - recurrence| = " << worst << " (tolerance " << tolerance << ")");
+    CHECK(worst <= tolerance);
+  }
+}
+
+TEST_CASE("newmark family: period elongation, damping and rho_inf are the published ones") {
+  // Undamped, Ω = h ω. Newmark with γ = ½ conserves energy (|λ| = 1, ξ̄ = 0) and its principal
+  // roots have cos Ω̄ = 1 − Ω² / (2 (1 + β Ω²)) (Hughes 1987, The Finite Element Method, §9.3:
+  // det A = 1 and ½ tr A of the (u, v) recurrence); for β = ¼ that is T̄/T = Ω / (2 atan(Ω/2)).
+  // Roots of the 3 x 3 matrix agree with those to its eigen-solver's roundoff, 1e-12.
+  constexpr double kRootTolerance = 1e-12;
+  for (const double beta : {0.25, 1.0 / 6.0}) {
+    for (const double omega_h : {0.1, 0.5, 1.0, 2.0}) {
+      CAPTURE(beta);
+      CAPTURE(omega_h);
+      const Eigen::Matrix3d A = amplification(newmark_parameters(beta, 0.5), 1.0, 0.0, omega_h);
+      const Eigen::Vector3cd roots = A.eigenvalues();
+      int principal = 0;
+      for (int i = 1; i < 3; ++i)
+        if (std::abs(roots[i]) > std::abs(roots[principal])) principal = i;
+      const std::complex<double> lambda = roots[principal];
+      CHECK(std::abs(std::abs(lambda) - 1.0) <= kRootTolerance);  // ξ̄ = 0
+      const double expected =
+          std::acos(1.0 - omega_h * omega_h / (2.0 * (1.0 + beta * omega_h * omega_h)));
+      CHECK(std::abs(std::abs(std::arg(lambda)) - expected) <= kRootTolerance);
+      if (beta == 0.25) {
+        const double elongation = omega_h / std::abs(std::arg(lambda));  // T̄ / T
+        CHECK(std::abs(elongation - omega_h / (2.0 * std::atan(omega_h / 2.0))) <= kRootTolerance);
+      }
+    }
+  }
+  // Spectral radius at Ω → ∞ (Case::rho_inf), at Ω = 1e12: the roots meet at −ρ∞ there (a
+  // double or triple root, which the eigen-solver splits by about ε^(1/3) of it), 4e-6 from it
+  // still at Ω = 1e8 (observed), within 1e-6 from 1e10 on.
+  constexpr double kLimitTolerance = 1e-6;
+  for (const Case& c : cases()) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    if (std::isnan(c.rho_inf)) continue;
+    const Eigen::Vector3cd roots = amplification(c.p, 1.0, 0.0, 1e12).eigenvalues();
+    CHECK(std::abs(roots.cwiseAbs().maxCoeff() - c.rho_inf) <= kLimitTolerance);
+  }
+}
+
+namespace {
+
+/// The coefficients c of the linear recurrence of order q that the samples d₀ … d_{2q−1} follow
+/// (Prony): d_{j+q} = Σ_i c_i d_{j+i}, whose characteristic polynomial z^q − Σ c_i z^i has the
+/// step's roots; their product is (−1)^(q+1) c₀.
+Eigen::VectorXd recurrence(const std::vector<double>& d, int q) {
+  Eigen::MatrixXd H(q, q);
+  Eigen::VectorXd next(q);
+  for (int j = 0; j < q; ++j) {
+    for (int i = 0; i < q; ++i) H(j, i) = d[static_cast<std::size_t>(j + i)];
+    next[j] = d[static_cast<std::size_t>(j + q)];
+  }
+  return H.fullPivLu().solve(next);
+}
+
+}  // namespace
+
+TEST_CASE("newmark family: rho_inf reproduced on a stiff pair") {
+  // Two unit masses tied by a spring of k = 1e12, the first held by a constraint (a = 0, its
+  // multiplier solved with the step at index 3): the second rings at ω = 1e6, started at
+  // u_b = 1e-3 at rest; h = 0.01, so h ω = 1e4. Its motion follows the step's recurrence, whose
+  // roots all tend to −ρ∞ as h ω grows (Chung and Hulbert's design: λ₁,₂ → −ρ∞ and the spurious
+  // λ₃ = αf/(αf − 1) → −ρ∞; HHT's λ₃ = α/(1 + α)), so near-coincident: their product, the
+  // recurrence's constant coefficient, is what the run measures well: −ρ∞³ for the
+  // generalized-α, ρ∞² α/(1 + α) for HHT, ρ∞² where αm = αf (Newmark, ρ∞ = 1: a_n − ü_n keeps
+  // its zero start, an order-2 recurrence). The closed form puts the product within 1e-8 of its
+  // limit at h ω = 1e4; the fit's roundoff on near-coincident roots is the rest of
+  // kProductTolerance.
+  constexpr double kProductTolerance = 1e-6;
+  const std::string pair = R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[1e12, -1e12], [-1e12, 1e12]]
+[[constraint]]
+terms = { a = 1.0 }
+[initial]
+displacement = { b = 1e-3 }
+[solve]
+t_end = 0.08
+output_step = 0.01
+step = 0.01
+)";
+  for (const Case& c : cases()) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    if (std::isnan(c.rho_inf)) continue;
+    const auto scene = test::built(parse_scene_text(
+        pair + "scheme = \"" + to_string(c.scheme) + "\"\n" + c.keys + "\n", "pair.toml"));
+    const SolveResult r = test::solved(scene.model, scene.spec.solve);
+    std::vector<double> d;
+    for (std::size_t n = 0; n < r.trajectory.t.size(); ++n)
+      d.push_back(r.trajectory.u(1, static_cast<Eigen::Index>(n)));
+    if (c.rho_inf == 0.0) {
+      // Asymptotic annihilation: every root tends to 0, the high mode is gone after three steps
+      // to the roots' 2e-3 at h ω = 1e4 (the closed form's), cubed.
+      for (std::size_t n = 3; n < d.size(); ++n) CHECK(std::abs(d[n]) <= 1e-6 * std::abs(d[0]));
+      continue;
+    }
+    double product = 0.0, expected = 0.0;
+    if (c.p.alpha_m == c.p.alpha_f) {
+      product = -recurrence(d, 2)[0];
+      expected = c.rho_inf * c.rho_inf;
+    } else {
+      product = recurrence(d, 3)[0];
+      const double alpha = -c.p.alpha_f;  // HHT's α
+      expected = c.scheme == Scheme::hht ? c.rho_inf * c.rho_inf * alpha / (1.0 + alpha)
+                                         : -std::pow(c.rho_inf, 3);
+    }
+    MESSAGE(name << ": product of the roots " << product << ", at infinity " << expected);
+    CHECK(std::abs(product - expected) <= kProductTolerance);
+  }
+}
+
+TEST_CASE(
+    "newmark family: steps on the grid, a load step reached off it, one factorization per step") {
+  // A unit oscillator (k = 4) under a unit step load switched on at t = 0.0355, between the grid
+  // points 0.03 and 0.04 of h = 0.01: the steps are the grid's, plus the load step's time.
+  const std::string scene = R"([model]
+type = "matrix"
+dofs = ["x"]
+mass = [[1.0]]
+stiffness = [[4.0]]
+[[load]]
+dof = "x"
+value = { type = "step", amplitude = 1.0, start = 0.0355 }
+[solve]
+t_end = 0.1
+output_step = 0.025
+step = 0.01
+scheme = "newmark"
+)";
+  const auto built = test::built(parse_scene_text(scene, "load.toml"));
+  RunHooks hooks;
+  hooks.record_steps = true;
+  const SolveResult r = test::solved(built.model, built.spec.solve, hooks);
+  std::vector<double> expected = {0.01, 0.02, 0.03, 0.0355};
+  for (int k = 4; k <= 10; ++k) expected.push_back(0.01 * k);
+  REQUIRE(r.trajectory.steps.size() == expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    CHECK(r.trajectory.steps[k].t == doctest::Approx(expected[k]).epsilon(1e-14));
+  }
+  // The linear model's matrix depends on the step alone: factored for 0.01, 0.0055, 0.0045 and
+  // 0.01 again (the last factorization is the one kept), not at every step.
+  CHECK(r.summary.jacobian_evals == 4);
+  CHECK(r.summary.restarts == 1);
+  // Before the load, at rest: nothing moves; after it, the motion starts (u'' = 1 at t = 0.0355).
+  CHECK(r.trajectory.u(0, 1) == 0.0);  // t = 0.025
+  CHECK(r.trajectory.u(0, 2) > 0.0);   // t = 0.05
+}
+
+TEST_CASE("newmark family: parameters out of range and a missing or misplaced step are refused") {
+  const std::string head = R"([model]
+type = "matrix"
+dofs = ["x"]
+mass = [[1.0]]
+stiffness = [[1.0]]
+[solve]
+t_end = 1.0
+output_step = 0.1
+)";
+  const struct {
+    const char* keys;
+    const char* key;  ///< the key the message must name
+  } bad[] = {
+      {"scheme = \"hht\"\nstep = 0.1\nhht = { alpha = -0.5 }", "solve.hht.alpha"},
+      {"scheme = \"hht\"\nstep = 0.1\nhht = { alpha = 0.1 }", "solve.hht.alpha"},
+      {"scheme = \"newmark\"\nstep = 0.1\nnewmark = { gamma = 0.4 }", "solve.newmark.gamma"},
+      {"scheme = \"newmark\"\nstep = 0.1\nnewmark = { beta = 0 }", "solve.newmark.beta"},
+      {"scheme = \"generalized_alpha\"\nstep = 0.1\ngeneralized_alpha = { rho_inf = 1.5 }",
+       "solve.generalized_alpha.rho_inf"},
+      {"scheme = \"generalized_alpha\"\nstep = 0.1\ngeneralized_alpha = { rho_inf = -0.1 }",
+       "solve.generalized_alpha.rho_inf"},
+      {"scheme = \"generalized_alpha\"\nstep = 0.1\n"
+       "generalized_alpha = { alpha_m = 0.4, alpha_f = 0.2, beta = 0.3, gamma = 0.3 }",
+       "solve.generalized_alpha"},
+      {"scheme = \"generalized_alpha\"\nstep = 0.1\n"
+       "generalized_alpha = { alpha_m = 0.0, alpha_f = 0.2 }",
+       "solve.generalized_alpha"},
+      {"scheme = \"newmark\"", "solve.scheme"},
+      {"scheme = \"newmark\"\nstep = 2.0", "solve.step"},
+      {"scheme = \"newmark\"\nstep = -0.1", "solve.step"},
+      {"scheme = \"ggl\"\nstep = 2.0", "solve.step"},
+  };
+  for (const auto& b : bad) {
+    CAPTURE(b.keys);
+    CHECK_THROWS_WITH_AS((void)parse_scene_text(head + b.keys + "\n", "bad.toml"),
+                         doctest::Contains("bad.toml:"), SceneError);
+    const std::string key = std::string(b.key) + ":";
+    CHECK_THROWS_WITH_AS((void)parse_scene_text(head + b.keys + "\n", "bad.toml"),
+                         doctest::Contains(key.c_str()), SceneError);
+  }
+  // The same rules for settings made in code (SolveSpec::validate, as the CLI's --step meets).
+  SolveSpec s;
+  s.t_end = 1.0;
+  s.output_step = 0.1;
+  s.scheme = Scheme::newmark;
+  CHECK_THROWS_WITH_AS(s.validate(), doctest::Contains("solve.step"), std::invalid_argument);
+  s.step = 0.1;
+  s.newmark_family.hht_alpha = -0.4;
+  CHECK_THROWS_WITH_AS(s.validate(), doctest::Contains("solve.hht.alpha"), std::invalid_argument);
+}

@@ -1,0 +1,74 @@
+// The Newmark family from the command line: `run --scheme S --step h` writes the columns the
+// other schemes write (reactions included), and bad parameters or steps exit 2 naming the key.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "tests/cli_sandbox.hpp"
+
+using condyn::test::Result;
+using condyn::test::Sandbox;
+
+namespace {
+
+const std::string kPendulum = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[solve]
+t_end = 0.5
+output_step = 0.05
+step = 0.01
+[output]
+quantities = ["displacement", "velocity", "reaction", "multiplier", "drift", "energy"]
+)";
+
+std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("run under the Newmark family writes the other schemes' columns") {
+  const Sandbox box;
+  box.write("p.toml", kPendulum);
+  const Result ggl = box.run("run p.toml --scheme ggl --out ggl.csv");
+  REQUIRE(ggl.code == 0);
+  for (const char* scheme : {"newmark", "hht", "generalized_alpha"}) {
+    CAPTURE(scheme);
+    const std::string out = std::string(scheme) + ".csv";
+    const Result r = box.run(std::string("run p.toml --scheme ") + scheme + " --out " + out);
+    CHECK(r.code == 0);
+    CHECK(first_line(condyn::test::slurp(box.path(out))) ==
+          first_line(condyn::test::slurp(box.path("ggl.csv"))));
+    CHECK(contains(r.out + r.err, std::string(scheme) + ": alpha_m"));  // the parameters noted
+  }
+  // --step overrides [solve] step.
+  CHECK(box.run("run p.toml --scheme hht --step 0.005 --out s.csv").code == 0);
+}
+
+TEST_CASE("the Newmark family's bad parameters and steps exit 2 naming the key") {
+  const Sandbox box;
+  std::string bad_alpha = kPendulum;
+  bad_alpha.replace(bad_alpha.find("step = 0.01"), 11,
+                    "step = 0.01\nscheme = \"hht\"\nhht = { alpha = -0.5 }");
+  box.write("a.toml", bad_alpha);
+  const Result a = box.run("run a.toml --out a.csv");
+  CHECK(a.code == 2);
+  CHECK(contains(a.err, "a.toml:13: solve.hht.alpha: must lie in [-1/3, 0]"));
+  box.write("p.toml", kPendulum);
+  const Result big = box.run("run p.toml --scheme newmark --step 5 --out b.csv");
+  CHECK(big.code == 2);
+  CHECK(contains(big.err, "solve.step"));
+  std::string no_step = kPendulum;
+  no_step.replace(no_step.find("step = 0.01"), 11, "");
+  box.write("n.toml", no_step);
+  const Result n = box.run("run n.toml --scheme generalized_alpha --out n.csv");
+  CHECK(n.code == 2);
+  CHECK(contains(n.err, "solve.step"));
+}
