@@ -72,7 +72,13 @@ double NewmarkStepper::next_time(double tout) {
 
 double NewmarkStepper::step(double tout) {
   const double t_next = next_time(tout);
-  const double h = t_next - t_;
+  // A step between grid points is h itself, not t_next − t_ with its roundoff: a linear model's
+  // matrix depends on the step alone and stays factored.
+  double h = t_next - t_;
+  if (std::abs(h - settings_.step) <=
+      kOutputUlps * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_next), h)) {
+    h = settings_.step;
+  }
   const AlphaParameters& p = settings_.parameters;
   const StepCoefficients c{(1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f)),
                            p.gamma / (h * p.beta)};
@@ -117,9 +123,10 @@ void NewmarkStepper::solve_step(double t_next, const StepCoefficients& c, StepSt
     x.acc += c.beta_prime * du;
     x.lambda += c.beta_prime * d.tail(m_);
     // A linear model's first Newton step solves its equations up to the roundoff of the
-    // factored matrix, eps times its condition (2.5e7 |u| eps on a spring of 1e12 with h ω = 1e4);
-    // the second, on the residual it leaves, refines that to the residual's own roundoff at the
-    // cost of a solve (the factorization is kept).
+    // factored matrix, eps times its condition times the step (2.5e7 |u| eps on a spring of 1e12
+    // with h ω = 1e4); the second, on the residual it leaves, refines that to the residual's own
+    // roundoff at the cost of a solve (the factorization is kept). A first step already within
+    // the tolerance below needs no refinement.
     if (linear_ && k == 1) return;
     const double weighted =
         (du.array().abs() / (settings_.rtol * x.u.array().abs() + settings_.atol)).maxCoeff();

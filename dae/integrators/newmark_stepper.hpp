@@ -38,8 +38,8 @@ namespace condyn {
 struct NewmarkSettings {
   AlphaParameters parameters;
   double step = 0.0;  ///< h > 0
-  /// Newton's convergence: max_i |Δu_i| / (rtol |u_i| + atol) ≤ 1 (a linear model takes its
-  /// exact Newton step and one step of refinement, with the same factorization).
+  /// Newton's convergence: max_i |Δu_i| / (rtol |u_i| + atol) ≤ 1. A linear model stops there
+  /// or after its second iteration, a refinement of the exact first one on the same factors.
   double rtol = 1e-8, atol = 1e-10;
   int max_newton_iterations = 10;
 };
