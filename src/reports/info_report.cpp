@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <iterator>
 #include <map>
 #include <new>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "dae/formulations/baumgarte_gains.hpp"
 #include "dae/formulations/constraint_treatment.hpp"
@@ -281,12 +283,15 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
       << "memory\n";
   SchemeMemory scheme_memory(model);
   std::optional<MemoryEstimate> selected;
-  // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well.
-  for (Scheme s : kSchemes) {
+  // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well; a scheme
+  // of the Newmark family when it is the one chosen (the others need a step to be sized for).
+  std::vector<Scheme> schemes(std::begin(kSchemes), std::end(kSchemes));
+  if (fixed_step(choice.scheme)) schemes.push_back(choice.scheme);
+  for (Scheme s : schemes) {
     for (const bool mixed : {false, true}) {
       if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
       std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
-      name.resize(std::max<std::size_t>(name.size(), 17), ' ');
+      name.resize(std::max<std::size_t>(name.size() + 1, 17), ' ');  // a space after the longest
       out << "  " << name;
       const char* marker = s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "";
       try {
