@@ -13,9 +13,9 @@ void run_newmark(const Model& model, const AlphaParameters& parameters, double s
   const int n = model.dofs(), m = model.constraint_count();
   Observation observe;
   observe.full_state = full_state_prefix(n);
-  observe.multipliers = [n, m](double, const Eigen::VectorXd& y, const Eigen::VectorXd&,
-                               const Eigen::VectorXd&, const Eigen::VectorXd&) {
-    return Eigen::VectorXd(y.segment(2 * n, m));
+  observe.multipliers = [m](double, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd&, const Eigen::VectorXd&) {
+    return Eigen::VectorXd(y.tail(m));  // y = [u; v; λ]
   };
   run(
       [&](const IntegratorOptions& o, SolveSummary& s) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/interface/scheme_not_applicable.hpp"
 #include "models/core/newmark_parameters.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
@@ -311,4 +312,27 @@ output_step = 0.1
   s.step = 0.1;
   s.newmark_family.hht_alpha = -0.4;
   CHECK_THROWS_WITH_AS(s.validate(), doctest::Contains("solve.hht.alpha"), std::invalid_argument);
+}
+
+TEST_CASE("newmark family: a massless DOF outside the constraints is refused, naming it") {
+  // Its start needs ü of every DOF, which [M Aᵀ; A 0] leaves undetermined for such a DOF.
+  const std::string scene = R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 0.0]]
+stiffness = [[2.0, -1.0], [-1.0, 1.0]]
+[solve]
+t_end = 1.0
+output_step = 0.1
+step = 0.01
+)";
+  for (const char* scheme : {"newmark", "hht", "generalized_alpha"}) {
+    CAPTURE(scheme);
+    const auto built =
+        test::built(parse_scene_text(scene + "scheme = \"" + scheme + "\"\n", "massless.toml"));
+    CHECK_THROWS_WITH_AS(
+        (void)solve(built.model, built.spec.solve),
+        doctest::Contains("massless DOFs outside the constraints yet (1, the first b)"),
+        SchemeNotApplicable);
+  }
 }
