@@ -1,21 +1,13 @@
 #include "models/core/newmark_parameters.hpp"
 
+#include "models/core/number_cell.hpp"
+
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
 namespace condyn {
-
-namespace {
-
-std::string number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
-}  // namespace
 
 AlphaParameters newmark_parameters(double beta, double gamma) { return {0.0, 0.0, beta, gamma}; }
 
@@ -50,28 +42,28 @@ std::optional<std::string> newmark_beta_problem(double beta) {
   if (std::isfinite(beta) && beta > 0.0) return std::nullopt;
   return "must be > 0 (beta = 0 is the explicit central difference, which this implicit "
          "scheme does not run; got " +
-         number(beta) + ")";
+         shortest_number(beta) + ")";
 }
 
 std::optional<std::string> newmark_gamma_problem(double gamma) {
   if (std::isfinite(gamma) && gamma >= 0.5 && gamma <= 1.0) return std::nullopt;
   return "must lie in [0.5, 1]: below 0.5 the method amplifies every mode (negative numerical "
          "damping), above 1 it damps the low modes at first order (got " +
-         number(gamma) + ")";
+         shortest_number(gamma) + ")";
 }
 
 std::optional<std::string> hht_alpha_problem(double alpha) {
   if (std::isfinite(alpha) && alpha >= -1.0 / 3.0 && alpha <= 0.0) return std::nullopt;
   return "must lie in [-1/3, 0], where HHT-alpha is unconditionally stable and second-order "
          "accurate (got " +
-         number(alpha) + ")";
+         shortest_number(alpha) + ")";
 }
 
 std::optional<std::string> rho_inf_problem(double rho_inf) {
   if (std::isfinite(rho_inf) && rho_inf >= 0.0 && rho_inf <= 1.0) return std::nullopt;
   return "must lie in [0, 1]: it is the spectral radius of the step at infinite frequency "
          "(got " +
-         number(rho_inf) + ")";
+         shortest_number(rho_inf) + ")";
 }
 
 std::optional<std::string> alpha_direct_problem(const AlphaParameters& p) {
@@ -81,20 +73,21 @@ std::optional<std::string> alpha_direct_problem(const AlphaParameters& p) {
   if (!(p.alpha_m <= p.alpha_f && p.alpha_f <= 0.5)) {
     return "needs alpha_m <= alpha_f <= 0.5 for unconditional stability (Chung and Hulbert "
            "1993; got alpha_m = " +
-           number(p.alpha_m) + ", alpha_f = " + number(p.alpha_f) + ")";
+           shortest_number(p.alpha_m) + ", alpha_f = " + shortest_number(p.alpha_f) + ")";
   }
   // Roundoff of the formulas that give β and γ from ρ∞, whose results a user may paste.
   constexpr double kSlack = 1e-12;
   if (p.beta < 0.25 + 0.5 * (p.alpha_f - p.alpha_m) - kSlack) {
     return "beta must be >= 1/4 + (alpha_f - alpha_m)/2 = " +
-           number(0.25 + 0.5 * (p.alpha_f - p.alpha_m)) + " for unconditional stability (got " +
-           number(p.beta) + ")";
+           shortest_number(0.25 + 0.5 * (p.alpha_f - p.alpha_m)) +
+           " for unconditional stability (got " + shortest_number(p.beta) + ")";
   }
   if (p.gamma < 0.5 - p.alpha_m + p.alpha_f - kSlack) {
-    return "gamma must be >= 1/2 - alpha_m + alpha_f = " + number(0.5 - p.alpha_m + p.alpha_f) +
+    return "gamma must be >= 1/2 - alpha_m + alpha_f = " +
+           shortest_number(0.5 - p.alpha_m + p.alpha_f) +
            " (equal: second order; below: the method "
            "amplifies; got " +
-           number(p.gamma) + ")";
+           shortest_number(p.gamma) + ")";
   }
   return std::nullopt;
 }
