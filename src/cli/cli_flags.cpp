@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "models/scene/scene_parser.hpp"
 
@@ -182,6 +183,14 @@ SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme) {
     throw CLI::ValidationError("--constraints", treatment_refusal(scheme));
   }
   return s == "mixed" ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
+}
+
+void check_settings(const std::string& scene, const SolveSpec& settings) {
+  try {
+    settings.validate();
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene + ": " + e.what());
+  }
 }
 
 Scheme parse_scheme_flag(const std::string& flag, const std::string& s) {

@@ -40,6 +40,10 @@ namespace condyn {
 /// --constraints: "mixed" or "multipliers"; throws CLI::ValidationError otherwise.
 /// --constraints: refused under a scheme without multipliers (elimination, penalty, projection).
 [[nodiscard]] SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme);
+/// The scene's settings with the flags' overrides, checked together (SolveSpec::validate): a
+/// --step beyond t_end, a Newmark-family --scheme without a step are bad input, thrown as a
+/// SceneError naming `scene` (exit 2), as the same values in the file are.
+void check_settings(const std::string& scene, const SolveSpec& settings);
 
 /// Splits "a,b,c" (spaces ignored); an empty item (a stray comma) or one listed twice is refused
 /// with CLI::ValidationError naming `flag`.

@@ -41,6 +41,7 @@ int info(const InfoArgs& args) {
     spec.solve.treatment = parse_treatment_flag(
         args.constraints, args.scheme.empty() ? Scheme::automatic : spec.solve.scheme);
   }
+  check_settings(args.scene, spec.solve);
   BuildReport report;
   const Model model = build_model(spec, report);
   if (!set_aside.empty()) report.warnings.insert(report.warnings.begin(), set_aside);

@@ -7,7 +7,6 @@
 #include <memory>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 
 #include "dae/run/scheme_memory.hpp"
 #include "dae/run/singular_passages.hpp"
@@ -68,13 +67,7 @@ SceneSpec scene_with_flags(const RunArgs& args, std::string& set_aside) {
   if (args.max_steps) spec.solve.max_steps = *args.max_steps;
   if (args.max_wall_time) spec.solve.max_wall_time = *args.max_wall_time;
   if (args.step) spec.solve.step = *args.step;
-  // The flags' settings with the file's, checked together: a --step beyond t_end, a Newmark-family
-  // --scheme without a step are bad input (exit 2), as the same values in the file are.
-  try {
-    spec.solve.validate();
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(args.scene + ": " + e.what());
-  }
+  check_settings(args.scene, spec.solve);
   return spec;
 }
 

@@ -71,4 +71,7 @@ TEST_CASE("the Newmark family's bad parameters and steps exit 2 naming the key")
   const Result n = box.run("run n.toml --scheme generalized_alpha --out n.csv");
   CHECK(n.code == 2);
   CHECK(contains(n.err, "solve.step"));
+  const Result i = box.run("info n.toml --scheme hht");
+  CHECK(i.code == 2);
+  CHECK(contains(i.err, "n.toml: solve.step"));
 }
