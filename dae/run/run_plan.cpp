@@ -39,6 +39,12 @@ IntegratorSettings settings_from(const Model& model, const SolveSpec& settings,
   o.breakpoints = model.breakpoints(settings.t_end);
   o.max_steps = settings.max_steps;
   o.max_steps_per_output = settings.steps_per_output_budget();
+  if (fixed_step(settings.scheme) && settings.step) {
+    // A fixed step takes output_step / h steps between two outputs, and two more around a load
+    // step: the budget, meant to stop a step size that collapses, must not refuse them.
+    const double fixed = std::ceil(settings.output_step / *settings.step) + 2.0;
+    o.max_steps_per_output = std::max(o.max_steps_per_output, static_cast<long>(fixed));
+  }
   o.max_wall_seconds = settings.max_wall_time;
   return o;
 }
