@@ -10,7 +10,6 @@
 #include <cmath>
 #include <complex>
 #include <limits>
-#include <numbers>
 #include <string>
 #include <vector>
 
