@@ -60,6 +60,9 @@ std::vector<int> unconstrained_massless(const Model& model) {
 }
 
 Refusal refusal_of(const Model& model, Scheme scheme) {
+  if (scheme == Scheme::penalty && model.static_start && model.constraint_count() > 0) {
+    return Refusal::penalty_static_start;
+  }
   // The Newmark family starts (and restarts at load steps) from ü solved at acceleration level,
   // which a DOF without mass outside the constraints leaves undetermined.
   if (fixed_step(scheme) && !unconstrained_massless(model).empty()) {
