@@ -15,6 +15,21 @@ namespace {
 using Reason = ConstraintTreatment::Reason;
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
+/// The transform of a group is built here only to learn whether it stays sparse, and its dense
+/// work grows like rows² × DOFs (the column-pivoted QR that picks the slaves, the LU, its solves
+/// and the condition number): a fraction of a second at this many. Within the dense block's
+/// limits (kMaxDenseGroupEntries) a group can cost seconds more, many times the run it serves:
+/// the joint rows of a chain of 1,000 bodies form such groups, in natural coordinates (figures in
+/// docs/benchmarks.md, "Chains of rigid bodies"). A larger group keeps its multipliers without
+/// the trial; realistic linear groups (supports, ties, rigid links) are far smaller, and
+/// `scheme = "elimination"` still eliminates a larger one.
+constexpr double kMaxTrialWork = 1e8;
+
+bool within_trial_work(std::size_t rows, std::size_t dofs) {
+  const double r = static_cast<double>(rows);
+  return r * r * static_cast<double>(dofs) <= kMaxTrialWork;
+}
+
 /// The rows' coefficients as a matrix (rows in the given order).
 RowMajor rows_of(const Model& model, const std::vector<int>& rows) {
   std::vector<Eigen::Triplet<double>> trip;
@@ -55,7 +70,7 @@ std::string describe(Reason r) {
     case Reason::fills_in:
       return "multipliers (master-slave would fill in)";
     case Reason::group_too_large:
-      return "multipliers (coupled group beyond the dense transform block)";
+      return "multipliers (coupled group too large for the dense transform)";
     case Reason::nonlinear:
       return "multipliers (nonlinear)";
     case Reason::nonholonomic:
@@ -85,7 +100,8 @@ ConstraintTreatment treat_constraints(const Model& model) {
   // groups whose transform fills in are handed back to multipliers.
   std::vector<bool> eliminate(candidates.size(), false);
   for (const auto& g : groups) {
-    const bool within = group_within_dense_limits(g.rows.size(), g.dofs.size());
+    const bool within = group_within_dense_limits(g.rows.size(), g.dofs.size()) &&
+                        within_trial_work(g.rows.size(), g.dofs.size());
     const bool single = g.rows.size() == 1 && g.dofs.size() == 1;
     for (int r : g.rows) {
       const auto row = static_cast<std::size_t>(candidates[static_cast<std::size_t>(r)]);

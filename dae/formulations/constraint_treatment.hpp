@@ -9,7 +9,8 @@
 ///   matrices (deg(s): the nonzeros of column s of M, C or K, the largest); multipliers add the
 ///   group's nonzeros of A instead. The group is eliminated when the first is at most the second;
 /// - everything else keeps a multiplier: nonlinear rows, nonholonomic rows, and groups too large
-///   for the transform's dense block per group (dae/formulations/master_slave.hpp).
+///   for the transform's dense block per group (dae/formulations/master_slave.hpp) or for its
+///   dense work (rows² × DOFs beyond 1e8: the joint rows of a long chain of bodies).
 ///
 /// Groups are decided on their own, so the cost of the choice follows the groups, not m x n.
 
@@ -27,7 +28,7 @@ struct ConstraintTreatment {
     single_freedom,   ///< eliminated: u_i = g(t)
     sparse_group,     ///< eliminated by master-slave: the transform adds no more than A holds
     fills_in,         ///< multipliers: master-slave would add more nonzeros than the group's A
-    group_too_large,  ///< multipliers: beyond the transform's dense block per group
+    group_too_large,  ///< multipliers: beyond the transform's dense block or work per group
     nonlinear,        ///< multipliers: the row depends nonlinearly on the state
     nonholonomic,     ///< multipliers: a velocity row with no displacement form
   };

@@ -139,7 +139,7 @@ double solve_group(const RowMajor& a, const ConstraintGroup& g, const DofPlaces&
   }
   const Eigen::MatrixXd normalised = inverse_norm.asDiagonal() * block(a, g.rows, slaves_in, local);
   const Eigen::MatrixXd a_r = inverse_norm.asDiagonal() * block(a, g.rows, masters_in, local);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(normalised);
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(normalised);
   const auto& sv = svd.singularValues();
   const double smin = sv(sv.size() - 1);
   const double condition = smin > 0.0 ? sv(0) / smin : INFINITY;

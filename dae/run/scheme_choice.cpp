@@ -230,7 +230,8 @@ SchemeChoice SchemeDecisions::choose(const SolveSpec& settings) {
   }
   return {Scheme::ggl, "GGL with mixed treatment: " + std::to_string(treated->eliminated.size()) +
                            " rows eliminated, " + std::to_string(treated->kept.size()) +
-                           " kept as multipliers (their master-slave transform would fill in)"};
+                           " kept as multipliers (their master-slave transform would fill in, "
+                           "or their coupled group is too large to build it)"};
 }
 
 void refuse_inapplicable(const Model& model, Scheme scheme, const SourcePoint& chosen_at) {
