@@ -82,12 +82,18 @@ void ModelBuilder::report_joints() {
     return b == Mechanism::kGround ? std::string("ground")
                                    : m.bodies[static_cast<std::size_t>(b)].name;
   };
+  // Each joint's rows, in one pass over the rows (a pass per joint was quadratic on a chain).
+  std::vector<std::vector<std::size_t>> rows_of(m.joints.size());
+  for (std::size_t i = 0; i < row_joint_.size(); ++i) {
+    const int j = row_joint_[i];
+    if (j >= 0 && static_cast<std::size_t>(j) < rows_of.size())
+      rows_of[static_cast<std::size_t>(j)].push_back(i);
+  }
   for (std::size_t j = 0; j < m.joints.size(); ++j) {
     const auto& joint = m.joints[j];
     std::vector<std::string> rows;
     bool rheonomic = false;
-    for (std::size_t i = 0; i < row_joint_.size(); ++i) {
-      if (row_joint_[i] != static_cast<int>(j)) continue;
+    for (const std::size_t i : rows_of[j]) {
       rows.push_back(model_.constraints[i].name);
       rheonomic = rheonomic || row_rheonomic_[i];
     }

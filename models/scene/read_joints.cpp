@@ -187,14 +187,12 @@ void SceneReader::read_joints(const toml::node& node, Mechanism& mechanism) cons
     Mechanism::Joint j = read_joint(*this, mechanism, *arr.get(i), p, i);
     const auto* name_node = arr.get(i)->as_table()->get("name");
     const toml::node& at_node = name_node != nullptr ? *name_node : *arr.get(i);
-    for (const auto& b : mechanism.bodies) {
-      if (b.name == j.name) {
-        fail(at_node, join(p, "name"),
-             "'" + j.name +
-                 "' is also a body's name: joints and bodies name output columns "
-                 "alike (" +
-                 j.name + ".x, " + j.name + ".fx), so their names must be distinct");
-      }
+    if (find_body(mechanism, j.name) >= 0) {
+      fail(at_node, join(p, "name"),
+           "'" + j.name +
+               "' is also a body's name: joints and bodies name output columns "
+               "alike (" +
+               j.name + ".x, " + j.name + ".fx), so their names must be distinct");
     }
     if (const auto [at, fresh] = seen.emplace(j.name, i); !fresh) {
       fail(at_node, join(p, "name"),

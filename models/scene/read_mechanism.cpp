@@ -71,15 +71,25 @@ std::vector<Mechanism::Marker> SceneReader::read_markers(const toml::node& node,
   return out;
 }
 
+int SceneReader::find_body(const Mechanism& mechanism, const std::string& name) const {
+  // Built again when the bodies are not those it holds (they are read once, before any lookup).
+  if (body_at_of_ != &mechanism || body_at_.size() != mechanism.bodies.size()) {
+    body_at_.clear();
+    for (std::size_t b = 0; b < mechanism.bodies.size(); ++b)
+      body_at_.emplace(mechanism.bodies[b].name, static_cast<int>(b));
+    body_at_of_ = &mechanism;
+  }
+  const auto at = body_at_.find(name);
+  return at == body_at_.end() ? -1 : at->second;
+}
+
 int SceneReader::body_index(const Mechanism& mechanism, const toml::node& node,
                             const std::string& path, const std::string* given) const {
   const std::string name = given != nullptr ? *given : string(node, path);
   if (name == kGroundName) return Mechanism::kGround;
+  if (const int b = find_body(mechanism, name); b >= 0) return b;
   std::vector<std::string> names{std::string(kGroundName)};
-  for (std::size_t b = 0; b < mechanism.bodies.size(); ++b) {
-    if (mechanism.bodies[b].name == name) return static_cast<int>(b);
-    names.push_back(mechanism.bodies[b].name);
-  }
+  for (const auto& body : mechanism.bodies) names.push_back(body.name);
   const auto near = nearest_names(name, names, 3);
   fail(node, path,
        "unknown body '" + name + "' (" +

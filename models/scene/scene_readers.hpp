@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -133,6 +134,12 @@ class SceneReader : public TomlAccess {
   mutable std::vector<std::string> input_files_;
   /// The matrix model's DOF count once [model] is read (0: not a matrix model, or not yet).
   mutable long long matrix_dofs_ = 0;
+  /// The index of a mechanism's body by its name (-1: none), from a table of its names built
+  /// once: a search through the bodies for each joint's two made reading a chain quadratic in
+  /// its bodies.
+  [[nodiscard]] int find_body(const Mechanism& mechanism, const std::string& name) const;
+  mutable std::unordered_map<std::string, int> body_at_;  ///< find_body's table
+  mutable const Mechanism* body_at_of_ = nullptr;         ///< the mechanism it was built for
 };
 
 }  // namespace condyn
