@@ -90,6 +90,8 @@ py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const Bu
   d["max_drift_velocity"] = s.max_drift_velocity;
   d["worst_drift_joint"] =
       s.worst_drift_joint.empty() ? py::object(py::none()) : py::str(s.worst_drift_joint);
+  d["worst_drift_body"] =
+      s.worst_drift_body.empty() ? py::object(py::none()) : py::str(s.worst_drift_body);
   d["max_abs_mu"] = s.max_abs_mu < 0.0 ? py::object(py::none()) : py::float_(s.max_abs_mu);
   d["unknowns"] = s.unknowns;
   d["jacobian_nonzeros"] = s.jacobian_nonzeros;

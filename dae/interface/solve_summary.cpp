@@ -120,7 +120,7 @@ std::optional<std::string> SolveSummary::drift_warning(double rtol, double atol)
   s.precision(3);
   s << "warning: the constraints drifted by " << max_relative_drift_position
     << " (the largest |phi_i| / max_j |A_ij| over the run, a length"
-    << (worst_drift_joint.empty() ? "" : ", at joint " + worst_drift_joint) << "), beyond "
+    << (worst_drift_place().empty() ? "" : ", at " + worst_drift_place()) << "), beyond "
     << static_cast<int>(kDriftMultiple) << " (rtol max|u| + atol) = " << allowed
     << ": the result does not hold its constraints to the tolerance asked; ";
   if (scheme == "penalty") {
@@ -132,6 +132,12 @@ std::optional<std::string> SolveSummary::drift_warning(double rtol, double atol)
     s << "tighten rtol, or compare with projection, which holds the drift at every step";
   }
   return s.str();
+}
+
+std::string SolveSummary::worst_drift_place() const {
+  if (!worst_drift_joint.empty()) return "joint " + worst_drift_joint;
+  if (!worst_drift_body.empty()) return "the rigid-body rows of body " + worst_drift_body;
+  return "";
 }
 
 std::string SolveSummary::brief() const {
@@ -150,7 +156,11 @@ std::string SolveSummary::brief() const {
     s << wall_ms;
   }
   s << " ms, max drift position " << max_drift_position << " velocity " << max_drift_velocity;
-  if (!worst_drift_joint.empty()) s << " (worst joint " << worst_drift_joint << ")";
+  if (!worst_drift_joint.empty()) {
+    s << " (worst joint " << worst_drift_joint << ")";
+  } else if (!worst_drift_body.empty()) {
+    s << " (worst: " << worst_drift_place() << ")";
+  }
   if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
   if (!notes.empty()) s << "; " << notes_text();
   return s.str();

@@ -167,6 +167,9 @@ struct SolveSummary {
   /// A mechanism's joint where max_relative_drift_position was reached (its rows are named
   /// "<joint>.<what>"); empty for other models, or when nothing drifted.
   std::string worst_drift_joint;
+  /// The body whose rigid-body rows (natural coordinates' unit-length and orthogonality rows)
+  /// held max_relative_drift_position, when those rows, not a joint's, drifted most; else empty.
+  std::string worst_drift_body;
   /// GGL only: max |μ| over the output times (μ vanishes on exact solutions); −1 otherwise.
   double max_abs_mu = -1.0;
   /// max |u| over the output rows (those before a failure included).
@@ -205,6 +208,8 @@ struct SolveSummary {
   void set_reached(double t);
   /// One line for the terminal.
   [[nodiscard]] std::string brief() const;
+  /// Where the worst drift was: "joint hinge", "the rigid-body rows of body rod1", or "".
+  [[nodiscard]] std::string worst_drift_place() const;
 };
 
 /// Sets `summary.wall_seconds` to the time since its construction when it goes out of scope: on

@@ -12,6 +12,7 @@
 #include "dae/run/energy_balance.hpp"
 #include "dae/run/singular_passages.hpp"
 #include "models/core/constraint_drift.hpp"
+#include "models/core/mechanism.hpp"
 
 namespace condyn {
 
@@ -32,13 +33,18 @@ void summarize_drift(SolveResult& result, double max_dp, double max_dv, double m
       std::max(streamed_max_u, u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0);
 }
 
-/// The joint of constraint row `row` of a mechanism, whose rows are named "<joint>.<what>"
-/// (the name up to its last '.'); "" for another model's row or no row.
-std::string drift_joint(const Model& model, int row) {
-  if (!model.outputs || row < 0 || row >= model.constraint_count()) return "";
+/// Where a mechanism drifted most (constraint row `row`): the body whose rigid-body row it is
+/// (rigid_row_body), or else its joint (rows are named "<joint>.<what>": the name up to its last
+/// '.'); neither for another model's row or no row.
+void name_worst_drift(const Model& model, int row, SolveSummary& summary) {
+  if (!model.outputs || row < 0 || row >= model.constraint_count()) return;
   const std::string& name = model.constraints[static_cast<std::size_t>(row)].name;
+  if (std::string body = rigid_row_body(name); !body.empty()) {
+    summary.worst_drift_body = std::move(body);
+    return;
+  }
   const std::size_t dot = name.rfind('.');
-  return dot == std::string::npos || dot == 0 ? "" : name.substr(0, dot);
+  if (dot != std::string::npos && dot != 0) summary.worst_drift_joint = name.substr(0, dot);
 }
 
 /// The energy balance's integrals over every internal step (EnergyTerms::powers at the
@@ -182,7 +188,7 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
     result.trajectory = assemble(raw);
   }
   summarize_drift(result, max_dp, max_dv, max_relative, log.max_abs_displacement());
-  result.summary.worst_drift_joint = drift_joint(model, worst_row);
+  name_worst_drift(model, worst_row, result.summary);
   if (passages) {
     result.summary.singular_passages = passages->passages();
     if (!streamed) {

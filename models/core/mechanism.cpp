@@ -26,4 +26,15 @@ const char* to_string(Mechanism::JointType type) {
   return "unknown";
 }
 
+std::string rigid_row_body(std::string_view row_name) {
+  const std::size_t dot = row_name.rfind('.');
+  if (dot == std::string_view::npos || dot == 0) return "";
+  const std::string_view what = row_name.substr(dot + 1);
+  // "rigid" in 2D; "rigid_" and two axis letters in 3D.
+  const bool rigid =
+      what == kRigidRow || (what.size() == kRigidRow.size() + 3 && what.starts_with(kRigidRow) &&
+                            what[kRigidRow.size()] == '_');
+  return rigid ? std::string(row_name.substr(0, dot)) : "";
+}
+
 }  // namespace condyn

@@ -10,6 +10,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "models/core/source_point.hpp"
@@ -98,5 +99,14 @@ struct Mechanism {
 };
 
 [[nodiscard]] const char* to_string(Mechanism::JointType type);
+
+/// What a body's rigid-body rows are named after the body's name: "<body>.rigid" in 2D (its unit
+/// x axis), "<body>.rigid_xx" … "<body>.rigid_yz" in 3D (its rotation's unit and orthogonal
+/// columns). Joints' rows are named "<joint>.<what>" with other endings.
+inline constexpr std::string_view kRigidRow = "rigid";
+
+/// The body whose rigid-body row `row_name` is ("rod1" of "rod1.rigid" or "rod1.rigid_xy"), or ""
+/// for any other row (a joint's).
+[[nodiscard]] std::string rigid_row_body(std::string_view row_name);
 
 }  // namespace condyn

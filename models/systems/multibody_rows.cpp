@@ -108,7 +108,7 @@ void add_rigid_rows(const Mechanism& m, const MultibodyGeometry& g, MultibodyRow
     const int k = static_cast<int>(b);
     if (m.dimension == 2) {
       const AffineVector u = g.direction(k, Eigen::Vector3d::UnitX());
-      out.add("rigid", "unit x axis of " + body.name + ": (|u|^2 - 1)/2 = 0",
+      out.add(std::string(kRigidRow), "unit x axis of " + body.name + ": (|u|^2 - 1)/2 = 0",
               plus_constant(dot(u, u).scaled(0.5), -0.5));
       continue;
     }
@@ -118,7 +118,7 @@ void add_rigid_rows(const Mechanism& m, const MultibodyGeometry& g, MultibodyRow
     for (int c = 0; c < 3; ++c) R.push_back(g.direction(k, Eigen::Vector3d::Unit(c)));
     for (int c = 0; c < 3; ++c) {
       const std::string n = names[c];
-      out.add("rigid_" + n + n,
+      out.add(std::string(kRigidRow) + "_" + n + n,
               "unit column " + n + " of " + body.name + "'s rotation: (|R_" + n + "|^2 - 1)/2 = 0",
               plus_constant(
                   dot(R[static_cast<std::size_t>(c)], R[static_cast<std::size_t>(c)]).scaled(0.5),
@@ -126,7 +126,7 @@ void add_rigid_rows(const Mechanism& m, const MultibodyGeometry& g, MultibodyRow
     }
     for (const auto& [i, j] : {std::pair{0, 1}, std::pair{0, 2}, std::pair{1, 2}}) {
       const std::string a = names[i], c = names[j];
-      out.add("rigid_" + a + c,
+      out.add(std::string(kRigidRow) + "_" + a + c,
               "orthogonal columns of " + body.name + "'s rotation: R_" + a + ".R_" + c + " = 0",
               dot(R[static_cast<std::size_t>(i)], R[static_cast<std::size_t>(j)]));
     }

@@ -65,6 +65,7 @@ def test_a_model_of_dofs_names_every_quantity_by_its_dofs():
     assert r.reaction_names == r.dof_names
     assert r.points is None and r.point_names == []
     assert r.summary["worst_drift_joint"] is None
+    assert r.summary["worst_drift_body"] is None
 
 
 def test_a_mechanism_shows_its_bodies_and_joints_as_the_cli_csv(cli, tmp_path):

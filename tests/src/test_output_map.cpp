@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "dae/run/mapped_rows.hpp"
+#include "models/core/mechanism.hpp"
 #include "models/core/output_map.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "src/output/csv_output.hpp"
@@ -391,6 +392,24 @@ TEST_CASE("the drift summary names a mechanism's worst joint, grouping rows by n
   const SolveResult plain = test::solved(model, test::under(p.scene.spec.solve, Scheme::index1));
   CHECK(plain.summary.worst_drift_joint.empty());
   CHECK(plain.summary.brief().find("worst joint") == std::string::npos);
+}
+
+TEST_CASE("a body's rigid-body rows that drift most are named as the body's, not as a joint") {
+  Revolving p;
+  Model& model = p.scene.model;
+  // The rod's row named as a body's unit-length row (natural coordinates name them so).
+  model.constraints[static_cast<std::size_t>(p.rod)].name = "bob.rigid";
+  const SolveResult r = test::solved(model, test::under(p.scene.spec.solve, Scheme::index1));
+  CHECK(r.summary.max_relative_drift_position > 0.0);
+  CHECK(r.summary.worst_drift_joint.empty());
+  CHECK(r.summary.worst_drift_body == "bob");
+  CHECK(r.summary.brief().find("(worst: the rigid-body rows of body bob)") != std::string::npos);
+  CHECK(r.summary.brief().find("worst joint") == std::string::npos);
+  // Which names are a body's rigid rows: "rigid" (2D), "rigid_" and two axes (3D), nothing else.
+  CHECK(rigid_row_body("rod1.rigid") == "rod1");
+  CHECK(rigid_row_body("link1.rigid_xz") == "link1");
+  for (const char* joint_row : {"hinge.x", "rigid.x", "hinge.rigidity", "hinge.rigid_x", ".rigid"})
+    CHECK(rigid_row_body(joint_row).empty());
 }
 
 TEST_CASE("[output] points is refused for a model without named points") {
