@@ -30,7 +30,8 @@ namespace condyn {
 // 11. The rank check drops redundant rows (or refuses dependent ones) before the checks that go
 //     through the rows one by one or count them: initial consistency, the mass matrix on the
 //     motions A allows, and [solve] slaves (one per remaining constraint). A nonlinear model's
-//     system is restricted to the kept rows once they are final (keep_independent_rows).
+//     system is restricted to the kept rows once they are final (keep_independent_rows), and a
+//     mechanism's joints are reported with the rows they keep and those dropped (report_joints).
 // 12. solve_static_initial ([initial] static = true) factors [K Aᵀ; A 0]: after the rank check
 //     (11), whose dropped rows would make it singular; check_initial_consistency then tests the
 //     final state (7 or 12) against the remaining rows (11).
@@ -80,6 +81,7 @@ Model ModelBuilder::build() {
   check_degenerate_dofs();
   while (const auto dependent = check_rank()) drop_constraint(*dependent);
   keep_independent_rows();
+  if (spec_.model.mechanism) report_joints();  // its rows as kept (after the drops)
   apply_modal_damping();  // from the modes of the constrained model: after the rows are final
   if (spec_.initial.static_start) solve_static_initial();
   check_initial_consistency();

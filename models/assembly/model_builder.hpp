@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "models/assembly/build_model.hpp"
@@ -201,6 +202,8 @@ class ModelBuilder {
   /// A mechanism's rows: the joint of each (−1: a body's rigid row), and which depend on t.
   std::vector<int> row_joint_;
   std::vector<bool> row_rheonomic_;
+  /// A mechanism's rows that redundant = "drop" removed: (joint, row name), in the order dropped.
+  std::vector<std::pair<int, std::string>> dropped_joint_rows_;
 };
 
 }  // namespace condyn

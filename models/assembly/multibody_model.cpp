@@ -71,11 +71,11 @@ void ModelBuilder::build_mechanism() {
       (m.bodies.size() == 1 ? "y" : "ies") + ", " + std::to_string(m.joints.size()) + " joint" +
       (m.joints.size() == 1 ? "" : "s") + ", " + std::to_string(m.forces.size()) +
       " force element" + (m.forces.size() == 1 ? "" : "s") + " (natural coordinates)";
-  report_joints();
 }
 
 /// BuildReport::joints: per joint its type, bodies and rows, classed as the chapter classes
-/// constraints (every joint row is holonomic, position level; a drive's rows depend on t).
+/// constraints (every joint row is holonomic, position level; a drive's rows depend on t). The
+/// rows as the model keeps them, after redundant = "drop": those kept, then those dropped.
 void ModelBuilder::report_joints() {
   const Mechanism& m = *spec_.model.mechanism;
   const auto body_name = [&](int b) {
@@ -97,12 +97,23 @@ void ModelBuilder::report_joints() {
       rows.push_back(model_.constraints[i].name);
       rheonomic = rheonomic || row_rheonomic_[i];
     }
-    std::string names;
-    for (const auto& r : rows) names += (names.empty() ? "" : ", ") + r;
+    std::vector<std::string> dropped;
+    for (const auto& [row_joint, name] : dropped_joint_rows_)
+      if (row_joint == static_cast<int>(j)) dropped.push_back(name);
+    const auto listed = [](const std::vector<std::string>& names) {
+      std::string text;
+      for (const auto& r : names) text += (text.empty() ? "" : ", ") + r;
+      return text;
+    };
+    std::string rows_text = std::to_string(rows.size()) + " row" + (rows.size() == 1 ? "" : "s") +
+                            (rows.empty() ? "" : " (" + listed(rows) + ")");
+    if (!dropped.empty()) {
+      rows_text +=
+          ", " + std::to_string(dropped.size()) + " dropped as redundant (" + listed(dropped) + ")";
+    }
     report_.joints.push_back(joint.name + " (" + to_string(joint.type) + ", " +
                              body_name(joint.bodies[0]) + " - " + body_name(joint.bodies[1]) +
-                             "): " + std::to_string(rows.size()) + " row" +
-                             (rows.size() == 1 ? "" : "s") + " (" + names + "), holonomic, " +
+                             "): " + rows_text + ", holonomic, " +
                              (rheonomic ? "rheonomic (driven)" : "scleronomic"));
   }
 }

@@ -36,6 +36,7 @@ void ModelBuilder::drop_constraint(const Dependent& d) {
   model_.dropped_constraints.push_back(model_.constraints[row].name);
   model_.constraints.erase(model_.constraints.begin() + d.row);
   if (!row_joint_.empty()) {  // a mechanism's rows: their joints stay aligned with the rows
+    dropped_joint_rows_.emplace_back(row_joint_[row], model_.dropped_constraints.back());
     row_joint_.erase(row_joint_.begin() + d.row);
     row_rheonomic_.erase(row_rheonomic_.begin() + d.row);
   }

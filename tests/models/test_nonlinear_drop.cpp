@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "models/assembly/build_model.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "models/systems/row_subset_system.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/system_check.hpp"
@@ -299,4 +301,38 @@ TEST_CASE("another independent subset of the redundant rows runs the same motion
     check_same_motion(other, run.trajectory, ref.trajectory, rtol);
     check_lengths(other, run.trajectory, ref.trajectory, rtol);
   }
+}
+
+TEST_CASE("a mechanism's joints are listed with the rows kept after redundant = \"drop\"") {
+  BuildReport report;
+  const Model model = build_model(
+      parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/iftomm/A04_bricard.toml"),
+      report);
+  REQUIRE(model.dropped_constraints == std::vector<std::string>{"J2.x"});
+  // The joint the rank check dropped a row of: its remaining rows, then the one dropped.
+  REQUIRE(report.joints.size() == 6);
+  CHECK(report.joints[1].find("J2 (revolute, link1 - link2): 4 rows (J2.y, J2.z, J2.axis_b, "
+                              "J2.axis_c), 1 dropped as redundant (J2.x), holonomic") == 0);
+  // Every joint's line names exactly the model's rows of that joint, and its dropped ones.
+  std::size_t dropped_listed = 0;
+  for (const std::string& line : report.joints) {
+    CAPTURE(line);
+    const std::string joint = line.substr(0, line.find(' '));
+    std::vector<std::string> kept, dropped;
+    for (const auto& c : model.constraints)
+      if (c.name.rfind(joint + ".", 0) == 0) kept.push_back(c.name);
+    for (const auto& d : model.dropped_constraints)
+      if (d.rfind(joint + ".", 0) == 0) dropped.push_back(d);
+    const auto listed = [](const std::vector<std::string>& names) {
+      std::string text;
+      for (const auto& n : names) text += (text.empty() ? "" : ", ") + n;
+      return "(" + text + ")";
+    };
+    const std::string rows = kept.size() == 1 ? " row " : " rows ";
+    CHECK(line.find(": " + std::to_string(kept.size()) + rows + listed(kept)) != std::string::npos);
+    CHECK((line.find("dropped as redundant " + listed(dropped)) != std::string::npos) ==
+          !dropped.empty());
+    dropped_listed += dropped.size();
+  }
+  CHECK(dropped_listed == model.dropped_constraints.size());
 }
