@@ -33,6 +33,8 @@ TrajectoryRow RowAssembler::operator()(double t, Eigen::VectorXd u, Eigen::Vecto
     row.conservative = true;
     row.energy = *energy;
     row.kinetic = 0.5 * v.dot(system_->mass(t, u) * v);
+    if (!energy_scale_) energy_scale_ = model_energy_scale(model_, *system_, t, u, v);
+    row.energy_scale = *energy_scale_;
   }
   if (energy_) {
     row.balance = energy_->at(t, u, v, integrals);
@@ -54,6 +56,7 @@ void RowLog::add(const TrajectoryRow& row) {
   if (row.conservative) {
     energy_.push_back(row.energy);
     kinetic_.push_back(row.kinetic);
+    energy_scale_ = std::max(energy_scale_, row.energy_scale);
   }
   if (row.balance) balance_.push_back(*row.balance);
 }
@@ -69,6 +72,7 @@ Trajectory RowLog::trajectory() const {
   out.drift_velocity = vector(drift_velocity_);
   out.energy = vector(energy_);
   out.kinetic = vector(kinetic_);
+  out.energy_scale = energy_scale_;
   out.balance = balance_;
   out.near_singular = near_singular_;
   return out;
@@ -121,10 +125,29 @@ Trajectory assemble_trajectory(const Model& model, const std::vector<double>& ti
     if (row.conservative) {
       grow(out.energy, nt, row.energy);
       grow(out.kinetic, nt, row.kinetic);
+      out.energy_scale = std::max(out.energy_scale, row.energy_scale);
     }
     if (row.balance) out.balance.push_back(*row.balance);
   }
   return out;
+}
+
+double model_energy_scale(const Model& model, MechanicalSystem& system, double t,
+                          const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(u.size());
+  system.force(t, u, v, f);
+  // A linear model starting at its static equilibrium has f = f_ext − K u = 0: its loads count.
+  const double force = std::max(f.lpNorm<1>(), model.applied_forces(t).lpNorm<1>());
+  const double size = std::max(system.coordinate_scale(), u.lpNorm<Eigen::Infinity>());
+  const double scale = force * size;
+  return std::isfinite(scale) ? scale : 0.0;
+}
+
+double energy_error_scale(const Trajectory& traj) {
+  if (traj.energy.size() == 0) return 0.0;
+  double scale = std::max(std::abs(traj.energy[0]), traj.energy_scale);
+  if (traj.kinetic.size() > 0) scale = std::max(scale, traj.kinetic.maxCoeff());
+  return scale;
 }
 
 double relative_energy_error(const Trajectory& traj) {
@@ -134,8 +157,7 @@ double relative_energy_error(const Trajectory& traj) {
   if (!traj.energy.allFinite() || !traj.kinetic.allFinite()) {
     return std::numeric_limits<double>::quiet_NaN();
   }
-  double scale = std::abs(traj.energy[0]);
-  if (traj.kinetic.size() > 0) scale = std::max(scale, traj.kinetic.maxCoeff());
+  const double scale = energy_error_scale(traj);
   const double worst = (traj.energy.array() - traj.energy[0]).abs().maxCoeff();
   return scale > 0.0 ? worst / scale : worst;
 }

@@ -48,6 +48,8 @@ struct TrajectoryRow {
   double drift_position = 0.0, drift_velocity = 0.0;
   bool conservative = false;  ///< energy and kinetic are set
   double energy = 0.0, kinetic = 0.0;
+  /// With the energies: the model's own energy scale (model_energy_scale at the first row).
+  double energy_scale = 0.0;
   /// The energy balance at this row, when asked for (IntegratorOptions::energy_balance).
   std::optional<EnergyBalance> balance;
   /// Named points' global positions (a mapped row: dae/run/mapped_rows.hpp); else empty.
@@ -82,6 +84,7 @@ class RowAssembler {
   std::optional<bool> conservative_;                    ///< decided at the first row
   std::optional<EnergyTerms> energy_;                   ///< set when the balance is asked for
   std::optional<double> initial_energy_;                ///< T + V at the first row
+  std::optional<double> energy_scale_;                  ///< model_energy_scale at the first row
 };
 
 struct Trajectory {
@@ -99,6 +102,10 @@ struct Trajectory {
   Eigen::VectorXd energy;
   /// nt kinetic energies ½ vᵀM v beside `energy` (the scale of its error); empty otherwise.
   Eigen::VectorXd kinetic;
+  /// Beside `energy`: the model's own energy scale (model_energy_scale), so that the error of a
+  /// model whose energies all stay near zero (at rest in an unstable equilibrium) is relative to
+  /// something of the model's size, not to the roundoff of its energies.
+  double energy_scale = 0.0;
   /// nt energy balances (IntegratorOptions::energy_balance); empty unless asked for.
   std::vector<EnergyBalance> balance;
   std::vector<StepRecord> steps;  ///< every internal step, when IntegratorOptions::record_steps
@@ -110,9 +117,22 @@ struct Trajectory {
   std::vector<bool> near_singular;
 };
 
-/// Max-norm energy error max_t |E(t) − E(0)| relative to the energy scale max(|E(0)|, max_t T(t))
-/// (T the kinetic energy; the scale is never zero for a moving model). −1 without energies; NaN
-/// when an energy leaves the double range (no figure can be given).
+/// The work of the forces a model starts under over its size: ‖f(t, u, v)‖₁ · max(ℓ, ‖u‖∞), f the
+/// applied forces (MechanicalSystem::force: loads, gravity, springs; or the loads alone, when
+/// larger) and ℓ the system's coordinate scale (MechanicalSystem::coordinate_scale). The energy
+/// the forces can exchange with the motion is of this order, whatever the potential's reference:
+/// a pendulum of mass m and length L has m g L.
+[[nodiscard]] double model_energy_scale(const Model& model, MechanicalSystem& system, double t,
+                                        const Eigen::VectorXd& u, const Eigen::VectorXd& v);
+
+/// The scale of energy errors: max(|E(0)|, max_t T(t), the model's energy_scale) (T the kinetic
+/// energy); 0 without energies.
+[[nodiscard]] double energy_error_scale(const Trajectory& traj);
+
+/// Max-norm energy error max_t |E(t) − E(0)| relative to energy_error_scale (never zero for a
+/// moving model or one under load: a model at rest in an unstable equilibrium, whose energies are
+/// roundoff, is measured against its forces' work over its size). −1 without energies; NaN when
+/// an energy leaves the double range (no figure can be given).
 [[nodiscard]] double relative_energy_error(const Trajectory& traj);
 
 /// What a streamed run keeps of its rows: times, drifts and energies (n-independent), gathered
@@ -129,6 +149,7 @@ class RowLog {
   std::vector<double> t_, drift_position_, drift_velocity_, energy_, kinetic_;
   std::vector<bool> near_singular_;
   double max_abs_u_ = 0.0;
+  double energy_scale_ = 0.0;  ///< the rows' largest TrajectoryRow::energy_scale
   std::vector<EnergyBalance> balance_;
 };
 

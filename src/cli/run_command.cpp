@@ -94,7 +94,8 @@ void print_run_report(std::ostream& msg, const RunArgs& args, const RunOutputs& 
     msg << "energy: not evaluated: an energy leaves the double range (loads or motions too large "
            "for double precision)\n";
   } else if (e >= 0.0) {
-    msg << "energy: max |E(t) - E(0)| = " << e << " relative to max(|E(0)|, max kinetic energy)\n";
+    msg << "energy: max |E(t) - E(0)| = " << e
+        << " relative to max(|E(0)|, max kinetic energy, |f(0)| times the model's size)\n";
   }
   // A streamed run kept its last row (for a model with a published reference): scored alone.
   const std::optional<Trajectory> last_row =

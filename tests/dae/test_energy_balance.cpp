@@ -302,3 +302,62 @@ TEST_CASE("relative_energy_error: NaN, not a figure, when an energy leaves the d
   CHECK(std::isnan(relative_energy_error(traj)));
   CHECK(relative_energy_error(Trajectory{}) == -1.0);  // no energies: none asked for
 }
+
+TEST_CASE("relative_energy_error at rest in an unstable equilibrium: relative to m g L, not 0") {
+  // A pendulum balanced upright, its bob at the origin (the potential's zero) straight above its
+  // pivot, gravity along the rod (9.81 split 0.6 : 0.8, the rod's direction): every energy starts
+  // at 0 and stays at roundoff while the bob barely leaves the top. Relative to max(|E(0)|, max T)
+  // the error read 2.8 (and up to 4e47 where T stayed at 1e-63); relative to the model's energy
+  // scale m g L = 1 · (5.886 + 7.848) · 1 (the 1-norm of the weight) it is roundoff.
+  const std::string solve = R"(
+[solve]
+t_end = 0.2
+output_step = 0.02
+rtol = 1e-8
+atol = 1e-10
+)";
+  const std::string mechanism = R"([model]
+type = "multibody"
+dimension = 2
+gravity = [-5.886, -7.848]
+ground = { O = [-0.6, -0.8] }
+[[body]]
+name = "bob"
+mass = 1.0
+inertia = 0.001
+position = [0.0, 0.0]
+points = { G = [0.0, 0.0] }
+[[joint]]
+name = "rod"
+type = "distance"
+bodies = ["ground", "bob"]
+points = ["O", "G"]
+length = 1.0
+)" + solve;
+  const std::string truss = R"([model]
+type = "truss2d"
+nodes = [[-0.6, -0.8], [0.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [-5.886, -7.848]
+)" + solve;
+  // The energy drifts by the integration error over a slight motion: within rtol of m g L.
+  constexpr double kRtol = 1e-8;
+  constexpr double kWeight = 5.886 + 7.848;
+  for (const auto& [name, text] : {std::pair{"mechanism", mechanism}, std::pair{"truss", truss}}) {
+    CAPTURE(name);
+    const test::BuiltScene s = test::built(parse_scene_text(text, "upright.toml"));
+    for (const bool streamed : {false, true}) {
+      CAPTURE(streamed);
+      RunHooks hooks;
+      if (streamed) hooks.on_row = [](const TrajectoryRow&) {};
+      const SolveResult r = test::solved(s.model, s.spec.solve, hooks);
+      REQUIRE(r.trajectory.energy.size() > 0);
+      CHECK(r.trajectory.energy[0] == 0.0);  // at rest at the potential's zero
+      // ‖f‖₁ = m (5.886 + 7.848) times a size of at least the rod's length.
+      CHECK(r.trajectory.energy_scale >= kWeight);
+      CHECK(relative_energy_error(r.trajectory) < kRtol);
+    }
+  }
+}

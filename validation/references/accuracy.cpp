@@ -30,10 +30,7 @@ ErrorScales error_scales(const Trajectory& trajectory) {
   const double velocity_floor = span > 0.0 ? s.displacement / span : 0.0;
   s.velocity =
       std::max(max_abs(trajectory.v), std::isfinite(velocity_floor) ? velocity_floor : 0.0);
-  if (trajectory.energy.size() > 0) {
-    s.energy = std::abs(trajectory.energy[0]);
-    if (trajectory.kinetic.size() > 0) s.energy = std::max(s.energy, trajectory.kinetic.maxCoeff());
-  }
+  s.energy = energy_error_scale(trajectory);
   return s;
 }
 

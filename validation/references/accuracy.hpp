@@ -21,7 +21,8 @@ struct TrajectoryError {
 /// that a quantity zero at every output row still has its scale).
 struct ErrorScales {
   double displacement = 0.0, velocity = 0.0, reaction = 0.0;
-  /// max(|E(0)|, max_t T(t)), the scale of relative_energy_error; 0 without energies.
+  /// energy_error_scale: max(|E(0)|, max_t T(t), the model's energy scale), the scale of
+  /// relative_energy_error; 0 without energies.
   double energy = 0.0;
 };
 
@@ -38,7 +39,7 @@ struct ErrorScales {
 /// the scale (absolute where the scale is 0: a quantity that is zero throughout).
 [[nodiscard]] TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference,
                                              const ErrorScales& scales);
-/// max_t |E(t) − E(0)| of `run` over max(energy_scale, its own max(|E(0)|, max_t T(t))): −1 without
+/// max_t |E(t) − E(0)| of `run` over max(energy_scale, its own energy_error_scale): −1 without
 /// energies, NaN when an energy leaves the double range (relative_energy_error's rules).
 [[nodiscard]] double relative_energy_error(const Trajectory& run, double energy_scale);
 

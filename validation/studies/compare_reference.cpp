@@ -145,6 +145,7 @@ Trajectory rows_at(const Trajectory& dense, const std::vector<double>& times) {
   out.drift_velocity = pick_vector(dense.drift_velocity);
   out.energy = pick_vector(dense.energy);
   out.kinetic = pick_vector(dense.kinetic);
+  out.energy_scale = dense.energy_scale;
   return out;
 }
 
