@@ -59,6 +59,10 @@ std::string partition_note(const Model& model, const PartitionedOde& ode,
     << " coordinates at the start (" << dof_list(names, first_independent)
     << "), the rest solved by Newton to " << ode.newton_tolerance() << " ("
     << ode.newton_iterations() << " iterations)";
+  if (ode.matrix_free()) {
+    s << "; CVODE's Newton systems by GMRES on difference-quotient products (" << ode.size()
+      << " unknowns, above the dense Jacobian's " << PartitionedOde::kDenseJacobianLimit << ")";
+  }
   const auto& log = ode.repartitions();
   if (log.empty()) return s.str() + ", no re-partition";
   s << "; " << log.size() << (log.size() == 1 ? " re-partition" : " re-partitions");

@@ -77,13 +77,10 @@ PartitionedOde::PartitionedOde(const Model& model, double t0)
                                           "independent constraint rows at the start: ") +
                               why.what());
   }
+  // ni_ = 0: the constraints fix every coordinate (a fully driven mechanism): nothing is
+  // integrated, and full() gives the kinematics (positions by Newton, velocities and
+  // accelerations from the rows) and the reactions (the KKT system) at each time the loop visits.
   ni_ = static_cast<int>(partition_.independent.size());
-  if (ni_ == 0) {
-    throw SchemeNotApplicable(
-        "elimination by coordinate partitioning integrates the independent coordinates, and "
-        "the constraints fix every coordinate of this model (its motion is prescribed): use a "
-        "multiplier scheme (ggl, index1)");
-  }
   if (!factor_dependent(t0)) {
     throw SchemeNotApplicable(
         "elimination by coordinate partitioning: the dependent block of the constraint "
@@ -199,6 +196,11 @@ PartitionedOde::Full PartitionedOde::full(double t, const ConstRef& y) const {
   }
   accelerations(t);
   return {u_, v_, a_acc_, lambda_};
+}
+
+void PartitionedOde::precondition(double gamma, ConstRef r, Ref z) const {
+  z.head(ni_) = r.head(ni_) + gamma * r.tail(ni_);
+  z.tail(ni_) = r.tail(ni_);
 }
 
 void PartitionedOde::rhs(double t, ConstRef y, Ref ydot) const {

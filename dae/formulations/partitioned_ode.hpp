@@ -25,6 +25,10 @@
 /// kRepartitionFraction of it a new partition is chosen at that state and the integration
 /// restarts there (wants_restart, settle), each one logged.
 ///
+/// A model whose constraints fix every coordinate (a fully driven mechanism: n − m = 0) has an
+/// empty state: the loop steps through time without an integrator (integrate_ode), and full()
+/// solves the kinematic problem at each time it visits.
+///
 /// Refuses (SchemeNotApplicable) nonholonomic rows, which have no position form to solve, a
 /// Jacobian rank deficient at t0 and a KKT matrix singular at the initial state.
 
@@ -76,6 +80,19 @@ class PartitionedOde final : public OdeProblem {
   }
   void project_error(Ref /*err*/) const override {}
   [[nodiscard]] bool wants_restart(double t, ConstRef y) const override;
+  /// Above kDenseJacobianLimit unknowns (or as set_matrix_free says): GMRES on difference-quotient
+  /// products instead of the dense Jacobian, whose 2(n − m) columns each cost a right-hand side
+  /// (a Newton solve of the positions and a KKT solve) and whose (2(n − m))² entries grow with
+  /// the model: a chain of 10⁴ bars would need 3.2 GB and 2·10⁴ evaluations a Jacobian.
+  [[nodiscard]] bool matrix_free() const override {
+    return matrix_free_.value_or(size() > kDenseJacobianLimit);
+  }
+  /// Forces the choice of matrix_free() (tests compare both on one model).
+  void set_matrix_free(bool on) { matrix_free_ = on; }
+  /// The kinematic part of I − γJ, J = [0 I; ∂q''/∂q ∂q''/∂w]: P = [I −γI; 0 I], so
+  /// z = [r_q + γ r_w; r_w]. Exact for free motion; GMRES resolves the forces' part, which
+  /// γ ∂q''/∂(q, w) keeps near the identity on the steps a non-stiff mechanism takes.
+  void precondition(double gamma, ConstRef r, Ref z) const override;
   /// At a restart wants_restart asked for: y re-expressed in the new partition.
   void settle(double t, Eigen::VectorXd& y) const override;
 
@@ -100,6 +117,11 @@ class PartitionedOde final : public OdeProblem {
   /// The Newton iteration's cap: from a warm start within a step of the solution it converges
   /// quadratically in two or three; more means the step went too far (CVODE then cuts it).
   static constexpr int kMaxNewtonIterations = 12;
+  /// The largest state (2(n − m) unknowns) whose Newton systems use CVODE's dense
+  /// difference-quotient Jacobian: 64 unknowns are 4096 entries and 64 right-hand sides a
+  /// Jacobian, a fixed-size block; every mechanism of models/scenes/ stays below it (results
+  /// unchanged), a chain of 32 bars or more goes above.
+  static constexpr int kDenseJacobianLimit = 64;
 
  private:
   /// u on the constraints at (t, q_i) (Newton), with A(t, u) evaluated and A_d factored at it.
@@ -120,6 +142,7 @@ class PartitionedOde final : public OdeProblem {
   int n_, m_, ni_;
   std::vector<int> integrable_velocity_rows_;
   double tolerance_ = 0.0;
+  std::optional<bool> matrix_free_;  ///< set_matrix_free; unset: by size
   mutable CoordinatePartition partition_;
   mutable double reference_ratio_ = 1.0;
   mutable std::optional<CoordinatePartition> pending_;

@@ -1,6 +1,7 @@
 #include "dae/integrators/cvode_integrator.hpp"
 
 #include "dae/integrators/newton_linear_solver.hpp"
+#include "dae/integrators/no_unknowns.hpp"
 #include "dae/integrators/sundials_raii.hpp"
 #include "dae/integrators/sundials_stepper.hpp"
 #include "dae/integrators/vector_ops.hpp"
@@ -10,6 +11,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <exception>
@@ -81,6 +83,22 @@ int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N
     return c.allFinite() ? 0 : 1;
   });
 }
+
+/// z = P⁻¹ r for GMRES (OdeProblem::precondition); CVODE's γ, the Newton matrix's I − γJ.
+int precondition_trampoline(double /*t*/, N_Vector /*y*/, N_Vector /*fy*/, N_Vector r, N_Vector z,
+                            double gamma, double /*delta*/, int /*lr*/, void* user) {
+  auto* data = static_cast<CallbackData*>(user);
+  return sundials::guarded(*data->report, [&] {
+    auto out = view(z);
+    data->problem->precondition(gamma, view(r), out);
+    return out.allFinite() ? 0 : 1;
+  });
+}
+
+/// GMRES's Krylov dimension for a matrix-free problem: twice SUNDIALS' default of 5, so that a
+/// Newton system the kinematic preconditioner leaves a few forces' modes in converges without
+/// restarts (GMRES restarts are not enabled).
+constexpr int kKrylovDimension = 10;
 
 /// What a CVODE return flag says happened (by its code, never its text).
 FailureKind failure_kind(int flag) {
@@ -159,6 +177,9 @@ class Cvode final : public sundials::SundialsStepper {
                    CVodeGetNumSteps(mem, &steps) == CV_SUCCESS;
           }));
       if (!solver_) throw IntegrationError("could not create the sparse Newton solver");
+    } else if (problem.matrix_free()) {
+      solver_.reset(SUNLinSol_SPGMR(y_.get(), SUN_PREC_LEFT, kKrylovDimension, ctx_.get()));
+      if (!solver_) throw IntegrationError("could not create the GMRES linear solver");
     } else {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
@@ -176,6 +197,10 @@ class Cvode final : public sundials::SundialsStepper {
     check(CVodeSVtolerances(mem_.get(), options.rtol, work_.get()),
           "CVodeSVtolerances");  // copies the vector
     check(CVodeSetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
+    if (!newton_ && !matrix_) {  // GMRES: J v by CVODE's difference quotients, our P
+      check(CVodeSetPreconditioner(mem_.get(), nullptr, precondition_trampoline),
+            "CVodeSetPreconditioner");
+    }
     if (problem.has_projection()) {
       check(CVodeSetProjFn(mem_.get(), projection_trampoline), "CVodeSetProjFn");
       check(CVodeSetProjErrEst(mem_.get(), SUNTRUE), "CVodeSetProjErrEst");
@@ -228,9 +253,11 @@ class Cvode final : public sundials::SundialsStepper {
   void set_stop_time(double t) override {
     check(CVodeSetStopTime(mem_.get(), t), "CVodeSetStopTime");
   }
-  /// Entries of the matrix the Newton iterations factor: the problem's sparse one, else dense.
+  /// Entries of the matrix the Newton iterations factor: the problem's sparse one, the dense one,
+  /// or none (GMRES on products).
   [[nodiscard]] long jacobian_nonzeros() const {
-    return newton_ ? newton_->nonzeros() : static_cast<long>(n_) * static_cast<long>(n_);
+    if (newton_) return newton_->nonzeros();
+    return matrix_ ? static_cast<long>(n_) * static_cast<long>(n_) : 0;
   }
 
  private:
@@ -276,6 +303,13 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
   const WallTimer timer(summary);
   const double t0 = options.output_times.front();
   problem.begin_segment(t0);
+  if (problem.size() == 0) {  // every coordinate fixed: the loop visits the times, nothing else
+    NoUnknowns none([&problem](double t) { problem.begin_segment(t); }, options.output_times);
+    RawTrajectory out = drive(none, y0, y0, options, summary);
+    summary.unknowns = 0;
+    summary.set_reached(options.output_times.back());
+    return out;
+  }
   Eigen::VectorXd y_start = y0;
   problem.settle(t0, y_start);
   Cvode cvode(problem, y_start, t0, options);

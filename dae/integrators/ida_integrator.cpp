@@ -422,7 +422,7 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
   const WallTimer timer(summary);
   const double t0 = options.output_times.front();
   if (problem.size() == 0) {
-    NoUnknowns none(problem, options.output_times);
+    NoUnknowns none([&problem](double t) { problem.begin_segment(t); }, options.output_times);
     problem.begin_segment(t0);
     RawTrajectory out = drive(none, y0, y0, options, summary);
     summary.unknowns = 0;

@@ -1,11 +1,13 @@
 #include "dae/integrators/no_unknowns.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace condyn {
 
-NoUnknowns::NoUnknowns(DaeProblem& problem, const std::vector<double>& output_times)
-    : problem_(problem),
+NoUnknowns::NoUnknowns(std::function<void(double)> begin_segment,
+                       const std::vector<double>& output_times)
+    : begin_segment_(std::move(begin_segment)),
       max_step_((output_times.back() - output_times.front()) /
                 (32.0 * static_cast<double>(std::max<std::size_t>(output_times.size() - 1, 1)))),
       t_(output_times.front()) {}
@@ -21,7 +23,7 @@ void NoUnknowns::interpolate(double /*t*/, Eigen::VectorXd& y, Eigen::VectorXd& 
 }
 
 void NoUnknowns::restart(double t) {
-  problem_.begin_segment(t);
+  begin_segment_(t);
   t_ = t;
 }
 

@@ -44,8 +44,15 @@ class OdeProblem {
   [[nodiscard]] virtual bool wants_restart(double /*t*/, ConstRef /*y*/) const { return false; }
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
-  /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian.
+  /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian
+  /// (size² entries, size right-hand sides a Jacobian), unless matrix_free().
   [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }
+  /// Without newton_system(): true when CVODE is to solve the Newton systems (I − γJ) x = r by
+  /// GMRES with its own difference-quotient products J v (one right-hand side each, nothing of
+  /// size²), preconditioned by precondition(). False by default (the dense Jacobian).
+  [[nodiscard]] virtual bool matrix_free() const { return false; }
+  /// z ≈ (I − γJ)⁻¹ r for a matrix_free() problem's GMRES; z = r by default.
+  virtual void precondition(double /*gamma*/, ConstRef r, Ref z) const { z = r; }
 };
 
 }  // namespace condyn

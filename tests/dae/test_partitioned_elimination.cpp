@@ -6,11 +6,14 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 #include <string>
 
 #include "dae/formulations/coordinate_partition.hpp"
 #include "dae/formulations/partitioned_ode.hpp"
+#include "dae/integrators/cvode_integrator.hpp"
 #include "dae/run/scheme_choice.hpp"
 #include "dae/run/solve.hpp"
 #include "models/core/constraint_drift.hpp"
@@ -46,12 +49,13 @@ double row_drift(const Model& model, const Trajectory& run) {
 
 constexpr double kRtol = 1e-10;
 
-/// The Newton tolerance of a run at atol = rtol/100 (scene()): 1e-3 atol (elimination_run.cpp's
-/// kNewtonMargin), floored at 16 ulps of the coordinates' size (partitioned_ode.cpp's
-/// kRoundoffUlps; the largest of the run's |u| and the system's coordinate scale).
-double newton_tolerance(const Model& model, const Trajectory& run) {
+/// The Newton tolerance of a run at `atol` (default rtol/100, as scene() sets it): 1e-3 atol
+/// (elimination_run.cpp's kNewtonMargin), floored at 16 ulps of the coordinates' size
+/// (partitioned_ode.cpp's kRoundoffUlps; the largest of the run's |u| and the system's coordinate
+/// scale).
+double newton_tolerance(const Model& model, const Trajectory& run, double atol = kRtol * 1e-2) {
   const double scale = std::max(run.u.cwiseAbs().maxCoeff(), model.system->coordinate_scale());
-  return std::max(1e-3 * kRtol * 1e-2, 16 * std::numeric_limits<double>::epsilon() * scale);
+  return std::max(1e-3 * atol, 16 * std::numeric_limits<double>::epsilon() * scale);
 }
 
 }  // namespace
@@ -198,4 +202,111 @@ TEST_CASE(
   CHECK(result.failure->t_reached < 1.01);
   REQUIRE_FALSE(result.trajectory.t.empty());
   CHECK(result.trajectory.t.back() <= result.failure->t_reached);
+}
+
+namespace {
+
+/// hanging_chain.toml's chain with `links` links of length 0.5 (mass 0.1 a joint), released
+/// from rest on a line 30 degrees below the horizontal: `links` independent coordinates.
+std::string hanging_chain(int links) {
+  std::string nodes, masses, members;
+  for (int k = 0; k <= links; ++k) {
+    nodes += (k ? ", [" : "[") + std::to_string(0.5 * k * std::sqrt(3.0) / 2) + ", " +
+             std::to_string(-0.25 * k) + "]";
+    masses += k ? ", 0.1" : "0.0";
+    if (k > 0) {
+      members += (k > 1 ? ", { nodes = [" : "{ nodes = [") + std::to_string(k) + ", " +
+                 std::to_string(k + 1) + "], rigid = true }";
+    }
+  }
+  return "[model]\ntype = \"truss2d\"\nnodes = [" + nodes + "]\nmasses = [" + masses +
+         "]\nsupports = [1]\nmembers = [" + members +
+         "]\ngravity = [0.0, -9.81]\n[solve]\nt_end = 0.2\noutput_step = 0.01\n";
+}
+
+}  // namespace
+
+TEST_CASE("coordinate partitioning of a long chain: GMRES on products, no dense Jacobian") {
+  // 40 links: 80 unknowns, above the dense Jacobian's 64 (PartitionedOde::kDenseJacobianLimit).
+  // CVODE's Newton systems go to GMRES (no matrix: 0 Jacobian entries, where the dense one had
+  // 80² = 6400), and the run agrees with GGL at a 100 times tighter rtol within the bound the
+  // first case uses (2e4 rtol; O(1) lengths, speeds, forces).
+  constexpr int kLinks = 40;
+  constexpr double kChainRtol = 1e-8;
+  SceneSpec spec = parse_scene_text(hanging_chain(kLinks), "chain.toml");
+  spec.solve.rtol = kChainRtol;
+  spec.solve.atol = kChainRtol * 1e-2;
+  const test::BuiltScene built = test::built(spec);
+  SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
+  tight.rtol = 1e-2 * kChainRtol;
+  tight.atol = 1e-2 * spec.solve.atol;
+  const Trajectory ref = test::solved(built.model, tight).trajectory;
+  const SolveResult result =
+      test::solved(built.model, test::under(built.spec.solve, Scheme::elimination));
+  CHECK(result.summary.unknowns == 2 * kLinks);
+  CHECK(result.summary.jacobian_nonzeros == 0);
+  CHECK(result.summary.notes_text().find("GMRES on difference-quotient products (80 unknowns") !=
+        std::string::npos);
+  const TrajectoryError err = relative_error(result.trajectory, ref);
+  MESSAGE("chain of " << kLinks << ": err u " << err.displacement << ", v " << err.velocity
+                      << ", reaction " << err.reaction << "; " << result.summary.brief());
+  CHECK(err.displacement < 2e4 * kChainRtol);
+  CHECK(err.velocity < 2e4 * kChainRtol);
+  CHECK(err.reaction < 2e4 * kChainRtol);
+  CHECK(row_drift(built.model, result.trajectory) <=
+        newton_tolerance(built.model, result.trajectory, spec.solve.atol));
+}
+
+TEST_CASE("coordinate partitioning: GMRES and the dense Jacobian agree on a small mechanism") {
+  // The four-bar (2 unknowns) integrated both ways, forced: the same ODE, so the runs differ by
+  // the error control's choices only, each within rtol-scaled global error of the solution:
+  // bounded by the first case's 2e4 rtol.
+  const test::BuiltScene built = scene("four_bar.toml", 1.0, kRtol);
+  std::array<Eigen::VectorXd, 2> end;
+  for (const bool free : {false, true}) {
+    PartitionedOde ode(built.model, 0.0);
+    ode.set_newton_tolerance(1e-3 * built.spec.solve.atol);
+    ode.set_matrix_free(free);
+    IntegratorOptions o;
+    o.output_times = {0.0, 0.5, 1.0};
+    o.rtol = built.spec.solve.rtol;
+    o.atol = built.spec.solve.atol;
+    SolveSummary s;
+    const RawTrajectory raw = integrate_ode(ode, ode.initial_state(), o, s);
+    CHECK(s.jacobian_nonzeros == (free ? 0 : 4));
+    end.at(free ? 1 : 0) = ode.full(1.0, raw.y.back()).u;
+  }
+  CHECK((end[1] - end[0]).lpNorm<Eigen::Infinity>() <
+        2e4 * kRtol * end[0].lpNorm<Eigen::Infinity>());
+}
+
+TEST_CASE("coordinate partitioning of a fully driven mechanism: kinematics and KKT reactions") {
+  // The slider-crank with a driven crank: the constraints fix every coordinate (no independent
+  // one), so nothing is integrated: positions by Newton at each time, velocities and
+  // accelerations from the rows, reactions from the KKT system. Refused before
+  // (SchemeNotApplicable). Against GGL at rtol 1e-12: the exact kinematics (slider x = r cos θ +
+  // √(l² − r² sin² θ), θ = π/2 + 2πt) to the Newton tolerance, reactions to the bound of the first
+  // case (2e4 rtol; forces of O(10) N).
+  SceneSpec spec = parse_scene_file(std::string(CONDYN_SOURCE_DIR) +
+                                    "/models/scenes/multibody/slider_crank.toml");
+  spec.solve.output_step = 0.05;
+  const test::BuiltScene built = test::built(spec);
+  const Model& model = built.model;
+  CHECK_FALSE(scheme_refusal(model, Scheme::elimination).has_value());
+  const SolveResult result =
+      test::solved(model, test::under(built.spec.solve, Scheme::elimination));
+  CHECK(result.summary.unknowns == 0);
+  CHECK(result.summary.notes_text().find("0 independent of") != std::string::npos);
+  SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
+  tight.rtol = 1e-12;
+  tight.atol = 1e-14;
+  const Trajectory ref = test::solved(model, tight).trajectory;
+  const TrajectoryError err = relative_error(result.trajectory, ref);
+  MESSAGE("fully driven slider-crank: err u " << err.displacement << ", v " << err.velocity
+                                              << ", reaction " << err.reaction);
+  CHECK(err.displacement < 2e4 * built.spec.solve.rtol);
+  CHECK(err.velocity < 2e4 * built.spec.solve.rtol);
+  CHECK(err.reaction < 2e4 * built.spec.solve.rtol);
+  CHECK(row_drift(model, result.trajectory) <=
+        newton_tolerance(model, result.trajectory, built.spec.solve.atol));
 }
