@@ -85,6 +85,10 @@ class MultiplierDae final : public DaeProblem {
   /// Massless DOFs held by stiffness: their u (undamped) or v (damped) are recomputed
   /// (dae/interface/held_massless.hpp).
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
+  /// Systems with curvature (mechanisms, whose drives may be tables): v ← v + Δv with
+  /// [M Aᵀ; A 0] [Δv; Λ] = [0; −ψ(t, u, v)], the least change of kinetic energy that meets the
+  /// velocity rows at t (the drive's impulse Aᵀ Λ). Linear models keep their v.
+  void jump_velocities(double t, Eigen::VectorXd& y) const override;
 
   /// y with the given u, v and zero multipliers.
   [[nodiscard]] Eigen::VectorXd pack(const Eigen::VectorXd& u, const Eigen::VectorXd& v) const;

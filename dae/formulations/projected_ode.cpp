@@ -125,6 +125,13 @@ void ProjectedOde::settle_held(double t, Ref u, Ref v) const {
 }
 
 void ProjectedOde::settle(double t, Eigen::VectorXd& y) const {
+  // A drive's table changes its rate at a sample (Model::breakpoints): v moves onto the velocity
+  // rows at t by the least change of kinetic energy, as project() moves it after every step.
+  if (varying_ && m_ > 0) {
+    const Factors& f = factors(t, y.head(n_));
+    system_->velocity_residual(t, y.head(n_), y.tail(n_), rows_);
+    y.tail(n_) += correction(f.kkt, f.scale.cwiseProduct(rows_));
+  }
   settle_held(t, y.head(n_), y.tail(n_));
 }
 

@@ -366,6 +366,7 @@ class Ida final : public sundials::SundialsStepper {
   void restart(double t) override {
     data_.problem->begin_segment(t);
     Eigen::VectorXd yb = view(y_.get()), ypb;
+    data_.problem->jump_velocities(t, yb);
     data_.problem->make_consistent(t, yb, ypb);
     reinit(t, yb, ypb);
   }

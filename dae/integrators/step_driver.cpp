@@ -131,14 +131,19 @@ class StepLoop {
       ++total_steps_;
       reached_ = t;  // the step succeeded: a budget that ends the run here ends it at t
       check_step_budgets(t);
-      if (options_.on_step) options_.on_step(t, stepper_.y());
       const auto& stops = grid_.stops;
       const bool at_stop = next_stop_ < stops.size() && t >= stops[next_stop_];
+      if (options_.on_step && !at_stop) options_.on_step(t, stepper_.y());
       record_outputs_in_step(t, at_stop);
       if (done_.size() > 0) done_ += integral_to(t);
       from_ = t;
       if (at_stop) {
-        restart_at(stops[next_stop_++]);
+        const double b = stops[next_stop_++];
+        restart_at(b);
+        // A step that ends at a stop is seen as the restart leaves it: a drive's table changes
+        // its rate there, and the state before the jump met the rows at the old rate (a drift
+        // of the jump's size, where the run holds them).
+        if (options_.on_step) options_.on_step(b, stepper_.y());
         steps_since_output_ = 0;
       } else if (stepper_.wants_restart(t)) {
         // The state is re-expressed, the motion goes on: no load switches, no work jumps.

@@ -92,6 +92,10 @@ class DaeProblem {
   /// every load step, where accelerations and multipliers jump). Throws std::runtime_error when the
   /// consistency system is singular.
   virtual void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const = 0;
+  /// At a restart (a breakpoint, before make_consistent): the velocities in y moved onto the
+  /// velocity rows at t, where a drive's table changed its rate (Model::breakpoints). Nothing by
+  /// default.
+  virtual void jump_velocities(double /*t*/, Eigen::VectorXd& /*y*/) const {}
 };
 
 }  // namespace condyn

@@ -61,6 +61,8 @@ void ModelBuilder::build_mechanism() {
   model_.nonlinear = true;
   model_.outputs = parts.outputs;
   model_.constraints = std::move(parts.rows);
+  for (const auto& joint : m.joints)
+    if (joint.drive) model_.drives.push_back(*joint.drive);
   row_joint_ = std::move(parts.row_joint);
   row_rheonomic_ = std::move(parts.row_rheonomic);
   base_u0_ = std::move(parts.q0);

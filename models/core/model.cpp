@@ -86,6 +86,15 @@ std::vector<double> Model::breakpoints(double t_end) const {
       if (b < t_end) times.insert(b);
     }
   }
+  // A drive's table: its rate jumps at every sample, and with it the velocities the rows fix.
+  // The run stops there; the restart moves the velocities onto the rows at the new rate (the
+  // least change of kinetic energy: the drive's impulse) and the steps after it see the new
+  // segment's slope (TimeTable::slope's one-sided derivative).
+  for (const auto& d : drives) {
+    for (double b : d.kinks()) {
+      if (b > 0.0 && b < t_end) times.insert(b);
+    }
+  }
   return {times.begin(), times.end()};
 }
 

@@ -92,6 +92,9 @@ struct Model {
   };
   std::optional<Ground> ground;
   std::vector<Constraint> constraints;
+  /// The time functions a mechanism's drives prescribe (its system evaluates them; no
+  /// constraint's `value` holds them): their tables' samples are breakpoints.
+  std::vector<TimeFunction> drives;
   /// Names of the scene's constraints that [solve] redundant = "drop" removed (no row, no
   /// multiplier column; a check naming one is told why).
   std::vector<std::string> dropped_constraints;
@@ -142,7 +145,8 @@ struct Model {
   [[nodiscard]] Eigen::VectorXd applied_forces_derivative(int order, double t) const;
   /// d^order/dt^order of the position-level right-hand sides (m), order in {0, 1, 2}.
   [[nodiscard]] Eigen::VectorXd position_rhs(int order, double t) const;
-  /// Times in (0, t_end) where a load step switches on, sorted, unique.
+  /// Times in (0, t_end) where a load step switches on or a drive's table has a sample (kink),
+  /// sorted, unique: the integrator stops and restarts there.
   [[nodiscard]] std::vector<double> breakpoints(double t_end) const;
   /// The first sample time after t of a table in a load, ground motion's included (infinity when
   /// none). A ramp of 1e-9 s at t = 0 failed the first step: IDA's first step

@@ -72,7 +72,9 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
     case Kind::table:
       // Piecewise linear: the value, the segment's slope, and 0 for the second derivative.
       if (order == 0) return amplitude * table->value(t);
-      return order == 1 ? amplitude * table->slope(t) : 0.0;
+      // The slope as the segment that began at step_reference sees it: one-sided at a sample
+      // where a stop ends the segment (Model::breakpoints stops a drive's table at its samples).
+      return order == 1 ? amplitude * table->slope(t, step_reference) : 0.0;
   }
   return 0.0;
 }
@@ -284,6 +286,17 @@ TimeFunction TimeFunction::acting_until(double t_end, std::vector<double>& dropp
     }
   }
   return TimeFunction(std::move(kept));
+}
+
+std::vector<double> TimeFunction::kinks() const {
+  std::vector<double> out;
+  for (const auto& term : terms_) {
+    if (term.kind == TimeTerm::Kind::table && term.table && term.amplitude != 0.0)
+      out.insert(out.end(), term.table->times.begin(), term.table->times.end());
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 double TimeFunction::first_kink_after(double t) const {

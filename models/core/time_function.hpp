@@ -83,9 +83,13 @@ class TimeFunction {
   /// True when a term is a table (piecewise linear: no exact second derivative).
   [[nodiscard]] bool has_table() const;
   /// Times t > 0 where a step switches on: the integrator stops and restarts there. A table's
-  /// samples are not breakpoints: its kinks are continuous in value, and the integrator's error
-  /// control resolves them (docs/scenes.md, "Tabulated time functions").
+  /// samples are not breakpoints of a load: its kinks are continuous in value, and the
+  /// integrator's error control resolves them (docs/scenes.md, "Tabulated time functions"); a
+  /// drive's are (kinks()).
   [[nodiscard]] std::vector<double> breakpoints() const;
+  /// The sample times of its table terms, ascending, where its first derivative jumps: a drive
+  /// prescribes a velocity that jumps there (Model::breakpoints).
+  [[nodiscard]] std::vector<double> kinks() const;
   /// The function as it acts on [0, t_end]: steps that switch on after t_end left out (a run
   /// never reaches them). `dropped` receives their start times.
   [[nodiscard]] TimeFunction acting_until(double t_end, std::vector<double>& dropped) const;

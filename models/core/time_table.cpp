@@ -11,6 +11,7 @@
 
 #include "models/core/line_reader.hpp"
 #include "models/core/number_cell.hpp"
+#include "models/core/time_roundoff.hpp"
 
 namespace condyn {
 
@@ -109,6 +110,16 @@ double TimeTable::slope(double t) const {
   const auto k =
       static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin() - 1);
   return (values[k + 1] - values[k]) / (times[k + 1] - times[k]);
+}
+
+double TimeTable::slope(double t, double reference) const {
+  if (!(reference < t) || reference >= times.back()) return slope(t);
+  // The first sample after `reference`: the end of its segment (of the constant before t_0 when
+  // it is t_0).
+  const auto next = static_cast<std::size_t>(
+      std::upper_bound(times.begin(), times.end(), reference) - times.begin());
+  if (t > times[next] + time_merge_tolerance(0.0, times[next])) return slope(t);
+  return next == 0 ? 0.0 : (values[next] - values[next - 1]) / (times[next] - times[next - 1]);
 }
 
 namespace {

@@ -41,6 +41,11 @@ struct TimeTable {
   [[nodiscard]] double value(double t) const;
   /// f'(t): the slope of the segment [t_k, t_{k+1}) holding t; 0 outside [t_0, t_last).
   [[nodiscard]] double slope(double t) const;
+  /// f'(t) as an integration segment that began at `reference` < t sees it: the slope of the
+  /// segment holding `reference` up to and at that segment's end t_{k+1} (within kTimeMergeUlps
+  /// of it: a step that lands on a sample is on the side it comes from, the one-sided
+  /// derivative), slope(t) beyond it or when reference >= t.
+  [[nodiscard]] double slope(double t, double reference) const;
 };
 
 /// Parses CSV text: `#` lines and blank lines are skipped; the first other line is a header of
