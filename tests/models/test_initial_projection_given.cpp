@@ -12,10 +12,12 @@
 #include "models/core/constraint_drift.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+using condyn::test::build_error;
 
 using condyn::test::replace;
 
@@ -31,15 +33,6 @@ constexpr double kDriftTolerance = 8 * kEps * 10.0;
 std::string four_bar_text() {
   std::ifstream in(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/four_bar.toml");
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    (void)build_model(parse_scene_text(text, "bad.toml"));
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 int dof(const Model& m, const std::string& name) { return m.dof_at(name); }
@@ -100,15 +93,15 @@ TEST_CASE("initial projection keeps a given displacement and finds the free ones
 
 TEST_CASE("given values that over-determine the constraints are refused, constraint named") {
   // A vertical crank tip speed contradicts the rigid crank (its tip moves along x only).
-  const std::string msg = error_of(replace(four_bar_text(), "velocity = { ux2 = -6.0 }",
-                                           "velocity = { ux2 = -6.0, uy2 = 1.0 }"));
+  const std::string msg = build_error(replace(four_bar_text(), "velocity = { ux2 = -6.0 }",
+                                              "velocity = { ux2 = -6.0, uy2 = 1.0 }"));
   CHECK(msg.find("bad.toml:21: initial.velocity.uy2: ") != std::string::npos);
   CHECK(msg.find("velocity uy2 = 1 kept") != std::string::npos);
   CHECK(msg.find("constraint 'rigid_1_2' (residual 0.99999") != std::string::npos);  // 1 - 1e-12
   CHECK(msg.find("rigid_2_3") == std::string::npos);  // the coupler can follow: not blamed
   // At position level: a displacement that stretches the rigid rod.
   const std::string pos =
-      error_of(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = 0.0, uy2 = -0.2 }"));
+      build_error(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = 0.0, uy2 = -0.2 }"));
   CHECK(pos.find("initial.displacement.ux2: ") != std::string::npos);
   CHECK(pos.find("displacement ux2 = 0, uy2 = -0.2 kept") != std::string::npos);
   CHECK(pos.find("constraint 'rigid_1_2'") != std::string::npos);
@@ -142,8 +135,8 @@ project = true
 t_end = 1.0
 output_step = 0.5
 )";
-  CHECK(error_of(scene) == "");
-  CHECK(error_of(replace(scene, "level = \"velocity\"\n", "")) == "");
+  CHECK(build_error(scene) == "");
+  CHECK(build_error(replace(scene, "level = \"velocity\"\n", "")) == "");
   // What a hand writes stays judged by the row: 1e-5 on the still DOF is refused, however large
   // the rest of the state (here 1e6, whose roundoff is 1.4e-8).
   const std::string written =
@@ -151,8 +144,8 @@ output_step = 0.5
               "terms = { a = 1.0, d = 1.0 }\nvalue = { type = \"harmonic\", "
               "amplitude = 0.7, omega = 0.5, phase = -2.0 }",
               "terms = { d = 1.0 }\nlevel = \"velocity\"\nvalue = 1e6");
-  CHECK(error_of(written).find("initial velocities violate constraint 'still': a·v(0) = 1e-05") !=
-        std::string::npos);
+  CHECK(build_error(written).find(
+            "initial velocities violate constraint 'still': a·v(0) = 1e-05") != std::string::npos);
 }
 
 TEST_CASE("a start where the rod does not change along the free DOFs names both sides") {
@@ -160,13 +153,13 @@ TEST_CASE("a start where the rod does not change along the free DOFs names both 
   // Gauss-Newton could not move it, and the scene was refused as inconsistent ("no initial state
   // satisfies constraint 'rigid_1_2'") though uy2 = ±√(1 − 0.6²) = ±0.8 both satisfy it. Which
   // side is meant is the scene's to say.
-  const std::string msg = error_of(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = -0.4 }"));
+  const std::string msg = build_error(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = -0.4 }"));
   CHECK(msg.find("cannot project the initial state: at the given state constraint 'rigid_1_2' "
                  "does not change to first order along the DOFs left free") != std::string::npos);
   CHECK(msg.find("e.g. with uy2 = 0.8 or with uy2 = -0.8") != std::string::npos);
   CHECK(msg.find("inconsistent") == std::string::npos);
   // In 3D, two free DOFs (uy2, uz2): a circle of states; the two starts land on two of them.
-  const std::string spatial = error_of(
+  const std::string spatial = build_error(
       R"([model]
 type = "truss3d"
 nodes = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]
@@ -184,7 +177,7 @@ output_step = 0.1
   CHECK(spatial.find("uy2 = ") != std::string::npos);
   CHECK(spatial.find("uz2 = ") != std::string::npos);
   // A given value no state has stays refused as inconsistent: |x2| = 2 > 1 at ux2 = -3.
-  const std::string far = error_of(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = -3.0 }"));
+  const std::string far = build_error(replace(kPendulum, "{ uy2 = -0.2 }", "{ ux2 = -3.0 }"));
   CHECK(far.find("no initial state satisfies constraint 'rigid_1_2'") != std::string::npos);
 }
 
@@ -194,8 +187,8 @@ TEST_CASE("given velocities that fit only next to a singular configuration are r
   // by 7.6e-6 only, and the projection gave vx2 = 131072 with exit 0. At the exact configuration
   // no velocity meets vy2 = 1.
   const std::string msg =
-      error_of(replace(kPendulum, "displacement = { uy2 = -0.2 }",
-                       "displacement = { uy2 = -1.0 }\nvelocity = { uy2 = 1.0 }"));
+      build_error(replace(kPendulum, "displacement = { uy2 = -0.2 }",
+                          "displacement = { uy2 = -1.0 }\nvelocity = { uy2 = 1.0 }"));
   CHECK(msg.find("cannot project the initial velocities: where the positions meet the "
                  "constraints, the rows barely depend on the velocities left free (meeting them "
                  "moves those 1.31e+05 times the rows' residual") != std::string::npos);
@@ -209,8 +202,8 @@ TEST_CASE("given velocities that fit only next to a singular configuration are r
 TEST_CASE("given values that put a rod's ends together name the keys and the rod") {
   // ux2 = -1, uy2 = 0 puts node 2 on the support: the rod has no direction there (0/0) and the
   // scene got "Gauss-Newton did not converge in 50 iterations" at key `initial`.
-  const std::string msg = error_of(replace(kPendulum, "displacement = { uy2 = -0.2 }",
-                                           "displacement = { ux2 = -1.0, uy2 = 0.0 }"));
+  const std::string msg = build_error(replace(kPendulum, "displacement = { uy2 = -0.2 }",
+                                              "displacement = { ux2 = -1.0, uy2 = 0.0 }"));
   CHECK(msg.find("initial.displacement.ux2: project = true keeps the values given in [initial], "
                  "but with displacement ux2 = -1, uy2 = 0 kept no initial state satisfies "
                  "constraint 'rigid_1_2'") != std::string::npos);

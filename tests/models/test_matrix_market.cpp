@@ -14,6 +14,7 @@
 #include "models/scene/matrix_market.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
@@ -40,12 +41,7 @@ bool has(const std::string& s, const std::string& part) {
 
 /// The scene's SceneError message when parsing and building refuse it, else "".
 std::string scene_error(const Sandbox& box, const std::string& scene) {
-  try {
-    (void)build_model(parse_scene_file(box.write("scene.toml", scene).string()));
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
+  return test::file_build_error(box.write("scene.toml", scene).string());
 }
 
 // A four-DOF chain: M diagonal, K tridiagonal (free end), written by rows and as files.
@@ -577,14 +573,7 @@ terms = { uy2 = 1.0 }
   REQUIRE(model.has_damping());
   const Eigen::SparseMatrix<double> expected = 0.5 * model.M + 0.02 * *model.K;
   CHECK(Eigen::MatrixXd(model.C) == Eigen::MatrixXd(expected));
-  const auto error = [](const std::string& text) {
-    try {
-      (void)build_model(parse_scene_text(text, "t.toml"));
-    } catch (const SceneError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  const auto error = [](const std::string& text) { return test::build_error(text, "t.toml"); };
   CHECK(has(error(condyn::test::replace(truss, "[0.5, 0.02]", "[-0.5, 0.02]")),
             "t.toml:7: model.damping.rayleigh[1]: must be >= 0"));
   CHECK(has(error(condyn::test::replace(truss, "[0.5, 0.02]", "[0.5]")),

@@ -13,6 +13,7 @@
 #include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/system_check.hpp"
@@ -26,14 +27,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 Model model_of(const std::string& text) { return build_model(parse_scene_text(text, "m.toml")); }
 
-std::string build_error(const std::string& text) {
-  try {
-    (void)model_of(text);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string build_error(const std::string& text) { return test::build_error(text, "m.toml"); }
 
 const std::string kSolve = "[solve]\nt_end = 6.0\noutput_step = 0.1\nrtol = 1e-10\natol = 1e-12\n";
 

@@ -13,9 +13,12 @@
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "models/systems/multibody_system.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+using condyn::test::build_error;
+using condyn::test::check_build_error;
 using condyn::test::replace;
 
 namespace {
@@ -82,22 +85,6 @@ t_end = 1.0
 output_step = 0.1
 )";
 
-std::string error_of(const std::string& text) {
-  try {
-    (void)build_model(parse_scene_text(text, "bad.toml"));
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void check_error(const std::string& text, const std::string& needle) {
-  const std::string msg = error_of(text);
-  CAPTURE(msg);
-  CHECK(msg.rfind("bad.toml", 0) == 0);
-  CHECK(msg.find(needle) != std::string::npos);
-}
-
 std::string scene_file(const std::string& name) {
   std::ifstream in(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/multibody/" + name);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -119,41 +106,44 @@ TEST_CASE("a consistent mechanism builds: coordinates, rows, output map, joints 
 
 TEST_CASE("poses violating a joint beyond 1e-8 of the model's size are refused, naming it") {
   // The model's size is 1 (O to B): the bar's centre 1e-3 off is 1e5 times the tolerance.
-  check_error(replace(kBar, "position = [0.5, 0.0]", "position = [0.501, 0.0]"),
-              "the initial poses violate joint 'hinge': row 'hinge.");
+  check_build_error(replace(kBar, "position = [0.5, 0.0]", "position = [0.501, 0.0]"),
+                    "the initial poses violate joint 'hinge': row 'hinge.");
   // 1e-10 off, a hundredth of the tolerance: accepted as written.
-  CHECK(error_of(replace(kBar, "position = [0.5, 0.0]", "position = [0.5000000001, 0.0]")) == "");
+  CHECK(build_error(replace(kBar, "position = [0.5, 0.0]", "position = [0.5000000001, 0.0]")) ==
+        "");
   // The same 1e-3 in a model 1e6 times larger is 1e-9 of its size: accepted.
   const std::string large = replace(
       replace(replace(replace(kBar, "[-0.5, 0.0], B = [0.5, 0.0]", "[-5e5, 0.0], B = [5e5, 0.0]"),
                       "position = [0.5, 0.0]", "position = [500000.001, 0.0]"),
               "velocity = [0.0, 1.0]", "velocity = [0.0, 1e6]"),
       "inertia = 0.0833", "inertia = 8.33e10");
-  CHECK(error_of(large) == "");
+  CHECK(build_error(large) == "");
 }
 
 TEST_CASE("velocities violating a joint are refused, naming it") {
   // The centre of a bar turning at 2 rad/s about its end moves at 1, across the bar: 1.1 is not.
-  check_error(replace(kBar, "velocity = [0.0, 1.0]", "velocity = [0.0, 1.1]"),
-              "the initial velocities violate joint 'hinge'");
-  check_error(replace(kBar, "velocity = [0.0, 1.0]", "velocity = [0.1, 1.0]"),
-              "the initial velocities violate joint 'hinge'");
+  check_build_error(replace(kBar, "velocity = [0.0, 1.0]", "velocity = [0.0, 1.1]"),
+                    "the initial velocities violate joint 'hinge'");
+  check_build_error(replace(kBar, "velocity = [0.0, 1.0]", "velocity = [0.1, 1.0]"),
+                    "the initial velocities violate joint 'hinge'");
 }
 
 TEST_CASE("revolute axes that do not coincide at t = 0 are refused, naming the joint") {
-  CHECK(error_of(kDoor) == "");
-  check_error(replace(kDoor, "a = [0.0, 0.0, 1.0]", "a = [0.0, 0.01, 1.0]"),
-              "the initial poses violate joint 'pin'");
+  CHECK(build_error(kDoor) == "");
+  check_build_error(replace(kDoor, "a = [0.0, 0.0, 1.0]", "a = [0.0, 0.01, 1.0]"),
+                    "the initial poses violate joint 'pin'");
 }
 
 TEST_CASE("a drive not met by the start's velocity is refused") {
-  check_error(replace(kBar, "points = [\"O\", \"A\"]",
-                      "points = [\"O\", \"A\"]\ndrive = { type = \"polynomial\", coefficients = "
-                      "[0.0, 3.0] }"),
-              "the initial velocities violate joint 'hinge'");
-  CHECK(error_of(replace(kBar, "points = [\"O\", \"A\"]",
-                         "points = [\"O\", \"A\"]\ndrive = { type = \"polynomial\", coefficients "
-                         "= [0.0, 2.0] }")) == "");
+  check_build_error(
+      replace(kBar, "points = [\"O\", \"A\"]",
+              "points = [\"O\", \"A\"]\ndrive = { type = \"polynomial\", coefficients = "
+              "[0.0, 3.0] }"),
+      "the initial velocities violate joint 'hinge'");
+  CHECK(
+      build_error(replace(kBar, "points = [\"O\", \"A\"]",
+                          "points = [\"O\", \"A\"]\ndrive = { type = \"polynomial\", coefficients "
+                          "= [0.0, 2.0] }")) == "");
 }
 
 TEST_CASE("project = true keeps what keep names exactly and reports what moved") {
@@ -187,17 +177,18 @@ TEST_CASE("project = true keeps what keep names exactly and reports what moved")
 
 TEST_CASE("project = true with kept values no start meets is refused at initial.keep") {
   // The centre kept at (0.6, 0) with the angle kept at 0: the hinge needs it at (0.5, 0).
-  check_error(replace(replace(kBar, "position = [0.5, 0.0]", "position = [0.6, 0.0]"), "[solve]",
-                      "[initial]\nproject = true\nkeep = [\"bar.angle\", \"bar.position\"]\n"
-                      "[solve]"),
-              "initial.keep: with the values [initial] keep names held exactly, no start meets");
+  check_build_error(
+      replace(replace(kBar, "position = [0.5, 0.0]", "position = [0.6, 0.0]"), "[solve]",
+              "[initial]\nproject = true\nkeep = [\"bar.angle\", \"bar.position\"]\n"
+              "[solve]"),
+      "initial.keep: with the values [initial] keep names held exactly, no start meets");
 }
 
 TEST_CASE("the example scenes build, the slider-crank's projection keeps the crank") {
   for (const char* name :
        {"slider_crank.toml", "four_bar.toml", "spatial_four_bar.toml", "pendulum_a01.toml"}) {
     CAPTURE(name);
-    CHECK(error_of(scene_file(name)) == "");
+    CHECK(build_error(scene_file(name)) == "");
   }
   BuildReport report;
   const SceneSpec spec = parse_scene_text(scene_file("slider_crank.toml"), "slider_crank.toml");

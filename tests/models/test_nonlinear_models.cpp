@@ -17,10 +17,12 @@
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/solve_helpers.hpp"
 #include "tests/system_check.hpp"
 
 using namespace condyn;
+using condyn::test::build_error;
 
 namespace {
 
@@ -29,15 +31,6 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 test::BuiltScene scene(const std::string& name) {
   return test::built(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name));
-}
-
-std::string build_error(const std::string& text) {
-  try {
-    (void)build_model(parse_scene_text(text, "bad.toml"));
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 /// A generic state: u0 plus a perturbation, nonzero velocities, accelerations and multipliers.

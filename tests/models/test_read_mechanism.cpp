@@ -9,9 +9,12 @@
 
 #include "models/core/mechanism_keep.hpp"
 #include "models/scene/scene_parser.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+using condyn::test::check_parse_error;
+using condyn::test::parse_error;
 using condyn::test::replace;
 
 namespace {
@@ -160,23 +163,6 @@ t_end = 1.0
 output_step = 0.1
 )";
 
-std::string error_of(const std::string& text) {
-  try {
-    (void)parse_scene_text(text, "bad.toml");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-/// The reader refuses `text` with "bad.toml:LINE: " + `needle`... : the file, a line, the key.
-void check_error(const std::string& text, const std::string& needle) {
-  const std::string msg = error_of(text);
-  CAPTURE(msg);
-  CHECK(msg.rfind("bad.toml:", 0) == 0);
-  CHECK(msg.find(needle) != std::string::npos);
-}
-
 }  // namespace
 
 TEST_CASE("a planar mechanism's every key is read") {
@@ -268,183 +254,192 @@ TEST_CASE("[initial] keep and [output] points are read and checked against the b
 }
 
 TEST_CASE("names: unknown bodies, points and axes, with the nearest names, duplicates") {
-  check_error(replace(kPlanar, R"(bodies = ["crank", "rod"])", R"(bodies = ["crank", "rood"])"),
-              "joint[2].bodies[2]: unknown body 'rood' (did you mean rod?");
-  check_error(replace(kPlanar, R"(points = ["B", "B"])", R"(points = ["B", "Bx"])"),
-              "joint[2].points[2]: unknown point 'Bx' of body 'rod' (did you mean B?");
-  check_error(replace(kPlanar, R"(axes = ["ex", "u"])", R"(axes = ["ey", "u"])"),
-              "joint[4].axes[1]: unknown axis 'ey' of the ground (did you mean ex?");
-  check_error(replace(kPlanar, R"(points = ["C", "S"])", R"(points = ["C", "T"])"),
-              "force[1].points[2]: unknown point 'T' of the ground");
-  check_error(replace(kPlanar, R"(joint = "hinge_B")", R"(joint = "hinge_b")"),
-              "force[2].joint: unknown joint 'hinge_b' (did you mean hinge_B");
-  check_error(replace(kPlanar, R"(body = "rod")", R"(body = "ground")"),
-              "force[3].body: the ground does not move");
-  check_error(replace(kPlanar, R"(name = "rod")", R"(name = "crank")"),
-              "body[2].name: body 'crank' is already body[1]");
-  check_error(replace(kPlanar, R"(name = "hinge_B")", R"(name = "hinge_O")"),
-              "joint[2].name: joint 'hinge_O' is already joint[1]");
-  check_error(replace(kPlanar, R"(name = "hinge_B")", R"(name = "rod")"),
-              "joint[2].name: 'rod' is also a body's name");
-  check_error(replace(kPlanar, R"(name = "rod")", R"(name = "ground")"),
-              "body[2].name: 'ground' is the fixed body's name");
-  check_error(replace(kPlanar, R"(name = "rod")", R"(name = "r.od")"), "holds a '.'");
-  check_error(replace(kPlanar, R"(bodies = ["crank", "rod"])", R"(bodies = ["rod", "rod"])"),
-              "joint[2].bodies: a joint connects two different bodies");
-  check_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"crank\"",
-                      "type = \"revolut\"\nbodies = [\"crank\""),
-              "joint[2].type: unknown joint type 'revolut' (did you mean revolute?");
+  check_parse_error(
+      replace(kPlanar, R"(bodies = ["crank", "rod"])", R"(bodies = ["crank", "rood"])"),
+      "joint[2].bodies[2]: unknown body 'rood' (did you mean rod?");
+  check_parse_error(replace(kPlanar, R"(points = ["B", "B"])", R"(points = ["B", "Bx"])"),
+                    "joint[2].points[2]: unknown point 'Bx' of body 'rod' (did you mean B?");
+  check_parse_error(replace(kPlanar, R"(axes = ["ex", "u"])", R"(axes = ["ey", "u"])"),
+                    "joint[4].axes[1]: unknown axis 'ey' of the ground (did you mean ex?");
+  check_parse_error(replace(kPlanar, R"(points = ["C", "S"])", R"(points = ["C", "T"])"),
+                    "force[1].points[2]: unknown point 'T' of the ground");
+  check_parse_error(replace(kPlanar, R"(joint = "hinge_B")", R"(joint = "hinge_b")"),
+                    "force[2].joint: unknown joint 'hinge_b' (did you mean hinge_B");
+  check_parse_error(replace(kPlanar, R"(body = "rod")", R"(body = "ground")"),
+                    "force[3].body: the ground does not move");
+  check_parse_error(replace(kPlanar, R"(name = "rod")", R"(name = "crank")"),
+                    "body[2].name: body 'crank' is already body[1]");
+  check_parse_error(replace(kPlanar, R"(name = "hinge_B")", R"(name = "hinge_O")"),
+                    "joint[2].name: joint 'hinge_O' is already joint[1]");
+  check_parse_error(replace(kPlanar, R"(name = "hinge_B")", R"(name = "rod")"),
+                    "joint[2].name: 'rod' is also a body's name");
+  check_parse_error(replace(kPlanar, R"(name = "rod")", R"(name = "ground")"),
+                    "body[2].name: 'ground' is the fixed body's name");
+  check_parse_error(replace(kPlanar, R"(name = "rod")", R"(name = "r.od")"), "holds a '.'");
+  check_parse_error(replace(kPlanar, R"(bodies = ["crank", "rod"])", R"(bodies = ["rod", "rod"])"),
+                    "joint[2].bodies: a joint connects two different bodies");
+  check_parse_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"crank\"",
+                            "type = \"revolut\"\nbodies = [\"crank\""),
+                    "joint[2].type: unknown joint type 'revolut' (did you mean revolute?");
 }
 
 TEST_CASE("inertia: positive definite, the triangle inequality, symmetric") {
-  check_error(replace(kPlanar, "inertia = 0.0833", "inertia = 0.0"),
-              "body[1].inertia: must be > 0");
-  check_error(replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = [0.1, 0.2, 0.0]"),
-              "body[1].inertia: is not positive definite");
-  check_error(replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = [0.1, 0.2, 0.35]"),
-              "body[1].inertia: violates the triangle inequality: principal moment 0.35 exceeds "
-              "the sum of the other two, 0.3");
+  check_parse_error(replace(kPlanar, "inertia = 0.0833", "inertia = 0.0"),
+                    "body[1].inertia: must be > 0");
+  check_parse_error(replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = [0.1, 0.2, 0.0]"),
+                    "body[1].inertia: is not positive definite");
+  check_parse_error(
+      replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = [0.1, 0.2, 0.35]"),
+      "body[1].inertia: violates the triangle inequality: principal moment 0.35 exceeds "
+      "the sum of the other two, 0.3");
   // A lamina: Izz = Ixx + Iyy exactly, accepted.
-  CHECK(error_of(replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = [0.1, 0.2, 0.3]")) ==
+  CHECK(parse_error(replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = [0.1, 0.2, 0.3]")) ==
         "");
   // A full tensor whose eigenvalues break the inequality: products of inertia matter.
-  check_error(replace(kSpatial, "[[1.0, 0.1, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 1.5]]",
-                      "[[1.0, 0.9, 0.0], [0.9, 1.0, 0.0], [0.0, 0.0, 1.5]]"),
-              "body[2].inertia: violates the triangle inequality");
-  check_error(replace(kSpatial, "[[1.0, 0.1, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 1.5]]",
-                      "[[1.0, 0.1, 0.0], [0.2, 1.0, 0.0], [0.0, 0.0, 1.5]]"),
-              "body[2].inertia: is not symmetric: entry (1, 2) = 0.1 but (2, 1) = 0.2");
-  check_error(replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = 0.1"),
-              "body[1].inertia: a spatial body's inertia is [Ixx, Iyy, Izz]");
-  check_error(replace(kPlanar, "inertia = 0.0833", "inertia = [0.1, 0.1, 0.1]"),
-              "body[1].inertia: a planar body's inertia is one number");
+  check_parse_error(replace(kSpatial, "[[1.0, 0.1, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 1.5]]",
+                            "[[1.0, 0.9, 0.0], [0.9, 1.0, 0.0], [0.0, 0.0, 1.5]]"),
+                    "body[2].inertia: violates the triangle inequality");
+  check_parse_error(replace(kSpatial, "[[1.0, 0.1, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 1.5]]",
+                            "[[1.0, 0.1, 0.0], [0.2, 1.0, 0.0], [0.0, 0.0, 1.5]]"),
+                    "body[2].inertia: is not symmetric: entry (1, 2) = 0.1 but (2, 1) = 0.2");
+  check_parse_error(replace(kSpatial, "inertia = [0.1, 0.2, 0.25]", "inertia = 0.1"),
+                    "body[1].inertia: a spatial body's inertia is [Ixx, Iyy, Izz]");
+  check_parse_error(replace(kPlanar, "inertia = 0.0833", "inertia = [0.1, 0.1, 0.1]"),
+                    "body[1].inertia: a planar body's inertia is one number");
 }
 
 TEST_CASE("orientation: unit quaternions, nonzero axes, the dimension's keys") {
-  check_error(replace(kSpatial, "quaternion = [1.0, 0.0, 0.0, 0.0]",
-                      "quaternion = [0.7071, 0.7071, 0.0, 0.0]"),
-              "body[2].orientation.quaternion: is not a unit quaternion (norm 0.99999");
+  check_parse_error(replace(kSpatial, "quaternion = [1.0, 0.0, 0.0, 0.0]",
+                            "quaternion = [0.7071, 0.7071, 0.0, 0.0]"),
+                    "body[2].orientation.quaternion: is not a unit quaternion (norm 0.99999");
   // Written to 17 digits, a unit quaternion passes.
-  CHECK(error_of(replace(kSpatial, "quaternion = [1.0, 0.0, 0.0, 0.0]",
-                         "quaternion = [0.70710678118654757, 0.70710678118654757, 0.0, 0.0]")) ==
+  CHECK(parse_error(replace(kSpatial, "quaternion = [1.0, 0.0, 0.0, 0.0]",
+                            "quaternion = [0.70710678118654757, 0.70710678118654757, 0.0, 0.0]")) ==
         "");
-  check_error(replace(kSpatial, "axis = [0.0, 0.0, 2.0]", "axis = [0.0, 0.0, 0.0]"),
-              "body[1].orientation.axis: needs a nonzero direction");
-  check_error(replace(kSpatial, "orientation = { axis", "angle = 0.5\norientation = { axis"),
-              "body[1].angle: a spatial body's orientation is orientation");
-  check_error(
+  check_parse_error(replace(kSpatial, "axis = [0.0, 0.0, 2.0]", "axis = [0.0, 0.0, 0.0]"),
+                    "body[1].orientation.axis: needs a nonzero direction");
+  check_parse_error(replace(kSpatial, "orientation = { axis", "angle = 0.5\norientation = { axis"),
+                    "body[1].angle: a spatial body's orientation is orientation");
+  check_parse_error(
       replace(kPlanar, "angle = 0.0", "orientation = { axis = [0.0, 0.0, 1.0], angle = 0.0 }"),
       "body[1].orientation: a planar body's orientation is its angle");
-  check_error(replace(kSpatial, "quaternion = [1.0, 0.0, 0.0, 0.0]",
-                      "quaternion = [1.0, 0.0, 0.0, 0.0], angle = 1.0"),
-              "give either quaternion or { axis, angle }");
+  check_parse_error(replace(kSpatial, "quaternion = [1.0, 0.0, 0.0, 0.0]",
+                            "quaternion = [1.0, 0.0, 0.0, 0.0], angle = 1.0"),
+                    "give either quaternion or { axis, angle }");
 }
 
 TEST_CASE("vectors: the dimension's length, axes nonzero") {
-  check_error(replace(kPlanar, "position = [0.5, 0.0]", "position = [0.5, 0.0, 0.0]"),
-              "body[1].position: has 3 components; a vector of a 2D mechanism (dimension = 2) "
-              "has 2");
-  check_error(replace(kSpatial, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, -9.81]"),
-              "model.gravity: has 2 components");
-  check_error(replace(kPlanar, "B = [0.5, 0.0] }", "B = [0.5] }"),
-              "body[1].points.B: has 1 components");
-  check_error(replace(kPlanar, "u = [2.0, 0.0]", "u = [0.0, 0.0]"),
-              "body[3].axes.u: an axis needs a nonzero direction");
-  check_error(replace(kPlanar, "ex = [1.0, 0.0]", "ex = [0.0, 0.0]"),
-              "model.ground_axes.ex: an axis needs a nonzero direction");
-  check_error(replace(kPlanar, "angular_velocity = 1.0", "angular_velocity = [0.0, 0.0, 1.0]"),
-              "body[1].angular_velocity: a planar body's angular velocity is one number");
-  check_error(replace(kSpatial, "dimension = 3", "dimension = 4"),
-              "model.dimension: must be 2 (planar) or 3 (spatial)");
+  check_parse_error(
+      replace(kPlanar, "position = [0.5, 0.0]", "position = [0.5, 0.0, 0.0]"),
+      "body[1].position: has 3 components; a vector of a 2D mechanism (dimension = 2) "
+      "has 2");
+  check_parse_error(replace(kSpatial, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, -9.81]"),
+                    "model.gravity: has 2 components");
+  check_parse_error(replace(kPlanar, "B = [0.5, 0.0] }", "B = [0.5] }"),
+                    "body[1].points.B: has 1 components");
+  check_parse_error(replace(kPlanar, "u = [2.0, 0.0]", "u = [0.0, 0.0]"),
+                    "body[3].axes.u: an axis needs a nonzero direction");
+  check_parse_error(replace(kPlanar, "ex = [1.0, 0.0]", "ex = [0.0, 0.0]"),
+                    "model.ground_axes.ex: an axis needs a nonzero direction");
+  check_parse_error(
+      replace(kPlanar, "angular_velocity = 1.0", "angular_velocity = [0.0, 0.0, 1.0]"),
+      "body[1].angular_velocity: a planar body's angular velocity is one number");
+  check_parse_error(replace(kSpatial, "dimension = 3", "dimension = 4"),
+                    "model.dimension: must be 2 (planar) or 3 (spatial)");
 }
 
 TEST_CASE("joints: spatial types in 2D, missing or extra axes, lengths") {
-  check_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"crank\"",
-                      "type = \"spherical\"\nbodies = [\"crank\""),
-              "joint[2].type: a spherical joint is spatial: it needs [model] dimension = 3");
-  check_error(replace(kPlanar, "axes = [\"ex\", \"u\"]\n", ""),
-              "joint[4]: a planar prismatic joint needs axes");
-  check_error(replace(kSpatial, "axes = [\"z\", \"a\"]\n", ""),
-              "joint[2]: a spatial revolute joint needs axes");
-  check_error(
+  check_parse_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"crank\"",
+                            "type = \"spherical\"\nbodies = [\"crank\""),
+                    "joint[2].type: a spherical joint is spatial: it needs [model] dimension = 3");
+  check_parse_error(replace(kPlanar, "axes = [\"ex\", \"u\"]\n", ""),
+                    "joint[4]: a planar prismatic joint needs axes");
+  check_parse_error(replace(kSpatial, "axes = [\"z\", \"a\"]\n", ""),
+                    "joint[2]: a spatial revolute joint needs axes");
+  check_parse_error(
       replace(kPlanar, "points = [\"B\", \"B\"]", "points = [\"B\", \"B\"]\naxes = [\"B\", \"B\"]"),
       "joint[2].axes: a planar revolute joint takes no axes (it turns about z)");
-  check_error(replace(kSpatial, "points = [\"O\", \"top\"]",
-                      "points = [\"O\", \"top\"]\naxes = [\"z\", \"z\"]"),
-              "joint[1].axes: a spatial spherical joint takes no axes");
-  check_error(replace(kPlanar, "points = [\"B\", \"B\"]", "points = [\"B\"]"),
-              "joint[2].points: a joint names two points");
-  check_error(replace(kPlanar, "points = [\"B\", \"B\"]", "points = [\"B\", \"B\"]\nlength = 1.0"),
-              "joint[2].length: only a distance joint has a length");
+  check_parse_error(replace(kSpatial, "points = [\"O\", \"top\"]",
+                            "points = [\"O\", \"top\"]\naxes = [\"z\", \"z\"]"),
+                    "joint[1].axes: a spatial spherical joint takes no axes");
+  check_parse_error(replace(kPlanar, "points = [\"B\", \"B\"]", "points = [\"B\"]"),
+                    "joint[2].points: a joint names two points");
+  check_parse_error(
+      replace(kPlanar, "points = [\"B\", \"B\"]", "points = [\"B\", \"B\"]\nlength = 1.0"),
+      "joint[2].length: only a distance joint has a length");
   // A distance joint between points that coincide at t = 0 and no length: a length of 0.
-  check_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"crank\"",
-                      "type = \"distance\"\nbodies = [\"crank\""),
-              "joint[2]: the distance joint's points coincide at t = 0");
-  CHECK(error_of(replace(kPlanar, "type = \"revolute\"\nbodies = [\"rod\"",
-                         "type = \"distance\"\nlength = 0.5\nbodies = [\"rod\"")) == "");
+  check_parse_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"crank\"",
+                            "type = \"distance\"\nbodies = [\"crank\""),
+                    "joint[2]: the distance joint's points coincide at t = 0");
+  CHECK(parse_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"rod\"",
+                            "type = \"distance\"\nlength = 0.5\nbodies = [\"rod\"")) == "");
 }
 
 TEST_CASE("drives: only on a coordinate, starting at 0, no jumps, tables accepted") {
-  CHECK(error_of(replace(
+  CHECK(parse_error(replace(
             kPlanar, "points = [\"S\", \"C\"]",
             "points = [\"S\", \"C\"]\ndrive = { type = \"harmonic\", omega = 1.0 }")) == "");
-  check_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"rod\"",
-                      "type = \"distance\"\nlength = 0.1\ndrive = 0.0\nbodies = [\"rod\""),
-              "joint[3].drive: a distance joint has no coordinate to drive");
-  check_error(replace(kPlanar, "coefficients = [0.0, 6.0]", "coefficients = [0.1, 6.0]"),
-              "joint[1].drive: is 0.1 at t = 0, but a drive counts the joint's coordinate from "
-              "its value at t = 0");
-  check_error(replace(kPlanar, "drive = { type = \"polynomial\", coefficients = [0.0, 6.0] }",
-                      "drive = { type = \"step\", start = 0.5 }"),
-              "joint[1].drive: a step at t = 0.5 would make the driven coordinate jump");
+  check_parse_error(replace(kPlanar, "type = \"revolute\"\nbodies = [\"rod\"",
+                            "type = \"distance\"\nlength = 0.1\ndrive = 0.0\nbodies = [\"rod\""),
+                    "joint[3].drive: a distance joint has no coordinate to drive");
+  check_parse_error(
+      replace(kPlanar, "coefficients = [0.0, 6.0]", "coefficients = [0.1, 6.0]"),
+      "joint[1].drive: is 0.1 at t = 0, but a drive counts the joint's coordinate from "
+      "its value at t = 0");
+  check_parse_error(replace(kPlanar, "drive = { type = \"polynomial\", coefficients = [0.0, 6.0] }",
+                            "drive = { type = \"step\", start = 0.5 }"),
+                    "joint[1].drive: a step at t = 0.5 would make the driven coordinate jump");
   // A harmonic with phase π is sin(π) = 1.2e-16 at t = 0: zero to roundoff, accepted.
-  CHECK(error_of(replace(kPlanar, "drive = { type = \"polynomial\", coefficients = [0.0, 6.0] }",
-                         "drive = { type = \"harmonic\", omega = 2.0, phase = 3.141592653589793 "
-                         "}")) == "");
+  CHECK(parse_error(replace(kPlanar, "drive = { type = \"polynomial\", coefficients = [0.0, 6.0] }",
+                            "drive = { type = \"harmonic\", omega = 2.0, phase = 3.141592653589793 "
+                            "}")) == "");
 }
 
 TEST_CASE("forces: kinds, coefficients, the joint of a rotational spring, components") {
-  check_error(replace(kPlanar, "joint = \"hinge_B\"", "joint = \"guide\""),
-              "force[2].joint: joint 'guide' is prismatic: a rotational spring-damper acts at a "
-              "revolute joint");
-  check_error(replace(kPlanar, "k = 100.0", "k = -1.0"), "force[1].k: must be >= 0");
-  check_error(replace(kPlanar, "force = [1.0, { type", "force = [{ type"),
-              "force[3].force: needs 2 components");
-  check_error(replace(kSpatial, "torque = [0.0, 0.0, 1.0]", "torque = [0.0, 1.0]"),
-              "force[1].torque: needs 3 components");
-  check_error(replace(kPlanar, "type = \"spring_damper\"", "type = \"spring\""),
-              "force[1].type: unknown force type 'spring'");
-  check_error(replace(kPlanar, "rest_length = 0.5", "rest_lenght = 0.5"),
-              "force[1].rest_lenght: unknown key (did you mean rest_length?");
+  check_parse_error(
+      replace(kPlanar, "joint = \"hinge_B\"", "joint = \"guide\""),
+      "force[2].joint: joint 'guide' is prismatic: a rotational spring-damper acts at a "
+      "revolute joint");
+  check_parse_error(replace(kPlanar, "k = 100.0", "k = -1.0"), "force[1].k: must be >= 0");
+  check_parse_error(replace(kPlanar, "force = [1.0, { type", "force = [{ type"),
+                    "force[3].force: needs 2 components");
+  check_parse_error(replace(kSpatial, "torque = [0.0, 0.0, 1.0]", "torque = [0.0, 1.0]"),
+                    "force[1].torque: needs 3 components");
+  check_parse_error(replace(kPlanar, "type = \"spring_damper\"", "type = \"spring\""),
+                    "force[1].type: unknown force type 'spring'");
+  check_parse_error(replace(kPlanar, "rest_length = 0.5", "rest_lenght = 0.5"),
+                    "force[1].rest_lenght: unknown key (did you mean rest_length?");
 }
 
 TEST_CASE("sections and keys a mechanism has no use for, and its keys elsewhere") {
-  check_error(kPlanar + "[[load]]\ndof = \"crank.rx\"\nvalue = 1.0\n",
-              "load: not part of a multibody model: apply forces with [[force]]");
-  check_error(kPlanar + "[[constraint]]\nterms = { a = 1.0 }\n",
-              "constraint: not part of a multibody model");
-  check_error(kPlanar + "[initial]\ndisplacement = { x = 1.0 }\n",
-              "initial.displacement: a mechanism's initial poses and velocities are its [[body]]");
-  check_error(kPlanar + "[initial]\nkeep = [\"crank.x\"]\n",
-              "initial.keep: keeps values while [initial] project = true moves the others");
-  check_error(kPlanar + "[initial]\nproject = true\nkeep = [\"crank.qw\"]\n",
-              "initial.keep[1]: 'qw' is no value of body 'crank'");
-  check_error(
+  check_parse_error(kPlanar + "[[load]]\ndof = \"crank.rx\"\nvalue = 1.0\n",
+                    "load: not part of a multibody model: apply forces with [[force]]");
+  check_parse_error(kPlanar + "[[constraint]]\nterms = { a = 1.0 }\n",
+                    "constraint: not part of a multibody model");
+  check_parse_error(
+      kPlanar + "[initial]\ndisplacement = { x = 1.0 }\n",
+      "initial.displacement: a mechanism's initial poses and velocities are its [[body]]");
+  check_parse_error(kPlanar + "[initial]\nkeep = [\"crank.x\"]\n",
+                    "initial.keep: keeps values while [initial] project = true moves the others");
+  check_parse_error(kPlanar + "[initial]\nproject = true\nkeep = [\"crank.qw\"]\n",
+                    "initial.keep[1]: 'qw' is no value of body 'crank'");
+  check_parse_error(
       replace(kSpatial, "[solve]", "[initial]\nproject = true\nkeep = [\"door.qx\"]\n[solve]"),
       "initial.keep[1]: 'door.qx' is one component of a quaternion");
-  check_error(kPlanar + "[initial]\nproject = true\nkeep = [\"crank.angel\"]\n",
-              "initial.keep[1]: 'angel' is no value of body 'crank' that can be kept (did you "
-              "mean angle?");
-  check_error(kPlanar + "[initial]\nproject = true\nkeep = [\"crnk.x\"]\n",
-              "initial.keep[1]: unknown body 'crnk' (did you mean crank?)");
-  check_error(kPlanar + "[initial]\nproject = true\nkeep = [\"crank.x\", \"crank.x\"]\n",
-              "initial.keep[2]: 'crank.x' is listed twice");
-  check_error(kPlanar + "[output]\npoints = [\"crank.Q\"]\n",
-              "output.points[1]: unknown point 'Q' of body 'crank' (known: A, B)");
-  check_error(kPlanar + "[output]\npoints = [\"ground.O\"]\n",
-              "output.points[1]: the ground's points do not move");
-  check_error(kPlanar + "[output]\npoints = [\"crankB\"]\n",
-              "output.points[1]: 'crankB' is not body.point");
+  check_parse_error(
+      kPlanar + "[initial]\nproject = true\nkeep = [\"crank.angel\"]\n",
+      "initial.keep[1]: 'angel' is no value of body 'crank' that can be kept (did you "
+      "mean angle?");
+  check_parse_error(kPlanar + "[initial]\nproject = true\nkeep = [\"crnk.x\"]\n",
+                    "initial.keep[1]: unknown body 'crnk' (did you mean crank?)");
+  check_parse_error(kPlanar + "[initial]\nproject = true\nkeep = [\"crank.x\", \"crank.x\"]\n",
+                    "initial.keep[2]: 'crank.x' is listed twice");
+  check_parse_error(kPlanar + "[output]\npoints = [\"crank.Q\"]\n",
+                    "output.points[1]: unknown point 'Q' of body 'crank' (known: A, B)");
+  check_parse_error(kPlanar + "[output]\npoints = [\"ground.O\"]\n",
+                    "output.points[1]: the ground's points do not move");
+  check_parse_error(kPlanar + "[output]\npoints = [\"crankB\"]\n",
+                    "output.points[1]: 'crankB' is not body.point");
   const std::string truss = R"([model]
 type = "truss2d"
 nodes = [[0.0, 0.0]]
@@ -454,9 +449,9 @@ members = []
 t_end = 1.0
 output_step = 0.1
 )";
-  check_error(truss + "[[body]]\nname = \"a\"\n", "body: [[body]] belongs to a mechanism");
-  check_error(truss + "[output]\npoints = [\"a.b\"]\n",
-              "output.points: names points of a mechanism");
-  check_error(replace(kPlanar, "[[body]]\nname = \"crank\"", "[[bodyy]]\nname = \"crank\""),
-              "bodyy: unknown key");
+  check_parse_error(truss + "[[body]]\nname = \"a\"\n", "body: [[body]] belongs to a mechanism");
+  check_parse_error(truss + "[output]\npoints = [\"a.b\"]\n",
+                    "output.points: names points of a mechanism");
+  check_parse_error(replace(kPlanar, "[[body]]\nname = \"crank\"", "[[bodyy]]\nname = \"crank\""),
+                    "bodyy: unknown key");
 }

@@ -8,6 +8,7 @@
 #include "models/assembly/build_model.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
+#include "tests/scene_errors.hpp"
 
 using namespace condyn;
 
@@ -20,14 +21,7 @@ std::string scene(const std::string& dofs, const std::string& constraint) {
          "[solve]\nt_end = 1.0\noutput_step = 0.5\n";
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    (void)build_model(parse_scene_text(text, "n.toml"));
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::string& text) { return test::build_error(text, "n.toml"); }
 
 }  // namespace
 

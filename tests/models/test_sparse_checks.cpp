@@ -12,6 +12,7 @@
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/lattice_scene.hpp"
+#include "tests/scene_errors.hpp"
 
 using namespace condyn;
 using condyn::test::lattice;
@@ -224,12 +225,7 @@ TEST_CASE("a DOF nothing acts on is refused before the checks that grow with the
       "[model]\ntype = \"matrix\"\nmass = { file = \"M.mtx\" }\nstiffness = { file = \"K.mtx\" }\n";
   const std::string solve = "[solve]\nt_end = 1.0\noutput_step = 0.1\n";
   const auto error_of = [&](const std::string& scene) {
-    try {
-      (void)build_model(parse_scene_file(box.write("s.toml", scene).string()));
-    } catch (const SceneError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return test::file_build_error(box.write("s.toml", scene).string());
   };
   const std::string unreached = error_of(model + solve);
   CAPTURE(unreached);

@@ -13,10 +13,12 @@
 #include "models/core/model.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+using condyn::test::build_error;
 
 namespace {
 
@@ -53,15 +55,6 @@ static = true
 t_end = 1.0
 output_step = 0.1
 )";
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    (void)build_model(parse_scene_text(text, "bad.toml"));
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 bool contains(const std::string& s, const std::string& part) {
@@ -122,7 +115,7 @@ TEST_CASE("static start: the ground motion at t = 0 is one of the loads, and the
 
 TEST_CASE("static start: refusals name initial.static") {
   SUBCASE("a DOF nothing holds") {
-    const std::string e = error_of(R"([model]
+    const std::string e = build_error(R"([model]
 type = "matrix"
 dofs = ["a", "b"]
 mass = [[1.0, 0.0], [0.0, 1.0]]
@@ -138,7 +131,7 @@ output_step = 0.1
     CHECK(contains(e, "free to move: b"));
   }
   SUBCASE("a floating truss (rigid-body modes: K singular though every DOF has stiffness)") {
-    const std::string e = error_of(R"([model]
+    const std::string e = build_error(R"([model]
 type = "truss2d"
 nodes = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
 masses = [1.0, 1.0, 1.0]
@@ -155,7 +148,7 @@ output_step = 0.1
     CHECK(contains(e, "singular"));
   }
   SUBCASE("an exact zero pivot: two DOFs free to move together, named") {
-    const std::string e = error_of(R"([model]
+    const std::string e = build_error(R"([model]
 type = "matrix"
 dofs = ["a", "b", "c"]
 mass = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
@@ -171,22 +164,22 @@ output_step = 0.1
   }
   SUBCASE("a wrong type") {
     const std::string e =
-        error_of(test::replace(chain("0.0", ""), "static = true", "static = \"yes\""));
+        build_error(test::replace(chain("0.0", ""), "static = true", "static = \"yes\""));
     CHECK(contains(e, "initial.static"));
     CHECK(contains(e, "expected true or false"));
   }
   SUBCASE("with given displacements") {
-    const std::string e = error_of(chain("0.0", "displacement = { x2 = 1.0 }\n"));
+    const std::string e = build_error(chain("0.0", "displacement = { x2 = 1.0 }\n"));
     CHECK(contains(e, "initial.static"));
     CHECK(contains(e, "remove [initial] displacement"));
   }
   SUBCASE("with project = true") {
-    const std::string e = error_of(chain("0.0", "project = true\n"));
+    const std::string e = build_error(chain("0.0", "project = true\n"));
     CHECK(contains(e, "initial.static"));
     CHECK(contains(e, "cannot be combined"));
   }
   SUBCASE("a nonlinear model") {
-    const std::string e = error_of(R"([model]
+    const std::string e = build_error(R"([model]
 type = "truss2d"
 nodes = [[0.0, 0.0], [1.0, 0.0]]
 masses = [0.0, 1.0]

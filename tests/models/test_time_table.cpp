@@ -17,6 +17,7 @@
 #include "models/core/time_table.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_errors.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
@@ -62,12 +63,7 @@ output_step = 0.5
 
 /// The SceneError message of the scene, else "".
 std::string scene_error(const Sandbox& box, const std::string& scene) {
-  try {
-    (void)build_model(parse_scene_file(box.write("scene.toml", scene).string()));
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
+  return test::file_build_error(box.write("scene.toml", scene).string());
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "models/scene/scene_parser.hpp"
+#include "tests/scene_errors.hpp"
 #include "validation/studies/user_checks.hpp"
 
 using namespace condyn;
@@ -33,13 +34,10 @@ atol = 1e-12
 )" + checks;
 }
 
+/// The reader's refusal of `text`, or "(accepted)".
 std::string refusal(const std::string& text) {
-  try {
-    (void)parse_scene_text(text, "s.toml");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(accepted)";
+  const std::string message = test::parse_error(text, "s.toml");
+  return message.empty() ? "(accepted)" : message;
 }
 
 }  // namespace
