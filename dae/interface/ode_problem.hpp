@@ -52,6 +52,8 @@ class OdeProblem {
   /// size²), preconditioned by precondition(). False by default (the dense Jacobian).
   [[nodiscard]] virtual bool matrix_free() const { return false; }
   /// z ≈ (I − γJ)⁻¹ r for a matrix_free() problem's GMRES; z = r by default.
+  // By-value Ref: the signature every override shares.
+  // NOLINTNEXTLINE(performance-unnecessary-value-param)
   virtual void precondition(double /*gamma*/, ConstRef r, Ref z) const { z = r; }
 };
 
