@@ -202,12 +202,6 @@ constexpr double kMaxDerivedAtol = 1e300;
 /// velocities' roundoff floor.
 constexpr double kRowNoiseUlps = 16.0;
 
-/// Over how many of the slowest natural time scales 1/ω_min a velocity error is sustained
-/// (docs/schemes.md): the cap runs longer than that had, so they keep their tolerances. At 1
-/// (atol ω_min) the car axis, forced slower than its lowest mode, lost a digit at rtol 1e-10; at
-/// 100 the pendulum of period 2 lost 0.26 digits at t = 200 s.
-constexpr double kSustainedScales = 1000.0;
-
 /// The velocities' roundoff, below which Newton cannot converge on them: 16 eps max|v(0)| (the
 /// four-bar, |v0| = 6, at atol 1e-15 over 2 s, atol_v 5e-16, failed at t = 6e-8; 16 eps |v0| is
 /// 2e-14), and eps max|u(0)| / h: the BDF derivative u' = (α u + ...) / h carries u's roundoff
@@ -215,13 +209,16 @@ constexpr double kSustainedScales = 1000.0;
 /// a local error of rtol on the fastest time scale, rtol^(1/4) / ω_max: A01's pendulum released
 /// from rest (v0 = 0, |u| = 1 m, ω = 3.13, rtol 1e-10, steps of 1.7e-3 s) failed at t = 1517
 /// and 1953 s with atol_v 1.1e-14 and 3.1e-14 and passed with 5e-14 and 1e-13; this gives 2.2e-13.
-double velocity_roundoff(const Model& model, const ModelScales& s, double rtol) {
+/// GGL's only: its v is also corrected by A_pᵀμ; Baumgarte and index1 ran A01's 2000 s at
+/// 3.1e-15, and Baumgarte over 20 s lost half a digit at 2.2e-13.
+double velocity_roundoff(const Model& model, const ModelScales& s, const SolveSpec& settings) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const auto largest = [](const Eigen::VectorXd& x) {
     return x.size() > 0 ? x.cwiseAbs().maxCoeff() : 0.0;
   };
-  const double step = std::pow(rtol, 0.25) / s.omega_max;
-  const double derivative = s.omega_max > 0.0 ? eps * largest(model.u0) / step : 0.0;
+  const double step = std::pow(settings.rtol, 0.25) / s.omega_max;
+  const bool ggl = settings.scheme == Scheme::ggl;
+  const double derivative = ggl && s.omega_max > 0.0 ? eps * largest(model.u0) / step : 0.0;
   return std::max(16.0 * eps * largest(model.v0), derivative);
 }
 
@@ -234,15 +231,14 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   const double T = s.omega_min > 0.0 ? std::min(1.0 / s.omega_min, t_end) : t_end;
   AbsoluteTolerances a;
   a.displacement = settings.atol;
-  // Sustained over kSustainedScales of the slowest natural time scales (an oscillator turns a
-  // velocity error into a displacement of Δv/ω, not Δv·t_end), whatever the run's length: over
-  // min(t_end, 1e3 / ω_min) a longer run asked for a smaller atol_v, and A01's pendulum failed at
-  // 2000 s (atol_v 3.1e-15) where it passed at 20 s. Only a model without any frequency falls
-  // back on t_end; never below 1e-30 atol per unit time (t_end = 1e300 gave 1e-310).
-  const double sustained = s.omega_min > 0.0 ? kSustainedScales / s.omega_min : t_end;
-  a.velocity = settings.atol_velocity.value_or(
-      std::max({a.displacement / sustained, velocity_roundoff(model, s, settings.rtol),
-                1e-30 * a.displacement}));
+  // Sustained over the run, but over no more than a thousand of the slowest natural time
+  // scales (an oscillator turns a velocity error into a displacement of Δv/ω, not Δv·t_end), and
+  // never below 1e-30 atol per unit time: t_end = 1e300 gave 1e-310, an infinite error weight.
+  // (Over 1e3 / ω_min whatever t_end, the runs shorter than that met u's roundoff: the four-bar
+  // and the hanging chain at atol 1e-12 over 2 s failed under GGL.)
+  const double sustained = s.omega_min > 0.0 ? std::min(t_end, 1e3 / s.omega_min) : t_end;
+  a.velocity = settings.atol_velocity.value_or(std::max(
+      {a.displacement / sustained, velocity_roundoff(model, s, settings), 1e-30 * a.displacement}));
   // The derived ones never below kMinAtol, where error weights stop fitting in a double's
   // error norm (a tiny mass or a huge coefficient could take them there), nor above
   // kMaxDerivedAtol: masses of 1e308 or an atol of 1e307 made them infinite, and the run

@@ -48,12 +48,13 @@ inline constexpr int kDenseScaleLimit = 400;
 /// Absolute tolerances per kind of unknown. Displacements: [solve] atol (model units). The others,
 /// unless the scene sets them, follow from it so that an error of that size moves the
 /// displacements by atol:
-///   velocity    atol_v = atol ω_min / 1000       (sustained over a thousand of the slowest
-///                                                 natural time scales 1/ω_min, whatever t_end;
-///                                                 atol / t_end without any frequency), but at
+///   velocity    atol_v = atol / t_end            (sustained over the run, but over at most
+///                                                 1000 / ω_min; a looser atol / T cost the car
+///                                                 axis a digit at rtol 1e-10: its motion is
+///                                                 forced, slower than its lowest mode), but at
 ///                                                 least the roundoff of v: 16 eps max|v(0)|, and
-///                                                 eps max|u(0)| ω_max / rtol^(1/4), u's roundoff
-///                                                 over a BDF step
+///                                                 under GGL eps max|u(0)| ω_max / rtol^(1/4), u's
+///                                                 roundoff over a BDF step
 ///   multiplier  atol_λ = atol · m / (T² · a)     (a force error Δf sustained over the model's
 ///                                                 slowest natural time scale T = min(1/ω_min,
 ///                                                 t_end) displaces a mass m by Δf T²/m; λ is a
