@@ -62,10 +62,10 @@ cpu_seconds() {  # of the finished (waited for) child processes of process $1
 }
 stage() { echo "bootstrap: $(date -u +%H:%M:%S) (${SECONDS} s, CPU $(cpu_seconds $$) s) $*"; }
 # The main job builds the program and the Python module (build/python/condyn); the test command
-# builds every test executable too, with warnings as errors. Both as a unity build: the library
-# files are compiled in batches, which parse Eigen's and SUNDIALS' headers and instantiate their
-# templates once per batch. Test files stay one by one, at -O1 with their common headers
-# precompiled (CMakeLists.txt).
+# builds the test executables too (the unit and e2e tiers only in its sanitized tree, below), with
+# warnings as errors. Both as a unity build: the library files are compiled in batches, which
+# parse Eigen's and SUNDIALS' headers and instantiate their templates once per batch. Test files
+# stay one by one, at -O1 with their common headers precompiled (CMakeLists.txt).
 if [ "$mode" = main ]; then
   stage "build/: configure and build"
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=OFF -DCONDYN_TESTS=OFF \
@@ -102,14 +102,14 @@ cmake -S . -B build-lint -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON 
 lint_configure=$!
 cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DCMAKE_CXX_FLAGS="$sanitize" \
-  -DCONDYN_TESTS=ON -DCONDYN_TESTS_OPT=-O0 -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF \
-  -DCMAKE_UNITY_BUILD=ON >build-asan/configure.log 2>&1 &
+  -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON -DCONDYN_TEST_TIERS="unit;e2e" -DCONDYN_TESTS_OPT=-O0 \
+  -DCONDYN_FUZZ=ON -DCONDYN_PYTHON=OFF -DCMAKE_UNITY_BUILD=ON >build-asan/configure.log 2>&1 &
 asan_configure=$!
 background=("$lint_configure" "$asan_configure")
 stage "build/: configure and build (g++, warnings as errors); beside it build-lint/ and" \
   "build-asan/ are configured"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=ON -DCONDYN_TESTS=ON \
-  -DCMAKE_UNITY_BUILD=ON >/dev/null
+  -DCONDYN_TEST_TIERS="convergence;validation;stress" -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build -j "$jobs"
 wait_for "$lint_configure" "configuring build-lint/" build-lint/configure.log
 wait_for "$asan_configure" "configuring build-asan/" build-asan/configure.log
@@ -161,37 +161,38 @@ run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option
   -checks='-clang-analyzer-*,-bugprone-suspicious-include' $batches \
   >build/clang-tidy.log 2>&1 || lint_failed build/clang-tidy.log
 stage "lint: clang-format and clang-tidy clean; waiting for build-asan/"
+wait_for "$asan_build" "the build of build-asan/" build-asan/build.log
+tail -n 1 build-asan/build.log
 # ctest registers each doctest case by name and CMake splits a name at ';': such a case was
 # registered as one that matches nothing, and "passed" without running.
-for t in build/condyn_tests_*; do
+for t in build/condyn_tests_* build-asan/condyn_tests_*; do
   [ -f "$t" ] && [ -x "$t" ] || continue  # executables, not directories
   if "$t" --list-test-cases --no-version | grep -F ';' >&2; then
     echo "bootstrap: a test case name above holds ';', which ctest would never run ($t)" >&2
     exit 1
   fi
 done
-wait_for "$asan_build" "the build of build-asan/" build-asan/build.log
-tail -n 1 build-asan/build.log
 
+# The unit and e2e tiers run here only, under the sanitizers: build/ does not build them
+# (CONDYN_TEST_TIERS), so no test file is compiled twice.
 stage "build-asan/: the unit and e2e tiers under the sanitizers"
 (cd build-asan && ctest -L "unit|e2e" --output-on-failure -j "$jobs")
 
 # Fuzz the scene parser and model builder for 60 s from the seed corpus. A finding (crash,
 # sanitizer report, uncaught exception, refusal without the file name, non-finite model, input over
 # 10 s or 2 GB) fails the command; the input is left in build-asan/fuzz-crash-* or -timeout-*.
-# The fuzzer is one process on one core: the tests of build/ that run one at a time anyway (the
-# python and plots suites, one process each) and the unit tier run beside it on the other core,
-# about as long; the rest of ctest follows on every core.
-beside_fuzz='^(unit|python|plots)$'
-stage "fuzzing for 60 s, and beside it ctest -L '$beside_fuzz' on one core"
+# The fuzzer is one process; ctest runs the tests of build/ beside it on every core (the stress
+# test, the longest, first), the cores shared three ways while the fuzzer runs.
+stage "fuzzing for 60 s, and beside it ctest: every test of build/"
 rm -rf build-asan/fuzz-corpus && mkdir -p build-asan/fuzz-corpus
 build-asan/condyn_fuzz_scene -max_total_time=60 -timeout=10 -rss_limit_mb=2048 \
   -dict=tests/fuzz/scene.dict -print_final_stats=1 -artifact_prefix=build-asan/fuzz- \
   build-asan/fuzz-corpus tests/fuzz/corpus models/scenes validation/scenes \
   >build-asan/fuzz.log 2>&1 &
 fuzzer=$!
-beside_status=0
-(cd build && ctest -L "$beside_fuzz" --output-on-failure -j 1) || beside_status=$?
+background+=("$fuzzer")
+ctest_status=0
+(cd build && ctest --output-on-failure -j "$jobs") || ctest_status=$?
 if wait "$fuzzer"; then
   echo "bootstrap: fuzzing found nothing in 60 s ($(grep -o 'number_of_executed_units: *[0-9]*' \
     build-asan/fuzz.log | grep -o '[0-9]*$') inputs; log build-asan/fuzz.log)"
@@ -201,9 +202,5 @@ else
   echo "bootstrap: the scene fuzzer found a problem (log build-asan/fuzz.log; input above)" >&2
   exit 1
 fi
-((beside_status == 0)) || { echo "bootstrap: ctest -L '$beside_fuzz' failed (above)" >&2; exit 1; }
-
-stage "ctest: every other test of build/"
-cd build
-ctest --output-on-failure -j "$jobs" -LE "$beside_fuzz"
+((ctest_status == 0)) || { echo "bootstrap: ctest in build/ failed (above)" >&2; exit 1; }
 stage "done"
