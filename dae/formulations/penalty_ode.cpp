@@ -59,23 +59,13 @@ PenaltyOde::PenaltyOde(const MechanicalSystem& system, const PenaltyWeights& wei
   // Row i's spring acts along a_i with stiffness w |a_i|² when its residual a_i·u enters
   // unscaled: a row written as 0.001 u1 = 0.001 u2 got a millionth of the weight and was not
   // held. Each row is weighted by 1/|a_i|², so w is a stiffness whatever the row's scale.
-  // |a_i| from the row scaled exactly by a power of two, and 1/|a_i|² never formed (it overflows
-  // below coefficients of 1e-154 and underflows above 1e154: a row at 1e200 got no weight and was
-  // not held, one at 1e-160 gave NaN): the springs act along the unit normals a_i/|a_i| on the
-  // residuals φ_i/|a_i|, and λ_i = w (φ_i/|a_i|)/|a_i| is scaled once at a time.
-  const Eigen::VectorXd exact = row_scales(A);  // largest entry of each row in [0.5, 1)
-  Eigen::VectorXd sum = Eigen::VectorXd::Zero(m_);
-  for (int k = 0; k < A.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      const double r = it.value() * exact[it.row()];
-      sum[it.row()] += r * r;
-    }
-  }
-  row_scale_.resize(m_);
+  // |a_i| from the row scaled exactly (models/core/row_scales.hpp): the springs act along the
+  // unit normals a_i/|a_i| on the residuals φ_i/|a_i|, and λ_i = w (φ_i/|a_i|)/|a_i| is scaled
+  // once at a time (a row at 1e200 got no weight and was not held, one at 1e-160 gave NaN).
+  row_scale_ = unit_row_scales(A);
   for (int i = 0; i < m_; ++i) {
     const bool position = system.position_rows()[static_cast<std::size_t>(i)];
     row_weight_[i] = position ? weights.position : weights.velocity;
-    row_scale_[i] = sum[i] > 0.0 ? exact[i] / std::sqrt(sum[i]) : 1.0;
     (position ? position_mask_ : velocity_mask_).insert(i, i) = 1.0;
   }
   const auto& K0 = system_->stiffness(0.0, zero, zero);

@@ -74,7 +74,9 @@ void run_multipliers(const Model& model, Scheme scheme, const BaumgarteGains& ga
                      const ConstraintTreatment* mixed, bool row_multipliers,
                      const ObservedRun& run);
 
-/// Penalty with IDA (dae/formulations/penalty_ode.hpp); linear models only.
+/// Penalty with IDA (dae/formulations/penalty_ode.hpp) on a linear model; on a nonlinear one the
+/// augmented Lagrangian with CVODE (dae/formulations/augmented_lagrangian_ode.hpp), `weights`
+/// unused.
 void run_penalty(const Model& model, const PenaltyWeights& weights, const ObservedRun& run);
 
 /// Projection with CVODE (dae/formulations/projected_ode.hpp).

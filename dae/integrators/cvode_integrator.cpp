@@ -13,6 +13,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <exception>
 #include <memory>
@@ -24,6 +25,7 @@ namespace {
 
 using sundials::ContextPtr;
 using sundials::MatrixPtr;
+using sundials::NonlinearSolverPtr;
 using sundials::SolverPtr;
 using sundials::VectorPtr;
 using sundials::view;
@@ -156,11 +158,49 @@ class Cvode final : public sundials::SundialsStepper {
     work_.reset(sundials::new_vector(n_, ctx_.get()));
     if (!y_ || !work_) throw IntegrationError("N_VNew_Serial failed (out of memory?)");
     view(y_.get()) = y0;
-    mem_.reset(CVodeCreate(CV_BDF, ctx_.get()));
+    non_stiff_ = problem.non_stiff();
+    mem_.reset(CVodeCreate(non_stiff_ ? CV_ADAMS : CV_BDF, ctx_.get()));
     if (!mem_) throw IntegrationError("CVodeCreate failed");
-    // The problem's own sparse Newton solve when it has one, else a dense difference-quotient
-    // Jacobian ((n_)² entries). A state-dependent one linearises at the predicted state, where
-    // CVODE's own matrix-based solvers evaluate their Jacobians.
+    if (non_stiff_) {
+      // Functional iteration, without acceleration (Anderson's would keep m vectors of size n).
+      fixed_point_.reset(SUNNonlinSol_FixedPoint(y_.get(), 0, ctx_.get()));
+      if (!fixed_point_) throw IntegrationError("could not create the fixed-point iteration");
+    } else {
+      create_linear_solver(problem);
+    }
+    attach(mem_.get(), work_.get());
+    check(CVodeSetErrHandlerFn(mem_.get(), sundials::record_message, &report_),
+          "CVodeSetErrHandlerFn");
+    check(CVodeInit(mem_.get(), rhs_trampoline, t0, y_.get()), "CVodeInit");
+    check(CVodeSetUserData(mem_.get(), &data_), "CVodeSetUserData");
+    // Adams' orders go to 12, BDF's to 5: the option caps both.
+    check(CVodeSetMaxOrd(mem_.get(), options.max_order), "CVodeSetMaxOrd");
+    data_.rtol = options.rtol;
+    data_.atol = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
+    view(work_.get()) = data_.atol;
+    check(CVodeSVtolerances(mem_.get(), options.rtol, work_.get()),
+          "CVodeSVtolerances");  // copies the vector
+    if (non_stiff_) {
+      check(CVodeSetNonlinearSolver(mem_.get(), fixed_point_.get()), "CVodeSetNonlinearSolver");
+    } else {
+      check(CVodeSetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
+      if (!newton_ && !matrix_) {  // GMRES: J v by CVODE's difference quotients, our P
+        check(CVodeSetPreconditioner(mem_.get(), nullptr, precondition_trampoline),
+              "CVodeSetPreconditioner");
+      }
+    }
+    if (problem.has_projection()) {
+      check(CVodeSetProjFn(mem_.get(), projection_trampoline), "CVodeSetProjFn");
+      check(CVodeSetProjErrEst(mem_.get(), SUNTRUE), "CVodeSetProjErrEst");
+    }
+  }
+
+  /// The Newton iterations' linear solver: the problem's own sparse Newton solve when it has
+  /// one, else GMRES on difference-quotient products (matrix_free()), else a dense
+  /// difference-quotient Jacobian ((n_)² entries).
+  void create_linear_solver(const OdeProblem& problem) {
+    // A state-dependent one linearises at the predicted state, where CVODE's own matrix-based
+    // solvers evaluate their Jacobians.
     newton_ = problem.newton_system();
     if (newton_) {
       void* mem = mem_.get();
@@ -184,26 +224,6 @@ class Cvode final : public sundials::SundialsStepper {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
       if (!matrix_ || !solver_) throw IntegrationError("could not create the dense linear solver");
-    }
-    attach(mem_.get(), work_.get());
-    check(CVodeSetErrHandlerFn(mem_.get(), sundials::record_message, &report_),
-          "CVodeSetErrHandlerFn");
-    check(CVodeInit(mem_.get(), rhs_trampoline, t0, y_.get()), "CVodeInit");
-    check(CVodeSetUserData(mem_.get(), &data_), "CVodeSetUserData");
-    check(CVodeSetMaxOrd(mem_.get(), options.max_order), "CVodeSetMaxOrd");
-    data_.rtol = options.rtol;
-    data_.atol = options.atol_vector(problem.unknown_kinds(), static_cast<int>(n_));
-    view(work_.get()) = data_.atol;
-    check(CVodeSVtolerances(mem_.get(), options.rtol, work_.get()),
-          "CVodeSVtolerances");  // copies the vector
-    check(CVodeSetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
-    if (!newton_ && !matrix_) {  // GMRES: J v by CVODE's difference quotients, our P
-      check(CVodeSetPreconditioner(mem_.get(), nullptr, precondition_trampoline),
-            "CVodeSetPreconditioner");
-    }
-    if (problem.has_projection()) {
-      check(CVodeSetProjFn(mem_.get(), projection_trampoline), "CVodeSetProjFn");
-      check(CVodeSetProjErrEst(mem_.get(), SUNTRUE), "CVodeSetProjErrEst");
     }
   }
 
@@ -256,6 +276,7 @@ class Cvode final : public sundials::SundialsStepper {
   /// Entries of the matrix the Newton iterations factor: the problem's sparse one, the dense one,
   /// or none (GMRES on products).
   [[nodiscard]] long jacobian_nonzeros() const {
+    if (non_stiff_) return 0;
     if (newton_) return newton_->nonzeros();
     return matrix_ ? static_cast<long>(n_) * static_cast<long>(n_) : 0;
   }
@@ -267,7 +288,7 @@ class Cvode final : public sundials::SundialsStepper {
     check(CVodeGetNumRhsEvals(mem_.get(), &c.evaluations), "CVodeGetNumRhsEvals");
     if (newton_) {
       c.jacobians = sundials::newton_solver_setups(solver_.get());  // one matrix per setup
-    } else {
+    } else if (!non_stiff_) {  // functional iteration: no Jacobian
       check(CVodeGetNumJacEvals(mem_.get(), &c.jacobians), "CVodeGetNumJacEvals");
     }
     check(CVodeGetNumNonlinSolvIters(mem_.get(), &c.newton), "CVodeGetNumNonlinSolvIters");
@@ -291,6 +312,8 @@ class Cvode final : public sundials::SundialsStepper {
   std::unique_ptr<NewtonSystem> newton_;  ///< outlives solver_, which points to it
   MatrixPtr matrix_;
   SolverPtr solver_;
+  NonlinearSolverPtr fixed_point_;  ///< a non-stiff problem's functional iteration
+  bool non_stiff_ = false;
   CvodePtr mem_;  ///< destroyed first
 };
 

@@ -2,7 +2,8 @@
 /// The only place that talks to SUNDIALS CVODE: BDF with Newton on the problem's own Newton
 /// systems (OdeProblem::newton_system; a dense difference-quotient Jacobian for a problem without
 /// one), and CVODE's projection after every step (CVodeSetProjFn,
-/// with the error estimate projected too). Same loop as IDA (dae/integrators/step_driver.hpp).
+/// with the error estimate projected too); a non-stiff problem (OdeProblem::non_stiff) by Adams
+/// with functional iteration. Same loop as IDA (dae/integrators/step_driver.hpp).
 
 #include "dae/integrators/step_driver.hpp"
 #include "dae/interface/ode_problem.hpp"

@@ -44,6 +44,10 @@ class OdeProblem {
   [[nodiscard]] virtual bool wants_restart(double /*t*/, ConstRef /*y*/) const { return false; }
   /// Applies the projection's linearisation to an error estimate (CVodeSetProjErrEst).
   virtual void project_error(Ref err) const = 0;
+  /// True for an ODE that is not stiff: CVODE then integrates it by Adams' methods with
+  /// functional (fixed-point) iteration, no Newton system and no Jacobian at all
+  /// (dae/formulations/augmented_lagrangian_ode.hpp); false: BDF with Newton.
+  [[nodiscard]] virtual bool non_stiff() const { return false; }
   /// Its own solver of the Newton systems, or nothing: CVODE's dense difference-quotient Jacobian
   /// (size² entries, size right-hand sides a Jacobian), unless matrix_free().
   [[nodiscard]] virtual std::unique_ptr<NewtonSystem> newton_system() const { return nullptr; }

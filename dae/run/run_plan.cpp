@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "dae/formulations/augmented_lagrangian_ode.hpp"
 #include "dae/formulations/partitioned_ode.hpp"
 #include "dae/formulations/scheme_run.hpp"
 #include "dae/run/failure_advice.hpp"
@@ -104,7 +105,14 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
     p.gains = baumgarte_gains(model, p.settings);
     p.notes.push_back({RunNote::Kind::scheme_setting, p.gains.rule});
   }
-  if (p.scheme == Scheme::penalty) {
+  if (p.scheme == Scheme::penalty && model.is_nonlinear()) {
+    // The augmented Lagrangian: its α from the model
+    // (dae/formulations/augmented_lagrangian_ode.hpp).
+    std::string rule = augmented_lagrangian_parameters(model).rule;
+    if (p.settings.penalty_weight)
+      rule += "; [solve] penalty's weight is for linear models, unused";
+    p.notes.push_back({RunNote::Kind::scheme_setting, std::move(rule)});
+  } else if (p.scheme == Scheme::penalty) {
     p.weights = penalty_weights(model, p.settings);
     p.notes.push_back({RunNote::Kind::scheme_setting, p.weights.rule});
   }

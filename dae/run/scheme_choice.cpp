@@ -26,7 +26,6 @@ enum class Refusal {
   none,
   penalty_static_start,
   elimination_nonholonomic,
-  penalty_nonlinear,
   penalty_dense_row,
   newmark_massless
 };
@@ -79,7 +78,6 @@ Refusal refusal_of(const Model& model, Scheme scheme) {
                                           [](const Constraint& c) { return c.nonholonomic; });
     return nonholonomic ? Refusal::elimination_nonholonomic : Refusal::none;
   }
-  if (scheme == Scheme::penalty) return Refusal::penalty_nonlinear;
   return Refusal::none;
 }
 
@@ -117,10 +115,6 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
              "MFCs \"are non treatable by master-slave methods unless they integrate to "
              "holonomic constraints\" (§5.6), and for them \"only the Lagrange multiplier "
              "method, used with extreme care, offers hope\" (§5.3.1). Use " +
-             usable(model, dae_schemes);
-    case Refusal::penalty_nonlinear:
-      return "penalty is implemented for linear models only (constant constraints, linear "
-             "forces); this model is nonlinear (state-dependent constraints or forces). Use " +
              usable(model, dae_schemes);
     case Refusal::penalty_dense_row: {
       const auto [row, entries] = longest_row(model.A);
@@ -308,6 +302,17 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
     }
     size.unknowns = 2 * model.dofs() + model.constraint_count();
     size.jacobian_nonzeros = S.nonZeros() + 2 * system->constraint_jacobian(0.0, u).nonZeros();
+    return size;
+  }
+  if (scheme == Scheme::penalty && model.is_nonlinear()) {
+    // The augmented Lagrangian (dae/formulations/augmented_lagrangian_ode.hpp): [u; v] under
+    // Adams' functional iteration, no Newton matrix; what it factors is M + AᵀαA.
+    const auto system = model.system->clone();
+    const Eigen::SparseMatrix<double> A = system->constraint_jacobian(0.0, model.u0);
+    const Eigen::SparseMatrix<double> S =
+        system->mass(0.0, model.u0) + Eigen::SparseMatrix<double>(A.transpose() * A);
+    size.unknowns = 2 * model.dofs();
+    size.jacobian_nonzeros = S.nonZeros();
     return size;
   }
   if (scheme == Scheme::penalty) {

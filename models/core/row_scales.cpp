@@ -21,4 +21,20 @@ Eigen::VectorXd row_scales(const Eigen::SparseMatrix<double>& A) {
   return scale;
 }
 
+Eigen::VectorXd unit_row_scales(const Eigen::SparseMatrix<double>& A) {
+  const Eigen::VectorXd exact = row_scales(A);  // largest entry of each row in [0.5, 1)
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(A.rows());
+  for (int k = 0; k < A.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      const double r = it.value() * exact[it.row()];
+      sum[it.row()] += r * r;
+    }
+  }
+  Eigen::VectorXd scale(A.rows());
+  for (Eigen::Index i = 0; i < scale.size(); ++i) {
+    scale[i] = sum[i] > 0.0 ? exact[i] / std::sqrt(sum[i]) : 1.0;
+  }
+  return scale;
+}
+
 }  // namespace condyn

@@ -11,4 +11,9 @@ namespace condyn {
 /// 1e155 overflowed A Aᵀ, and one of 1e-150 beside a unit mass left KLU's pivots to roundoff.
 [[nodiscard]] Eigen::VectorXd row_scales(const Eigen::SparseMatrix<double>& A);
 
+/// Per row of A, 1/|a_i| (1 for an empty row): row i times it is its unit normal. |a_i| from the
+/// row scaled exactly by row_scales() first, and 1/|a_i|² never formed (it overflows below
+/// coefficients of 1e-154 and underflows above 1e154).
+[[nodiscard]] Eigen::VectorXd unit_row_scales(const Eigen::SparseMatrix<double>& A);
+
 }  // namespace condyn

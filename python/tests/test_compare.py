@@ -88,20 +88,20 @@ def test_compare_without_a_reference_raises_integration_error():
 
 
 def test_a_skipped_scheme_has_every_key_of_a_run():
-    # penalty does not treat a nonlinear model: its record is skipped, with the same keys as
+    # elimination does not treat a nonholonomic row: its record is skipped, with the same keys as
     # a run's (None), so a table of the records needs no special case.
-    runs = condyn.compare(QUICKSTART.parent / "pendulum.toml", tolerances=[1e-3],
-                          schemes=["ggl", "penalty"], max_steps=20000)
+    runs = condyn.compare(QUICKSTART.parent / "chaplygin_sleigh.toml", tolerances=[1e-3],
+                          schemes=["ggl", "elimination"], max_steps=20000)
     ran = [r for r in runs if not r["skipped"]]
     skipped = [r for r in runs if r["skipped"]]
-    assert [r["scheme"] for r in skipped] == ["penalty"]
+    assert [r["scheme"] for r in skipped] == ["elimination"]
     assert set(skipped[0]) == set(ran[0])
     assert skipped[0]["rtol"] is None and skipped[0]["steps"] is None
     # Every key but scheme, skipped and message, as docs/python.md says: ok too (it was False,
     # a verdict on a run that never ran; reference was the sweep's).
     assert {k for k, v in skipped[0].items() if v is not None} == {"scheme", "skipped", "message"}
     assert skipped[0]["ok"] is None and skipped[0]["skipped"] is True
-    assert "penalty" in skipped[0]["message"] or "nonlinear" in skipped[0]["message"]
+    assert "nonholonomic" in skipped[0]["message"]
 
 
 def test_compare_marks_runs_far_beyond_their_target():

@@ -76,9 +76,9 @@ def test_slider_crank_from_a_dict_is_the_cli_run_bit_for_bit(cli, tmp_path, sche
     assert_same_as_cli(r, out)
 
 
-@pytest.mark.parametrize("scheme", ["elimination", "penalty"])
+@pytest.mark.parametrize("scheme", ["elimination"])
 def test_a_scheme_the_cli_refuses_is_refused_from_a_dict_with_its_reason(cli, tmp_path, scheme):
-    # The driven slider-crank has no free coordinate (elimination) and is nonlinear (penalty).
+    # The driven slider-crank has no free coordinate (elimination).
     proc = cli_run(cli, SLIDER_CRANK, scheme, tmp_path / "x.csv")
     assert proc.returncode == 2
     with pytest.raises(condyn.SceneError) as refusal:

@@ -1,8 +1,8 @@
 """The IFToMM benchmark scenes under every scheme that holds them (validation/iftomm/README.md),
 ctest `validation/iftomm_schemes` (label validation; CONDYN_BINARY names the command): each
 (scene, scheme) pair below, over a duration short enough for the tier, stays within TOLERANCE of
-the scene's independent reference; the schemes a mechanism cannot take are refused with their
-reason; and A03 as rigid bodies agrees with the built-in Andrews model over its whole run."""
+the scene's independent reference; and A03 as rigid bodies agrees with the built-in Andrews
+model over its whole run."""
 import os
 import tempfile
 
@@ -54,15 +54,6 @@ def test_scheme_stays_within_tolerance_of_the_reference(work_dir, key, t_end, sc
     assert run.error <= TOLERANCE, (
         f"{key} under {scheme}: {ir.benchmark(key).what} off by {run.error:.3e} from the "
         f"reference, beyond {TOLERANCE:.0e} (1000 rtol)")
-
-
-@pytest.mark.parametrize("key", [b.key for b in ir.BENCHMARKS])
-def test_penalty_is_refused_on_a_mechanism_with_its_reason(work_dir, key):
-    # Penalty is implemented for linear models only (docs/schemes.md); a mechanism's joints are
-    # nonlinear rows. The refusal is a reason (exit 2), not a failed run.
-    run = ir.run_scheme(CONDYN, ir.benchmark(key), "penalty", work_dir)
-    assert run.status == "refused"
-    assert "penalty is implemented for linear models only" in run.message
 
 
 def test_andrews_as_rigid_bodies_agrees_with_the_built_in_model(work_dir):

@@ -66,9 +66,14 @@ SolveSpec budgeted(SolveSpec s, const CompareOptions& options) {
 }
 
 /// Penalty's error target without rtol: kPenaltyAccuracy at the default weight, shrinking like
-/// 1/w under a weight of the scene's; 0 where penalty does not apply or has no constraints.
+/// 1/w under a weight of the scene's; 0 where penalty does not apply or has no constraints, and on
+/// a nonlinear model, where penalty is the augmented Lagrangian (its multipliers iterated to
+/// convergence: its error follows rtol, and it has no weight w).
 double penalty_error_target(const Model& model, const SolveSpec& settings) {
-  if (model.constraint_count() == 0 || scheme_refusal(model, Scheme::penalty)) return 0.0;
+  if (model.constraint_count() == 0 || model.is_nonlinear() ||
+      scheme_refusal(model, Scheme::penalty)) {
+    return 0.0;
+  }
   SolveSpec defaults = settings;
   defaults.penalty_weight.reset();
   return kPenaltyAccuracy * penalty_weights(model, defaults).position /
