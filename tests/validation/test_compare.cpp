@@ -365,7 +365,7 @@ TEST_CASE("compare against a reference at rest: errors relative to the run's own
   CHECK(r.runs[1].error_v < r.runs[0].error_v / 100);  // three decades of rtol, at least two
 }
 
-TEST_CASE("compare on a published benchmark: digits per run, inapplicable schemes not run") {
+TEST_CASE("compare on a published benchmark: digits per run under every scheme asked for") {
   namespace fs = std::filesystem;
   const SceneSpec spec =
       parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/car_axis.toml");
@@ -376,12 +376,10 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
   const CompareResult r = run_compare(spec, o);
   CHECK(r.reference_kind == "published");
   CHECK(r.trusted_digits_u == 10);
-  // Penalty cannot treat a nonlinear model: listed with the reason, not run. Elimination runs
-  // (coordinate partitioning).
-  REQUIRE(r.skipped.size() == 1);
-  CHECK(r.skipped[0].first == Scheme::penalty);
-  CHECK(r.skipped[0].second.find("nonlinear") != std::string::npos);
-  REQUIRE(r.runs.size() == 3 * 2);
+  // Every scheme asked for applies: elimination by coordinate partitioning, penalty as the
+  // augmented Lagrangian (docs/schemes.md).
+  CHECK(r.skipped.empty());
+  REQUIRE(r.runs.size() == 4 * 2);
   for (const auto& run : r.runs) {
     CAPTURE(std::string(to_string(run.scheme)));
     CAPTURE(run.rtol);
@@ -396,6 +394,7 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
   CHECK(r.runs[1].mescd_u > r.runs[0].mescd_u + 2.0);
   CHECK(r.runs[3].mescd_u > r.runs[2].mescd_u + 2.0);
   CHECK(r.runs[5].mescd_u > r.runs[4].mescd_u + 2.0);
+  CHECK(r.runs[7].mescd_u > r.runs[6].mescd_u + 2.0);
 
   const fs::path dir =
       fs::temp_directory_path() / ("condyn_compare_published_" + std::to_string(::getpid()));
@@ -404,15 +403,18 @@ TEST_CASE("compare on a published benchmark: digits per run, inapplicable scheme
   std::ifstream json(dir / "runs.json");
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   CHECK(text.find("\"kind\": \"published\"") != std::string::npos);
-  CHECK(text.find("\"skipped\": [{\"scheme\": \"penalty\"") != std::string::npos);
   const std::string note = draw_compare_plots(dir.string());
   CAPTURE(note);
   CHECK(note.rfind("plots written", 0) == 0);
   CHECK(fs::file_size(dir / "work_precision.png") > 1000);
   fs::remove_all(dir);
 
-  o.schemes = {Scheme::penalty};
-  CHECK_THROWS_AS((void)run_compare(spec, o), SchemeNotApplicable);
+  // Only schemes the scene refuses: elimination on the sleigh's nonholonomic row.
+  o.schemes = {Scheme::elimination};
+  CHECK_THROWS_AS((void)run_compare(parse_scene_file(std::string(CONDYN_SOURCE_DIR) +
+                                                     "/models/scenes/chaplygin_sleigh.toml"),
+                                    o),
+                  SchemeNotApplicable);
 }
 
 TEST_CASE("compare: quantities zero at every output row are measured against the whole run") {
