@@ -126,8 +126,10 @@ wait_for "$asan_configure" "configuring build-asan/" build-asan/configure.log
 stage "lint (clang-format, then clang-tidy); beside it build-asan/ builds (clang, ASan and UBSan)"
 (
   cmake --build build-asan -j "$jobs" --target condyn_tests_unit condyn_tests_e2e condyn_fuzz_scene
-  # Its own CPU seconds, apart from the lint's.
-  echo "bootstrap: build-asan/ built, CPU $(cpu_seconds "$BASHPID") s"
+  # Its own CPU seconds, apart from the lint's (read here: inside $(...) BASHPID names the
+  # substitution's own process, which has no finished children).
+  self=$BASHPID
+  echo "bootstrap: build-asan/ built, CPU $(cpu_seconds "$self") s"
 ) >build-asan/build.log 2>&1 &
 asan_build=$!
 background+=("$asan_build")
