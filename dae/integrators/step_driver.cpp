@@ -98,6 +98,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+constexpr double kCollapsedStep = 1e-12;  // a step size relative to |t|: a few thousand ulps
+
 /// One run of the integration loop: the time grid, where the integrator stands, the budgets
 /// spent, the outputs so far and the integrand's integrals.
 class StepLoop {
@@ -129,6 +131,7 @@ class StepLoop {
       const double tout = times[k_] - reached_ > grid_.tolerance ? times[k_] : stop_ahead();
       const double t = stepper_.step(tout);
       ++total_steps_;
+      check_stall(t - reached_, t);
       reached_ = t;  // the step succeeded: a budget that ends the run here ends it at t
       check_step_budgets(t);
       const auto& stops = grid_.stops;
@@ -191,7 +194,6 @@ class StepLoop {
     const bool solver_failure =
         e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
         e.kind == FailureKind::linear_solver || e.kind == FailureKind::unknown;
-    constexpr double kCollapsedStep = 1e-12;  // relative to |t_reached|: a few thousand ulps
     if (solver_failure && total_steps_ == 0) {
       e.kind = FailureKind::first_step;
     } else if ((e.kind == FailureKind::convergence || e.kind == FailureKind::error_test ||
@@ -286,6 +288,21 @@ class StepLoop {
     return next_stop_ < grid_.stops.size() ? grid_.stops[next_stop_] : t_end_;
   }
 
+  /// A step size that stays at roundoff of t can never reach the next output: steps below
+  /// kCollapsedStep |t|, kStalledSteps of them in a row (a cut at a discontinuity grows back in
+  /// a few dozen), end the run as a collapse at once, not after the budget of steps per output
+  /// (100,000 by default, minutes of a run that had already stopped advancing).
+  void check_stall(double advanced, double t) {
+    constexpr std::size_t kStalledSteps = 1000;
+    steps_at_roundoff_ =
+        std::abs(advanced) <= kCollapsedStep * std::abs(t) ? steps_at_roundoff_ + 1 : 0;
+    if (steps_at_roundoff_ < kStalledSteps) return;
+    std::ostringstream s;
+    s << "the step size stayed below " << kCollapsedStep << " |t| for " << kStalledSteps
+      << " steps in a row (at t = " << t << "): the run cannot advance";
+    throw IntegrationError(FailureKind::step_size_collapsed, s.str());
+  }
+
   /// The budgets of steps between two outputs and in all, after a step that ended at t.
   void check_step_budgets(double t) {
     if (++steps_since_output_ > options_.max_steps_per_output) {
@@ -338,6 +355,7 @@ class StepLoop {
   std::size_t next_stop_ = 0;
   std::size_t k_ = 1;  // next output
   long steps_since_output_ = 0, total_steps_ = 0;
+  std::size_t steps_at_roundoff_ = 0;  // consecutive steps below kCollapsedStep |t|
   double reached_;
   double next_progress_;
 };

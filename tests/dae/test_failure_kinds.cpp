@@ -28,16 +28,19 @@ bool contains(const std::string& s, const std::string& part) {
 }
 
 /// y' = 1 in steps of h, as the loop sees an integrator; throws `fail_kind` at step `fail_at`
-/// (0: never) with its last step set to `last_step` from then on.
+/// (0: never) with its last step set to `last_step` from then on; from step `stall_at` (0: never)
+/// `stall_steps` steps of 1e-13 t, at roundoff of t, as a collapsing integrator takes them.
 class FakeStepper : public Stepper {
  public:
   explicit FakeStepper(double h) : h_(h) {}
   double step(double /*tout*/) override {
-    if (fail_at > 0 && ++taken_ >= fail_at) {
+    ++taken_;
+    if (fail_at > 0 && taken_ >= fail_at) {
       h_ = last_step;
       throw IntegrationError(fail_kind, "fake failure");
     }
-    t_ = std::min(t_ + h_, stop_);
+    const bool stalled = stall_at > 0 && taken_ >= stall_at && taken_ < stall_at + stall_steps;
+    t_ = std::min(t_ + (stalled ? 1e-13 * t_ : h_), stop_);
     return t_;
   }
   void interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) override {
@@ -51,6 +54,7 @@ class FakeStepper : public Stepper {
   void fill_summary(SolveSummary& summary) override { summary.last_step = h_; }
 
   long fail_at = 0;
+  long stall_at = 0, stall_steps = 0;
   FailureKind fail_kind = FailureKind::convergence;
   double last_step = 0.0;
 
@@ -258,6 +262,30 @@ TEST_CASE("the loop refines a solver failure from the facts: no step taken, step
   converging.fail_at = 35;
   converging.last_step = 1e-4;  // an ordinary step: the integrator's word stands
   CHECK(drive_failure(converging, options).kind == FailureKind::convergence);
+}
+
+TEST_CASE("a step size at roundoff of t for 1000 steps in a row ends the run as a collapse") {
+  // A collapsed integrator used to run on to the budget of steps per output (100,000 by
+  // default): minutes for a run that had stopped advancing.
+  const IntegratorOptions options = quarter_outputs();
+  FakeStepper stalled(kStep);
+  stalled.stall_at = 11;  // after 10 steps: t = 10/64
+  stalled.stall_steps = 1'000'000;
+  const IntegrationError e = drive_failure(stalled, options);
+  CHECK(e.kind == FailureKind::step_size_collapsed);
+  CHECK(e.steps == 10 + 1000);
+  CHECK(contains(e.what(), "for 1000 steps in a row"));
+  REQUIRE(e.raw_partial);
+  CHECK(e.raw_partial->t == std::vector<double>{0.0});  // t = 10/64 is short of the first output
+  // 999 such steps, then steps of 1/64 again (a cut at a discontinuity that grows back): the run
+  // goes on to its end.
+  FakeStepper recovering(kStep);
+  recovering.stall_at = 11;
+  recovering.stall_steps = 999;
+  SolveSummary summary;
+  const RawTrajectory out =
+      drive(recovering, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Ones(1), options, summary);
+  CHECK(out.t.size() == 5);
 }
 
 TEST_CASE("a step budget ends the run as a failure with its kind and the rows before it") {
