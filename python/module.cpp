@@ -82,8 +82,44 @@ SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& sc
   return spec;
 }
 
-/// (result dict, failure message or None): the Python side raises IntegrationError with the
-/// partial result.
+/// The failure kind as an identifier, the enum's own name (a sweep's status column, docs/sweep.md;
+/// to_string gives the words messages use).
+const char* failure_kind_name(FailureKind kind) {
+  switch (kind) {
+    case FailureKind::unknown:
+      return "unknown";
+    case FailureKind::non_finite:
+      return "non_finite";
+    case FailureKind::residual_non_finite:
+      return "residual_non_finite";
+    case FailureKind::step_budget:
+      return "step_budget";
+    case FailureKind::wall_time_budget:
+      return "wall_time_budget";
+    case FailureKind::steps_per_output:
+      return "steps_per_output";
+    case FailureKind::step_size_collapsed:
+      return "step_size_collapsed";
+    case FailureKind::convergence:
+      return "convergence";
+    case FailureKind::error_test:
+      return "error_test";
+    case FailureKind::tolerance_too_tight:
+      return "tolerance_too_tight";
+    case FailureKind::linear_solver:
+      return "linear_solver";
+    case FailureKind::first_step:
+      return "first_step";
+    case FailureKind::bad_input:
+      return "bad_input";
+    case FailureKind::interrupted:
+      return "interrupted";
+  }
+  return "unknown";
+}
+
+/// (result dict, failure message or None, failure kind or None): the Python side raises
+/// IntegrationError with the partial result and the kind.
 py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
               std::optional<double> rtol, std::optional<double> atol) {
   std::string set_aside;
@@ -109,8 +145,11 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
   const py::object failure = result.ok()
                                  ? py::object(py::none())
                                  : python::system_text(describe_failure(result, spec.solve.t_end));
+  const py::object kind = result.ok() ? py::object(py::none())
+                                      : py::object(py::str(failure_kind_name(result.failure->kind)));
   return py::make_tuple(
-      python::result_dict(std::move(result), *model, spec.solve, report, spec.output), failure);
+      python::result_dict(std::move(result), *model, spec.solve, report, spec.output), failure,
+      kind);
 }
 
 py::tuple compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,
@@ -232,4 +271,7 @@ PYBIND11_MODULE(_condyn, m) {
         py::arg("max_wall_time") = 0.0);
   m.def("check", &check, py::arg("scene"), py::arg("scheme") = py::none());
   m.def("scheme_names", &scheme_names);
+  // Parses a scene (a path or a dict) and builds nothing: a sweep checks its scenes before it
+  // runs any (docs/sweep.md). Raises SceneError as run() does.
+  m.def("parse_scene", [](const py::handle& scene) { (void)python::parse_python_scene(scene); });
 }

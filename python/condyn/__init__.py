@@ -14,10 +14,12 @@ import warnings
 
 from ._condyn import SceneError, scheme_names
 from . import _condyn
+from .sweep_file import SweepError
 
 SceneError.__module__ = __name__  # shown as condyn.SceneError, where users catch it
 
-__all__ = ["run", "compare", "check", "Result", "SceneError", "IntegrationError", "scheme_names"]
+__all__ = ["run", "compare", "check", "sweep", "Result", "SceneError", "SweepError",
+           "IntegrationError", "scheme_names"]
 
 
 class Result:
@@ -75,14 +77,16 @@ class Result:
 class IntegrationError(RuntimeError):
     """The integrator stopped before t_end. `result` holds the rows computed before the failure
     (a Result, possibly with no rows); the message is the CLI's (scheme, kind, where, what to
-    try)."""
+    try); `kind` names the failure's kind ("step_budget", "convergence", ...: docs/python.md),
+    None when no run failed (compare's missing reference)."""
 
-    def __init__(self, message, result=None):
+    def __init__(self, message, result=None, kind=None):
         super().__init__(message)
         self.result = result
+        self.kind = kind
 
     def __reduce__(self):  # pickled with its result (a failed run in a process pool)
-        return (type(self), (str(self), self.result))
+        return (type(self), (str(self), self.result, self.kind))
 
 
 def run(scene, scheme=None, rtol=None, atol=None):
@@ -92,11 +96,11 @@ def run(scene, scheme=None, rtol=None, atol=None):
     and no line for a dict); a failed integration raises IntegrationError. The GIL is released
     while the model is built and integrated."""
     _refuse_text(scene)
-    fields, failure = _condyn.run(scene, _text(scene, "scheme", scheme),
-                                  _number(scene, "rtol", rtol), _number(scene, "atol", atol))
+    fields, failure, kind = _condyn.run(scene, _text(scene, "scheme", scheme),
+                                        _number(scene, "rtol", rtol), _number(scene, "atol", atol))
     result = Result(fields)
     if failure is not None:
-        raise IntegrationError(f"{_name(scene)}: integration failed: {failure}", result)
+        raise IntegrationError(f"{_name(scene)}: integration failed: {failure}", result, kind)
     return result
 
 
@@ -132,6 +136,20 @@ def check(scene, scheme=None):
     (quantity, computed, bound, passed, text). A scene without [[check]] raises SceneError."""
     _refuse_text(scene)
     return _condyn.check(scene, _text(scene, "scheme", scheme))
+
+
+def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=True):
+    """`condyn sweep` (docs/sweep.md): runs the product of the sweep file's axes on a local Dask
+    cluster of `workers` processes (default: one per core) or on the cluster of the scheduler at
+    `scheduler` ("tcp://host:8786"), and writes `out`/results.csv and results.h5 (default `out`:
+    the sweep file's name without extension). Runs already in the table are skipped. Progress
+    and the summary go to standard error unless `progress` is False. Returns the summary: runs,
+    ok, failed ({status: count}), skipped, missing, table. A bad sweep file raises SweepError (a
+    ValueError) naming the file and key, before any run."""
+    import sys
+    from .sweep_run import sweep as run_sweep  # Dask is imported only by a sweep
+    return run_sweep(sweep_file, workers=workers, scheduler=scheduler, out=out,
+                     progress=sys.stderr if progress else None)
 
 
 def _refuse_text(scene):

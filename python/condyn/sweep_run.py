@@ -1,0 +1,210 @@
+"""Runs a sweep on Dask (docs/sweep.md): a local cluster of worker processes, or the cluster of a
+scheduler the user started; each run a task carrying its scene and data files; rows written to
+the results table as runs end; progress and the summary on standard error.
+
+    summary = sweep("study.toml", workers=2)   # or scheduler="tcp://host:8786"
+"""
+
+import collections
+import contextlib
+import logging
+import os
+import signal
+import sys
+import time
+
+from .sweep_file import SweepError, expand, read_sweep
+from .sweep_table import ResultsTable, header
+from . import sweep_worker
+
+WORKER_LOST = "worker_lost"  # the run's worker died at every try (Dask's allowed failures)
+
+
+def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=sys.stderr):
+    """Runs what the results table in `out` (default: the sweep file's name without extension)
+    does not hold yet and returns the summary: {runs, ok, failed: {status: count}, skipped (rows
+    there before), missing (runs without a row: an interrupted sweep), table}. Bad input raises
+    SweepError before any run; progress goes to `progress` (None: silent)."""
+    if workers is not None and scheduler is not None:
+        raise SweepError("--workers and --scheduler: give one (the scheduler's workers run it)")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise SweepError(f"--workers: expected a whole number >= 1 (got {workers!r})")
+    spec = read_sweep(sweep_file)
+    runs = expand(spec)
+    table = ResultsTable(os.fspath(out) if out is not None else spec.default_out, header(spec))
+    skipped = sum(1 for r in runs if r.key in table.done)
+    todo = [r for r in runs if r.key not in table.done]
+    try:
+        if todo:
+            _run_all(todo, spec, table, workers, scheduler, progress)
+    except KeyboardInterrupt:
+        _say(progress, "sweep: interrupted; started again on the same folder, it runs only the "
+             "runs without a row")
+    finally:
+        table.finish([r.key for r in runs])
+    return _summary(runs, table, skipped, progress)
+
+
+def _run_all(todo, spec, table, workers, scheduler, progress):
+    """Submits every run of `todo` and writes each row as it arrives."""
+    distributed = _import_distributed()
+    from distributed import as_completed
+
+    with _client(distributed, workers, scheduler, progress) as client, _stop_on_sigterm():
+        _check_workers(client)
+        contents = {}  # each data file read and sent once; tasks take it from the cluster
+        for run in todo:
+            for name, path in run.files.items():
+                if path not in contents:
+                    with open(path, "rb") as f:
+                        contents[path] = client.scatter(f.read(), hash=True)
+        futures = {}
+        for run in todo:
+            files = {name: contents[path] for name, path in run.files.items()}
+            future = client.submit(sweep_worker.run_one, run.scene, files, spec.peaks,
+                                   key=f"condyn-run-{run.key}", pure=False)
+            futures[future] = run
+        meter = _Progress(progress, len(todo))
+        for future in as_completed(futures, loop=client.loop):
+            run = futures.pop(future)
+            row = _row_of(distributed, future)
+            if row["status"] == sweep_worker.NO_COLUMN:
+                for f in futures:
+                    f.cancel()
+                raise SweepError(f"{spec.file}: keep.peaks: {row['message']}")
+            if row["status"] not in sweep_worker.NOT_RUN:
+                table.append(run.key, run.values, row, spec.peaks)
+            meter.update(row["status"])
+        meter.close()
+
+
+def _row_of(distributed, future):
+    """The worker's row, or the row of a run whose task could not end (its worker died)."""
+    try:
+        return future.result()
+    except distributed.KilledWorker as e:
+        return {"status": WORKER_LOST, "steps": None, "wall_s": None, "peaks": {},
+                "message": str(e)}
+
+
+def _import_distributed():
+    try:
+        import distributed
+    except ImportError as e:
+        raise RuntimeError("condyn sweep needs Dask: apt-get install python3-distributed "
+                           f"python3-dask ({e})") from None
+    # The cluster's own chatter (workers starting and closing) is not the sweep's output.
+    for name in ("distributed", "tornado", "asyncio"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+    return distributed
+
+
+@contextlib.contextmanager
+def _client(distributed, workers, scheduler, progress):
+    """A client of the scheduler at `scheduler`, or of a local cluster of `workers` processes
+    (default: one per core), one thread each (a run holds its core); closed on leaving."""
+    if scheduler is None:
+        with distributed.LocalCluster(n_workers=workers or os.cpu_count() or 1,
+                                      threads_per_worker=1, processes=True,
+                                      dashboard_address=None,
+                                      silence_logs=logging.CRITICAL) as cluster, \
+                distributed.Client(cluster, set_as_default=False) as client:
+            yield client
+        return
+    try:
+        client = distributed.Client(scheduler, timeout=20, set_as_default=False)
+    except (OSError, TimeoutError, ValueError) as e:
+        raise RuntimeError(f"--scheduler {scheduler}: cannot reach the scheduler ({e})") from None
+    with client:
+        if not client.scheduler_info()["workers"]:
+            _say(progress, f"sweep: the scheduler at {scheduler} has no workers yet; waiting "
+                 "for one (dask-worker " + scheduler + ")")
+            client.wait_for_workers(1)
+        yield client
+
+
+def _check_workers(client):
+    """Every worker must import condyn (a remote worker started without its PYTHONPATH would
+    fail every task): RuntimeError naming the workers that cannot."""
+    def probe():
+        import condyn  # noqa: F401
+        return True
+
+    try:
+        client.run(probe)
+    except ImportError as e:
+        raise RuntimeError(f"a worker cannot import condyn ({e}): start dask-worker with "
+                           "PYTHONPATH set to the folder holding condyn (docs/sweep.md)") from None
+
+
+class _stop_on_sigterm:
+    """SIGTERM stops the sweep as Ctrl-C does: the rows written stay, the table is finished."""
+
+    def __enter__(self):
+        def stop(signum, frame):
+            raise KeyboardInterrupt
+
+        try:
+            self.previous = signal.signal(signal.SIGTERM, stop)
+        except ValueError:  # not the main thread: leave signals alone
+            self.previous = None
+        return self
+
+    def __exit__(self, *exc):
+        if self.previous is not None:
+            signal.signal(signal.SIGTERM, self.previous)
+
+
+class _Progress:
+    """Runs done and failed, runs per second and the time left, on one line rewritten on a
+    terminal, else a line every 10 % of the runs or 10 s."""
+
+    def __init__(self, stream, total):
+        self.stream, self.total = stream, total
+        self.done = self.failed = 0
+        self.start = self.last = time.monotonic()
+        self.tty = stream is not None and hasattr(stream, "isatty") and stream.isatty()
+
+    def update(self, status):
+        self.done += 1
+        self.failed += status != "ok"
+        now = time.monotonic()
+        step = max(1, self.total // 10)
+        if self.tty or self.done % step == 0 or self.done == self.total or now - self.last > 10:
+            self.last = now
+            self._print(now)
+
+    def close(self):
+        if self.tty:
+            self.stream.write("\n")
+
+    def _print(self, now):
+        if self.stream is None:
+            return
+        rate = self.done / max(now - self.start, 1e-9)
+        left = (self.total - self.done) / rate if rate > 0 else float("inf")
+        line = (f"sweep: {self.done}/{self.total} runs, {self.failed} failed, "
+                f"{rate:.3g} runs/s, {left:.0f} s left")
+        self.stream.write(("\r" + line + "\033[K") if self.tty else line + "\n")
+        self.stream.flush()
+
+
+def _summary(runs, table, skipped, progress):
+    statuses = collections.Counter(table.done[r.key][len(r.values) + 1] for r in runs
+                                   if r.key in table.done)
+    failed = {s: n for s, n in sorted(statuses.items()) if s != "ok"}
+    summary = {"runs": len(runs), "ok": statuses.get("ok", 0), "failed": failed,
+               "skipped": skipped, "missing": len(runs) - sum(statuses.values()),
+               "table": table.csv_path}
+    kinds = ", ".join(f"{s} {n}" for s, n in failed.items())
+    _say(progress, f"sweep: {summary['runs']} runs: {summary['ok']} ok, "
+         f"{sum(failed.values())} failed{f' ({kinds})' if kinds else ''}, "
+         f"{summary['missing']} not run; {skipped} done before; results in {table.csv_path}")
+    return summary
+
+
+def _say(stream, line):
+    if stream is not None:
+        stream.write(line + "\n")
+        stream.flush()
