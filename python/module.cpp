@@ -145,8 +145,9 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
   const py::object failure = result.ok()
                                  ? py::object(py::none())
                                  : python::system_text(describe_failure(result, spec.solve.t_end));
-  const py::object kind = result.ok() ? py::object(py::none())
-                                      : py::object(py::str(failure_kind_name(result.failure->kind)));
+  const py::object kind = result.ok()
+                              ? py::object(py::none())
+                              : py::object(py::str(failure_kind_name(result.failure->kind)));
   return py::make_tuple(
       python::result_dict(std::move(result), *model, spec.solve, report, spec.output), failure,
       kind);

@@ -37,6 +37,8 @@ packages+=(python3-matplotlib python3-numpy python3-h5py)
 # scipy for sparse models, pytest for its tests; sympy derives the IFToMM A05 reference's
 # equations (validation/references/iftomm/, ctest validation/iftomm_references).
 packages+=(pybind11-dev python3-dev python3-scipy)
+# condyn sweep runs its studies on Dask's distributed scheduler (docs/sweep.md).
+packages+=(python3-dask python3-distributed)
 [ "$mode" = test ] && packages+=(python3-pytest python3-sympy)
 missing=()
 for p in "${packages[@]}"; do

@@ -105,11 +105,14 @@ def _client(distributed, workers, scheduler, progress):
     """A client of the scheduler at `scheduler`, or of a local cluster of `workers` processes
     (default: one per core), one thread each (a run holds its core); closed on leaving."""
     if scheduler is None:
-        with distributed.LocalCluster(n_workers=workers or os.cpu_count() or 1,
-                                      threads_per_worker=1, processes=True,
-                                      dashboard_address=None,
-                                      silence_logs=logging.CRITICAL) as cluster, \
-                distributed.Client(cluster, set_as_default=False) as client:
+        # The workers start with Ctrl-C ignored: it stops the sweep, which closes them (they
+        # would otherwise each print a KeyboardInterrupt's traceback as they die).
+        with _sigint_ignored():
+            cluster = distributed.LocalCluster(n_workers=workers or os.cpu_count() or 1,
+                                               threads_per_worker=1, processes=True,
+                                               dashboard_address=None,
+                                               silence_logs=logging.CRITICAL)
+        with cluster, distributed.Client(cluster, set_as_default=False) as client:
             yield client
         return
     try:
@@ -136,6 +139,20 @@ def _check_workers(client):
     except ImportError as e:
         raise RuntimeError(f"a worker cannot import condyn ({e}): start dask-worker with "
                            "PYTHONPATH set to the folder holding condyn (docs/sweep.md)") from None
+
+
+@contextlib.contextmanager
+def _sigint_ignored():
+    """SIGINT ignored while processes are started (they inherit it), in the main thread only."""
+    try:
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:  # not the main thread: leave signals alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 class _stop_on_sigterm:

@@ -1,0 +1,302 @@
+"""condyn.sweep (docs/sweep.md, issue 46): the sweep file's refusals, the product of its axes and
+the run keys, and sweeps run on a real two-worker Dask cluster (one for the module, reached
+through its scheduler's address as --scheduler would): peaks against condyn.run, a failed run's
+row, restart skipping the runs done, the same table twice, results.h5 beside results.csv; and a
+dask-scheduler with two dask-worker processes started by hand, one killed mid-sweep."""
+
+import csv
+import json
+import math
+import os
+import shutil
+import signal
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import condyn
+from condyn.sweep_file import expand, read_sweep
+
+distributed = pytest.importorskip("distributed")
+# Debian's distributed 2022.12 starts its event loop in a way tornado 6.2 calls deprecated.
+pytestmark = pytest.mark.filterwarnings("ignore:make_current is deprecated:DeprecationWarning")
+
+SCENE = """\
+name = "two storeys under a recorded ground motion"
+[model]
+type = "matrix"
+dofs = ["u1", "u2"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[200.0, -100.0], [-100.0, 100.0]]
+damping = { rayleigh = [0.1, 0.001] }
+[ground_motion]
+acceleration = { type = "table", file = "records/a.csv", scale = 1.0 }
+influence = { u1 = 1.0, u2 = 1.0 }
+[solve]
+t_end = 1.0
+output_step = 0.05
+rtol = 1e-6
+atol = 1e-9
+[output]
+quantities = ["displacement", "reaction", "drift"]
+"""
+
+SWEEP = """\
+scene = "frame.toml"
+[[axis]]
+key = "ground_motion.acceleration.file"
+values = ["records/a.csv", "records/b.csv"]
+[[axis]]
+key = "ground_motion.acceleration.scale"
+values = [0.5, 1.0, 2.0]
+[keep]
+peaks = ["u2", "reaction_u1"]
+"""
+
+
+def write_record(path, omega):
+    """A ground acceleration sin(omega t) sampled every 0.01 s over 1 s."""
+    t = np.arange(0.0, 1.0 + 1e-9, 0.01)
+    np.savetxt(path, np.column_stack([t, np.sin(omega * t)]), delimiter=",", header="t,a",
+               comments="")
+
+
+@pytest.fixture
+def study(tmp_path):
+    """A folder with the scene, two records and the sweep file; returns the sweep file's path."""
+    (tmp_path / "records").mkdir()
+    write_record(tmp_path / "records" / "a.csv", 10.0)
+    write_record(tmp_path / "records" / "b.csv", 14.0)
+    (tmp_path / "frame.toml").write_text(SCENE)
+    (tmp_path / "study.toml").write_text(SWEEP)
+    return tmp_path / "study.toml"
+
+
+@pytest.fixture(scope="module")
+def scheduler():
+    """A real cluster of two worker processes for the module's sweeps: its scheduler's address."""
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        yield cluster.scheduler_address
+
+
+def read_table(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], rows[1:]
+
+
+def without_wall(header, rows):
+    j = header.index("wall_s")
+    return [r[:j] + r[j + 1:] for r in rows]
+
+
+# --- the sweep file ------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("edit, key, problem", [
+    (lambda s: "workers = 2\n" + s, "workers", "unknown key"),
+    (lambda s: s.replace('scene = "frame.toml"', 'scene = "nowhere.toml"'), "scene",
+     "no such file"),
+    (lambda s: s.replace("values = [0.5, 1.0, 2.0]", "values = []"), "axis[2].values",
+     "non-empty list"),
+    (lambda s: s.replace("values = [0.5, 1.0, 2.0]", "values = [0.5, 1.0, 0.5]"),
+     "axis[2].values", "0.5 is listed twice"),
+    (lambda s: s.replace('key = "ground_motion.acceleration.scale"', 'kee = "x"'),
+     "axis[2].kee", "unknown key"),
+    (lambda s: s.replace("ground_motion.acceleration.scale", "ground_motions.acceleration.scale"),
+     "axis[2].key", "it has no 'ground_motions'"),
+    (lambda s: s.replace("ground_motion.acceleration.scale", "load[1].value"),
+     "axis[2].key", "it has no 'load'"),
+    (lambda s: s.replace("ground_motion.acceleration.scale", "solve..rtol"),
+     "axis[2].key", "not a dotted scene path"),
+    (lambda s: s.replace("ground_motion.acceleration.scale", "ground_motion.acceleration.file"),
+     "axis[2].key", "swept by an earlier axis"),
+    # keys the scene parser refuses: an unknown leaf, a value of the wrong type, a missing file
+    (lambda s: s.replace("ground_motion.acceleration.scale", "solve.rtoll"),
+     "axis[2] (solve.rtoll = 0.5)", "solve.rtoll: unknown key"),
+    (lambda s: s.replace("values = [0.5, 1.0, 2.0]", 'values = [0.5, "big"]'),
+     'axis[2] (ground_motion.acceleration.scale = "big")', "scale"),
+    (lambda s: s.replace('"records/b.csv"', '"records/c.csv"'),
+     'axis[1] (ground_motion.acceleration.file = "records/c.csv")', "records/c.csv"),
+    (lambda s: s.replace('peaks = ["u2", "reaction_u1"]', 'peaks = "u2"'), "keep.peaks",
+     "expected a list"),
+    (lambda s: s.replace("[keep]", "[keep]\npeak = 1"), "keep.peak", "unknown key"),
+    (lambda s: s.replace("[[axis]]", "[[axis]\n", 1), "", "not valid TOML"),
+])
+def test_a_bad_sweep_file_is_refused_before_any_run_naming_file_and_key(study, edit, key,
+                                                                       problem):
+    study.write_text(edit(SWEEP))
+    with pytest.raises(condyn.SweepError) as e:
+        condyn.sweep(study, workers=1, progress=False)
+    message = str(e.value)
+    assert message.startswith(f"{study}: {key}"), message
+    assert problem in message, message
+    assert not (study.parent / "study").exists()  # no results folder: nothing ran
+
+
+def test_the_runs_are_the_product_of_the_axes_each_keyed_by_its_inputs(study):
+    runs = expand(read_sweep(study))
+    assert [r.values for r in runs] == [(f, s) for f in ("records/a.csv", "records/b.csv")
+                                        for s in (0.5, 1.0, 2.0)]
+    assert len({r.key for r in runs}) == 6
+    assert runs[4].scene["ground_motion"]["acceleration"] == {
+        "type": "table", "file": "records/b.csv", "scale": 1.0}
+    assert [r.key for r in expand(read_sweep(study))] == [r.key for r in runs]  # read again
+    # A record's content is an input: an edited b.csv changes the keys of its three runs only.
+    write_record(study.parent / "records" / "b.csv", 15.0)
+    again = expand(read_sweep(study))
+    assert [a.key == b.key for a, b in zip(runs, again)] == [True] * 3 + [False] * 3
+
+
+# --- sweeps on the cluster -----------------------------------------------------------------------
+
+def test_peaks_equal_condyn_run_of_each_scene_and_results_h5_holds_the_table(study, scheduler):
+    summary = condyn.sweep(study, scheduler=scheduler, progress=False)
+    assert summary == {"runs": 6, "ok": 6, "failed": {}, "skipped": 0, "missing": 0,
+                       "table": str(study.parent / "study" / "results.csv")}
+    header, rows = read_table(summary["table"])
+    assert header == ["run", "ground_motion.acceleration.file",
+                      "ground_motion.acceleration.scale", "status", "steps", "wall_s", "peak_u2",
+                      "peak_time_u2", "peak_reaction_u1", "peak_time_reaction_u1"]
+    for run, row in zip(expand(read_sweep(study)), rows):
+        scene = dict(run.scene)
+        scene["ground_motion"] = {**scene["ground_motion"], "acceleration": {
+            **scene["ground_motion"]["acceleration"], "file": str(study.parent / run.values[0])}}
+        r = condyn.run(scene)  # the same run in this process: deterministic, so bit for bit
+        cells = dict(zip(header, row))
+        assert cells["run"] == run.key and cells["ground_motion.acceleration.scale"] == \
+            repr(run.values[1])
+        assert cells["status"] == "ok" and int(cells["steps"]) == r.summary["steps"]
+        for column, values in (("u2", r.u[:, 1]), ("reaction_u1", r.reaction[:, 0])):
+            i = int(np.argmax(np.abs(values)))
+            assert float(cells[f"peak_{column}"]) == abs(values[i])
+            assert float(cells[f"peak_time_{column}"]) == r.t[i]
+    h5py = pytest.importorskip("h5py")
+    with h5py.File(study.parent / "study" / "results.h5", "r") as f:
+        assert list(f.attrs["columns"]) == header
+        assert list(f["run"].asstr()[()]) == [r[0] for r in rows]
+        np.testing.assert_array_equal(f["peak_u2"][()], [float(r[6]) for r in rows])
+
+
+def test_a_failed_run_is_a_row_with_its_failure_kind(study, scheduler):
+    study.write_text(SWEEP + '[[axis]]\nkey = "solve.max_steps"\nvalues = [100000, 5]\n')
+    summary = condyn.sweep(study, scheduler=scheduler, progress=False)
+    assert summary["runs"] == 12 and summary["ok"] == 6
+    assert summary["failed"] == {"step_budget": 6}
+    header, rows = read_table(summary["table"])
+    table = [dict(zip(header, row)) for row in rows]
+    fewest_ok = min(int(c["steps"]) for c in table if c["status"] == "ok")
+    for cells in table:
+        assert cells["status"] == ("ok" if cells["solve.max_steps"] == "100000" else
+                                   "step_budget")
+        if cells["status"] != "ok":  # a failed run keeps no peaks: its rows stop early
+            assert cells["peak_u2"] == "" and 0 < int(cells["steps"]) < fewest_ok
+
+
+def test_restart_runs_only_what_is_missing_and_the_same_sweep_gives_the_same_table(
+        study, scheduler):
+    first = condyn.sweep(study, scheduler=scheduler, out=study.parent / "one", progress=False)
+    header, rows = read_table(first["table"])
+    # A sweep stopped after two rows, the third cut short as it was written.
+    shutil.copytree(study.parent / "one", study.parent / "two")
+    with open(study.parent / "two" / "results.csv", "w", newline="") as f:
+        f.write(",".join(header) + "\n" + "".join(",".join(r) + "\n" for r in rows[:2]))
+        f.write(",".join(rows[2])[:10])
+    again = condyn.sweep(study, scheduler=scheduler, out=study.parent / "two", progress=False)
+    assert again["skipped"] == 2 and again["ok"] == 6 and again["missing"] == 0
+    header2, rows2 = read_table(again["table"])
+    assert header2 == header
+    # The two rows kept are the first sweep's own (wall_s included); the others equal but wall_s.
+    assert rows2[:2] == rows[:2]
+    assert without_wall(header, rows2) == without_wall(header, rows)
+    # Nothing left to do: no run, the table unchanged.
+    text = (study.parent / "two" / "results.csv").read_text()
+    third = condyn.sweep(study, scheduler=scheduler, out=study.parent / "two", progress=False)
+    assert third["skipped"] == 6 and (study.parent / "two" / "results.csv").read_text() == text
+
+
+def test_a_kept_column_no_run_has_stops_the_sweep_naming_it(study, scheduler):
+    study.write_text(SWEEP.replace('"reaction_u1"', '"u9"'))
+    with pytest.raises(condyn.SweepError, match=r"keep\.peaks: no column 'u9' .*columns: t, u1"):
+        condyn.sweep(study, scheduler=scheduler, progress=False)
+    _, rows = read_table(study.parent / "study" / "results.csv")
+    assert rows == []
+
+
+def test_a_table_of_another_sweep_is_refused(study, scheduler):
+    out = study.parent / "study"
+    out.mkdir()
+    (out / "results.csv").write_text("run,status\nabc,ok\n")
+    with pytest.raises(condyn.SweepError, match="written by another sweep"):
+        condyn.sweep(study, scheduler=scheduler, progress=False)
+    assert (out / "results.csv").read_text() == "run,status\nabc,ok\n"
+
+
+def test_peak_is_the_largest_magnitude_and_its_first_time():
+    from condyn.sweep_worker import peak
+    assert peak(np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.0, -3.0, 3.0, 2.0])) == (3.0, 1.0)
+    assert all(math.isnan(x) for x in peak(np.array([]), np.array([])))
+
+
+# --- a cluster started by hand, one worker killed --------------------------------------------------
+
+def start(command, log):
+    """A process of the cluster, its output in `log`, in its own process group."""
+    env = dict(os.environ, PYTHONWARNINGS="ignore")
+    return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env,
+                            start_new_session=True)
+
+
+def test_a_worker_killed_mid_sweep_loses_no_run(study, scheduler, tmp_path):
+    # 40 runs on a dask-scheduler and two dask-worker processes started as docs/sweep.md says;
+    # one worker is killed (SIGKILL) once the first row is written: its runs go to the other.
+    study.write_text(SWEEP.replace("values = [0.5, 1.0, 2.0]",
+                                   f"values = {[0.25 * k for k in range(1, 21)]}"))
+    # Runs of 10 s (the records stay at their last sample) so that the sweep outlasts the kill.
+    (study.parent / "frame.toml").write_text(SCENE.replace("t_end = 1.0", "t_end = 10.0"))
+    address_file = tmp_path / "scheduler.json"
+    with open(tmp_path / "cluster.log", "w") as log:
+        procs = [start(["dask-scheduler", "--port", "0", "--no-dashboard", "--scheduler-file",
+                        str(address_file)], log)]
+        try:
+            deadline = time.monotonic() + 30
+            while not address_file.exists() and time.monotonic() < deadline:
+                time.sleep(0.1)
+            address = json.loads(address_file.read_text())["address"]
+            for _ in range(2):
+                procs.append(start(["dask-worker", address, "--nthreads", "1", "--no-nanny",
+                                    "--no-dashboard", "--local-directory", str(tmp_path)], log))
+            table = study.parent / "killed" / "results.csv"
+            result = {}
+
+            def sweep():
+                try:
+                    result.update(condyn.sweep(study, scheduler=address, out=table.parent,
+                                               progress=False))
+                except Exception as e:  # shown by the assertion below
+                    result["raised"] = e
+
+            sweeping = threading.Thread(target=sweep)
+            sweeping.start()
+            while sweeping.is_alive() and (not table.exists() or
+                                           table.read_text().count("\n") < 2):
+                time.sleep(0.02)
+            rows_before_kill = table.read_text().count("\n") - 1
+            assert sweeping.is_alive() and rows_before_kill < 40  # the kill is mid-sweep
+            procs[1].kill()
+            sweeping.join(timeout=120)
+            assert not sweeping.is_alive() and "raised" not in result, result
+        finally:
+            for p in procs:
+                p.kill()
+                p.wait()
+    assert procs[1].returncode == -signal.SIGKILL
+    assert result["runs"] == 40 and result["ok"] == 40 and result["missing"] == 0
+    # The same sweep on the module's local cluster gives the same table but for wall_s.
+    local = condyn.sweep(study, scheduler=scheduler, out=study.parent / "local", progress=False)
+    header, rows = read_table(table)
+    assert read_table(local["table"])[0] == header
+    assert without_wall(header, read_table(local["table"])[1]) == without_wall(header, rows)
