@@ -17,7 +17,7 @@ import tomllib
 
 from . import _condyn
 
-_TOP_KEYS = ("scene", "axis", "keep")
+_TOP_KEYS = ("scene", "axis", "keep", "records", "scale")
 _KEEP_KEYS = ("peaks",)
 _AXIS_KEYS = ("key", "values")
 # One component of a dotted scene path: a name, then 1-based indices into arrays (load[1]).
@@ -33,6 +33,11 @@ class Axis:
     key: str     # the dotted scene path, as written (the results' column name)
     path: list   # its components: names (str) and 1-based indices (int)
     values: list
+    # How a value goes into the scene, apply(sweep, scene, axis, value, where); None: set at
+    # `path`
+    # ([records] and [scale] have their own: sweep_records.py).
+    apply: object = None
+    name: str = ""  # the axis in messages: axis[2], records, scale
 
 
 @dataclasses.dataclass
@@ -78,8 +83,11 @@ def read_sweep(path):
         _fail(path, "scene", f"the scene is refused: {e}")
     scene = _read_toml(scene_file, "the scene")
     scene.pop("output", {}).pop("file", None)  # a sweep keeps what [keep] says, no run's file
-    return Sweep(path, scene_file, scene, _read_axes(path, table.get("axis", [])),
-                 _read_peaks(path, table.get("keep", {})))
+    from .sweep_records import records_axes  # it builds on this file's Axis and SweepError
+    axes = _read_axes(path, table.get("axis", []))
+    sweep = Sweep(path, scene_file, scene, axes, _read_peaks(path, table.get("keep", {})))
+    sweep.axes = records_axes(sweep, table) + axes
+    return sweep
 
 
 def expand(sweep):
@@ -87,10 +95,10 @@ def expand(sweep):
     fastest), each with its key. The scene of each axis value is checked by condyn's scene parser
     first (an unknown key, a value of the wrong type, a missing file: SweepError naming the axis);
     a combination of values the parser would refuse fails at its run ("scene_error")."""
-    for a, axis in enumerate(sweep.axes, start=1):
+    for axis in sweep.axes:
         for value in axis.values:
-            scene = _applied(sweep, [axis], (value,), f"axis[{a}]")
-            _check_scene(sweep, scene, f"axis[{a}] ({axis.key} = {_shown(value)})")
+            scene = _applied(sweep, [axis], (value,), axis.name)
+            _check_scene(sweep, scene, f"{axis.name} ({axis.key} = {_shown(value)})")
     digests = {}
     runs = []
     for index, values in enumerate(itertools.product(*(a.values for a in sweep.axes))):
@@ -183,7 +191,7 @@ def _read_axes(path, axes):
         for i, v in enumerate(values):
             if v in values[:i]:
                 _fail(path, f"{where}.values", f"{_shown(v)} is listed twice")
-        read.append(Axis(key, components, values))
+        read.append(Axis(key, components, values, name=where))
     return read
 
 
@@ -206,7 +214,7 @@ def _applied(sweep, axes, values, where):
     """A copy of the sweep's scene with each axis' value set at its key."""
     scene = copy.deepcopy(sweep.scene)
     for axis, value in zip(axes, values):
-        _set(sweep, scene, axis, copy.deepcopy(value), where)
+        (axis.apply or _set)(sweep, scene, axis, copy.deepcopy(value), where)
     return scene
 
 

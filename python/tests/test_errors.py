@@ -178,9 +178,11 @@ def test_integration_error_carries_the_partial_result(quickstart_dict):
     assert s["unknowns"] > 0 and s["jacobian_nonzeros"] > 0
     assert s["max_drift_position"] >= partial.drift[:, 0].max()
     assert s["max_drift_velocity"] >= partial.drift[:, 1].max()
-    # It pickles (a failed run in a process pool): message and partial result survive.
+    # Its kind, as an identifier (a sweep's status column, docs/sweep.md).
+    assert e.value.kind == "step_budget"
+    # It pickles (a failed run in a process pool): message, kind and partial result survive.
     back = pickle.loads(pickle.dumps(e.value))
-    assert str(back) == str(e.value)
+    assert str(back) == str(e.value) and back.kind == "step_budget"
     np.testing.assert_array_equal(back.result.u, partial.u)
 
 

@@ -300,3 +300,92 @@ def test_a_worker_killed_mid_sweep_loses_no_run(study, scheduler, tmp_path):
     header, rows = read_table(table)
     assert read_table(local["table"])[0] == header
     assert without_wall(header, read_table(local["table"])[1]) == without_wall(header, rows)
+
+
+# --- [records] and [scale] -------------------------------------------------------------------------
+
+EL_CENTRO = os.path.join(os.path.dirname(__file__), "..", "..", "models", "scenes", "data",
+                         "el_centro_1940_ns.csv")
+RECORDS = """\
+scene = "frame.toml"
+[records]
+folder = "suite"
+column = "acceleration_g"
+scale = 9.81
+[scale]
+pga = [0.5, 2.0]
+[keep]
+peaks = ["u2"]
+"""
+
+
+@pytest.fixture
+def suite(study):
+    """The study with a folder `suite` of two records in g: El Centro and a.csv with a header."""
+    (study.parent / "suite").mkdir()
+    shutil.copy(EL_CENTRO, study.parent / "suite" / "el_centro.csv")
+    text = (study.parent / "records" / "a.csv").read_text().replace("t,a", "t,acceleration_g")
+    (study.parent / "suite" / "pulse.csv").write_text(text)
+    study.write_text(RECORDS)
+    return study
+
+
+def test_records_of_a_folder_are_scaled_to_each_target_pga(suite):
+    runs = expand(read_sweep(suite))
+    assert [r.values for r in runs] == [("suite/el_centro.csv", 0.5), ("suite/el_centro.csv", 2.0),
+                                        ("suite/pulse.csv", 0.5), ("suite/pulse.csv", 2.0)]
+    # The record's header: "Peak |a| = 0.31882 g"; the scene's table reads it in g, and the
+    # scale takes that peak to the target (the unit 9.81 of [records] is replaced, its sign kept).
+    table = runs[1].scene["ground_motion"]["acceleration"]
+    assert table == {"type": "table", "file": "suite/el_centro.csv", "scale": 2.0 / 0.31882,
+                     "column": "acceleration_g"}
+    # The pulse is sin(10 t) sampled every 0.01 s: its peak is the largest sample (savetxt's
+    # 19 digits read back exactly).
+    t = np.arange(0.0, 1.0 + 1e-9, 0.01)
+    peak = float(np.max(np.abs(np.sin(10.0 * t))))
+    assert runs[2].scene["ground_motion"]["acceleration"]["scale"] == 0.5 / peak
+
+
+def test_factors_multiply_each_record_and_run_on_the_cluster(suite, scheduler):
+    suite.write_text(RECORDS.replace("pga = [0.5, 2.0]", "factors = [1.0, 2.0]"))
+    summary = condyn.sweep(suite, scheduler=scheduler, progress=False)
+    assert summary["ok"] == 4
+    header, rows = read_table(summary["table"])
+    assert header[:3] == ["run", "record", "scale"]
+    peaks = {(r[1], r[2]): float(r[header.index("peak_u2")]) for r in rows}
+    for record in ("suite/el_centro.csv", "suite/pulse.csv"):
+        # A linear model: twice the record, twice the response, to the runs' accuracy (rtol
+        # 1e-6 each: a relative difference within 100 rtol; observed 2.9e-6 and 0.8e-6).
+        ratio = peaks[(record, "2.0")] / peaks[(record, "1.0")]
+        assert abs(ratio - 2.0) < 100 * 1e-6 * 2.0
+
+
+@pytest.mark.parametrize("text, key, problem", [
+    (RECORDS.replace('folder = "suite"', 'folder = "empty"'), "records.folder", "holds no record"),
+    (RECORDS.replace('folder = "suite"', 'folder = "nowhere"'), "records.folder", "no such folder"),
+    (RECORDS.replace('folder = "suite"', 'folder = "suite"\nfiles = ["a.csv"]'), "records",
+     "one of the two"),
+    (RECORDS.replace('column = "acceleration_g"', 'colum = "a"'), "records.colum", "unknown key"),
+    (RECORDS.replace('column = "acceleration_g"', 'column = "acc"'),
+     'records (record = "suite/el_centro.csv")', "acc"),
+    (RECORDS.replace("pga = [0.5, 2.0]", "pga = [0.5, -2.0]"), "scale.pga", "positive numbers"),
+    (RECORDS.replace("pga = [0.5, 2.0]", "pga = [0.5]\nfactors = [1.0]"), "scale",
+     "one of the two"),
+    (RECORDS + '[[axis]]\nkey = "ground_motion.acceleration.scale"\nvalues = [1.0]\n', "records",
+     "sweeps the ground motion too"),
+])
+def test_bad_records_and_scales_are_refused_naming_the_key(suite, text, key, problem):
+    (suite.parent / "empty").mkdir()
+    suite.write_text(text)
+    with pytest.raises(condyn.SweepError) as e:
+        expand(read_sweep(suite))
+    assert str(e.value).startswith(f"{suite}: {key}"), str(e.value)
+    assert problem in str(e.value), str(e.value)
+
+
+def test_scale_needs_a_recorded_ground_motion(study):
+    (study.parent / "frame.toml").write_text(SCENE.replace(
+        '{ type = "table", file = "records/a.csv", scale = 1.0 }', "1.0"))
+    study.write_text('scene = "frame.toml"\n[scale]\nfactors = [1.0]\n')
+    with pytest.raises(condyn.SweepError, match=r"study.toml: scale: scales a recorded ground"):
+        read_sweep(study)
