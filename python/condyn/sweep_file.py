@@ -17,7 +17,7 @@ import tomllib
 
 from . import _condyn
 
-_TOP_KEYS = ("scene", "axis", "keep", "records", "scale")
+_TOP_KEYS = ("scene", "axis", "keep", "records", "scale", "ida")
 _KEEP_KEYS = ("peaks",)
 _AXIS_KEYS = ("key", "values")
 # One component of a dotted scene path: a name, then 1-based indices into arrays (load[1]).
@@ -47,6 +47,7 @@ class Sweep:
     scene: dict      # the scene as tomllib reads it
     axes: list       # of Axis
     peaks: list      # the kept columns (names of the run's CSV columns)
+    ida: tuple = None  # [ida]: (the kept column, the limit state or None), sweep_ida.py
 
     @property
     def default_out(self):
@@ -87,6 +88,8 @@ def read_sweep(path):
     axes = _read_axes(path, table.get("axis", []))
     sweep = Sweep(path, scene_file, scene, axes, _read_peaks(path, table.get("keep", {})))
     sweep.axes = records_axes(sweep, table) + axes
+    from .sweep_ida import read_ida
+    sweep.ida = read_ida(path, table, sweep)
     return sweep
 
 

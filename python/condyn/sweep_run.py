@@ -43,7 +43,14 @@ def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=sys.stder
              "runs without a row")
     finally:
         table.finish([r.key for r in runs])
-    return _summary(runs, table, skipped, progress)
+    summary = _summary(runs, table, skipped, progress)
+    if spec.ida is not None:
+        from .sweep_ida import write_ida
+        rows = [table.done[r.key] for r in runs if r.key in table.done]
+        summary["fragility"] = write_ida(table.folder, table.columns, rows, *spec.ida)
+        _say(progress, f"sweep: IDA curves in {table.folder}/ida.png" + (
+            f", fragility in {table.folder}/fragility.png" if spec.ida[1] is not None else ""))
+    return summary
 
 
 def _run_all(todo, spec, table, workers, scheduler, progress):

@@ -389,3 +389,41 @@ def test_scale_needs_a_recorded_ground_motion(study):
     study.write_text('scene = "frame.toml"\n[scale]\nfactors = [1.0]\n')
     with pytest.raises(condyn.SweepError, match=r"study.toml: scale: scales a recorded ground"):
         read_sweep(study)
+
+
+# --- [ida]: curves and the fragility fit -------------------------------------------------------------
+
+def test_the_fragility_fit_recovers_the_lognormal_the_runs_were_drawn_from():
+    from scipy.stats import norm
+    from condyn.sweep_ida import fragility_fit
+    theta, beta, n = 2.0, 0.4, 1000
+    runs = []
+    for im in np.linspace(0.5, 5.0, 10):
+        hits = round(n * norm.cdf(math.log(im / theta) / beta))  # exactly the expected count
+        runs += [(im, 1.0)] * hits + [(im, 0.0)] * (n - hits)
+    fit = fragility_fit(runs, limit=0.5)
+    # Rounding each count to a whole run moves the fit by about 1/n (observed 3.3e-5 on the
+    # median, 6.2e-4 on beta).
+    assert abs(fit[0] / theta - 1) < 5.0 / n and abs(fit[1] / beta - 1) < 5.0 / n, fit
+    assert fragility_fit([(1.0, 0.0), (2.0, 0.1)], limit=0.5) is None  # none reaches it
+
+
+def test_ida_writes_curves_and_the_fit_and_refuses_what_it_cannot_draw(suite, tmp_path):
+    from condyn.sweep_ida import write_ida
+    columns = ["run", "record", "pga", "status", "steps", "wall_s", "peak_u2", "peak_time_u2"]
+    rows = [["k", rec, str(im), "ok" if p < 9 else "convergence", "1", "0.1", str(p), "0"]
+            for rec, scale in (("a", 1.0), ("b", 2.0)) for im, p in
+            ((1.0, 1.0 * scale), (2.0, 2.0 * scale), (3.0, 9.0 if scale == 2.0 else 3.0))]
+    fit = write_ida(str(tmp_path), columns, rows, "u2", 2.5)
+    for name in ("ida.png", "ida.pdf", "fragility.png", "fragility.pdf"):
+        assert (tmp_path / name).stat().st_size > 5000, name
+    saved = json.loads((tmp_path / "fragility.json").read_text())
+    assert saved["median"] == fit[0] and saved["runs"] == 6 and saved["intensity"] == "pga"
+    # b reaches 2.5 at pga 2 (peak 4), a only at 3; b's failed run at 3 counts as reaching it.
+    assert 1.0 < fit[0] < 3.0
+    suite.write_text(RECORDS + '[ida]\nresponse = "u1"\n')
+    with pytest.raises(condyn.SweepError, match=r"ida\.response: expected one of the kept"):
+        read_sweep(suite)
+    suite.write_text(RECORDS.replace("[scale]\npga = [0.5, 2.0]\n", "") + '[ida]\nresponse = "u2"\n')
+    with pytest.raises(condyn.SweepError, match=r"study.toml: ida: needs \[records\] and \[scale\]"):
+        read_sweep(suite)
