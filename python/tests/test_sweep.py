@@ -427,3 +427,19 @@ def test_ida_writes_curves_and_the_fit_and_refuses_what_it_cannot_draw(suite, tm
     suite.write_text(RECORDS.replace("[scale]\npga = [0.5, 2.0]\n", "") + '[ida]\nresponse = "u2"\n')
     with pytest.raises(condyn.SweepError, match=r"study.toml: ida: needs \[records\] and \[scale\]"):
         read_sweep(suite)
+
+
+def test_the_ida_example_is_a_valid_sweep_of_records_the_script_writes():
+    example = os.path.join(os.path.dirname(__file__), "..", "..", "models", "scenes", "ida")
+    runs = expand(read_sweep(os.path.join(example, "frame_ida.toml")))
+    assert len(runs) == 11 * 10 and len({r.key for r in runs}) == 110
+    # The committed records are what make_records.py writes (its 6 decimals).
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("make_records",
+                                                  os.path.join(example, "make_records.py"))
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    t, a = script.record(3)
+    saved = np.loadtxt(os.path.join(example, "records", "syn03.csv"), delimiter=",", skiprows=2)
+    np.testing.assert_array_equal(saved[:, 0], np.round(t, 2))
+    assert np.max(np.abs(saved[:, 1] - a)) <= 0.5e-6  # the file's rounding to 6 decimals
