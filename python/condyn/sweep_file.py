@@ -17,7 +17,7 @@ import tomllib
 
 from . import _condyn
 
-_TOP_KEYS = ("scene", "axis", "keep", "records", "scale", "ida")
+_TOP_KEYS = ("scene", "axis", "keep", "records", "scale", "monte_carlo", "ida")
 _KEEP_KEYS = ("peaks",)
 _AXIS_KEYS = ("key", "values")
 # One component of a dotted scene path: a name, then 1-based indices into arrays (load[1]).
@@ -38,6 +38,16 @@ class Axis:
     # ([records] and [scale] have their own: sweep_records.py).
     apply: object = None
     name: str = ""  # the axis in messages: axis[2], records, scale
+    # The results' columns of the axis and a value's cells in them; None: one, named by the key
+    # ([monte_carlo] has a sample number and each parameter's value: sweep_montecarlo.py).
+    columns: list = None
+    cells: object = None
+
+    def columns_of(self):
+        return self.columns or [self.key]
+
+    def cells_of(self, value):
+        return self.cells(value) if self.cells else [value]
 
 
 @dataclasses.dataclass
@@ -87,7 +97,8 @@ def read_sweep(path):
     from .sweep_records import records_axes  # it builds on this file's Axis and SweepError
     axes = _read_axes(path, table.get("axis", []))
     sweep = Sweep(path, scene_file, scene, axes, _read_peaks(path, table.get("keep", {})))
-    sweep.axes = records_axes(sweep, table) + axes
+    from .sweep_montecarlo import monte_carlo_axes
+    sweep.axes = records_axes(sweep, table) + axes + monte_carlo_axes(sweep, table, axes)
     from .sweep_ida import read_ida
     sweep.ida = read_ida(path, table, sweep)
     return sweep

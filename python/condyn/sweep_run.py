@@ -81,7 +81,8 @@ def _run_all(todo, spec, table, workers, scheduler, progress):
                     f.cancel()
                 raise SweepError(f"{spec.file}: keep.peaks: {row['message']}")
             if row["status"] not in sweep_worker.NOT_RUN:
-                table.append(run.key, run.values, row, spec.peaks)
+                cells = [c for a, v in zip(spec.axes, run.values) for c in a.cells_of(v)]
+                table.append(run.key, cells, row, spec.peaks)
             meter.update(row["status"])
         meter.close()
 
@@ -215,8 +216,8 @@ class _Progress:
 
 
 def _summary(runs, table, skipped, progress):
-    statuses = collections.Counter(table.done[r.key][len(r.values) + 1] for r in runs
-                                   if r.key in table.done)
+    status = table.columns.index("status")
+    statuses = collections.Counter(table.done[r.key][status] for r in runs if r.key in table.done)
     failed = {s: n for s, n in sorted(statuses.items()) if s != "ok"}
     summary = {"runs": len(runs), "ok": statuses.get("ok", 0), "failed": failed,
                "skipped": skipped, "missing": len(runs) - sum(statuses.values()),

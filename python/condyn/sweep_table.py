@@ -17,7 +17,8 @@ def header(sweep):
     """The columns: run, one per axis (its key), status, steps, wall_s, then per kept column
     peak_<column> and peak_time_<column>."""
     peaks = [f"{kind}_{p}" for p in sweep.peaks for kind in ("peak", "peak_time")]
-    return ["run"] + [a.key for a in sweep.axes] + ["status", "steps", "wall_s"] + peaks
+    axes = [c for a in sweep.axes for c in a.columns_of()]
+    return ["run"] + axes + ["status", "steps", "wall_s"] + peaks
 
 
 def cell(value):
@@ -51,7 +52,8 @@ class ResultsTable:
             self._write(columns)
 
     def append(self, run, values, row, peaks):
-        """Writes the row of `run` (its axis values and worker's row) and flushes it to disk."""
+        """Writes the row of `run` (its cells of the axes, and the worker's row) and flushes it
+        to disk."""
         cells = [run] + [cell(v) for v in values]
         cells += [row["status"], cell(row["steps"]), cell(row["wall_s"])]
         for p in peaks:

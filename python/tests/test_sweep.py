@@ -443,3 +443,68 @@ def test_the_ida_example_is_a_valid_sweep_of_records_the_script_writes():
     saved = np.loadtxt(os.path.join(example, "records", "syn03.csv"), delimiter=",", skiprows=2)
     np.testing.assert_array_equal(saved[:, 0], np.round(t, 2))
     assert np.max(np.abs(saved[:, 1] - a)) <= 0.5e-6  # the file's rounding to 6 decimals
+
+
+# --- [monte_carlo] ---------------------------------------------------------------------------------
+
+MONTE_CARLO = """\
+[monte_carlo]
+samples = 4
+seed = 7
+[[monte_carlo.parameter]]
+key = "model.mass[2][2]"
+distribution = "lognormal"
+median = 1.0
+beta = 0.1
+[[monte_carlo.parameter]]
+key = "solve.rtol"
+distribution = "uniform"
+low = 1e-7
+high = 1e-6
+"""
+
+
+def test_monte_carlo_draws_each_parameter_and_writes_its_values(study, scheduler):
+    study.write_text(SWEEP.replace("values = [0.5, 1.0, 2.0]", "values = [1.0]") + MONTE_CARLO)
+    runs = expand(read_sweep(study))
+    assert [r.values for r in runs] == [(f, 1.0, k) for f in ("records/a.csv", "records/b.csv")
+                                        for k in (1, 2, 3, 4)]
+    # docs/sweep.md: numpy's default_rng(seed), each parameter's draws in the listed order.
+    rng = np.random.default_rng(7)
+    mass = 1.0 * np.exp(0.1 * rng.standard_normal(4))
+    rtol = rng.uniform(1e-7, 1e-6, 4)
+    for r in runs:
+        assert r.scene["model"]["mass"][1][1] == mass[r.values[2] - 1]
+        assert r.scene["solve"]["rtol"] == rtol[r.values[2] - 1]
+    summary = condyn.sweep(study, scheduler=scheduler, progress=False)
+    assert summary["ok"] == 8
+    header, rows = read_table(summary["table"])
+    assert header[1:6] == ["ground_motion.acceleration.file", "ground_motion.acceleration.scale",
+                           "sample", "model.mass[2][2]", "solve.rtol"]
+    for r, row in zip(runs, rows):
+        assert row[0] == r.key and int(row[3]) == r.values[2]
+        assert float(row[4]) == mass[r.values[2] - 1] and float(row[5]) == rtol[r.values[2] - 1]
+
+
+@pytest.mark.parametrize("edit, key, problem", [
+    (lambda s: s.replace("samples = 4", "samples = 0"), "monte_carlo.samples", ">= 1"),
+    (lambda s: s.replace("seed = 7\n", ""), "monte_carlo.seed", "required"),
+    (lambda s: s.replace('"lognormal"', '"weibull"'), "monte_carlo.parameter[1].distribution",
+     "expected one of normal, lognormal, uniform"),
+    (lambda s: s.replace("beta = 0.1", "sigma = 0.1"), "monte_carlo.parameter[1].sigma",
+     "unknown key"),
+    (lambda s: s.replace("beta = 0.1", "beta = -0.1"), "monte_carlo.parameter[1].beta",
+     "must not be negative"),
+    (lambda s: s.replace("high = 1e-6", "high = 1e-8"), "monte_carlo.parameter[2].high",
+     "must not be below low"),
+    (lambda s: s.replace('"solve.rtol"', '"model.mass[2][2]"'), "monte_carlo.parameter[2].key",
+     "drawn already"),
+    (lambda s: s.replace('"solve.rtol"', '"solve.rtoll"'),
+     "monte_carlo (sample = 1)", "solve.rtoll: unknown key"),
+])
+def test_bad_monte_carlo_tables_are_refused_naming_the_key(study, edit, key, problem):
+    study.write_text(SWEEP + edit(MONTE_CARLO))
+    with pytest.raises(condyn.SweepError) as e:
+        expand(read_sweep(study))
+    assert str(e.value).startswith(f"{study}: {key}"), str(e.value)
+    assert problem in str(e.value), str(e.value)
