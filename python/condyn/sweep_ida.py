@@ -29,7 +29,7 @@ def read_ida(path, table, sweep):
         if k not in _IDA_KEYS:
             _fail(path, f"ida.{k}", f"unknown key ([ida] has {', '.join(_IDA_KEYS)})")
     keys = [a.key for a in sweep.axes]
-    if "record" not in keys or not ({"scale", "pga"} & set(keys)):
+    if "record" not in keys or not ({"scale", "pga", "sa"} & set(keys)):
         _fail(path, "ida", "needs [records] and [scale]: the curves are a record's intensity "
               "against its response")
     response = ida.get("response")
@@ -47,7 +47,7 @@ def ida_points(columns, rows, response):
     """{record: (intensities, peaks)} of the runs that reached t_end, by intensity; and every
     run as (intensity, reached the limit?) input: (intensity, peak or inf for a failure)."""
     col = {name: j for j, name in enumerate(columns)}
-    intensity = "pga" if "pga" in col else "scale"
+    intensity = next(k for k in ("pga", "sa", "scale") if k in col)
     runs = []
     for r in rows:
         peak = float(r[col["peak_" + response]]) if r[col["status"]] == "ok" else math.inf

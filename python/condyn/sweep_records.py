@@ -7,10 +7,13 @@ each becomes the scene's table `{ type = "table", file, column, scale }`.
 import math
 import os
 
+import numpy as np
+
 from .sweep_file import Axis, SweepError, _absolute, _fail
 
 _RECORDS_KEYS = ("files", "folder", "column", "scale")
-_SCALE_KEYS = ("factors", "pga")
+_INTENSITIES = ("factors", "pga", "sa")
+_SCALE_KEYS = _INTENSITIES + ("period", "damping")
 
 
 def records_axes(sweep, table):
@@ -85,43 +88,84 @@ def _records_axis(sweep, records):
 def _scale_axis(sweep, scale):
     path = sweep.file
     if not isinstance(scale, dict):
-        _fail(path, "scale", "expected a table ([scale] with factors or pga)")
+        _fail(path, "scale", "expected a table ([scale] with factors, pga or sa)")
     for k in scale:
         if k not in _SCALE_KEYS:
             _fail(path, f"scale.{k}", f"unknown key ([scale] has {', '.join(_SCALE_KEYS)})")
-    if len(scale) != 1:
-        _fail(path, "scale", "give factors (multiples of each record) or pga (target peak "
-              "ground accelerations), one of the two")
-    kind, values = next(iter(scale.items()))
-    if not isinstance(values, list) or not values or not all(
-            not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v) and v > 0
-            for v in values):
+    kinds = [k for k in _INTENSITIES if k in scale]
+    if len(kinds) != 1:
+        _fail(path, "scale", "give factors (multiples of each record), pga (target peak ground "
+              "accelerations) or sa (target spectral accelerations at period), one of the three")
+    kind, values = kinds[0], scale[kinds[0]]
+    if not isinstance(values, list) or not values or not all(_positive(v) for v in values):
         _fail(path, f"scale.{kind}", f"expected a non-empty list of positive numbers "
               f"(got {values!r})")
     for i, v in enumerate(values):
         if v in values[:i]:
             _fail(path, f"scale.{kind}", f"{v} is listed twice")
-    peaks = {}  # each record's peak |value|, read once
+    measure = _measure(path, kind, scale)
+    measured = {}  # each record's intensity at scale 1, read once
 
     def apply(sweep, scene, axis, value, where):
         table = scene["ground_motion"]["acceleration"]
         old = table.get("scale", 1.0)
         if kind == "factors":
             table["scale"] = old * value
-        else:
-            record = _absolute(sweep, table["file"])
-            if record not in peaks:
-                peaks[record] = _peak(record, table.get("column"))
-            if peaks[record] == 0.0:
-                _fail(path, "scale.pga", f"the record {record} is zero throughout: it cannot be "
-                      "scaled to a peak")
-            table["scale"] = math.copysign(value / peaks[record], old)
+            return
+        record = _absolute(sweep, table["file"])
+        if record not in measured:
+            measured[record] = measure(*_read_record(record, table.get("column")))
+        if measured[record] == 0.0:
+            _fail(path, f"scale.{kind}", f"the record {record} is zero throughout: it cannot be "
+                  "scaled to an intensity")
+        table["scale"] = math.copysign(value / measured[record], old)
 
-    return Axis(kind if kind == "pga" else "scale", [], values, apply, "scale")
+    return Axis("scale" if kind == "factors" else kind, [], values, apply, "scale")
 
 
-def _peak(path, column):
-    """max |value| of a record's column, read as the scene's tables are (docs/scenes.md): `#`
+def _measure(path, kind, scale):
+    """The intensity measure of `kind` as a function of a record's (t, a): None for factors."""
+    spectral = [k for k in ("period", "damping") if k in scale]
+    if kind != "sa" and spectral:
+        _fail(path, f"scale.{spectral[0]}", "belongs to sa (the spectral acceleration's period "
+              "and damping ratio)")
+    if kind == "pga":
+        return lambda t, a: float(np.max(np.abs(a)))
+    if kind != "sa":
+        return None
+    period, damping = scale.get("period"), scale.get("damping", 0.05)
+    if not _positive(period):
+        _fail(path, "scale.period", f"required with sa: the period, a positive number "
+              f"(got {period!r})")
+    if isinstance(damping, bool) or not isinstance(damping, (int, float)) or \
+            not 0.0 <= damping < 1.0:
+        _fail(path, "scale.damping", f"expected a damping ratio in [0, 1) (got {damping!r})")
+    return lambda t, a: spectral_acceleration(t, a, period, damping)
+
+
+def spectral_acceleration(t, a, period, damping):
+    """Sa(T, zeta) = omega^2 max |u| of the oscillator u'' + 2 zeta omega u' + omega^2 u = -a(t),
+    from rest, a(t) linear between samples (the scene's tables are): integrated exactly at the
+    samples (scipy's lsim, a first-order hold), over the record and one period after it (the
+    record held at its last value, as a table is), the maximum taken at the samples."""
+    from scipy import signal
+
+    omega = 2.0 * math.pi / period
+    dt = float(np.min(np.diff(t))) if len(t) > 1 else period / 20.0
+    tail = np.arange(t[-1] + dt, t[-1] + period + dt, dt)
+    times = np.concatenate([t, tail])
+    ground = np.concatenate([a, np.full(len(tail), a[-1])])
+    oscillator = signal.lti([-1.0], [1.0, 2.0 * damping * omega, omega ** 2])
+    _, u, _ = signal.lsim(oscillator, ground, times - times[0])
+    return float(omega ** 2 * np.max(np.abs(u)))
+
+
+def _positive(v):
+    return not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v) and v > 0
+
+
+def _read_record(path, column):
+    """(t, values) of a record's column, read as the scene's tables are (docs/scenes.md): `#`
     and blank lines skipped, a header when the first cell is not a number, the second column by
     default. The scene parser has checked the file (its refusals name the problem)."""
     rows = []
@@ -129,16 +173,16 @@ def _peak(path, column):
         for line in f:
             if line.strip() and not line.lstrip().startswith("#"):
                 rows.append([c.strip() for c in line.split(",")])
-    if not rows:
-        raise SweepError(f"{path}: the record has no samples")
     j = 1
-    if not _is_number(rows[0][0]):
+    if rows and not _is_number(rows[0][0]):
         header, rows = rows[0], rows[1:]
         if column is not None:
             if column not in header:
                 raise SweepError(f"{path}: no column '{column}' (columns: {', '.join(header)})")
             j = header.index(column)
-    return max(abs(float(r[j])) for r in rows)
+    if not rows:
+        raise SweepError(f"{path}: the record has no samples")
+    return (np.array([float(r[0]) for r in rows]), np.array([float(r[j]) for r in rows]))
 
 
 def _is_number(text):
