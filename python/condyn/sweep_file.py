@@ -17,7 +17,11 @@ import tomllib
 
 from . import _condyn
 
-_TOP_KEYS = ("scene", "axis", "keep", "records", "scale", "monte_carlo", "ida")
+_TOP_KEYS = ("scene", "axis", "schemes", "tolerances", "keep", "records", "scale", "monte_carlo",
+             "ida")
+# Shorthands for the axes over the run settings compared most: schemes = [...] is an axis over
+# solve.scheme, tolerances = [...] over solve.rtol.
+_SHORTHANDS = {"schemes": "solve.scheme", "tolerances": "solve.rtol"}
 _KEEP_KEYS = ("peaks",)
 _AXIS_KEYS = ("key", "values")
 # One component of a dotted scene path: a name, then 1-based indices into arrays (load[1]).
@@ -95,7 +99,7 @@ def read_sweep(path):
     scene = _read_toml(scene_file, "the scene")
     scene.pop("output", {}).pop("file", None)  # a sweep keeps what [keep] says, no run's file
     from .sweep_records import records_axes  # it builds on this file's Axis and SweepError
-    axes = _read_axes(path, table.get("axis", []))
+    axes = _read_axes(path, table.get("axis", [])) + _read_shorthands(path, table)
     sweep = Sweep(path, scene_file, scene, axes, _read_peaks(path, table.get("keep", {})))
     from .sweep_montecarlo import monte_carlo_axes
     sweep.axes = records_axes(sweep, table) + axes + monte_carlo_axes(sweep, table, axes)
@@ -207,6 +211,25 @@ def _read_axes(path, axes):
                 _fail(path, f"{where}.values", f"{_shown(v)} is listed twice")
         read.append(Axis(key, components, values, name=where))
     return read
+
+
+def _read_shorthands(path, table):
+    """The axes of `schemes` and `tolerances`; refused beside an [[axis]] over the same key."""
+    swept = [a.get("key") for a in table.get("axis", [])]
+    axes = []
+    for name, key in _SHORTHANDS.items():
+        values = table.get(name)
+        if values is None:
+            continue
+        if key in swept:
+            _fail(path, name, f"an [[axis]] sweeps {key} too: give one or the other")
+        if not isinstance(values, list) or not values:
+            _fail(path, name, f"expected a non-empty list (got {values!r})")
+        for i, v in enumerate(values):
+            if v in values[:i]:
+                _fail(path, name, f"{_shown(v)} is listed twice")
+        axes.append(Axis(key, parse_key(key), values, name=name))
+    return axes
 
 
 def _read_peaks(path, keep):

@@ -537,3 +537,19 @@ def test_records_scaled_to_a_spectral_acceleration(suite):
     record = _read_record(str(suite.parent / "suite" / "el_centro.csv"), "acceleration_g")
     assert runs[0].scene["ground_motion"]["acceleration"]["scale"] == \
         1.5 / spectral_acceleration(*record, 0.5, 0.05)  # damping 5 % by default
+
+
+def test_schemes_and_tolerances_are_axes_over_the_solve_keys(study):
+    study.write_text('schemes = ["ggl", "index1"]\ntolerances = [1e-6, 1e-8]\n' + SWEEP)
+    runs = expand(read_sweep(study))
+    assert len(runs) == 2 * 3 * 2 * 2
+    assert [(r.scene["solve"]["scheme"], r.scene["solve"]["rtol"]) for r in runs[:4]] == [
+        ("ggl", 1e-6), ("ggl", 1e-8), ("index1", 1e-6), ("index1", 1e-8)]
+    study.write_text('schemes = ["ggl", "bdf"]\n' + SWEEP)
+    with pytest.raises(condyn.SweepError, match=r"study.toml: schemes \(solve.scheme = \"bdf\"\): "
+                       r"the scene refuses it: .*unknown scheme"):
+        expand(read_sweep(study))
+    study.write_text('tolerances = [1e-6]\n' + SWEEP.replace(
+        "[keep]", '[[axis]]\nkey = "solve.rtol"\nvalues = [1e-8]\n[keep]'))
+    with pytest.raises(condyn.SweepError, match=r"study.toml: tolerances: an \[\[axis\]\] sweeps"):
+        read_sweep(study)
