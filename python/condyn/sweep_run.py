@@ -60,25 +60,17 @@ def _run_all(todo, spec, table, workers, scheduler, progress):
 
     with _client(distributed, workers, scheduler, progress) as client, _stop_on_sigterm():
         _check_workers(client)
-        contents = {}  # each data file read and sent once; tasks take it from the cluster
-        for run in todo:
-            for name, path in run.files.items():
-                if path not in contents:
-                    with open(path, "rb") as f:
-                        contents[path] = client.scatter(f.read(), hash=True)
-        futures = {}
-        for run in todo:
-            files = {name: contents[path] for name, path in run.files.items()}
-            future = client.submit(sweep_worker.run_one, run.scene, files, spec.peaks,
-                                   key=f"condyn-run-{run.key}", pure=False)
-            futures[future] = run
+        tasks = _Tasks(client, spec)
+        pending = as_completed([tasks.submit(run) for run in todo], loop=client.loop)
         meter = _Progress(progress, len(todo))
-        for future in as_completed(futures, loop=client.loop):
-            run = futures.pop(future)
+        for future in pending:
+            run, again = tasks.done(future)
+            if again is not None:
+                pending.add(again)
+                continue
             row = _row_of(distributed, future)
             if row["status"] == sweep_worker.NO_COLUMN:
-                for f in futures:
-                    f.cancel()
+                tasks.cancel()
                 raise SweepError(f"{spec.file}: keep.peaks: {row['message']}")
             if row["status"] not in sweep_worker.NOT_RUN:
                 cells = [c for a, v in zip(spec.axes, run.values) for c in a.cells_of(v)]
@@ -87,8 +79,51 @@ def _run_all(todo, spec, table, workers, scheduler, progress):
         meter.close()
 
 
+class _Tasks:
+    """The runs' tasks on the cluster. Each data file is read and sent once (Client.scatter, to
+    every worker: a worker that dies takes no file with it) and tasks take it from there. A task
+    cancelled by the scheduler (its data lost all the same: every worker holding it died) is
+    submitted again, its files sent again, up to RESUBMIT times."""
+
+    RESUBMIT = 3
+
+    def __init__(self, client, spec):
+        self.client, self.spec = client, spec
+        self.contents, self.futures = {}, {}
+
+    def submit(self, run, attempt=0):
+        files = {name: self._sent(path) for name, path in run.files.items()}
+        future = self.client.submit(sweep_worker.run_one, run.scene, files, self.spec.peaks,
+                                    key=f"condyn-run-{run.key}-{attempt}", pure=False)
+        self.futures[future] = (run, attempt)
+        return future
+
+    def done(self, future):
+        """(the run of `future`, its new future when it was cancelled and is submitted again)."""
+        run, attempt = self.futures.pop(future)
+        if future.status != "cancelled" or attempt >= self.RESUBMIT:
+            return run, None
+        for path in run.files.values():
+            self.contents.pop(path, None)
+        return run, self.submit(run, attempt + 1)
+
+    def cancel(self):
+        for f in self.futures:
+            f.cancel()
+
+    def _sent(self, path):
+        if path not in self.contents:
+            with open(path, "rb") as f:
+                self.contents[path] = self.client.scatter(f.read(), hash=False, broadcast=True)
+        return self.contents[path]
+
+
 def _row_of(distributed, future):
-    """The worker's row, or the row of a run whose task could not end (its worker died)."""
+    """The worker's row, or the row of a run whose task could not end (its worker died at each
+    try, or the scheduler cancelled it again and again)."""
+    if future.status == "cancelled":
+        return {"status": WORKER_LOST, "steps": None, "wall_s": None, "peaks": {},
+                "message": "the scheduler cancelled the task at each try"}
     try:
         return future.result()
     except distributed.KilledWorker as e:
@@ -139,8 +174,8 @@ def _check_workers(client):
     """Every worker must import condyn (a remote worker started without its PYTHONPATH would
     fail every task): RuntimeError naming the workers that cannot."""
     def probe():
-        import condyn  # noqa: F401
-        return True
+        import condyn
+        return condyn.__name__
 
     try:
         client.run(probe)

@@ -241,7 +241,7 @@ def test_peak_is_the_largest_magnitude_and_its_first_time():
     assert all(math.isnan(x) for x in peak(np.array([]), np.array([])))
 
 
-# --- a cluster started by hand, one worker killed --------------------------------------------------
+# --- a cluster started by hand, one worker killed ------------------------------------------------
 
 def start(command, log):
     """A process of the cluster, its output in `log`, in its own process group."""
@@ -302,7 +302,26 @@ def test_a_worker_killed_mid_sweep_loses_no_run(study, scheduler, tmp_path):
     assert without_wall(header, read_table(local["table"])[1]) == without_wall(header, rows)
 
 
-# --- [records] and [scale] -------------------------------------------------------------------------
+def test_a_task_the_scheduler_cancels_is_submitted_again_with_its_files(study, scheduler):
+    # What a sweep does when the workers holding a run's files all die: the scheduler cancels
+    # the task; the sweep sends the files again and submits it anew, RESUBMIT times at most.
+    from condyn.sweep_run import _Tasks
+    spec = read_sweep(study)
+    run = expand(spec)[0]
+    with distributed.Client(scheduler, set_as_default=False) as client:
+        tasks = _Tasks(client, spec)
+        future = tasks.submit(run)
+        for attempt in range(1, _Tasks.RESUBMIT + 1):
+            future.cancel()
+            done, again = tasks.done(future)
+            assert done is run and again.key == f"condyn-run-{run.key}-{attempt}"
+            future = again
+        assert future.result()["status"] == "ok"
+        future.cancel()
+        assert tasks.done(future) == (run, None)  # no more tries: the run's row says why
+
+
+# --- [records] and [scale] -----------------------------------------------------------------------
 
 EL_CENTRO = os.path.join(os.path.dirname(__file__), "..", "..", "models", "scenes", "data",
                          "el_centro_1940_ns.csv")
@@ -396,7 +415,7 @@ def test_scale_needs_a_recorded_ground_motion(study):
         read_sweep(study)
 
 
-# --- [ida]: curves and the fragility fit -------------------------------------------------------------
+# --- [ida]: curves and the fragility fit ---------------------------------------------------------
 
 def test_the_fragility_fit_recovers_the_lognormal_the_runs_were_drawn_from():
     from scipy.stats import norm
@@ -429,8 +448,10 @@ def test_ida_writes_curves_and_the_fit_and_refuses_what_it_cannot_draw(suite, tm
     suite.write_text(RECORDS + '[ida]\nresponse = "u1"\n')
     with pytest.raises(condyn.SweepError, match=r"ida\.response: expected one of the kept"):
         read_sweep(suite)
-    suite.write_text(RECORDS.replace("[scale]\npga = [0.5, 2.0]\n", "") + '[ida]\nresponse = "u2"\n')
-    with pytest.raises(condyn.SweepError, match=r"study.toml: ida: needs \[records\] and \[scale\]"):
+    suite.write_text(RECORDS.replace("[scale]\npga = [0.5, 2.0]\n", "") +
+                     '[ida]\nresponse = "u2"\n')
+    with pytest.raises(condyn.SweepError,
+                       match=r"study.toml: ida: needs \[records\] and \[scale\]"):
         read_sweep(suite)
 
 
@@ -450,7 +471,7 @@ def test_the_ida_example_is_a_valid_sweep_of_records_the_script_writes():
     assert np.max(np.abs(saved[:, 1] - a)) <= 0.5e-6  # the file's rounding to 6 decimals
 
 
-# --- [monte_carlo] ---------------------------------------------------------------------------------
+# --- [monte_carlo] -------------------------------------------------------------------------------
 
 MONTE_CARLO = """\
 [monte_carlo]

@@ -5,7 +5,8 @@ Jennings, Housner and Tsai envelope (a quadratic rise to 2 s, strong motion to 8
 exponential decay after), ending at rest (the last sample 0: a table holds its last value after
 it), its peak |a| scaled to 0.3 g. The same script writes the same files on any machine.
 
-    /usr/bin/python3 models/scenes/ida/make_records.py    # then: build/condyn sweep models/scenes/ida/frame_ida.toml
+    /usr/bin/python3 models/scenes/ida/make_records.py
+    build/condyn sweep models/scenes/ida/frame_ida.toml
 """
 
 import os
@@ -25,7 +26,8 @@ def envelope(t):
 def record(seed):
     t = np.arange(0.0, DURATION + DT / 2, DT)
     noise = np.random.default_rng(seed).standard_normal(len(t))
-    # The Kanai-Tajimi filter's absolute acceleration: (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2).
+    # The Kanai-Tajimi filter's absolute acceleration:
+    # (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2).
     ground = signal.lti([2 * ZETA_G * OMEGA_G, OMEGA_G ** 2],
                         [1.0, 2 * ZETA_G * OMEGA_G, OMEGA_G ** 2])
     _, a, _ = signal.lsim(ground, noise, t)
