@@ -17,14 +17,18 @@ from .sweep_file import SweepError, expand, read_sweep
 from .sweep_table import ResultsTable, header
 from . import sweep_worker
 
-WORKER_LOST = "worker_lost"  # the run's worker died at every try (Dask's allowed failures)
+# The run's worker died at every try (Dask's allowed failures), or the scheduler cancelled its
+# task at every one of the sweep's tries (_Tasks.RESUBMIT).
+WORKER_LOST = "worker_lost"
 
 
 def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=sys.stderr):
     """Runs what the results table in `out` (default: the sweep file's name without extension)
     does not hold yet and returns the summary: {runs, ok, failed: {status: count}, skipped (rows
-    there before), missing (runs without a row: an interrupted sweep), table}. Bad input raises
-    SweepError before any run; progress goes to `progress` (None: silent)."""
+    there before), missing (runs without a row: an interrupted sweep), table, and with [ida]
+    fragility: (theta, beta) or None}. Bad input raises SweepError before any run; Ctrl-C or
+    SIGTERM stops the runs, keeps the rows written and returns; progress goes to `progress`
+    (None: silent)."""
     if workers is not None and scheduler is not None:
         raise SweepError("--workers and --scheduler: give one (the scheduler's workers run it)")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
