@@ -1,6 +1,11 @@
 // The Newmark family's runner: the stepper of dae/integrators/newmark_stepper.hpp on the model's
 // own system, its state [u; v; λ] observed as the other schemes' (λ at a step is the step's own
-// multiplier, an index-3 unknown held with the positions).
+// multiplier, an index-3 unknown held with the positions; at the output rows, when reactions are
+// asked for, λ from acceleration level at the row's u and v, as the multiplier schemes report:
+// the step's own carries the constraint modes' step-to-step oscillation, undamped under average
+// acceleration, and an O(h) start-up transient where a constraint moves (docs/schemes.md)).
+
+#include <memory>
 
 #include "dae/formulations/row_multipliers.hpp"
 #include "dae/formulations/scheme_run.hpp"
@@ -9,7 +14,7 @@
 namespace condyn {
 
 void run_newmark(const Model& model, const AlphaParameters& parameters, double step,
-                 const ObservedRun& run) {
+                 bool row_multipliers, const ObservedRun& run) {
   const int n = model.dofs(), m = model.constraint_count();
   Observation observe;
   observe.full_state = full_state_prefix(n);
@@ -17,10 +22,20 @@ void run_newmark(const Model& model, const AlphaParameters& parameters, double s
                             const Eigen::VectorXd&, const Eigen::VectorXd&) {
     return Eigen::VectorXd(y.tail(m));  // y = [u; v; λ]
   };
+  const bool linear = !model.nonlinear;
+  std::shared_ptr<AccelerationLevelMultipliers> at_rows;
+  if (row_multipliers && m > 0) {
+    at_rows = std::make_shared<AccelerationLevelMultipliers>(*model.system, linear);
+    observe.row_multipliers = [at_rows, n, own = observe.multipliers](
+                                  double t, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
+                                  const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+      const auto solved = (*at_rows)(t, y.head(n), y.segment(n, n));
+      return solved ? solved->second : own(t, y, yp, u, v);
+    };
+  }
   run(
       [&](const IntegratorOptions& o, SolveSummary& s) {
         const WallTimer timer(s);
-        const bool linear = !model.nonlinear;
         auto consistent = std::make_shared<AccelerationLevelMultipliers>(*model.system, linear);
         NewmarkSettings settings{parameters, step, o.rtol, o.atol};
         NewmarkStepper stepper(

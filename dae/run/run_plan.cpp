@@ -212,7 +212,7 @@ void run_scheme(const RunPlan& plan, const IntegratorOptions& options, const Obs
     case Scheme::hht:
     case Scheme::generalized_alpha:
       return run_newmark(model, alpha_parameters(plan.scheme, plan.settings.newmark_family),
-                         plan.settings.step.value_or(0.0), run);
+                         plan.settings.step.value_or(0.0), options.row_multipliers, run);
   }
   throw std::logic_error("unknown scheme");
 }

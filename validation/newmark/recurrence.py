@@ -15,8 +15,11 @@ Element Method, §9.1), the constraints held at every step:
     correctors  u_{n+1} = ũ + β h² a_{n+1},   v_{n+1} = ṽ + γ h a_{n+1}
 
 started at rest with a_0, λ_0 from [M Aᵀ; A 0] [a_0; λ_0] = [f(0); 0]. The reactions are
-f_con = −Aᵀλ. condyn solves the same step in displacement form with a scaled Newton matrix
-(docs/schemes.md), so the two agree to roundoff, not bit for bit.
+f_con = −Aᵀλ with λ at each output row from the constraints at acceleration level at the row's u
+and v, as condyn reports them (the step's own λ carries the undamped step-to-step oscillation of
+index 3's constraint modes under average acceleration: docs/validation.md). condyn solves the
+same step in displacement form with a scaled Newton matrix (docs/schemes.md), so the two agree to
+roundoff, not bit for bit.
 
     /usr/bin/python3 validation/newmark/recurrence.py --condyn build/condyn --step 0.01
 
@@ -128,6 +131,19 @@ def reactions(frame, lam):
     return -lam @ frame.A
 
 
+def row_multipliers(frame, t, u, v):
+    """λ at each row (t_k, u_k, v_k) from the constraints at acceleration level, what condyn
+    reports at its output rows under every scheme: [M Aᵀ; A 0] [ü; λ] = [f(t) − C v − K u; 0]
+    (the rows A u = 0 are constant, so A ü = 0). Returns rows x m."""
+    n, m = frame.M.shape[0], frame.A.shape[0]
+    kkt = np.block([[frame.M, frame.A.T], [frame.A, np.zeros((m, m))]])
+    lam = np.zeros((len(t), m))
+    for k in range(len(t)):
+        rhs = np.concatenate([frame.force(t[k]) - frame.C @ v[k] - frame.K @ u[k], np.zeros(m)])
+        lam[k] = np.linalg.solve(kkt, rhs)[n:]
+    return lam
+
+
 def condyn_run(condyn, frame, h, work_dir):
     """The scene under `condyn run --scheme newmark --step h`, an output at every step, every
     DOF's displacement, velocity and reaction. Returns the CSV's columns (name -> array)."""
@@ -153,10 +169,10 @@ def differences(frame, columns, h):
     """The recurrence against condyn's columns at the same times: the largest |difference| of u,
     v and f_con, each with its peak, and the step count."""
     steps = len(columns["t"]) - 1
-    t, u, v, _, lam = newmark(frame, h, steps)
+    t, u, v, _, _ = newmark(frame, h, steps)
     if not np.allclose(columns["t"], t, rtol=0, atol=1e-9):
         raise ValueError("condyn's output times are not the step grid")
-    f_con = reactions(frame, lam)
+    f_con = reactions(frame, row_multipliers(frame, t, u, v))
     out = {"steps": steps}
     for what, ours, prefix in (("u", u, ""), ("v", v, "vel_"), ("f_con", f_con, "reaction_")):
         theirs = np.stack([columns[prefix + name] for name in frame.dofs], axis=1)
