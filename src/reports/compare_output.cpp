@@ -46,7 +46,8 @@ ReportFields fields(const RunRecord& r) {
           {"mescd_u", num(r.mescd_u)},
           {"mescd_v", num(r.mescd_v)},
           {"energy_error", num(r.energy_error)},
-          {"error_target", full_precision(r.error_target)},
+          // NaN: no target (the Newmark family under a fixed step, validation/studies/compare.cpp).
+          {"error_target", std::isfinite(r.error_target) ? full_precision(r.error_target) : ""},
           {"error_ratio", num(r.error_ratio)},
           {"over_tolerance", r.ok ? (r.over_tolerance ? "1" : "0") : std::string()}};
 }
@@ -117,7 +118,9 @@ void print_runs(std::ostream& out, const CompareResult& result) {
   out << "\nerr/target: the worst of err u, err v, err f_con over the run's target, its rtol "
          "(under "
          "penalty, whose weight sets its error, max(rtol, "
-      << sci(kPenaltyAccuracy, 0) << " x default weight / weight)); mark OVER: above "
+      << sci(kPenaltyAccuracy, 0)
+      << " x default weight / weight); none under the Newmark family's fixed step, which sets "
+         "its error); mark OVER: above "
       << sci(result.options.mark_factor, 0) << " (--fail-above)\n";
   if (const int over = result.over_tolerance_runs(); over > 0) {
     out << over << " run" << (over == 1 ? "" : "s")

@@ -372,6 +372,14 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
     out << "constraint treatment (mixed): " << treatment_report(model, *run_plan.treatment);
   }
   if (choice.scheme == Scheme::baumgarte) out << wrapped_text("baumgarte: ", run_plan.gains.rule);
+  if (fixed_step(choice.scheme)) {
+    // The family's parameters and fixed step, as the run's summary notes them (run_plan.cpp).
+    const std::string prefix = std::string(to_string(choice.scheme)) + ": ";
+    for (const RunNote& note : run_plan.notes) {
+      if (note.kind == RunNote::Kind::scheme_setting && note.text.starts_with(prefix))
+        out << wrapped_text(prefix, note.text.substr(prefix.size()));
+    }
+  }
   std::ostringstream rtol;
   rtol << "rtol " << settings.rtol << "; ";
   out << wrapped_text("tolerances: ", rtol.str() + run_plan.tolerances.rule);

@@ -75,3 +75,27 @@ TEST_CASE("the Newmark family's bad parameters and steps exit 2 naming the key")
   CHECK(i.code == 2);
   CHECK(contains(i.err, "n.toml: solve.step"));
 }
+
+TEST_CASE("info names the Newmark family's parameters and step; compare sets them no rtol target") {
+  const Sandbox box;
+  box.write("p.toml", kPendulum);
+  // info: which scheme and why (requested), with the parameters and the fixed step it would use.
+  const Result info = box.run("info p.toml --scheme hht");
+  REQUIRE(info.code == 0);
+  CHECK(contains(info.out, "scheme: hht (requested)"));
+  CHECK(contains(info.out,
+                 "hht: alpha_m = 0, alpha_f = 0.05, beta = 0.275625, gamma = 0.55, "
+                 "fixed step 0.01"));
+  // compare: under a fixed step rtol is only Newton's tolerance, so the runs have no error target
+  // ("-", empty in runs.csv, null in runs.json) and are never marked over it: the pendulum's
+  // newmark error, 1.9e-2 in the reactions at h = 0.01, was 1.9e4 times rtol 1e-6 and failed
+  // --fail-above 1e4 before.
+  const Result cmp = box.run(
+      "compare p.toml --schemes ggl,newmark --tolerances 1e-6 --repeats 1 --fail-above 1e4 "
+      "--no-plots --out-dir cmp");
+  CHECK(cmp.code == 0);
+  const std::string json = condyn::test::slurp(box.path("cmp/runs.json"));
+  CHECK_FALSE(contains(json, "nan"));
+  CHECK(contains(json, "\"scheme\": \"newmark\""));
+  CHECK(contains(json, "\"error_target\": null"));
+}
