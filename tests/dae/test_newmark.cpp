@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "dae/interface/scheme_not_applicable.hpp"
+#include "dae/run/energy_balance.hpp"
+#include "dae/run/run_plan.hpp"
 #include "models/core/newmark_parameters.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
@@ -147,6 +149,153 @@ TEST_CASE("newmark family: period elongation, damping and rho_inf are the publis
     if (std::isnan(c.rho_inf)) continue;
     const Eigen::Vector3cd roots = amplification(c.p, 1.0, 0.0, 1e12).eigenvalues();
     CHECK(std::abs(roots.cwiseAbs().maxCoeff() - c.rho_inf) <= kLimitTolerance);
+  }
+}
+
+namespace {
+
+/// The characteristic polynomial λ³ − 2A₁λ² + A₂λ − A₃ of the undamped step (m = 1, k = Ω², h = 1)
+/// in closed form, derived from the method's equations as Chung and Hulbert (1993) derive theirs,
+/// with D = (1 − αm) + β(1 − αf)Ω²: 2DA₁ = 2 − 3αm − Ω²[(1 − αf)(γ + ½) + (3αf − 2)β],
+/// DA₂ = 1 − 3αm + Ω²[½ − γ + (1 − 3αf)β + 2αfγ], DA₃ = −αm + αfΩ²(γ − β − ½). For αm = 0,
+/// αf = −α they are Hilber, Hughes and Taylor's (1977) A₁ = 1 − Ω²[(1 + α)(γ + ½) − αβ]/(2D),
+/// A₂ = 1 − Ω²[γ − ½ + 2α(γ − β)]/D, A₃ = αΩ²(β − γ + ½)/D, D = 1 + (1 + α)βΩ² (also Hughes
+/// 1987, §9.3); for αm = αf = 0, Newmark's (A₃ = 0).
+Eigen::Vector3d invariants(const AlphaParameters& p, double omega_h) {
+  const double w2 = omega_h * omega_h, am = p.alpha_m, af = p.alpha_f, b = p.beta, g = p.gamma;
+  const double D = (1 - am) + b * (1 - af) * w2;
+  return {(2 - 3 * am - w2 * ((1 - af) * (g + 0.5) + (3 * af - 2) * b)) / (2 * D),
+          (1 - 3 * am + w2 * (0.5 - g + (1 - 3 * af) * b + 2 * af * g)) / D,
+          (-am + af * w2 * (g - b - 0.5)) / D};
+}
+
+/// The principal root of λ³ − 2A₁λ² + A₂λ − A₃, one of the complex pair (the physical mode's;
+/// the spurious root is real); its modulus and argument give the algorithmic damping ratio
+/// ξ̄ = −ln|λ| / Ω̄ and the period elongation T̄/T = Ω / Ω̄, Ω̄ = arg λ.
+std::complex<double> principal_root(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d companion;
+  companion << 2 * a[0], -a[1], a[2],  //
+      1, 0, 0,                         //
+      0, 1, 0;
+  const Eigen::Vector3cd roots = companion.eigenvalues();
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(roots[i].imag()) > std::abs(roots[k].imag())) k = i;
+  return roots[k];
+}
+
+}  // namespace
+
+TEST_CASE("newmark family: the step's characteristic polynomial is the published one") {
+  // The run is the amplification matrix applied n times (above); its invariants, ½ trace, the sum
+  // of principal 2 x 2 minors and the determinant, are the closed-form A₁, A₂, A₃ (invariants())
+  // at every h ω: sums of a few O(1) products each side, so 64 eps (observed up to 6.7e-16).
+  constexpr double kInvariantTolerance = 64 * kEps;
+  for (const Case& c : cases()) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    for (const double omega_h : {0.05, 0.1, 0.5, 1.0, 2.0, 3.0, 10.0, 100.0}) {
+      CAPTURE(omega_h);
+      const Eigen::Matrix3d A = amplification(c.p, omega_h * omega_h, 0.0, 1.0);
+      double minors = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        minors += A(j, j) * A(k, k) - A(j, k) * A(k, j);
+      }
+      const Eigen::Vector3d published = invariants(c.p, omega_h);
+      CHECK(std::abs(0.5 * A.trace() - published[0]) <= kInvariantTolerance);
+      CHECK(std::abs(minors - published[1]) <= kInvariantTolerance);
+      CHECK(std::abs(A.determinant() - published[2]) <= kInvariantTolerance);
+    }
+  }
+}
+
+TEST_CASE("newmark family: algorithmic damping and period elongation at several h omega") {
+  // From the published polynomial's principal root (principal_root) at h ω = 0.05 to 2 (below
+  // linear acceleration's limit √12), the figures Hilber, Hughes and Taylor (1977, Fig. 2-3) and
+  // Chung and Hulbert (1993, Fig. 1-2) plot: the family is second-order accurate, so the period
+  // error T̄/T − 1 ~ c₂ Ω² and the damping ratio ξ̄ ~ c₃ Ω³ as Ω → 0 (halving Ω from 0.02 to 0.01
+  // divides them by 4 and 8 to within 1 %: the next terms' share, observed at most 0.11 %, under
+  // the generalized-α with ρ∞ = 0; 2.5 % from Ω = 0.1 to 0.05), and with
+  // γ = ½ (average and linear acceleration, generalized-α ρ∞ = 1) ξ̄ = 0 (|λ| = 1 to roundoff).
+  // Dissipation grows with Ω for the dissipative sets (ρ decreasing, ξ̄ increasing) and
+  // at Ω = 2 is larger the smaller ρ∞ (generalized-α 0, 0.5, 0.9, 1; HHT α = −1/3, −0.1).
+  constexpr double kOrderRatioTolerance = 0.01;
+  constexpr double kUndampedTolerance = 1e-12;  // |ξ̄| of a unit-modulus root: the roots' roundoff
+  const auto measured = [](const AlphaParameters& p, double omega_h) {
+    const std::complex<double> root = principal_root(invariants(p, omega_h));
+    const double phase = std::abs(std::arg(root));
+    return std::pair{-std::log(std::abs(root)) / phase, omega_h / phase};  // ξ̄, T̄/T
+  };
+  std::vector<double> damping_at_2;
+  for (const Case& c : cases()) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    const auto [xi_1, period_1] = measured(c.p, 0.02);
+    const auto [xi_2, period_2] = measured(c.p, 0.01);
+    CHECK(std::abs((period_1 - 1.0) / (period_2 - 1.0) / 4.0 - 1.0) <= kOrderRatioTolerance);
+    if (c.p.gamma == 0.5) {
+      for (const double omega_h : {0.05, 0.1, 0.5, 1.0, 2.0})
+        CHECK(std::abs(measured(c.p, omega_h).first) <= kUndampedTolerance);
+    } else {
+      CHECK(std::abs(xi_1 / xi_2 / 8.0 - 1.0) <= kOrderRatioTolerance);
+      double previous = 0.0;
+      for (const double omega_h : {0.05, 0.1, 0.5, 1.0, 2.0}) {
+        const auto [xi, period] = measured(c.p, omega_h);
+        MESSAGE(name << ": h omega " << omega_h << ", damping ratio " << xi
+                     << ", period elongation " << period - 1.0);
+        CHECK(xi > previous);
+        previous = xi;
+      }
+    }
+    damping_at_2.push_back(measured(c.p, 2.0).first);
+  }
+  // cases(): [2] HHT −0.1, [3] HHT −1/3, [4..7] generalized-α ρ∞ = 0, 0.5, 0.9, 1.
+  CHECK(damping_at_2[3] > damping_at_2[2]);
+  CHECK(damping_at_2[4] > damping_at_2[5]);
+  CHECK(damping_at_2[5] > damping_at_2[6]);
+  CHECK(damping_at_2[6] > damping_at_2[7]);
+}
+
+TEST_CASE("newmark family: the energy balance shows the method's dissipation, as its roots say") {
+  // An undamped, unloaded oscillator (ω = 0.5, h = 1: Ω = 0.5), 400 steps: nothing physical
+  // dissipates or works, so the balance's error, T + V − (T + V)(0), is the method's own
+  // dissipation, and D, W_loads and W_constraints stay 0. Average acceleration conserves the
+  // energy of a linear model (roundoff: 1e-12 of E(0) over 400 steps); the others lose it as their
+  // principal root's envelope, E(0) exp(−2 ξ̄ Ω̄ n), Ω̄ = arg λ (principal_root): the state's energy
+  // moves about that envelope with the discrete phase and the spurious root by up to 6.9e-4 of
+  // E(0) at n = 400 (observed, HHT α = −0.1; 5.9e-5 linear acceleration): 2e-3 kept.
+  constexpr double kConservedTolerance = 1e-12, kEnvelopeTolerance = 2e-3;
+  const double k = 0.25, h = 1.0;
+  const int steps = 400;
+  for (const Case& c : cases()) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    std::string text = oscillator(c, k, 0.0, h, steps);
+    text.replace(text.find("velocity = { x = 0.5 }"), 22, "velocity = { x = 0.0 }");
+    text += "[output]\nquantities = [\"displacement\", \"energy\"]\n";
+    const auto scene = test::built(parse_scene_text(text, "energy.toml"));
+    const SolveResult r =
+        test::solved(scene.model, scene.spec.solve, hooks_for(scene.spec.output.quantities));
+    REQUIRE(r.trajectory.balance.size() == r.trajectory.t.size());
+    const EnergyBalance& last = r.trajectory.balance.back();
+    const double e0 = last.initial;
+    REQUIRE(e0 == doctest::Approx(0.5 * k).epsilon(1e-15));
+    CHECK(last.dissipated == 0.0);
+    CHECK(last.work_loads == 0.0);
+    CHECK(last.work_constraints == 0.0);
+    const double omega_h = std::sqrt(k) * h;
+    const std::complex<double> root = principal_root(invariants(c.p, omega_h));
+    const double envelope = std::pow(std::abs(root), 2.0 * steps);  // exp(−2 ξ̄ Ω̄ n)
+    MESSAGE(name << ": E/E(0) = " << last.energy() / e0 << " at n = " << steps
+                 << ", the roots' envelope " << envelope);
+    CHECK(std::abs(last.error() - (last.energy() - e0)) <= kConservedTolerance * e0);
+    if (c.p.gamma == 0.5 && c.p.beta == 0.25) {
+      CHECK(std::abs(last.error()) <= kConservedTolerance * e0);
+    } else {
+      CHECK(std::abs(last.energy() / e0 - envelope) <= kEnvelopeTolerance);
+    }
+    if (c.p.gamma > 0.5) CHECK(last.error() < 0.0);  // the dissipative sets lose energy
   }
 }
 
