@@ -54,7 +54,7 @@ py::list compare_records(const CompareResult& result) {
     d["mescd_v"] = number_or_none(r.mescd_v);
     d["energy_error"] = number_or_none(r.energy_error);
     // The mark of runs far beyond their target (CompareOptions::mark_factor).
-    d["error_target"] = r.error_target;
+    d["error_target"] = number_or_none(r.error_target);  // NaN: none (a fixed step)
     d["error_ratio"] = figure(r.error_ratio);
     d["over_tolerance"] = r.ok ? py::object(py::bool_(r.over_tolerance)) : py::object(py::none());
     out.append(d);

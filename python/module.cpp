@@ -55,10 +55,11 @@ Scheme scheme_argument(const SceneSpec& spec, const std::string& argument, const
   return *scheme;
 }
 
-/// The scene with run()'s overrides, checked as the parser checks [solve]; `set_aside` gets the
-/// note of SolveSpec::override_scheme.
+/// The scene with run()'s overrides (`step`: the Newmark family's fixed step, as --step), checked
+/// as the parser checks [solve]; `set_aside` gets the note of SolveSpec::override_scheme.
 SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& scheme,
-                   std::optional<double> rtol, std::optional<double> atol, std::string& set_aside) {
+                   std::optional<double> rtol, std::optional<double> atol,
+                   std::optional<double> step, std::string& set_aside) {
   SceneSpec spec = python::parse_python_scene(scene);
   if (scheme) set_aside = spec.solve.override_scheme(scheme_argument(spec, "scheme", *scheme));
   if (rtol) {
@@ -74,6 +75,7 @@ SceneSpec run_spec(const py::handle& scene, const std::optional<std::string>& sc
     }
     spec.solve.atol = *atol;
   }
+  if (step) spec.solve.step = *step;  // validate() refuses a step out of (0, t_end]
   try {
     spec.solve.validate();
   } catch (const std::invalid_argument& e) {
@@ -121,9 +123,9 @@ const char* failure_kind_name(FailureKind kind) {
 /// (result dict, failure message or None, failure kind or None): the Python side raises
 /// IntegrationError with the partial result and the kind.
 py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
-              std::optional<double> rtol, std::optional<double> atol) {
+              std::optional<double> rtol, std::optional<double> atol, std::optional<double> step) {
   std::string set_aside;
-  SceneSpec spec = run_spec(scene, scheme, rtol, atol, set_aside);
+  SceneSpec spec = run_spec(scene, scheme, rtol, atol, step, set_aside);
   BuildReport report;
   std::optional<Model> model;
   SolveResult result;
@@ -265,7 +267,7 @@ PYBIND11_MODULE(_condyn, m) {
     return PyErr_CheckSignals() != 0;
   });
   m.def("run", &run, py::arg("scene"), py::arg("scheme") = py::none(), py::arg("rtol") = py::none(),
-        py::arg("atol") = py::none());
+        py::arg("atol") = py::none(), py::arg("step") = py::none());
   m.def("compare", &compare, py::arg("scene"), py::arg("tolerances") = py::none(),
         py::arg("schemes") = py::none(), py::arg("repeats") = py::none(),
         py::arg("drift_rtol") = py::none(), py::arg("max_steps") = 0,

@@ -89,15 +89,17 @@ class IntegrationError(RuntimeError):
         return (type(self), (str(self), self.result, self.kind))
 
 
-def run(scene, scheme=None, rtol=None, atol=None):
+def run(scene, scheme=None, rtol=None, atol=None, step=None):
     """Runs `scene` (a path to a scene file, or a dict with the TOML's structure) and returns a
-    Result. `scheme`, `rtol` and `atol` override the scene's [solve] keys. Bad input raises
+    Result. `scheme`, `rtol`, `atol` and `step` (the fixed step of the Newmark family: newmark,
+    hht, generalized_alpha) override the scene's [solve] keys. Bad input raises
     SceneError (a ValueError) with the CLI's "FILE:LINE: key.path: problem" message ("<dict>"
     and no line for a dict); a failed integration raises IntegrationError. The GIL is released
     while the model is built and integrated."""
     _refuse_text(scene)
     fields, failure, kind = _condyn.run(scene, _text(scene, "scheme", scheme),
-                                        _number(scene, "rtol", rtol), _number(scene, "atol", atol))
+                                        _number(scene, "rtol", rtol), _number(scene, "atol", atol),
+                                        _number(scene, "step", step))
     result = Result(fields)
     if failure is not None:
         raise IntegrationError(f"{_name(scene)}: integration failed: {failure}", result, kind)

@@ -115,3 +115,16 @@ def test_compare_marks_runs_far_beyond_their_target():
     worst = max(r["error_u"], r["error_v"], r["error_reaction"])
     assert r["error_ratio"] == pytest.approx(worst / r["error_target"], rel=1e-15)
     assert r["over_tolerance"] is False
+
+
+def test_compare_sets_the_newmark_family_under_a_fixed_step_no_target(quickstart_dict):
+    # Under a fixed step rtol is only the Newton tolerance of newmark, hht and generalized_alpha:
+    # no target, no ratio, never marked (docs/schemes.md), whatever its error against rtol.
+    quickstart_dict["solve"]["step"] = 0.01
+    runs = condyn.compare(quickstart_dict, tolerances=[1e-6], schemes=["ggl", "hht"], repeats=1)
+    ggl, hht = runs
+    assert ggl["error_target"] == 1e-6
+    assert hht["ok"], hht["message"]
+    assert hht["error_target"] is None and hht["error_ratio"] is None
+    assert hht["over_tolerance"] is False
+    assert hht["error_u"] > 0.0

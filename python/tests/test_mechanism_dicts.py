@@ -61,9 +61,9 @@ def assert_same_as_cli(result, csv_path):
         np.testing.assert_array_equal(mine[name], values, err_msg=name)
 
 
-def cli_run(cli, scene, scheme, out):
-    return subprocess.run([str(cli), "run", str(scene), "--scheme", scheme, "--out", str(out)],
-                          capture_output=True, text=True)
+def cli_run(cli, scene, scheme, out, *flags):
+    return subprocess.run([str(cli), "run", str(scene), "--scheme", scheme, "--out", str(out),
+                           *flags], capture_output=True, text=True)
 
 
 @pytest.mark.parametrize("scheme", ["index1", "baumgarte", "ggl", "index2", "index3",
@@ -76,6 +76,30 @@ def test_slider_crank_from_a_dict_is_the_cli_run_bit_for_bit(cli, tmp_path, sche
     assert r.dof_names[:3] == ["crank.x", "crank.y", "crank.angle"]
     assert r.point_names == ["crank.B.x", "crank.B.y"]
     assert_same_as_cli(r, out)
+
+
+@pytest.mark.parametrize("scheme", ["newmark", "hht", "generalized_alpha"])
+def test_the_newmark_family_with_a_step_from_a_dict_is_the_cli_run_bit_for_bit(cli, tmp_path,
+                                                                              scheme):
+    # step= is the command's --step: the same fixed-step run, its summary's counts the command's
+    # (t_end / h steps; one factorization per Newton iteration on a mechanism).
+    out = tmp_path / "slider_crank.csv"
+    proc = cli_run(cli, SLIDER_CRANK, scheme, out, "--step", "0.01")
+    assert proc.returncode == 0, proc.stderr
+    r = condyn.run(as_numpy(load(SLIDER_CRANK)), scheme=scheme, step=0.01)
+    assert_same_as_cli(r, out)
+    assert r.summary["scheme"] == scheme
+    assert r.summary["steps"] == round(load(SLIDER_CRANK)["solve"]["t_end"] / 0.01)
+    assert f"{r.summary['steps']} steps" in proc.stdout + proc.stderr
+    assert r.summary["newton_iterations"] >= r.summary["steps"]
+    assert r.summary["jacobian_evals"] == r.summary["newton_iterations"]
+
+
+@pytest.mark.parametrize("step,message", [(-0.01, "solve.step"), (10.0, "solve.step"),
+                                          (True, "step: expected a number")])
+def test_a_bad_step_is_refused_naming_it(step, message):
+    with pytest.raises(condyn.SceneError, match=message):
+        condyn.run(load(SLIDER_CRANK), scheme="hht", step=step)
 
 
 @pytest.mark.parametrize("scheme", ["newmark"])
