@@ -22,6 +22,7 @@ namespace {
 struct CheckArgs {
   std::vector<std::string> scenes;
   std::string scheme, junit;
+  std::optional<double> step;  ///< --step: the Newmark family's fixed step
 };
 
 /// One scene run and its checks evaluated, timed; what goes wrong is recorded with its exit code
@@ -50,8 +51,9 @@ CheckedScene check_scene(const std::string& path, const SceneCheckOptions& optio
 /// condyn check: every scene run and its [[check]] tables evaluated; the exit code is the worst
 /// of the scenes' (0 all hold, 1 a check or a run failed, 2 bad input).
 int check(const std::vector<std::string>& scenes, const std::string& scheme,
-          const std::string& junit) {
+          std::optional<double> step, const std::string& junit) {
   SceneCheckOptions options;
+  options.step = step;
   if (!scheme.empty()) {
     options.scheme = parse_scheme_flag("--scheme", scheme);
     options.scheme_where = {"--scheme", 0};
@@ -105,10 +107,11 @@ Command add_check_command(CLI::App& app) {
   cmd->add_option("--scheme", args->scheme,
                   "scheme for every scene (overrides [solve] scheme): " + scheme_names())
       ->check(non_empty_check());
+  add_step_option(cmd, args->step);
   cmd->add_option("--junit", args->junit,
                   "also write a JUnit XML report to this file (.xml or no extension)")
       ->check(non_empty_check());
-  return {cmd, [args] { return check(args->scenes, args->scheme, args->junit); }};
+  return {cmd, [args] { return check(args->scenes, args->scheme, args->step, args->junit); }};
 }
 
 }  // namespace condyn

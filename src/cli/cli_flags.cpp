@@ -185,6 +185,13 @@ SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme) {
   return s == "mixed" ? SolveSpec::Treatment::mixed : SolveSpec::Treatment::multipliers;
 }
 
+void add_step_option(CLI::App* cmd, std::optional<double>& step) {
+  cmd->add_option("--step", step,
+                  "fixed step of the Newmark family (newmark, hht, generalized_alpha; overrides "
+                  "[solve] step)")
+      ->check(decimal_range_check(1e-300, 1e300));
+}
+
 void check_settings(const std::string& scene, const SolveSpec& settings) {
   try {
     settings.validate();

@@ -44,6 +44,9 @@ namespace condyn {
 /// --step beyond t_end, a Newmark-family --scheme without a step are bad input, thrown as a
 /// SceneError naming `scene` (exit 2), as the same values in the file are.
 void check_settings(const std::string& scene, const SolveSpec& settings);
+/// --step on `cmd` (run, info, check, compare): the Newmark family's fixed step, overriding
+/// [solve] step, a positive decimal.
+void add_step_option(CLI::App* cmd, std::optional<double>& step);
 
 /// Splits "a,b,c" (spaces ignored); an empty item (a stray comma) or one listed twice is refused
 /// with CLI::ValidationError naming `flag`.

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "models/scene/scene_parser.hpp"
 #include "src/cli/cli_flags.hpp"
@@ -21,6 +22,7 @@ namespace {
 
 struct CompareArgs {
   std::string scene, dir, tolerances, schemes;
+  std::optional<double> step;  ///< --step: the Newmark family's fixed step
   bool no_plots = false, allow_failures = false;
   CompareOptions options;
 };
@@ -89,13 +91,17 @@ int verdict(const CompareResult& result, const CompareOptions& options, const st
 }
 
 int compare(const std::string& scene, std::string dir, const std::string& tolerances,
-            const std::string& schemes, bool no_plots, bool allow_failures, bool fail_above,
-            CompareOptions options) {
+            const std::string& schemes, std::optional<double> step, bool no_plots,
+            bool allow_failures, bool fail_above, CompareOptions options) {
   const std::string stem =
       scene.empty() ? "chapter_5_5_1" : std::filesystem::path(scene).stem().string();
-  const SceneSpec spec =
-      scene.empty() ? parse_scene_text(embedded_scene(stem).text, "<embedded:" + stem + ">")
-                    : parse_scene_file(scene);
+  SceneSpec spec = scene.empty()
+                       ? parse_scene_text(embedded_scene(stem).text, "<embedded:" + stem + ">")
+                       : parse_scene_file(scene);
+  if (step) {
+    spec.solve.step = *step;
+    check_settings(spec.file, spec.solve);
+  }
   if (dir.empty()) dir = "condyn-out/compare-" + stem;
   apply_lists(options, tolerances, schemes);
   OutputPlan plan;  // the folder and its files, checked before the runs
@@ -136,6 +142,7 @@ CLI::App* add_compare_options(CLI::App& app, CompareArgs& args) {
       ->check(non_empty_check());
   cmd->add_option("--schemes", args.schemes, "comma-separated schemes (default: all of them)")
       ->check(non_empty_check());
+  add_step_option(cmd, args.step);
   cmd->add_option("--repeats", args.options.repeats, "runs per point for the wall time (default 3)")
       ->transform(whole_check(1, CompareOptions::kMaxRepeats));
   cmd->add_option("--drift-rtol", args.options.drift_rtol,
@@ -166,8 +173,9 @@ Command add_compare_command(CLI::App& app) {
   auto* cmd = add_compare_options(app, *args);
   return {cmd,
           [args, cmd] {
-            return compare(args->scene, args->dir, args->tolerances, args->schemes, args->no_plots,
-                           args->allow_failures, cmd->count("--fail-above") > 0, args->options);
+            return compare(args->scene, args->dir, args->tolerances, args->schemes, args->step,
+                           args->no_plots, args->allow_failures, cmd->count("--fail-above") > 0,
+                           args->options);
           },
           [args] { return args->scene; }};
 }

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "models/assembly/build_model.hpp"
 #include "models/scene/scene_parser.hpp"
@@ -18,6 +19,7 @@ namespace {
 
 struct InfoArgs {
   std::string scene, scheme, constraints;
+  std::optional<double> step;  ///< --step: the Newmark family's fixed step
   bool all_constraints = false;
 };
 
@@ -41,6 +43,7 @@ int info(const InfoArgs& args) {
     spec.solve.treatment = parse_treatment_flag(
         args.constraints, args.scheme.empty() ? Scheme::automatic : spec.solve.scheme);
   }
+  if (args.step) spec.solve.step = *args.step;
   check_settings(args.scene, spec.solve);
   BuildReport report;
   const Model model = build_model(spec, report);
@@ -60,6 +63,7 @@ Command add_info_command(CLI::App& app) {
   cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
   cmd->add_option("--scheme", args->scheme, "scheme to report on (default: the scene's)")
       ->check(non_empty_check());
+  add_step_option(cmd, args->step);
   cmd->add_option("--constraints", args->constraints,
                   "mixed or multipliers (default: the scene's [solve] constraints)")
       ->check(non_empty_check());

@@ -203,10 +203,7 @@ Command add_run_command(CLI::App& app) {
       ->check(rtol_check());
   cmd->add_option("--atol", args->atol, "absolute tolerance (overrides [solve] atol)")
       ->check(atol_check());
-  cmd->add_option("--step", args->step,
-                  "fixed step of the Newmark family (newmark, hht, generalized_alpha; overrides "
-                  "[solve] step)")
-      ->check(decimal_range_check(1e-300, 1e300));
+  add_step_option(cmd, args->step);
   cmd->add_option("--max-steps", args->max_steps,
                   "step budget of the run (overrides [solve] max_steps); more is a failure")
       ->transform(whole_check(1, std::numeric_limits<int>::max()));

@@ -99,3 +99,37 @@ TEST_CASE("info names the Newmark family's parameters and step; compare sets the
   CHECK(contains(json, "\"scheme\": \"newmark\""));
   CHECK(contains(json, "\"error_target\": null"));
 }
+
+TEST_CASE("info, check and compare take --step as run does, and refuse a missing or bad one") {
+  const Sandbox box;
+  std::string no_step = kPendulum;
+  no_step.replace(no_step.find("step = 0.01"), 11, "");
+  // The index-3 position rows hold to roundoff under the family (docs/schemes.md).
+  box.write("c.toml", no_step + "[[check]]\nquantity = \"drift_position\"\nmax_abs = 1e-9\n");
+  const Result info = box.run("info c.toml --scheme generalized_alpha --step 0.005");
+  CHECK(info.code == 0);
+  CHECK(contains(info.out, "step 0.005"));  // "fixed step 0.005", wrapped at 100 columns
+  const Result check = box.run("check c.toml --scheme hht --step 0.01");
+  CHECK(check.code == 0);
+  CHECK(contains(check.out, "(hht, 50 steps"));
+  // Without a step, or one beyond t_end: bad input (exit 2) naming the key, as under run; check
+  // exited 1 before, as for a failed run.
+  for (const char* flags : {"", " --step 5"}) {
+    CAPTURE(flags);
+    const Result bad = box.run(std::string("check c.toml --scheme hht") + flags);
+    CHECK(bad.code == 2);
+    CHECK(contains(bad.out + bad.err, "solve.step"));
+    const Result bad_info = box.run(std::string("info c.toml --scheme hht") + flags);
+    CHECK(bad_info.code == 2);
+    CHECK(contains(bad_info.err, "solve.step"));
+  }
+  const Result cmp = box.run(
+      "compare c.toml --schemes ggl,generalized_alpha --step 0.01 --tolerances 1e-6 --repeats 1 "
+      "--no-plots --out-dir cmp");
+  CHECK(cmp.code == 0);
+  CHECK(contains(cmp.out, "generalized_alpha  1e-06"));
+  const Result bad_cmp = box.run(
+      "compare c.toml --schemes generalized_alpha --step 5 --tolerances 1e-6 --out-dir cmp2");
+  CHECK(bad_cmp.code == 2);
+  CHECK(contains(bad_cmp.err, "solve.step"));
+}

@@ -326,6 +326,14 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
   }
   std::string set_aside;  // SolveSpec::override_scheme's note, if any
   if (options.scheme) set_aside = spec.solve.override_scheme(*options.scheme, options.scheme_where);
+  if (options.step) spec.solve.step = *options.step;
+  // The settings with the overrides, checked together as run checks them: a Newmark-family
+  // scheme without a step, a step beyond t_end are bad input (exit 2), not a failed run.
+  try {
+    spec.solve.validate();
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(spec.file + ": " + e.what());
+  }
   // energy and energy_error are the energy quantity's whatever the model: ask for it before the
   // build, which refuses it where it has no meaning.
   auto& quantities = spec.output.quantities;

@@ -80,6 +80,7 @@ class CheckEvaluator {
 struct SceneCheckOptions {
   std::optional<Scheme> scheme;  ///< overrides [solve] scheme
   SourcePoint scheme_where;      ///< where the override comes from (`--scheme`), for refusals
+  std::optional<double> step;    ///< overrides [solve] step (the Newmark family's fixed step)
 };
 
 /// One scene's run and its checks.
