@@ -201,10 +201,12 @@ py::tuple compare(const py::handle& scene, const std::optional<std::vector<doubl
 
 /// The scene's [[check]] tables, evaluated on one run: (scene, scheme, steps, wall_s, failure,
 /// one dict per check).
-py::dict check(const py::handle& scene, const std::optional<std::string>& scheme) {
+py::dict check(const py::handle& scene, const std::optional<std::string>& scheme,
+               std::optional<double> step) {
   SceneSpec spec = python::parse_python_scene(scene, SceneNeeds{.checks = true});
   SceneCheckOptions options;
   if (scheme) options.scheme = scheme_argument(spec, "scheme", *scheme);
+  options.step = step;
   const std::string file = spec.file;
   const std::vector<CheckSpec> specs = spec.checks;  // a failed run's checks are still listed
   SceneCheckResult result;
@@ -272,7 +274,8 @@ PYBIND11_MODULE(_condyn, m) {
         py::arg("schemes") = py::none(), py::arg("repeats") = py::none(),
         py::arg("drift_rtol") = py::none(), py::arg("max_steps") = 0,
         py::arg("max_wall_time") = 0.0);
-  m.def("check", &check, py::arg("scene"), py::arg("scheme") = py::none());
+  m.def("check", &check, py::arg("scene"), py::arg("scheme") = py::none(),
+        py::arg("step") = py::none());
   m.def("scheme_names", &scheme_names);
   // Parses a scene (a path or a dict) and builds nothing: a sweep checks its scenes before it
   // runs any (docs/sweep.md). Raises SceneError as run() does.

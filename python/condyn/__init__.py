@@ -131,13 +131,14 @@ def compare(scene, tolerances=None, schemes=None, repeats=1, drift_rtol=None, ma
     return records
 
 
-def check(scene, scheme=None):
-    """Runs `scene` and evaluates its [[check]] tables as `condyn check` does (docs/checks.md).
+def check(scene, scheme=None, step=None):
+    """Runs `scene` and evaluates its [[check]] tables as `condyn check` does (docs/checks.md);
+    `step` is the Newmark family's fixed step, as the command's --step.
     Returns a dict: scene, scheme, steps, wall_s, failure (the integration failure's message or
     None), passed (every check held and the run reached t_end) and checks, one dict per check
     (quantity, computed, bound, passed, text). A scene without [[check]] raises SceneError."""
     _refuse_text(scene)
-    return _condyn.check(scene, _text(scene, "scheme", scheme))
+    return _condyn.check(scene, _text(scene, "scheme", scheme), _number(scene, "step", step))
 
 
 def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=True):

@@ -116,3 +116,22 @@ def test_compare_budget_marks_runs_over_it():
     # Nor wall times (they were 0.0, and repeats 0).
     assert runs[0]["wall_median"] is None and runs[0]["wall_min"] is None
     assert runs[0]["wall_max"] is None and runs[0]["repeats"] is None
+
+
+def test_check_runs_the_newmark_family_with_a_step_as_the_cli_does(cli):
+    import subprocess
+
+    # step= is the command's --step: the same run and the same lines; without it such a scheme
+    # on a scene without [solve] step is bad input (SceneError naming solve.step, exit 2).
+    result = condyn.check(OSCILLATOR, scheme="generalized_alpha", step=1e-3)
+    assert result["scheme"] == "generalized_alpha"
+    cli_run = subprocess.run([str(cli), "check", str(OSCILLATOR), "--scheme", "generalized_alpha",
+                              "--step", "1e-3"], capture_output=True, text=True)
+    assert f"generalized_alpha, {result['steps']} steps" in cli_run.stdout
+    for c in result["checks"]:
+        assert c["text"] in cli_run.stdout
+    with pytest.raises(condyn.SceneError, match="solve.step"):
+        condyn.check(OSCILLATOR, scheme="generalized_alpha")
+    bad = subprocess.run([str(cli), "check", str(OSCILLATOR), "--scheme", "generalized_alpha"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2
