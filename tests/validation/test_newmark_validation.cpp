@@ -1,11 +1,12 @@
 // The Newmark family (newmark, hht, generalized_alpha, each with its default parameters) on the
 // validation cases the other schemes meet (issue 45 item 5(d)): the chapter's five cases, the El
 // Centro shear frame and the hand-written scenes against the exact modal solution, the nonlinear
-// scenes against a tight GGL run. A fixed-step second-order method has a global error O(h²), not
-// a multiple of rtol: each case runs at a step h and at h/2 and the observed order, log2 of the
-// error's ratio, must be 2 (within [kMinOrder, kMaxOrder]) in u, u' and the reactions (λ at the
-// output rows from acceleration level, as every scheme reports them); the error at h/2 must be
-// within the accuracy the step was chosen for (kStepAccuracy).
+// scenes and the built-in benchmarks (Andrews, the car axis, the pendulum) against a tight GGL run.
+// A fixed-step second-order method has a global error O(h²), not a multiple of rtol: each case runs
+// at a step h and at h/2 and the observed order, log2 of the error's ratio, must be 2 (within
+// [kMinOrder, kMaxOrder]) in u, u' and the reactions (λ at the output rows from acceleration level,
+// as every scheme reports them); the error at h/2 must be within the accuracy the step was chosen
+// for (kStepAccuracy).
 
 #include <doctest/doctest.h>
 
@@ -136,5 +137,28 @@ TEST_CASE("newmark family on the nonlinear scenes: order 2 against a tight GGL r
         name, built.model, built.spec.solve, ref, four_bar ? 0.005 : 0.01,
         four_bar ? std::vector<Scheme>{Scheme::hht, Scheme::generalized_alpha}
                  : std::vector<Scheme>{std::begin(kFixedStepSchemes), std::end(kFixedStepSchemes)});
+  }
+}
+
+TEST_CASE("newmark family on the built-in benchmarks: order 2 against a tight GGL run") {
+  // `condyn validate`'s published benchmarks (validation/scenes/benchmark_*.toml): Andrews'
+  // squeezer over its 0.03 s (stiff: h = 1e-5), the car axis over 3 s (h = 1e-3) and the
+  // pendulum of period 2 over one period (h = 0.01), ten outputs each, against GGL at rtol 1e-12.
+  const struct {
+    const char* scene;
+    double t_end, h;
+  } benchmarks[] = {{"benchmark_andrews", 0.03, 1e-5},
+                    {"benchmark_car_axis", 3.0, 1e-3},
+                    {"benchmark_pendulum_period2", 2.0, 0.01}};
+  for (const auto& b : benchmarks) {
+    SceneSpec spec = parse_scene_text(embedded_scene(b.scene).text, b.scene);
+    spec.solve.t_end = b.t_end;
+    spec.solve.output_step = b.t_end / 10;
+    spec.solve.rtol = 1e-12;
+    spec.solve.atol = 1e-12;
+    const test::BuiltScene built = test::built(spec);
+    const Trajectory ref =
+        test::solved(built.model, test::under(built.spec.solve, Scheme::ggl)).trajectory;
+    check_order_two(b.scene, built.model, built.spec.solve, ref, b.h);
   }
 }
