@@ -3,20 +3,17 @@
 // Centro shear frame and the hand-written scenes against the exact modal solution, the nonlinear
 // scenes and the built-in benchmarks (Andrews, the car axis, the pendulum) against a tight GGL run.
 // A fixed-step second-order method has a global error O(h²), not a multiple of rtol: each case runs
-// at a step h and at h/2 and the observed order, log2 of the error's ratio, must be 2 (within
-// [kMinOrder, kMaxOrder]) in u, u' and the reactions (λ at the output rows from acceleration level,
-// as every scheme reports them); the error at h/2 must be within the accuracy the step was chosen
-// for (kStepAccuracy).
+// at a step h and at h/2 and must show order 2 (tests/fixed_step_order.hpp).
 
 #include <doctest/doctest.h>
 
-#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "dae/run/solve.hpp"
 #include "models/scene/scene_parser.hpp"
+#include "tests/fixed_step_order.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/references/accuracy.hpp"
 #include "validation/references/embedded_scenes.hpp"
@@ -25,53 +22,6 @@
 using namespace condyn;
 
 namespace {
-
-/// Order 2 asserted as in tests/dae/test_newmark_convergence.cpp: log2(e(h) / e(h/2)) in
-/// [1.8, 2.2]; observed values are in each case's message.
-constexpr double kMinOrder = 1.8, kMaxOrder = 2.2;
-/// The steps below are chosen, a twentieth or less of the shortest period that the response
-/// carries, for 1 % relative accuracy at h/2 (the velocities' error, the largest, observed up to
-/// 6e-3): a bound on what the chosen step buys, not on the method (which the order check judges).
-constexpr double kStepAccuracy = 1e-2;
-
-/// The run of `settings` under `scheme` with the fixed step h.
-Trajectory at_step(const Model& model, const SolveSpec& settings, Scheme scheme, double h) {
-  SolveSpec s = test::under(settings, scheme);
-  s.step = h;
-  return test::solved(model, s).trajectory;
-}
-
-/// The observed order of each quantity between two errors (h, then h/2).
-double order(double coarse, double fine) { return std::log2(coarse / fine); }
-
-/// Each of `schemes` at h and h/2 against `reference` (same output times): order 2 in
-/// displacement, velocity and the reactions, and within kStepAccuracy at h/2.
-void check_order_two(const std::string& what, const Model& model, const SolveSpec& settings,
-                     const Trajectory& reference, double h,
-                     const std::vector<Scheme>& schemes = {std::begin(kFixedStepSchemes),
-                                                           std::end(kFixedStepSchemes)}) {
-  for (const Scheme scheme : schemes) {
-    const std::string name = what + " " + to_string(scheme);
-    CAPTURE(name);
-    const TrajectoryError coarse = relative_error(at_step(model, settings, scheme, h), reference);
-    const TrajectoryError fine = relative_error(at_step(model, settings, scheme, h / 2), reference);
-    const double orders[] = {order(coarse.displacement, fine.displacement),
-                             order(coarse.velocity, fine.velocity),
-                             order(coarse.reaction, fine.reaction)};
-    MESSAGE(name << ", h = " << h << ": errors u " << coarse.displacement << " -> "
-                 << fine.displacement << ", v " << coarse.velocity << " -> " << fine.velocity
-                 << ", f_con " << coarse.reaction << " -> " << fine.reaction << "; orders "
-                 << orders[0] << ", " << orders[1] << ", " << orders[2]);
-    for (int q = 0; q < 3; ++q) {
-      CAPTURE(q);
-      CHECK(orders[q] >= kMinOrder);
-      CHECK(orders[q] <= kMaxOrder);
-    }
-    CHECK(fine.displacement <= kStepAccuracy);
-    CHECK(fine.velocity <= kStepAccuracy);
-    CHECK(fine.reaction <= kStepAccuracy);
-  }
-}
 
 test::BuiltScene scene_file(const std::string& path) {
   return test::built(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/" + path));
@@ -86,7 +36,7 @@ TEST_CASE("newmark family on the chapter's cases: order 2 against the exact moda
        {"chapter_5_5_1", "chapter_5_5_2", "chapter_5_5_3", "chapter_5_6_1", "chapter_5_6_2"}) {
     const test::BuiltScene built = test::built(parse_scene_text(embedded_scene(scene).text, scene));
     const Trajectory exact = exact_trajectory(built.model, built.spec.solve.output_times());
-    check_order_two(scene, built.model, built.spec.solve, exact, 0.05);
+    test::check_order_two(scene, built.model, built.spec.solve, exact, 0.05);
   }
 }
 
@@ -94,15 +44,15 @@ TEST_CASE("newmark family on the El Centro shear frame and the hand-written scen
   // The shear frame's third mode (7 Hz, 5 % damping) carries the response the record excites:
   // h = 0.005 (about T/30) and outputs every 0.02 (the record's own spacing, on the step grid).
   const test::BuiltScene frame = scene_file("models/scenes/shear_frame_el_centro.toml");
-  check_order_two("shear frame", frame.model, frame.spec.solve,
-                  exact_trajectory(frame.model, frame.spec.solve.output_times()), 0.005);
+  test::check_order_two("shear frame", frame.model, frame.spec.solve,
+                        exact_trajectory(frame.model, frame.spec.solve.output_times()), 0.005);
   // The inclined roller (highest frequency 16.1 rad/s, `condyn info`, excited over 8 s: h = 0.005)
   // and the chain on a driven base (11 rad/s, little excited: h = 0.025).
   for (const auto& [name, h] : {std::pair{"models/scenes/truss_inclined_roller.toml", 0.005},
                                 std::pair{"models/scenes/chain_driven_base.toml", 0.025}}) {
     const test::BuiltScene built = scene_file(name);
-    check_order_two(name, built.model, built.spec.solve,
-                    exact_trajectory(built.model, built.spec.solve.output_times()), h);
+    test::check_order_two(name, built.model, built.spec.solve,
+                          exact_trajectory(built.model, built.spec.solve.output_times()), h);
   }
 }
 
@@ -133,7 +83,7 @@ TEST_CASE("newmark family on the nonlinear scenes: order 2 against a tight GGL r
       CHECK(describe_failure(failed, undamped.t_end).find("Newton's iterations did not converge") !=
             std::string::npos);
     }
-    check_order_two(
+    test::check_order_two(
         name, built.model, built.spec.solve, ref, four_bar ? 0.005 : 0.01,
         four_bar ? std::vector<Scheme>{Scheme::hht, Scheme::generalized_alpha}
                  : std::vector<Scheme>{std::begin(kFixedStepSchemes), std::end(kFixedStepSchemes)});
@@ -159,6 +109,6 @@ TEST_CASE("newmark family on the built-in benchmarks: order 2 against a tight GG
     const test::BuiltScene built = test::built(spec);
     const Trajectory ref =
         test::solved(built.model, test::under(built.spec.solve, Scheme::ggl)).trajectory;
-    check_order_two(b.scene, built.model, built.spec.solve, ref, b.h);
+    test::check_order_two(b.scene, built.model, built.spec.solve, ref, b.h);
   }
 }
