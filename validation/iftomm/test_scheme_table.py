@@ -22,7 +22,7 @@ RTOL = 1e-10
 TOLERANCE = 1000 * RTOL * 1.0
 
 # (scene, t_end: its own when None, schemes). Durations cut to keep the tier under 20 s of CPU
-# (about 8 s); a scheme left out of a scene misses the bound over this duration (the table in
+# (about 8 s; 15 s with the Newmark family below); a scheme left out of a scene misses the bound over this duration (the table in
 # docs/validation.md has every pair over the full duration). Observed errors / TOLERANCE, the
 # largest per scene: inclined_revolute 0.58 (baumgarte), A03 0.68 (baumgarte), heavy_top 0.46
 # (projection), A01 0.76 (baumgarte), A02 0.19 (index3), A04 0.082 (elimination), A05 0.39
