@@ -158,8 +158,16 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
 py::tuple compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,
                   const std::optional<std::vector<std::string>>& schemes,
                   const std::optional<int>& repeats, const std::optional<double>& drift_rtol,
-                  long max_steps, double max_wall_time) {
-  const SceneSpec spec = python::parse_python_scene(scene);
+                  long max_steps, double max_wall_time, std::optional<double> step) {
+  SceneSpec spec = python::parse_python_scene(scene);
+  if (step) {  // the Newmark family's fixed step, as compare --step
+    spec.solve.step = *step;
+    try {
+      spec.solve.validate();
+    } catch (const std::invalid_argument& e) {
+      bad_argument(spec, "", e.what());
+    }
+  }
   CompareOptions options;
   options.repeats = 1;  // the CLI repeats runs for stable wall times; a script asks for more
   if (tolerances) options.tolerances = *tolerances;
@@ -273,7 +281,7 @@ PYBIND11_MODULE(_condyn, m) {
   m.def("compare", &compare, py::arg("scene"), py::arg("tolerances") = py::none(),
         py::arg("schemes") = py::none(), py::arg("repeats") = py::none(),
         py::arg("drift_rtol") = py::none(), py::arg("max_steps") = 0,
-        py::arg("max_wall_time") = 0.0);
+        py::arg("max_wall_time") = 0.0, py::arg("step") = py::none());
   m.def("check", &check, py::arg("scene"), py::arg("scheme") = py::none(),
         py::arg("step") = py::none());
   m.def("scheme_names", &scheme_names);

@@ -107,14 +107,15 @@ def run(scene, scheme=None, rtol=None, atol=None, step=None):
 
 
 def compare(scene, tolerances=None, schemes=None, repeats=1, drift_rtol=None, max_steps=0,
-            max_wall_time=0.0):
+            max_wall_time=0.0, step=None):
     """`condyn compare`'s sweep without its files: every scheme (or `schemes`, a list of names)
     at every rtol of `tolerances` (default 1e-3 ... 1e-10), each run `repeats` times for its wall
     time. Returns one dict per run (scheme, rtol, atol, ok, message, error_u, error_v,
     error_reaction against `reference`, drifts, steps, evaluations, wall times); a scheme that
     cannot treat the scene gives one dict with skipped=True and the reason. `max_steps` and
     `max_wall_time` (seconds) budget each run as the command's --max-steps and --max-wall-time
-    (0 or None: none); a run over budget has ok=False and says so in its message. An argument
+    (0 or None: none); a run over budget has ok=False and says so in its message. `step` is the
+    Newmark family's fixed step, as the command's --step. An argument
     of another type raises SceneError naming it. The scene's warnings are issued as
     UserWarning. When no run can be scored (no exact solution, and the tight reference runs
     failed) it raises IntegrationError, whose result is None."""
@@ -123,7 +124,7 @@ def compare(scene, tolerances=None, schemes=None, repeats=1, drift_rtol=None, ma
         scene, _list(scene, "tolerances", tolerances, _number),
         _list(scene, "schemes", schemes, _text), _integer(scene, "repeats", repeats),
         _number(scene, "drift_rtol", drift_rtol), _integer(scene, "max_steps", max_steps) or 0,
-        _number(scene, "max_wall_time", max_wall_time) or 0.0)
+        _number(scene, "max_wall_time", max_wall_time) or 0.0, _number(scene, "step", step))
     if no_reference is not None:
         raise IntegrationError(f"{_name(scene)}: {no_reference}", None)
     for w in scene_warnings:

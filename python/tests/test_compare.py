@@ -120,11 +120,16 @@ def test_compare_marks_runs_far_beyond_their_target():
 def test_compare_sets_the_newmark_family_under_a_fixed_step_no_target(quickstart_dict):
     # Under a fixed step rtol is only the Newton tolerance of newmark, hht and generalized_alpha:
     # no target, no ratio, never marked (docs/schemes.md), whatever its error against rtol.
-    quickstart_dict["solve"]["step"] = 0.01
-    runs = condyn.compare(quickstart_dict, tolerances=[1e-6], schemes=["ggl", "hht"], repeats=1)
+    runs = condyn.compare(quickstart_dict, tolerances=[1e-6], schemes=["ggl", "hht"], step=0.01)
     ggl, hht = runs
     assert ggl["error_target"] == 1e-6
     assert hht["ok"], hht["message"]
     assert hht["error_target"] is None and hht["error_ratio"] is None
     assert hht["over_tolerance"] is False
     assert hht["error_u"] > 0.0
+    # The same as [solve] step in the scene; a step beyond t_end is refused naming solve.step.
+    quickstart_dict["solve"]["step"] = 0.01
+    assert condyn.compare(quickstart_dict, tolerances=[1e-6], schemes=["hht"])[0]["error_u"] == \
+        hht["error_u"]
+    with pytest.raises(condyn.SceneError, match="solve.step"):
+        condyn.compare(quickstart_dict, tolerances=[1e-6], schemes=["hht"], step=1e9)
