@@ -83,11 +83,13 @@ void run_penalty(const Model& model, const PenaltyWeights& weights, const Observ
 void run_projection(const Model& model, const ObservedRun& run);
 
 /// The Newmark family (newmark, hht, generalized_alpha) with the fixed step `step`
-/// (dae/integrators/newmark_stepper.hpp). `row_multipliers`: λ at the output rows from
-/// acceleration level (dae/formulations/row_multipliers.hpp), as the multiplier schemes report
-/// theirs; otherwise (and within the energy balance's integrals) the step's own index-3 λ.
-void run_newmark(const Model& model, const AlphaParameters& parameters, double step,
-                 bool row_multipliers, const ObservedRun& run);
+/// (dae/integrators/newmark_stepper.hpp), its constraints at index 3 or stabilized
+/// (`constraints`). `row_multipliers`: λ at the output rows from acceleration level
+/// (dae/formulations/row_multipliers.hpp), as the multiplier schemes report theirs; otherwise
+/// (and within the energy balance's integrals) the step's own λ.
+void run_newmark(const Model& model, const AlphaParameters& parameters,
+                 NewmarkConstraints constraints, double step, bool row_multipliers,
+                 const ObservedRun& run);
 
 /// Elimination with IDA: `ode` integrates `reduced` (dae/formulations/reduced_ode.hpp), the
 /// reduction it was built on; its state is mapped back to full DOF space and the reactions come

@@ -71,6 +71,15 @@ Sparse NewmarkNewton::constraint_block(double t, const StepState& x, const StepC
   return B;
 }
 
+void NewmarkNewton::apply(double /*t*/, const Eigen::VectorXd& d, const StepCoefficients& c,
+                          StepState& x) {
+  const auto du = d.head(n_);
+  x.u += du;
+  x.v += c.gamma_prime * du;
+  x.acc += c.beta_prime * du;
+  x.lambda += c.beta_prime * d.tail(m_);
+}
+
 bool NewmarkNewton::factor(double t, const StepState& x, const StepCoefficients& c) {
   if (linear_ && factored_ && c == factored_for_) return true;
   const Sparse S = momentum_block(t, x, c);

@@ -26,45 +26,40 @@
 #include <Eigen/Sparse>
 #include <vector>
 
+#include "dae/integrators/step_newton.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "models/core/mechanical_system.hpp"
 
 namespace condyn {
 
-/// β' and γ' of the step (above).
-struct StepCoefficients {
-  double beta_prime = 0.0, gamma_prime = 0.0;
-  bool operator==(const StepCoefficients&) const = default;
-};
-
-/// One state of the step's unknowns at t_{n+1}.
-struct StepState {
-  Eigen::VectorXd u, v, acc, lambda;  ///< displacements, velocities, ü, λ
-};
-
-class NewmarkNewton {
+class NewmarkNewton final : public StepNewton {
  public:
   /// `linear`: M, C, K and A are constant (the matrix is factored once per coefficient set).
   NewmarkNewton(MechanicalSystem& system, bool linear);
 
   /// The scaled residual [r / β'; φ, ψ / γ'] (n + m) at (t, x).
-  void residual(double t, const StepState& x, const StepCoefficients& c, Eigen::VectorXd& out);
+  void residual(double t, const StepState& x, const StepCoefficients& c,
+                Eigen::VectorXd& out) override;
   /// Factors the scaled matrix at (t, x) (a linear model's only when c changed); false when it
   /// is singular.
-  [[nodiscard]] bool factor(double t, const StepState& x, const StepCoefficients& c);
+  [[nodiscard]] bool factor(double t, const StepState& x, const StepCoefficients& c) override;
   /// rhs ← (scaled matrix)⁻¹ rhs.
-  void solve_in_place(Eigen::VectorXd& rhs) const { klu_.solve_in_place(rhs); }
+  void solve_in_place(Eigen::VectorXd& rhs) const override { klu_.solve_in_place(rhs); }
+  /// u += Δu, v += γ' Δu, ü += β' Δu, λ += β' Δλ̃.
+  void apply(double t, const Eigen::VectorXd& d, const StepCoefficients& c, StepState& x) override;
 
-  [[nodiscard]] long factorizations() const { return factorizations_; }
-  [[nodiscard]] long residuals() const { return residuals_; }
-  [[nodiscard]] long nonzeros() const { return nonzeros_; }
+  [[nodiscard]] long factorizations() const override { return factorizations_; }
+  [[nodiscard]] long residuals() const override { return residuals_; }
+  [[nodiscard]] long nonzeros() const override { return nonzeros_; }
 
- private:
+  /// The matrix's blocks in the Δu column: the momentum rows' (n x n) and the constraint rows'
+  /// (m x n), as the stabilized form reuses them (dae/integrators/stabilized_newmark_newton.hpp).
   [[nodiscard]] Eigen::SparseMatrix<double> momentum_block(double t, const StepState& x,
                                                            const StepCoefficients& c);
   [[nodiscard]] Eigen::SparseMatrix<double> constraint_block(double t, const StepState& x,
                                                              const StepCoefficients& c);
 
+ private:
   MechanicalSystem& system_;
   bool linear_;
   int n_, m_;

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <utility>
 
+#include "dae/integrators/stabilized_newmark_newton.hpp"
+
 namespace condyn {
 
 namespace {
@@ -28,7 +30,7 @@ NewmarkStepper::NewmarkStepper(const MechanicalSystem& system, bool linear,
       linear_(linear),
       n_(system.dofs()),
       m_(system.constraints()),
-      newton_(*system_, linear),
+      newton_(make_step_newton(*system_, linear, settings.constraints)),
       t0_(t0),
       stop_(t0),
       t_(t0),
@@ -50,6 +52,7 @@ void NewmarkStepper::consistent_accelerations() {
   }
   x_.acc = std::move(solved->first);
   x_.lambda = std::move(solved->second);
+  x_.mu = Eigen::VectorXd::Zero(newton_->mu_size());
   a_ = x_.acc;
 }
 
@@ -110,18 +113,16 @@ void NewmarkStepper::solve_step(double t_next, const StepCoefficients& c, StepSt
       << "; a smaller [solve] step may converge)";
     throw IntegrationError(kind, s.str());
   };
+  newton_->begin_step(x);
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
-    newton_.residual(t_next, x, c, d);
+    newton_->residual(t_next, x, c, d);
     if (!d.allFinite()) fail(FailureKind::residual_non_finite, "the residual is not finite");
-    if (!newton_.factor(t_next, x, c)) fail(FailureKind::linear_solver, "singular Newton matrix");
+    if (!newton_->factor(t_next, x, c)) fail(FailureKind::linear_solver, "singular Newton matrix");
     d = -d;
-    newton_.solve_in_place(d);
+    newton_->solve_in_place(d);
     ++newton_iterations_;
+    newton_->apply(t_next, d, c, x);
     const auto du = d.head(n_);
-    x.u += du;
-    x.v += c.gamma_prime * du;
-    x.acc += c.beta_prime * du;
-    x.lambda += c.beta_prime * d.tail(m_);
     // A linear model's first Newton step solves its equations up to the roundoff of the
     // factored matrix, eps times its condition times the step (2.5e7 |u| eps on a spring of 1e12
     // with h ω = 1e4); the second, on the residual it leaves, refines that to the residual's own
@@ -140,11 +141,11 @@ void NewmarkStepper::solve_step(double t_next, const StepCoefficients& c, StepSt
 }
 
 Eigen::VectorXd NewmarkStepper::pack(const StepState& x, bool derivative) const {
-  Eigen::VectorXd out(2 * n_ + m_);
+  Eigen::VectorXd out(size());
   if (derivative) {
-    out << x.v, x.acc, Eigen::VectorXd::Zero(m_);
+    out << x.v, x.acc, Eigen::VectorXd::Zero(m_ + x.mu.size());
   } else {
-    out << x.u, x.v, x.lambda;
+    out << x.u, x.v, x.lambda, x.mu;
   }
   return out;
 }
@@ -171,6 +172,7 @@ void NewmarkStepper::interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& 
   x.v = (d00 / h) * a.u + d10 * a.v + (d01 / h) * b.u + d11 * b.v;
   x.acc = (1 - s) * a.acc + s * b.acc;
   x.lambda = (1 - s) * a.lambda + s * b.lambda;
+  x.mu = (1 - s) * a.mu + s * b.mu;
   y = pack(x, false);
   yp = pack(x, true);
 }
@@ -185,8 +187,8 @@ void NewmarkStepper::restart(double t) {
 
 void NewmarkStepper::fill_summary(SolveSummary& summary) {
   summary.steps = steps_;
-  summary.residual_evals = newton_.residuals();
-  summary.jacobian_evals = newton_.factorizations();
+  summary.residual_evals = newton_->residuals();
+  summary.jacobian_evals = newton_->factorizations();
   summary.newton_iterations = newton_iterations_;
   summary.last_step = last_step_;
 }

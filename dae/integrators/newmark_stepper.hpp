@@ -20,15 +20,17 @@
 /// points) u and v come from the cubic Hermite interpolant of (u, v) at the step's ends, ü and λ
 /// linearly: step results exactly at the ends.
 ///
-/// The state the loop sees: y = [u; v; λ], y' = [v; ü; 0].
+/// The state the loop sees: y = [u; v; λ], y' = [v; ü; 0]; stabilized
+/// (NewmarkSettings::constraints, dae/integrators/stabilized_newmark_newton.hpp) y = [u; v; λ; μ],
+/// y' = [v; ü; 0; 0].
 
 #include <Eigen/Dense>
 #include <functional>
 #include <memory>
 #include <utility>
 
-#include "dae/integrators/newmark_newton.hpp"
 #include "dae/integrators/step_driver.hpp"
+#include "dae/integrators/step_newton.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/newmark_parameters.hpp"
 
@@ -42,6 +44,8 @@ struct NewmarkSettings {
   /// or after its second iteration, a refinement of the exact first one on the same factors.
   double rtol = 1e-8, atol = 1e-10;
   int max_newton_iterations = 10;
+  /// At index 3, or stabilized at index 2 (the velocity constraints held too).
+  NewmarkConstraints constraints = NewmarkConstraints::index3;
 };
 
 /// ü and λ at (t, u, v) from the constraints at acceleration level, [M Aᵀ; A 0][ü; λ] = [f; γ]
@@ -67,8 +71,8 @@ class NewmarkStepper : public Stepper {
   void set_stop_time(double t) override { stop_ = t; }
   void fill_summary(SolveSummary& summary) override;
 
-  [[nodiscard]] long jacobian_nonzeros() const { return newton_.nonzeros(); }
-  [[nodiscard]] int size() const { return 2 * n_ + m_; }
+  [[nodiscard]] long jacobian_nonzeros() const { return newton_->nonzeros(); }
+  [[nodiscard]] int size() const { return 2 * n_ + m_ + newton_->mu_size(); }
 
  private:
   /// ü and λ at the current state from `consistent_`; a = ü (the method restarts there).
@@ -86,7 +90,7 @@ class NewmarkStepper : public Stepper {
   ConsistentAccelerations consistent_;
   bool linear_;
   int n_, m_;
-  NewmarkNewton newton_;
+  std::unique_ptr<StepNewton> newton_;
   double t0_;
   long grid_index_ = 0;  ///< the last grid point t0 + k h reached or passed
   double stop_;

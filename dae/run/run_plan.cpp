@@ -87,8 +87,11 @@ void plan_elimination(RunPlan& p, SchemeDecisions& decisions) {
 /// Newmark method.
 RunNote newmark_note(Scheme scheme, const SolveSpec& settings) {
   const AlphaParameters p = alpha_parameters(scheme, settings.newmark_family);
-  std::string text =
-      describe(scheme, p) + ", fixed step " + shortest_number(settings.step.value_or(0));
+  std::string text = describe(scheme, p) + ", fixed step " +
+                     shortest_number(settings.step.value_or(0)) +
+                     (settings.newmark_family.constraints == NewmarkConstraints::stabilized
+                          ? ", constraints stabilized (index 2: positions and velocities)"
+                          : "");
   const double limit = newmark_stability_limit(p.beta, p.gamma);
   if (std::isfinite(limit)) {
     text += "; conditionally stable (beta < gamma/2): stable for h omega < " +
@@ -212,7 +215,8 @@ void run_scheme(const RunPlan& plan, const IntegratorOptions& options, const Obs
     case Scheme::hht:
     case Scheme::generalized_alpha:
       return run_newmark(model, alpha_parameters(plan.scheme, plan.settings.newmark_family),
-                         plan.settings.step.value_or(0.0), options.row_multipliers, run);
+                         plan.settings.newmark_family.constraints, plan.settings.step.value_or(0.0),
+                         options.row_multipliers, run);
   }
   throw std::logic_error("unknown scheme");
 }

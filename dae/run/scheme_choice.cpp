@@ -15,6 +15,7 @@
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/formulations/penalty_ode.hpp"
 #include "dae/formulations/projected_ode.hpp"
+#include "dae/integrators/stabilized_newmark_newton.hpp"
 #include "models/core/massless_dofs.hpp"
 
 namespace condyn {
@@ -302,6 +303,13 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
     }
     size.unknowns = 2 * model.dofs() + model.constraint_count();
     size.jacobian_nonzeros = S.nonZeros() + 2 * system->constraint_jacobian(0.0, u).nonZeros();
+    if (settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
+      // [u; v; λ; μ] and the stabilized matrix (dae/integrators/stabilized_newmark_newton.hpp).
+      const StabilizedSize stabilized =
+          stabilized_size(*system, !model.is_nonlinear(), 0.0, u, model.v0);
+      size.unknowns += stabilized.mu;
+      if (stabilized.mu > 0) size.jacobian_nonzeros = stabilized.nonzeros;
+    }
     return size;
   }
   if (scheme == Scheme::penalty && model.is_nonlinear()) {

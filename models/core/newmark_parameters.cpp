@@ -9,6 +9,17 @@
 
 namespace condyn {
 
+const char* to_string(NewmarkConstraints form) {
+  return form == NewmarkConstraints::stabilized ? "stabilized" : "index3";
+}
+
+std::optional<NewmarkConstraints> newmark_constraints_from_string(std::string_view s) {
+  for (const auto form : {NewmarkConstraints::index3, NewmarkConstraints::stabilized}) {
+    if (s == to_string(form)) return form;
+  }
+  return std::nullopt;
+}
+
 AlphaParameters newmark_parameters(double beta, double gamma) { return {0.0, 0.0, beta, gamma}; }
 
 AlphaParameters hht_parameters(double alpha) {

@@ -16,6 +16,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "models/core/scheme.hpp"
 
@@ -26,8 +27,17 @@ struct AlphaParameters {
   double alpha_m = 0.0, alpha_f = 0.0, beta = 0.25, gamma = 0.5;
 };
 
+/// How the Newmark family holds the constraints ([solve] newmark_constraints): at index 3
+/// (positions and multipliers, the default) or stabilized at index 2 (the velocity constraints
+/// too, through a second multiplier μ on the positions: GGL's form, Arnold and Brüls 2007).
+enum class NewmarkConstraints { index3, stabilized };
+[[nodiscard]] const char* to_string(NewmarkConstraints form);
+/// The form named s ("index3", "stabilized"), or nothing.
+[[nodiscard]] std::optional<NewmarkConstraints> newmark_constraints_from_string(std::string_view s);
+
 /// What a scene gives of the Newmark family's parameters (each unset: its default).
 struct NewmarkFamilySpec {
+  NewmarkConstraints constraints = NewmarkConstraints::index3;
   std::optional<double> newmark_beta, newmark_gamma;  ///< newmark = { beta, gamma }
   std::optional<double> hht_alpha;                    ///< hht = { alpha }
   std::optional<double> rho_inf;                      ///< generalized_alpha = { rho_inf }

@@ -1,6 +1,6 @@
-// [solve] step and the Newmark family's parameters (newmark, hht, generalized_alpha): each value
-// checked against the method's stability range (models/core/newmark_parameters.hpp), refused with
-// its file, line and key.
+// [solve] step and the Newmark family's parameters (newmark, hht, generalized_alpha, and
+// newmark_constraints, their constraint form): each value checked against the method's stability
+// range (models/core/newmark_parameters.hpp), refused with its file, line and key.
 
 #include "models/scene/scene_readers.hpp"
 
@@ -79,6 +79,17 @@ void SceneReader::read_fixed_step(const toml::table& t, SolveSpec& solve) const 
     f.hht_alpha = checked(*this, h, "solve.hht", "alpha", hht_alpha_problem);
   }
   if (const auto* n = t.get("generalized_alpha")) read_generalized_alpha(*this, *n, f);
+  if (const auto* n = t.get("newmark_constraints")) {
+    const std::string s = string(*n, "solve.newmark_constraints");
+    const auto form = newmark_constraints_from_string(s);
+    if (!form) {
+      fail(*n, "solve.newmark_constraints",
+           "expected 'index3' (positions and multipliers, the default) or 'stabilized' (the "
+           "velocity constraints too, index 2) (got '" +
+               s + "')");
+    }
+    f.constraints = *form;
+  }
 }
 
 }  // namespace condyn

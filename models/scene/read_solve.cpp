@@ -189,7 +189,8 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
               "step",
               "newmark",
               "hht",
-              "generalized_alpha"});
+              "generalized_alpha",
+              "newmark_constraints"});
   read_horizon(*this, t, path, solve);
   read_budgets(*this, t, path, solve);
   if (const auto* n = t.get("scheme")) {
