@@ -1,7 +1,7 @@
 // The Newmark family stabilized at index 2 from the command line ([solve] newmark_constraints):
 // `run` writes the same columns with the velocity drift at Newton's tolerance where index 3
-// leaves O(h²), the drift log (--steps-out) and `compare`'s drift columns show both forms, and a
-// bad value exits 2 naming the key.
+// leaves O(h²), `info` sizes it, the drift log (--steps-out) and `compare`'s drift columns show
+// both forms, and a bad value exits 2 naming the key.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -80,6 +80,10 @@ TEST_CASE("newmark_constraints = stabilized holds the velocity drift in run's co
   REQUIRE(i.code == 0);
   REQUIRE(s.code == 0);
   CHECK(contains(s.out + s.err, "constraints stabilized"));
+  // info sizes the stabilized system, [u; v; λ; μ]: 2 x 4 + 3 + 3 position rows.
+  const Result info = box.run("info s.toml");
+  REQUIRE(info.code == 0);
+  CHECK(contains(info.out, "generalized_alpha stabilized 14 "));
   const std::string i_csv = condyn::test::slurp(box.path("i.csv"));
   const std::string s_csv = condyn::test::slurp(box.path("s.csv"));
   CHECK(i_csv.substr(0, i_csv.find('\n')) == s_csv.substr(0, s_csv.find('\n')));
