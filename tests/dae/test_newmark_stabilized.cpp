@@ -103,7 +103,7 @@ TEST_CASE("stabilized newmark: the Newton matrix is the derivative of the residu
                   (2.0 * kDelta);
     }
     MESSAGE(name << ": largest difference " << (J - fd).cwiseAbs().maxCoeff() << " of "
-                  << fd.cwiseAbs().maxCoeff());
+                 << fd.cwiseAbs().maxCoeff());
     CONDYN_CHECK_CLOSE(J, fd, kFdTolerance);
   }
 }
