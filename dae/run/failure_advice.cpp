@@ -24,13 +24,19 @@ std::string about(double x) {
   return s.str();
 }
 
-/// What the scheme itself adds to the advice after a solver failure.
-std::string scheme_advice(Scheme scheme) {
+/// What the scheme itself adds to the advice after a solver failure (penalty on a nonlinear
+/// model is the augmented Lagrangian, whose weight comes from the model).
+std::string scheme_advice(Scheme scheme, bool nonlinear_model) {
   switch (scheme) {
     case Scheme::baumgarte:
       return "; large Baumgarte gains make the system stiff: try smaller [solve] baumgarte gains "
              "or ggl";
     case Scheme::penalty:
+      if (nonlinear_model) {
+        return "; penalty on a nonlinear model is the augmented Lagrangian under CVODE's "
+               "non-stiff Adams method (its weight is set from the model, [solve] penalty does "
+               "not apply): a stiff model defeats it, try ggl";
+      }
       return "; a large penalty weight makes the system stiff: try a smaller [solve] penalty "
              "weight or ggl";
     case Scheme::index1:
@@ -90,7 +96,7 @@ std::string roundoff_advice(const RunFailure& e, double atol, double max_displac
   return s.str();
 }
 
-std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
+std::string failure_suggestion(Scheme scheme, const RunFailure& e, bool nonlinear_model) {
   // What is left of the run, in steps of the last size and in wall time at the pace so far.
   const double left = e.t_end - e.t_reached;
   const bool progressed = e.in_loop && e.t_reached > e.t0;
@@ -131,13 +137,13 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
              "max_steps_per_output (default " +
              std::to_string(kDefaultStepsPerOutput) +
              ", or max_steps when larger) lets the run go on, a looser rtol takes larger steps" +
-             scheme_advice(scheme);
+             scheme_advice(scheme, nonlinear_model);
     case FailureKind::step_size_collapsed:
       return "the step size collapsed to roundoff of the time reached: the motion reaches a "
              "singular configuration (constraints that become dependent, a mechanism at a dead "
              "point, a prescribed motion it cannot follow) or a jump; check the scene at the time "
              "reached" +
-             scheme_advice(scheme);
+             scheme_advice(scheme, nonlinear_model);
     case FailureKind::tolerance_too_tight:
       return "the tolerances ask for more than double precision holds at these magnitudes: "
              "loosen rtol, or raise atol to the size of the smallest quantity that matters";
@@ -145,7 +151,7 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
       return "the iteration matrix could not be factored (singular): a DOF that nothing holds "
              "(no mass, stiffness or constraint), or constraints that became dependent near the "
              "time reached; `condyn info` shows the classification, another scheme may pass" +
-             scheme_advice(scheme);
+             scheme_advice(scheme, nonlinear_model);
     case FailureKind::first_step:
       return "the integrator failed before its first step, so no motion was computed: check the "
              "initial state (displacements and velocities consistent with the constraints; "
@@ -175,7 +181,7 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e) {
                              : "repeated convergence or error-test failures right after the "
                                "start or a load step: check the state there and the tolerances; "
                                "a looser rtol or another scheme may pass";
-  return s + scheme_advice(scheme);
+  return s + scheme_advice(scheme, nonlinear_model);
 }
 
 std::string mu_roundoff_advice(const RunFailure& e, double atol_mu, double mu_floor) {
@@ -190,8 +196,9 @@ std::string mu_roundoff_advice(const RunFailure& e, double atol_mu, double mu_fl
   return s.str();
 }
 
-std::string failure_suggestion(Scheme scheme, const RunFailure& e, const std::string& causes) {
-  if (causes.empty()) return failure_suggestion(scheme, e);
+std::string failure_suggestion(Scheme scheme, const RunFailure& e, const std::string& causes,
+                               bool nonlinear_model) {
+  if (causes.empty()) return failure_suggestion(scheme, e, nonlinear_model);
   switch (e.kind) {
     case FailureKind::step_size_collapsed:
       return "the step size collapsed to roundoff of the time reached because a tolerance asks for "
@@ -203,7 +210,7 @@ std::string failure_suggestion(Scheme scheme, const RunFailure& e, const std::st
              "double precision holds" +
              causes;
     default:
-      return failure_suggestion(scheme, e) + causes;
+      return failure_suggestion(scheme, e, nonlinear_model) + causes;
   }
 }
 

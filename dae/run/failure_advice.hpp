@@ -10,7 +10,10 @@
 
 namespace condyn {
 
-[[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e);
+/// `nonlinear_model`: the model's constraints or forces are nonlinear (under penalty, the
+/// augmented Lagrangian ran).
+[[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e,
+                                             bool nonlinear_model = false);
 
 /// The same, for a failure that `causes` (what roundoff_advice and mu_roundoff_advice return,
 /// joined) may explain: when they are not empty, a collapse or repeated convergence or error-test
@@ -18,7 +21,8 @@ namespace condyn {
 /// (a hanging chain of 30,000 links under GGL got that guess while its atol_mu asked for less than
 /// roundoff); the other kinds keep their own advice with the causes after it.
 [[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e,
-                                             const std::string& causes);
+                                             const std::string& causes,
+                                             bool nonlinear_model = false);
 
 /// After a failure of the step size (collapsed, tiny for many steps, repeated error-test or
 /// convergence failures, a failure before the first step): when the displacements' atol lies

@@ -251,7 +251,7 @@ void advise(const RunPlan& plan, SolveResult& result) {
   if (plan.scheme == Scheme::ggl && plan.settings.atol_mu) {
     causes += mu_roundoff_advice(failure, *plan.settings.atol_mu, plan.tolerances.mu_floor);
   }
-  failure.suggestion = failure_suggestion(plan.scheme, failure, causes);
+  failure.suggestion = failure_suggestion(plan.scheme, failure, causes, plan.model->is_nonlinear());
   failure.suggestion += singular_failure_advice(result.summary.singular_passages);
 }
 

@@ -264,6 +264,23 @@ TEST_CASE("the loop refines a solver failure from the facts: no step taken, step
   CHECK(drive_failure(converging, options).kind == FailureKind::convergence);
 }
 
+TEST_CASE("penalty's advice names its weight on a linear model, not on a nonlinear one") {
+  // On a nonlinear model penalty is the augmented Lagrangian, its weight set from the model:
+  // the advice to lower [solve] penalty's weight pointed at a key that run ignores.
+  const RunFailure e = failure(FailureKind::convergence, 1.0, 1e-3, 2.0, 10);
+  const std::string linear = failure_suggestion(Scheme::penalty, e);
+  CHECK(contains(linear, "try a smaller [solve] penalty weight"));
+  const std::string nonlinear = failure_suggestion(Scheme::penalty, e, true);
+  CHECK_FALSE(contains(nonlinear, "try a smaller [solve] penalty weight"));
+  CHECK(contains(nonlinear, "augmented Lagrangian"));
+  CHECK(contains(nonlinear, "try ggl"));
+  // The same through the other overload (with roundoff causes after it).
+  CHECK(contains(
+      failure_suggestion(Scheme::penalty, failure(FailureKind::linear_solver, 1.0, 1e-3, 2.0, 10),
+                         "; causes", true),
+      "augmented Lagrangian"));
+}
+
 TEST_CASE("a step size at roundoff of t for 1000 steps in a row ends the run as a collapse") {
   // A collapsed integrator used to run on to the budget of steps per output (100,000 by
   // default): minutes for a run that had stopped advancing.
