@@ -152,6 +152,7 @@ void MultiplierDae::for_each_block(double t, ConstRef y, ConstRef yp, double cj,
     case Scheme::newmark:
     case Scheme::hht:
     case Scheme::generalized_alpha:
+    case Scheme::rattle:
       break;  // not multiplier schemes: refused by the constructor
   }
 }
@@ -260,6 +261,7 @@ Eigen::VectorXd MultiplierDae::variable_index() const {
     case Scheme::newmark:
     case Scheme::hht:
     case Scheme::generalized_alpha:
+    case Scheme::rattle:
       break;  // not multiplier schemes: refused by the constructor
   }
   if (held_) {
@@ -328,6 +330,7 @@ void MultiplierDae::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
     case Scheme::newmark:
     case Scheme::hht:
     case Scheme::generalized_alpha:
+    case Scheme::rattle:
       break;  // not multiplier schemes: refused by the constructor
   }
 }

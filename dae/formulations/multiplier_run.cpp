@@ -9,11 +9,6 @@
 
 namespace condyn {
 
-namespace {
-
-/// λ at the output rows from acceleration level (dae/formulations/row_multipliers.hpp), on the
-/// system the scheme integrates (the reduced one under the mixed treatment, whose eliminated rows'
-/// λ follow); the scheme's own λ where that solve fails.
 void observe_row_multipliers(AccelerationLevelMultipliers& at_rows, EliminatedSystem* observer,
                              int n, Observation& observe) {
   observe.row_multipliers = [&at_rows, observer, n, own = observe.multipliers](
@@ -26,8 +21,6 @@ void observe_row_multipliers(AccelerationLevelMultipliers& at_rows, EliminatedSy
     return solved->second;
   };
 }
-
-}  // namespace
 
 void run_multipliers(const Model& model, Scheme scheme, const BaumgarteGains& gains,
                      const ConstraintTreatment* mixed, bool row_multipliers,

@@ -53,6 +53,17 @@ using Integrate =
 /// the options and the result: dae/run/observed_run.hpp).
 using ObservedRun = std::function<void(const Integrate& integrate, const Observation& observe)>;
 
+class AccelerationLevelMultipliers;
+class EliminatedSystem;
+
+/// Sets observe.row_multipliers to λ at the output rows from acceleration level
+/// (dae/formulations/row_multipliers.hpp), on the system the scheme integrates, whose state y
+/// starts with [u; v] of n DOFs each (the reduced one under the mixed treatment, `observer`,
+/// whose eliminated rows' λ follow; null otherwise); the scheme's own λ (observe.multipliers)
+/// where that solve fails. `at_rows` and `observer` must outlive the run.
+void observe_row_multipliers(AccelerationLevelMultipliers& at_rows, EliminatedSystem* observer,
+                             int n, Observation& observe);
+
 /// The full-state map of a scheme whose state starts with [u; v] (every scheme but elimination).
 [[nodiscard]] Observation::FullState full_state_prefix(int n);
 
@@ -90,6 +101,11 @@ void run_projection(const Model& model, const ObservedRun& run);
 void run_newmark(const Model& model, const AlphaParameters& parameters,
                  NewmarkConstraints constraints, double step, bool row_multipliers,
                  const ObservedRun& run);
+
+/// RATTLE with the fixed step `step` (dae/integrators/rattle_stepper.hpp). `row_multipliers`: λ
+/// at the output rows from acceleration level (dae/formulations/row_multipliers.hpp), as the
+/// multiplier schemes report it; otherwise the last velocity stage's multiplier.
+void run_rattle(const Model& model, double step, bool row_multipliers, const ObservedRun& run);
 
 /// Elimination with IDA: `ode` integrates `reduced` (dae/formulations/reduced_ode.hpp), the
 /// reduction it was built on; its state is mapped back to full DOF space and the reactions come

@@ -1,25 +1,12 @@
 #include "dae/integrators/newmark_stepper.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <utility>
 
 #include "dae/integrators/stabilized_newmark_newton.hpp"
 
 namespace condyn {
-
-namespace {
-
-/// A stop within this fraction of h after a grid point is reached from the point before it, in
-/// one step slightly longer than h, rather than by a step of roundoff size after the grid point.
-constexpr double kGridSlack = 1e-6;
-/// An output time this many ulps of the time from a grid point is that grid point: k · output_step
-/// and j · h differ by a few ulps where they mean the same time.
-constexpr double kOutputUlps = 64.0;
-
-}  // namespace
 
 NewmarkStepper::NewmarkStepper(const MechanicalSystem& system, bool linear,
                                const NewmarkSettings& settings, ConsistentAccelerations consistent,
@@ -31,7 +18,7 @@ NewmarkStepper::NewmarkStepper(const MechanicalSystem& system, bool linear,
       n_(system.dofs()),
       m_(system.constraints()),
       newton_(make_step_newton(*system_, linear, settings.constraints)),
-      t0_(t0),
+      grid_(t0, settings.step),
       stop_(t0),
       t_(t0),
       t_prev_(t0) {
@@ -56,32 +43,9 @@ void NewmarkStepper::consistent_accelerations() {
   a_ = x_.acc;
 }
 
-double NewmarkStepper::next_time(double tout) {
-  const double h = settings_.step;
-  const double slack = kGridSlack * h;
-  // The grid points at or within slack after t_ are passed (t_ is one of them, or a stop).
-  while (t0_ + static_cast<double>(grid_index_ + 1) * h <= t_ + slack) ++grid_index_;
-  const double grid_next = t0_ + static_cast<double>(grid_index_ + 1) * h;
-  if (grid_next < stop_ - slack) {
-    ++grid_index_;
-    // An output time within roundoff of the grid point (k · output_step against t0 + j h) is
-    // the step's end itself, so that the output is the step's result.
-    const double roundoff =
-        kOutputUlps * std::numeric_limits<double>::epsilon() * std::max(std::abs(grid_next), h);
-    return std::abs(tout - grid_next) <= roundoff ? tout : grid_next;
-  }
-  return stop_;
-}
-
 double NewmarkStepper::step(double tout) {
-  const double t_next = next_time(tout);
-  // A step between grid points is h itself, not t_next − t_ with its roundoff: a linear model's
-  // matrix depends on the step alone and stays factored.
-  double h = t_next - t_;
-  if (std::abs(h - settings_.step) <=
-      kOutputUlps * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_next), h)) {
-    h = settings_.step;
-  }
+  const double t_next = grid_.next_time(t_, stop_, tout);
+  const double h = grid_.step_length(t_, t_next);
   const AlphaParameters& p = settings_.parameters;
   const StepCoefficients c{(1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f)),
                            p.gamma / (h * p.beta)};
@@ -160,16 +124,11 @@ void NewmarkStepper::interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& 
     yp = pack(x_, true);
     return;
   }
-  // Cubic Hermite basis on s ∈ [0, 1] and its derivatives.
-  const double s = (t - t_prev_) / h, s2 = s * s, s3 = s2 * s;
-  const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2,
-               h11 = s3 - s2;
-  const double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -d00, d11 = 3 * s2 - 2 * s;
+  const double s = (t - t_prev_) / h;
   const StepState& a = x_prev_;
   const StepState& b = x_;
   StepState x;
-  x.u = h00 * a.u + (h10 * h) * a.v + h01 * b.u + (h11 * h) * b.v;
-  x.v = (d00 / h) * a.u + d10 * a.v + (d01 / h) * b.u + d11 * b.v;
+  hermite(s, h, a.u, a.v, b.u, b.v, x.u, x.v);
   x.acc = (1 - s) * a.acc + s * b.acc;
   x.lambda = (1 - s) * a.lambda + s * b.lambda;
   x.mu = (1 - s) * a.mu + s * b.mu;

@@ -29,6 +29,7 @@
 #include <memory>
 #include <utility>
 
+#include "dae/integrators/fixed_step_grid.hpp"
 #include "dae/integrators/step_driver.hpp"
 #include "dae/integrators/step_newton.hpp"
 #include "models/core/mechanical_system.hpp"
@@ -77,9 +78,6 @@ class NewmarkStepper : public Stepper {
  private:
   /// ü and λ at the current state from `consistent_`; a = ü (the method restarts there).
   void consistent_accelerations();
-  /// The step's end time from t_: the next grid point (the output time `tout` when it lies
-  /// within roundoff of it), or the stop time when it comes first.
-  [[nodiscard]] double next_time(double tout);
   /// Newton's iterations for the state at t_next from the predictor `x`; throws
   /// IntegrationError when they do not converge.
   void solve_step(double t_next, const StepCoefficients& c, StepState& x);
@@ -91,8 +89,7 @@ class NewmarkStepper : public Stepper {
   bool linear_;
   int n_, m_;
   std::unique_ptr<StepNewton> newton_;
-  double t0_;
-  long grid_index_ = 0;  ///< the last grid point t0 + k h reached or passed
+  FixedStepGrid grid_;
   double stop_;
   double t_, t_prev_;
   StepState x_, x_prev_;

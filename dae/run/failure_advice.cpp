@@ -53,6 +53,7 @@ std::string scheme_advice(Scheme scheme, bool nonlinear_model) {
     case Scheme::newmark:
     case Scheme::hht:
     case Scheme::generalized_alpha:
+    case Scheme::rattle:
       return "; this scheme runs with the fixed [solve] step: try a smaller step";
     default:
       return "";

@@ -100,6 +100,12 @@ RunNote newmark_note(Scheme scheme, const SolveSpec& settings) {
   return {RunNote::Kind::scheme_setting, std::move(text)};
 }
 
+/// RATTLE's step (it has no parameters).
+RunNote rattle_note(const SolveSpec& settings) {
+  return {RunNote::Kind::scheme_setting,
+          "rattle: symplectic, fixed step " + shortest_number(settings.step.value_or(0))};
+}
+
 /// The parameters of a multiplier scheme or penalty, and the mixed treatment's rows: computed
 /// once here, noted in the summary before the run.
 void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
@@ -119,7 +125,8 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
     p.weights = penalty_weights(model, p.settings);
     p.notes.push_back({RunNote::Kind::scheme_setting, p.weights.rule});
   }
-  if (fixed_step(p.scheme)) p.notes.push_back(newmark_note(p.scheme, p.settings));
+  if (newmark_family(p.scheme)) p.notes.push_back(newmark_note(p.scheme, p.settings));
+  if (p.scheme == Scheme::rattle) p.notes.push_back(rattle_note(p.settings));
   if (uses_mixed_treatment(model, p.scheme, p.settings)) {
     p.treatment = decisions.treatment();
     p.notes.push_back({RunNote::Kind::treatment,
@@ -217,6 +224,8 @@ void run_scheme(const RunPlan& plan, const IntegratorOptions& options, const Obs
       return run_newmark(model, alpha_parameters(plan.scheme, plan.settings.newmark_family),
                          plan.settings.newmark_family.constraints, plan.settings.step.value_or(0.0),
                          options.row_multipliers, run);
+    case Scheme::rattle:
+      return run_rattle(model, plan.settings.step.value_or(0.0), options.row_multipliers, run);
   }
   throw std::logic_error("unknown scheme");
 }

@@ -28,7 +28,8 @@ enum class Refusal {
   penalty_static_start,
   elimination_nonholonomic,
   penalty_dense_row,
-  newmark_massless
+  newmark_massless,
+  rattle_model
 };
 
 /// The constraint row with the most entries, and their count (m = 0: row −1).
@@ -59,10 +60,48 @@ std::vector<int> unconstrained_massless(const Model& model) {
   return unconstrained_massless_dofs(M, system->constraint_jacobian(0.0, model.u0));
 }
 
+/// What RATTLE (dae/integrators/rattle_step.hpp) cannot integrate in `model`, or nothing: it is
+/// the symplectic method of a conservative mechanism, M u'' = f(t, u) − Aᵀλ with M constant and
+/// positive definite on the constraints' motions, and scleronomic position constraints.
+std::optional<std::string> rattle_problem(const Model& model) {
+  const auto system = model.system->clone();
+  const Eigen::VectorXd& u = model.u0;
+  const std::string why =
+      "rattle integrates conservative mechanisms only (constant mass, forces "
+      "independent of velocity, scleronomic position constraints): ";
+  if (system->mass_jacobian(0.0, u, Eigen::VectorXd::Ones(model.dofs())).rows() > 0) {
+    return why + "this model's mass matrix depends on its coordinates";
+  }
+  const std::vector<int> massless = unconstrained_massless(model);
+  if (!massless.empty()) {
+    return why + "DOF " + model.dof_names[static_cast<std::size_t>(massless.front())] +
+           " has no mass and no constraint holds it (" + std::to_string(massless.size()) +
+           " such DOFs)";
+  }
+  const Eigen::SparseMatrix<double>& C = system->damping(0.0, u, model.v0);
+  // A nonlinear model's damping pattern is fixed (MechanicalSystem): stored entries mean forces
+  // that depend on velocity somewhere, even where they vanish at the start.
+  const bool damped =
+      C.nonZeros() > 0 && (model.is_nonlinear() || C.coeffs().cwiseAbs().maxCoeff() > 0);
+  if (damped) return why + "this model has damping (forces that depend on velocity)";
+  for (int i = 0; i < model.constraint_count(); ++i) {
+    const Constraint& c = model.constraints[static_cast<std::size_t>(i)];
+    if (!system->position_rows()[static_cast<std::size_t>(i)]) {
+      return why + "constraint '" + c.name + "' is written on velocities";
+    }
+    if (!c.position_value.is_constant()) {
+      return why + "constraint '" + c.name + "' depends on time (rheonomic)";
+    }
+  }
+  if (!model.drives.empty()) return why + "this mechanism has drives (rheonomic constraints)";
+  return std::nullopt;
+}
+
 Refusal refusal_of(const Model& model, Scheme scheme) {
   if (scheme == Scheme::penalty && model.static_start && model.constraint_count() > 0) {
     return Refusal::penalty_static_start;
   }
+  if (scheme == Scheme::rattle && rattle_problem(model)) return Refusal::rattle_model;
   // The Newmark family starts (and restarts at load steps) from ü solved at acceleration level,
   // which a DOF without mass outside the constraints leaves undetermined.
   if (fixed_step(scheme) && !unconstrained_massless(model).empty()) {
@@ -127,6 +166,9 @@ std::optional<std::string> scheme_refusal(const Model& model, Scheme scheme) {
         << usable(model, {S::index1, S::ggl, S::automatic}) << ", which keep it as one multiplier";
       return s.str();
     }
+    case Refusal::rattle_model:
+      return *rattle_problem(model) + ". Use " +
+             usable(model, {S::ggl, S::newmark, S::generalized_alpha});
     case Refusal::newmark_massless: {
       const std::vector<int> dofs = unconstrained_massless(model);
       return std::string(to_string(scheme)) + " does not treat massless DOFs outside the " +
@@ -293,13 +335,14 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
   }
   if (fixed_step(scheme)) {
     // The state [u; v; λ]; the Newton matrix [M + C + K (+ curvature) Aᵀ; A 0] (its linear part's
-    // pattern at the start: dae/integrators/newmark_newton.hpp).
+    // pattern at the start: dae/integrators/newmark_newton.hpp), RATTLE's [M Aᵀ; A 0]
+    // (dae/integrators/rattle_step.hpp).
     const auto system = model.system->clone();
     const Eigen::VectorXd& u = model.u0;
     Eigen::SparseMatrix<double> S = system->mass(0.0, u);
     for (const auto* B :
          {&system->stiffness(0.0, u, model.v0), &system->damping(0.0, u, model.v0)}) {
-      if (B->rows() == S.rows() && B->cols() == S.cols()) S += *B;
+      if (newmark_family(scheme) && B->rows() == S.rows() && B->cols() == S.cols()) S += *B;
     }
     size.unknowns = 2 * model.dofs() + model.constraint_count();
     size.jacobian_nonzeros = S.nonZeros() + 2 * system->constraint_jacobian(0.0, u).nonZeros();

@@ -28,6 +28,8 @@ const char* to_string(Scheme s) {
       return "hht";
     case Scheme::generalized_alpha:
       return "generalized_alpha";
+    case Scheme::rattle:
+      return "rattle";
   }
   return "?";
 }

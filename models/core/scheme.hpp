@@ -21,7 +21,8 @@ enum class Scheme {
   projection,
   newmark,  ///< the Newmark family (dae/integrators/newmark_stepper.hpp), fixed step
   hht,
-  generalized_alpha
+  generalized_alpha,
+  rattle  ///< RATTLE, symplectic (dae/integrators/rattle_step.hpp), fixed step
 };
 
 /// Every runnable scheme, the chapter's reference path first (automatic is not one: it resolves
@@ -30,13 +31,16 @@ inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Sc
                                       Scheme::ggl,         Scheme::index2,    Scheme::index3,
                                       Scheme::penalty,     Scheme::projection};
 
-/// The Newmark family: generalized-α methods at index 3 with a fixed step ([solve] step). Not in
-/// kSchemes, the schemes `compare`, `info` and the studies run by default: they need a step where
-/// the others take tolerances (docs/schemes.md "The Newmark family").
+/// The fixed-step schemes ([solve] step): the Newmark family, generalized-α methods at index 3
+/// (docs/schemes.md "The Newmark family"), and RATTLE. Not in kSchemes, the schemes `compare`,
+/// `info` and the studies run by default: they need a step where the others take tolerances.
 inline constexpr Scheme kFixedStepSchemes[] = {Scheme::newmark, Scheme::hht,
-                                               Scheme::generalized_alpha};
-[[nodiscard]] constexpr bool fixed_step(Scheme s) {
+                                               Scheme::generalized_alpha, Scheme::rattle};
+[[nodiscard]] constexpr bool newmark_family(Scheme s) {
   return s == Scheme::newmark || s == Scheme::hht || s == Scheme::generalized_alpha;
+}
+[[nodiscard]] constexpr bool fixed_step(Scheme s) {
+  return newmark_family(s) || s == Scheme::rattle;
 }
 
 [[nodiscard]] const char* to_string(Scheme s);

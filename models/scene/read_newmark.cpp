@@ -1,6 +1,7 @@
-// [solve] step and the Newmark family's parameters (newmark, hht, generalized_alpha, and
-// newmark_constraints, their constraint form): each value checked against the method's stability
-// range (models/core/newmark_parameters.hpp), refused with its file, line and key.
+// [solve] step (the Newmark family's and RATTLE's) and the Newmark family's parameters (newmark,
+// hht, generalized_alpha, and newmark_constraints, their constraint form): each value checked
+// against the method's stability range (models/core/newmark_parameters.hpp), refused with its
+// file, line and key.
 
 #include "models/scene/scene_readers.hpp"
 
@@ -63,8 +64,10 @@ void SceneReader::read_fixed_step(const toml::table& t, SolveSpec& solve) const 
   } else if (fixed_step(solve.scheme)) {
     fail(*t.get("scheme"), "solve.scheme",
          std::string("'") + to_string(solve.scheme) +
-             "' runs with a fixed step: give [solve] step = h (error-controlled steps are not "
-             "implemented for the Newmark family yet)");
+             "' runs with a fixed step: give [solve] step = h" +
+             (solve.scheme == Scheme::rattle
+                  ? " (RATTLE is symplectic at a fixed step only)"
+                  : " (error-controlled steps are not implemented for the Newmark family yet)"));
   }
   NewmarkFamilySpec& f = solve.newmark_family;
   if (const auto* n = t.get("newmark")) {

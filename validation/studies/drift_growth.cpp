@@ -129,6 +129,7 @@ std::string predicted_drift_growth(Scheme scheme) {
     case Scheme::newmark:
     case Scheme::hht:
     case Scheme::generalized_alpha:
+    case Scheme::rattle:
       return "bounded (Newton tolerance)";
     case Scheme::baumgarte:
       return "bounded (attracting manifold)";

@@ -1,0 +1,68 @@
+// RATTLE from the command line: `run --scheme rattle --step h` writes the columns the other
+// schemes write (reactions included) and notes its step; what it cannot integrate, and a missing
+// step, exit 2 naming the key.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "tests/cli_sandbox.hpp"
+
+using condyn::test::Result;
+using condyn::test::Sandbox;
+
+namespace {
+
+const std::string kPendulum = R"([model]
+type = "truss2d"
+nodes = [[0.0, 0.0], [1.0, 0.0]]
+masses = [0.0, 1.0]
+supports = [1]
+members = [{ nodes = [1, 2], rigid = true }]
+gravity = [0.0, -9.81]
+[solve]
+t_end = 0.5
+output_step = 0.05
+step = 0.01
+[output]
+quantities = ["displacement", "velocity", "reaction", "multiplier", "drift", "energy"]
+)";
+
+std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("run under rattle writes the other schemes' columns") {
+  const Sandbox box;
+  box.write("p.toml", kPendulum);
+  const Result ggl = box.run("run p.toml --scheme ggl --out ggl.csv");
+  REQUIRE(ggl.code == 0);
+  const Result r = box.run("run p.toml --scheme rattle --out r.csv");
+  CHECK(r.code == 0);
+  CHECK(first_line(condyn::test::slurp(box.path("r.csv"))) ==
+        first_line(condyn::test::slurp(box.path("ggl.csv"))));
+  CHECK(contains(r.out + r.err, "rattle: symplectic, fixed step 0.01"));
+  CHECK(box.run("run p.toml --scheme rattle --step 0.005 --out s.csv").code == 0);
+}
+
+TEST_CASE("rattle's refusals and a missing step exit 2 naming the key") {
+  const Sandbox box;
+  std::string damped = kPendulum;
+  damped.replace(damped.find("[solve]"), 7,
+                 "damping = { rayleigh = [0.1, 0.0] }\n[solve]\nscheme = \"rattle\"");
+  box.write("d.toml", damped);
+  const Result d = box.run("run d.toml --out d.csv");
+  CHECK(d.code == 2);
+  CHECK(contains(d.err, "d.toml:"));
+  CHECK(contains(d.err, "solve.scheme"));
+  CHECK(contains(d.err, "rattle integrates conservative mechanisms only"));
+  std::string no_step = kPendulum;
+  no_step.replace(no_step.find("step = 0.01"), 11, "");
+  box.write("n.toml", no_step);
+  const Result n = box.run("run n.toml --scheme rattle --out n.csv");
+  CHECK(n.code == 2);
+  CHECK(contains(n.err, "solve.step"));
+}
