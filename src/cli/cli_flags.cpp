@@ -187,8 +187,8 @@ SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme) {
 
 void add_step_option(CLI::App* cmd, std::optional<double>& step) {
   cmd->add_option("--step", step,
-                  "fixed step of the Newmark family (newmark, hht, generalized_alpha; overrides "
-                  "[solve] step)")
+                  "fixed step of the Newmark family (newmark, hht, generalized_alpha) and of "
+                  "rattle (overrides [solve] step)")
       ->check(decimal_range_check(1e-300, 1e300));
 }
 

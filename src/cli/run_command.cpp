@@ -27,7 +27,7 @@ namespace {
 struct RunArgs {
   std::string scene, scheme, constraints, out, steps_out;
   std::optional<double> rtol, atol;
-  std::optional<double> step;  ///< --step: the Newmark family's fixed step
+  std::optional<double> step;  ///< --step: the fixed-step schemes' step
   std::optional<long> max_steps;
   std::optional<double> max_wall_time;
 };

@@ -551,7 +551,7 @@ TEST_CASE("duplicate names and bad output settings") {
   check_build_error(
       replace(kBase, "output_step = 0.1", "output_step = 0.1\nscheme = \"projektion\""),
       "unknown scheme 'projektion' (expected auto, elimination, index1, baumgarte, ggl, "
-      "index2, index3, penalty, projection, newmark, hht, generalized_alpha)");
+      "index2, index3, penalty, projection, newmark, hht, generalized_alpha, rattle)");
 }
 
 // Issue 6, robustness under bad input: what the fuzzer (tests/fuzz/fuzz_scene.cpp) and a reading
