@@ -14,9 +14,9 @@ void run_rattle(const Model& model, double step, bool row_multipliers, const Obs
   const int n = model.dofs(), m = model.constraint_count();
   Observation observe;
   observe.full_state = full_state_prefix(n);
-  observe.multipliers = [n, m](double, const Eigen::VectorXd& y, const Eigen::VectorXd&,
-                               const Eigen::VectorXd&, const Eigen::VectorXd&) {
-    return Eigen::VectorXd(y.segment(2 * n, m));  // y = [u; v; μ]
+  observe.multipliers = [m](double, const Eigen::VectorXd& y, const Eigen::VectorXd&,
+                            const Eigen::VectorXd&, const Eigen::VectorXd&) {
+    return Eigen::VectorXd(y.tail(m));  // y = [u; v; μ]
   };
   std::optional<AccelerationLevelMultipliers> at_rows;
   if (row_multipliers && m > 0) {
