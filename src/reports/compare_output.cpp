@@ -119,8 +119,8 @@ void print_runs(std::ostream& out, const CompareResult& result) {
          "(under "
          "penalty, whose weight sets its error, max(rtol, "
       << sci(kPenaltyAccuracy, 0)
-      << " x default weight / weight); none under the Newmark family's fixed step, which sets "
-         "its error); mark OVER: above "
+      << " x default weight / weight); none under a fixed step (the Newmark family, "
+         "rattle), which sets its error); mark OVER: above "
       << sci(result.options.mark_factor, 0) << " (--fail-above)\n";
   if (const int over = result.over_tolerance_runs(); over > 0) {
     out << over << " run" << (over == 1 ? "" : "s")
