@@ -346,7 +346,8 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
     }
     size.unknowns = 2 * model.dofs() + model.constraint_count();
     size.jacobian_nonzeros = S.nonZeros() + 2 * system->constraint_jacobian(0.0, u).nonZeros();
-    if (settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
+    if (newmark_family(scheme) &&
+        settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
       // [u; v; λ; μ] and the stabilized matrix (dae/integrators/stabilized_newmark_newton.hpp).
       const StabilizedSize stabilized =
           stabilized_size(*system, !model.is_nonlinear(), 0.0, u, model.v0);

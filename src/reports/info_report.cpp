@@ -292,7 +292,8 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
     for (const bool mixed : {false, true}) {
       if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
       std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
-      if (fixed_step(s) && settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
+      if (newmark_family(s) &&
+          settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
         name += " stabilized";  // [u; v; λ; μ]: dae/integrators/stabilized_newmark_newton.hpp
       }
       name.resize(std::max<std::size_t>(name.size() + 1, 17), ' ');  // a space after the longest
