@@ -76,7 +76,8 @@ TEST_CASE("the Newmark family's bad parameters and steps exit 2 naming the key")
   CHECK(contains(i.err, "n.toml: solve.step"));
 }
 
-TEST_CASE("info names the Newmark family's parameters and step; compare sets them no rtol target") {
+TEST_CASE(
+    "info names the Newmark family's parameters and step, and compare sets them no rtol target") {
   const Sandbox box;
   box.write("p.toml", kPendulum);
   // info: which scheme and why (requested), with the parameters and the fixed step it would use.
