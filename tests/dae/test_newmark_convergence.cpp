@@ -14,6 +14,7 @@
 
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
@@ -22,17 +23,7 @@ namespace {
 
 /// models/scenes/pendulum.toml over 1 s (past the bottom of its first swing), outputs every 0.1 s.
 std::string pendulum(const std::string& solve_keys) {
-  return R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-t_end = 1.0
-output_step = 0.1
-)" + solve_keys;
+  return test::pendulum_scene("t_end = 1.0\noutput_step = 0.1\n" + solve_keys);
 }
 
 /// max over the outputs and DOFs of |a − b| (same output times), for u and for λ.

@@ -18,6 +18,7 @@
 #include "models/scene/scene_parser.hpp"
 #include "tests/compare.hpp"
 #include "tests/scene_errors.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
@@ -29,18 +30,8 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// models/scenes/pendulum.toml (a unit mass on a rigid member of 1 m under gravity) with
 /// `solve_keys` added to [solve].
 std::string pendulum(const std::string& solve_keys) {
-  return R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-t_end = 1.0
-output_step = 0.1
-scheme = "generalized_alpha"
-)" + solve_keys;
+  return test::pendulum_scene("t_end = 1.0\noutput_step = 0.1\nscheme = \"generalized_alpha\"\n" +
+                              solve_keys);
 }
 
 test::BuiltScene scene_file(const std::string& name) {

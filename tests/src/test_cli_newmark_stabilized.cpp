@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -17,21 +18,13 @@ using condyn::test::Sandbox;
 namespace {
 
 std::string pendulum(const std::string& solve_keys) {
-  return R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-t_end = 0.5
+  return condyn::test::pendulum_scene(R"(t_end = 0.5
 output_step = 0.05
 step = 0.01
 scheme = "generalized_alpha"
 rtol = 1e-10
 atol = 1e-12
-)" + solve_keys +
+)" + solve_keys) +
          R"([output]
 quantities = ["displacement", "velocity", "reaction", "drift"]
 )";
