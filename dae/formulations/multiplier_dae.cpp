@@ -3,6 +3,7 @@
 #include "dae/linsolve/condensed_newton.hpp"
 
 #include "dae/linsolve/kkt.hpp"
+#include "dae/linsolve/velocity_jump.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -386,16 +387,11 @@ void MultiplierDae::make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorX
 }
 
 void MultiplierDae::jump_velocities(double t, Eigen::VectorXd& y) const {
-  if (m_ == 0 || held_ || !system_->has_curvature()) return;
-  const Eigen::VectorXd uu = y.segment(0, n_), vv = y.segment(n_, n_);
-  Eigen::VectorXd psi(m_);
-  system_->velocity_residual(t, uu, vv, psi);
-  KktLu lu;
-  lu.compute(kkt_matrix(system_->mass(t, uu), system_->constraint_jacobian(t, uu)));
-  if (lu.info() != Eigen::Success) return;  // make_consistent reports the singular system
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + m_);
-  rhs.tail(m_) = -psi;
-  y.segment(n_, n_) += lu.solve(rhs).head(n_);
+  if (held_) return;
+  const Eigen::VectorXd uu = y.segment(0, n_);
+  Eigen::VectorXd vv = y.segment(n_, n_);
+  jump_onto_velocity_rows(*system_, t, uu, vv);
+  y.segment(n_, n_) = vv;
 }
 
 Eigen::VectorXd MultiplierDae::constraint_rhs(double t, const Eigen::VectorXd& uu,

@@ -12,6 +12,7 @@
 
 #include "dae/formulations/row_multipliers.hpp"
 #include "dae/formulations/scheme_run.hpp"
+#include "dae/integrators/newmark_error_control.hpp"
 #include "dae/integrators/newmark_stepper.hpp"
 
 namespace condyn {
@@ -50,8 +51,11 @@ void run_newmark(const Model& model, const AlphaParameters& parameters,
       [&](const IntegratorOptions& o, SolveSummary& s) {
         const WallTimer timer(s);
         auto consistent = std::make_shared<AccelerationLevelMultipliers>(*model.system, linear);
-        NewmarkSettings settings{parameters, step, o.rtol, o.atol};
+        // step 0: error-controlled, with the displacements' tolerances of the BDF schemes.
+        NewmarkSettings settings{parameters, step, o.rtol, o.atol_of(UnknownKind::displacement)};
         settings.constraints = constraints;
+        settings.first_kink = o.first_kink;
+        if (step == 0.0) settings.newton_fraction = newmark_newton_fraction(o.rtol);
         NewmarkStepper stepper(
             *model.system, linear, settings,
             [consistent](double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {

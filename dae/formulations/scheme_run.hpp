@@ -93,7 +93,8 @@ void run_penalty(const Model& model, const PenaltyWeights& weights, const Observ
 /// Projection with CVODE (dae/formulations/projected_ode.hpp).
 void run_projection(const Model& model, const ObservedRun& run);
 
-/// The Newmark family (newmark, hht, generalized_alpha) with the fixed step `step`
+/// The Newmark family (newmark, hht, generalized_alpha) with the fixed step `step`, or with
+/// error-controlled steps at the run's rtol and atol when `step` is 0
 /// (dae/integrators/newmark_stepper.hpp), its constraints at index 3 or stabilized
 /// (`constraints`). `row_multipliers`: λ at the output rows from acceleration level
 /// (dae/formulations/row_multipliers.hpp), as the multiplier schemes report theirs; otherwise

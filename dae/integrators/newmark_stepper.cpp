@@ -1,5 +1,7 @@
 #include "dae/integrators/newmark_stepper.hpp"
 
+#include "dae/linsolve/velocity_jump.hpp"
+
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -44,8 +46,27 @@ void NewmarkStepper::consistent_accelerations() {
 }
 
 double NewmarkStepper::step(double tout) {
+  return settings_.step > 0.0 ? fixed_step(tout) : controlled_step(tout);
+}
+
+double NewmarkStepper::fixed_step(double tout) {
   const double t_next = grid_.next_time(t_, stop_, tout);
   const double h = grid_.step_length(t_, t_next);
+  StepState x;
+  Eigen::VectorXd a;
+  if (const auto failure = attempt(t_next, h, x, a)) {
+    std::ostringstream s;
+    s << failure->what << " at t = " << t_next << " (fixed step " << settings_.step
+      << "; a smaller [solve] step may converge)";
+    throw IntegrationError(failure->kind, s.str());
+  }
+  accept(t_next, h, std::move(x), std::move(a));
+  return t_;
+}
+
+std::optional<NewmarkStepper::StepFailure> NewmarkStepper::attempt(double t_next, double h,
+                                                                   StepState& x,
+                                                                   Eigen::VectorXd& a) {
   const AlphaParameters& p = settings_.parameters;
   const StepCoefficients c{(1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f)),
                            p.gamma / (h * p.beta)};
@@ -54,34 +75,36 @@ double NewmarkStepper::step(double tout) {
   const auto algorithmic = [&](const Eigen::VectorXd& acc) -> Eigen::VectorXd {
     return (p.alpha_f * x_.acc - p.alpha_m * a_ + (1.0 - p.alpha_f) * acc) / (1.0 - p.alpha_m);
   };
-  StepState x = x_;
+  x = x_;
   const Eigen::VectorXd a_pred = algorithmic(x.acc);
   x.u = x_.u + h * x_.v + (h * h) * ((0.5 - p.beta) * a_ + p.beta * a_pred);
   x.v = x_.v + h * ((1.0 - p.gamma) * a_ + p.gamma * a_pred);
-  solve_step(t_next, c, x);
-  a_ = algorithmic(x.acc);
+  if (auto failure = solve_step(t_next, c, x)) return failure;
+  a = algorithmic(x.acc);
+  return std::nullopt;
+}
+
+void NewmarkStepper::accept(double t_next, double h, StepState x, Eigen::VectorXd a) {
+  a_ = std::move(a);
   x_prev_ = std::move(x_);
   x_ = std::move(x);
   t_prev_ = t_;
   t_ = t_next;
   last_step_ = h;
   ++steps_;
-  return t_;
 }
 
-void NewmarkStepper::solve_step(double t_next, const StepCoefficients& c, StepState& x) {
+std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_next,
+                                                                      const StepCoefficients& c,
+                                                                      StepState& x) {
   Eigen::VectorXd d;
-  const auto fail = [&](FailureKind kind, const std::string& what) {
-    std::ostringstream s;
-    s << what << " at t = " << t_next << " (fixed step " << settings_.step
-      << "; a smaller [solve] step may converge)";
-    throw IntegrationError(kind, s.str());
-  };
   newton_->begin_step(x);
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
     newton_->residual(t_next, x, c, d);
-    if (!d.allFinite()) fail(FailureKind::residual_non_finite, "the residual is not finite");
-    if (!newton_->factor(t_next, x, c)) fail(FailureKind::linear_solver, "singular Newton matrix");
+    if (!d.allFinite())
+      return StepFailure{FailureKind::residual_non_finite, "the residual is not finite"};
+    if (!newton_->factor(t_next, x, c))
+      return StepFailure{FailureKind::linear_solver, "singular Newton matrix"};
     d = -d;
     newton_->solve_in_place(d);
     ++newton_iterations_;
@@ -92,16 +115,17 @@ void NewmarkStepper::solve_step(double t_next, const StepCoefficients& c, StepSt
     // with h ω = 1e4); the second, on the residual it leaves, refines that to the residual's own
     // roundoff at the cost of a solve (the factorization is kept). A first step already within
     // the tolerance below needs no refinement.
-    if (linear_ && k == 1) return;
+    if (linear_ && k == 1) return std::nullopt;
     const double weighted =
         (du.array().abs() / (settings_.rtol * x.u.array().abs() + settings_.atol)).maxCoeff();
-    if (!(weighted > 1.0)) {
-      if (!std::isfinite(weighted)) fail(FailureKind::non_finite, "Newton's update is not finite");
-      return;
+    if (!(weighted > settings_.newton_fraction)) {
+      if (!std::isfinite(weighted))
+        return StepFailure{FailureKind::non_finite, "Newton's update is not finite"};
+      return std::nullopt;
     }
   }
-  fail(FailureKind::convergence, "Newton's iterations did not converge in " +
-                                     std::to_string(settings_.max_newton_iterations));
+  return StepFailure{FailureKind::convergence, "Newton's iterations did not converge in " +
+                                                   std::to_string(settings_.max_newton_iterations)};
 }
 
 Eigen::VectorXd NewmarkStepper::pack(const StepState& x, bool derivative) const {
@@ -139,6 +163,9 @@ void NewmarkStepper::interpolate(double t, Eigen::VectorXd& y, Eigen::VectorXd& 
 void NewmarkStepper::restart(double t) {
   t_ = t;
   system_->begin_segment(t);
+  // A drive's rate may change here (a table's sample): v onto the rows at the new rate, as the
+  // multiplier schemes' restart does.
+  jump_onto_velocity_rows(*system_, t, x_.u, x_.v);
   consistent_accelerations();
   x_prev_ = x_;
   t_prev_ = t_;
@@ -146,6 +173,8 @@ void NewmarkStepper::restart(double t) {
 
 void NewmarkStepper::fill_summary(SolveSummary& summary) {
   summary.steps = steps_;
+  summary.error_test_failures = rejected_steps_;
+  summary.newton_failures = newton_failures_;
   summary.residual_evals = newton_->residuals();
   summary.jacobian_evals = newton_->factorizations();
   summary.newton_iterations = newton_iterations_;

@@ -20,13 +20,20 @@
 /// points) u and v come from the cubic Hermite interpolant of (u, v) at the step's ends, ü and λ
 /// linearly: step results exactly at the ends.
 ///
+/// Without a fixed step (step = 0), each step is judged by the local error estimate of
+/// dae/integrators/newmark_error_control.hpp, retried shorter when rejected or when Newton's
+/// iterations fail, and ends on every stop time (dae/integrators/newmark_controlled_step.cpp).
+///
 /// The state the loop sees: y = [u; v; λ], y' = [v; ü; 0]; stabilized
 /// (NewmarkSettings::constraints, dae/integrators/stabilized_newmark_newton.hpp) y = [u; v; λ; μ],
 /// y' = [v; ü; 0; 0].
 
 #include <Eigen/Dense>
 #include <functional>
+#include <limits>
 #include <memory>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "dae/integrators/fixed_step_grid.hpp"
@@ -40,13 +47,20 @@ namespace condyn {
 /// What the stepper is given besides the system.
 struct NewmarkSettings {
   AlphaParameters parameters;
-  double step = 0.0;  ///< h > 0
+  double step = 0.0;  ///< h > 0: the fixed step; 0: error-controlled steps
   /// Newton's convergence: max_i |Δu_i| / (rtol |u_i| + atol) ≤ 1. A linear model stops there
   /// or after its second iteration, a refinement of the exact first one on the same factors.
+  /// The error-controlled steps use the same rtol and atol (the displacements') in their test.
   double rtol = 1e-8, atol = 1e-10;
+  /// Newton stops at a weighted increment of at most this fraction of the tolerance
+  /// (newmark_newton_fraction for error-controlled steps).
+  double newton_fraction = 1.0;
   int max_newton_iterations = 10;
   /// At index 3, or stabilized at index 2 (the velocity constraints held too).
   NewmarkConstraints constraints = NewmarkConstraints::index3;
+  /// Error-controlled steps: the first step stays below half of the time from t0 to this one
+  /// (IntegratorSettings::first_kink, the first sample of a tabulated load).
+  double first_kink = std::numeric_limits<double>::infinity();
 };
 
 /// ü and λ at (t, u, v) from the constraints at acceleration level, [M Aᵀ; A 0][ü; λ] = [f; γ]
@@ -78,9 +92,23 @@ class NewmarkStepper : public Stepper {
  private:
   /// ü and λ at the current state from `consistent_`; a = ü (the method restarts there).
   void consistent_accelerations();
-  /// Newton's iterations for the state at t_next from the predictor `x`; throws
-  /// IntegrationError when they do not converge.
-  void solve_step(double t_next, const StepCoefficients& c, StepState& x);
+  /// How a step attempt failed: the kind and what happened.
+  struct StepFailure {
+    FailureKind kind;
+    std::string what;
+  };
+  /// One step of the fixed step on grid_ (step() with settings_.step > 0).
+  double fixed_step(double tout);
+  /// One accepted error-controlled step (dae/integrators/newmark_controlled_step.cpp).
+  double controlled_step(double tout);
+  /// The step from t_ to t_next = t_ + h: the predictor and Newton's iterations, into x and the
+  /// algorithmic acceleration a; the failure when Newton's iterations fail.
+  std::optional<StepFailure> attempt(double t_next, double h, StepState& x, Eigen::VectorXd& a);
+  /// Takes the attempt (x, a) to t_next as the current state.
+  void accept(double t_next, double h, StepState x, Eigen::VectorXd a);
+  /// Newton's iterations for the state at t_next from the predictor `x`; the failure when they
+  /// do not converge.
+  std::optional<StepFailure> solve_step(double t_next, const StepCoefficients& c, StepState& x);
   [[nodiscard]] Eigen::VectorXd pack(const StepState& x, bool derivative) const;
 
   std::unique_ptr<MechanicalSystem> system_;
@@ -89,13 +117,15 @@ class NewmarkStepper : public Stepper {
   bool linear_;
   int n_, m_;
   std::unique_ptr<StepNewton> newton_;
-  FixedStepGrid grid_;
+  FixedStepGrid grid_;  ///< the fixed step's grid (unused under error control)
   double stop_;
   double t_, t_prev_;
   StepState x_, x_prev_;
   Eigen::VectorXd a_;  ///< the algorithmic acceleration at t_
   long steps_ = 0, newton_iterations_ = 0;
+  long rejected_steps_ = 0, newton_failures_ = 0;  ///< error-controlled attempts that failed
   double last_step_ = 0.0;
+  double next_step_ = 0.0;  ///< the error-controlled step proposed next (0: none yet)
 };
 
 }  // namespace condyn

@@ -83,20 +83,15 @@ void plan_elimination(RunPlan& p, SchemeDecisions& decisions) {
   plan_tolerances(p);
 }
 
-/// The Newmark family's parameters and step, and the stability limit of a conditionally stable
-/// Newmark method.
+/// The Newmark family's parameters and step (fixed or error-controlled).
 RunNote newmark_note(Scheme scheme, const SolveSpec& settings) {
   const AlphaParameters p = alpha_parameters(scheme, settings.newmark_family);
-  std::string text = describe(scheme, p) + ", fixed step " +
-                     shortest_number(settings.step.value_or(0)) +
+  std::string text = describe(scheme, p) +
+                     (settings.step ? ", fixed step " + shortest_number(*settings.step)
+                                    : ", error-controlled steps") +
                      (settings.newmark_family.constraints == NewmarkConstraints::stabilized
                           ? ", constraints stabilized (index 2: positions and velocities)"
                           : "");
-  const double limit = newmark_stability_limit(p.beta, p.gamma);
-  if (std::isfinite(limit)) {
-    text += "; conditionally stable (beta < gamma/2): stable for h omega < " +
-            shortest_number(limit) + " on every mode";
-  }
   return {RunNote::Kind::scheme_setting, std::move(text)};
 }
 

@@ -3,7 +3,6 @@
 #include "models/core/number_cell.hpp"
 
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -49,10 +48,12 @@ AlphaParameters alpha_parameters(Scheme scheme, const NewmarkFamilySpec& spec) {
                               " is not of the Newmark family");
 }
 
-std::optional<std::string> newmark_beta_problem(double beta) {
-  if (std::isfinite(beta) && beta > 0.0) return std::nullopt;
-  return "must be > 0 (beta = 0 is the explicit central difference, which this implicit "
-         "scheme does not run; got " +
+std::optional<std::string> newmark_beta_problem(double beta, double gamma) {
+  if (std::isfinite(beta) && beta >= 0.5 * gamma) return std::nullopt;
+  return "must be >= gamma/2 = " + shortest_number(0.5 * gamma) +
+         " for unconditional stability (below it, as linear acceleration beta = 1/6 or the "
+         "central difference beta = 0, the method is stable only for h omega < "
+         "1/sqrt(gamma/2 - beta); got " +
          shortest_number(beta) + ")";
 }
 
@@ -101,11 +102,6 @@ std::optional<std::string> alpha_direct_problem(const AlphaParameters& p) {
            shortest_number(p.gamma) + ")";
   }
   return std::nullopt;
-}
-
-double newmark_stability_limit(double beta, double gamma) {
-  if (beta >= 0.5 * gamma) return std::numeric_limits<double>::infinity();
-  return 1.0 / std::sqrt(0.5 * gamma - beta);
 }
 
 std::string describe(Scheme scheme, const AlphaParameters& p) {

@@ -57,10 +57,11 @@ inline constexpr double kDefaultRhoInf = 0.9;
 [[nodiscard]] AlphaParameters alpha_parameters(Scheme scheme, const NewmarkFamilySpec& spec);
 
 /// What is wrong with a value, as the last part of "FILE:LINE: key: problem", or nothing.
-/// Newmark: γ ≥ ½ (γ < ½ amplifies, Newmark 1959) and β > 0 (β = 0 is the explicit central
-/// difference, which this implicit solve cannot run); β < γ/2 is accepted, conditionally stable
-/// (linear acceleration β = 1/6: stable for h ω below newmark_stability_limit).
-[[nodiscard]] std::optional<std::string> newmark_beta_problem(double beta);
+/// Newmark: γ ∈ [½, 1] (γ < ½ amplifies, Newmark 1959) and β ≥ γ/2, the condition of unconditional
+/// stability (Hughes 1987, The Finite Element Method, §9.1.2): below it (linear acceleration,
+/// β = 1/6; the central difference, β = 0) the method is stable only for h ω below
+/// 1/√(γ/2 − β), which no step size control can promise for every mode of a model.
+[[nodiscard]] std::optional<std::string> newmark_beta_problem(double beta, double gamma);
 [[nodiscard]] std::optional<std::string> newmark_gamma_problem(double gamma);
 /// HHT: α ∈ [−⅓, 0], the range of unconditional stability and second order (HHT 1977).
 [[nodiscard]] std::optional<std::string> hht_alpha_problem(double alpha);
@@ -69,10 +70,6 @@ inline constexpr double kDefaultRhoInf = 0.9;
 /// Chung and Hulbert's unconditional stability (their eq. 22): αm ≤ αf ≤ ½ and
 /// β ≥ ¼ + ½ (αf − αm); and γ ≥ ½ − αm + αf (below it the method amplifies; equal: second order).
 [[nodiscard]] std::optional<std::string> alpha_direct_problem(const AlphaParameters& p);
-
-/// The largest h ω a conditionally stable Newmark method (β < γ/2) is stable for, undamped:
-/// 1/√(γ/2 − β) (Hughes 1987, The Finite Element Method, §9.1.2); infinity when β ≥ γ/2.
-[[nodiscard]] double newmark_stability_limit(double beta, double gamma);
 
 /// "β = 0.25, γ = 0.5 (αm = 0, αf = 0)"-like words for a run's note.
 [[nodiscard]] std::string describe(Scheme scheme, const AlphaParameters& p);

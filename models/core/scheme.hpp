@@ -31,9 +31,10 @@ inline constexpr Scheme kSchemes[] = {Scheme::elimination, Scheme::index1,    Sc
                                       Scheme::ggl,         Scheme::index2,    Scheme::index3,
                                       Scheme::penalty,     Scheme::projection};
 
-/// The fixed-step schemes ([solve] step): the Newmark family, generalized-α methods at index 3
-/// (docs/schemes.md "The Newmark family"), and RATTLE. Not in kSchemes, the schemes `compare`,
-/// `info` and the studies run by default: they need a step where the others take tolerances.
+/// The fixed-step schemes ([solve] step), not in kSchemes, the schemes `compare`, `info` and the
+/// studies run by default: they are asked for by name. The Newmark family, generalized-α methods at
+/// index 3 (docs/schemes.md "The Newmark family"), runs with a fixed step or, without one, with
+/// error-controlled steps; RATTLE needs a step.
 inline constexpr Scheme kFixedStepSchemes[] = {Scheme::newmark, Scheme::hht,
                                                Scheme::generalized_alpha, Scheme::rattle};
 [[nodiscard]] constexpr bool newmark_family(Scheme s) {

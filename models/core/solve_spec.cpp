@@ -37,13 +37,14 @@ void require_atol(double v, const std::string& key) {
   require(v >= kMinAtol, key, "must be at least " + text(kMinAtol), v);
 }
 
-/// The Newmark family's settings: a step in (0, t_end] for those schemes (the others ignore it),
-/// and their parameters in range (models/core/newmark_parameters.hpp).
+/// The fixed-step schemes' settings: a step in (0, t_end] when given (the others ignore it; without
+/// it the Newmark family's steps are error-controlled, and RATTLE is refused), and the Newmark
+/// family's parameters in range (models/core/newmark_parameters.hpp).
 void validate_fixed_step(const SolveSpec& s) {
   if (s.step) {
     require_positive(*s.step, "step");
     require(*s.step <= s.t_end, "step", "must be at most t_end = " + text(s.t_end), *s.step);
-  } else if (fixed_step(s.scheme)) {
+  } else if (s.scheme == Scheme::rattle) {
     throw std::invalid_argument(std::string("solve.step: the ") + to_string(s.scheme) +
                                 " scheme runs with a fixed step: give [solve] step (or --step)");
   }
@@ -51,8 +52,10 @@ void validate_fixed_step(const SolveSpec& s) {
   const auto check = [](const std::optional<std::string>& problem, const char* key) {
     if (problem) throw std::invalid_argument(std::string("solve.") + key + " " + *problem);
   };
-  if (f.newmark_beta) check(newmark_beta_problem(*f.newmark_beta), "newmark.beta");
   if (f.newmark_gamma) check(newmark_gamma_problem(*f.newmark_gamma), "newmark.gamma");
+  const double gamma = f.newmark_gamma.value_or(kDefaultNewmarkGamma);
+  // β unset is the default β, which a large γ may leave below γ/2.
+  check(newmark_beta_problem(f.newmark_beta.value_or(kDefaultNewmarkBeta), gamma), "newmark.beta");
   if (f.hht_alpha) check(hht_alpha_problem(*f.hht_alpha), "hht.alpha");
   if (f.rho_inf) check(rho_inf_problem(*f.rho_inf), "generalized_alpha.rho_inf");
   if (f.alpha_direct) check(alpha_direct_problem(*f.alpha_direct), "generalized_alpha");

@@ -1,7 +1,8 @@
-// [solve] step (the Newmark family's and RATTLE's) and the Newmark family's parameters (newmark,
-// hht, generalized_alpha, and newmark_constraints, their constraint form): each value checked
-// against the method's stability range (models/core/newmark_parameters.hpp), refused with its
-// file, line and key.
+// [solve] step (the fixed step of the Newmark family, which without it controls its steps, and
+// RATTLE's, which needs it) and the Newmark family's parameters (newmark, hht, generalized_alpha,
+// and newmark_constraints, their constraint form): each value checked against the method's range
+// of unconditional stability (models/core/newmark_parameters.hpp), refused with its file, line and
+// key.
 
 #include "models/scene/scene_readers.hpp"
 
@@ -61,20 +62,27 @@ void SceneReader::read_fixed_step(const toml::table& t, SolveSpec& solve) const 
       fail(*n, "solve.step",
            "is larger than t_end = " + fmt(solve.t_end) + " (got " + fmt(*solve.step) + ")");
     }
-  } else if (fixed_step(solve.scheme)) {
+  } else if (solve.scheme == Scheme::rattle) {
     fail(*t.get("scheme"), "solve.scheme",
-         std::string("'") + to_string(solve.scheme) +
-             "' runs with a fixed step: give [solve] step = h" +
-             (solve.scheme == Scheme::rattle
-                  ? " (RATTLE is symplectic at a fixed step only)"
-                  : " (error-controlled steps are not implemented for the Newmark family yet)"));
+         "'rattle' runs with a fixed step: give [solve] step = h (RATTLE is symplectic at a fixed "
+         "step only)");
   }
   NewmarkFamilySpec& f = solve.newmark_family;
   if (const auto* n = t.get("newmark")) {
     const auto& nm = table(*n, "solve.newmark");
     check_keys(nm, "solve.newmark", {"beta", "gamma"});
-    f.newmark_beta = checked(*this, nm, "solve.newmark", "beta", newmark_beta_problem);
     f.newmark_gamma = checked(*this, nm, "solve.newmark", "gamma", newmark_gamma_problem);
+    const double gamma = f.newmark_gamma.value_or(kDefaultNewmarkGamma);
+    const auto beta_problem = [gamma](double beta) { return newmark_beta_problem(beta, gamma); };
+    f.newmark_beta = checked(*this, nm, "solve.newmark", "beta", beta_problem);
+    // A γ given alone meets the default β: the key to change is γ.
+    if (!f.newmark_beta) {
+      if (const auto why = newmark_beta_problem(kDefaultNewmarkBeta, gamma)) {
+        fail(*nm.get("gamma"), "solve.newmark.gamma",
+             "needs beta >= gamma/2 = " + fmt(0.5 * gamma) + ", above the default beta = " +
+                 fmt(kDefaultNewmarkBeta) + ": give [solve] newmark.beta too");
+      }
+    }
   }
   if (const auto* n = t.get("hht")) {
     const auto& h = table(*n, "solve.hht");

@@ -67,7 +67,8 @@ def cli_run(cli, scene, scheme, out, *flags):
 
 
 @pytest.mark.parametrize("scheme", ["index1", "baumgarte", "ggl", "index2", "index3",
-                                    "projection", "elimination"])
+                                    "projection", "elimination", "newmark", "hht",
+                                    "generalized_alpha"])
 def test_slider_crank_from_a_dict_is_the_cli_run_bit_for_bit(cli, tmp_path, scheme):
     out = tmp_path / "slider_crank.csv"
     proc = cli_run(cli, SLIDER_CRANK, scheme, out)
@@ -102,14 +103,19 @@ def test_a_bad_step_is_refused_naming_it(step, message):
         condyn.run(load(SLIDER_CRANK), scheme="hht", step=step)
 
 
-@pytest.mark.parametrize("scheme", ["newmark"])
-def test_a_scheme_the_cli_refuses_is_refused_from_a_dict_with_its_reason(cli, tmp_path, scheme):
-    # The Newmark family runs with a fixed step only, and the scene gives none.
-    proc = cli_run(cli, SLIDER_CRANK, scheme, tmp_path / "x.csv")
+def test_a_setting_the_cli_refuses_is_refused_from_a_dict_with_its_reason(cli, tmp_path):
+    # Newmark's beta below gamma/2: conditionally stable, refused naming the key.
+    text = SLIDER_CRANK.read_text().replace("[solve]\n", "[solve]\nnewmark = { beta = 0.2 }\n")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text)
+    proc = cli_run(cli, bad, "newmark", tmp_path / "x.csv")
     assert proc.returncode == 2
+    scene = load(SLIDER_CRANK)
+    scene["solve"]["newmark"] = {"beta": 0.2}
     with pytest.raises(condyn.SceneError) as refusal:
-        condyn.run(load(SLIDER_CRANK), scheme=scheme)
+        condyn.run(scene, scheme="newmark")
     reason = str(refusal.value).split(": ", 1)[1]
+    assert reason.startswith("solve.newmark.beta: must be >= gamma/2")
     assert reason in proc.stderr
 
 

@@ -41,7 +41,7 @@ namespace condyn {
 /// --constraints: refused under a scheme without multipliers (elimination, penalty, projection).
 [[nodiscard]] SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme);
 /// The scene's settings with the flags' overrides, checked together (SolveSpec::validate): a
-/// --step beyond t_end, a Newmark-family --scheme without a step are bad input, thrown as a
+/// --step beyond t_end, a Newmark-family parameter out of range are bad input, thrown as a
 /// SceneError naming `scene` (exit 2), as the same values in the file are.
 void check_settings(const std::string& scene, const SolveSpec& settings);
 /// --step on `cmd` (run, info, check, compare): the Newmark family's fixed step, overriding

@@ -284,8 +284,8 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
   SchemeMemory scheme_memory(model);
   std::optional<MemoryEstimate> selected;
   // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well; a scheme
-  // of fixed step (the Newmark family, rattle) when it is the one chosen (the others need a step to
-  // be sized for).
+  // of fixed step (the Newmark family, rattle) when it is the one chosen (they are not in the
+  // default list).
   std::vector<Scheme> schemes(std::begin(kSchemes), std::end(kSchemes));
   if (fixed_step(choice.scheme)) schemes.push_back(choice.scheme);
   for (Scheme s : schemes) {

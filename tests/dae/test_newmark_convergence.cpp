@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -107,4 +109,95 @@ TEST_CASE("newmark family stabilized on the pendulum: order 2 in displacement an
   // acceleration level here). Bounds as at index 3; observed 1.9989 to 1.9992 in u and 1.9984 to
   // 1.9987 in the step's own λ under the three schemes, errors 0.6 to 0.8 times index 3's.
   check_orders("\nnewmark_constraints = \"stabilized\"");
+}
+
+namespace {
+
+/// The worst |u − reference| over the outputs of each rtol of `rtols`, the scene `scene(rtol)`
+/// run under each scheme of the Newmark family without a fixed step (error-controlled), with its
+/// steps and rejected steps in a message.
+std::vector<std::vector<double>> controlled_errors(
+    const std::function<std::string(double)>& scene, const std::vector<double>& rtols,
+    const std::function<double(const Trajectory&)>& error) {
+  std::vector<std::vector<double>> out;
+  for (const char* scheme : {"newmark", "hht", "generalized_alpha"}) {
+    std::vector<double> errors;
+    for (const double rtol : rtols) {
+      const auto built = test::built(
+          parse_scene_text(scene(rtol) + "scheme = \"" + std::string(scheme) + "\"\n", "s.toml"));
+      const SolveResult r = test::solved(built.model, built.spec.solve);
+      errors.push_back(error(r.trajectory));
+      MESSAGE(std::string(scheme) << " rtol " << rtol << ": error " << errors.back() << ", "
+                                  << r.summary.steps << " steps, " << r.summary.error_test_failures
+                                  << " rejected, " << r.summary.newton_failures
+                                  << " Newton failures");
+    }
+    out.push_back(std::move(errors));
+  }
+  return out;
+}
+
+/// The fitted slope of log(error) over log(rtol).
+double tolerance_order(const std::vector<double>& rtols, const std::vector<double>& errors) {
+  std::vector<double> x, y;
+  for (std::size_t k = 0; k < rtols.size(); ++k) {
+    x.push_back(std::log10(rtols[k]));
+    y.push_back(std::log10(errors[k]));
+  }
+  return test::least_squares_slope(x, y);
+}
+
+}  // namespace
+
+TEST_CASE("newmark family with error-controlled steps: the error follows rtol to the 2/3") {
+  // A local error held to rtol per step gives steps h ∝ rtol^(1/3) (the estimate is O(h³)) and a
+  // global error O(h²) ∝ rtol^(2/3): the fitted slope of log(error) over log(rtol) is asserted
+  // in [0.55, 0.8] (observed 0.643 to 0.645 on the oscillator, 0.667 to 0.676 on the pendulum).
+  // Each error is also bounded by kFactor rtol^(2/3) times the solution's scale (observed factors
+  // 7.3 to 10.4 on the oscillator over three periods, 0.96 to 1.3 on the pendulum).
+  constexpr double kMinSlope = 0.55, kMaxSlope = 0.8, kFactor = 20.0;
+  const std::vector<double> rtols = {1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
+  // The undamped oscillator u'' + 4u = 0 from u = 0, u' = 1 over 10 s (three periods): the
+  // closed form u = sin(2t)/2. atol = 1e-3 rtol: the relative test governs (amplitude ½).
+  const auto tolerances = [](double rtol) {
+    char keys[80];
+    std::snprintf(keys, sizeof keys, "rtol = %g\natol = %g\n", rtol, 1e-3 * rtol);
+    return std::string(keys);
+  };
+  const auto oscillator = [&](double rtol) {
+    return "[model]\ntype = \"matrix\"\ndofs = [\"x\"]\nmass = [[1.0]]\nstiffness = [[4.0]]\n"
+           "[initial]\nvelocity = { x = 1.0 }\n[solve]\nt_end = 10.0\noutput_step = 0.1\n" +
+           tolerances(rtol);
+  };
+  const auto against_closed_form = [](const Trajectory& run) {
+    double worst = 0.0;
+    for (std::size_t k = 0; k < run.t.size(); ++k)
+      worst = std::max(
+          worst, std::abs(run.u(0, static_cast<Eigen::Index>(k)) - 0.5 * std::sin(2.0 * run.t[k])));
+    return worst / 0.5;
+  };
+  // The pendulum (1 m, length scale 1) against GGL at rtol 1e-12 (its error about 1e-11).
+  const auto ref_scene = test::built(
+      parse_scene_text(pendulum("scheme = \"ggl\"\nrtol = 1e-12\natol = 1e-14\n"), "p.toml"));
+  const Trajectory reference = test::solved(ref_scene.model, ref_scene.spec.solve).trajectory;
+  const auto pendulum_scene = [&](double rtol) { return pendulum(tolerances(rtol)); };
+  const auto against_ggl = [&](const Trajectory& run) {
+    return worst_difference(run, reference).first;
+  };
+  for (const auto& errors : controlled_errors(oscillator, rtols, against_closed_form)) {
+    for (std::size_t k = 0; k < rtols.size(); ++k)
+      CHECK(errors[k] <= kFactor * std::pow(rtols[k], 2.0 / 3.0));
+    const double slope = tolerance_order(rtols, errors);
+    MESSAGE("oscillator: slope " << slope);
+    CHECK(slope >= kMinSlope);
+    CHECK(slope <= kMaxSlope);
+  }
+  for (const auto& errors : controlled_errors(pendulum_scene, rtols, against_ggl)) {
+    for (std::size_t k = 0; k < rtols.size(); ++k)
+      CHECK(errors[k] <= kFactor * std::pow(rtols[k], 2.0 / 3.0));
+    const double slope = tolerance_order(rtols, errors);
+    MESSAGE("pendulum: slope " << slope);
+    CHECK(slope >= kMinSlope);
+    CHECK(slope <= kMaxSlope);
+  }
 }

@@ -1,7 +1,9 @@
 // The Newmark family from the command line: `run --scheme S --step h` writes the columns the
-// other schemes write (reactions included), and bad parameters or steps exit 2 naming the key.
+// other schemes write (reactions included), without --step it controls its steps by error, and
+// bad parameters or steps exit 2 naming the key.
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
@@ -65,15 +67,29 @@ TEST_CASE("the Newmark family's bad parameters and steps exit 2 naming the key")
   const Result big = box.run("run p.toml --scheme newmark --step 5 --out b.csv");
   CHECK(big.code == 2);
   CHECK(contains(big.err, "solve.step"));
+  std::string beta = kPendulum;
+  beta.replace(beta.find("step = 0.01"), 11, "step = 0.01\nnewmark = { beta = 0.2 }");
+  box.write("beta.toml", beta);
+  const Result b = box.run("run beta.toml --scheme newmark --out beta.csv");
+  CHECK(b.code == 2);
+  CHECK(contains(b.err, "beta.toml:12: solve.newmark.beta: must be >= gamma/2 = 0.25"));
+  CHECK(!std::filesystem::exists(box.path("beta.csv")));
+}
+
+TEST_CASE("the Newmark family without a step runs with error-controlled steps") {
+  const Sandbox box;
   std::string no_step = kPendulum;
-  no_step.replace(no_step.find("step = 0.01"), 11, "");
+  no_step.replace(no_step.find("step = 0.01"), 11, "rtol = 1e-6\natol = 1e-8");
   box.write("n.toml", no_step);
-  const Result n = box.run("run n.toml --scheme generalized_alpha --out n.csv");
-  CHECK(n.code == 2);
-  CHECK(contains(n.err, "solve.step"));
-  const Result i = box.run("info n.toml --scheme hht");
-  CHECK(i.code == 2);
-  CHECK(contains(i.err, "n.toml: solve.step"));
+  for (const char* scheme : {"newmark", "hht", "generalized_alpha"}) {
+    CAPTURE(scheme);
+    const Result r =
+        box.run(std::string("run n.toml --scheme ") + scheme + " --out " + scheme + ".csv");
+    CHECK(r.code == 0);
+    CHECK(contains(r.out + r.err, "error-controlled steps"));
+    const Result i = box.run(std::string("info n.toml --scheme ") + scheme);
+    CHECK(i.code == 0);
+  }
 }
 
 TEST_CASE(
