@@ -121,8 +121,8 @@ def test_compare_budget_marks_runs_over_it():
 def test_check_runs_the_newmark_family_with_a_step_as_the_cli_does(cli):
     import subprocess
 
-    # step= is the command's --step: the same run and the same lines; without it such a scheme
-    # on a scene without [solve] step is bad input (SceneError naming solve.step, exit 2).
+    # step= is the command's --step: the same run and the same lines; a step beyond t_end is bad
+    # input (SceneError naming solve.step, exit 2). Without a step the scheme controls its steps.
     result = condyn.check(OSCILLATOR, scheme="generalized_alpha", step=1e-3)
     assert result["scheme"] == "generalized_alpha"
     cli_run = subprocess.run([str(cli), "check", str(OSCILLATOR), "--scheme", "generalized_alpha",
@@ -131,7 +131,7 @@ def test_check_runs_the_newmark_family_with_a_step_as_the_cli_does(cli):
     for c in result["checks"]:
         assert c["text"] in cli_run.stdout
     with pytest.raises(condyn.SceneError, match="solve.step"):
-        condyn.check(OSCILLATOR, scheme="generalized_alpha")
-    bad = subprocess.run([str(cli), "check", str(OSCILLATOR), "--scheme", "generalized_alpha"],
-                         capture_output=True, text=True)
+        condyn.check(OSCILLATOR, scheme="generalized_alpha", step=1e9)
+    bad = subprocess.run([str(cli), "check", str(OSCILLATOR), "--scheme", "generalized_alpha",
+                          "--step", "1e9"], capture_output=True, text=True)
     assert bad.returncode == 2
