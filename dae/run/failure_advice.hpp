@@ -10,10 +10,22 @@
 
 namespace condyn {
 
-/// `nonlinear_model`: the model's constraints or forces are nonlinear (under penalty, the
-/// augmented Lagrangian ran).
+/// What the advice needs to know of the run beyond its scheme.
+struct AdviceContext {
+  /// The model's constraints or forces are nonlinear (under penalty, the augmented Lagrangian
+  /// ran, its weight set from the model).
+  bool nonlinear_model = false;
+  /// The Newmark family or rattle ran with a fixed [solve] step (else the Newmark family's steps
+  /// were controlled by its error estimate).
+  bool fixed_step = false;
+  /// The Newmark family ran at index 3 with parameters that damp no high frequency (ρ∞ = 1:
+  /// average acceleration, hht with α = 0, generalized_alpha with ρ∞ = 1): on a mechanism the
+  /// multipliers' oscillation grows and the steps shrink without end.
+  bool undamped_index3 = false;
+};
+
 [[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e,
-                                             bool nonlinear_model = false);
+                                             const AdviceContext& context = {});
 
 /// The same, for a failure that `causes` (what roundoff_advice and mu_roundoff_advice return,
 /// joined) may explain: when they are not empty, a collapse or repeated convergence or error-test
@@ -22,7 +34,7 @@ namespace condyn {
 /// roundoff); the other kinds keep their own advice with the causes after it.
 [[nodiscard]] std::string failure_suggestion(Scheme scheme, const RunFailure& e,
                                              const std::string& causes,
-                                             bool nonlinear_model = false);
+                                             const AdviceContext& context = {});
 
 /// After a failure of the step size (collapsed, tiny for many steps, repeated error-test or
 /// convergence failures, a failure before the first step): when the displacements' atol lies

@@ -255,7 +255,14 @@ void advise(const RunPlan& plan, SolveResult& result) {
   if (plan.scheme == Scheme::ggl && plan.settings.atol_mu) {
     causes += mu_roundoff_advice(failure, *plan.settings.atol_mu, plan.tolerances.mu_floor);
   }
-  failure.suggestion = failure_suggestion(plan.scheme, failure, causes, plan.model->is_nonlinear());
+  AdviceContext context;
+  context.nonlinear_model = plan.model->is_nonlinear();
+  context.fixed_step = fixed_step(plan.scheme) && plan.settings.step.has_value();
+  context.undamped_index3 =
+      newmark_family(plan.scheme) &&
+      plan.settings.newmark_family.constraints == NewmarkConstraints::index3 &&
+      !damps_high_frequencies(alpha_parameters(plan.scheme, plan.settings.newmark_family));
+  failure.suggestion = failure_suggestion(plan.scheme, failure, causes, context);
   failure.suggestion += singular_failure_advice(result.summary.singular_passages);
 }
 

@@ -104,6 +104,13 @@ std::optional<std::string> alpha_direct_problem(const AlphaParameters& p) {
   return std::nullopt;
 }
 
+bool damps_high_frequencies(const AlphaParameters& p) {
+  // Chung and Hulbert's parameters put the damping in γ − ½ + αf − αm: zero for the
+  // non-dissipative members, whatever αm = αf is (rounding of ρ∞ = 1's ½ and ½ stays far below).
+  constexpr double kRounding = 1e-12;
+  return (p.gamma - 0.5) + (p.alpha_f - p.alpha_m) > kRounding;
+}
+
 std::string describe(Scheme scheme, const AlphaParameters& p) {
   std::ostringstream s;
   s << to_string(scheme) << ": alpha_m = " << p.alpha_m << ", alpha_f = " << p.alpha_f

@@ -71,6 +71,11 @@ inline constexpr double kDefaultRhoInf = 0.9;
 /// β ≥ ¼ + ½ (αf − αm); and γ ≥ ½ − αm + αf (below it the method amplifies; equal: second order).
 [[nodiscard]] std::optional<std::string> alpha_direct_problem(const AlphaParameters& p);
 
+/// Whether the method damps the highest frequencies (spectral radius below 1 as h ω → ∞): γ above
+/// ½ (Newmark, first order) or αf above αm (HHT with α < 0, generalized-α with ρ∞ < 1, where
+/// γ − ½ = αf − αm). Average acceleration, HHT with α = 0 and generalized-α with ρ∞ = 1 do not.
+[[nodiscard]] bool damps_high_frequencies(const AlphaParameters& p);
+
 /// "β = 0.25, γ = 0.5 (αm = 0, αf = 0)"-like words for a run's note.
 [[nodiscard]] std::string describe(Scheme scheme, const AlphaParameters& p);
 

@@ -270,14 +270,14 @@ TEST_CASE("penalty's advice names its weight on a linear model, not on a nonline
   const RunFailure e = failure(FailureKind::convergence, 1.0, 1e-3, 2.0, 10);
   const std::string linear = failure_suggestion(Scheme::penalty, e);
   CHECK(contains(linear, "try a smaller [solve] penalty weight"));
-  const std::string nonlinear = failure_suggestion(Scheme::penalty, e, true);
+  const std::string nonlinear = failure_suggestion(Scheme::penalty, e, {.nonlinear_model = true});
   CHECK_FALSE(contains(nonlinear, "try a smaller [solve] penalty weight"));
   CHECK(contains(nonlinear, "augmented Lagrangian"));
   CHECK(contains(nonlinear, "try ggl"));
   // The same through the other overload (with roundoff causes after it).
   CHECK(contains(
       failure_suggestion(Scheme::penalty, failure(FailureKind::linear_solver, 1.0, 1e-3, 2.0, 10),
-                         "; causes", true),
+                         "; causes", {.nonlinear_model = true}),
       "augmented Lagrangian"));
 }
 
@@ -530,4 +530,19 @@ TEST_CASE("a run whose steps mostly failed the error test is flagged, a normal o
   s.steps = 10000;
   s.error_test_failures = 5000;
   CHECK(s.error_test_warning().has_value());
+}
+
+TEST_CASE("the Newmark family's advice follows its step and its damping") {
+  // A run without [solve] step was told to try a smaller step; an undamped member at index 3
+  // (average acceleration) is pointed at the stabilized form or a damped member.
+  const RunFailure e = failure(FailureKind::steps_per_output, 4.0, 1e-7, 10.0, 100000);
+  const std::string fixed = failure_suggestion(Scheme::hht, e, {.fixed_step = true});
+  CHECK(contains(fixed, "fixed [solve] step: try a smaller step"));
+  CHECK_FALSE(contains(fixed, "stabilized"));
+  const std::string controlled = failure_suggestion(Scheme::hht, e);
+  CHECK(contains(controlled, "controlled by the method's error estimate"));
+  CHECK_FALSE(contains(controlled, "fixed [solve] step"));
+  const std::string undamped = failure_suggestion(Scheme::newmark, e, {.undamped_index3 = true});
+  CHECK(contains(undamped, "newmark_constraints = \"stabilized\""));
+  CHECK(contains(undamped, "use hht or generalized_alpha"));
 }

@@ -520,3 +520,25 @@ scheme = "newmark"
   // Average acceleration's phase error at h ω = 1e-5 is h²ω²/12 per unit time: cos(2) to 1e-9.
   CHECK(r.trajectory.u(0, 1) == doctest::Approx(std::cos(2.0)).epsilon(1e-9));
 }
+
+TEST_CASE("newmark family: which parameter sets damp the highest frequencies") {
+  // damps_high_frequencies against each set's published spectral radius at h ω → ∞ (the cases'
+  // rho_inf): below 1 exactly when the set damps. Two Newmark sets beside them, against the
+  // spectral radius of their amplification matrix at h ω = 1e4 (amplification(), above): γ = 0.6
+  // with β = (γ + ½)²/4 damps (first order), γ = ½ with β = 0.3 does not (|λ| = 1 at every h ω).
+  for (const Case& c : cases()) {
+    CAPTURE(c.name);
+    CHECK(damps_high_frequencies(c.p) == (c.rho_inf < 1.0));
+  }
+  const auto radius_at_infinity = [](const AlphaParameters& p) {
+    constexpr double kOmegaH = 1e4;
+    return amplification(p, kOmegaH * kOmegaH, 0.0, 1.0).eigenvalues().cwiseAbs().maxCoeff();
+  };
+  constexpr double kUnitRadius = 1e-6;  // ρ at 1e4 of an undamped set: 1 up to O(1/(h ω)²)
+  for (const AlphaParameters& p : {newmark_parameters(0.3025, 0.6), newmark_parameters(0.3, 0.5)}) {
+    CAPTURE(p.gamma);
+    CHECK(damps_high_frequencies(p) == (radius_at_infinity(p) < 1.0 - kUnitRadius));
+  }
+  CHECK(damps_high_frequencies(newmark_parameters(0.3025, 0.6)));
+  CHECK_FALSE(damps_high_frequencies(newmark_parameters(0.3, 0.5)));
+}

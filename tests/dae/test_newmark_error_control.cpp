@@ -15,6 +15,7 @@
 #include "models/core/time_table.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
@@ -210,4 +211,24 @@ atol = 1e-10
             << ": angle error " << worst << ", " << r.summary.steps << " steps");
     CHECK(worst <= kTolerance);
   }
+}
+
+TEST_CASE("newmark error control: an undamped index-3 run that fails is advised a damped form") {
+  // Average acceleration at index 3 damps no high frequency: on the pendulum its error-controlled
+  // steps shrank until the budget of steps per output ran out (t = 4.39 of 10 at the default
+  // budget), and the advice used to say "try a smaller step" of a run that had none.
+  const auto built = test::built(parse_scene_text(test::pendulum_scene(R"(t_end = 10.0
+output_step = 0.1
+rtol = 1e-6
+scheme = "newmark"
+max_steps_per_output = 3000
+)"),
+                                                  "pendulum.toml"));
+  const SolveResult r = solve(built.model, built.spec.solve, RunHooks{});
+  REQUIRE(r.failure);
+  CHECK(r.failure->kind == FailureKind::steps_per_output);
+  const std::string& advice = r.failure->suggestion;
+  CHECK(advice.find("newmark_constraints = \"stabilized\"") != std::string::npos);
+  CHECK(advice.find("controlled by the method's error estimate") != std::string::npos);
+  CHECK(advice.find("fixed [solve] step") == std::string::npos);
 }
