@@ -277,26 +277,40 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
                                                  SchemeDecisions& decisions,
                                                  const SchemeChoice& choice, bool chose_mixed,
                                                  const EliminationSizing& elimination) {
-  out << "\nsystem each scheme integrates:\n";
-  out << "  " << std::left << std::setw(17) << "scheme" << std::setw(10) << "unknowns"
-      << std::setw(19) << "Jacobian nonzeros"
-      << "memory\n";
-  SchemeMemory scheme_memory(model);
-  std::optional<MemoryEstimate> selected;
   // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well; a scheme
   // of fixed step (the Newmark family, rattle) when it is the one chosen (they are not in the
   // default list).
   std::vector<Scheme> schemes(std::begin(kSchemes), std::end(kSchemes));
   if (fixed_step(choice.scheme)) schemes.push_back(choice.scheme);
+  const auto shown = [&](Scheme s, bool mixed) {
+    return !mixed || (mixes(s) && model.constraint_count() > 0);
+  };
+  const auto row_name = [&](Scheme s, bool mixed) {
+    std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
+    if (newmark_family(s) &&
+        settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
+      name += " stabilized";  // [u; v; λ; μ]: dae/integrators/stabilized_newmark_newton.hpp
+    }
+    return name;
+  };
+  // The first column as wide as its longest name and a space ("generalized_alpha stabilized").
+  std::size_t width = 17;
   for (Scheme s : schemes) {
     for (const bool mixed : {false, true}) {
-      if (mixed && (!mixes(s) || model.constraint_count() == 0)) continue;
-      std::string name = std::string(to_string(s)) + (mixed ? " mixed" : "");
-      if (newmark_family(s) &&
-          settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
-        name += " stabilized";  // [u; v; λ; μ]: dae/integrators/stabilized_newmark_newton.hpp
-      }
-      name.resize(std::max<std::size_t>(name.size() + 1, 17), ' ');  // a space after the longest
+      if (shown(s, mixed)) width = std::max(width, row_name(s, mixed).size() + 1);
+    }
+  }
+  out << "\nsystem each scheme integrates:\n";
+  out << "  " << std::left << std::setw(static_cast<int>(width)) << "scheme" << std::setw(10)
+      << "unknowns" << std::setw(19) << "Jacobian nonzeros"
+      << "memory\n";
+  SchemeMemory scheme_memory(model);
+  std::optional<MemoryEstimate> selected;
+  for (Scheme s : schemes) {
+    for (const bool mixed : {false, true}) {
+      if (!shown(s, mixed)) continue;
+      std::string name = row_name(s, mixed);
+      name.resize(width, ' ');
       out << "  " << name;
       const char* marker = s == choice.scheme && mixed == chose_mixed ? "   <- selected" : "";
       try {

@@ -77,6 +77,16 @@ TEST_CASE("newmark_constraints = stabilized holds the velocity drift in run's co
   const Result info = box.run("info s.toml");
   REQUIRE(info.code == 0);
   CHECK(contains(info.out, "generalized_alpha stabilized 14 "));
+  // The table's columns line up under their heads, the first as wide as its longest name (that
+  // name overflowed the 17 characters the column had).
+  const auto column_of = [&](const std::string& line_start, const char* field) {
+    const std::size_t line = info.out.find("\n" + line_start);
+    REQUIRE(line != std::string::npos);
+    return info.out.find_first_of(field, line + 1) - (line + 1);
+  };
+  const std::size_t unknowns = column_of("  scheme ", "u");
+  CHECK(column_of("  generalized_alpha stabilized", "0123456789") == unknowns);
+  CHECK(column_of("  ggl ", "0123456789") == unknowns);
   const std::string i_csv = condyn::test::slurp(box.path("i.csv"));
   const std::string s_csv = condyn::test::slurp(box.path("s.csv"));
   CHECK(i_csv.substr(0, i_csv.find('\n')) == s_csv.substr(0, s_csv.find('\n')));
