@@ -22,7 +22,7 @@ _TOP_KEYS = ("scene", "axis", "schemes", "tolerances", "keep", "records", "scale
 # Shorthands for the axes over the run settings compared most: schemes = [...] is an axis over
 # solve.scheme, tolerances = [...] over solve.rtol.
 _SHORTHANDS = {"schemes": "solve.scheme", "tolerances": "solve.rtol"}
-_KEEP_KEYS = ("peaks",)
+_KEEP_KEYS = ("peaks", "results")
 _AXIS_KEYS = ("key", "values")
 # One component of a dotted scene path: a name, then 1-based indices into arrays (load[1]).
 _COMPONENT = re.compile(r"^([A-Za-z0-9_-]+)((?:\[[0-9]+\])*)$")
@@ -62,6 +62,12 @@ class Sweep:
     axes: list       # of Axis
     peaks: list      # the kept columns (names of the run's CSV columns)
     ida: tuple = None  # [ida]: (the kept column, the limit state or None), sweep_ida.py
+    keep_result: bool = False  # [keep] results: each run's whole result as DIR/runs/KEY.h5
+
+    @property
+    def checks(self):
+        """The scene's [[check]] tables: each run's verdicts are columns of the results."""
+        return len(self.scene.get("check", []))
 
     @property
     def default_out(self):
@@ -100,7 +106,9 @@ def read_sweep(path):
     scene.pop("output", {}).pop("file", None)  # a sweep keeps what [keep] says, no run's file
     from .sweep_records import records_axes  # it builds on this file's Axis and SweepError
     axes = _read_axes(path, table.get("axis", [])) + _read_shorthands(path, table)
-    sweep = Sweep(path, scene_file, scene, axes, _read_peaks(path, table.get("keep", {})))
+    keep = table.get("keep", {})
+    sweep = Sweep(path, scene_file, scene, axes, _read_peaks(path, keep),
+                  keep_result=_read_keep_result(path, keep))
     from .sweep_montecarlo import monte_carlo_axes
     sweep.axes = records_axes(sweep, table) + axes + monte_carlo_axes(sweep, table, axes)
     from .sweep_ida import read_ida
@@ -121,6 +129,7 @@ def expand(sweep):
     runs = []
     for index, values in enumerate(itertools.product(*(a.values for a in sweep.axes))):
         scene = _applied(sweep, sweep.axes, values, "axis")
+        _check_count(sweep, scene, values)
         files = {name: _absolute(sweep, name) for name in file_names(scene)}
         run = Run(index, values, scene, files)
         run.key = run_key(scene, {n: _digest(p, digests) for n, p in files.items()})
@@ -247,6 +256,13 @@ def _read_peaks(path, keep):
     return peaks
 
 
+def _read_keep_result(path, keep):
+    value = keep.get("results", False)
+    if not isinstance(value, bool):
+        _fail(path, "keep.results", f"expected true or false (got {_shown(value)})")
+    return value
+
+
 def _applied(sweep, axes, values, where):
     """A copy of the sweep's scene with each axis' value set at its key."""
     scene = copy.deepcopy(sweep.scene)
@@ -283,6 +299,15 @@ def _set(sweep, scene, axis, value, where):
 def _missing(sweep, where, axis, problem):
     _fail(sweep.file, f"{where}.key", f"'{axis.key}' is not a key of the scene "
           f"{sweep.scene_file}: {problem}")
+
+
+def _check_count(sweep, scene, values):
+    """Every run has the scene's [[check]] tables (their verdicts are columns of the results)."""
+    checks = scene.get("check", [])
+    if len(checks) != sweep.checks:
+        _fail(sweep.file, "axis", f"the run of {_shown(list(values))} has {len(checks)} [[check]] "
+              f"tables where the scene has {sweep.checks}: the results have a column per check "
+              "of the scene, so an axis may change a check's keys, not their number")
 
 
 def _check_scene(sweep, scene, where):

@@ -47,7 +47,7 @@ def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=sys.stder
              "runs without a row")
     finally:
         table.finish([r.key for r in runs])
-    summary = _summary(runs, table, skipped, progress)
+    summary = _summary(runs, table, skipped, spec.checks, progress)
     if spec.ida is not None:
         from .sweep_ida import write_ida
         rows = [table.done[r.key] for r in runs if r.key in table.done]
@@ -78,7 +78,7 @@ def _run_all(todo, spec, table, workers, scheduler, progress):
                 raise SweepError(f"{spec.file}: keep.peaks: {row['message']}")
             if row["status"] not in sweep_worker.NOT_RUN:
                 cells = [c for a, v in zip(spec.axes, run.values) for c in a.cells_of(v)]
-                table.append(run.key, cells, row, spec.peaks)
+                table.append(run.key, cells, row, spec.peaks, spec.checks)
             meter.update(row["status"])
         meter.close()
 
@@ -98,6 +98,7 @@ class _Tasks:
     def submit(self, run, attempt=0):
         files = {name: self._sent(path) for name, path in run.files.items()}
         future = self.client.submit(sweep_worker.run_one, run.scene, files, self.spec.peaks,
+                                    self.spec.checks > 0, self.spec.keep_result,
                                     key=f"condyn-run-{run.key}-{attempt}", pure=False)
         self.futures[future] = (run, attempt)
         return future
@@ -254,18 +255,38 @@ class _Progress:
         self.stream.flush()
 
 
-def _summary(runs, table, skipped, progress):
-    status = table.columns.index("status")
-    statuses = collections.Counter(table.done[r.key][status] for r in runs if r.key in table.done)
+def _summary(runs, table, skipped, checks, progress):
+    rows = [dict(zip(table.columns, table.done[r.key])) for r in runs if r.key in table.done]
+    statuses = collections.Counter(row["status"] for row in rows)
     failed = {s: n for s, n in sorted(statuses.items()) if s != "ok"}
     summary = {"runs": len(runs), "ok": statuses.get("ok", 0), "failed": failed,
                "skipped": skipped, "missing": len(runs) - sum(statuses.values()),
                "table": table.csv_path}
     kinds = ", ".join(f"{s} {n}" for s, n in failed.items())
+    verdicts = ""
+    if checks:
+        summary["checks"] = _check_counts(rows, checks)
+        c = summary["checks"]
+        each = ", ".join(f"{k} {n}" for k, n in c["failed_by_check"].items())
+        verdicts = (f"; checks: {c['passed']} runs passed, {c['failed']} failed"
+                    f"{f' ({each})' if each else ''}")
     _say(progress, f"sweep: {summary['runs']} runs: {summary['ok']} ok, "
          f"{sum(failed.values())} failed{f' ({kinds})' if kinds else ''}, "
-         f"{summary['missing']} not run; {skipped} done before; results in {table.csv_path}")
+         f"{summary['missing']} not run{verdicts}; {skipped} done before; "
+         f"results in {table.csv_path}")
     return summary
+
+
+def _check_counts(rows, checks):
+    """Of the runs that succeeded: how many passed every check (and held their constraints),
+    how many did not, and per check how many runs failed it (checks that failed nowhere left
+    out)."""
+    done = [row for row in rows if row["checks_passed"] != ""]
+    by_check = {f"check{k}": sum(row[f"check{k}_passed"] == "false" for row in done)
+                for k in range(1, checks + 1)}
+    return {"passed": sum(row["checks_passed"] == "true" for row in done),
+            "failed": sum(row["checks_passed"] == "false" for row in done),
+            "failed_by_check": {k: n for k, n in by_check.items() if n}}
 
 
 def _say(stream, line):

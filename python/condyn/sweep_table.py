@@ -15,10 +15,17 @@ from .sweep_file import SweepError
 
 def header(sweep):
     """The columns: run, one per axis (its key), status, steps, wall_s, then per kept column
-    peak_<column> and peak_time_<column>."""
+    peak_<column> and peak_time_<column>, then with [[check]] tables in the scene checks_passed
+    and per check check<k>_passed and check<k>_computed (k as check[k], 1-based)."""
     peaks = [f"{kind}_{p}" for p in sweep.peaks for kind in ("peak", "peak_time")]
     axes = [c for a in sweep.axes for c in a.columns_of()]
-    return ["run"] + axes + ["status", "steps", "wall_s"] + peaks
+    return ["run"] + axes + ["status", "steps", "wall_s"] + peaks + check_columns(sweep.checks)
+
+
+def check_columns(count):
+    """The columns of `count` [[check]] tables' verdicts (none without checks)."""
+    each = [f"check{k}_{what}" for k in range(1, count + 1) for what in ("passed", "computed")]
+    return ["checks_passed"] + each if count else []
 
 
 def cell(value):
@@ -51,15 +58,27 @@ class ResultsTable:
         if not self.done and self._file.tell() == 0:
             self._write(columns)
 
-    def append(self, run, values, row, peaks):
+    def append(self, run, values, row, peaks, checks=0):
         """Writes the row of `run` (its cells of the axes, and the worker's row) and flushes it
-        to disk."""
+        to disk; a run's whole result (the worker's HDF5 bytes) goes to runs/KEY.h5 first."""
         cells = [run] + [cell(v) for v in values]
         cells += [row["status"], cell(row["steps"]), cell(row["wall_s"])]
         for p in peaks:
             cells += [cell(x) for x in row["peaks"].get(p, (None, None))]
+        if checks:  # a run that failed evaluated no check: empty cells
+            verdicts = row.get("checks") or {"passed": None, "each": [(None, None)] * checks}
+            cells.append(cell(verdicts["passed"]))
+            cells += [cell(x) for each in verdicts["each"] for x in each]
+        if row.get("result") is not None:
+            self.write_result(run, row["result"])
         self._write(cells)
         self.done[run] = cells
+
+    def write_result(self, run, data):
+        """DIR/runs/RUN.h5, written whole through a temporary name (never half a file)."""
+        folder = os.path.join(self.folder, "runs")
+        os.makedirs(folder, exist_ok=True)
+        _replace(os.path.join(folder, f"{run}.h5"), lambda f: f.write(data))
 
     def finish(self, order):
         """Rewrites results.csv with the rows of the keys in `order` first, in that order, then
@@ -115,7 +134,7 @@ def _replace(path, write):
 
 def _write_hdf5(path, columns, rows):
     """results.h5: one dataset per column, named by it (a '/' in a name written as '|'), float64
-    where every cell is a number or empty (NaN), else UTF-8 strings; the root's attribute
+    where every cell is a number or empty (NaN), or true or false (1, 0), else UTF-8 strings; the root's attribute
     `columns` lists them in the CSV's order."""
     import h5py  # Debian's python3-h5py; imported here, where it is needed
     import numpy as np
@@ -132,8 +151,14 @@ def _write_hdf5(path, columns, rows):
     os.replace(partial, path)
 
 
+_BOOLEANS = {"true": 1.0, "false": 0.0, "": math.nan}
+
+
 def _numbers(cells):
-    """The cells as floats (empty: NaN), or None when one is not a number."""
+    """The cells as floats (empty: NaN), or None when one is not a number; a column of true and
+    false (and empty cells) as 1 and 0."""
+    if all(c in _BOOLEANS for c in cells):
+        return [_BOOLEANS[c] for c in cells]
     try:
         return [float(c) if c != "" else math.nan for c in cells]
     except ValueError:

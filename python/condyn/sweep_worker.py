@@ -1,6 +1,7 @@
 """One run of a sweep, on a Dask worker (docs/sweep.md): the scene and its data files arrive with
 the task (no shared file system), are written into a temporary folder and run through condyn.run;
-what returns is the run's row: its status, steps, wall time and the peaks of the kept columns.
+what returns is the run's row: its status, steps, wall time, the peaks of the kept columns, and
+when asked the scene's [[check]] verdicts and the whole result as HDF5 bytes.
 """
 
 import os
@@ -18,30 +19,53 @@ NO_COLUMN = "no_column"        # a kept column the result does not have: the swe
 NOT_RUN = ("interrupted",)     # stopped from outside: no row, the run is done again on restart
 
 
-def run_one(scene, files, peaks):
+def run_one(scene, files, peaks, checks=False, keep_result=False):
     """Runs `scene` (a dict; its `file` keys name entries of `files`, name -> bytes) and returns
-    {status, steps, wall_s, peaks: {column: (peak, time)}, message}. Never raises for a run's
-    failure: the failure is the row's status."""
+    {status, steps, wall_s, peaks: {column: (peak, time)}, message}, with `checks` (the scene's
+    [[check]] verdicts, evaluate_checks) when asked and the run succeeded, and `result` (the
+    whole result as HDF5 bytes, sweep_result.py) when `keep_result` and the run has rows. Never
+    raises for a run's failure: the failure is the row's status."""
     with tempfile.TemporaryDirectory(prefix="condyn-sweep-") as folder:
         local = {}
         for i, name in enumerate(sorted(files)):
             local[name] = os.path.join(folder, f"{i}_{os.path.basename(name)}")
             with open(local[name], "wb") as f:
                 f.write(files[name])
-        try:
-            result = condyn.run(map_files(scene, local.__getitem__))
-        except condyn.IntegrationError as e:
-            return _row(e.kind or "unknown", e.result, {}, str(e))
-        except condyn.SceneError as e:
-            return _row(SCENE_ERROR, None, {}, str(e))
-        except Exception as e:  # the row says what it was; the sweep goes on
-            return _row(ERROR, None, {}, f"{type(e).__name__}: {e}")
+        scene = map_files(scene, local.__getitem__)
+        row, result = _run(scene, peaks)
+        if checks and row["status"] == "ok":
+            row["checks"] = evaluate_checks(scene)
+        if keep_result and result is not None and len(result.t) > 0:
+            from .sweep_result import result_bytes
+            row["result"] = result_bytes(result, os.path.join(folder, "result.h5"))
+    return row
+
+
+def _run(scene, peaks):
+    """(the run's row, its Result or None)."""
+    try:
+        result = condyn.run(scene)
+    except condyn.IntegrationError as e:
+        return _row(e.kind or "unknown", e.result, {}, str(e)), e.result
+    except condyn.SceneError as e:
+        return _row(SCENE_ERROR, None, {}, str(e)), None
+    except Exception as e:  # the row says what it was; the sweep goes on
+        return _row(ERROR, None, {}, f"{type(e).__name__}: {e}"), None
     columns = result_columns(result)
     missing = [p for p in peaks if p not in columns]
     if missing:
         return _row(NO_COLUMN, result, {}, f"no column {', '.join(map(repr, missing))} in the "
-                    f"run's result (its columns: {', '.join(columns)})")
-    return _row("ok", result, {p: peak(result.t, columns[p]) for p in peaks}, "")
+                    f"run's result (its columns: {', '.join(columns)})"), None
+    return _row("ok", result, {p: peak(result.t, columns[p]) for p in peaks}, ""), result
+
+
+def evaluate_checks(scene):
+    """The scene's [[check]] tables evaluated as `condyn check` does (condyn.check: a run of its
+    own, the checks taken on its rows as they are computed): {passed: every check held and the
+    constraints did not drift, each: [(passed, computed)] per check, in the scene's order}."""
+    verdict = condyn.check(scene)
+    return {"passed": bool(verdict["passed"]),
+            "each": [(bool(c["passed"]), float(c["computed"])) for c in verdict["checks"]]}
 
 
 def peak(t, column):

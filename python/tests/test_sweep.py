@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 import condyn
-from condyn.sweep_file import expand, read_sweep
+from condyn.sweep_file import expand, map_files, read_sweep
 
 distributed = pytest.importorskip("distributed")
 # Debian's distributed 2022.12 starts its event loop in a way tornado 6.2 calls deprecated.
@@ -233,6 +233,98 @@ def test_a_table_of_another_sweep_is_refused(study, scheduler):
     with pytest.raises(condyn.SweepError, match="written by another sweep"):
         condyn.sweep(study, scheduler=scheduler, progress=False)
     assert (out / "results.csv").read_text() == "run,status\nabc,ok\n"
+
+
+CHECKS = """\
+[[check]]
+quantity = "u2"
+max_abs = 0.03
+[[check]]
+quantity = "drift_position"
+max_abs = 1e-9
+"""
+
+
+def scene_of(study, run):
+    """The run's scene as condyn.run takes it in this process: its record by an absolute path."""
+    return map_files(run.scene, lambda name: str(study.parent / name))
+
+
+def test_check_verdicts_are_columns_equal_to_condyn_check_and_counted(study, scheduler):
+    # u2's peak is 0.011 to 0.096 over the six runs: a bound of 0.03 holds in some, not others;
+    # the run with max_steps = 5 fails, and its checks are not evaluated (empty cells).
+    (study.parent / "frame.toml").write_text(SCENE + CHECKS)
+    study.write_text(SWEEP + '[[axis]]\nkey = "solve.max_steps"\nvalues = [100000, 5]\n')
+    summary = condyn.sweep(study, scheduler=scheduler, progress=False)
+    header, rows = read_table(summary["table"])
+    assert header[header.index("peak_time_reaction_u1") + 1:] == [
+        "checks_passed", "check1_passed", "check1_computed", "check2_passed", "check2_computed"]
+    passed = failed = failed_u2 = 0
+    for run, row in zip(expand(read_sweep(study)), rows):
+        cells = dict(zip(header, row))
+        if cells["status"] != "ok":
+            assert [cells[c] for c in header[-5:]] == [""] * 5
+            continue
+        verdict = condyn.check(scene_of(study, run))  # the same run here: bit for bit
+        for k, c in enumerate(verdict["checks"], start=1):
+            assert cells[f"check{k}_passed"] == ("true" if c["passed"] else "false")
+            assert float(cells[f"check{k}_computed"]) == c["computed"]
+        assert cells["checks_passed"] == ("true" if verdict["passed"] else "false")
+        # check[1] is max |u2| over the output rows: the kept peak itself.
+        assert float(cells["check1_computed"]) == float(cells["peak_u2"])
+        passed += verdict["passed"]
+        failed += not verdict["passed"]
+        failed_u2 += not verdict["checks"][0]["passed"]
+    assert passed > 0 and failed > 0  # the study has both verdicts
+    assert summary["checks"] == {"passed": passed, "failed": failed,
+                                 "failed_by_check": {"check1": failed_u2}}
+    h5py = pytest.importorskip("h5py")
+    with h5py.File(study.parent / "study" / "results.h5", "r") as f:  # true/false as 1/0
+        expected = [{"true": 1.0, "false": 0.0, "": math.nan}[r[header.index("checks_passed")]]
+                    for r in rows]
+        np.testing.assert_array_equal(f["checks_passed"][()], expected)
+
+
+def test_an_axis_that_changes_the_number_of_checks_is_refused(study):
+    (study.parent / "frame.toml").write_text(SCENE + CHECKS)
+    one = '{ quantity = "u2", max_abs = 1.0 }'
+    study.write_text(SWEEP + f'[[axis]]\nkey = "check"\nvalues = [[{one}], [{one}, {one}]]\n')
+    with pytest.raises(condyn.SweepError, match=r"has 1 \[\[check\]\] tables where the scene "
+                       r"has 2"):
+        condyn.sweep(study, workers=1, progress=False)
+    assert not (study.parent / "study").exists()
+
+
+def test_kept_results_are_the_files_condyn_run_writes_brought_back_by_key(study, scheduler, cli):
+    h5py = pytest.importorskip("h5py")
+    quantities = '["displacement", "velocity", "reaction", "drift"]'
+    scene = SCENE.replace('["displacement", "reaction", "drift"]', quantities)
+    (study.parent / "frame.toml").write_text(scene)
+    study.write_text(SWEEP.replace("[keep]", "[keep]\nresults = true"))
+    summary = condyn.sweep(study, scheduler=scheduler, progress=False)
+    runs = expand(read_sweep(study))
+    folder = study.parent / "study" / "runs"
+    assert sorted(os.listdir(folder)) == sorted(f"{r.key}.h5" for r in runs)
+    for run in runs:  # each equals `condyn run --out` of the run's scene, bit for bit
+        (study.parent / "one.toml").write_text(scene.replace(
+            "records/a.csv", run.values[0]).replace("scale = 1.0", f"scale = {run.values[1]!r}"))
+        out = study.parent / f"run{run.index}.h5"
+        subprocess.run([str(cli), "run", str(study.parent / "one.toml"), "--out", str(out)],
+                       check=True, capture_output=True)
+        with h5py.File(folder / f"{run.key}.h5", "r") as kept, h5py.File(out, "r") as ran:
+            assert dict(kept.attrs) == dict(ran.attrs)
+            assert set(ran) <= set(kept), (set(ran), set(kept))
+            for name in ran:
+                data = ran[name].asstr()[()] if ran[name].dtype.kind == "O" else ran[name][()]
+                got = kept[name].asstr()[()] if kept[name].dtype.kind == "O" else kept[name][()]
+                np.testing.assert_array_equal(got, data, err_msg=name)
+    assert summary["ok"] == len(runs)
+
+
+def test_keep_results_must_be_a_boolean(study):
+    study.write_text(SWEEP.replace("[keep]", '[keep]\nresults = "yes"'))
+    with pytest.raises(condyn.SweepError, match=r"keep\.results: expected true or false"):
+        condyn.sweep(study, workers=1, progress=False)
 
 
 def test_peak_is_the_largest_magnitude_and_its_first_time():
