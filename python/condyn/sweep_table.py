@@ -134,8 +134,8 @@ def _replace(path, write):
 
 def _write_hdf5(path, columns, rows):
     """results.h5: one dataset per column, named by it (a '/' in a name written as '|'), float64
-    where every cell is a number or empty (NaN), or true or false (1, 0), else UTF-8 strings; the root's attribute
-    `columns` lists them in the CSV's order."""
+    where every cell is a number or empty (NaN), or true or false (1, 0), else UTF-8 strings;
+    the root's attribute `columns` lists them in the CSV's order."""
     import h5py  # Debian's python3-h5py; imported here, where it is needed
     import numpy as np
 

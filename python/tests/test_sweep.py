@@ -1,8 +1,10 @@
 """condyn.sweep (docs/sweep.md, issue 46): the sweep file's refusals, the product of its axes and
 the run keys, and sweeps run on a real two-worker Dask cluster (one for the module, reached
 through its scheduler's address as --scheduler would): peaks against condyn.run, a failed run's
-row, restart skipping the runs done, the same table twice, results.h5 beside results.csv; and a
-dask-scheduler with two dask-worker processes started by hand, one killed mid-sweep."""
+row, restart skipping the runs done, the same table twice, results.h5 beside results.csv, the
+[[check]] verdicts against condyn.check, each run's kept result against condyn run's HDF5, the IDA
+example; and a dask-scheduler with two dask-worker processes started by hand, one killed
+mid-sweep."""
 
 import csv
 import json
