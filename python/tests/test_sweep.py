@@ -245,6 +245,10 @@ max_abs = 0.03
 [[check]]
 quantity = "drift_position"
 max_abs = 1e-9
+[[check]]
+quantity = "u2"
+reference = { file = "records/rest.csv" }
+tolerance = 0.03
 """
 
 
@@ -255,18 +259,22 @@ def scene_of(study, run):
 
 def test_check_verdicts_are_columns_equal_to_condyn_check_and_counted(study, scheduler):
     # u2's peak is 0.011 to 0.096 over the six runs: a bound of 0.03 holds in some, not others;
-    # the run with max_steps = 5 fails, and its checks are not evaluated (empty cells).
+    # the run with max_steps = 5 fails, and its checks are not evaluated (empty cells). check[3]
+    # holds u2 against a file (zeros at three times), which travels to the workers with the task.
     (study.parent / "frame.toml").write_text(SCENE + CHECKS)
+    (study.parent / "records" / "rest.csv").write_text("t,u2\n0,0\n0.5,0\n1,0\n")
     study.write_text(SWEEP + '[[axis]]\nkey = "solve.max_steps"\nvalues = [100000, 5]\n')
     summary = condyn.sweep(study, scheduler=scheduler, progress=False)
     header, rows = read_table(summary["table"])
     assert header[header.index("peak_time_reaction_u1") + 1:] == [
-        "checks_passed", "check1_passed", "check1_computed", "check2_passed", "check2_computed"]
-    passed = failed = failed_u2 = 0
+        "checks_passed", "check1_passed", "check1_computed", "check2_passed", "check2_computed",
+        "check3_passed", "check3_computed"]
+    passed = failed = 0
+    failed_each = {}
     for run, row in zip(expand(read_sweep(study)), rows):
         cells = dict(zip(header, row))
         if cells["status"] != "ok":
-            assert [cells[c] for c in header[-5:]] == [""] * 5
+            assert [cells[c] for c in header[-7:]] == [""] * 7
             continue
         verdict = condyn.check(scene_of(study, run))  # the same run here: bit for bit
         for k, c in enumerate(verdict["checks"], start=1):
@@ -277,10 +285,12 @@ def test_check_verdicts_are_columns_equal_to_condyn_check_and_counted(study, sch
         assert float(cells["check1_computed"]) == float(cells["peak_u2"])
         passed += verdict["passed"]
         failed += not verdict["passed"]
-        failed_u2 += not verdict["checks"][0]["passed"]
+        for k, c in enumerate(verdict["checks"], start=1):
+            if not c["passed"]:
+                failed_each[f"check{k}"] = failed_each.get(f"check{k}", 0) + 1
     assert passed > 0 and failed > 0  # the study has both verdicts
     assert summary["checks"] == {"passed": passed, "failed": failed,
-                                 "failed_by_check": {"check1": failed_u2}}
+                                 "failed_by_check": failed_each}
     h5py = pytest.importorskip("h5py")
     with h5py.File(study.parent / "study" / "results.h5", "r") as f:  # true/false as 1/0
         expected = [{"true": 1.0, "false": 0.0, "": math.nan}[r[header.index("checks_passed")]]
@@ -290,10 +300,11 @@ def test_check_verdicts_are_columns_equal_to_condyn_check_and_counted(study, sch
 
 def test_an_axis_that_changes_the_number_of_checks_is_refused(study):
     (study.parent / "frame.toml").write_text(SCENE + CHECKS)
+    (study.parent / "records" / "rest.csv").write_text("t,u2\n0,0\n1,0\n")
     one = '{ quantity = "u2", max_abs = 1.0 }'
     study.write_text(SWEEP + f'[[axis]]\nkey = "check"\nvalues = [[{one}], [{one}, {one}]]\n')
     with pytest.raises(condyn.SweepError, match=r"has 1 \[\[check\]\] tables where the scene "
-                       r"has 2"):
+                       r"has 3"):
         condyn.sweep(study, workers=1, progress=False)
     assert not (study.parent / "study").exists()
 
