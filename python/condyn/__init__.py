@@ -149,8 +149,8 @@ def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=True):
     the sweep file's name without extension). Runs already in the table are skipped. Progress
     and the summary go to standard error unless `progress` is False. Returns the summary: runs,
     ok, failed ({status: count}), skipped, missing, table, with [[check]] tables checks
-    ({passed, failed, failed_by_check}) and with [ida] fragility. A bad sweep file raises SweepError (a
-    ValueError) naming the file and key, before any run."""
+    ({passed, failed, failed_by_check}) and with [ida] fragility. A bad sweep file raises
+    SweepError (a ValueError) naming the file and key, before any run."""
     import sys
     from .sweep_run import sweep as run_sweep  # Dask is imported only by a sweep
     return run_sweep(sweep_file, workers=workers, scheduler=scheduler, out=out,

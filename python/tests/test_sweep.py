@@ -335,6 +335,20 @@ def test_kept_results_are_the_files_condyn_run_writes_brought_back_by_key(study,
     assert summary["ok"] == len(runs)
 
 
+def test_a_failed_run_keeps_the_rows_before_its_failure(study, scheduler):
+    h5py = pytest.importorskip("h5py")
+    (study.parent / "frame.toml").write_text(SCENE.replace("[solve]\n", "[solve]\nmax_steps = 5\n"))
+    study.write_text(SWEEP.replace("[keep]", "[keep]\nresults = true"))
+    summary = condyn.sweep(study, scheduler=scheduler, progress=False)
+    assert summary["failed"] == {"step_budget": 6}
+    for run in expand(read_sweep(study)):
+        with pytest.raises(condyn.IntegrationError) as e:  # the same run here: the same rows
+            condyn.run(scene_of(study, run))
+        with h5py.File(study.parent / "study" / "runs" / f"{run.key}.h5", "r") as f:
+            np.testing.assert_array_equal(f["t"][()], e.value.result.t)
+            np.testing.assert_array_equal(f["displacement"][()], e.value.result.u)
+
+
 def test_keep_results_must_be_a_boolean(study):
     study.write_text(SWEEP.replace("[keep]", '[keep]\nresults = "yes"'))
     with pytest.raises(condyn.SweepError, match=r"keep\.results: expected true or false"):
