@@ -199,4 +199,38 @@ inline std::string replace(std::string s, const std::string& from, const std::st
   return s.replace(pos, from.size(), to);
 }
 
+/// A crank's angle table (drive.csv of kTableDrivenCrank), samples at 0, 0.3, 0.55 and 1: slopes
+/// 2, −2 and 2/3 rad/s, kinks at 0.3 (an output time), 0.55 (between two) and 1, held at 0.4 after
+/// t = 1.
+inline const std::string kCrankDriveTable = "t,angle\n0,0\n0.3,0.6\n0.55,0.1\n1.0,0.4\n";
+
+/// A crank of length 1 and mass 1 hinged at its end O, driven by the table drive.csv
+/// (kCrankDriveTable), under gravity (so that the drive carries a torque); it starts at the
+/// table's first rate, 2 rad/s. Output every 0.1 to t = 1.2, rtol 1e-8, atol 1e-10.
+inline const std::string kTableDrivenCrank = R"([model]
+type = "multibody"
+dimension = 2
+gravity = [0.0, -9.81]
+ground = { O = [0.0, 0.0] }
+[[body]]
+name = "crank"
+mass = 1.0
+inertia = 0.0833
+position = [0.5, 0.0]
+velocity = [0.0, 1.0]
+angular_velocity = 2.0
+points = { O = [-0.5, 0.0] }
+[[joint]]
+name = "pivot"
+type = "revolute"
+bodies = ["ground", "crank"]
+points = ["O", "O"]
+drive = { type = "table", file = "drive.csv", column = "angle" }
+[solve]
+t_end = 1.2
+output_step = 0.1
+rtol = 1e-8
+atol = 1e-10
+)";
+
 }  // namespace condyn::test

@@ -151,38 +151,12 @@ TEST_CASE("newmark error control: the steps land on a drive table's samples") {
   // family ends on them exactly, and the angle at the outputs is the table's within 100 rtol
   // (index 3 holds the drive's row at every step; between steps the cubic Hermite interpolant of
   // the crank's end is second order: observed 2.0e-10 to 3.1e-10 at rtol 1e-8).
-  const std::string table = "t,angle\n0,0\n0.3,0.6\n0.55,0.1\n1.0,0.4\n";
-  const std::string scene = R"([model]
-type = "multibody"
-dimension = 2
-gravity = [0.0, -9.81]
-ground = { O = [0.0, 0.0] }
-[[body]]
-name = "crank"
-mass = 1.0
-inertia = 0.0833
-position = [0.5, 0.0]
-velocity = [0.0, 1.0]
-angular_velocity = 2.0
-points = { O = [-0.5, 0.0] }
-[[joint]]
-name = "pivot"
-type = "revolute"
-bodies = ["ground", "crank"]
-points = ["O", "O"]
-drive = { type = "table", file = "drive.csv", column = "angle" }
-[solve]
-t_end = 1.2
-output_step = 0.1
-rtol = 1e-8
-atol = 1e-10
-)";
   constexpr double kTolerance = 100 * 1e-8;
   const test::Sandbox box;
-  box.write("drive.csv", table);
+  box.write("drive.csv", test::kCrankDriveTable);
   const test::BuiltScene built =
-      test::built(parse_scene_file(box.write("scene.toml", scene).string()));
-  const TimeTable drive = parse_time_table(table, "angle");
+      test::built(parse_scene_file(box.write("scene.toml", test::kTableDrivenCrank).string()));
+  const TimeTable drive = parse_time_table(test::kCrankDriveTable, "angle");
   const int rx = built.model.dof_at("crank.ux"), ry = built.model.dof_at("crank.uy");
   RunHooks hooks;
   hooks.record_steps = true;

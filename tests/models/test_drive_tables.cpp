@@ -15,53 +15,18 @@
 #include "models/core/time_table.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
 
-namespace {
-
-// Samples at 0, 0.3, 0.55 and 1: slopes 2, −2 and 2/3 rad/s, kinks at 0.3 (an output time),
-// 0.55 (between two) and 1, held at 0.4 after t = 1.
-const std::string kTable = "t,angle\n0,0\n0.3,0.6\n0.55,0.1\n1.0,0.4\n";
-
-// A crank of length 1 and mass 1 hinged at its end O, driven by the table, under gravity (so that
-// the drive carries a torque); it starts at the table's first rate, 2 rad/s.
-const std::string kScene = R"([model]
-type = "multibody"
-dimension = 2
-gravity = [0.0, -9.81]
-ground = { O = [0.0, 0.0] }
-[[body]]
-name = "crank"
-mass = 1.0
-inertia = 0.0833
-position = [0.5, 0.0]
-velocity = [0.0, 1.0]
-angular_velocity = 2.0
-points = { O = [-0.5, 0.0] }
-[[joint]]
-name = "pivot"
-type = "revolute"
-bodies = ["ground", "crank"]
-points = ["O", "O"]
-drive = { type = "table", file = "drive.csv", column = "angle" }
-[solve]
-t_end = 1.2
-output_step = 0.1
-rtol = 1e-8
-atol = 1e-10
-)";
-
-}  // namespace
-
 TEST_CASE("a table drive: the run stops at its kinks and follows its exact kinematics") {
   const test::Sandbox box;
-  box.write("drive.csv", kTable);
+  box.write("drive.csv", test::kCrankDriveTable);
   const test::BuiltScene built =
-      test::built(parse_scene_file(box.write("scene.toml", kScene).string()));
+      test::built(parse_scene_file(box.write("scene.toml", test::kTableDrivenCrank).string()));
   const Model& model = built.model;
-  const TimeTable table = parse_time_table(kTable, "angle");
+  const TimeTable table = parse_time_table(test::kCrankDriveTable, "angle");
   REQUIRE(model.breakpoints(1.2) == std::vector<double>{0.3, 0.55, 1.0});
   const int rx = model.dof_at("crank.ux"), ry = model.dof_at("crank.uy");
   // The angle and rate are the table's to the integration's accuracy: 100 (rtol + atol) on
@@ -93,7 +58,7 @@ TEST_CASE("a table drive: the run stops at its kinks and follows its exact kinem
 }
 
 TEST_CASE("a table's slope as a segment sees it: one-sided at the sample that ends it") {
-  const TimeTable table = parse_time_table(kTable, "angle");
+  const TimeTable table = parse_time_table(test::kCrankDriveTable, "angle");
   // A slope is a quotient of two differences of O(1) samples: a few ulps (4 eps) relative.
   constexpr double kRoundoff = 4 * std::numeric_limits<double>::epsilon();
   const auto near = [](double x) { return doctest::Approx(x).epsilon(kRoundoff); };
