@@ -104,9 +104,12 @@ def run_bare(bare, folder, info, timeout):
 
 
 def run_condyn(condyn, scene, scheme, timeout):
+    """`scheme` is a name, or NAME:H for a fixed step H (the Newmark family, rattle: --step H)."""
+    name, _, step = scheme.partition(":")
     with tempfile.TemporaryDirectory() as tmp:
-        code, out, tv = timed([condyn, "run", scene, "--scheme", scheme,
-                               "--out", os.path.join(tmp, "out.csv")], timeout)
+        code, out, tv = timed([condyn, "run", scene, "--scheme", name,
+                               "--out", os.path.join(tmp, "out.csv")]
+                              + (["--step", step] if step else []), timeout)
     match = SUMMARY.search(out)
     if code != 0 or match is None or tv is None:
         return {"status": "failed: " + first_error(out)}
@@ -219,7 +222,11 @@ def main(argv=None):
     p.add_argument("--repeat", type=int, default=3, help="runs per row; the table gives medians")
     p.add_argument("--large-repeat", type=int, default=1,
                    help="runs per row from 1e6 DOFs (a 1e6 run takes minutes)")
-    p.add_argument("--schemes", nargs="+", default=SCHEMES)
+    p.add_argument("--schemes", nargs="+", default=SCHEMES,
+                   help="schemes to run; NAME:H runs NAME with the fixed step H (--step H), e.g. "
+                        "generalized_alpha:0.005")
+    p.add_argument("--variants", nargs="+", default=["mtx", "condensed", "inline"],
+                   choices=["mtx", "condensed", "inline"], help="which scenes of each lattice run")
     p.add_argument("--condyn", default=os.path.join(ROOT, "build", "condyn"))
     p.add_argument("--bare", default=os.path.join(ROOT, "build", "condyn_bare_driver"))
     p.add_argument("--work", default=os.path.join(HERE, "out"), help="where the lattices are written")
@@ -260,6 +267,7 @@ def main(argv=None):
         variants.append(("condensed", os.path.join(folder, "condensed.toml")))
         if info["inline"] and info["n"] <= INLINE_MAX:
             variants.append(("inline", os.path.join(folder, "inline.toml")))
+        variants = [v for v in variants if v[0] in args.variants]
         for variant, scene in variants:
             estimate = memory_estimates(args.condyn, scene, args.timeout)
             for scheme in args.schemes:
@@ -271,9 +279,10 @@ def main(argv=None):
                 r = median_row(runs)
                 if variant == "mtx" and r["status"] != "ok":
                     r["status"] = "failed: " + r["status"][8:]
-                if r["status"] == "ok" and scheme in estimate:
-                    r["estimate_mb"] = estimate[scheme]
-                    r["ratio_estimate"] = round(estimate[scheme] / r["peak_mb"], 2)
+                name = scheme.partition(":")[0]
+                if r["status"] == "ok" and name in estimate:
+                    r["estimate_mb"] = estimate[name]
+                    r["ratio_estimate"] = round(estimate[name] / r["peak_mb"], 2)
                 print(f"   {variant} {scheme}: {r}", flush=True)
                 rows.append(with_ratios(dict(base, variant=variant, scheme=scheme, **r), bare))
 
