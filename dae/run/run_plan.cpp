@@ -9,6 +9,7 @@
 
 #include "dae/formulations/augmented_lagrangian_ode.hpp"
 #include "dae/formulations/partitioned_ode.hpp"
+#include "dae/formulations/rattle_stability.hpp"
 #include "dae/formulations/scheme_run.hpp"
 #include "dae/run/failure_advice.hpp"
 #include "dae/run/observed_run.hpp"
@@ -121,7 +122,12 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
     p.notes.push_back({RunNote::Kind::scheme_setting, p.weights.rule});
   }
   if (newmark_family(p.scheme)) p.notes.push_back(newmark_note(p.scheme, p.settings));
-  if (p.scheme == Scheme::rattle) p.notes.push_back(rattle_note(p.settings));
+  if (p.scheme == Scheme::rattle) {
+    p.notes.push_back(rattle_note(p.settings));
+    if (auto warning = rattle_stability_warning(model, p.settings.step.value_or(0.0))) {
+      p.notes.push_back({RunNote::Kind::warning, std::move(*warning)});
+    }
+  }
   if (uses_mixed_treatment(model, p.scheme, p.settings)) {
     p.treatment = decisions.treatment();
     p.notes.push_back({RunNote::Kind::treatment,
@@ -263,6 +269,12 @@ void advise(const RunPlan& plan, SolveResult& result) {
       plan.settings.newmark_family.constraints == NewmarkConstraints::index3 &&
       !damps_high_frequencies(alpha_parameters(plan.scheme, plan.settings.newmark_family));
   failure.suggestion = failure_suggestion(plan.scheme, failure, causes, context);
+  // RATTLE blown up by a step beyond its stability limit: the limit, not the loads, explains it.
+  if (plan.scheme == Scheme::rattle && failure.kind != FailureKind::interrupted) {
+    for (const RunNote& note : plan.notes) {
+      if (note.kind == RunNote::Kind::warning) failure.suggestion += "; " + note.text;
+    }
+  }
   failure.suggestion += singular_failure_advice(result.summary.singular_passages);
 }
 

@@ -62,11 +62,9 @@ void SceneReader::read_fixed_step(const toml::table& t, SolveSpec& solve) const 
       fail(*n, "solve.step",
            "is larger than t_end = " + fmt(solve.t_end) + " (got " + fmt(*solve.step) + ")");
     }
-  } else if (solve.scheme == Scheme::rattle) {
-    fail(*t.get("scheme"), "solve.scheme",
-         "'rattle' runs with a fixed step: give [solve] step = h (RATTLE is symplectic at a fixed "
-         "step only)");
   }
+  // RATTLE without a step is refused by SolveSpec::validate, after the command line's flags: a
+  // --step or a --scheme may supply or lift what the file lacks.
   NewmarkFamilySpec& f = solve.newmark_family;
   if (const auto* n = t.get("newmark")) {
     const auto& nm = table(*n, "solve.newmark");

@@ -139,6 +139,11 @@ int run(const RunArgs& args) {
     if (const auto warning = check_run_memory(run_plan, decisions))
       std::cerr << "warning: " << args.scene << ": " << *warning << "\n";
   }
+  // What the plan warns of before the run (rattle's step beyond its stability limit).
+  for (const RunNote& note : run_plan.notes) {
+    if (note.kind == RunNote::Kind::warning)
+      std::cerr << "warning: " << args.scene << ": " << note.text << "\n";
+  }
   release_model_input(spec);
   // The scene's parse tree and its copy of the model are freed in the middle of the heap, where
   // glibc would keep their pages resident to the end: return them (docs/benchmarks.md).
