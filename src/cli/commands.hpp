@@ -1,7 +1,7 @@
 #pragma once
-/// The commands of condyn (run, info, compare, check, plot, stress, validate, sweep), one file each
-/// (src/cli/*_command.cpp): each adds its sub-command and options to the command line and says
-/// what it does once the line is parsed. main.cpp parses, dispatches and turns what a command
+/// The commands of condyn (run, info, compare, check, plot, stress, validate, sweep, modes), one
+/// file each (src/cli/*_command.cpp): each adds its sub-command and options to the command line and
+/// says what it does once the line is parsed. main.cpp parses, dispatches and turns what a command
 /// throws into an exit code (docs/cli.md).
 
 #include <CLI/CLI.hpp>
@@ -31,5 +31,6 @@ struct Command {
 [[nodiscard]] Command add_stress_command(CLI::App& app);
 [[nodiscard]] Command add_validate_command(CLI::App& app);
 [[nodiscard]] Command add_sweep_command(CLI::App& app);
+[[nodiscard]] Command add_modes_command(CLI::App& app);
 
 }  // namespace condyn

@@ -111,10 +111,10 @@ int run_command(int argc, char** argv) {
   CLI::App app{"condyn: constrained dynamic systems, constraints as algebraic equations"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("condyn ") + CONDYN_VERSION);
-  const std::vector<Command> commands = {add_run_command(app),      add_info_command(app),
-                                         add_compare_command(app),  add_check_command(app),
-                                         add_plot_command(app),     add_stress_command(app),
-                                         add_validate_command(app), add_sweep_command(app)};
+  const std::vector<Command> commands = {
+      add_run_command(app),      add_info_command(app),  add_compare_command(app),
+      add_check_command(app),    add_plot_command(app),  add_stress_command(app),
+      add_validate_command(app), add_sweep_command(app), add_modes_command(app)};
   if (const auto code = refuse_first_word(app, argc, argv)) return *code;
   if (const auto code = parse(app, argc, argv)) return *code;
   for (const auto& command : commands) {
