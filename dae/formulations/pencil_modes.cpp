@@ -69,8 +69,8 @@ void normalize(const Eigen::SparseMatrix<double>& M, Eigen::MatrixXd& shapes) {
 }
 
 /// ω² below −(a tolerance of the scale) is an instability; above it, roundoff of a zero-frequency
-/// mode, set to 0. The tolerance: a rigid motion's ω² comes out at about eps times the condition
-/// of the factored matrix, which the shift keeps near 1/kShift.
+/// mode, set to 0. The tolerance: a rigid motion's ω² comes out within a few eps of the scale
+/// (dense) or kModeTolerance times the shift (Lanczos), far below 1e-6 of the scale.
 void check_and_clamp(Eigen::VectorXd& omega2, double scale) {
   constexpr double kRoundoff = 1e-6;
   for (double& l : omega2) {
@@ -114,14 +114,25 @@ PencilModes dense_modes(const Eigen::SparseMatrix<double>& K, const Eigen::Spars
   return out;
 }
 
+using Factor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+
+/// Whether `factor` holds a positive definite matrix with room to spare: every pivot above
+/// kPivotFloor of the largest (a singular K, a rigid motion, leaves one at roundoff of the largest;
+/// a held structure's pivots stay of the order of its stiffnesses, however flexible it is).
+bool positive_definite(const Factor& factor) {
+  constexpr double kPivotFloor = 1e-9;
+  if (factor.info() != Eigen::Success) return false;
+  const Eigen::VectorXd d = factor.vectorD();
+  return d.minCoeff() > kPivotFloor * d.maxCoeff();
+}
+
 /// (K_c − σ M_RR)⁻¹ on the DOFs with mass, through the factor of the whole K − σM: the right-hand
 /// side is zero on the massless DOFs, so their rows are the static condensation (Spectra's
 /// shift-solve interface; the factor is made at σ once, before).
 class CondensedShiftSolve {
  public:
   using Scalar = double;
-  CondensedShiftSolve(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& factor,
-                      const std::vector<int>& r, Eigen::Index n)
+  CondensedShiftSolve(const Factor& factor, const std::vector<int>& r, Eigen::Index n)
       : factor_(factor), r_(r), full_(n) {}
   [[nodiscard]] Eigen::Index rows() const { return static_cast<Eigen::Index>(r_.size()); }
   [[nodiscard]] Eigen::Index cols() const { return rows(); }
@@ -134,7 +145,7 @@ class CondensedShiftSolve {
   }
 
  private:
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& factor_;
+  const Factor& factor_;
   const std::vector<int>& r_;
   mutable Eigen::VectorXd full_;
 };
@@ -157,19 +168,23 @@ class MassProduct {
 
 PencilModes sparse_modes(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                          int count, const std::vector<int>& r, double scale) {
-  // σ = −s, s a small fraction of ω²'s scale: K + sM is positive definite when K is positive
-  // semi-definite (zero-frequency modes included) and the lowest modes are those nearest σ.
+  // σ = 0 when K is positive definite (a structure its supports hold): a flexible one's lowest
+  // ω², 1e-15 of its largest on a strip of 10⁴ columns, keeps its relative accuracy. A singular K
+  // (zero-frequency modes) takes σ = −s, s a small fraction of ω²'s scale: K + sM is positive
+  // definite, and ω² far below s lose relative accuracy (about kModeTolerance s / ω²).
   constexpr double kShift = 1e-8;
-  const double sigma = -kShift * scale;
-  const Eigen::SparseMatrix<double> F = K - sigma * M;
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor(F);
-  if (factor.info() != Eigen::Success || !(factor.vectorD().minCoeff() > 0.0)) {
-    throw ModesUnavailable(
-        ModesUnavailable::Why::stiffness,
-        "K + s M (s = " + std::to_string(-sigma) +
-            ") is not positive definite: the stiffness is not positive semi-definite on the "
-            "motions "
-            "allowed (an unstable model), or massless DOFs are held by no stiffness");
+  double sigma = 0.0;
+  Factor factor(K);
+  if (!positive_definite(factor)) {
+    sigma = -kShift * scale;
+    factor.compute(K - sigma * M);
+    if (factor.info() != Eigen::Success || !(factor.vectorD().minCoeff() > 0.0)) {
+      throw ModesUnavailable(ModesUnavailable::Why::stiffness,
+                             "K + s M (s = " + std::to_string(-sigma) +
+                                 ") is not positive definite: the stiffness is not positive "
+                                 "semi-definite on the motions allowed (an unstable model), or "
+                                 "massless DOFs are held by no stiffness");
+    }
   }
   const Eigen::SparseMatrix<double> Mr = principal_block(M, r);
   CondensedShiftSolve op(factor, r, K.rows());
