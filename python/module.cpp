@@ -20,9 +20,11 @@
 #include "models/scene/scene_parser.hpp"
 #include "models/scene/toml_access.hpp"
 #include "python/compare_records.hpp"
+#include "python/modes_result.hpp"
 #include "python/run_result.hpp"
 #include "python/scene_from_python.hpp"
 #include "validation/studies/compare.hpp"
+#include "validation/studies/scene_modes.hpp"
 #include "validation/studies/user_checks.hpp"
 
 namespace py = pybind11;
@@ -254,6 +256,20 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
   return d;
 }
 
+/// The scene's natural modes, as `condyn modes` gives them (python/modes_result.hpp).
+py::dict modes(const py::handle& scene, std::optional<int> count) {
+  const SceneSpec spec = python::parse_python_scene(scene);
+  SceneModes result;
+  without_gil([&] {
+    try {
+      result = scene_modes(spec, count, "count");
+    } catch (const SchemeNotApplicable& e) {
+      throw SceneError(scene_message(spec.file, e.where(), e.what()));
+    }
+  });
+  return python::modes_dict(result);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_condyn, m) {
@@ -284,6 +300,7 @@ PYBIND11_MODULE(_condyn, m) {
         py::arg("max_wall_time") = 0.0, py::arg("step") = py::none());
   m.def("check", &check, py::arg("scene"), py::arg("scheme") = py::none(),
         py::arg("step") = py::none());
+  m.def("modes", &modes, py::arg("scene"), py::arg("count") = py::none());
   m.def("scheme_names", &scheme_names);
   // Parses a scene (a path or a dict) and builds nothing: a sweep checks its scenes before it
   // runs any (docs/sweep.md). Raises SceneError as run() does.

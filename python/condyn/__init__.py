@@ -18,7 +18,7 @@ from .sweep_file import SweepError
 
 SceneError.__module__ = __name__  # shown as condyn.SceneError, where users catch it
 
-__all__ = ["run", "compare", "check", "sweep", "Result", "SceneError", "SweepError",
+__all__ = ["run", "compare", "check", "modes", "sweep", "Result", "SceneError", "SweepError",
            "IntegrationError", "scheme_names"]
 
 
@@ -140,6 +140,20 @@ def check(scene, scheme=None, step=None):
     (quantity, computed, bound, passed, text). A scene without [[check]] raises SceneError."""
     _refuse_text(scene)
     return _condyn.check(scene, _text(scene, "scheme", scheme), _number(scene, "step", step))
+
+
+def modes(scene, count=None):
+    """The natural modes of the scene's constrained model at t = 0, lowest first, as `condyn
+    modes` gives them (docs/cli.md): `count` of them (default the lowest 10, or all when the model
+    has fewer). Returns a dict of numpy arrays and names: omega (rad per time unit), frequency
+    (cycles per time unit), period (inf for a zero-frequency mode), mass_ratio and
+    mass_ratio_cumulative (under [ground_motion], else None), total_mass (the mass along the
+    influence vector, or None), shapes (n x count, columns mass-normalized, phi' M phi = 1, over
+    dof_names), available (the modes the constrained model has) and solver ("dense" or
+    "lanczos"). Bad input (a count out of range, a model without mass, a nonlinear model)
+    raises SceneError naming the argument or key."""
+    _refuse_text(scene)
+    return _condyn.modes(scene, _integer(scene, "count", count))
 
 
 def sweep(sweep_file, workers=None, scheduler=None, out=None, progress=True):
