@@ -82,7 +82,8 @@ Model ModelBuilder::build() {
   while (const auto dependent = check_rank()) drop_constraint(*dependent);
   keep_independent_rows();
   if (spec_.model.mechanism) report_joints();  // its rows as kept (after the drops)
-  apply_modal_damping();  // from the modes of the constrained model: after the rows are final
+  apply_modal_damping();   // from the modes of the constrained model: after the rows are final
+  apply_rayleigh_modes();  // likewise
   if (spec_.initial.static_start) solve_static_initial();
   check_initial_consistency();
   if (!model_.is_nonlinear()) settle_initial_roundoff();

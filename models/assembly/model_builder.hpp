@@ -108,7 +108,8 @@ class ModelBuilder {
   void apply_rayleigh();
   /// Rayleigh damping of a truss with rigid members or large displacements (its system's).
   void rayleigh_on_members(double a0, double a1);
-  void apply_modal_damping();  // modal_damping.cpp
+  void apply_modal_damping();   // modal_damping.cpp
+  void apply_rayleigh_modes();  // modal_damping.cpp
 
   // nonlinear_systems.cpp
   void build_benchmark();

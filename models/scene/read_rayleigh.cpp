@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/rayleigh.hpp"
 #include "models/scene/scene_readers.hpp"
 
 namespace condyn {
@@ -69,43 +70,36 @@ void SceneReader::read_rayleigh(const toml::node& node, const std::string& path,
 void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string& path,
                                       ModelSpec& model) const {
   const auto& t = table(node, path);
-  check_keys(t, path, {"frequencies", "ratios"});
-  const auto pair_of = [&](const char* key, const char* what) {
-    const auto& n = required(t, path, key);
-    auto v = numbers(n, join(path, key));
-    if (v.size() != 2) fail(n, join(path, key), std::string("expected two ") + what);
-    return v;
-  };
-  const auto f = pair_of("frequencies", "frequencies [f1, f2] (cycles per time unit)");
-  const auto z = pair_of("ratios", "damping ratios [z1, z2]");
+  check_keys(t, path, {"frequencies", "modes", "ratios"});
+  if (const auto* modes = t.get("modes")) {
+    if (t.contains("frequencies")) {
+      fail(*modes, join(path, "modes"), "give either frequencies or modes, not both");
+    }
+    return read_rayleigh_modes(node, path, model);
+  }
+  if (!t.contains("frequencies")) {
+    fail(node, path,
+         "expected frequencies = [f1, f2] (cycles per time unit) or modes = [i, j] (modes of the "
+         "constrained model, 1 the lowest) beside ratios = [z1, z2]");
+  }
   const auto& fn = required(t, path, "frequencies");
-  const auto& zn = required(t, path, "ratios");
+  const auto f = numbers(fn, join(path, "frequencies"));
+  if (f.size() != 2) {
+    fail(fn, join(path, "frequencies"), "expected two frequencies [f1, f2] (cycles per time unit)");
+  }
   for (std::size_t i = 0; i < 2; ++i) {
     if (!(f[i] > 0.0) || !std::isfinite(f[i])) {
       fail(*array(fn, join(path, "frequencies")).get(i), index(join(path, "frequencies"), i),
            "must be a finite frequency > 0");
     }
-    if (!(z[i] >= 0.0 && z[i] < 1.0)) {
-      fail(*array(zn, join(path, "ratios")).get(i), index(join(path, "ratios"), i),
-           "must be a damping ratio in [0, 1) (0.05 is 5 %)");
-    }
   }
+  const auto z = read_rayleigh_ratios(t, path);
   if (f[0] == f[1]) {
     fail(fn, join(path, "frequencies"),
          "the two frequencies must differ: one (frequency, ratio) pair does not fix a0 and a1");
   }
   const double pi = 3.14159265358979323846;
-  const double w1 = 2.0 * pi * f[0], w2 = 2.0 * pi * f[1];
-  // a0 = 2 w1 w2 (z1 w2 - z2 w1) / (w2² - w1²), a1 = 2 (z2 w2 - z1 w1) / (w2² - w1²), divided
-  // through by w2² (r = w1/w2): no square of a frequency, which overflowed from 1e154 and
-  // underflowed below 1e-154 where a0 and a1 themselves are representable. With d = 1 - r,
-  // 1 - r² = d (1 + r) and z1 - z2 r = (z1 - z2) + z2 d: d from f2 - f1, exact for close
-  // frequencies, where 1 - r * r lost their difference (f and f + 1 ulp gave a ratio of 0.0417
-  // for 0.05).
-  const double r = f[0] / f[1];
-  const double d = (f[1] - f[0]) / f[1];
-  const double a0 = 2.0 * w1 * ((z[0] - z[1]) / d + z[1]) / (1.0 + r);
-  const double a1 = 2.0 * ((z[1] - z[0]) / d + z[0]) / (w2 * (1.0 + r));
+  const auto [a0, a1] = rayleigh_coefficients(f[0], f[1], z[0], z[1], 2.0 * pi);
   if (!std::isfinite(a0) || !std::isfinite(a1)) {
     fail(fn, join(path, "frequencies"),
          "these frequencies give a0 = " + fmt(a0) + ", a1 = " + fmt(a1) +
@@ -124,6 +118,47 @@ void SceneReader::read_rayleigh_pairs(const toml::node& node, const std::string&
                         ", a1 = " + fmt(a1) + ", from ratio " + fmt(z[0]) + " at frequency " +
                         fmt(f[0]) + " and ratio " + fmt(z[1]) + " at frequency " + fmt(f[1]) +
                         " (cycles per time unit)";
+}
+
+/// ratios = [z1, z2], each in [0, 1).
+std::array<double, 2> SceneReader::read_rayleigh_ratios(const toml::table& t,
+                                                        const std::string& path) const {
+  const auto& zn = required(t, path, "ratios");
+  const auto z = numbers(zn, join(path, "ratios"));
+  if (z.size() != 2) fail(zn, join(path, "ratios"), "expected two damping ratios [z1, z2]");
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (!(z[i] >= 0.0 && z[i] < 1.0)) {
+      fail(*array(zn, join(path, "ratios")).get(i), index(join(path, "ratios"), i),
+           "must be a damping ratio in [0, 1) (0.05 is 5 %)");
+    }
+  }
+  return {z[0], z[1]};
+}
+
+/// rayleigh = { modes = [i, j], ratios = [z1, z2] }: two distinct modes, 1 the lowest; their
+/// frequencies, and so a0 and a1, come from the constrained model once it is built
+/// (models/assembly/modal_damping.cpp).
+void SceneReader::read_rayleigh_modes(const toml::node& node, const std::string& path,
+                                      ModelSpec& model) const {
+  const auto& t = table(node, path);
+  const std::string p = join(path, "modes");
+  const auto& mn = required(t, path, "modes");
+  const auto& modes = array(mn, p);
+  if (modes.size() != 2) fail(mn, p, "expected two modes [i, j] (1 the lowest)");
+  std::vector<int> m;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const long k = integer(*modes.get(i), index(p, i));
+    if (k < 1 || k > 1000000000) {
+      fail(*modes.get(i), index(p, i), "must be a mode number >= 1 (1 the lowest)");
+    }
+    m.push_back(static_cast<int>(k));
+  }
+  if (m[0] == m[1]) {
+    fail(mn, p, "the two modes must differ: one (frequency, ratio) pair does not fix a0 and a1");
+  }
+  model.rayleigh_mode_ratios = read_rayleigh_ratios(t, path);
+  model.rayleigh_modes = m;
+  model.rayleigh_where = at(node, path);
 }
 
 }  // namespace condyn

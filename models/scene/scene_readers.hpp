@@ -54,6 +54,9 @@ class SceneReader : public TomlAccess {
   void read_rayleigh(const toml::node& node, const std::string& path, ModelSpec& model) const;
   /// rayleigh = { frequencies = [f1, f2], ratios = [z1, z2] } at `path`: a0, a1 derived.
   void read_rayleigh_pairs(const toml::node& node, const std::string& path, ModelSpec& model) const;
+  void read_rayleigh_modes(const toml::node& node, const std::string& path, ModelSpec& model) const;
+  [[nodiscard]] std::array<double, 2> read_rayleigh_ratios(const toml::table& t,
+                                                           const std::string& path) const;
   /// [[constraint_block]].
   void read_constraint_blocks(const toml::node& node, std::vector<ConstraintBlockSpec>& out) const;
   /// [model] type = "multibody" (read_mechanism.cpp): dimension, gravity, the ground's markers.

@@ -75,6 +75,11 @@ struct ModelSpec {
   /// What the scene's (frequency, ratio) pairs gave, for the report; empty for [a0, a1].
   std::string rayleigh_rule;
   SourcePoint rayleigh_where;
+  /// damping = { rayleigh = { modes = [i, j], ratios = [z1, z2] } }: a0 and a1 from the
+  /// frequencies of modes i and j (1-based) of the constrained model, found by the builder
+  /// (models/assembly/modal_damping.cpp); empty otherwise. Where: rayleigh_where.
+  std::vector<int> rayleigh_modes;
+  std::array<double, 2> rayleigh_mode_ratios{};
   /// damping = { modal = z } or { modal = [z1, z2, ...] }: the damping ratio of each mode of the
   /// constrained model, ascending (the last repeats); C built from the modes (models/
   /// modal_damping.cpp). Empty when not given.
