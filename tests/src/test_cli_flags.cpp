@@ -157,7 +157,7 @@ TEST_CASE("a word that is no command is named, with the commands") {
   CHECK(r.code == 2);
   CHECK(contains(r.err,
                  "error: 'bogus' is not a command (the commands: run, info, compare, check, "
-                 "plot, stress, validate, sweep;"));
+                 "plot, stress, validate, sweep, modes;"));
 }
 
 TEST_CASE("an option given twice is named, with the count") {
