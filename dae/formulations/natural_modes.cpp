@@ -3,6 +3,7 @@
 
 #include "dae/formulations/natural_modes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -24,12 +25,7 @@ void refuse_nonlinear(const Model& model) {
 
 }  // namespace
 
-int constrained_mode_count(const Model& model) {
-  refuse_nonlinear(model);
-  return mode_count(reduce(model).M);
-}
-
-NaturalModes natural_modes(const Model& model, int count, ModeSolver solver) {
+NaturalModes natural_modes(const Model& model, std::optional<int> asked, ModeSolver solver) {
   refuse_nonlinear(model);
   const ReducedSystem reduced = reduce(model);
   const Eigen::SparseMatrix<double>& T = reduced.transform.T;
@@ -38,6 +34,7 @@ NaturalModes natural_modes(const Model& model, int count, ModeSolver solver) {
   if (out.available == 0)
     throw ModesUnavailable(ModesUnavailable::Why::no_mass,
                            "the model has no mass: it has no natural modes");
+  const int count = asked.value_or(std::min(kDefaultModeCount, out.available));
   if (count < 1 || count > out.available) {
     const int massless = static_cast<int>(reduced.M.cols()) - out.available;
     throw ModeCountError(

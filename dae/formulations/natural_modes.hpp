@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "dae/formulations/pencil_modes.hpp"
@@ -44,15 +45,15 @@ class ModeCountError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-/// The modes the constrained model has: its DOFs with mass once the constraints are eliminated.
-/// Throws as natural_modes.
-[[nodiscard]] int constrained_mode_count(const Model& model);
+/// Modes given when no count is asked for: the lowest ten (all, when the model has fewer).
+inline constexpr int kDefaultModeCount = 10;
 
-/// The `count` lowest modes. Throws ModesUnavailable for a nonlinear model (its modes depend on
-/// its state and constraint forces: not linearized here), a model without mass, an unstable
-/// one or massless DOFs nothing holds; ModeCountError for a count out of range;
-/// SchemeNotApplicable when a coupled group of constraints is too large to eliminate.
-[[nodiscard]] NaturalModes natural_modes(const Model& model, int count,
+/// The `count` lowest modes (default kDefaultModeCount, or all the model has). Throws
+/// ModesUnavailable for a nonlinear model (its modes depend on its state and constraint forces: not
+/// linearized here), a model without mass, an unstable one or massless DOFs nothing holds;
+/// ModeCountError for a count out of range; SchemeNotApplicable when a coupled group of constraints
+/// is too large to eliminate.
+[[nodiscard]] NaturalModes natural_modes(const Model& model, std::optional<int> count,
                                          ModeSolver solver = ModeSolver::automatic);
 
 }  // namespace condyn

@@ -2,8 +2,6 @@
 
 #include "validation/studies/scene_modes.hpp"
 
-#include <algorithm>
-
 #include "models/assembly/build_model.hpp"
 
 namespace condyn {
@@ -36,8 +34,7 @@ SceneModes scene_modes(const SceneSpec& spec, std::optional<int> count,
   out.dof_names = model.dof_names;
   out.ground_motion = model.ground.has_value();
   try {
-    const int k = count ? *count : std::min(kDefaultModeCount, constrained_mode_count(model));
-    out.modes = natural_modes(model, k);
+    out.modes = natural_modes(model, count);
   } catch (const ModeCountError& e) {
     refuse(count_key, e.what());
   } catch (const ModesUnavailable& e) {

@@ -20,9 +20,6 @@ struct SceneModes {
   bool ground_motion = false;  ///< the scene has [ground_motion]: mass ratios are given
 };
 
-/// Modes given when no count is asked for: the lowest ten (all, when the model has fewer).
-inline constexpr int kDefaultModeCount = 10;
-
 /// The `count` lowest modes of the scene's model (default: kDefaultModeCount or all it has).
 /// `count_key` names the count in messages (`--count`, `count`).
 [[nodiscard]] SceneModes scene_modes(const SceneSpec& spec, std::optional<int> count,
