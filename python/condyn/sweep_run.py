@@ -106,7 +106,7 @@ class _Tasks:
     def done(self, future):
         """(the run of `future`, its new future when it was cancelled and is submitted again)."""
         run, attempt = self.futures.pop(future)
-        if future.status != "cancelled" or attempt >= self.RESUBMIT:
+        if not _cancelled(future) or attempt >= self.RESUBMIT:
             return run, None
         for path in run.files.values():
             self.contents.pop(path, None)
@@ -123,10 +123,24 @@ class _Tasks:
         return self.contents[path]
 
 
+def _cancelled(future):
+    """Whether the scheduler cancelled `future` (done). Its status may still read otherwise when
+    as_completed yields it: with a worker killed mid-sweep a task's result raised CancelledError
+    out of the sweep (one test run in several under load), so the result is asked too."""
+    if future.status == "cancelled":
+        return True
+    from concurrent.futures import CancelledError  # what distributed's futures raise
+    try:
+        future.exception()
+    except CancelledError:
+        return True
+    return False
+
+
 def _row_of(distributed, future):
     """The worker's row, or the row of a run whose task could not end (its worker died at each
     try, or the scheduler cancelled it again and again)."""
-    if future.status == "cancelled":
+    if _cancelled(future):
         return {"status": WORKER_LOST, "steps": None, "wall_s": None, "peaks": {},
                 "message": "the scheduler cancelled the task at each try"}
     try:
