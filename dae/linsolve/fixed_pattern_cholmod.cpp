@@ -1,0 +1,188 @@
+// CHOLMOD with its symbolic analysis kept across factorizations
+// (dae/linsolve/fixed_pattern_cholmod.hpp).
+
+#include "dae/linsolve/fixed_pattern_cholmod.hpp"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace condyn {
+
+namespace {
+
+/// The orderings tried, in the order they are reported.
+constexpr std::pair<int, const char*> kOrderings[] = {
+    {CHOLMOD_AMD, "amd"}, {CHOLMOD_METIS, "metis"}, {CHOLMOD_NESDIS, "nesdis"}};
+
+/// One cholmod_common, started and finished with its owner: errors are not printed (condyn
+/// reports them), a simplicial factorization is L Lᵀ (so that it, like the supernodal one, finds a
+/// matrix that is not positive definite), one ordering per analysis.
+struct Common {
+  cholmod_common c{};
+  Common() {
+    cholmod_start(&c);
+    c.print = 0;
+    c.final_ll = 1;
+    c.nmethods = 1;
+    c.postorder = 1;
+  }
+  ~Common() { cholmod_finish(&c); }
+  Common(const Common&) = delete;
+  Common& operator=(const Common&) = delete;
+};
+
+/// A view of `matrix`'s lower triangle as CHOLMOD reads it (no copy; CHOLMOD only reads it).
+cholmod_sparse lower_view(const Eigen::SparseMatrix<double>& matrix) {
+  if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
+    throw std::invalid_argument("FixedPatternCholmod: a square compressed matrix is expected");
+  }
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<std::size_t>(matrix.rows());
+  a.nzmax = static_cast<std::size_t>(matrix.nonZeros());
+  // CHOLMOD's interface takes non-const pointers; with stype −1 and no conversion asked it
+  // reads the arrays only.
+  a.p = const_cast<int*>(matrix.outerIndexPtr());
+  a.i = const_cast<int*>(matrix.innerIndexPtr());
+  a.x = const_cast<double*>(matrix.valuePtr());
+  a.stype = -1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+/// The bytes of a symbolic factor's numeric values and indices once factored.
+double factor_bytes(const cholmod_factor& l, double entries) {
+  constexpr double kValue = sizeof(double), kIndex = sizeof(int);
+  if (l.is_super != 0) {
+    return static_cast<double>(l.xsize) * kValue + static_cast<double>(l.ssize) * kIndex;
+  }
+  return entries * (kValue + kIndex);
+}
+
+/// The symbolic analysis of `a` under `ordering`, or nullptr when the build lacks it or it fails.
+cholmod_factor* analyze_with(cholmod_sparse& a, int ordering, Common& common) {
+  common.c.method[0].ordering = ordering;
+  cholmod_factor* l = cholmod_analyze(&a, &common.c);
+  if (l != nullptr && common.c.status < CHOLMOD_OK) cholmod_free_factor(&l, &common.c);
+  return l;
+}
+
+}  // namespace
+
+std::vector<CholmodCandidate> cholmod_candidates(const Eigen::SparseMatrix<double>& matrix) {
+  cholmod_sparse a = lower_view(matrix);
+  Common common;
+  std::vector<CholmodCandidate> out;
+  for (const auto& [ordering, name] : kOrderings) {
+    cholmod_factor* l = analyze_with(a, ordering, common);
+    if (l == nullptr) continue;
+    const double entries = common.c.lnz;
+    out.push_back({name, entries, common.c.fl, factor_bytes(*l, entries)});
+    cholmod_free_factor(&l, &common.c);
+  }
+  if (out.empty())
+    throw std::runtime_error("CHOLMOD's symbolic analysis failed under every ordering");
+  return out;
+}
+
+const CholmodCandidate& least_fill(const std::vector<CholmodCandidate>& candidates) {
+  return *std::min_element(candidates.begin(), candidates.end(),
+                           [](const CholmodCandidate& x, const CholmodCandidate& y) {
+                             return x.factor_entries < y.factor_entries;
+                           });
+}
+
+struct FixedPatternCholmod::Impl {
+  Common common;
+  cholmod_factor* factor = nullptr;
+  /// cholmod_solve2's result and workspace, allocated at the first solve and reused.
+  cholmod_dense* x = nullptr;
+  cholmod_dense* y = nullptr;
+  cholmod_dense* e = nullptr;
+  std::size_t n = 0;
+
+  Impl() = default;
+  ~Impl() {
+    cholmod_free_dense(&x, &common.c);
+    cholmod_free_dense(&y, &common.c);
+    cholmod_free_dense(&e, &common.c);
+    cholmod_free_factor(&factor, &common.c);
+  }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+};
+
+FixedPatternCholmod::FixedPatternCholmod() : impl_(std::make_unique<Impl>()) {}
+FixedPatternCholmod::~FixedPatternCholmod() = default;
+
+bool FixedPatternCholmod::supernodal() const {
+  return impl_->factor != nullptr && impl_->factor->is_super != 0;
+}
+
+void FixedPatternCholmod::analyze(const Eigen::SparseMatrix<double>& matrix) {
+  Impl& k = *impl_;
+  cholmod_sparse a = lower_view(matrix);
+  double best = 0.0;
+  for (const auto& [ordering, name] : kOrderings) {
+    cholmod_factor* l = analyze_with(a, ordering, k.common);
+    if (l == nullptr) continue;
+    if (k.factor != nullptr && k.common.c.lnz >= best) {
+      cholmod_free_factor(&l, &k.common.c);
+      continue;
+    }
+    cholmod_free_factor(&k.factor, &k.common.c);
+    k.factor = l;
+    best = k.common.c.lnz;
+    ordering_ = name;
+  }
+  if (k.factor == nullptr) throw std::runtime_error("CHOLMOD's symbolic analysis failed");
+  k.n = a.nrow;
+}
+
+bool FixedPatternCholmod::factor(const Eigen::SparseMatrix<double>& matrix) {
+  Impl& k = *impl_;
+  if (k.factor == nullptr) analyze(matrix);
+  cholmod_sparse a = lower_view(matrix);
+  if (a.nrow != k.n) throw std::invalid_argument("FixedPatternCholmod: the matrix changed size");
+  ++factorizations_;
+  cholmod_factorize(&a, k.factor, &k.common.c);
+  if (k.common.c.status == CHOLMOD_NOT_POSDEF) return false;
+  if (k.common.c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+  if (k.common.c.status < CHOLMOD_OK) {
+    throw std::runtime_error("CHOLMOD factorization failed (status " +
+                             std::to_string(k.common.c.status) + ")");
+  }
+  return true;
+}
+
+void FixedPatternCholmod::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) {
+  Impl& k = *impl_;
+  if (k.factor == nullptr || k.factor->minor < k.n) {
+    throw std::logic_error("FixedPatternCholmod: solve before a factorization");
+  }
+  if (static_cast<std::size_t>(x.size()) != k.n) {
+    throw std::invalid_argument("FixedPatternCholmod: right-hand side of wrong size");
+  }
+  cholmod_dense b{};
+  b.nrow = b.nzmax = b.d = k.n;
+  b.ncol = 1;
+  b.x = x.data();
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  if (cholmod_solve2(CHOLMOD_A, k.factor, &b, nullptr, &k.x, nullptr, &k.y, &k.e, &k.common.c) ==
+      0) {
+    throw std::runtime_error("CHOLMOD solve failed (status " + std::to_string(k.common.c.status) +
+                             ")");
+  }
+  std::copy_n(static_cast<const double*>(k.x->x), k.n, x.data());
+}
+
+}  // namespace condyn

@@ -1,0 +1,71 @@
+#pragma once
+/// CHOLMOD (SuiteSparse) on a sequence of symmetric positive-definite matrices that share one
+/// pattern: the symbolic analysis once, under the fill-reducing ordering with the fewest entries
+/// in L among those the library was built with (AMD, METIS, CHOLMOD's nested dissection), then
+/// numeric factorizations L Lᵀ = P A Pᵀ that reuse it (cholmod_factorize: no ordering, no
+/// symbolic work). Supernodal where CHOLMOD finds it pays (its default rule: flops per entry of L
+/// at least 40, as on 2D and 3D meshes), its dense blocks through the BLAS the process links
+/// (OpenBLAS, README "Dependencies"). Only the lower triangle is read: the matrix is given
+/// whole (both triangles, as CondensedNewton forms it) and must be symmetric. CHOLMOD stays out
+/// of the header.
+
+#include <Eigen/Sparse>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace condyn {
+
+/// One fill-reducing ordering's symbolic analysis of a pattern: the name (`amd`, `metis`,
+/// `nesdis`), the entries of L, the flops of a factorization (CHOLMOD's count for a simplicial
+/// L Lᵀ) and the factor's memory in bytes (values and indices, supernodal or simplicial as
+/// CHOLMOD would factor it).
+struct CholmodCandidate {
+  std::string ordering;
+  double factor_entries = 0.0;
+  double flops = 0.0;
+  double factor_bytes = 0.0;
+};
+
+/// The symbolic analysis of `matrix` (square, compressed, both triangles stored) under every
+/// ordering the library offers, in the order AMD, METIS, NESDIS (an ordering missing from the
+/// build is left out). Costs one analysis per ordering and no factorization. Throws
+/// std::invalid_argument for a matrix not square; std::runtime_error when every analysis fails.
+[[nodiscard]] std::vector<CholmodCandidate> cholmod_candidates(
+    const Eigen::SparseMatrix<double>& matrix);
+
+/// The candidate with the fewest entries in L (the first of equals); `candidates` not empty.
+[[nodiscard]] const CholmodCandidate& least_fill(const std::vector<CholmodCandidate>& candidates);
+
+class FixedPatternCholmod {
+ public:
+  FixedPatternCholmod();
+  ~FixedPatternCholmod();
+  FixedPatternCholmod(const FixedPatternCholmod&) = delete;
+  FixedPatternCholmod& operator=(const FixedPatternCholmod&) = delete;
+
+  /// Factors `matrix` (compressed, symmetric, both triangles), whose pattern must be that of the
+  /// first matrix factored; the first call analyses it under the least-fill ordering. False when
+  /// the matrix is not positive definite (a recoverable failure: the integrator retries with a
+  /// smaller step, where cj² M dominates). Throws std::invalid_argument for a matrix not square
+  /// or of another size than the first, std::runtime_error when CHOLMOD fails otherwise
+  /// (out of memory).
+  bool factor(const Eigen::SparseMatrix<double>& matrix);
+  /// x ← (last matrix factored)⁻¹ x, in place. Throws std::logic_error before a factorization.
+  void solve_in_place(Eigen::Ref<Eigen::VectorXd> x);
+  /// The ordering the analysis chose (empty before the first factor()).
+  [[nodiscard]] const std::string& ordering() const { return ordering_; }
+  /// Numeric factorizations made (all reuse the one symbolic analysis).
+  [[nodiscard]] long factorizations() const { return factorizations_; }
+  /// Whether the factor is supernodal (false before the first factor()).
+  [[nodiscard]] bool supernodal() const;
+
+ private:
+  struct Impl;
+  void analyze(const Eigen::SparseMatrix<double>& matrix);
+  std::unique_ptr<Impl> impl_;
+  std::string ordering_;
+  long factorizations_ = 0;
+};
+
+}  // namespace condyn
