@@ -1,5 +1,6 @@
 #include "dae/formulations/penalty_ode.hpp"
 
+#include "dae/linsolve/condensed_newton.hpp"
 #include "models/core/row_scales.hpp"
 
 #include <algorithm>
@@ -135,6 +136,23 @@ void PenaltyOde::fill_jacobian(double t, ConstRef y, ConstRef /*yp*/, double cj,
                      weights_.position);
   BlockJacobian::add(J, n_, n_, Eigen::SparseMatrix<double>(Nt * velocity_mask_ * N),
                      weights_.velocity);
+}
+
+std::unique_ptr<NewtonSystem> PenaltyOde::newton_system() const {
+  using Sparse = Eigen::SparseMatrix<double>;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
+  const Sparse& M = system_->mass(0.0, zero);
+  Sparse K = system_->stiffness(0.0, zero, zero);
+  Sparse C = system_->damping(0.0, zero, zero);
+  if (K.rows() != n_) K.resize(n_, n_);  // no stiffness
+  if (C.rows() != n_) C.resize(n_, n_);  // no damping
+  if (m_ > 0) {
+    const Sparse N = normals(system_->constraint_jacobian(0.0, zero)), Nt = N.transpose();
+    K += weights_.position * Sparse(Nt * position_mask_ * N);
+    C += weights_.velocity * Sparse(Nt * velocity_mask_ * N);
+  }
+  return std::make_unique<CondensedNewton>(Scheme::index1, LinearMatrices{M, C, K, Sparse(0, n_)},
+                                           Sparse(0, 0));
 }
 
 Eigen::VectorXd PenaltyOde::net_force(double t, const Eigen::VectorXd& y) const {

@@ -66,6 +66,13 @@ class PenaltyOde final : public DaeProblem {
   /// (dae/interface/held_massless.hpp).
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
 
+  /// IDA's Newton systems condensed to u, as elimination's (dae/formulations/reduced_ode.hpp):
+  /// (K_w + cj C_w + cj² M) du = r2 + (C_w + cj M) r1, dv = cj du − r1, with the penalized
+  /// K_w = K + w N_pᵀN_p and C_w = C + c N_vᵀN_v (N the rows' unit normals): symmetric, and
+  /// positive definite for a stable model, so CHOLMOD can factor it. The model is linear (a
+  /// nonlinear one runs the augmented Lagrangian), so the matrices are those at t = 0.
+  [[nodiscard]] std::unique_ptr<NewtonSystem> newton_system() const override;
+
   /// f(t, u, v) − Aᵀλ(t, u, v): what M v' balances.
   [[nodiscard]] Eigen::VectorXd net_force(double t, const Eigen::VectorXd& y) const;
 

@@ -231,6 +231,10 @@ class Ida final : public sundials::SundialsStepper {
     // convergence tests) drifted away on the chapter truss (1e19 at t = 10).
     if (options.condensed_newton && !options.dense_linear_solver) {
       newton_ = problem.newton_system();
+      // The plan asks for CHOLMOD only where the matrix is symmetric positive definite.
+      if (options.cholmod && (!newton_ || !newton_->use_cholmod())) {
+        throw IntegrationError("CHOLMOD asked for a Newton matrix that is not symmetric");
+      }
     }
     if (!newton_ && options.dense_linear_solver) {
       data_.jac = problem.jacobian_pattern().matrix();

@@ -47,6 +47,9 @@ struct IntegratorSettings {
   /// The problem's own condensed Newton solve (DaeProblem::newton_system), when it has one and
   /// KLU is used ([solve] newton = "condensed").
   bool condensed_newton = false;
+  /// That condensed Newton matrix factored by CHOLMOD instead of KLU (symmetric positive definite:
+  /// dae/run/factorization_choice.hpp); implies condensed_newton.
+  bool cholmod = false;
   /// Whether atol_multiplier and atol_mu, which hold for rows of the largest coefficient, are
   /// raised for rows more than kRowScaleSpan smaller (DaeProblem::multiplier_row_scales) by the
   /// factor they lie beyond it: a multiplier is a force per unit coefficient, so a row written

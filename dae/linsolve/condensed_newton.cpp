@@ -65,7 +65,13 @@ bool CondensedNewton::setup(double cj) {
     BlockJacobian::add(J, n_, n_ + m_, AApT_);
     BlockJacobian::add(J, n_ + m_, 0, Ap_);
   }
-  return klu_.factor(matrix_);
+  return cholmod_ ? cholmod_->factor(matrix_) : klu_.factor(matrix_);
+}
+
+bool CondensedNewton::use_cholmod() {
+  if (symmetric_matrix() == nullptr) return false;
+  cholmod_ = std::make_unique<FixedPatternCholmod>();
+  return true;
 }
 
 void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
@@ -87,7 +93,11 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
     }
   }
   if (p > 0) rhs_.tail(p) = b.segment(2 * n + m, p);
-  klu_.solve_in_place(rhs_);
+  if (cholmod_) {
+    cholmod_->solve_in_place(rhs_);
+  } else {
+    klu_.solve_in_place(rhs_);
+  }
   const auto du = rhs_.head(n);
   auto dv = b.segment(n, n);
   dv = cj * du - r1_;

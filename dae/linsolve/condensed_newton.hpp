@@ -21,7 +21,10 @@
 
 #include <Eigen/Sparse>
 
+#include <memory>
+
 #include "dae/linsolve/block_jacobian.hpp"
+#include "dae/linsolve/fixed_pattern_cholmod.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "dae/linsolve/kkt.hpp"
 #include "dae/linsolve/newton_system.hpp"
@@ -39,6 +42,12 @@ class CondensedNewton final : public NewtonSystem {
   bool setup(double cj) override;
   void solve(Eigen::Ref<Eigen::VectorXd> b) override;
   [[nodiscard]] long nonzeros() const override { return matrix_.nonZeros(); }
+  /// Without constraints (elimination's reduced system), K + cj C + cj² M: symmetric, and
+  /// positive definite for a stable model (M positive definite, K and C positive semi-definite).
+  [[nodiscard]] const Eigen::SparseMatrix<double>* symmetric_matrix() const override {
+    return m_ == 0 && p_ == 0 ? &matrix_ : nullptr;
+  }
+  bool use_cholmod() override;
 
  private:
   using Sparse = Eigen::SparseMatrix<double>;
@@ -50,6 +59,7 @@ class CondensedNewton final : public NewtonSystem {
   Sparse matrix_;  ///< the condensed matrix on its fixed pattern, values for cj_
   Eigen::VectorXd rhs_, r1_, work_;
   FixedPatternKlu klu_;
+  std::unique_ptr<FixedPatternCholmod> cholmod_;  ///< set by use_cholmod(): factors instead of KLU
 };
 
 }  // namespace condyn

@@ -4,6 +4,7 @@
 /// (∂F/∂y + cj ∂F/∂y') x = b. dae/integrators/newton_linear_solver.hpp wraps one for SUNDIALS.
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 namespace condyn {
 
@@ -20,6 +21,15 @@ class NewtonSystem {
   /// then preceded by linearize_at, and the matrix is renewed every few steps even when the
   /// scalar stays (dae/integrators/newton_linear_solver.hpp).
   [[nodiscard]] virtual bool state_dependent() const { return false; }
+  /// The matrix factored when it is symmetric positive definite by construction (its pattern, and
+  /// the values of the last setup), which CHOLMOD can factor; nullptr for any other (a saddle
+  /// point with multipliers, an unsymmetric matrix), which KLU factors.
+  [[nodiscard]] virtual const Eigen::SparseMatrix<double>* symmetric_matrix() const {
+    return nullptr;
+  }
+  /// Factors with CHOLMOD from the next setup on (dae/linsolve/fixed_pattern_cholmod.hpp); false,
+  /// and nothing changed, when symmetric_matrix() is nullptr.
+  virtual bool use_cholmod() { return false; }
   /// The state (t, y) the next setup linearises at: the integrator's predicted state, where
   /// SUNDIALS' own matrix-based solvers evaluate their Jacobians. Nothing by default.
   virtual void linearize_at(double /*t*/, const Eigen::Ref<const Eigen::VectorXd>& /*y*/) {}

@@ -137,6 +137,27 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
   }
 }
 
+/// The factorization of the Newton matrices: CHOLMOD, which condenses elimination's Newton
+/// systems, where they are symmetric positive definite and it is chosen; noted when it is.
+void plan_factorization(RunPlan& p) {
+  using LinearSolver = SolveSpec::LinearSolver;
+  const SolveSpec& s = p.settings;
+  // The condensed system is formed only when it may be factored by CHOLMOD.
+  const bool asked = s.linear_solver == LinearSolver::cholmod ||
+                     (s.linear_solver == LinearSolver::automatic && s.condensed_newton);
+  std::unique_ptr<NewtonSystem> newton;
+  if (asked && p.scheme == Scheme::elimination && p.reduced_ode) {
+    newton = p.reduced_ode->newton_system();
+  } else if (asked && p.scheme == Scheme::penalty && !p.model->is_nonlinear()) {
+    newton = PenaltyOde(*p.model->system, p.weights).newton_system();
+  }
+  p.factorization = choose_factorization(newton.get(), p.scheme, p.settings);
+  if (!p.factorization.cholmod) return;
+  p.integrator.cholmod = true;
+  p.integrator.condensed_newton = true;
+  p.notes.push_back({RunNote::Kind::scheme_setting, p.factorization.reason});
+}
+
 }  // namespace
 
 IntegratorSettings integrator_settings(const Model& model, const SolveSpec& settings) {
@@ -168,6 +189,7 @@ RunPlan plan(const Model& model, const SolveSpec& settings, SchemeDecisions& dec
   plan_tolerances(p);
   if (p.scheme == Scheme::elimination) plan_elimination(p, decisions);
   if (!p.refusal) plan_parameters(p, decisions);
+  if (!p.refusal) plan_factorization(p);
   return p;
 }
 

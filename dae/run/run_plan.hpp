@@ -16,6 +16,7 @@
 #include "dae/formulations/penalty_ode.hpp"
 #include "dae/formulations/reduced_ode.hpp"
 #include "dae/formulations/reduced_system.hpp"
+#include "dae/run/factorization_choice.hpp"
 #include "dae/run/scheme_choice.hpp"
 #include "dae/run/solve_result.hpp"
 #include "models/core/model.hpp"
@@ -52,6 +53,8 @@ struct RunPlan {
   /// The absolute tolerances per kind of unknown and the rule they came from (the model's scales).
   AbsoluteTolerances tolerances;
   IntegratorSettings integrator;  ///< what the integrator is asked, in numbers (no callbacks)
+  /// The factorization of the Newton matrices and why (dae/run/factorization_choice.hpp).
+  FactorizationChoice factorization;
   /// Noted before the run: the scheme's parameters (Baumgarte's, penalty's rule), the mixed
   /// treatment's counts. The integrator's own note replaces them (SolveSummary::notes).
   std::vector<RunNote> notes;

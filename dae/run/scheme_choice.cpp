@@ -313,7 +313,9 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
   const Model& model = model_;
   refuse_inapplicable(model, scheme, settings.scheme_where);
   // The matrix IDA's Newton iterations factor: the condensed one when asked for.
-  const bool condensed = settings.condensed_newton && !settings.dense_linear_solver;
+  const bool condensed =
+      (settings.condensed_newton || settings.linear_solver == SolveSpec::LinearSolver::cholmod) &&
+      !settings.dense_linear_solver;
   SystemSize size;
   size.dense = settings.dense_linear_solver;
   if (scheme == Scheme::elimination && model.is_nonlinear()) {
@@ -370,7 +372,9 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
   if (scheme == Scheme::penalty) {
     const PenaltyOde ode(*model.system, penalty_weights(model, settings));
     size.unknowns = ode.size();
-    size.jacobian_nonzeros = ode.jacobian_pattern().nonZeros();
+    size.condensed = condensed;
+    size.jacobian_nonzeros =
+        condensed ? ode.newton_system()->nonzeros() : ode.jacobian_pattern().nonZeros();
     return size;
   }
   const MechanicalSystem* system = model.system.get();

@@ -64,6 +64,15 @@ struct SolveSpec {
   std::vector<int> slaves_lines;  ///< the line of each `slaves` entry (0: not from a file)
   /// Dense linear solver instead of KLU (only sensible for tiny systems).
   bool dense_linear_solver = false;
+  /// [solve] linear_solver = "auto" (default), "klu" or "cholmod" ("dense" sets
+  /// dense_linear_solver): the sparse factorization of the Newton matrices
+  /// (dae/run/factorization_choice.hpp). auto: CHOLMOD where the matrix factored is symmetric
+  /// positive definite by construction and its predicted factor is smaller than KLU's, else KLU;
+  /// cholmod: CHOLMOD, which condenses elimination's Newton systems and is refused where the
+  /// Newton matrix is not symmetric positive definite.
+  enum class LinearSolver { automatic, klu, cholmod };
+  LinearSolver linear_solver = LinearSolver::automatic;
+  SourcePoint linear_solver_where;  ///< the `solve.linear_solver` key, for a refusal
   /// [solve] max_order: the highest BDF order (1 to 5, default 5). BDF2 damps the stiff modes a
   /// step does not resolve (its amplification tends to 0 as h ω grows), BDF3 to 5 much less.
   int max_order = 5;

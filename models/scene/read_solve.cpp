@@ -132,8 +132,15 @@ void read_slaves(const TomlAccess& r, const toml::table& t, SolveSpec& solve) {
 void read_choices(const TomlAccess& r, const toml::table& t, SolveSpec& solve) {
   if (const auto* n = t.get("linear_solver")) {
     const std::string s = r.string(*n, "solve.linear_solver");
-    if (s != "klu" && s != "dense") r.fail(*n, "solve.linear_solver", "expected 'klu' or 'dense'");
+    if (s != "auto" && s != "klu" && s != "cholmod" && s != "dense") {
+      r.fail(*n, "solve.linear_solver", "expected 'auto', 'klu', 'cholmod' or 'dense'");
+    }
     solve.dense_linear_solver = s == "dense";
+    using LinearSolver = SolveSpec::LinearSolver;
+    solve.linear_solver = s == "klu"       ? LinearSolver::klu
+                          : s == "cholmod" ? LinearSolver::cholmod
+                                           : LinearSolver::automatic;
+    solve.linear_solver_where = r.at(*n, "solve.linear_solver");
   }
   if (const auto* n = t.get("newton")) {
     const std::string s = r.string(*n, "solve.newton");

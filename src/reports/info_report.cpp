@@ -14,7 +14,9 @@
 #include "dae/formulations/constraint_treatment.hpp"
 #include "dae/formulations/model_scales.hpp"
 #include "dae/formulations/partitioned_ode.hpp"
+#include "dae/formulations/reduced_ode.hpp"
 #include "dae/formulations/reduced_system.hpp"
+#include "dae/run/factorization_choice.hpp"
 #include "dae/run/scheme_memory.hpp"
 #include "dae/run/solve.hpp"
 #include "models/core/classification.hpp"
@@ -346,6 +348,22 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
   return selected;
 }
 
+/// The factorization a run would use and why; under elimination of a linear model with KLU on
+/// the full Jacobian, also what each factorization of its condensed matrix would take.
+void print_factorization(std::ostream& out, const RunPlan& run_plan) {
+  if (run_plan.refusal) return;
+  std::string text = run_plan.factorization.reason;
+  const SolveSpec& s = run_plan.settings;
+  if (run_plan.reduced_ode && !run_plan.factorization.cholmod && !s.dense_linear_solver &&
+      s.linear_solver == SolveSpec::LinearSolver::automatic && !s.condensed_newton) {
+    const auto newton = run_plan.reduced_ode->newton_system();
+    if (const auto* matrix = newton->symmetric_matrix()) {
+      text += "; its condensed matrix: " + analyse_factorizations(*matrix).describe();
+    }
+  }
+  out << wrapped_text("factorization: ", text);
+}
+
 }  // namespace
 
 void print_info(std::ostream& out, const Model& model, const BuildReport& report,
@@ -382,6 +400,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
         << wrapped_list("  slaves: ", names_of(model, ms.slaves))
         << wrapped_list("  masters: ", names_of(model, ms.masters));
   }
+  print_factorization(out, run_plan);
   // Elimination is sized already: the other schemes' peak without it.
   decisions.release_reduced();
   run_plan.reduced.reset();

@@ -1,0 +1,51 @@
+#pragma once
+/// Which sparse factorization a run's Newton matrices get ([solve] linear_solver): CHOLMOD's
+/// Cholesky where the matrix is symmetric positive definite by construction (elimination's
+/// condensed K̂ + cj Ĉ + cj² M̂: dae/linsolve/condensed_newton.hpp), KLU's LU everywhere else (the
+/// saddle points of the multiplier schemes, the integrators' unsymmetric Jacobians over [u; v]).
+///
+/// The choice of `auto` is made from the pattern: one symbolic analysis per candidate, KLU's
+/// (AMD on the pattern, predicted_factor_entries) and CHOLMOD's under each ordering its build
+/// offers (dae/linsolve/fixed_pattern_cholmod.hpp); CHOLMOD when its least-fill ordering's factor
+/// takes less memory than KLU's L and U. The analyses cost no factorization.
+
+#include <string>
+#include <vector>
+
+#include "dae/linsolve/fixed_pattern_cholmod.hpp"
+#include "dae/linsolve/newton_system.hpp"
+#include "models/core/scheme.hpp"
+#include "models/core/solve_spec.hpp"
+
+namespace condyn {
+
+/// The symbolic analyses of one symmetric positive-definite Newton matrix.
+struct FactorizationCandidates {
+  int unknowns = 0;
+  long nonzeros = 0;
+  double klu_entries = 0.0;               ///< KLU's L and U, predicted (AMD)
+  double klu_bytes = 0.0;                 ///< their values and row indices
+  std::vector<CholmodCandidate> cholmod;  ///< one per ordering the build offers
+  /// Whether CHOLMOD's least-fill factor takes less memory than KLU's (auto's rule).
+  [[nodiscard]] bool cholmod_smaller() const;
+  /// One line per candidate: entries, flops (CHOLMOD) and memory.
+  [[nodiscard]] std::string describe() const;
+};
+
+/// Analyses `matrix` (square, compressed, symmetric, both triangles) under every candidate.
+[[nodiscard]] FactorizationCandidates analyse_factorizations(
+    const Eigen::SparseMatrix<double>& matrix);
+
+struct FactorizationChoice {
+  bool cholmod = false;  ///< CHOLMOD factors the (condensed) Newton matrix; else KLU or dense
+  std::string reason;    ///< why, for the summary and `info`
+};
+
+/// The factorization of a run under `scheme` (resolved) whose condensed Newton system, when it
+/// has one, is `newton` (nullptr: none). Throws SchemeNotApplicable (where: the
+/// `solve.linear_solver` key) when CHOLMOD is named and the Newton matrix is not symmetric
+/// positive definite by construction.
+[[nodiscard]] FactorizationChoice choose_factorization(const NewtonSystem* newton, Scheme scheme,
+                                                       const SolveSpec& settings);
+
+}  // namespace condyn
