@@ -137,20 +137,15 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
   }
 }
 
-/// The factorization of the Newton matrices: CHOLMOD, which condenses elimination's Newton
-/// systems, where they are symmetric positive definite and it is chosen; noted when it is.
+/// The factorization of the Newton matrices: CHOLMOD, which condenses the Newton systems, where
+/// they are symmetric positive definite and it is chosen; noted when it is.
 void plan_factorization(RunPlan& p) {
   using LinearSolver = SolveSpec::LinearSolver;
   const SolveSpec& s = p.settings;
   // The condensed system is formed only when it may be factored by CHOLMOD.
   const bool asked = s.linear_solver == LinearSolver::cholmod ||
                      (s.linear_solver == LinearSolver::automatic && s.condensed_newton);
-  std::unique_ptr<NewtonSystem> newton;
-  if (asked && p.scheme == Scheme::elimination && p.reduced_ode) {
-    newton = p.reduced_ode->newton_system();
-  } else if (asked && p.scheme == Scheme::penalty && !p.model->is_nonlinear()) {
-    newton = PenaltyOde(*p.model->system, p.weights).newton_system();
-  }
+  const auto newton = asked ? symmetric_newton_system(p) : nullptr;
   p.factorization = choose_factorization(newton.get(), p.scheme, p.settings);
   if (!p.factorization.cholmod) return;
   p.integrator.cholmod = true;
@@ -159,6 +154,15 @@ void plan_factorization(RunPlan& p) {
 }
 
 }  // namespace
+
+std::unique_ptr<NewtonSystem> symmetric_newton_system(const RunPlan& p) {
+  if (p.refusal || p.settings.dense_linear_solver) return nullptr;
+  if (p.scheme == Scheme::elimination && p.reduced_ode) return p.reduced_ode->newton_system();
+  if (p.scheme == Scheme::penalty && !p.model->is_nonlinear()) {
+    return PenaltyOde(*p.model->system, p.weights).newton_system();
+  }
+  return nullptr;
+}
 
 IntegratorSettings integrator_settings(const Model& model, const SolveSpec& settings) {
   return settings_from(model, settings, absolute_tolerances(model, settings));

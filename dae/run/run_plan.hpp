@@ -72,6 +72,11 @@ struct RunPlan {
 [[nodiscard]] RunPlan plan(const Model& model, const SolveSpec& settings,
                            SchemeDecisions& decisions);
 
+/// The condensed Newton system of the plan's run when its matrix is symmetric positive definite
+/// (elimination and penalty on a linear model: K + cj C + cj² M), which CHOLMOD can factor;
+/// nullptr for the other schemes and for a refused plan.
+[[nodiscard]] std::unique_ptr<NewtonSystem> symmetric_newton_system(const RunPlan& plan);
+
 /// What the integrator is asked for this model under these settings: tolerances per kind of
 /// unknown (dae/formulations/model_scales.hpp), first step, output times, load steps, budgets.
 [[nodiscard]] IntegratorSettings integrator_settings(const Model& model, const SolveSpec& settings);

@@ -348,18 +348,17 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
   return selected;
 }
 
-/// The factorization a run would use and why; under elimination of a linear model with KLU on
-/// the full Jacobian, also what each factorization of its condensed matrix would take.
+/// The factorization a run would use and why; where the run's condensed Newton matrix is
+/// symmetric positive definite and the choice did not analyse it (KLU named, or the full
+/// Jacobian), also what each factorization of that matrix would take.
 void print_factorization(std::ostream& out, const RunPlan& run_plan) {
   if (run_plan.refusal) return;
   std::string text = run_plan.factorization.reason;
-  const SolveSpec& s = run_plan.settings;
-  if (run_plan.reduced_ode && !run_plan.factorization.cholmod && !s.dense_linear_solver &&
-      s.linear_solver == SolveSpec::LinearSolver::automatic && !s.condensed_newton) {
-    const auto newton = run_plan.reduced_ode->newton_system();
-    if (const auto* matrix = newton->symmetric_matrix()) {
-      text += "; its condensed matrix: " + analyse_factorizations(*matrix).describe();
-    }
+  const auto newton =
+      text.find("KLU (amd)") == std::string::npos ? symmetric_newton_system(run_plan) : nullptr;
+  if (const auto* matrix = newton ? newton->symmetric_matrix() : nullptr) {
+    text += "; its condensed matrix K + cj C + cj^2 M (symmetric positive definite): " +
+            analyse_factorizations(*matrix).describe();
   }
   out << wrapped_text("factorization: ", text);
 }
