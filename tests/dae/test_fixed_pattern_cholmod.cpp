@@ -104,8 +104,9 @@ TEST_CASE("CHOLMOD refuses a matrix that is not positive definite, then factors 
 TEST_CASE("the analysis lists every ordering of the build and picks the least fill") {
   const Eigen::SparseMatrix<double> a = grid_matrix(60, 60, 1.0);
   const std::vector<CholmodCandidate> candidates = cholmod_candidates(a);
-  std::vector<std::string> names;
-  for (const auto& c : candidates) names.push_back(c.ordering);
+  std::vector<std::string> names(candidates.size());
+  std::transform(candidates.begin(), candidates.end(), names.begin(),
+                 [](const CholmodCandidate& c) { return c.ordering; });
   // Debian's libcholmod3 is built with METIS and its Partition module (ldd: libmetis.so.5).
   CHECK(names == std::vector<std::string>{"amd", "metis", "nesdis"});
   for (const auto& c : candidates) {
