@@ -5,12 +5,13 @@
 #include "models/core/sparse_qr.hpp"
 
 #include <SuiteSparseQR_C.h>
-#include <dlfcn.h>
 
 #include <atomic>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+
+#include "models/core/load_library.hpp"
 
 #ifndef CONDYN_SPQR_SONAME
 #error "CONDYN_SPQR_SONAME (SuiteSparseQR's shared library, e.g. libspqr.so.2) is set by CMake"
@@ -36,38 +37,25 @@ struct Library {
 
 std::atomic<bool> g_loaded{false};
 
-std::runtime_error load_error(const std::string& what) {
-  const char* detail = dlerror();
-  return std::runtime_error("cannot use SuiteSparseQR (" CONDYN_SPQR_SONAME
-                            "), which checks the rank of large constraint groups: " +
-                            what + (detail ? std::string(": ") + detail : std::string()) +
-                            "; install Debian's libspqr2");
-}
-
-template <class F>
-void resolve(void* handle, const char* name, F& f) {
-  void* p = dlsym(handle, name);
-  if (!p) throw load_error(std::string("no symbol ") + name);
-  f = reinterpret_cast<F>(p);  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast): dlsym
-}
-
-/// Loads the library once per process; it stays loaded. A failed load is retried on the next call.
+/// Loads the library once per process; it stays loaded. A failed load throws LibraryUnavailable
+/// and is tried again at the next call.
 const Library& library() {
   static const Library lib = [] {
-    // RTLD_LOCAL: its symbols (and CHOLMOD's) stay out of the global namespace.
-    void* handle = dlopen(CONDYN_SPQR_SONAME, RTLD_NOW | RTLD_LOCAL);
-    if (!handle) throw load_error("dlopen failed");
+    // Local: its symbols (and CHOLMOD's) stay out of the global namespace.
+    const LoadedLibrary spqr({"SuiteSparseQR", CONDYN_SPQR_SONAME,
+                              "checks the rank of large constraint groups", "libspqr2"},
+                             LoadedLibrary::Scope::local);
     Library l;
-    resolve(handle, "cholmod_l_start", l.start);
-    resolve(handle, "cholmod_l_finish", l.finish);
-    resolve(handle, "cholmod_l_free", l.free);
-    resolve(handle, "cholmod_l_free_sparse", l.free_sparse);
-    resolve(handle, "cholmod_l_free_dense", l.free_dense);
-    resolve(handle, "SuiteSparseQR_C", l.qr);
-    resolve(handle, "SuiteSparseQR_C_factorize", l.factorize);
-    resolve(handle, "SuiteSparseQR_C_qmult", l.qmult);
-    resolve(handle, "SuiteSparseQR_C_solve", l.solve);
-    resolve(handle, "SuiteSparseQR_C_free", l.free_factor);
+    spqr.resolve("cholmod_l_start", l.start);
+    spqr.resolve("cholmod_l_finish", l.finish);
+    spqr.resolve("cholmod_l_free", l.free);
+    spqr.resolve("cholmod_l_free_sparse", l.free_sparse);
+    spqr.resolve("cholmod_l_free_dense", l.free_dense);
+    spqr.resolve("SuiteSparseQR_C", l.qr);
+    spqr.resolve("SuiteSparseQR_C_factorize", l.factorize);
+    spqr.resolve("SuiteSparseQR_C_qmult", l.qmult);
+    spqr.resolve("SuiteSparseQR_C_solve", l.solve);
+    spqr.resolve("SuiteSparseQR_C_free", l.free_factor);
     g_loaded = true;
     return l;
   }();
