@@ -24,7 +24,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
 
 # Debian 12 packages condyn builds with (see README "Dependencies").
-packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libopenblas-dev libeigen3-dev
+packages=(g++ cmake ninja-build libsundials-dev libsuitesparse-dev libopenblas0-pthread libeigen3-dev
   libtomlplusplus-dev libcli11-dev libhdf5-dev libspectra-dev)
 # The test command also checks formatting and runs clang-tidy (warnings are errors in CI), and
 # builds with clang for the sanitizers and libFuzzer (libclang-rt-14-dev has their runtimes;

@@ -1,5 +1,5 @@
 // CHOLMOD with its symbolic analysis kept across factorizations
-// (dae/linsolve/fixed_pattern_cholmod.hpp).
+// (dae/linsolve/fixed_pattern_cholmod.hpp), loaded with dlopen on first use, after OpenBLAS.
 
 #include "dae/linsolve/fixed_pattern_cholmod.hpp"
 
@@ -11,9 +11,61 @@
 #include <string>
 #include <utility>
 
+#include "models/core/load_library.hpp"
+
+#ifndef CONDYN_CHOLMOD_SONAME
+#error "CONDYN_CHOLMOD_SONAME (CHOLMOD's shared library, e.g. libcholmod.so.3) is set by CMake"
+#endif
+#ifndef CONDYN_OPENBLAS_SONAME
+#error "CONDYN_OPENBLAS_SONAME (OpenBLAS's shared library, e.g. libopenblas.so.0) is set by CMake"
+#endif
+
 namespace condyn {
 
 namespace {
+
+/// The entry points of CHOLMOD that condyn calls.
+struct CholmodLibrary {
+  decltype(&cholmod_start) start = nullptr;
+  decltype(&cholmod_finish) finish = nullptr;
+  decltype(&cholmod_analyze) analyze = nullptr;
+  decltype(&cholmod_factorize) factorize = nullptr;
+  decltype(&cholmod_solve2) solve2 = nullptr;
+  decltype(&cholmod_free_factor) free_factor = nullptr;
+  decltype(&cholmod_free_dense) free_dense = nullptr;
+};
+
+/// Loads OpenBLAS, then CHOLMOD, once per process; they stay loaded. A failed load throws
+/// LibraryUnavailable and is tried again at the next call.
+///
+/// Not linked: CHOLMOD brings METIS, LAPACK, BLAS, OpenMP and the gfortran runtime, which a run
+/// that never factors with CHOLMOD would load for nothing (models/core/sparse_qr.hpp). OpenBLAS
+/// is opened first and global, so that CHOLMOD's BLAS and LAPACK calls (dgemm_, dpotrf_, …) bind
+/// to it rather than to the libblas.so.3 and liblapack.so.3 it names, whichever of them the
+/// system's alternatives select (the reference BLAS is several times slower on the supernodal
+/// blocks).
+const CholmodLibrary& cholmod_library() {
+  static const CholmodLibrary lib = [] {
+    const LoadedLibrary openblas(
+        {"OpenBLAS", CONDYN_OPENBLAS_SONAME, "computes the dense blocks of CHOLMOD's factorization",
+         "libopenblas0-pthread"},
+        LoadedLibrary::Scope::global);
+    const LoadedLibrary cholmod(
+        {"CHOLMOD", CONDYN_CHOLMOD_SONAME, "factors symmetric positive-definite Newton matrices",
+         "libcholmod3"},
+        LoadedLibrary::Scope::local);
+    CholmodLibrary l;
+    cholmod.resolve("cholmod_start", l.start);
+    cholmod.resolve("cholmod_finish", l.finish);
+    cholmod.resolve("cholmod_analyze", l.analyze);
+    cholmod.resolve("cholmod_factorize", l.factorize);
+    cholmod.resolve("cholmod_solve2", l.solve2);
+    cholmod.resolve("cholmod_free_factor", l.free_factor);
+    cholmod.resolve("cholmod_free_dense", l.free_dense);
+    return l;
+  }();
+  return lib;
+}
 
 /// The orderings tried, in the order they are reported.
 constexpr std::pair<int, const char*> kOrderings[] = {
@@ -23,15 +75,16 @@ constexpr std::pair<int, const char*> kOrderings[] = {
 /// reports them), a simplicial factorization is L Lᵀ (so that it, like the supernodal one, finds a
 /// matrix that is not positive definite), one ordering per analysis.
 struct Common {
+  const CholmodLibrary& lib = cholmod_library();
   cholmod_common c{};
   Common() {
-    cholmod_start(&c);
+    lib.start(&c);
     c.print = 0;
     c.final_ll = 1;
     c.nmethods = 1;
     c.postorder = 1;
   }
-  ~Common() { cholmod_finish(&c); }
+  ~Common() { lib.finish(&c); }
   Common(const Common&) = delete;
   Common& operator=(const Common&) = delete;
 };
@@ -70,8 +123,8 @@ double factor_bytes(const cholmod_factor& l, double entries) {
 /// The symbolic analysis of `a` under `ordering`, or nullptr when the build lacks it or it fails.
 cholmod_factor* analyze_with(cholmod_sparse& a, int ordering, Common& common) {
   common.c.method[0].ordering = ordering;
-  cholmod_factor* l = cholmod_analyze(&a, &common.c);
-  if (l != nullptr && common.c.status < CHOLMOD_OK) cholmod_free_factor(&l, &common.c);
+  cholmod_factor* l = common.lib.analyze(&a, &common.c);
+  if (l != nullptr && common.c.status < CHOLMOD_OK) common.lib.free_factor(&l, &common.c);
   return l;
 }
 
@@ -86,7 +139,7 @@ std::vector<CholmodCandidate> cholmod_candidates(const Eigen::SparseMatrix<doubl
     if (l == nullptr) continue;
     const double entries = common.c.lnz;
     out.push_back({name, entries, common.c.fl, factor_bytes(*l, entries)});
-    cholmod_free_factor(&l, &common.c);
+    common.lib.free_factor(&l, &common.c);
   }
   if (out.empty())
     throw std::runtime_error("CHOLMOD's symbolic analysis failed under every ordering");
@@ -111,10 +164,10 @@ struct FixedPatternCholmod::Impl {
 
   Impl() = default;
   ~Impl() {
-    cholmod_free_dense(&x, &common.c);
-    cholmod_free_dense(&y, &common.c);
-    cholmod_free_dense(&e, &common.c);
-    cholmod_free_factor(&factor, &common.c);
+    common.lib.free_dense(&x, &common.c);
+    common.lib.free_dense(&y, &common.c);
+    common.lib.free_dense(&e, &common.c);
+    common.lib.free_factor(&factor, &common.c);
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
@@ -135,10 +188,10 @@ void FixedPatternCholmod::analyze(const Eigen::SparseMatrix<double>& matrix) {
     cholmod_factor* l = analyze_with(a, ordering, k.common);
     if (l == nullptr) continue;
     if (k.factor != nullptr && k.common.c.lnz >= best) {
-      cholmod_free_factor(&l, &k.common.c);
+      k.common.lib.free_factor(&l, &k.common.c);
       continue;
     }
-    cholmod_free_factor(&k.factor, &k.common.c);
+    k.common.lib.free_factor(&k.factor, &k.common.c);
     k.factor = l;
     best = k.common.c.lnz;
     ordering_ = name;
@@ -153,7 +206,7 @@ bool FixedPatternCholmod::factor(const Eigen::SparseMatrix<double>& matrix) {
   cholmod_sparse a = lower_view(matrix);
   if (a.nrow != k.n) throw std::invalid_argument("FixedPatternCholmod: the matrix changed size");
   ++factorizations_;
-  cholmod_factorize(&a, k.factor, &k.common.c);
+  k.common.lib.factorize(&a, k.factor, &k.common.c);
   if (k.common.c.status == CHOLMOD_NOT_POSDEF) return false;
   if (k.common.c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (k.common.c.status < CHOLMOD_OK) {
@@ -177,8 +230,8 @@ void FixedPatternCholmod::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) {
   b.x = x.data();
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
-  if (cholmod_solve2(CHOLMOD_A, k.factor, &b, nullptr, &k.x, nullptr, &k.y, &k.e, &k.common.c) ==
-      0) {
+  if (k.common.lib.solve2(CHOLMOD_A, k.factor, &b, nullptr, &k.x, nullptr, &k.y, &k.e,
+                          &k.common.c) == 0) {
     throw std::runtime_error("CHOLMOD solve failed (status " + std::to_string(k.common.c.status) +
                              ")");
   }

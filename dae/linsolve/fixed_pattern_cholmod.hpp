@@ -4,10 +4,11 @@
 /// in L among those the library was built with (AMD, METIS, CHOLMOD's nested dissection), then
 /// numeric factorizations L Lᵀ = P A Pᵀ that reuse it (cholmod_factorize: no ordering, no
 /// symbolic work). Supernodal where CHOLMOD finds it pays (its default rule: flops per entry of L
-/// at least 40, as on 2D and 3D meshes), its dense blocks through the BLAS the process links
-/// (OpenBLAS, README "Dependencies"). Only the lower triangle is read: the matrix is given
-/// whole (both triangles, as CondensedNewton forms it) and must be symmetric. CHOLMOD stays out
-/// of the header.
+/// at least 40, as on 2D and 3D meshes), its dense blocks through OpenBLAS. CHOLMOD and OpenBLAS
+/// are loaded with dlopen on first use (models/core/load_library.hpp): the first analysis or
+/// FixedPatternCholmod throws LibraryUnavailable when either cannot be loaded. Only the lower
+/// triangle is read: the matrix is given whole (both triangles, as CondensedNewton forms it) and
+/// must be symmetric. CHOLMOD stays out of the header.
 
 #include <Eigen/Sparse>
 #include <memory>
@@ -30,7 +31,8 @@ struct CholmodCandidate {
 /// The symbolic analysis of `matrix` (square, compressed, both triangles stored) under every
 /// ordering the library offers, in the order AMD, METIS, NESDIS (an ordering missing from the
 /// build is left out). Costs one analysis per ordering and no factorization. Throws
-/// std::invalid_argument for a matrix not square; std::runtime_error when every analysis fails.
+/// std::invalid_argument for a matrix not square; LibraryUnavailable when CHOLMOD or OpenBLAS
+/// cannot be loaded; std::runtime_error when every analysis fails.
 [[nodiscard]] std::vector<CholmodCandidate> cholmod_candidates(
     const Eigen::SparseMatrix<double>& matrix);
 
@@ -39,6 +41,7 @@ struct CholmodCandidate {
 
 class FixedPatternCholmod {
  public:
+  /// Loads CHOLMOD when no earlier call has. Throws LibraryUnavailable when it cannot.
   FixedPatternCholmod();
   ~FixedPatternCholmod();
   FixedPatternCholmod(const FixedPatternCholmod&) = delete;

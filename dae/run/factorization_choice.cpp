@@ -6,6 +6,7 @@
 
 #include "dae/interface/scheme_not_applicable.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
+#include "models/core/load_library.hpp"
 #include "models/core/memory_estimate.hpp"
 
 namespace condyn {
@@ -78,7 +79,16 @@ FactorizationChoice choose_factorization(const NewtonSystem* newton, Scheme sche
     }
     return {false, "KLU: " + why};
   }
-  const FactorizationCandidates candidates = analyse_factorizations(*matrix);
+  FactorizationCandidates candidates;
+  try {
+    candidates = analyse_factorizations(*matrix);
+  } catch (const LibraryUnavailable& e) {
+    if (settings.linear_solver == LinearSolver::cholmod) {
+      throw SchemeNotApplicable(std::string("\"cholmod\": ") + e.what(),
+                                settings.linear_solver_where);
+    }
+    return {false, std::string("KLU (auto): ") + e.what(), true};
+  }
   const CholmodCandidate& best = least_fill(candidates.cholmod);
   std::ostringstream s;
   s << " the condensed Newton matrix K + cj C + cj^2 M (" << candidates.unknowns

@@ -39,12 +39,16 @@ struct FactorizationCandidates {
 struct FactorizationChoice {
   bool cholmod = false;  ///< CHOLMOD factors the (condensed) Newton matrix; else KLU or dense
   std::string reason;    ///< why, for the summary and `info`
+  /// auto would have analysed the matrix for CHOLMOD, which could not be loaded: KLU, and the
+  /// run says why.
+  bool cholmod_unavailable = false;
 };
 
 /// The factorization of a run under `scheme` (resolved) whose condensed Newton system, when it
 /// has one, is `newton` (nullptr: none). Throws SchemeNotApplicable (where: the
 /// `solve.linear_solver` key) when CHOLMOD is named and the Newton matrix is not symmetric
-/// positive definite by construction.
+/// positive definite by construction, or CHOLMOD or OpenBLAS cannot be loaded (auto then keeps
+/// KLU).
 [[nodiscard]] FactorizationChoice choose_factorization(const NewtonSystem* newton, Scheme scheme,
                                                        const SolveSpec& settings);
 

@@ -138,7 +138,8 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
 }
 
 /// The factorization of the Newton matrices: CHOLMOD, which condenses the Newton systems, where
-/// they are symmetric positive definite and it is chosen; noted when it is.
+/// they are symmetric positive definite and it is chosen; noted when it is, or when auto could
+/// not load it.
 void plan_factorization(RunPlan& p) {
   using LinearSolver = SolveSpec::LinearSolver;
   const SolveSpec& s = p.settings;
@@ -147,10 +148,12 @@ void plan_factorization(RunPlan& p) {
                      (s.linear_solver == LinearSolver::automatic && s.condensed_newton);
   const auto newton = asked ? symmetric_newton_system(p) : nullptr;
   p.factorization = choose_factorization(newton.get(), p.scheme, p.settings);
+  if (p.factorization.cholmod || p.factorization.cholmod_unavailable) {
+    p.notes.push_back({RunNote::Kind::scheme_setting, p.factorization.reason});
+  }
   if (!p.factorization.cholmod) return;
   p.integrator.cholmod = true;
   p.integrator.condensed_newton = true;
-  p.notes.push_back({RunNote::Kind::scheme_setting, p.factorization.reason});
 }
 
 }  // namespace

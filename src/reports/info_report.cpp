@@ -20,6 +20,7 @@
 #include "dae/run/scheme_memory.hpp"
 #include "dae/run/solve.hpp"
 #include "models/core/classification.hpp"
+#include "models/core/load_library.hpp"
 #include "models/core/number_cell.hpp"
 
 namespace condyn {
@@ -354,11 +355,16 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
 void print_factorization(std::ostream& out, const RunPlan& run_plan) {
   if (run_plan.refusal) return;
   std::string text = run_plan.factorization.reason;
-  const auto newton =
-      text.find("KLU (amd)") == std::string::npos ? symmetric_newton_system(run_plan) : nullptr;
+  const bool analysed =
+      text.find("KLU (amd)") != std::string::npos || run_plan.factorization.cholmod_unavailable;
+  const auto newton = analysed ? nullptr : symmetric_newton_system(run_plan);
   if (const auto* matrix = newton ? newton->symmetric_matrix() : nullptr) {
-    text += "; its condensed matrix K + cj C + cj^2 M (symmetric positive definite): " +
-            analyse_factorizations(*matrix).describe();
+    text += "; its condensed matrix K + cj C + cj^2 M (symmetric positive definite): ";
+    try {
+      text += analyse_factorizations(*matrix).describe();
+    } catch (const LibraryUnavailable& e) {
+      text += e.what();
+    }
   }
   out << wrapped_text("factorization: ", text);
 }
