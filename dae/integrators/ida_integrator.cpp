@@ -232,7 +232,7 @@ class Ida final : public sundials::SundialsStepper {
     if (options.condensed_newton && !options.dense_linear_solver) {
       newton_ = problem.newton_system();
       // The plan asks for CHOLMOD only where the matrix is symmetric positive definite.
-      if (options.cholmod && (!newton_ || !newton_->use_cholmod())) {
+      if (options.cholmod && (!newton_ || !newton_->use_cholmod(options.cholmod_ordering))) {
         throw IntegrationError("CHOLMOD asked for a Newton matrix that is not symmetric");
       }
     }

@@ -50,6 +50,9 @@ struct IntegratorSettings {
   /// That condensed Newton matrix factored by CHOLMOD instead of KLU (symmetric positive definite:
   /// dae/run/factorization_choice.hpp); implies condensed_newton.
   bool cholmod = false;
+  /// The ordering CHOLMOD analyses that matrix under: the least fill that the plan's analysis
+  /// found (dae/run/factorization_choice.hpp), so that it is not analysed again under every one.
+  std::string cholmod_ordering;
   /// Whether atol_multiplier and atol_mu, which hold for rows of the largest coefficient, are
   /// raised for rows more than kRowScaleSpan smaller (DaeProblem::multiplier_row_scales) by the
   /// factor they lie beyond it: a multiplier is a force per unit coefficient, so a row written

@@ -68,9 +68,9 @@ bool CondensedNewton::setup(double cj) {
   return cholmod_ ? cholmod_->factor(matrix_) : klu_.factor(matrix_);
 }
 
-bool CondensedNewton::use_cholmod() {
+bool CondensedNewton::use_cholmod(const std::string& ordering) {
   if (symmetric_matrix() == nullptr) return false;
-  cholmod_ = std::make_unique<FixedPatternCholmod>();
+  cholmod_ = std::make_unique<FixedPatternCholmod>(ordering);
   return true;
 }
 

@@ -47,7 +47,7 @@ class CondensedNewton final : public NewtonSystem {
   [[nodiscard]] const Eigen::SparseMatrix<double>* symmetric_matrix() const override {
     return m_ == 0 && p_ == 0 ? &matrix_ : nullptr;
   }
-  bool use_cholmod() override;
+  bool use_cholmod(const std::string& ordering) override;
 
  private:
   using Sparse = Eigen::SparseMatrix<double>;

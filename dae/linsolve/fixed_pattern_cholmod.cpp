@@ -6,6 +6,7 @@
 #include <cholmod.h>
 
 #include <algorithm>
+#include <iterator>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -173,7 +174,13 @@ struct FixedPatternCholmod::Impl {
   Impl& operator=(const Impl&) = delete;
 };
 
-FixedPatternCholmod::FixedPatternCholmod() : impl_(std::make_unique<Impl>()) {}
+FixedPatternCholmod::FixedPatternCholmod(std::string ordering)
+    : impl_(std::make_unique<Impl>()), ordering_(std::move(ordering)) {
+  const auto named = [this](const auto& o) { return ordering_ == o.second; };
+  if (!ordering_.empty() && std::none_of(std::begin(kOrderings), std::end(kOrderings), named)) {
+    throw std::invalid_argument("FixedPatternCholmod: no ordering '" + ordering_ + "'");
+  }
+}
 FixedPatternCholmod::~FixedPatternCholmod() = default;
 
 bool FixedPatternCholmod::supernodal() const {
@@ -184,7 +191,10 @@ void FixedPatternCholmod::analyze(const Eigen::SparseMatrix<double>& matrix) {
   Impl& k = *impl_;
   cholmod_sparse a = lower_view(matrix);
   double best = 0.0;
+  const std::string named = ordering_;
   for (const auto& [ordering, name] : kOrderings) {
+    if (!named.empty() && named != name) continue;
+    ++analyses_;
     cholmod_factor* l = analyze_with(a, ordering, k.common);
     if (l == nullptr) continue;
     if (k.factor != nullptr && k.common.c.lnz >= best) {

@@ -41,8 +41,12 @@ struct CholmodCandidate {
 
 class FixedPatternCholmod {
  public:
-  /// Loads CHOLMOD when no earlier call has. Throws LibraryUnavailable when it cannot.
-  FixedPatternCholmod();
+  /// The symbolic analysis under `ordering` alone (`amd`, `metis` or `nesdis`: the least fill
+  /// that cholmod_candidates found, so that a run does not analyse the pattern twice under every
+  /// ordering), or, when it is empty, under each ordering of the build, keeping the least fill.
+  /// Loads CHOLMOD when no earlier call has. Throws LibraryUnavailable when it cannot be loaded,
+  /// std::invalid_argument for an ordering not among the three.
+  explicit FixedPatternCholmod(std::string ordering = {});
   ~FixedPatternCholmod();
   FixedPatternCholmod(const FixedPatternCholmod&) = delete;
   FixedPatternCholmod& operator=(const FixedPatternCholmod&) = delete;
@@ -56,8 +60,11 @@ class FixedPatternCholmod {
   bool factor(const Eigen::SparseMatrix<double>& matrix);
   /// x ← (last matrix factored)⁻¹ x, in place. Throws std::logic_error before a factorization.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x);
-  /// The ordering the analysis chose (empty before the first factor()).
+  /// The ordering named at construction, or the one the analysis chose (empty before the first
+  /// factor()).
   [[nodiscard]] const std::string& ordering() const { return ordering_; }
+  /// Symbolic analyses made: one per ordering tried, at the first factor() only.
+  [[nodiscard]] int analyses() const { return analyses_; }
   /// Numeric factorizations made (all reuse the one symbolic analysis).
   [[nodiscard]] long factorizations() const { return factorizations_; }
   /// Whether the factor is supernodal (false before the first factor()).
@@ -68,6 +75,7 @@ class FixedPatternCholmod {
   void analyze(const Eigen::SparseMatrix<double>& matrix);
   std::unique_ptr<Impl> impl_;
   std::string ordering_;
+  int analyses_ = 0;
   long factorizations_ = 0;
 };
 

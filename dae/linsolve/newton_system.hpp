@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <string>
 
 namespace condyn {
 
@@ -27,9 +28,10 @@ class NewtonSystem {
   [[nodiscard]] virtual const Eigen::SparseMatrix<double>* symmetric_matrix() const {
     return nullptr;
   }
-  /// Factors with CHOLMOD from the next setup on (dae/linsolve/fixed_pattern_cholmod.hpp); false,
-  /// and nothing changed, when symmetric_matrix() is nullptr.
-  virtual bool use_cholmod() { return false; }
+  /// Factors with CHOLMOD from the next setup on (dae/linsolve/fixed_pattern_cholmod.hpp), its
+  /// analysis under `ordering` (empty: the least fill of every ordering); false, and nothing
+  /// changed, when symmetric_matrix() is nullptr.
+  virtual bool use_cholmod(const std::string& /*ordering*/) { return false; }
   /// The state (t, y) the next setup linearises at: the integrator's predicted state, where
   /// SUNDIALS' own matrix-based solvers evaluate their Jacobians. Nothing by default.
   virtual void linearize_at(double /*t*/, const Eigen::Ref<const Eigen::VectorXd>& /*y*/) {}

@@ -95,10 +95,19 @@ FactorizationChoice choose_factorization(const NewtonSystem* newton, Scheme sche
     << " unknowns, symmetric positive definite): " << candidates.describe();
   if (settings.linear_solver == LinearSolver::cholmod) {
     return {true,
-            "CHOLMOD (" + best.ordering + ", [solve] linear_solver = \"cholmod\") on" + s.str()};
+            "CHOLMOD (" + best.ordering + ", [solve] linear_solver = \"cholmod\") on" + s.str(),
+            false,
+            best.ordering,
+            best.factor_entries,
+            best.factor_bytes};
   }
   if (candidates.cholmod_smaller()) {
-    return {true, "CHOLMOD (" + best.ordering + ", auto: the smaller factor) on" + s.str()};
+    return {true,
+            "CHOLMOD (" + best.ordering + ", auto: the smaller factor) on" + s.str(),
+            false,
+            best.ordering,
+            best.factor_entries,
+            best.factor_bytes};
   }
   return {false, "KLU (auto: the smaller factor) on" + s.str()};
 }

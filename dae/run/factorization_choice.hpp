@@ -42,6 +42,11 @@ struct FactorizationChoice {
   /// auto would have analysed the matrix for CHOLMOD, which could not be loaded: KLU, and the
   /// run says why.
   bool cholmod_unavailable = false;
+  /// CHOLMOD's least-fill ordering, under which the run analyses the matrix again (once), and
+  /// its factor's predicted entries and bytes (the run's memory estimate counts them).
+  std::string ordering{};
+  double factor_entries = 0.0;
+  double factor_bytes = 0.0;
 };
 
 /// The factorization of a run under `scheme` (resolved) whose condensed Newton system, when it

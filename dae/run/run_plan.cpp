@@ -153,6 +153,7 @@ void plan_factorization(RunPlan& p) {
   }
   if (!p.factorization.cholmod) return;
   p.integrator.cholmod = true;
+  p.integrator.cholmod_ordering = p.factorization.ordering;
   p.integrator.condensed_newton = true;
 }
 

@@ -10,7 +10,8 @@
 
 namespace condyn {
 
-MemoryEstimate SchemeMemory::operator()(const SystemSize& size) {
+MemoryEstimate SchemeMemory::operator()(const SystemSize& size,
+                                        const FactorizationChoice& factorization) {
   if (!condensed_factor_) {
     // The union of the patterns of M, C and K, whatever the scalars the Newton matrix weighs
     // them with (a sum keeps every stored entry).
@@ -24,6 +25,10 @@ MemoryEstimate SchemeMemory::operator()(const SystemSize& size) {
   sizes.newton_nonzeros = static_cast<double>(size.jacobian_nonzeros);
   sizes.factor_entries =
       size.condensed ? *condensed_factor_ : sizes.newton_nonzeros + *condensed_factor_;
+  if (factorization.cholmod) {
+    sizes.factor_entries = factorization.factor_entries;
+    sizes.cholmod_factor_bytes = factorization.factor_bytes;
+  }
   sizes.dense = size.dense;
   sizes.condensed = size.condensed;
   sizes.reduced = size.reduced;
@@ -34,7 +39,7 @@ std::optional<RunMemory> run_memory_estimate(const RunPlan& plan, SchemeDecision
   if (plan.refusal) return std::nullopt;  // execute() refuses the scheme, and says why
   try {
     const SystemSize size = decisions.size_as(plan.scheme, plan.settings);
-    return RunMemory{plan.scheme, SchemeMemory(*plan.model)(size)};
+    return RunMemory{plan.scheme, SchemeMemory(*plan.model)(size, plan.factorization)};
   } catch (const std::invalid_argument&) {
     return std::nullopt;  // the scheme cannot be set up for the model: execute() says why
   }

@@ -29,8 +29,10 @@ namespace condyn {
 class SchemeMemory {
  public:
   explicit SchemeMemory(const Model& model) : model_(model) {}
-  /// The estimate for a run that integrates a system of this size.
-  [[nodiscard]] MemoryEstimate operator()(const SystemSize& size);
+  /// The estimate for a run that integrates a system of this size, its Newton matrix factored as
+  /// `factorization` chose (CHOLMOD's predicted factor in place of KLU's when it chose CHOLMOD).
+  [[nodiscard]] MemoryEstimate operator()(const SystemSize& size,
+                                          const FactorizationChoice& factorization = {});
 
  private:
   const Model& model_;

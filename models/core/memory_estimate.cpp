@@ -49,6 +49,11 @@ MemoryEstimate integration_memory_estimate(const ModelSizes& m, const Integrated
     return e;
   }
   const double newton = (kBytesPerNonzero * (s.condensed ? 2.0 : 1.0) + 4.0) * s.newton_nonzeros;
+  if (s.cholmod_factor_bytes > 0) {
+    e.cholmod = true;
+    e.bytes = e.lower_bound = rest + newton + s.cholmod_factor_bytes;
+    return e;
+  }
   e.bytes = rest + newton + factor_bytes(std::max(s.factor_entries, s.newton_nonzeros));
   e.lower_bound = rest + newton + factor_bytes(s.newton_nonzeros);
   return e;
@@ -121,12 +126,16 @@ std::optional<std::string> memory_refusal(const ModelSizes& sizes, const MemoryE
          "already): reduce the model or run it on a machine with more memory";
 }
 
+std::string factor_name(const MemoryEstimate& e) {
+  return e.cholmod ? "CHOLMOD's factor" : "KLU's factors";
+}
+
 std::optional<std::string> memory_warning(const MemoryEstimate& e, const std::string& what,
                                           double available) {
   if (e.bytes <= available) return std::nullopt;
   return "integrating under " + what + " needs about " + format_bytes(e.bytes) + " (at least " +
-         format_bytes(e.lower_bound) + "; KLU's factors predicted at " + count(e.factor_entries) +
-         " entries), more than the " + format_bytes(available) +
+         format_bytes(e.lower_bound) + "; " + factor_name(e) + " predicted at " +
+         count(e.factor_entries) + " entries), more than the " + format_bytes(available) +
          " available now: the run may fail for lack of memory";
 }
 

@@ -28,6 +28,10 @@ struct IntegratedSizes {
   double unknowns = 0;
   double newton_nonzeros = 0;
   double factor_entries = 0;
+  /// When CHOLMOD factors the Newton matrix: its factor's bytes (values and indices) as its
+  /// symbolic analysis predicts them, counted in place of KLU's L and U, and factor_entries the
+  /// entries of L; 0 under KLU.
+  double cholmod_factor_bytes = 0;
   bool dense = false;
   bool condensed = false;
   bool reduced = false;
@@ -42,7 +46,8 @@ struct IntegratedSizes {
 ///   the Newton matrix: 12 B per nonzero in the integrator's matrix and 4 B in its pattern, 12 B
 ///     more when condensed;
 ///   its KLU factors: 12 B per entry, twice from kStreamedSolveFromEntries entries on (the copy
-///     the solves stream, dae/linsolve/klu_streamed_solve.hpp);
+///     the solves stream, dae/linsolve/klu_streamed_solve.hpp); or CHOLMOD's factor, as its
+///     analysis predicts it (cholmod_factor_bytes, in the lower bound too: the analysis is exact);
 ///   the integrator's vectors: kIntegratorVectors of `unknowns` doubles.
 /// `lower_bound` takes the factors as no larger than the Newton matrix (L and U hold at least its
 /// nonzeros), which no run goes below.
@@ -51,6 +56,7 @@ struct MemoryEstimate {
   double lower_bound = 0;
   double newton_nonzeros = 0;
   double factor_entries = 0;
+  bool cholmod = false;  ///< factor_entries are CHOLMOD's L, not KLU's L and U
 };
 [[nodiscard]] MemoryEstimate integration_memory_estimate(const ModelSizes& model,
                                                          const IntegratedSizes& system);
@@ -82,6 +88,9 @@ constexpr long kStreamedSolveFromEntries = 200'000;
 [[nodiscard]] std::optional<std::string> memory_refusal(const ModelSizes& sizes,
                                                         const MemoryEstimate& estimate,
                                                         const std::string& what, double available);
+
+/// "CHOLMOD's factor" or "KLU's factors": what `estimate.factor_entries` counts.
+[[nodiscard]] std::string factor_name(const MemoryEstimate& estimate);
 
 /// A warning when the estimate (not its lower bound) exceeds `available` bytes.
 [[nodiscard]] std::optional<std::string> memory_warning(const MemoryEstimate& estimate,

@@ -148,9 +148,9 @@ void print_memory(std::ostream& out, const std::optional<MemoryEstimate>& select
   const std::optional<double> available = available_memory_bytes();
   out << wrapped_text(
       "memory: ", "about " + format_bytes(selected->bytes) + " to integrate under the selected " +
-                      "scheme (at least " + format_bytes(selected->lower_bound) +
-                      "; KLU's factors predicted at " + shortest_number(selected->factor_entries) +
-                      " entries)" +
+                      "scheme (at least " + format_bytes(selected->lower_bound) + "; " +
+                      factor_name(*selected) + " predicted at " +
+                      shortest_number(selected->factor_entries) + " entries)" +
                       (available ? ", " + format_bytes(*available) + " available" : std::string()));
 }
 
@@ -279,7 +279,8 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
                                                  const SolveSpec& settings,
                                                  SchemeDecisions& decisions,
                                                  const SchemeChoice& choice, bool chose_mixed,
-                                                 const EliminationSizing& elimination) {
+                                                 const EliminationSizing& elimination,
+                                                 const FactorizationChoice& factorization) {
   // Each scheme pure (a multiplier per row), and each multiplier scheme mixed as well; a scheme
   // of fixed step (the Newmark family, rattle) when it is the one chosen (they are not in the
   // default list).
@@ -327,7 +328,9 @@ std::optional<MemoryEstimate> print_scheme_table(std::ostream& out, const Model&
         const SystemSize size = s == Scheme::elimination && elimination.size
                                     ? *elimination.size
                                     : decisions.size(as_scheme);
-        const MemoryEstimate estimate = scheme_memory(size);
+        // The selected scheme's factor is the run's: CHOLMOD's when the plan chose it.
+        const MemoryEstimate estimate =
+            scheme_memory(size, *marker != '\0' ? factorization : FactorizationChoice{});
         if (*marker != '\0') selected = estimate;
         out << std::setw(10) << size.unknowns << std::setw(19) << size.jacobian_nonzeros
             << format_bytes(estimate.bytes) << marker << "\n";
@@ -426,8 +429,8 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
   std::ostringstream rtol;
   rtol << "rtol " << settings.rtol << "; ";
   out << wrapped_text("tolerances: ", rtol.str() + run_plan.tolerances.rule);
-  print_memory(
-      out, print_scheme_table(out, model, settings, decisions, choice, chose_mixed, elimination));
+  print_memory(out, print_scheme_table(out, model, settings, decisions, choice, chose_mixed,
+                                       elimination, run_plan.factorization));
 }
 
 }  // namespace condyn

@@ -16,6 +16,7 @@
 #include "dae/linsolve/fixed_pattern_cholmod.hpp"
 #include "dae/run/factorization_choice.hpp"
 #include "dae/run/run_plan.hpp"
+#include "dae/run/scheme_memory.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"
@@ -122,6 +123,20 @@ TEST_CASE("the analysis lists every ordering of the build and picks the least fi
   FixedPatternCholmod chol;
   REQUIRE(chol.factor(a));
   CHECK(chol.ordering() == best.ordering);
+  CHECK(chol.analyses() == static_cast<int>(candidates.size()));
+  // An ordering named (the run's, chosen by the plan's analysis): that analysis alone.
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(a.rows());
+  for (const auto& c : candidates) {
+    CAPTURE(c.ordering);
+    FixedPatternCholmod named(c.ordering);
+    REQUIRE(named.factor(a));
+    CHECK(named.analyses() == 1);
+    CHECK(named.ordering() == c.ordering);
+    Eigen::VectorXd x = b;
+    named.solve_in_place(x);
+    CHECK(relative_residual(a, x, b) <= kSolveRoundoff);
+  }
+  CHECK_THROWS_AS(FixedPatternCholmod("colamd"), std::invalid_argument);
   // CHOLMOD's rule (flops per entry of L at least 40) keeps this 2D factor simplicial and makes
   // a 3D mesh's, whose columns fill more, supernodal.
   CHECK_FALSE(chol.supernodal());
@@ -165,11 +180,23 @@ TEST_CASE("elimination and penalty runs agree under KLU and CHOLMOD; auto choose
     const RunPlan chol_plan = plan(chol.model, chol.spec.solve);
     CHECK(chol_plan.integrator.cholmod);
     CHECK(chol_plan.integrator.condensed_newton);  // implied by "cholmod"
+    // The run analyses under the ordering the plan's analysis chose, and no other.
+    CHECK_FALSE(chol_plan.integrator.cholmod_ordering.empty());
+    CHECK(chol_plan.factorization.reason.find("CHOLMOD (" + chol_plan.integrator.cholmod_ordering +
+                                              ", ") == 0);
     // auto on the condensed matrix: CHOLMOD, its factor the smaller in the analysis it quotes.
     const RunPlan auto_plan = plan(automatic.model, automatic.spec.solve);
     CHECK(auto_plan.integrator.cholmod);
     CHECK(auto_plan.factorization.reason.find("auto: the smaller factor") != std::string::npos);
     CHECK(auto_plan.factorization.reason.find("KLU (amd)") != std::string::npos);
+    // The run's memory estimate counts CHOLMOD's predicted factor, not KLU's.
+    const auto chol_memory = run_memory_estimate(chol.model, chol.spec.solve);
+    const auto klu_memory = run_memory_estimate(klu.model, klu.spec.solve);
+    REQUIRE(chol_memory);
+    REQUIRE(klu_memory);
+    CHECK(chol_memory->estimate.cholmod);
+    CHECK(chol_memory->estimate.factor_entries == chol_plan.factorization.factor_entries);
+    CHECK_FALSE(klu_memory->estimate.cholmod);
     // auto on the full Jacobian over [u; v] (unsymmetric): KLU.
     CHECK_FALSE(plan(full.model, full.spec.solve).integrator.cholmod);
     RunHooks hooks;
@@ -220,4 +247,24 @@ TEST_CASE("linear_solver: auto by default, refused values and cholmod where it c
   const auto elimination = test::built(parse_scene_text(
       scene + "scheme = \"elimination\"\nlinear_solver = \"cholmod\"\n", "s.toml"));
   CHECK(plan(elimination.model, elimination.spec.solve).integrator.cholmod);
+}
+
+TEST_CASE("the memory estimate counts CHOLMOD's predicted factor in place of KLU's") {
+  IntegratedSizes sizes;
+  sizes.unknowns = 100;
+  sizes.newton_nonzeros = 500;
+  sizes.factor_entries = 1000;  // below kStreamedSolveFromEntries: KLU's factors held once
+  const MemoryEstimate klu = integration_memory_estimate(ModelSizes{}, sizes);
+  constexpr double kCholmodBytes = 5000;
+  sizes.cholmod_factor_bytes = kCholmodBytes;
+  const MemoryEstimate chol = integration_memory_estimate(ModelSizes{}, sizes);
+  CHECK(chol.cholmod);
+  CHECK_FALSE(klu.cholmod);
+  // KLU's L and U at 12 B an entry (a double and a 32-bit index) give way to CHOLMOD's bytes; the
+  // figures are whole numbers of bytes, exact in double.
+  CHECK(klu.bytes - chol.bytes == 12.0 * sizes.factor_entries - kCholmodBytes);
+  // CHOLMOD's symbolic analysis predicts its factor exactly: the lower bound holds it too.
+  CHECK(chol.lower_bound == chol.bytes);
+  CHECK(factor_name(chol) == "CHOLMOD's factor");
+  CHECK(factor_name(klu) == "KLU's factors");
 }

@@ -37,6 +37,18 @@ TEST_CASE("info and run report CHOLMOD's analysis and use under elimination") {
     CAPTURE(candidate);
     CHECK(info.out.find(candidate) != std::string::npos);
   }
+  // The memory line (wrapped: its lines joined here) counts CHOLMOD's factor, which the run will
+  // hold.
+  std::string joined;
+  for (std::size_t i = 0; i < info.out.size(); ++i) {
+    if (info.out[i] != '\n') {
+      joined += info.out[i];
+      continue;
+    }
+    joined += ' ';
+    while (i + 1 < info.out.size() && info.out[i + 1] == ' ') ++i;
+  }
+  CHECK(joined.find("CHOLMOD's factor predicted at") != std::string::npos);
   const Result run = box.run("run s.toml --out r.csv");
   REQUIRE(run.code == 0);
   CHECK((run.out + run.err).find("CHOLMOD (") != std::string::npos);
