@@ -38,6 +38,8 @@ namespace condyn {
 // 13. The mass checks need M (1, 9) and the final A (11).
 // 14. check_energy_output evaluates the final system at (u0, v0); check_output's slave check
 //     needs the final A and the dropped rows (11).
+// 15. build_derived resolves [[derived]] terms against the final columns: the DOFs or the
+//     mechanism's output map (1), the constraints left after drops (11).
 Model ModelBuilder::build() {
   model_.file = spec_.file;
   model_.name = spec_.name;
@@ -90,6 +92,7 @@ Model ModelBuilder::build() {
   check_massless_dofs();
   check_energy_output();
   check_output();
+  build_derived();
   // Last: the linear system copies the model's final matrices, constraints and loads.
   if (!model_.nonlinear) model_.system = std::make_shared<LinearSystem>(model_);
   return std::move(model_);

@@ -188,6 +188,8 @@ class ModelBuilder {
   void check_output_dofs() const;
   void check_output_points() const;
   void check_slaves() const;
+  // derived_columns.cpp
+  void build_derived();
 
  private:
   const SceneSpec& spec_;

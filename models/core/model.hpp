@@ -17,6 +17,7 @@
 
 #include "models/core/benchmark_model.hpp"
 #include "models/core/constraint_level.hpp"
+#include "models/core/derived_column.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/output_map.hpp"
 #include "models/core/shared_sparse.hpp"
@@ -115,6 +116,9 @@ struct Model {
   /// How results are shown when the columns are not the DOFs (a mechanism: poses, joint
   /// reactions, named points; models/core/output_map.hpp); null: one column per DOF.
   std::shared_ptr<const OutputMap> outputs;
+  /// [[derived]] columns, their terms resolved against the columns above (DOFs or `outputs`):
+  /// written after every quantity's columns (models/core/derived_column.hpp).
+  std::vector<DerivedColumn> derived;
   /// Built-in benchmarks: the published reference state at a time, when one is known there.
   std::function<std::optional<PublishedReference>(double)> reference;
   std::string description;  ///< one line for `condyn info` (built-in models)

@@ -22,7 +22,7 @@ SceneSpec SceneReader::read(const toml::table& root, SceneNeeds needs) const {
   spec.file = file_;
   check_keys(root, "",
              {"name", "units", "model", "load", "ground_motion", "constraint", "constraint_block",
-              "initial", "solve", "output", "check", "body", "joint", "force"});
+              "initial", "solve", "output", "check", "derived", "body", "joint", "force"});
   if (const auto* n = root.get("name")) spec.name = string(*n, "name");
   if (const auto* n = root.get("units")) {
     const std::string u = string(*n, "units");
@@ -54,6 +54,7 @@ SceneSpec SceneReader::read(const toml::table& root, SceneNeeds needs) const {
   }
   if (const auto* n = root.get("output")) read_output(*n, spec.output);
   if (const auto* n = root.get("check")) read_checks(*n, spec.solve, spec.checks);
+  if (const auto* n = root.get("derived")) read_derived(*n, spec.derived);
   check_mechanism_names(root, spec);
   check_columns(root, spec);
   spec.input_files = input_files_;

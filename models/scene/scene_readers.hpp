@@ -111,6 +111,8 @@ class SceneReader : public TomlAccess {
   /// [[check]] (read_checks.cpp), after [solve]: `at` must be one of its output times.
   void read_checks(const toml::node& node, const SolveSpec& solve,
                    std::vector<CheckSpec>& out) const;
+  /// [[derived]] (read_derived.cpp): names and terms; their columns are resolved by the builder.
+  void read_derived(const toml::node& node, std::vector<DerivedSpec>& out) const;
 
   /// A load's or a constraint's value: a number, one term table or a list of terms
   /// (read_time_function.cpp).

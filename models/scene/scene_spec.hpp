@@ -193,6 +193,21 @@ struct CheckSpec {
   SourcePoint where;                           ///< "check[2]" and its line
 };
 
+/// [[derived]] (docs/scenes.md, "Derived columns"): the column `name` = Σ coefficient · column
+/// over `terms`, each naming a displacement, velocity, acceleration or reaction column of the
+/// run, or an earlier [[derived]] column; resolved against the built model
+/// (models/assembly/derived_columns.cpp) into Model::derived.
+struct DerivedSpec {
+  struct Term {
+    std::string column;
+    double coefficient = 0.0;
+    int line = 0;  ///< the term's line (0: not from a file)
+  };
+  std::string name;
+  std::vector<Term> terms;  ///< in the terms table's order (toml++ sorts keys)
+  SourcePoint where;        ///< "derived[2]" and its line
+};
+
 struct SceneSpec {
   std::string file;  ///< path the scene was read from (or "<embedded:NAME>")
   std::string name;
@@ -209,6 +224,7 @@ struct SceneSpec {
   SolveSpec solve;
   OutputSpec output;
   std::vector<CheckSpec> checks;
+  std::vector<DerivedSpec> derived;
   /// Every file the scene names and the reader read (Matrix Market matrices, tables, check
   /// references), as opened (relative to the scene's folder): outputs must not replace them.
   std::vector<std::string> input_files;

@@ -6,12 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <string_view>
 
 #include "dae/run/singular_passages.hpp"
 #include "dae/run/solve.hpp"
 #include "models/assembly/build_model.hpp"
-#include "models/core/nearest_names.hpp"
 #include "models/core/number_cell.hpp"
 #include "models/scene/scene_parser.hpp"
 
@@ -30,108 +28,9 @@ double bound_of(const CheckSpec& c) {
   return c.form == CheckSpec::Form::max_abs ? c.bound : c.tolerance;
 }
 
-/// The quantities whose columns a mechanism's output map names.
-constexpr Quantity kMappedQuantities[] = {Quantity::displacement, Quantity::velocity,
-                                          Quantity::acceleration, Quantity::reaction};
-
-/// Every column a run of the model can write (under some quantity; a mechanism's named points
-/// are not listed: its map does not enumerate them).
-std::vector<std::string> all_columns(const Model& model) {
-  std::vector<std::string> out = {"drift_position", "drift_velocity"};
-  for (const auto column : kEnergyColumns) out.emplace_back(column);
-  if (model.outputs) {
-    for (Quantity q : kMappedQuantities) {
-      const auto& names = model.outputs->names(q);
-      out.insert(out.end(), names.begin(), names.end());
-    }
-  } else {
-    for (const auto& d : model.dof_names) {
-      for (const char* prefix : {"", "vel_", "acc_", "acc_abs_", "reaction_"}) {
-        if (std::string_view(prefix) == "acc_abs_" && !model.ground) continue;
-        out.push_back(prefix + d);
-      }
-    }
-  }
-  for (const auto& c : model.constraints) out.push_back("lambda_" + c.name);
-  return out;
-}
-
-/// A mechanism's column `name`: one of its output map's, or a named point's `body.point.x`.
-std::optional<CheckColumn> find_mapped_column(const OutputMap& map, const std::string& name) {
-  for (Quantity q : kMappedQuantities) {
-    const auto& names = map.names(q);
-    const auto it = std::find(names.begin(), names.end(), name);
-    if (it != names.end()) return CheckColumn{q, static_cast<int>(it - names.begin())};
-  }
-  const std::size_t dot = name.rfind('.');
-  if (dot == std::string::npos) return std::nullopt;
-  const std::string axis = name.substr(dot);
-  for (int k = 0; k < map.dimension(); ++k) {
-    if (axis != std::string(".") + static_cast<char>('x' + k)) continue;
-    if (const auto point = map.point(std::string_view(name).substr(0, dot))) {
-      return CheckColumn{Quantity::displacement, k, *point};
-    }
-  }
-  return std::nullopt;
-}
-
-/// "no output column is named 'uz3' (...); the nearest: ux3, uy3" (nearest_names: the names a
-/// typo most likely meant, or none).
-std::string unknown_column(const Model& model, const std::string& name) {
-  for (const auto& c : model.dropped_constraints) {
-    if (name == "lambda_" + c) {
-      return "constraint '" + c +
-             "' was dropped as redundant ([solve] redundant = \"drop\"): it has no multiplier, "
-             "and its reaction is carried by the constraints it combines";
-    }
-  }
-  const std::vector<std::string> near = nearest_names(name, all_columns(model));
-  return "no output column is named '" + name +
-         (model.outputs ? std::string("' (columns are a mechanism's body and joint columns "
-                                      "such as crank.x, crank.vx, crank.ax, hinge.fx, a named "
-                                      "point's crank.B.x, lambda_ and a constraint, ")
-                        : std::string("' (columns are a DOF's name, vel_, acc_, acc_abs_ or "
-                                      "reaction_ and a DOF, lambda_ and a constraint, ")) +
-         "drift_position, drift_velocity, energy, energy_error and the other energy columns); " +
-         (near.empty() ? std::string("no column's name is near it")
-                       : "the nearest: " + joined_names(near));
-}
-
 SourcePoint quantity_key(const CheckSpec& c) { return {c.where.path + ".quantity", c.where.line}; }
 
 }  // namespace
-
-std::optional<CheckColumn> find_column(const Model& model, const std::string& name) {
-  if (name == "drift_position") return CheckColumn{Quantity::drift, 0};
-  if (name == "drift_velocity") return CheckColumn{Quantity::drift, 1};
-  for (std::size_t k = 0; k < kEnergyColumns.size(); ++k) {
-    if (name == kEnergyColumns[k]) return CheckColumn{Quantity::energy, static_cast<int>(k)};
-  }
-  if (name.rfind("lambda_", 0) == 0) {
-    const std::string c = name.substr(7);
-    for (std::size_t i = 0; i < model.constraints.size(); ++i) {
-      if (model.constraints[i].name == c) {
-        return CheckColumn{Quantity::multiplier, static_cast<int>(i)};
-      }
-    }
-  }
-  if (model.outputs) return find_mapped_column(*model.outputs, name);
-  const auto dof = [&](const std::string& d) -> int {
-    const auto it = std::find(model.dof_names.begin(), model.dof_names.end(), d);
-    return it == model.dof_names.end() ? -1 : static_cast<int>(it - model.dof_names.begin());
-  };
-  if (const int d = dof(name); d >= 0) return CheckColumn{Quantity::displacement, d};
-  for (const auto& [prefix, quantity] :
-       {std::pair<std::string, Quantity>{"vel_", Quantity::velocity},
-        {"acc_abs_", Quantity::absolute_acceleration},
-        {"acc_", Quantity::acceleration},
-        {"reaction_", Quantity::reaction}}) {
-    if (name.rfind(prefix, 0) == 0) {
-      if (const int d = dof(name.substr(prefix.size())); d >= 0) return CheckColumn{quantity, d};
-    }
-  }
-  return std::nullopt;
-}
 
 CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>& checks,
                                const std::string& file)
@@ -139,7 +38,8 @@ CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>&
   for (const auto& c : checks_) {
     const auto column = find_column(model, c.quantity);
     if (!column)
-      throw SceneError(scene_message(file, quantity_key(c), unknown_column(model, c.quantity)));
+      throw SceneError(scene_message(file, quantity_key(c),
+                                     unknown_column(model, c.quantity, all_columns(model))));
     // As [output] quantities refuses absolute_acceleration without a moving ground.
     if (column->quantity == Quantity::absolute_acceleration && !model.ground) {
       throw SceneError(scene_message(
@@ -160,27 +60,30 @@ CheckEvaluator::CheckEvaluator(const Model& model, const std::vector<CheckSpec>&
     }
     states_.push_back(s);
   }
-  if (model.outputs) {
-    const bool reactions = std::any_of(states_.begin(), states_.end(), [](const State& s) {
-      return s.column.quantity == Quantity::reaction && s.column.point < 0;
-    });
-    mapper_.emplace(*model.outputs, points_, reactions);
-  }
+  if (model.outputs) mapper_.emplace(*model.outputs, points_, reads_reactions(quantities()));
 }
 
 std::vector<Quantity> CheckEvaluator::quantities() const {
   std::vector<Quantity> out;
+  std::vector<DerivedColumn> derived;  // the derived columns the checks read
   for (const auto& s : states_) {
-    if (std::find(out.begin(), out.end(), s.column.quantity) == out.end()) {
+    if (s.column.derived >= 0) {
+      derived.push_back(model_->derived[static_cast<std::size_t>(s.column.derived)]);
+    } else if (s.column.point < 0 &&
+               std::find(out.begin(), out.end(), s.column.quantity) == out.end()) {
       out.push_back(s.column.quantity);
     }
   }
-  return out;
+  return with_derived_quantities(out, derived);
 }
 
 double CheckEvaluator::value(const TrajectoryRow& row, const CheckColumn& c) const {
   const auto at = [&](const Eigen::VectorXd& x) { return c.index < x.size() ? x[c.index] : kNaN; };
   if (c.point >= 0) return at(row.points);
+  if (c.derived >= 0) {
+    return derived_value(model_->derived[static_cast<std::size_t>(c.derived)],
+                         {row.u, row.v, row.acceleration, row.reaction});
+  }
   switch (c.quantity) {
     case Quantity::displacement:
       return at(row.u);

@@ -11,25 +11,13 @@
 #include "dae/run/mapped_rows.hpp"
 #include "dae/run/trajectory.hpp"
 #include "models/core/model.hpp"
+#include "models/core/result_columns.hpp"
 #include "models/scene/scene_spec.hpp"
 
 namespace condyn {
 
-/// Where a check's column comes from in a row.
-struct CheckColumn {
-  Quantity quantity = Quantity::displacement;
-  /// The DOF (a mechanism's column of the quantity), the constraint, drift position/velocity
-  /// (0/1), kEnergyColumns; for a named point, its axis (0, 1, 2 for .x, .y, .z).
-  int index = 0;
-  int point = -1;  ///< a named point's index in the model's OutputMap, else −1
-};
-
-/// The column `name` of a run of `model`, or nothing when no quantity gives it. Column names as
-/// the CSV writes them: a DOF's name, vel_, acc_, reaction_ + DOF (a mechanism's: its output
-/// map's columns `crank.x`, `crank.vx`, `crank.ax`, `hinge.fx`, and any named point's
-/// `crank.B.x`, listed in [output] points or not), lambda_ + constraint, drift_position,
-/// drift_velocity and the energy columns (kEnergyColumns).
-[[nodiscard]] std::optional<CheckColumn> find_column(const Model& model, const std::string& name);
+/// Where a check's column comes from in a row (find_column: models/core/result_columns.hpp).
+using CheckColumn = ResultColumn;
 
 /// The outcome of one check.
 struct CheckOutcome {

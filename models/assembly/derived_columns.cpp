@@ -1,0 +1,98 @@
+// [[derived]] columns resolved against the built model (models/core/derived_column.hpp): each
+// term's column found by its name as the CSV writes it, a term on an earlier derived column
+// expanded into that column's terms; names that are no column, or a column of another kind, and
+// derived names that are already a column are refused here, before any run.
+
+#include <cmath>
+
+#include "models/assembly/model_builder.hpp"
+#include "models/core/result_columns.hpp"
+
+namespace condyn {
+
+namespace {
+
+/// What kind of column `c` is, for a refusal ("a multiplier column").
+std::string kind_of(const ResultColumn& c) {
+  if (c.derived >= 0) return "a derived column";
+  if (c.point >= 0) return "a named point's position column";
+  switch (c.quantity) {
+    case Quantity::displacement:
+      return "a displacement column";
+    case Quantity::velocity:
+      return "a velocity column";
+    case Quantity::acceleration:
+      return "an acceleration column";
+    case Quantity::absolute_acceleration:
+      return "an absolute acceleration column";
+    case Quantity::reaction:
+      return "a reaction column";
+    case Quantity::multiplier:
+      return "a multiplier column";
+    case Quantity::drift:
+      return "a drift column";
+    case Quantity::energy:
+      return "an energy column";
+  }
+  return "a column";
+}
+
+/// Why a column of this kind is not a term, or "" when it is one.
+std::string not_a_term(const ResultColumn& c) {
+  if (c.point >= 0) {
+    return ": a term names a displacement, velocity, acceleration or reaction column (a named "
+           "point's position is not one of them: name the body's pose columns)";
+  }
+  switch (c.quantity) {
+    case Quantity::displacement:
+    case Quantity::velocity:
+    case Quantity::acceleration:
+    case Quantity::reaction:
+      return "";
+    case Quantity::absolute_acceleration:
+      return ": a term names a displacement, velocity, acceleration or reaction column; the "
+             "absolute acceleration adds r a_g(t), which no coefficient gives (name the relative "
+             "acceleration acc_ instead)";
+    default:
+      return ": a term names a displacement, velocity, acceleration or reaction column";
+  }
+}
+
+}  // namespace
+
+void ModelBuilder::build_derived() {
+  for (const DerivedSpec& spec : spec_.derived) {
+    const std::string who = "derived column '" + spec.name + "'";
+    // A name the run already writes would make two columns of one name (or shadow a check's).
+    if (const auto taken = find_column(model_, spec.name); taken || spec.name == "t") {
+      fail({spec.where.path + ".name", spec.where.line},
+           who + ": the name is already " + (taken ? kind_of(*taken) : "the time column") +
+               " of the run (a derived column needs a name of its own)");
+    }
+    DerivedColumn column{spec.name, {}};
+    for (const DerivedSpec::Term& term : spec.terms) {
+      const SourcePoint key{spec.where.path + ".terms." + term.column,
+                            term.line > 0 ? term.line : spec.where.line};
+      const auto found = find_column(model_, term.column);
+      if (!found) fail(key, who + ": " + unknown_column(model_, term.column, all_columns(model_)));
+      if (found->derived >= 0) {  // an earlier derived column (the parser refused later ones)
+        for (DerivedTerm t : model_.derived[static_cast<std::size_t>(found->derived)].terms) {
+          t.coefficient *= term.coefficient;
+          if (!std::isfinite(t.coefficient)) {
+            fail(key, who + ": " + fmt(term.coefficient) + " times the coefficients of '" +
+                          term.column + "' overflows the double range");
+          }
+          column.terms.push_back(t);
+        }
+        continue;
+      }
+      if (const std::string why = not_a_term(*found); !why.empty()) {
+        fail(key, who + ": '" + term.column + "' is " + kind_of(*found) + why);
+      }
+      column.terms.push_back({found->quantity, found->index, term.coefficient});
+    }
+    model_.derived.push_back(std::move(column));
+  }
+}
+
+}  // namespace condyn

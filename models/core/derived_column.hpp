@@ -1,0 +1,47 @@
+#pragma once
+/// [[derived]] columns (docs/scenes.md, "Derived columns"): a named linear combination of a
+/// run's displacement, velocity, acceleration and reaction columns, Σ cₖ · columnₖ, written as a
+/// column of its own by every output and read by [[check]], plot and sweep like any column. The
+/// builder resolves each term's column once (models/assembly/derived_columns.cpp, a term naming
+/// an earlier derived column expanded into that column's terms); a row's value is then a few
+/// multiply-adds over the row's vectors, computed as the row is written.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "models/core/output_quantity.hpp"
+
+namespace condyn {
+
+/// coefficient × entry `index` of the row's `quantity` vector (displacement, velocity,
+/// acceleration or reaction: a DOF, or a mechanism's output-map column).
+struct DerivedTerm {
+  Quantity quantity = Quantity::displacement;
+  int index = 0;
+  double coefficient = 0.0;
+};
+
+/// One [[derived]] column: its name and its terms, every one on a column of the run (none on
+/// another derived column: those are expanded when the column is built).
+struct DerivedColumn {
+  std::string name;
+  std::vector<DerivedTerm> terms;
+};
+
+/// One output row's vectors a derived column reads (`acceleration` may be empty when no derived
+/// column reads it).
+struct DerivedInputs {
+  Eigen::Ref<const Eigen::VectorXd> u, v, acceleration, reaction;
+};
+
+/// Σ coefficient · value of the column's terms at the row. Throws std::logic_error when the row
+/// lacks a vector a term reads (the run was not asked for it: derived_quantities).
+[[nodiscard]] double derived_value(const DerivedColumn& column, const DerivedInputs& row);
+
+/// `quantities` and the quantities `derived` read that it lacks: what a run must compute
+/// (hooks_for) and what its rows must carry (reads_reactions), whatever [output] shows.
+[[nodiscard]] std::vector<Quantity> with_derived_quantities(
+    std::vector<Quantity> quantities, const std::vector<DerivedColumn>& derived);
+
+}  // namespace condyn
