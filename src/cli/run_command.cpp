@@ -149,7 +149,8 @@ int run(const RunArgs& args) {
   // glibc would keep their pages resident to the end: return them (docs/benchmarks.md).
   malloc_trim(0);
 
-  RunHooks hooks = hooks_for(spec.output.quantities);
+  // What the rows must carry: the [output] quantities and what the [[derived]] columns read.
+  RunHooks hooks = hooks_for(with_derived_quantities(spec.output.quantities, model.derived));
   hooks.record_steps = !args.steps_out.empty();
   hooks.on_progress = print_progress;
   // Rows go to the result file as they are computed when it is a regular file (nothing of size

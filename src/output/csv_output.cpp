@@ -29,7 +29,9 @@ void write_rows(std::ostream& out, const Model& model, const OutputSpec& output,
   // A mechanism's rows in its output map's columns (a copy: the caller's trajectory stays).
   std::optional<Trajectory> mapped;
   if (columns.mapped())
-    mapped = mapped_trajectory(model, whole, columns.points(), reads_reactions(output.quantities));
+    mapped = mapped_trajectory(
+        model, whole, columns.points(),
+        reads_reactions(with_derived_quantities(output.quantities, model.derived)));
   const Trajectory& traj = mapped ? *mapped : whole;
   const Eigen::VectorXd none;
   std::string line;

@@ -39,6 +39,7 @@ std::string csv_header(const OutputSpec& output, const OutputColumns& columns) {
     }
   }
   for (const auto& name : columns.point_columns()) line.append(",").append(name);
+  for (const auto& derived : columns.model().derived) line.append(",").append(derived.name);
   if (columns.near_singular()) line += ",near_singular";
   return line;
 }
@@ -86,6 +87,9 @@ void append_csv_row(std::string& line, const OutputSpec& output, const OutputCol
     }
   }
   for (Eigen::Index k = 0; k < row.points.size(); ++k) value(row.points[k]);
+  for (const auto& derived : columns.model().derived) {
+    value(derived_value(derived, {row.u, row.v, row.acceleration, row.reaction}));
+  }
   if (columns.near_singular()) line += row.near_singular ? ",1" : ",0";
 }
 

@@ -30,12 +30,15 @@ struct CsvRow {
   bool near_singular = false;
 };
 
-/// "t,..." for the [output] quantities over the columns shown, then the named points' columns and
-/// the `near_singular` flag (OutputColumns::near_singular), without the newline.
+/// "t,..." for the [output] quantities over the columns shown, then the named points' columns, the
+/// [[derived]] columns (Model::derived) and the `near_singular` flag
+/// (OutputColumns::near_singular), without the newline.
 [[nodiscard]] std::string csv_header(const OutputSpec& output, const OutputColumns& columns);
 
 /// Appends the data row (without newline) to `line`; numbers in the shortest form that reads back
-/// as the same double. A mapped model's row holds the map's columns (MappedRows).
+/// as the same double. A mapped model's row holds the map's columns (MappedRows). The derived
+/// columns are computed here from the row's vectors, which must then hold what they read
+/// (with_derived_quantities), whether [output] shows it or not.
 void append_csv_row(std::string& line, const OutputSpec& output, const OutputColumns& columns,
                     const CsvRow& row);
 

@@ -37,6 +37,21 @@ void put_matrix(hid_t file, const char* name, hsize_t rows, hsize_t cols, const 
   }
 }
 
+/// The [[derived]] columns: `derived` (nt x k) and their names `derived_names`.
+void put_derived(hid_t file, const Model& model, const Trajectory& traj) {
+  const Eigen::VectorXd none;
+  put_matrix(file, "derived", traj.t.size(), model.derived.size(), [&](hsize_t r, hsize_t c) {
+    const auto k = static_cast<Eigen::Index>(r);
+    const Eigen::Ref<const Eigen::VectorXd> a =
+        traj.acceleration.cols() > k ? Eigen::Ref<const Eigen::VectorXd>(traj.acceleration.col(k))
+                                     : Eigen::Ref<const Eigen::VectorXd>(none);
+    return derived_value(model.derived[c], {traj.u.col(k), traj.v.col(k), a, traj.reaction.col(k)});
+  });
+  std::vector<std::string> names;
+  for (const auto& d : model.derived) names.push_back(d.name);
+  put_strings(file, "derived_names", names);
+}
+
 }  // namespace
 
 void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
@@ -52,7 +67,9 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
   // A mechanism's rows in its output map's columns (a copy: the caller's trajectory stays).
   std::optional<Trajectory> mapped;
   if (columns.mapped())
-    mapped = mapped_trajectory(model, whole, columns.points(), reads_reactions(output.quantities));
+    mapped = mapped_trajectory(
+        model, whole, columns.points(),
+        reads_reactions(with_derived_quantities(output.quantities, model.derived)));
   const Trajectory& traj = mapped ? *mapped : whole;
   const auto nt = static_cast<hsize_t>(traj.t.size());
   put_matrix(f, "t", nt, 0, [&](hsize_t r, hsize_t) { return traj.t[r]; });
@@ -110,6 +127,9 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
                [&](hsize_t r, hsize_t c) {
                  return traj.points(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(r));
                });
+  }
+  if (!model.derived.empty()) {
+    put_derived(f, model, traj);
   }
   if (columns.near_singular()) {
     put_matrix(f, "near_singular", nt, 0, [&](hsize_t r, hsize_t) {

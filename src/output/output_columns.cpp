@@ -46,9 +46,11 @@ bool has_dof_columns(Quantity q) {
 
 OutputColumns::OutputColumns(const Model& model, const OutputSpec& output)
     : model_(model), map_(model.outputs.get()) {
-  const auto shows = [&output](Quantity q) {
-    return std::find(output.quantities.begin(), output.quantities.end(), q) !=
-           output.quantities.end();
+  // A derived column on reactions or accelerations is as unreliable near a singular
+  // configuration as they are: it brings the flag too.
+  const std::vector<Quantity> read = with_derived_quantities(output.quantities, model.derived);
+  const auto shows = [&read](Quantity q) {
+    return std::find(read.begin(), read.end(), q) != read.end();
   };
   near_singular_ = model.nonlinear && model.constraint_count() > 0 &&
                    (shows(Quantity::reaction) || shows(Quantity::multiplier) ||

@@ -48,7 +48,7 @@ class OutputColumns {
   /// True when the rows end with the `near_singular` flag: the model's constraint Jacobian
   /// depends on the state (its runs watch for singular configurations,
   /// dae/run/singular_passages.hpp) and the output shows a quantity that is unreliable there
-  /// (reaction, multiplier, acceleration).
+  /// (reaction, multiplier, acceleration), itself or through a [[derived]] column.
   [[nodiscard]] bool near_singular() const { return near_singular_; }
 
  private:

@@ -20,7 +20,9 @@ class RowView {
  public:
   RowView(const OutputColumns& columns, const OutputSpec& output) {
     if (columns.mapped()) {
-      mapper_.emplace(*columns.map(), columns.points(), reads_reactions(output.quantities));
+      mapper_.emplace(
+          *columns.map(), columns.points(),
+          reads_reactions(with_derived_quantities(output.quantities, columns.model().derived)));
     }
   }
   const TrajectoryRow& operator()(const TrajectoryRow& row) {
@@ -207,6 +209,12 @@ class Hdf5RowWriter final : public RowWriter {
       points_ = std::make_unique<Series>(
           file_, "points", static_cast<hsize_t>(columns_.point_columns().size()), false);
     }
+    if (!model.derived.empty()) {
+      derived_ = std::make_unique<Series>(file_, "derived", model.derived.size(), false);
+      std::vector<std::string> names;
+      for (const auto& d : model.derived) names.push_back(d.name);
+      hdf5::put_strings(file_, "derived_names", names);
+    }
     if (columns_.near_singular()) {
       near_singular_ = std::make_unique<Series>(file_, "near_singular", 0, true);
     }
@@ -242,6 +250,11 @@ class Hdf5RowWriter final : public RowWriter {
       energy_->append([&](hsize_t c) { return energy_column(*r.balance, c); });
     }
     if (points_) points_->append([&](hsize_t c) { return r.points[static_cast<Eigen::Index>(c)]; });
+    if (derived_) {
+      derived_->append([&](hsize_t c) {
+        return derived_value(model_.derived[c], {r.u, r.v, r.acceleration, r.reaction});
+      });
+    }
     if (near_singular_)
       near_singular_->append([&](hsize_t) { return r.near_singular ? 1.0 : 0.0; });
     ++rows_;
@@ -251,7 +264,7 @@ class Hdf5RowWriter final : public RowWriter {
     hdf5::put_run_attributes(file_, run);
     for (Series* s :
          {t_.get(), u_.get(), v_.get(), a_.get(), a_abs_.get(), reaction_.get(), multiplier_.get(),
-          drift_.get(), energy_.get(), points_.get(), near_singular_.get()}) {
+          drift_.get(), energy_.get(), points_.get(), derived_.get(), near_singular_.get()}) {
       if (s != nullptr) s->flush(true);
     }
     close();
@@ -270,6 +283,7 @@ class Hdf5RowWriter final : public RowWriter {
     drift_.reset();
     energy_.reset();
     points_.reset();
+    derived_.reset();
     near_singular_.reset();
     if (file_ >= 0) {
       failed_ = H5Fclose(file_) < 0;
@@ -283,7 +297,7 @@ class Hdf5RowWriter final : public RowWriter {
   std::string path_;
   hid_t file_ = -1;
   std::unique_ptr<Series> t_, u_, v_, a_, a_abs_, reaction_, multiplier_, drift_, energy_, points_,
-      near_singular_;
+      derived_, near_singular_;
   bool failed_ = false;
 };
 
