@@ -138,7 +138,7 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
       // A bad [[check]] is bad input here as in the command's run (which refuses it, exit 2).
       if (!spec.checks.empty()) (void)CheckEvaluator(*model, spec.checks, spec.file);
       release_model_input(spec);
-      RunHooks hooks = hooks_for(spec.output.quantities);
+      RunHooks hooks = hooks_for(with_derived_quantities(spec.output.quantities, model->derived));
       hooks.reactions = true;  // the result holds every row's reaction and multipliers
       result = solve(*model, spec.solve, hooks);
     } catch (const SchemeNotApplicable& e) {

@@ -69,6 +69,27 @@ py::list passage_list(const std::vector<SingularPassage>& passages) {
   return out;
 }
 
+/// The [[derived]] columns at every row (nt x k; k = 0 without any), from the trajectory's
+/// vectors (a mechanism's in its output map's columns).
+py::array_t<double> derived_rows(const Model& model, const Trajectory& traj) {
+  const auto nt = static_cast<py::ssize_t>(traj.t.size());
+  const auto k = static_cast<py::ssize_t>(model.derived.size());
+  py::array_t<double> out({nt, k});
+  auto w = out.mutable_unchecked<2>();
+  const Eigen::VectorXd none;
+  for (py::ssize_t i = 0; i < nt; ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    const Eigen::Ref<const Eigen::VectorXd> a =
+        traj.acceleration.cols() > r ? Eigen::Ref<const Eigen::VectorXd>(traj.acceleration.col(r))
+                                     : Eigen::Ref<const Eigen::VectorXd>(none);
+    for (py::ssize_t c = 0; c < k; ++c) {
+      w(i, c) = derived_value(model.derived[static_cast<std::size_t>(c)],
+                              {traj.u.col(r), traj.v.col(r), a, traj.reaction.col(r)});
+    }
+  }
+  return out;
+}
+
 py::dict summary_dict(const SolveSummary& s, const SolveSpec& settings, const BuildReport& r,
                       const char* treatment) {
   py::dict d;
@@ -176,6 +197,10 @@ py::dict result_dict(SolveResult&& result, const Model& model, const SolveSpec& 
     }
     d["energy_balance"] = balance;
   }
+  d["derived"] = derived_rows(model, traj);
+  std::vector<std::string> derived_names;
+  for (const auto& column : model.derived) derived_names.push_back(column.name);
+  d["derived_names"] = derived_names;
   const std::vector<bool> near = near_singular_rows(result.summary.singular_passages, traj.t);
   py::array_t<bool> near_singular(static_cast<py::ssize_t>(nt));
   for (Eigen::Index i = 0; i < nt; ++i)

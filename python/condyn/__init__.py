@@ -36,7 +36,8 @@ class Result:
     configuration, whose reactions are not to be trusted; docs/schemes.md); dof_names,
     velocity_names, acceleration_names, reaction_names (the columns of u, v, a and reaction:
     each the DOFs, except for a mechanism), constraint_names; points (nt x k, the [output]
-    points' positions, columns point_names) or None; summary (dict: scheme, steps, wall_s, rtol,
+    points' positions, columns point_names) or None; derived (nt x k, the scene's [[derived]]
+    columns, named by derived_names; nt x 0 without any: docs/scenes.md); summary (dict: scheme, steps, wall_s, rtol,
     atol, residual_evals, jacobian_evals, ..., singular_passages, worst_drift_joint).
     A mechanism ([model] type = "multibody") shows its own columns, as the CSV does: u holds
     the poses (crank.x, crank.y, crank.angle; in 3D a quaternion crank.qw..qz, 7 columns a body),
@@ -50,7 +51,7 @@ class Result:
     __slots__ = ("t", "u", "v", "reaction", "multiplier", "drift", "a", "a_abs", "energy",
                  "kinetic", "energy_balance", "energy_columns", "near_singular", "dof_names",
                  "velocity_names", "acceleration_names", "reaction_names", "points",
-                 "point_names", "constraint_names", "summary")
+                 "point_names", "constraint_names", "derived", "derived_names", "summary")
 
     def __init__(self, fields):
         for key in self.__slots__:

@@ -102,6 +102,8 @@ def result_columns(r):
     if r.points is not None:
         for j, name in enumerate(r.point_names):
             columns[name] = r.points[:, j]
+    for j, name in enumerate(r.derived_names):  # [[derived]]: after the points, as in the CSV
+        columns[name] = r.derived[:, j]
     return columns
 
 

@@ -1,0 +1,83 @@
+"""[[derived]] columns from Python (docs/scenes.md, "Derived columns"): Result.derived holds the
+CSV's values, computed from the result's own rows; a sweep keeps a derived column's peak; bad
+tables raise SceneError naming the entry."""
+
+import subprocess
+import tomllib
+
+import numpy as np
+import pytest
+
+import condyn
+from condyn.sweep_worker import result_columns
+from conftest import ROOT
+
+FRAME = ROOT / "models" / "scenes" / "two_storey_frame.toml"
+EPS = np.finfo(float).eps
+
+
+def frame():
+    with open(FRAME, "rb") as f:
+        return tomllib.load(f)
+
+
+def test_derived_columns_in_the_result_equal_the_cli_csv(cli, tmp_path):
+    out = tmp_path / "frame.csv"
+    subprocess.run([str(cli), "run", str(FRAME), "--out", str(out)], check=True,
+                   capture_output=True)
+    with open(out) as f:
+        header = f.readline().strip().split(",")
+    table = np.loadtxt(out, delimiter=",", skiprows=1)
+    col = {name: table[:, i] for i, name in enumerate(header)}
+    r = condyn.run(str(FRAME))
+    assert r.derived_names == ["drift1", "drift2", "drift_ratio2", "base_shear", "storey_shear2"]
+    assert r.derived.shape == (201, 5) and r.derived.dtype == np.float64
+    assert not r.derived.flags.writeable  # read-only, as every array of a Result
+    for j, name in enumerate(r.derived_names):
+        np.testing.assert_array_equal(r.derived[:, j], col[name])  # the same doubles
+    # drift2 = u2 − u1 from the result's own columns: roundoff of one difference.
+    u1, u2 = r.u[:, r.dof("u1")], r.u[:, r.dof("u2")]
+    scale = np.abs(r.u).max()
+    assert scale > 1e-4  # the roof moves: not a comparison of zeros
+    assert np.abs(r.derived[:, 1] - (u2 - u1)).max() <= 4 * EPS * scale
+    # base_shear = −(sum of the support reactions): roundoff of one sum.
+    reactions = r.reaction[:, r.dof("base_l")] + r.reaction[:, r.dof("base_r")]
+    assert np.abs(r.derived[:, 3] + reactions).max() <= 4 * EPS * np.abs(reactions).max()
+
+
+def test_a_scene_without_derived_columns_has_an_empty_table():
+    scene = frame()
+    del scene["derived"], scene["check"]
+    r = condyn.run(scene)
+    assert r.derived_names == [] and r.derived.shape == (len(r.t), 0)
+
+
+def test_a_derived_column_is_a_column_a_sweep_keeps():
+    r = condyn.run(str(FRAME))
+    columns = result_columns(r)
+    np.testing.assert_array_equal(columns["base_shear"], r.derived[:, 3])
+    assert "drift_ratio2" in columns
+
+
+def test_check_bounds_a_derived_column():
+    result = condyn.check(str(FRAME))
+    assert result["passed"], [c["text"] for c in result["checks"]]
+    scene = frame()
+    scene["check"] = [{"quantity": "base_shear", "max_abs": 1000.0}]  # the shear is about 1e5 N
+    result = condyn.check(scene)
+    assert not result["passed"]
+    assert result["checks"][0]["text"].startswith("max |base_shear| = ")
+
+
+@pytest.mark.parametrize("terms, message", [
+    ({"u9": 1.0}, "derived[1].terms.u9: derived column 'drift1': no output column is named 'u9'"),
+    ({}, "derived[1].terms: derived column 'drift1': has no terms"),
+    ({"u1": float("nan")}, "derived[1].terms.u1: derived column 'drift1': the coefficient nan"),
+    ({"lambda_support_l": 1.0}, "'lambda_support_l' is a multiplier column"),
+])
+def test_bad_derived_tables_raise_scene_error_naming_the_entry(terms, message):
+    scene = frame()
+    scene["derived"][0]["terms"] = terms
+    with pytest.raises(condyn.SceneError) as e:
+        condyn.run(scene)
+    assert message in str(e.value)
