@@ -51,6 +51,9 @@ MECHANISM_RATES = {"vx", "vy", "vz", "omega", "wx", "wy", "wz", "ax", "ay", "az"
                    "alphax", "alphay", "alphaz", "fx", "fy", "fz", "m", "mx", "my", "mz"}
 # More curves than this are drawn without a legend (it would outgrow the figure).
 MAX_LEGEND = 12
+# The columns figure draws one panel per column, at most this many (a note names the rest).
+MAX_PANELS = 6
+PER_DOF = ("vel_", "acc_", "reaction_")  # the prefixes of a DOF's other quantities in a CSV
 
 
 def energy_columns(columns):
@@ -127,10 +130,20 @@ def read_csv(np, path):
     values = header[1:-1] if header[-1] == NEAR_SINGULAR else header[1:]
     dofs = [n for n in values
             if not n.startswith(prefixed) and n not in ENERGY_NAMES and n not in DRIFT_NAMES]
+    others = []
     if any(n.endswith(MECHANISM_POSES) for n in dofs):
         dofs = [n for n in dofs if "." not in n or n.rsplit(".", 1)[1] not in MECHANISM_RATES]
+    else:
+        # A CSV with a DOF's velocity, acceleration or reaction columns names its DOFs through
+        # them ([output] dofs selects the same DOFs for every quantity): the other unprefixed
+        # columns are [[derived]] columns. Without such columns they cannot be told apart.
+        named = {n[len(p):] for n in values for p in PER_DOF
+                 if n.startswith(p) and not n.startswith("acc_abs_")}
+        if named:
+            others = [n for n in dofs if n not in named]
+            dofs = [n for n in dofs if n in named]
     # acc_abs_ columns exist only under [ground_motion]: the displacements are relative to it
-    return columns, dofs, any(n.startswith("acc_abs_") for n in header)
+    return columns, dofs, any(n.startswith("acc_abs_") for n in header), others
 
 
 def h5_names(h5py, f, path, name):
@@ -211,7 +224,12 @@ def read_h5(np, path):
             names = h5_names(h5py, f, path, "energy_columns")
             e = h5_numbers(np, h5py, f, path, "energy", (nt, len(names)))
             columns.update({name: e[:, k] for k, name in enumerate(names)})
-        return columns, dofs, "absolute_acceleration" in f
+        derived = []
+        if "derived" in f:  # [[derived]] columns, named by derived_names
+            derived = h5_names(h5py, f, path, "derived_names")
+            d = h5_numbers(np, h5py, f, path, "derived", (nt, len(derived)))
+            columns.update({name: d[:, k] for k, name in enumerate(derived)})
+        return columns, dofs, "absolute_acceleration" in f, derived
 
 
 def star_match(name, pattern):
@@ -266,6 +284,27 @@ def chosen_dofs(np, columns, dofs, patterns, path):
     return chosen, how, notes
 
 
+def chosen_columns(columns, derived, patterns, path):
+    """The columns of the columns figure: those --columns names (names or globs, any column read
+    but t), or by default the result's [[derived]] columns; and notes."""
+    chosen = []
+    for p in patterns:
+        hits = [c for c in columns if c != "t" and star_match(c, p)]
+        if not hits:
+            some = names([c for c in columns if c != "t"], 8)
+            raise BadInput(f"--columns: '{p}' matches no column of {path} (columns: "
+                           f"{some or 'none'})")
+        chosen += [c for c in hits if c not in chosen]
+    if not patterns:
+        chosen = list(derived)
+    notes = []
+    if len(chosen) > MAX_PANELS:
+        notes.append(f"{names(chosen[MAX_PANELS:])} not drawn (at most {MAX_PANELS} panels); "
+                     "--columns chooses")
+        chosen = chosen[:MAX_PANELS]
+    return chosen, notes
+
+
 def names(items, most=6):
     return ", ".join(items[:most]) + (f" and {len(items) - most} more" if len(items) > most else "")
 
@@ -285,6 +324,21 @@ def draw_displacement(plt, t, columns, chosen, how, title_stem, relative):
     if len(chosen) <= MAX_LEGEND:
         legend = style.legend_below(fig, ax.get_lines(), ncol=min(4, len(chosen)))
     style.fit(fig, legend)
+    return fig
+
+
+def draw_columns(plt, t, columns, chosen, title_stem):
+    """One panel per column, stacked over a shared time axis (each column its own units: a
+    drift ratio beside a base shear)."""
+    fig, axes = plt.subplots(len(chosen), 1, figsize=(style.COLUMN_WIDTH, 0.9 + 1.1 * len(chosen)),
+                             sharex=True, squeeze=False)
+    for ax, c in zip(axes[:, 0], chosen):
+        ax.plot(t, columns[c], color="black")
+        ax.set_title(style.literal(c), loc="left", fontsize=8)  # a name too long for a y label
+        ax.grid(True, alpha=0.3)
+    axes[-1][0].set_xlabel("time [s]")
+    style.title(fig, f"{title_stem}: result columns")
+    style.fit(fig)
     return fig
 
 
@@ -354,22 +408,25 @@ def too_large(np, columns, chosen):
     return None
 
 
-def read_result(np, path, dofs_flag):
+def read_result(np, path, dofs_flag, columns_flag=""):
     """Everything plot needs from the result, or BadInput naming the file and the problem."""
     try:
         # HDF5 under the names run writes it (src/output/output_format.hpp), else CSV.
         hdf5 = path.lower().endswith((".h5", ".hdf5", ".hdf"))
-        columns, dofs, relative = read_h5(np, path) if hdf5 else read_csv(np, path)
+        columns, dofs, relative, derived = read_h5(np, path) if hdf5 else read_csv(np, path)
     except OSError as e:  # a folder, no permission, a read error
         raise BadInput(f"{path}: {e.strerror or e}") from None
+    drawn, drawn_notes = chosen_columns(columns, derived,
+                                        [p for p in columns_flag.split(",") if p], path)
+    dofs = [d for d in dofs if d not in drawn]  # a column named for its own panel
     patterns = [p for p in dofs_flag.split(",") if p]
     if patterns and not dofs:
         raise BadInput(f"{path}: has no displacement columns to choose from")
     chosen, how, notes = chosen_dofs(np, columns, dofs, patterns, path) if dofs else ([], "", [])
-    problem = too_large(np, columns, chosen)
+    problem = too_large(np, columns, chosen + drawn)
     if problem:
         raise BadInput(f"{path}: {problem}")
-    return columns, chosen, how, notes, relative
+    return columns, chosen, how, notes + drawn_notes, relative, drawn
 
 
 def main(argv):
@@ -377,6 +434,7 @@ def main(argv):
     parser.add_argument("result")
     parser.add_argument("--out-dir", default=None)
     parser.add_argument("--dofs", default="")
+    parser.add_argument("--columns", default="")
     parser.add_argument("--format", default="png,pdf")
     args = parser.parse_args(argv[1:])
     try:
@@ -393,7 +451,8 @@ def main(argv):
     stem = os.path.splitext(os.path.basename(path))[0]
     formats = [f for f in args.format.split(",") if f]
     try:
-        columns, chosen, how, notes, relative = read_result(np, path, args.dofs)
+        columns, chosen, how, notes, relative, drawn = read_result(np, path, args.dofs,
+                                                                  args.columns)
     except BadInput as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
@@ -419,6 +478,8 @@ def main(argv):
             if len(chosen) > MAX_LEGEND:  # a legend of hundreds of names would be the figure
                 notes.append(f"{stem}: {len(chosen)} DOFs drawn without a legend (more than "
                              f"{MAX_LEGEND}); --dofs chooses fewer")
+        if drawn:
+            save(draw_columns(plt, t, columns, drawn, title_stem), "columns")
         if "drift_position" in columns:
             fig, why = draw_drift(plt, np, t, columns, title_stem)
             if fig:
@@ -435,7 +496,7 @@ def main(argv):
         print(f"note: {line}")
     if not written:
         why = ("the notes above say why" if notes
-               else "no displacement, drift or energy columns")
+               else "no displacement, drift, energy or derived columns")
         print(f"error: {path}: nothing to draw ({why})", file=sys.stderr)
         return 2
     for name in written:

@@ -84,7 +84,7 @@ int plot_result(const PlotArgs& args) {
     OutputPlan plan;
     plan.add_input(args.result);
     const std::string stem = result.stem().string();
-    for (const char* kind : {"displacement", "drift", "energy"}) {
+    for (const char* kind : {"displacement", "columns", "drift", "energy"}) {
       for (const auto& f : format_list) {
         (void)plan.add_output((out_dir / (stem + "_" + kind + "." + f)).string(), "the figure");
       }
@@ -102,6 +102,7 @@ int plot_result(const PlotArgs& args) {
   std::vector<std::string> script_args = {
       args.result, "--out-dir", out_dir.empty() ? "." : out_dir.string(), "--format", formats};
   if (!args.dofs.empty()) script_args.insert(script_args.end(), {"--dofs", args.dofs});
+  if (!args.columns.empty()) script_args.insert(script_args.end(), {"--columns", args.columns});
   const int code = run_python_script(script, script_args, "");
   if (code != 0) remove_created();
   switch (code) {
@@ -125,11 +126,17 @@ int plot_result(const PlotArgs& args) {
 Command add_plot_command(CLI::App& app) {
   auto args = std::make_shared<PlotArgs>();
   auto* cmd = app.add_subcommand(
-      "plot", "figures of one run's CSV or HDF5: displacements, drift, energy (docs/plots.md)");
+      "plot",
+      "figures of one run's CSV or HDF5: displacements, derived columns, drift, energy "
+      "(docs/plots.md)");
   cmd->add_option("result", args->result, "the CSV or HDF5 file that condyn run wrote")->required();
   cmd->add_option("--dofs", args->dofs,
                   "DOFs to draw, names or globs, comma-separated (default: the four with the "
                   "largest peaks)")
+      ->check(non_empty_check());
+  cmd->add_option("--columns", args->columns,
+                  "columns to draw one panel each, names or globs, comma-separated (default: "
+                  "the result's [[derived]] columns)")
       ->check(non_empty_check());
   cmd->add_option("--out-dir", args->out_dir, "folder for the figures (default: beside RESULT)")
       ->check(non_empty_check());

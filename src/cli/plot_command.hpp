@@ -10,6 +10,7 @@ struct PlotArgs {
   std::string result;   ///< the run's .csv or .h5
   std::string out_dir;  ///< where the figures go (default: beside the result)
   std::string dofs;     ///< comma-separated DOF names or globs (default: the largest peaks)
+  std::string columns;  ///< comma-separated columns for their own panels (default: the derived)
   std::string formats = "png,pdf";
 };
 

@@ -170,3 +170,42 @@ def test_drift_and_energy_figures_inside_their_column_width():
         assert fig.get_figwidth() == pytest.approx(figure_style.COLUMN_WIDTH)
         assert problems(fig) == []
         plt.close(fig)
+
+
+def test_derived_columns_told_from_dofs_and_drawn_by_default(tmp_path):
+    # A CSV with reactions names its DOFs through them: the other unprefixed columns are
+    # [[derived]] columns (docs/plots.md), drawn one panel each; an HDF5 file names them.
+    t = np.linspace(0.0, 1.0, 11)
+    rows = np.c_[t, np.sin(t), 2 * np.sin(t), -np.sin(t), -2 * np.sin(t), np.sin(t), 1e5 * t]
+    header = "t,u1,u2,reaction_u1,reaction_u2,drift2,base_shear"
+    np.savetxt(tmp_path / "r.csv", rows, delimiter=",", header=header, comments="")
+    columns, dofs, _, others = plot_result.read_csv(np, tmp_path / "r.csv")
+    assert dofs == ["u1", "u2"] and others == ["drift2", "base_shear"]
+    r = plot("r.csv", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "r_columns.png").stat().st_size > 5000
+    # --columns draws any column, and one named leaves the displacement figure.
+    np.savetxt(tmp_path / "u.csv", rows[:, :3], delimiter=",", header="t,u1,u2", comments="")
+    _, chosen, _, _, _, drawn = plot_result.read_result(np, str(tmp_path / "u.csv"), "", "u2")
+    assert drawn == ["u2"] and chosen == ["u1"]
+    r = plot("u.csv", "--columns", "nothing*", cwd=tmp_path)
+    assert r.returncode == 2
+    assert "--columns: 'nothing*' matches no column of u.csv (columns: u1, u2)" in r.stderr
+    h5(tmp_path / "d.h5", t=t, displacement=np.c_[np.sin(t)], dof_names=np.array([b"u1"]),
+       derived=np.c_[np.cos(t), t], derived_names=np.array([b"drift1", b"base_shear"]))
+    columns, dofs, _, derived = plot_result.read_h5(np, str(tmp_path / "d.h5"))
+    assert dofs == ["u1"] and derived == ["drift1", "base_shear"]
+    np.testing.assert_array_equal(columns["base_shear"], t)
+
+
+def test_columns_figure_inside_its_column_width():
+    figure_style.paper_style(plt)
+    columns = run_lines({"drift_ratio_of_the_second_storey": lambda t: 4e-3 * np.sin(t),
+                         "base_shear": lambda t: 2.3e5 * np.sin(t),
+                         "storey_shear2": lambda t: 1.9e5 * np.cos(t)})
+    fig = plot_result.draw_columns(plt, columns["t"], columns, list(columns)[1:],
+                                   "a_result_file_with_a_long_name")
+    assert fig.get_figwidth() == pytest.approx(figure_style.COLUMN_WIDTH)
+    assert problems(fig) == []
+    assert [ax.get_title(loc="left") for ax in fig.axes] == list(columns)[1:]
+    plt.close(fig)
