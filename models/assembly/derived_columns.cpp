@@ -73,6 +73,9 @@ void ModelBuilder::build_derived() {
     for (const DerivedSpec::Term& term : spec.terms) {
       const SourcePoint key{spec.where.path + ".terms." + term.column,
                             term.line > 0 ? term.line : spec.where.line};
+      // After the name's own check: a term on the name is the column itself only when the
+      // name is no other column's.
+      if (term.column == spec.name) fail(key, who + ": a column cannot be a term of itself");
       const auto found = find_column(model_, term.column);
       if (!found) fail(key, who + ": " + unknown_column(model_, term.column, all_columns(model_)));
       if (found->derived >= 0) {  // an earlier derived column (the parser refused later ones)

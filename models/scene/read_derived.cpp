@@ -20,8 +20,8 @@ void SceneReader::read_derived(const toml::node& node, std::vector<DerivedSpec>&
     const auto& t = table(*arr.get(i), path);
     check_keys(t, path, {"name", "terms"});
     DerivedSpec d;
-    d.where = at(*arr.get(i), path);
     const toml::node& name_node = required(t, path, "name");
+    d.where = at(name_node, path);  // the name's line: the builder's refusals name the entry
     d.name = string(name_node, join(path, "name"));
     if (d.name.empty()) fail(name_node, join(path, "name"), "must not be empty");
     check_name(name_node, join(path, "name"), d.name, "derived column");
@@ -50,7 +50,6 @@ void SceneReader::read_derived(const toml::node& node, std::vector<DerivedSpec>&
       if (!std::isfinite(c)) {
         fail(value, term_path, who + ": the coefficient " + fmt(c) + " is not finite");
       }
-      if (column == d.name) fail(value, term_path, who + ": a column cannot be a term of itself");
       // A name further down is a later column: only those above are known by then, and the
       // order rules out cycles.
       for (std::size_t j = i + 1; j < arr.size(); ++j) {

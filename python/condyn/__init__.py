@@ -27,7 +27,8 @@ class Result:
 
     t (nt); u, v, reaction (nt x n); multiplier (nt x m); drift (nt x 2: position, velocity
     residual, max-norm); a (nt x n, u'', relative to the ground under [ground_motion]) when the
-    scene's [output] asks for acceleration or absolute_acceleration, else None; a_abs (nt x n,
+    scene's [output] asks for acceleration or absolute_acceleration (or a [[derived]] column
+    reads an acceleration), else None; a_abs (nt x n,
     u'' + r a_g(t)) when it asks for absolute_acceleration, else None;
     energy and kinetic (nt) for a conservative model, else None; energy_balance (nt x 7, columns
     named by energy_columns: energy, energy_error, energy_kinetic, energy_potential,

@@ -69,8 +69,7 @@ std::vector<Quantity> CheckEvaluator::quantities() const {
   for (const auto& s : states_) {
     if (s.column.derived >= 0) {
       derived.push_back(model_->derived[static_cast<std::size_t>(s.column.derived)]);
-    } else if (s.column.point < 0 &&
-               std::find(out.begin(), out.end(), s.column.quantity) == out.end()) {
+    } else if (std::find(out.begin(), out.end(), s.column.quantity) == out.end()) {
       out.push_back(s.column.quantity);
     }
   }
