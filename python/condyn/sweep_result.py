@@ -16,7 +16,8 @@ def write_result(result, path):
     """Writes `result` at `path`: the dataset `t`, one per quantity the result holds
     (displacement, velocity, reaction, drift; acceleration, absolute_acceleration and energy
     when the scene's [output] asked for them; multiplier with constraints; points with [output]
-    points; near_singular where a row is in a singular passage), the names as UTF-8 string
+    points; derived with [[derived]] columns; near_singular where a row is in a singular
+    passage), the names as UTF-8 string
     datasets and the root attributes scheme, rtol, atol (and constraints, as condyn run)."""
     import h5py  # Debian's python3-h5py; imported here, where it is needed
     import numpy as np
@@ -28,12 +29,14 @@ def write_result(result, path):
                 "reaction": result.reaction,
                 "multiplier": result.multiplier if result.constraint_names else None,
                 "drift": result.drift, "energy": result.energy_balance, "points": result.points,
+                "derived": result.derived if result.derived_names else None,
                 "near_singular": (np.asarray(result.near_singular, dtype=np.float64)
                                   if np.any(result.near_singular) else None)}
     names = {"dof_names": result.dof_names, "constraint_names": result.constraint_names,
              "energy_columns": result.energy_columns if result.energy_balance is not None
              else None,
-             "point_names": result.point_names if result.points is not None else None}
+             "point_names": result.point_names if result.points is not None else None,
+             "derived_names": result.derived_names or None}
     if mechanism:  # a mechanism's quantities have columns of their own (docs/cli.md)
         names.update(velocity_names=result.velocity_names,
                      acceleration_names=result.acceleration_names,
