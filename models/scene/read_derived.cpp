@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 
 #include "models/scene/scene_readers.hpp"
@@ -15,6 +16,15 @@ void SceneReader::read_derived(const toml::node& node, std::vector<DerivedSpec>&
   const auto& arr = array(node, "derived");
   if (arr.empty()) fail(node, "derived", "is empty: give [[derived]] tables or omit them");
   std::unordered_map<std::string, std::size_t> first;  // each name's entry
+  // Each name's first entry as written, to tell a term on a later derived column (below).
+  std::unordered_map<std::string, std::size_t> entry_of;
+  for (std::size_t j = 0; j < arr.size(); ++j) {
+    const auto* t = arr.get(j)->as_table();
+    const auto* name = t != nullptr ? t->get("name") : nullptr;
+    if (const auto text = name != nullptr ? name->value<std::string>() : std::nullopt) {
+      entry_of.emplace(*text, j);
+    }
+  }
   for (std::size_t i = 0; i < arr.size(); ++i) {
     const std::string path = index("derived", i);
     const auto& t = table(*arr.get(i), path);
@@ -52,14 +62,10 @@ void SceneReader::read_derived(const toml::node& node, std::vector<DerivedSpec>&
       }
       // A name further down is a later column: only those above are known by then, and the
       // order rules out cycles.
-      for (std::size_t j = i + 1; j < arr.size(); ++j) {
-        const auto* later = arr.get(j)->as_table();
-        const auto* later_name = later != nullptr ? later->get("name") : nullptr;
-        if (later_name != nullptr && later_name->value<std::string>() == column) {
-          fail(value, term_path,
-               who + ": names derived column '" + column + "' of " + index("derived", j) +
-                   ", which comes after it: a derived column may use only those above it");
-        }
+      if (const auto later = entry_of.find(column); later != entry_of.end() && later->second > i) {
+        fail(value, term_path,
+             who + ": names derived column '" + column + "' of " + index("derived", later->second) +
+                 ", which comes after it: a derived column may use only those above it");
       }
       d.terms.push_back({column, c + 0.0, static_cast<int>(value.source().begin.line)});
     }
