@@ -205,7 +205,7 @@ struct DerivedSpec {
   };
   std::string name;
   std::vector<Term> terms;  ///< in the terms table's order (toml++ sorts keys)
-  SourcePoint where;        ///< "derived[2]" and its line
+  SourcePoint where;        ///< "derived[2]" and the line of its name
 };
 
 struct SceneSpec {
