@@ -233,4 +233,25 @@ rtol = 1e-8
 atol = 1e-10
 )";
 
+/// Two masses on springs, the second tied to the first by a stiff spring (k = 1e6: ω ≈ 1.4e3
+/// against the soft mode's ≈ 1), undamped, under a step load on the second: the stiff mode is
+/// excited and never resolved at rtol 1e-6 over 10 s (models/scenes/stiff_pair.toml); `solve_keys`
+/// after rtol and atol in [solve].
+inline std::string stiff_pair_scene(const std::string& solve_keys) {
+  return R"([model]
+type = "matrix"
+dofs = ["a", "b"]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[1000001.0, -1000000.0], [-1000000.0, 1000000.0]]
+[[load]]
+dof = "b"
+value = 1.0
+[solve]
+t_end = 10.0
+output_step = 0.5
+rtol = 1e-6
+atol = 1e-9
+)" + solve_keys;
+}
+
 }  // namespace condyn::test

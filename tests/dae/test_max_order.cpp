@@ -5,48 +5,25 @@
 #include <string>
 
 #include "models/scene/scene_parser.hpp"
+#include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
 
-namespace {
-
-/// Two masses on springs, the second tied to the first by a stiff spring (k = 1e6: ω ≈ 1.4e3
-/// against the soft mode's ≈ 1), undamped, under a step load on the second: the stiff mode is
-/// excited and never resolved at rtol 1e-6 over 10 s.
-std::string stiff_pair(const std::string& solve_keys) {
-  return R"([model]
-type = "matrix"
-dofs = ["a", "b"]
-mass = [[1.0, 0.0], [0.0, 1.0]]
-stiffness = [[1000001.0, -1000000.0], [-1000000.0, 1000000.0]]
-[[load]]
-dof = "b"
-value = 1.0
-[solve]
-t_end = 10.0
-output_step = 0.5
-rtol = 1e-6
-atol = 1e-9
-)" + solve_keys;
-}
-
-}  // namespace
-
 TEST_CASE("max_order caps the BDF order of every scheme's integrator, and the run says so") {
   for (const char* scheme : {"elimination", "index1", "projection"}) {
     CAPTURE(scheme);
-    const auto free_order = test::built(
-        parse_scene_text(stiff_pair(std::string("scheme = \"") + scheme + "\"\n"), "pair.toml"));
+    const auto free_order = test::built(parse_scene_text(
+        test::stiff_pair_scene(std::string("scheme = \"") + scheme + "\"\n"), "pair.toml"));
     const SolveResult unlimited = test::solved(free_order.model, free_order.spec.solve);
     CHECK(unlimited.summary.max_order_used > 2);  // BDF climbs on the smooth soft mode
     CHECK(unlimited.summary.notes_text().find("BDF order") == std::string::npos);
     for (int cap : {1, 2}) {
       CAPTURE(cap);
-      const auto capped =
-          test::built(parse_scene_text(stiff_pair(std::string("scheme = \"") + scheme +
+      const auto capped = test::built(
+          parse_scene_text(test::stiff_pair_scene(std::string("scheme = \"") + scheme +
                                                   "\"\nmax_order = " + std::to_string(cap) + "\n"),
-                                       "pair.toml"));
+                           "pair.toml"));
       const SolveResult r = test::solved(capped.model, capped.spec.solve);
       CHECK(r.summary.max_order_used >= 1);
       CHECK(r.summary.max_order_used <= cap);
@@ -60,7 +37,8 @@ TEST_CASE("max_order outside 1..5 is refused naming the key") {
   for (const char* bad : {"0", "6", "2.5", "\"two\""}) {
     CAPTURE(bad);
     CHECK_THROWS_WITH_AS(
-        (void)parse_scene_text(stiff_pair(std::string("max_order = ") + bad + "\n"), "pair.toml"),
+        (void)parse_scene_text(test::stiff_pair_scene(std::string("max_order = ") + bad + "\n"),
+                               "pair.toml"),
         doctest::Contains("solve.max_order"), SceneError);
   }
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -80,19 +81,7 @@ TEST_CASE("rattle warns of a step beyond its stability limit, and its failure sa
   // √(2 · 1e6) ≈ 1414 rad/s to 1e-6, so h = 0.01 gives h ω = 14 ≥ 2, and the explicit force
   // update blows up (it did at t = 1.35, advised to check the loads); h = 0.001 gives 1.4 < 2.
   const Sandbox box;
-  box.write("pair.toml", R"([model]
-type = "matrix"
-dofs = ["a", "b"]
-mass = [[1.0, 0.0], [0.0, 1.0]]
-stiffness = [[1000001.0, -1000000.0], [-1000000.0, 1000000.0]]
-[[load]]
-dof = "b"
-value = 1.0
-[solve]
-t_end = 2.0
-output_step = 0.05
-scheme = "rattle"
-)");
+  box.write("pair.toml", condyn::test::stiff_pair_scene("scheme = \"rattle\"\n"));
   const Result beyond = box.run("run pair.toml --step 0.01 --out beyond.csv");
   CHECK(beyond.code == 1);
   CHECK(contains(beyond.err,
