@@ -65,7 +65,7 @@ terms = { stretch = 0.5, u2 = 4.0 }
   CHECK(ratio.terms[2].index == 1);
 }
 
-TEST_CASE("derived columns: a row's value is the sum of its terms; a missing vector is a bug") {
+TEST_CASE("derived columns: a row's value is the sum of its terms, and a missing vector is a bug") {
   const DerivedColumn column{"c",
                              {{Quantity::displacement, 1, 2.0},
                               {Quantity::velocity, 0, -1.0},
