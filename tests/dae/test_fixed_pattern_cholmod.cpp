@@ -168,7 +168,8 @@ test::BuiltScene tied_lattice(const std::string& solve_keys) {
 
 }  // namespace
 
-TEST_CASE("elimination and penalty runs agree under KLU and CHOLMOD, and auto chooses by analysis") {
+TEST_CASE(
+    "elimination and penalty runs agree under KLU and CHOLMOD, and auto chooses by analysis") {
   for (const char* scheme : {"elimination", "penalty"}) {
     CAPTURE(scheme);
     const std::string named = std::string("scheme = \"") + scheme + "\"\n";
