@@ -230,6 +230,7 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   // The slowest time scale: the lowest natural period's 1/ω, at most the run's length.
   const double T = s.omega_min > 0.0 ? std::min(1.0 / s.omega_min, t_end) : t_end;
   AbsoluteTolerances a;
+  a.scales = s;
   a.displacement = settings.atol;
   // Sustained over the run, but over no more than a thousand of the slowest natural time
   // scales (an oscillator turns a velocity error into a displacement of Δv/ω, not Δv·t_end), and

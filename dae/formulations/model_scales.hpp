@@ -80,6 +80,9 @@ struct AbsoluteTolerances {
   /// like 1/h²): the oblique pendulum failed to start at h = 1e-10.
   double first_step = 0.0;
   std::string rule;  ///< one line for `condyn info`
+  /// The model's scales they were derived from (kept for what else needs them: RATTLE's
+  /// stability limit), so that a plan computes them once.
+  ModelScales scales;
 };
 
 [[nodiscard]] AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& settings);

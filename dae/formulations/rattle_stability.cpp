@@ -2,13 +2,10 @@
 
 #include <sstream>
 
-#include "dae/formulations/model_scales.hpp"
-
 namespace condyn {
 
-std::optional<std::string> rattle_stability_warning(const Model& model, double step) {
+std::optional<std::string> rattle_stability_warning(const ModelScales& scales, double step) {
   constexpr double kStabilityLimit = 2.0;  // h ω of the leapfrog's stability interval
-  const ModelScales scales = model_scales(model);
   const double h_omega = step * scales.omega_max;
   if (!(h_omega >= kStabilityLimit)) return std::nullopt;
   std::ostringstream s;

@@ -8,14 +8,15 @@
 #include <optional>
 #include <string>
 
-#include "models/core/model.hpp"
+#include "dae/formulations/model_scales.hpp"
 
 namespace condyn {
 
-/// What to say before (and after a failed) RATTLE run of `model` with `step`: when h ω_max ≥ 2,
-/// ω_max the model's highest frequency at t = 0 (ModelScales: the constrained eigenvalues up to
+/// What to say before (and after a failed) RATTLE run with `step`: when h ω_max ≥ 2, ω_max the
+/// model's highest frequency at t = 0 (`scales`, the plan's: the constrained eigenvalues up to
 /// kDenseScaleLimit DOFs, else an upper bound), the product, the largest stable step and the
 /// implicit alternative; else nothing.
-[[nodiscard]] std::optional<std::string> rattle_stability_warning(const Model& model, double step);
+[[nodiscard]] std::optional<std::string> rattle_stability_warning(const ModelScales& scales,
+                                                                  double step);
 
 }  // namespace condyn

@@ -124,7 +124,8 @@ void plan_parameters(RunPlan& p, SchemeDecisions& decisions) {
   if (newmark_family(p.scheme)) p.notes.push_back(newmark_note(p.scheme, p.settings));
   if (p.scheme == Scheme::rattle) {
     p.notes.push_back(rattle_note(p.settings));
-    if (auto warning = rattle_stability_warning(model, p.settings.step.value_or(0.0))) {
+    if (auto warning =
+            rattle_stability_warning(p.tolerances.scales, p.settings.step.value_or(0.0))) {
       p.notes.push_back({RunNote::Kind::warning, std::move(*warning)});
     }
   }
