@@ -85,6 +85,15 @@ gravity = [0.0, -9.81]
 )" + solve_keys;
 }
 
+/// The pendulum above over 0.5 with the fixed step 0.01 (the Newmark family's and RATTLE's),
+/// output every 0.05 of every quantity a constrained run writes.
+inline const std::string kFixedStepPendulum = pendulum_scene(R"(t_end = 0.5
+output_step = 0.05
+step = 0.01
+[output]
+quantities = ["displacement", "velocity", "reaction", "multiplier", "drift", "energy"]
+)");
+
 /// A conical pendulum in exactly steady rotation (truss3d): a unit mass on a rigid member of
 /// length L from a fixed support, at `degrees` from the vertical, gravity 9.81 L along −z (the
 /// same motion in other length units: L = 1000 is millimetres), started with `speed` times the

@@ -7,26 +7,12 @@
 #include <string>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/scene_text.hpp"
 
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
 namespace {
-
-const std::string kPendulum = R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-t_end = 0.5
-output_step = 0.05
-step = 0.01
-[output]
-quantities = ["displacement", "velocity", "reaction", "multiplier", "drift", "energy"]
-)";
 
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
@@ -38,7 +24,7 @@ bool contains(const std::string& s, const std::string& part) {
 
 TEST_CASE("run under the Newmark family writes the other schemes' columns") {
   const Sandbox box;
-  box.write("p.toml", kPendulum);
+  box.write("p.toml", condyn::test::kFixedStepPendulum);
   const Result ggl = box.run("run p.toml --scheme ggl --out ggl.csv");
   REQUIRE(ggl.code == 0);
   for (const char* scheme : {"newmark", "hht", "generalized_alpha"}) {
@@ -56,18 +42,18 @@ TEST_CASE("run under the Newmark family writes the other schemes' columns") {
 
 TEST_CASE("the Newmark family's bad parameters and steps exit 2 naming the key") {
   const Sandbox box;
-  std::string bad_alpha = kPendulum;
+  std::string bad_alpha = condyn::test::kFixedStepPendulum;
   bad_alpha.replace(bad_alpha.find("step = 0.01"), 11,
                     "step = 0.01\nscheme = \"hht\"\nhht = { alpha = -0.5 }");
   box.write("a.toml", bad_alpha);
   const Result a = box.run("run a.toml --out a.csv");
   CHECK(a.code == 2);
   CHECK(contains(a.err, "a.toml:13: solve.hht.alpha: must lie in [-1/3, 0]"));
-  box.write("p.toml", kPendulum);
+  box.write("p.toml", condyn::test::kFixedStepPendulum);
   const Result big = box.run("run p.toml --scheme newmark --step 5 --out b.csv");
   CHECK(big.code == 2);
   CHECK(contains(big.err, "solve.step"));
-  std::string beta = kPendulum;
+  std::string beta = condyn::test::kFixedStepPendulum;
   beta.replace(beta.find("step = 0.01"), 11, "step = 0.01\nnewmark = { beta = 0.2 }");
   box.write("beta.toml", beta);
   const Result b = box.run("run beta.toml --scheme newmark --out beta.csv");
@@ -78,7 +64,7 @@ TEST_CASE("the Newmark family's bad parameters and steps exit 2 naming the key")
 
 TEST_CASE("the Newmark family without a step runs with error-controlled steps") {
   const Sandbox box;
-  std::string no_step = kPendulum;
+  std::string no_step = condyn::test::kFixedStepPendulum;
   no_step.replace(no_step.find("step = 0.01"), 11, "rtol = 1e-6\natol = 1e-8");
   box.write("n.toml", no_step);
   for (const char* scheme : {"newmark", "hht", "generalized_alpha"}) {
@@ -95,7 +81,7 @@ TEST_CASE("the Newmark family without a step runs with error-controlled steps") 
 TEST_CASE(
     "info names the Newmark family's parameters and step, and compare sets them no rtol target") {
   const Sandbox box;
-  box.write("p.toml", kPendulum);
+  box.write("p.toml", condyn::test::kFixedStepPendulum);
   // info: which scheme and why (requested), with the parameters and the fixed step it would use.
   const Result info = box.run("info p.toml --scheme hht");
   REQUIRE(info.code == 0);
@@ -119,7 +105,7 @@ TEST_CASE(
 
 TEST_CASE("info, check and compare take --step as run does, and refuse a bad one") {
   const Sandbox box;
-  std::string no_step = kPendulum;
+  std::string no_step = condyn::test::kFixedStepPendulum;
   no_step.replace(no_step.find("step = 0.01"), 11, "");
   // The index-3 position rows hold to roundoff under the family (docs/schemes.md).
   box.write("c.toml", no_step + "[[check]]\nquantity = \"drift_position\"\nmax_abs = 1e-9\n");

@@ -13,21 +13,6 @@ using condyn::test::Sandbox;
 
 namespace {
 
-const std::string kPendulum = R"([model]
-type = "truss2d"
-nodes = [[0.0, 0.0], [1.0, 0.0]]
-masses = [0.0, 1.0]
-supports = [1]
-members = [{ nodes = [1, 2], rigid = true }]
-gravity = [0.0, -9.81]
-[solve]
-t_end = 0.5
-output_step = 0.05
-step = 0.01
-[output]
-quantities = ["displacement", "velocity", "reaction", "multiplier", "drift", "energy"]
-)";
-
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
 bool contains(const std::string& s, const std::string& part) {
@@ -38,7 +23,7 @@ bool contains(const std::string& s, const std::string& part) {
 
 TEST_CASE("run under rattle writes the other schemes' columns") {
   const Sandbox box;
-  box.write("p.toml", kPendulum);
+  box.write("p.toml", condyn::test::kFixedStepPendulum);
   const Result ggl = box.run("run p.toml --scheme ggl --out ggl.csv");
   REQUIRE(ggl.code == 0);
   const Result r = box.run("run p.toml --scheme rattle --out r.csv");
@@ -51,7 +36,7 @@ TEST_CASE("run under rattle writes the other schemes' columns") {
 
 TEST_CASE("rattle's refusals and a missing step exit 2 naming the key") {
   const Sandbox box;
-  std::string damped = kPendulum;
+  std::string damped = condyn::test::kFixedStepPendulum;
   damped.replace(damped.find("[solve]"), 7,
                  "damping = { rayleigh = [0.1, 0.0] }\n[solve]\nscheme = \"rattle\"");
   box.write("d.toml", damped);
@@ -60,7 +45,7 @@ TEST_CASE("rattle's refusals and a missing step exit 2 naming the key") {
   CHECK(contains(d.err, "d.toml:"));
   CHECK(contains(d.err, "solve.scheme"));
   CHECK(contains(d.err, "rattle integrates conservative mechanisms only"));
-  std::string no_step = kPendulum;
+  std::string no_step = condyn::test::kFixedStepPendulum;
   no_step.replace(no_step.find("step = 0.01"), 11, "");
   box.write("n.toml", no_step);
   const Result n = box.run("run n.toml --scheme rattle --out n.csv");
