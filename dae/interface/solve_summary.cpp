@@ -140,7 +140,7 @@ std::string SolveSummary::worst_drift_place() const {
   return "";
 }
 
-std::string SolveSummary::brief() const {
+std::string SolveSummary::brief(const std::vector<RunNote>& said_before) const {
   std::ostringstream s;
   s.precision(3);
   s << scheme << ": " << termination << ", " << steps << " steps, " << residual_evals
@@ -162,13 +162,16 @@ std::string SolveSummary::brief() const {
     s << " (worst: " << worst_drift_place() << ")";
   }
   if (max_abs_mu >= 0.0) s << ", max |mu| " << max_abs_mu;
-  if (!notes.empty()) s << "; " << notes_text();
+  if (const std::string text = notes_text(said_before); !text.empty()) s << "; " << text;
   return s.str();
 }
 
-std::string SolveSummary::notes_text() const {
+std::string SolveSummary::notes_text(const std::vector<RunNote>& said_before) const {
   std::string text;
-  for (const RunNote& note : notes) text += (text.empty() ? "" : "; ") + note.text;
+  for (const RunNote& note : notes) {
+    if (std::find(said_before.begin(), said_before.end(), note) == said_before.end())
+      text += (text.empty() ? "" : "; ") + note.text;
+  }
   return text;
 }
 

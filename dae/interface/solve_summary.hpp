@@ -183,8 +183,9 @@ struct SolveSummary {
   /// Remarks on the run in the order printed (brief(), notes_text()): what the scheme was set up
   /// with, what the integrator did of note, warnings.
   std::vector<RunNote> notes;
-  /// The notes as one line, joined by "; " (what `condyn run` prints and Python's "notes").
-  [[nodiscard]] std::string notes_text() const;
+  /// The notes as one line, joined by "; " (what `condyn run` prints and Python's "notes"),
+  /// without those in `said_before` (warnings a caller printed before the run).
+  [[nodiscard]] std::string notes_text(const std::vector<RunNote>& said_before = {}) const;
   /// Appends a note of `kind`.
   void add_note(RunNote::Kind kind, std::string text);
   /// Passages near a singular configuration (models whose constraint Jacobian depends on the
@@ -212,8 +213,8 @@ struct SolveSummary {
   /// termination for a run that reached `t`: "reached t = 2.000000" as it has always read where
   /// six decimals give t exactly, t's shortest form otherwise ("reached t = 1e-10", not 0.000000).
   void set_reached(double t);
-  /// One line for the terminal.
-  [[nodiscard]] std::string brief() const;
+  /// One line for the terminal; its notes without those in `said_before`.
+  [[nodiscard]] std::string brief(const std::vector<RunNote>& said_before = {}) const;
   /// Where the worst drift was: "joint hinge", "the rigid-body rows of body rod1", or "".
   [[nodiscard]] std::string worst_drift_place() const;
 };

@@ -73,10 +73,12 @@ SceneSpec scene_with_flags(const RunArgs& args, std::string& set_aside) {
 
 /// What a finished run prints after writing its result: the build's notes and warnings, the
 /// run's summary and energy balance, its score against a published reference (`last`: the last
-/// row a streamed run kept for it) and the files written.
+/// row a streamed run kept for it) and the files written. `said_before`: the plan's warnings,
+/// printed before the run, left out of the summary line.
 void print_run_report(std::ostream& msg, const RunArgs& args, const RunOutputs& outputs,
                       const Model& model, const BuildReport& report, const SolveSpec& settings,
-                      const SolveResult& result, const std::optional<TrajectoryRow>& last) {
+                      const SolveResult& result, const std::optional<TrajectoryRow>& last,
+                      const std::vector<RunNote>& said_before) {
   const Trajectory& traj = result.trajectory;
   const SolveSummary& summary = result.summary;
   if (!report.initial_projection.empty())
@@ -89,7 +91,7 @@ void print_run_report(std::ostream& msg, const RunArgs& args, const RunOutputs& 
     std::cerr << "warning: " << args.scene << ": " << w << "\n";
   for (const auto& d : report.dropped_constraints)
     msg << "dropped redundant constraint " << d << "\n";
-  msg << summary.brief() << "\n";
+  msg << summary.brief(said_before) << "\n";
   if (const double e = relative_energy_error(traj); std::isnan(e)) {
     msg << "energy: not evaluated: an energy leaves the double range (loads or motions too large "
            "for double precision)\n";
@@ -140,9 +142,11 @@ int run(const RunArgs& args) {
       std::cerr << "warning: " << args.scene << ": " << *warning << "\n";
   }
   // What the plan warns of before the run (rattle's step beyond its stability limit).
+  std::vector<RunNote> said_before;
   for (const RunNote& note : run_plan.notes) {
-    if (note.kind == RunNote::Kind::warning)
-      std::cerr << "warning: " << args.scene << ": " << note.text << "\n";
+    if (note.kind != RunNote::Kind::warning) continue;
+    std::cerr << "warning: " << args.scene << ": " << note.text << "\n";
+    said_before.push_back(note);
   }
   release_model_input(spec);
   // The scene's parse tree and its copy of the model are freed in the middle of the heap, where
@@ -189,7 +193,7 @@ int run(const RunArgs& args) {
   } else {
     outputs.write(model, attributes, traj);
   }
-  print_run_report(msg, args, outputs, model, report, spec.solve, result, last);
+  print_run_report(msg, args, outputs, model, report, spec.solve, result, last, said_before);
   return 0;
 }
 

@@ -80,3 +80,23 @@ TEST_CASE("rattle warns of a step beyond its stability limit, and its failure sa
   CHECK(within.code == 0);
   CHECK_FALSE(contains(within.err, "stability limit"));
 }
+
+TEST_CASE("rattle's stability warning is printed once by a run that ends") {
+  // The stiff pair at h = 0.0015 (h ω = 2.12 ≥ 2) grows until t ≈ 1.5 (run to 10 s it blew up
+  // there); over 0.3 s it ends. The warning, printed before the run, is not repeated in the
+  // summary line (it was, word for word).
+  std::string scene = condyn::test::stiff_pair_scene("scheme = \"rattle\"\nstep = 0.0015\n");
+  scene.replace(scene.find("t_end = 10.0"), 12, "t_end = 0.3");
+  scene.replace(scene.find("output_step = 0.5"), 17, "output_step = 0.1");
+  const Sandbox box;
+  box.write("short.toml", scene);
+  const Result r = box.run("run short.toml --out short.csv");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  const std::string all = r.out + r.err;
+  const auto first = all.find("stability limit");
+  REQUIRE(first != std::string::npos);
+  CHECK(all.find("stability limit", first + 1) == std::string::npos);
+  CHECK(contains(r.err, "warning: short.toml: rattle's step 0.0015"));
+  CHECK(contains(all, "rattle: symplectic, fixed step 0.0015"));  // the other notes stay
+}
