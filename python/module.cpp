@@ -122,30 +122,52 @@ const char* failure_kind_name(FailureKind kind) {
   return "unknown";
 }
 
-/// (result dict, failure message or None, failure kind or None): the Python side raises
-/// IntegrationError with the partial result and the kind.
+/// condyn.check's dict of a verdict (docs/python.md); `checks` lists each check of `specs`.
+py::dict check_dict(SceneCheckResult result, const std::vector<CheckSpec>& specs);
+
+/// (result dict, failure message or None, failure kind or None, check dict or None): the Python
+/// side raises IntegrationError with the partial result and the kind. With `checks`, the scene's
+/// [[check]] tables are evaluated on this run's rows (the quantities they read computed too), as
+/// condyn.check would evaluate them on a run of its own.
 py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
-              std::optional<double> rtol, std::optional<double> atol, std::optional<double> step) {
+              std::optional<double> rtol, std::optional<double> atol, std::optional<double> step,
+              bool checks) {
   std::string set_aside;
   SceneSpec spec = run_spec(scene, scheme, rtol, atol, step, set_aside);
+  checks = checks && !spec.checks.empty();
+  if (checks) add_check_quantities(spec);
+  const std::vector<CheckSpec> specs = spec.checks;
   BuildReport report;
   std::optional<Model> model;
+  std::optional<CheckEvaluator> evaluator;
   SolveResult result;
   without_gil([&] {
     try {
       model.emplace(build_model(spec, report));
       if (!set_aside.empty()) report.warnings.insert(report.warnings.begin(), set_aside);
       // A bad [[check]] is bad input here as in the command's run (which refuses it, exit 2).
-      if (!spec.checks.empty()) (void)CheckEvaluator(*model, spec.checks, spec.file);
+      if (!spec.checks.empty()) evaluator.emplace(*model, spec.checks, spec.file);
       release_model_input(spec);
-      RunHooks hooks = hooks_for(with_derived_quantities(spec.output.quantities, model->derived));
+      std::vector<Quantity> quantities =
+          with_derived_quantities(spec.output.quantities, model->derived);
+      if (checks) quantities = with_check_quantities(std::move(quantities), *evaluator);
+      RunHooks hooks = hooks_for(quantities);
       hooks.reactions = true;  // the result holds every row's reaction and multipliers
       result = solve(*model, spec.solve, hooks);
+      if (checks && result.ok()) {
+        for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(result.trajectory.t.size()); ++k)
+          evaluator->add(row_of(result.trajectory, k));
+      }
     } catch (const SchemeNotApplicable& e) {
       // Bad input, as in the CLI (exit 2): the scene and the scheme do not go together.
       throw SceneError(scene_message(spec.file, e.where(), e.what()));
     }
   });
+  const py::object verdict =
+      checks
+          ? py::object(check_dict(
+                check_verdict(spec.file, spec.solve, result, *evaluator, report.warnings), specs))
+          : py::object(py::none());
   const py::object failure = result.ok()
                                  ? py::object(py::none())
                                  : python::system_text(describe_failure(result, spec.solve.t_end));
@@ -154,7 +176,7 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
                               : py::object(py::str(failure_kind_name(result.failure->kind)));
   return py::make_tuple(
       python::result_dict(std::move(result), *model, spec.solve, report, spec.output), failure,
-      kind);
+      kind, verdict);
 }
 
 py::tuple compare(const py::handle& scene, const std::optional<std::vector<double>>& tolerances,
@@ -227,6 +249,10 @@ py::dict check(const py::handle& scene, const std::optional<std::string>& scheme
       throw SceneError(scene_message(file, e.where(), e.what()));
     }
   });
+  return check_dict(std::move(result), specs);
+}
+
+py::dict check_dict(SceneCheckResult result, const std::vector<CheckSpec>& specs) {
   // A failed run evaluates no check: each still gets its dict, NaN and not passed (docs/python.md).
   if (!result.failure.empty()) result.outcomes = unevaluated_outcomes(specs);
   py::list checks;
@@ -293,7 +319,7 @@ PYBIND11_MODULE(_condyn, m) {
     return PyErr_CheckSignals() != 0;
   });
   m.def("run", &run, py::arg("scene"), py::arg("scheme") = py::none(), py::arg("rtol") = py::none(),
-        py::arg("atol") = py::none(), py::arg("step") = py::none());
+        py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("checks") = false);
   m.def("compare", &compare, py::arg("scene"), py::arg("tolerances") = py::none(),
         py::arg("schemes") = py::none(), py::arg("repeats") = py::none(),
         py::arg("drift_rtol") = py::none(), py::arg("max_steps") = 0,

@@ -78,6 +78,30 @@ Trajectory RowLog::trajectory() const {
   return out;
 }
 
+TrajectoryRow row_of(const Trajectory& traj, Eigen::Index k) {
+  const auto i = static_cast<std::size_t>(k);
+  const auto column = [k](const Eigen::MatrixXd& x) {
+    return x.cols() > k ? Eigen::VectorXd(x.col(k)) : Eigen::VectorXd();
+  };
+  const auto entry = [k](const Eigen::VectorXd& x) { return x.size() > k ? x[k] : 0.0; };
+  TrajectoryRow row;
+  row.t = traj.t.at(i);
+  row.u = column(traj.u);
+  row.v = column(traj.v);
+  row.reaction = column(traj.reaction);
+  row.multiplier = column(traj.multiplier);
+  row.acceleration = column(traj.acceleration);
+  row.drift_position = entry(traj.drift_position);
+  row.drift_velocity = entry(traj.drift_velocity);
+  row.conservative = traj.energy.size() > k;
+  row.energy = entry(traj.energy);
+  row.kinetic = entry(traj.kinetic);
+  row.energy_scale = traj.energy_scale;
+  if (traj.balance.size() > i) row.balance = traj.balance[i];
+  row.near_singular = traj.near_singular.size() > i && traj.near_singular[i];
+  return row;
+}
+
 Trajectory trajectory_of(const TrajectoryRow& row) {
   RowLog log;
   log.add(row);

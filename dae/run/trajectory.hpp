@@ -153,6 +153,10 @@ class RowLog {
   std::vector<EnergyBalance> balance_;
 };
 
+/// Row k of a trajectory that holds its rows whole, as a streamed run would have handed it out
+/// (to evaluate checks on a run that kept its rows).
+[[nodiscard]] TrajectoryRow row_of(const Trajectory& traj, Eigen::Index k);
+
 /// A one-row trajectory holding the row whole (the last row of a streamed run, to score it).
 [[nodiscard]] Trajectory trajectory_of(const TrajectoryRow& row);
 

@@ -39,7 +39,9 @@ class Result:
     each the DOFs, except for a mechanism), constraint_names; points (nt x k, the [output]
     points' positions, columns point_names) or None; derived (nt x k, the scene's [[derived]]
     columns, named by derived_names; nt x 0 without any: docs/scenes.md); summary (dict: scheme, steps, wall_s, rtol,
-    atol, residual_evals, jacobian_evals, ..., singular_passages, worst_drift_joint).
+    atol, residual_evals, jacobian_evals, ..., singular_passages, worst_drift_joint); checks
+    (run(..., checks=True) on a scene with [[check]] tables: condyn.check's dict for this run's
+    rows, else None).
     A mechanism ([model] type = "multibody") shows its own columns, as the CSV does: u holds
     the poses (crank.x, crank.y, crank.angle; in 3D a quaternion crank.qw..qz, 7 columns a body),
     v the velocities (crank.vx, ..., crank.omega; in 3D wx, wy, wz, 6 a body), a the
@@ -52,10 +54,12 @@ class Result:
     __slots__ = ("t", "u", "v", "reaction", "multiplier", "drift", "a", "a_abs", "energy",
                  "kinetic", "energy_balance", "energy_columns", "near_singular", "dof_names",
                  "velocity_names", "acceleration_names", "reaction_names", "points",
-                 "point_names", "constraint_names", "derived", "derived_names", "summary")
+                 "point_names", "constraint_names", "derived", "derived_names", "summary",
+                 "checks")
 
-    def __init__(self, fields):
-        for key in self.__slots__:
+    def __init__(self, fields, checks=None):
+        self.checks = checks
+        for key in self.__slots__[:-1]:
             value = fields[key]
             if hasattr(value, "flags"):  # a numpy array: read-only, as documented
                 value.flags.writeable = False
@@ -91,18 +95,22 @@ class IntegrationError(RuntimeError):
         return (type(self), (str(self), self.result, self.kind))
 
 
-def run(scene, scheme=None, rtol=None, atol=None, step=None):
+def run(scene, scheme=None, rtol=None, atol=None, step=None, checks=False):
     """Runs `scene` (a path to a scene file, or a dict with the TOML's structure) and returns a
     Result. `scheme`, `rtol`, `atol` and `step` (the fixed step of the Newmark family: newmark,
-    hht, generalized_alpha) override the scene's [solve] keys. Bad input raises
+    hht, generalized_alpha) override the scene's [solve] keys. With `checks`, the scene's
+    [[check]] tables are evaluated on this run's rows (Result.checks: the dict condyn.check
+    returns, without a second run; the quantities the checks read are computed too; None for a
+    scene without [[check]]; on a failed run, on IntegrationError's result). Bad input raises
     SceneError (a ValueError) with the CLI's "FILE:LINE: key.path: problem" message ("<dict>"
     and no line for a dict); a failed integration raises IntegrationError. The GIL is released
     while the model is built and integrated."""
     _refuse_text(scene)
-    fields, failure, kind = _condyn.run(scene, _text(scene, "scheme", scheme),
-                                        _number(scene, "rtol", rtol), _number(scene, "atol", atol),
-                                        _number(scene, "step", step))
-    result = Result(fields)
+    fields, failure, kind, verdict = _condyn.run(scene, _text(scene, "scheme", scheme),
+                                                 _number(scene, "rtol", rtol),
+                                                 _number(scene, "atol", atol),
+                                                 _number(scene, "step", step), bool(checks))
+    result = Result(fields, verdict)
     if failure is not None:
         raise IntegrationError(f"{_name(scene)}: integration failed: {failure}", result, kind)
     return result

@@ -22,7 +22,7 @@ NOT_RUN = ("interrupted",)     # stopped from outside: no row, the run is done a
 def run_one(scene, files, peaks, checks=False, keep_result=False):
     """Runs `scene` (a dict; its `file` keys name entries of `files`, name -> bytes) and returns
     {status, steps, wall_s, peaks: {column: (peak, time)}, message}, with `checks` (the scene's
-    [[check]] verdicts, evaluate_checks) when asked and the run succeeded, and `result` (the
+    [[check]] verdicts, verdict_of) when asked and the run succeeded, and `result` (the
     whole result as HDF5 bytes, sweep_result.py) when `keep_result` and the run has rows. Never
     raises for a run's failure: the failure is the row's status."""
     with tempfile.TemporaryDirectory(prefix="condyn-sweep-") as folder:
@@ -32,19 +32,20 @@ def run_one(scene, files, peaks, checks=False, keep_result=False):
             with open(local[name], "wb") as f:
                 f.write(files[name])
         scene = map_files(scene, local.__getitem__)
-        row, result = _run(scene, peaks)
+        row, result = _run(scene, peaks, checks)
         if checks and row["status"] == "ok":
-            row["checks"] = evaluate_checks(scene)
+            row["checks"] = verdict_of(result.checks)
         if keep_result and result is not None and len(result.t) > 0:
             from .sweep_result import result_bytes
             row["result"] = result_bytes(result, os.path.join(folder, "result.h5"))
     return row
 
 
-def _run(scene, peaks):
-    """(the run's row, its Result or None)."""
+def _run(scene, peaks, checks):
+    """(the run's row, its Result or None); with `checks`, the Result's checks are evaluated on
+    its own rows (condyn.run(checks=True): one run, not a second one for condyn.check)."""
     try:
-        result = condyn.run(scene)
+        result = condyn.run(scene, checks=checks)
     except condyn.IntegrationError as e:
         return _row(e.kind or "unknown", e.result, {}, str(e)), e.result
     except condyn.SceneError as e:
@@ -59,11 +60,10 @@ def _run(scene, peaks):
     return _row("ok", result, {p: peak(result.t, columns[p]) for p in peaks}, ""), result
 
 
-def evaluate_checks(scene):
-    """The scene's [[check]] tables evaluated as `condyn check` does (condyn.check: a run of its
-    own, the checks taken on its rows as they are computed): {passed: every check held and the
-    constraints did not drift, each: [(passed, computed)] per check, in the scene's order}."""
-    verdict = condyn.check(scene)
+def verdict_of(verdict):
+    """The row's part of condyn.check's dict for the run (Result.checks): {passed: every check
+    held and the constraints did not drift, each: [(passed, computed)] per check, in the scene's
+    order}."""
     return {"passed": bool(verdict["passed"]),
             "each": [(bool(c["passed"]), float(c["computed"])) for c in verdict["checks"]]}
 

@@ -135,3 +135,30 @@ def test_check_runs_the_newmark_family_with_a_step_as_the_cli_does(cli):
     bad = subprocess.run([str(cli), "check", str(OSCILLATOR), "--scheme", "generalized_alpha",
                           "--step", "1e9"], capture_output=True, text=True)
     assert bad.returncode == 2
+
+
+@pytest.mark.parametrize("scene_file", [OSCILLATOR, QUICKSTART.parent / "checks" / "quickstart_checked.toml"])
+def test_run_with_checks_gives_checks_verdict_on_its_own_rows(scene_file):
+    # condyn sweep evaluated a scene's checks with condyn.check, a second run of the same scene;
+    # run(checks=True) evaluates them on the run's own rows: the same verdict, figure for figure
+    # (the same integration, rows assembled alike: equal to the last bit).
+    alone = condyn.check(scene_file)
+    r = condyn.run(scene_file, checks=True)
+    assert r.checks is not None
+    for key in ("passed", "failure", "drift", "scheme", "steps", "warnings"):
+        assert r.checks[key] == alone[key], key
+    assert [c["computed"] for c in r.checks["checks"]] == [c["computed"] for c in alone["checks"]]
+    assert [c["text"] for c in r.checks["checks"]] == [c["text"] for c in alone["checks"]]
+    assert condyn.run(scene_file).checks is None  # only when asked
+
+
+def test_run_with_checks_on_a_failed_run_lists_each_check_unevaluated():
+    with open(OSCILLATOR, "rb") as f:
+        scene = tomllib.load(f)
+    scene["check"] = [{"quantity": "x", "max_abs": 2.0}]
+    scene["solve"]["max_steps"] = 50
+    with pytest.raises(condyn.IntegrationError) as failed:
+        condyn.run(scene, checks=True)
+    verdict = failed.value.result.checks
+    assert not verdict["passed"] and "budget" in verdict["failure"]
+    assert len(verdict["checks"]) == 1 and math.isnan(verdict["checks"][0]["computed"])

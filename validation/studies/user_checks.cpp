@@ -222,6 +222,57 @@ SceneCheckResult run_scene_checks(const std::string& path, const SceneCheckOptio
   return run_scene_checks(parse_scene_file(path, SceneNeeds{.checks = true}), options);
 }
 
+void add_check_quantities(SceneSpec& spec) {
+  auto& quantities = spec.output.quantities;
+  const auto add = [&quantities](Quantity q) {
+    if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) {
+      quantities.push_back(q);
+    }
+  };
+  // energy and energy_error are the energy quantity's whatever the model: asked for before the
+  // build, which refuses it where it has no meaning.
+  for (const auto& c : spec.checks) {
+    for (const auto column : kEnergyColumns) {
+      if (c.quantity == column) add(Quantity::energy);
+    }
+  }
+}
+
+std::vector<Quantity> with_check_quantities(std::vector<Quantity> quantities,
+                                            const CheckEvaluator& evaluator) {
+  for (Quantity q : evaluator.quantities()) {
+    if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) {
+      quantities.push_back(q);
+    }
+  }
+  return quantities;
+}
+
+SceneCheckResult check_verdict(const std::string& file, const SolveSpec& settings,
+                               const SolveResult& result, const CheckEvaluator& evaluator,
+                               std::vector<std::string> warnings) {
+  SceneCheckResult out;
+  out.scene = file;
+  out.warnings = std::move(warnings);
+  // A run that left its mechanism's branch passes or fails its checks as computed; the warning
+  // stands beside the verdicts (and in the JUnit report's system-err), as in `run`.
+  for (auto& w : singular_passage_warnings(result.summary.singular_passages)) {
+    out.warnings.push_back(std::move(w));
+  }
+  out.scheme = to_string(result.scheme);
+  out.steps = result.summary.steps;
+  out.wall_s = result.summary.wall_seconds;
+  if (!result.ok()) {
+    out.failure = std::string(to_string(result.failure->kind)) + ": " + result.failure->message;
+    return out;
+  }
+  out.outcomes = evaluator.outcomes();
+  if (const auto drift = result.summary.drift_warning(settings.rtol, settings.atol)) {
+    out.drift = drift->substr(drift->find(' ') + 1);  // without its "warning: "
+  }
+  return out;
+}
+
 SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& options) {
   if (spec.checks.empty()) {
     throw SceneError(no_checks_message(spec.file));
@@ -236,47 +287,15 @@ SceneCheckResult run_scene_checks(SceneSpec spec, const SceneCheckOptions& optio
   } catch (const std::invalid_argument& e) {
     throw SceneError(spec.file + ": " + e.what());
   }
-  // energy and energy_error are the energy quantity's whatever the model: ask for it before the
-  // build, which refuses it where it has no meaning.
-  auto& quantities = spec.output.quantities;
-  const auto add = [&quantities](Quantity q) {
-    if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) {
-      quantities.push_back(q);
-    }
-  };
-  for (const auto& c : spec.checks) {
-    for (const auto column : kEnergyColumns) {
-      if (c.quantity == column) add(Quantity::energy);
-    }
-  }
+  add_check_quantities(spec);
   BuildReport report;
   const Model model = build_model(spec, report);
   if (!set_aside.empty()) report.warnings.insert(report.warnings.begin(), set_aside);
   CheckEvaluator evaluator(model, spec.checks, spec.file);
-  for (Quantity q : evaluator.quantities()) add(q);
-  RunHooks hooks = hooks_for(quantities);
+  RunHooks hooks = hooks_for(with_check_quantities(spec.output.quantities, evaluator));
   hooks.on_row = [&evaluator](const TrajectoryRow& row) { evaluator.add(row); };
   const SolveResult result = solve(model, spec.solve, hooks);
-  SceneCheckResult out;
-  out.scene = spec.file;
-  out.warnings = std::move(report.warnings);
-  // A run that left its mechanism's branch passes or fails its checks as computed; the warning
-  // stands beside the verdicts (and in the JUnit report's system-err), as in `run`.
-  for (auto& w : singular_passage_warnings(result.summary.singular_passages)) {
-    out.warnings.push_back(std::move(w));
-  }
-  out.scheme = to_string(result.scheme);
-  out.steps = result.summary.steps;
-  out.wall_s = result.summary.wall_seconds;
-  if (!result.ok()) {
-    out.failure = std::string(to_string(result.failure->kind)) + ": " + result.failure->message;
-    return out;
-  }
-  out.outcomes = evaluator.outcomes();
-  if (const auto drift = result.summary.drift_warning(spec.solve.rtol, spec.solve.atol)) {
-    out.drift = drift->substr(drift->find(' ') + 1);  // without its "warning: "
-  }
-  return out;
+  return check_verdict(spec.file, spec.solve, result, evaluator, std::move(report.warnings));
 }
 
 }  // namespace condyn

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dae/run/mapped_rows.hpp"
+#include "dae/run/solve_result.hpp"
 #include "dae/run/trajectory.hpp"
 #include "models/core/model.hpp"
 #include "models/core/result_columns.hpp"
@@ -85,6 +86,18 @@ struct SceneCheckResult {
   std::vector<CheckOutcome> outcomes;  ///< empty when the run failed
   [[nodiscard]] bool passed() const;
 };
+
+/// Switches on in [output] what the checks' energy columns need, before the build.
+void add_check_quantities(SceneSpec& spec);
+/// `quantities` with those the evaluator's checks read (for the run's hooks).
+[[nodiscard]] std::vector<Quantity> with_check_quantities(std::vector<Quantity> quantities,
+                                                          const CheckEvaluator& evaluator);
+/// The verdict of a run whose rows `evaluator` has seen: its outcomes (none when the run failed:
+/// `failure` says why), its drift warning, the build's `warnings` and the singular passages'.
+[[nodiscard]] SceneCheckResult check_verdict(const std::string& file, const SolveSpec& settings,
+                                             const SolveResult& result,
+                                             const CheckEvaluator& evaluator,
+                                             std::vector<std::string> warnings);
 
 /// Parses the scene, switches on the quantities its checks read, builds, runs and evaluates.
 /// Throws SceneError for bad input (a scene without [[check]] included), and what solve() throws.
