@@ -61,7 +61,7 @@ class Sweep:
     scene: dict      # the scene as tomllib reads it
     axes: list       # of Axis
     peaks: list      # the kept columns (names of the run's CSV columns)
-    ida: tuple = None  # [ida]: (the kept column, the limit state or None), sweep_ida.py
+    ida: tuple = None  # [ida]: (the kept column, the limit state or None, axis labels), sweep_ida.py
     keep_result: bool = False  # [keep] results: each run's whole result as DIR/runs/KEY.h5
 
     @property

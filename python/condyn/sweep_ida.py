@@ -14,12 +14,26 @@ import numpy as np
 
 from .sweep_file import _fail
 
-_IDA_KEYS = ("response", "limit")
+_IDA_KEYS = ("response", "limit", "intensity_label", "response_label")
+
+
+def default_labels(intensity, response, scale=None):
+    """The axes' labels when [ida] names none: what the intensity is (with Sa's period and damping
+    from [scale]) and that both are in the scene's units (condyn has no units of its own)."""
+    scale = scale or {}
+    if intensity == "sa":
+        what = (f"Sa(T = {scale.get('period', float('nan')):g}, "
+                f"damping {scale.get('damping', 0.05):g}), in the scene's acceleration units")
+    elif intensity == "pga":
+        what = "PGA, in the scene's acceleration units"
+    else:
+        what = "scale factor on each record"
+    return {"intensity": what, "response": f"peak |{response}|, in the scene's units"}
 
 
 def read_ida(path, table, sweep):
-    """The [ida] table checked: (column, limit or None), or None without [ida]. Needs [records]
-    and [scale] (the record and intensity of each run) and a kept column."""
+    """The [ida] table checked: (column, limit or None, axis labels), or None without [ida].
+    Needs [records] and [scale] (the record and intensity of each run) and a kept column."""
     ida = table.get("ida")
     if ida is None:
         return None
@@ -40,7 +54,18 @@ def read_ida(path, table, sweep):
     if limit is not None and (isinstance(limit, bool) or not isinstance(limit, (int, float))
                               or not math.isfinite(limit) or limit <= 0):
         _fail(path, "ida.limit", f"expected a positive number (got {limit!r})")
-    return response, limit
+    scale = table.get("scale") if isinstance(table.get("scale"), dict) else {}
+    intensity = next((k for k in ("pga", "sa") if k in scale), "scale")
+    labels = default_labels(intensity, response, scale)
+    for axis in ("intensity", "response"):
+        label = ida.get(f"{axis}_label")
+        if label is None:
+            continue
+        if not isinstance(label, str) or not label.strip():
+            _fail(path, f"ida.{axis}_label", f"expected the axis label, a non-empty string "
+                  f"(got {label!r})")
+        labels[axis] = label
+    return response, limit, labels
 
 
 def ida_points(columns, rows, response):
@@ -82,14 +107,16 @@ def fragility_fit(runs, limit):
     return math.exp(best.x[0]), math.exp(best.x[1])
 
 
-def write_ida(folder, columns, rows, response, limit):
-    """DIR/ida.png and .pdf, and with a limit DIR/fragility.png, .pdf and fragility.json.
+def write_ida(folder, columns, rows, response, limit, labels=None):
+    """DIR/ida.png and .pdf, and with a limit DIR/fragility.png, .pdf and fragility.json; the axes
+    labelled by `labels` ({intensity, response}: read_ida's, default_labels when None).
     Returns the fit (theta, beta) or None."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     intensity, curves, runs = ida_points(columns, rows, response)
+    labels = labels or default_labels(intensity, response)
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     for record, (ims, peaks) in curves.items():
         ax.plot(peaks, ims, "-o", color="0.7", lw=0.8, ms=2.5)
@@ -102,8 +129,8 @@ def write_ida(folder, columns, rows, response, limit):
                 label=f"{label} across records")
     if limit is not None:
         ax.axvline(limit, color="tab:red", lw=1.0, label=f"limit state {limit:g}")
-    ax.set_xlabel(f"peak |{response}|")
-    ax.set_ylabel(intensity)
+    ax.set_xlabel(labels["response"])
+    ax.set_ylabel(labels["intensity"])
     ax.set_title(f"IDA curves: {len(curves)} records (grey), failed runs left out")
     ax.legend(loc="lower right", fontsize=8)
     _save(fig, os.path.join(folder, "ida"))
@@ -119,7 +146,7 @@ def write_ida(folder, columns, rows, response, limit):
         x = np.linspace(min(levels) * 0.5, max(levels) * 1.2, 200)
         ax.plot(x, norm.cdf(np.log(x / fit[0]) / fit[1]), "-", color="tab:blue",
                 label=f"lognormal fit: median {fit[0]:.3g}, beta {fit[1]:.3g}")
-    ax.set_xlabel(intensity)
+    ax.set_xlabel(labels["intensity"])
     ax.set_ylabel(f"P(peak |{response}| >= {limit:g})")
     ax.set_ylim(-0.02, 1.02)
     ax.set_title("Fragility (maximum likelihood, Baker 2015)")

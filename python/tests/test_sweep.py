@@ -575,6 +575,35 @@ def test_ida_writes_curves_and_the_fit_and_refuses_what_it_cannot_draw(suite, tm
         read_sweep(suite)
 
 
+def test_ida_axes_say_what_they_show_or_the_labels_given(suite, tmp_path, monkeypatch):
+    # The axes read "pga" and "peak |u2|": no units and no Sa period. condyn has no units, so
+    # the defaults say the quantity and "the scene's units"; [ida] may give the study's labels.
+    suite.write_text(RECORDS + '[ida]\nresponse = "u2"\n')
+    labels = read_sweep(suite).ida[2]
+    assert labels["intensity"] == "PGA, in the scene's acceleration units"
+    assert labels["response"] == "peak |u2|, in the scene's units"
+    sa = RECORDS.replace("pga = [0.5, 2.0]", "sa = [0.5, 2.0]\nperiod = 0.8")
+    suite.write_text(sa + '[ida]\nresponse = "u2"\n')
+    assert read_sweep(suite).ida[2]["intensity"].startswith("Sa(T = 0.8, damping 0.05)")
+    suite.write_text(RECORDS + '[ida]\nresponse = "u2"\nlimit = 2.5\nintensity_label = "PGA [g]"\n'
+                     'response_label = "roof drift [m]"\n')
+    spec = read_sweep(suite).ida
+    assert spec[2] == {"intensity": "PGA [g]", "response": "roof drift [m]"}
+    import matplotlib.axes
+    drawn = []
+    monkeypatch.setattr(matplotlib.axes.Axes, "set_xlabel", lambda ax, text: drawn.append(text))
+    monkeypatch.setattr(matplotlib.axes.Axes, "set_ylabel", lambda ax, text: drawn.append(text))
+    from condyn.sweep_ida import write_ida
+    columns = ["run", "record", "pga", "status", "steps", "wall_s", "peak_u2", "peak_time_u2"]
+    rows = [["k", rec, str(im), "ok", "1", "0.1", str(im * f), "0"]
+            for rec, f in (("a", 1.0), ("b", 2.0)) for im in (1.0, 2.0)]
+    write_ida(str(tmp_path), columns, rows, *spec)
+    assert drawn[:3] == ["roof drift [m]", "PGA [g]", "PGA [g]"]  # IDA x, y; fragility x
+    suite.write_text(RECORDS + '[ida]\nresponse = "u2"\nresponse_label = ""\n')
+    with pytest.raises(condyn.SweepError, match=r"ida\.response_label: expected the axis label"):
+        read_sweep(suite)
+
+
 def test_the_ida_example_is_a_valid_sweep_of_records_the_script_writes():
     example = os.path.join(os.path.dirname(__file__), "..", "..", "models", "scenes", "ida")
     runs = expand(read_sweep(os.path.join(example, "frame_ida.toml")))
