@@ -3,6 +3,7 @@
 #include "models/core/result_columns.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 
@@ -36,6 +37,27 @@ std::optional<ResultColumn> find_mapped_column(const OutputMap& map, const std::
 }
 
 }  // namespace
+
+std::string column_name(const Model& model, Quantity quantity, int index) {
+  const auto i = static_cast<std::size_t>(index);
+  if (model.outputs) return model.outputs->names(quantity).at(i);
+  const std::string& dof = model.dof_names.at(i);
+  switch (quantity) {
+    case Quantity::displacement:
+      return dof;
+    case Quantity::velocity:
+      return "vel_" + dof;
+    case Quantity::acceleration:
+      return "acc_" + dof;
+    case Quantity::absolute_acceleration:
+      return "acc_abs_" + dof;
+    case Quantity::reaction:
+      return "reaction_" + dof;
+    default:
+      break;
+  }
+  throw std::logic_error("column_name: not a quantity of one column per DOF");
+}
 
 std::vector<std::string> all_columns(const Model& model) {
   std::vector<std::string> out = {"drift_position", "drift_velocity"};

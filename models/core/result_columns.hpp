@@ -29,6 +29,10 @@ struct ResultColumn {
 /// drift_velocity, the energy columns (kEnergyColumns) and the model's [[derived]] columns.
 [[nodiscard]] std::optional<ResultColumn> find_column(const Model& model, const std::string& name);
 
+/// The name of entry `index` of `quantity`'s columns (displacement, velocity, acceleration,
+/// absolute acceleration or reaction), as the CSV writes it: "vel_u3", a mechanism's "crank.vx".
+[[nodiscard]] std::string column_name(const Model& model, Quantity quantity, int index);
+
 /// Every column a run of the model can write (under some quantity; a mechanism's named points
 /// are not listed: its map does not enumerate them), [[derived]] columns included.
 [[nodiscard]] std::vector<std::string> all_columns(const Model& model);

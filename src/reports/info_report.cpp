@@ -1,6 +1,7 @@
 #include "src/reports/info_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iterator>
 #include <map>
@@ -22,6 +23,7 @@
 #include "models/core/classification.hpp"
 #include "models/core/load_library.hpp"
 #include "models/core/number_cell.hpp"
+#include "models/core/result_columns.hpp"
 
 namespace condyn {
 
@@ -126,6 +128,36 @@ void print_loads(std::ostream& out, const Model& model) {
   }
 }
 
+/// "0.333 u2 - 0.333 u1": a [[derived]] column's terms (those on other derived columns expanded,
+/// as the builder resolved them).
+std::string derived_formula(const Model& model, const DerivedColumn& column) {
+  std::ostringstream s;
+  s.precision(6);
+  for (std::size_t k = 0; k < column.terms.size(); ++k) {
+    const DerivedTerm& term = column.terms[k];
+    const double c = term.coefficient;
+    if (k > 0) s << (c < 0.0 ? " - " : " + ");
+    if (k == 0 && c < 0.0) s << "-";
+    if (std::abs(c) != 1.0) s << std::abs(c) << " ";
+    s << column_name(model, term.quantity, term.index);
+  }
+  return s.str();
+}
+
+/// The [[derived]] columns and their formulas (the first kMaxListed).
+void print_derived(std::ostream& out, const Model& model) {
+  constexpr std::size_t kMaxListed = 10;
+  if (model.derived.empty()) return;
+  out << "derived columns: " << model.derived.size() << "\n";
+  for (std::size_t i = 0; i < std::min(model.derived.size(), kMaxListed); ++i) {
+    const DerivedColumn& column = model.derived[i];
+    out << wrapped_text("  " + column.name + " = ", derived_formula(model, column));
+  }
+  if (model.derived.size() > kMaxListed) {
+    out << "  ... and " << model.derived.size() - kMaxListed << " more\n";
+  }
+}
+
 std::vector<std::string> names_of(const Model& model, const std::vector<int>& dofs) {
   std::vector<std::string> out;
   out.reserve(dofs.size());
@@ -152,6 +184,10 @@ void print_memory(std::ostream& out, const std::optional<MemoryEstimate>& select
                       factor_name(*selected) + " predicted at " +
                       shortest_number(selected->factor_entries) + " entries)" +
                       (available ? ", " + format_bytes(*available) + " available" : std::string()));
+  // What `run` would warn of before starting (check_run_memory), said here before a run is tried.
+  if (!available) return;
+  if (const auto warning = memory_warning(*selected, "the selected scheme", *available))
+    out << wrapped_text("warning: ", *warning);
 }
 
 /// The scene, its description, and what building the model noted and warned of.
@@ -387,6 +423,7 @@ void print_info(std::ostream& out, const Model& model, const BuildReport& report
              << ", A " << model.A.nonZeros();
   out << "\n" << wrapped_text("model: ", model_size.str());
   print_loads(out, model);
+  print_derived(out, model);
   // The plan a run would make, from the decisions `info` sizes every scheme with (the treatment,
   // the reduction: each made once).
   SchemeDecisions decisions(model);

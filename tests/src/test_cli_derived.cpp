@@ -237,3 +237,20 @@ TEST_CASE("cli derived: a mechanism's joint reaction and acceleration columns as
   REQUIRE(mix.size() == b.columns.at("mix").size());
   for (std::size_t k = 0; k < mix.size(); ++k) CHECK(mix[k] == b.columns.at("mix")[k]);
 }
+
+TEST_CASE("cli derived: info lists each derived column's formula, expanded as it is computed") {
+  Sandbox box;
+  box.write("frame.toml", kFrame +
+                              "[[derived]]\nname = \"inertia2\"\nterms = { acc_u2 = "
+                              "-20000.0 }\n");
+  const Result r = box.run("info frame.toml");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("derived columns: 6\n") != std::string::npos);
+  CHECK(r.out.find("  drift1 = -base_l + u1\n") != std::string::npos);
+  CHECK(r.out.find("  drift_ratio2 = -0.333333 u1 + 0.333333 u2\n") != std::string::npos);
+  CHECK(r.out.find("  base_shear = -reaction_base_l - reaction_base_r\n") != std::string::npos);
+  // storey_shear2 reads drift2: its terms are drift2's, times 1.5e7.
+  CHECK(r.out.find("  storey_shear2 = -1.5e+07 u1 + 1.5e+07 u2\n") != std::string::npos);
+  CHECK(r.out.find("  inertia2 = -20000 acc_u2\n") != std::string::npos);
+}
