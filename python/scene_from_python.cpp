@@ -67,6 +67,7 @@ bool is_sparse(const py::handle& value) {
 bool takes_matrix(const std::string& parent, const std::string& key) {
   if (parent == "model") return key == "mass" || key == "stiffness" || key == "damping";
   if (parent.rfind("load[", 0) == 0) return key == "pattern";
+  if (parent == "ground_motion") return key == "influence";
   if (parent.rfind("constraint_block[", 0) == 0) return key == "file" || key == "value";
   return false;
 }
@@ -317,7 +318,8 @@ class Converter {
     if (is_sparse(v)) {
       fail(p,
            "a scipy.sparse matrix is taken only by model.mass, model.stiffness, "
-           "model.damping, load.pattern, constraint_block.file and constraint_block.value");
+           "model.damping, load.pattern, ground_motion.influence, constraint_block.file and "
+           "constraint_block.value");
     }
     fail(p, "a " + type_name(v) +
                 " is not a scene value (numbers, strings, booleans, lists, dicts, numpy arrays)");

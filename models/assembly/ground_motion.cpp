@@ -18,16 +18,7 @@ void ModelBuilder::add_ground_motion(std::vector<double>& total) {
   const TimeFunction acceleration = acting_in_run(g.acceleration, acceleration_at);
   report_ground_records(acceleration);
   const int n = model_.dofs();
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
-  if (g.direction >= 0) {
-    for (int i = g.direction; i < n; i += spec_.model.dimension) r[i] = 1.0;
-  } else {
-    for (std::size_t k = 0; k < g.influence.size(); ++k) {
-      const auto& [name, value] = g.influence[k];
-      r[dof(name, {"ground_motion.influence." + name,
-                   line_of(g.influence_lines, k, g.where.line)})] = value;
-    }
-  }
+  const Eigen::VectorXd r = influence_vector();
   const Eigen::VectorXd mr = model_.M * r;
   const double bound = magnitude_bound(acceleration, spec_.solve.t_end);
   Load load{-1, acceleration, Eigen::SparseVector<double>(n)};

@@ -73,6 +73,8 @@ class ModelBuilder {
                         std::vector<double>& total);
   // ground_motion.cpp
   void add_ground_motion(std::vector<double>& total);
+  // influence_vector.cpp
+  [[nodiscard]] Eigen::VectorXd influence_vector() const;
   // ground_records.cpp
   void report_ground_records(const TimeFunction& acceleration);
 

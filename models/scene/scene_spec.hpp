@@ -129,8 +129,11 @@ struct ConstraintBlockSpec {
 struct GroundMotionSpec {
   TimeFunction acceleration;  ///< a_g(t)
   int direction = -1;         ///< truss: r = 1 on every node's x (0), y (1) or z (2) DOF
-  std::vector<std::pair<std::string, double>> influence;  ///< matrix model: r by DOF name
-  std::vector<int> influence_lines;                       ///< each entry's line
+  /// Matrix model: r by DOF name or `*` pattern (resolved by the builder, whatever the order: a
+  /// DOF's own name before any pattern, models/assembly/influence_vector.cpp).
+  std::vector<std::pair<std::string, double>> influence;
+  std::vector<int> influence_lines;  ///< each entry's line
+  FileMatrix influence_file;         ///< matrix model: influence = { file = "r.mtx" } (n x 1)
   SourcePoint where;
 };
 

@@ -79,3 +79,30 @@ def test_modes_refuses_a_model_without_mass():
     scene["model"]["mass"] = np.zeros((3, 3))
     with pytest.raises(condyn.SceneError, match="model.mass: the model has no mass"):
         condyn.modes(scene)
+
+
+def test_influence_as_an_array_or_a_pattern(tmp_path):
+    """The influence vector as a numpy array (as load.pattern takes one) or as a pattern over DOF
+    names: the same run and the same participating masses as the dict of DOFs, bit for bit."""
+    n = 4
+    by_name = building(n)
+    by_name["ground_motion"]["influence"] = {"u1": 1.0, "u2": 1.0, "u3": 0.5, "u4": 1.0}
+    array = building(n)
+    array["ground_motion"]["influence"] = np.array([1.0, 1.0, 0.5, 1.0])
+    pattern = building(n)
+    pattern["ground_motion"]["influence"] = {"u*": 1.0, "u3": 0.5}
+    reference, reference_run = condyn.modes(by_name), condyn.run(by_name)
+    for scene in (array, pattern):
+        r = condyn.modes(scene)
+        assert np.array_equal(r["mass_ratio"], reference["mass_ratio"])
+        assert r["total_mass"] == reference["total_mass"]
+        assert np.array_equal(condyn.run(scene).u, reference_run.u)
+    wrong = building(n)
+    wrong["ground_motion"]["influence"] = np.ones(3)
+    with pytest.raises(condyn.SceneError, match=r"ground_motion.influence: is 3 x 1 but an "
+                                                r"influence vector is n x 1 \(n = 4 DOFs\)"):
+        condyn.run(wrong)
+    nothing = building(n)
+    nothing["ground_motion"]["influence"] = {"x*": 1.0}
+    with pytest.raises(condyn.SceneError, match=r"ground_motion.influence.x\*: 'x\*' matches no DOF"):
+        condyn.modes(nothing)
