@@ -8,6 +8,9 @@ beside RESULT), each figure named STEM_<what>.<format>:
   displacement  the chosen DOFs against t (default: the four with the largest peak |u|)
   drift         running max of the position and velocity constraint residuals (if written; none when it is 0 throughout)
   energy        the energy balance's terms, and its error (if written: docs/energy.md)
+  shape         with --nodes (the scene's node map): the deformed shape at the time of the
+                largest nodal displacement (plot_shapes.py)
+  modes         with --nodes, for the CSV of `condyn modes --shapes`: the mode shapes
 Sized for print: 3.5 in wide (one column), 8-9 pt text.
 
 Exit status: 0 drawn; 2 bad input (the message names the file and what is wrong); 3 matplotlib,
@@ -22,6 +25,7 @@ try:  # the shared style imports matplotlib: without it, main exits 3
     import figure_style as style
 except ImportError:
     style = None
+import plot_shapes as shapes
 
 ENERGY_TERMS = (("energy_kinetic", "kinetic T"), ("energy_potential", "potential V"),
                 ("energy_dissipated", "dissipated D"), ("work_loads", "work of loads"),
@@ -68,6 +72,9 @@ class BadInput(Exception):
 def finite_table(np, path, header, rows):
     """Checks a result's columns: names unique and not empty, t first, every cell a finite
     number, t not decreasing. `rows` holds the data lines (line number, cells)."""
+    if header and header[0] == "dof":
+        raise BadInput(f"{path}: not a condyn result (its first column is not t): mode shapes "
+                       "(condyn modes --shapes) are drawn with --scene SCENE")
     if not header or header[0] != "t":
         raise BadInput(f"{path}: not a condyn result (its first column is not t)")
     seen = set()
@@ -429,6 +436,39 @@ def read_result(np, path, dofs_flag, columns_flag=""):
     return columns, chosen, how, notes + drawn_notes, relative, drawn
 
 
+def mode_shapes_file(path):
+    """Whether `path` is the CSV of `condyn modes --shapes` (its first column `dof`)."""
+    if path.lower().endswith((".h5", ".hdf5", ".hdf")):
+        return False
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            return f.readline().split(",", 1)[0].strip() == "dof"
+    except OSError:
+        return False  # read_result names the problem
+
+
+def plot_mode_shapes(plt, np, path, nodes, out_dir, stem, formats):
+    """STEM_modes.<format> from a mode shapes CSV; the exit status."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+        table, modes = shapes.read_shapes(np, path, lines[0].strip().split(","), lines)
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        print(f"error: {e}" if isinstance(e, ValueError) and str(e).startswith(path)
+              else f"error: {path}: cannot be read as mode shapes ({e})", file=sys.stderr)
+        return 2
+    style.paper_style(plt)
+    fig, notes = shapes.draw_modes(plt, np, style, nodes, table, modes, style.literal(stem))
+    for line in notes:
+        print(f"note: {stem}: {line}")
+    for ext in formats:
+        name = os.path.join(out_dir, f"{stem}_modes.{ext}")
+        fig.savefig(name, dpi=300 if ext == "png" else None)
+        print(f"wrote {name}")
+    plt.close(fig)
+    return 0
+
+
 def main(argv):
     parser = argparse.ArgumentParser(prog="plot_result.py")
     parser.add_argument("result")
@@ -436,6 +476,8 @@ def main(argv):
     parser.add_argument("--dofs", default="")
     parser.add_argument("--columns", default="")
     parser.add_argument("--format", default="png,pdf")
+    # the scene's node map as JSON (condyn plot --scene writes it): shapes are drawn
+    parser.add_argument("--nodes", default=None)
     args = parser.parse_args(argv[1:])
     try:
         import matplotlib
@@ -450,6 +492,9 @@ def main(argv):
     out_dir = args.out_dir or os.path.dirname(os.path.abspath(path))
     stem = os.path.splitext(os.path.basename(path))[0]
     formats = [f for f in args.format.split(",") if f]
+    nodes = shapes.read_nodes(args.nodes) if args.nodes else None
+    if nodes and mode_shapes_file(path):
+        return plot_mode_shapes(plt, np, path, nodes, out_dir, stem, formats)
     try:
         columns, chosen, how, notes, relative, drawn = read_result(np, path, args.dofs,
                                                                   args.columns)
@@ -489,6 +534,12 @@ def main(argv):
         terms = energy_columns(columns)
         if terms:
             save(draw_energy(plt, t, columns, terms, title_stem), "energy")
+        if nodes:
+            fig, note = shapes.draw_deformed(plt, np, style, nodes, columns, title_stem)
+            if fig:
+                save(fig, "shape")
+            if note:
+                notes.append(f"{stem}: {note}")
     except Exception as e:  # noqa: BLE001 -- a drawing error is a bug: said in one line
         print(f"error: {path}: drawing failed ({type(e).__name__}: {e})", file=sys.stderr)
         return 1

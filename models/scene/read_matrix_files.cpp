@@ -281,7 +281,7 @@ void read_square(const TomlAccess& r, const toml::table& t, const std::string& p
 
 void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) const {
   const std::string path = "model";
-  check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping"});
+  check_keys(t, path, {"type", "dofs", "mass", "stiffness", "damping", "coordinates"});
   model.type = ModelSpec::Type::matrix;
   refuse_unknown_tables(*this, t, path);
   // Files first: when `dofs` is omitted their size fixes n.
@@ -312,6 +312,7 @@ void SceneReader::read_matrix_model(const toml::table& t, ModelSpec& model) cons
       read_square(*this, t, path, "damping", rows, model.damping, model.damping_where);
     }
   }
+  if (const auto* c = t.get("coordinates")) read_coordinates(*c, model);
 }
 
 void SceneReader::read_constraint_blocks(const toml::node& node,

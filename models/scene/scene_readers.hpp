@@ -96,6 +96,8 @@ class SceneReader : public TomlAccess {
   /// [ground_motion] (read_ground_motion.cpp); the model (read first) decides its keys.
   void read_ground_motion(const toml::node& node, const ModelSpec& model,
                           std::optional<GroundMotionSpec>& out) const;
+  /// [model] coordinates of a matrix model (read_coordinates.cpp), after its DOFs.
+  void read_coordinates(const toml::node& node, ModelSpec& model) const;
   /// [ground_motion] influence of a matrix model: a file, or DOF names and patterns.
   void read_influence(const toml::node& node, const std::string& path, GroundMotionSpec& g) const;
   /// [[constraint]] (read_constraints.cpp).

@@ -15,6 +15,7 @@
 
 #include "models/core/constraint_level.hpp"
 #include "models/core/mechanism.hpp"
+#include "models/core/node_map.hpp"
 #include "models/core/output_quantity.hpp"
 #include "models/core/scheme.hpp"
 #include "models/core/solve_spec.hpp"
@@ -70,6 +71,8 @@ struct ModelSpec {
   /// The same, given by files instead of rows (models/scene/read_matrix_files.cpp); `dofs` is then
   /// u1..un when the scene omits it.
   FileMatrix mass_file, stiffness_file, damping_file;
+  /// matrix: [model] coordinates, the nodes its DOFs move (empty: not given); plot's shapes.
+  NodeMap coordinates;
   /// damping = { rayleigh = [a0, a1] }: C = a0 M + a1 K (any linear model).
   std::optional<std::array<double, 2>> rayleigh;
   /// What the scene's (frequency, ratio) pairs gave, for the report; empty for [a0, a1].

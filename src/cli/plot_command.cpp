@@ -1,12 +1,19 @@
 #include "src/cli/plot_command.hpp"
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "models/core/number_cell.hpp"
+#include "models/scene/scene_node_map.hpp"
+#include "models/scene/scene_parser.hpp"
 #include "src/cli/cli_flags.hpp"
 #include "src/cli/commands.hpp"
 #include "src/output/output_files.hpp"
@@ -20,6 +27,72 @@ namespace {
 int bad(const std::string& message) {
   std::cerr << "error: " << message << "\n";
   return 2;
+}
+
+/// The scene's node map for validation/plot_shapes.py: {"dimension", "nodes", "position",
+/// "dofs", "edges"}, every number finite (checked by the scene reader).
+void write_node_map(const NodeMap& map, const std::filesystem::path& path) {
+  std::ofstream out(path, std::ios::binary);
+  const auto list = [&](std::size_t n, const auto& item) {
+    out << "[";
+    for (std::size_t k = 0; k < n; ++k) {
+      out << (k ? "," : "");
+      item(k);
+    }
+    out << "]";
+  };
+  out << "{\"dimension\":" << map.dimension << ",\"nodes\":";
+  list(map.nodes.size(), [&](std::size_t k) { out << json_string(map.nodes[k]); });
+  out << ",\"position\":";
+  list(map.position.size(), [&](std::size_t k) {
+    list(3, [&](std::size_t a) { out << shortest_number(map.position[k][a]); });
+  });
+  out << ",\"dofs\":";
+  list(map.dofs.size(),
+       [&](std::size_t k) { list(3, [&](std::size_t a) { out << json_string(map.dofs[k][a]); }); });
+  out << ",\"edges\":";
+  list(map.edges.size(),
+       [&](std::size_t k) { out << "[" << map.edges[k][0] << "," << map.edges[k][1] << "]"; });
+  out << "}\n";
+  if (!out) throw OutputError(path.string() + ": cannot write the node map for the plot");
+}
+
+/// Runs validation/plot_result.py with `args`, and the node map (when not empty) in a temporary
+/// file of its own, removed after it: the script's exit code.
+int run_plot(const std::filesystem::path& script, std::vector<std::string> args,
+             const NodeMap& nodes) {
+  namespace fs = std::filesystem;
+  const fs::path map_file =
+      fs::temp_directory_path() / ("condyn-plot-nodes-" + std::to_string(::getpid()) + ".json");
+  if (!nodes.empty()) {
+    write_node_map(nodes, map_file);
+    args.insert(args.end(), {"--nodes", map_file.string()});
+  }
+  const int code = run_python_script(script, args, "");
+  std::error_code ec;
+  if (!nodes.empty()) fs::remove(map_file, ec);
+  return code;
+}
+
+/// The command's exit code for the script's: 0 drawn, 2 bad input (the script named it), else 1
+/// with what is missing or failed.
+int plot_exit(int code) {
+  switch (code) {
+    case 0:
+      return 0;
+    case 2:
+      return 2;  // bad input: the script named the file and what is wrong
+    case 3:
+      std::cerr << "error: plots need Debian's python3-matplotlib, python3-numpy and (for .h5) "
+                   "python3-h5py: apt-get install them\n";
+      return 1;
+    case 127:
+      std::cerr << "error: python3 is not installed (apt-get install python3-matplotlib)\n";
+      return 1;
+    default:
+      std::cerr << "error: the plotting script failed (exit " << code << ")\n";
+      return 1;
+  }
 }
 
 }  // namespace
@@ -53,6 +126,16 @@ int plot_result(const PlotArgs& args) {
     }
     formats += (formats.empty() ? "" : ",") + format;
   }
+  // The nodes the shapes are drawn on, from the scene (refused there when it is bad).
+  NodeMap nodes;
+  if (!args.scene.empty()) {
+    nodes = scene_node_map(parse_scene_file(args.scene));
+    if (nodes.empty()) {
+      return bad("--scene " + args.scene +
+                 ": no nodes to draw shapes on: a truss has its nodes, a matrix model needs "
+                 "[model] coordinates (docs/scenes.md), other models have none");
+    }
+  }
   const fs::path out_dir = args.out_dir.empty() ? result.parent_path() : fs::path(args.out_dir);
   // A folder made here goes again when nothing is drawn into it (a --dofs that matches none).
   fs::path created;
@@ -84,7 +167,9 @@ int plot_result(const PlotArgs& args) {
     OutputPlan plan;
     plan.add_input(args.result);
     const std::string stem = result.stem().string();
-    for (const char* kind : {"displacement", "columns", "drift", "energy"}) {
+    for (const char* kind : {"displacement", "columns", "drift", "energy", "shape", "modes"}) {
+      if (nodes.empty() && (kind == std::string_view("shape") || kind == std::string_view("modes")))
+        continue;
       for (const auto& f : format_list) {
         (void)plan.add_output((out_dir / (stem + "_" + kind + "." + f)).string(), "the figure");
       }
@@ -103,32 +188,23 @@ int plot_result(const PlotArgs& args) {
       args.result, "--out-dir", out_dir.empty() ? "." : out_dir.string(), "--format", formats};
   if (!args.dofs.empty()) script_args.insert(script_args.end(), {"--dofs", args.dofs});
   if (!args.columns.empty()) script_args.insert(script_args.end(), {"--columns", args.columns});
-  const int code = run_python_script(script, script_args, "");
-  if (code != 0) remove_created();
-  switch (code) {
-    case 0:
-      return 0;
-    case 2:
-      return 2;  // bad input: the script named the file and what is wrong
-    case 3:
-      std::cerr << "error: plots need Debian's python3-matplotlib, python3-numpy and (for .h5) "
-                   "python3-h5py: apt-get install them\n";
-      return 1;
-    case 127:
-      std::cerr << "error: python3 is not installed (apt-get install python3-matplotlib)\n";
-      return 1;
-    default:
-      std::cerr << "error: the plotting script failed (exit " << code << ")\n";
-      return 1;
+  int code = 0;
+  try {
+    code = run_plot(script, script_args, nodes);
+  } catch (const OutputError& e) {
+    remove_created();
+    return bad(e.what());
   }
+  if (code != 0) remove_created();
+  return plot_exit(code);
 }
 
 Command add_plot_command(CLI::App& app) {
   auto args = std::make_shared<PlotArgs>();
   auto* cmd = app.add_subcommand(
       "plot",
-      "figures of one run's CSV or HDF5: displacements, derived columns, drift, energy "
-      "(docs/plots.md)");
+      "figures of one run's CSV or HDF5: displacements, derived columns, drift, energy, and with "
+      "--scene the deformed shape (or the mode shapes of condyn modes --shapes) (docs/plots.md)");
   cmd->add_option("result", args->result, "the CSV or HDF5 file that condyn run wrote")->required();
   cmd->add_option("--dofs", args->dofs,
                   "DOFs to draw, names or globs, comma-separated (default: the four with the "
@@ -137,6 +213,11 @@ Command add_plot_command(CLI::App& app) {
   cmd->add_option("--columns", args->columns,
                   "columns to draw one panel each, names or globs, comma-separated (default: "
                   "the result's [[derived]] columns)")
+      ->check(non_empty_check());
+  cmd->add_option("--scene", args->scene,
+                  "the scene of the result: its nodes (a truss's, a matrix model's [model] "
+                  "coordinates) for the deformed shape, or the mode shapes of condyn modes "
+                  "--shapes")
       ->check(non_empty_check());
   cmd->add_option("--out-dir", args->out_dir, "folder for the figures (default: beside RESULT)")
       ->check(non_empty_check());

@@ -1,6 +1,7 @@
 #pragma once
 /// `condyn plot RESULT`: figures of one run's result file (the CSV or HDF5 `condyn run` writes),
-/// drawn by validation/plot_result.py with Debian's matplotlib (docs/plots.md).
+/// or of the mode shapes `condyn modes --shapes` writes, drawn by validation/plot_result.py with
+/// Debian's matplotlib (docs/plots.md).
 
 #include <string>
 
@@ -11,6 +12,7 @@ struct PlotArgs {
   std::string out_dir;  ///< where the figures go (default: beside the result)
   std::string dofs;     ///< comma-separated DOF names or globs (default: the largest peaks)
   std::string columns;  ///< comma-separated columns for their own panels (default: the derived)
+  std::string scene;    ///< the result's scene: its nodes, for the deformed or mode shapes
   std::string formats = "png,pdf";
 };
 
