@@ -23,7 +23,7 @@ void ModelBuilder::append_constraint_blocks(std::vector<Eigen::Triplet<double>>&
     }
     const SourcePoint scale_at{b.where.path + ".scale", b.where.line};
     refuse_table_rhs(b.scale, scale_at, false);
-    check_time_function(b.scale, scale_at);
+    check_time_function(b.scale, scale_at, true);
     const TimeFunction scale = acting_in_run(b.scale, scale_at);
     for (double t : scale.breakpoints()) {
       fail(scale_at, "a step at t = " + fmt(t) +

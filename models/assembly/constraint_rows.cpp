@@ -33,10 +33,50 @@ void ModelBuilder::check_coefficients(const ConstraintSpec& cs) const {
   }
 }
 
+/// A displacement record prescribes a displacement (position level only), and holds still
+/// outside its samples: a run that goes beyond them needs the record at rest at that end, or its
+/// velocity or acceleration would jump there (docs/scenes.md, "Support motion").
+void ModelBuilder::check_record_rhs(const TimeFunction& f, const SourcePoint& where,
+                                    bool velocity_level) const {
+  if (!f.has_record()) return;
+  if (velocity_level) {
+    fail(where,
+         "a displacement record prescribes a displacement: it is the right-hand side of a "
+         "position-level constraint (level = \"position\", the default), not of a velocity one");
+  }
+  // Roundoff of the record's own peaks: a record that ends at rest ends there to a few ulps.
+  constexpr double kAtRest = 1e-12;
+  for (const auto& term : f.terms()) {
+    if (term.kind != TimeTerm::Kind::record) continue;
+    const KinematicRecord& r = *term.record;
+    auto moving = [&](std::size_t k) {
+      return std::abs(r.velocity[k]) > kAtRest * r.bound[1] ||
+             std::abs(r.acceleration[k]) > kAtRest * r.bound[2];
+    };
+    auto refuse = [&](std::size_t k, const std::string& when) {
+      fail(where, term.describe() + " " + when + " while moving (velocity " +
+                      fmt(term.amplitude * r.velocity[k]) + ", acceleration " +
+                      fmt(term.amplitude * r.acceleration[k]) +
+                      " at that sample): outside its samples a record holds still, so the "
+                      "support's velocity or acceleration would jump there (an unbounded or "
+                      "jumping reaction); give samples over the whole run, ending at rest, or "
+                      "end the run with the record");
+    };
+    if (r.times.front() > 0.0 && moving(0)) {
+      refuse(0, "starts at t = " + fmt(r.times.front()) + ", after t = 0,");
+    }
+    if (r.times.back() < spec_.solve.t_end && moving(r.samples() - 1)) {
+      refuse(r.samples() - 1, "ends at t = " + fmt(r.times.back()) + ", before t_end = " +
+                                  fmt(spec_.solve.t_end) + ",");
+    }
+  }
+}
+
 /// A table is piecewise linear: a constraint right-hand side needs derivatives it does not have
 /// (docs/scenes.md, "Tabulated time functions").
 void ModelBuilder::refuse_table_rhs(const TimeFunction& f, const SourcePoint& where,
                                     bool velocity_level) const {
+  check_record_rhs(f, where, velocity_level);
   if (!f.has_table()) return;
   if (velocity_level) {
     fail(where,
@@ -49,8 +89,9 @@ void ModelBuilder::refuse_table_rhs(const TimeFunction& f, const SourcePoint& wh
        "a table cannot be a prescribed displacement: it is piecewise linear, so its velocity "
        "jumps at every sample and its acceleration is a train of impulses, which the constraint "
        "would pass on as unbounded reaction forces (index-1 and GGL need that second "
-       "derivative); apply a recorded ground acceleration with [ground_motion] (motion relative "
-       "to the ground), or prescribe a smooth function of time");
+       "derivative); give the record as { type = \"displacement_record\", … } with its velocity "
+       "and acceleration, or its acceleration alone (integrated twice), or apply a recorded "
+       "ground acceleration with [ground_motion] (motion relative to the ground)");
 }
 
 void ModelBuilder::build_constraints() {
@@ -85,7 +126,7 @@ void ModelBuilder::build_constraints() {
     check_coefficients(cs);
     std::sort(c.coefficients.begin(), c.coefficients.end());
     refuse_table_rhs(c.value, value_at, c.level == ConstraintSpec::Level::velocity);
-    check_time_function(c.value, value_at);
+    check_time_function(c.value, value_at, true);
     c.value = acting_in_run(c.value, value_at);
     for (double b : c.value.breakpoints()) {
       fail(value_at,

@@ -66,6 +66,8 @@ double magnitude_bound(const TimeTerm& term, int order, double t_end) {
       if (order == 2) return 0.0;
       return std::abs(term.amplitude) *
              (order == 0 ? term.table->max_abs_value : term.table->max_abs_slope);
+    case TimeTerm::Kind::record:
+      return std::abs(term.amplitude) * term.record->bound[static_cast<std::size_t>(order)];
   }
   return 0.0;
 }
@@ -125,7 +127,15 @@ TimeFunction ModelBuilder::acting_in_run(const TimeFunction& f, const SourcePoin
   return acting;
 }
 
-void ModelBuilder::check_time_function(const TimeFunction& f, const SourcePoint& where) const {
+void ModelBuilder::check_time_function(const TimeFunction& f, const SourcePoint& where,
+                                       bool prescribed_displacement) const {
+  if (f.has_record() && !prescribed_displacement) {
+    fail(where,
+         "a displacement record prescribes a displacement, not a force or a ground "
+         "acceleration: give it as the value of a [[constraint]] on the supported DOF "
+         "(terms = { u1 = 1.0 }), or a recorded ground acceleration as a table in "
+         "[ground_motion]");
+  }
   for (const auto& term : f.terms()) {
     if (term.kind == TimeTerm::Kind::exponential &&
         std::abs(term.rate) * spec_.solve.t_end > kMaxExponent && term.rate > 0) {

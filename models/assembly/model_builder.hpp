@@ -79,7 +79,10 @@ class ModelBuilder {
   void report_ground_records(const TimeFunction& acceleration);
 
   // input_checks.cpp
-  void check_time_function(const TimeFunction& f, const SourcePoint& where) const;
+  /// Refuses a time function that overflows on [0, t_end], and a displacement record unless
+  /// `prescribed_displacement` (a position-level right-hand side: a load needs a force).
+  void check_time_function(const TimeFunction& f, const SourcePoint& where,
+                           bool prescribed_displacement = false) const;
   /// A load's, ground motion's or constraint's time function as the run sees it: steps after
   /// t_end left out, with a warning naming `where`; a warning too for a table that ends before
   /// t_end on a nonzero value, which the contract holds from there on (a record cut short).
@@ -135,6 +138,7 @@ class ModelBuilder {
   // constraint_rows.cpp
   void check_coefficients(const ConstraintSpec& cs) const;
   void refuse_table_rhs(const TimeFunction& f, const SourcePoint& where, bool velocity_level) const;
+  void check_record_rhs(const TimeFunction& f, const SourcePoint& where, bool velocity_level) const;
   void build_constraints();
   // constraint_blocks.cpp
   void append_constraint_blocks(std::vector<Eigen::Triplet<double>>& trip);

@@ -75,6 +75,8 @@ double TimeTerm::derivative(int order, double t, double step_reference) const {
       // The slope as the segment that began at step_reference sees it: one-sided at a sample
       // where a stop ends the segment (Model::breakpoints stops a drive's table at its samples).
       return order == 1 ? amplitude * table->slope(t, step_reference) : 0.0;
+    case Kind::record:
+      return amplitude * record->derivative(order, t);
   }
   return 0.0;
 }
@@ -124,6 +126,9 @@ TimeTerm TimeTerm::derivative_term() const {
     case Kind::table:
       throw std::invalid_argument("the derivative of " + describe() +
                                   " is piecewise constant: no time-function term represents it");
+    case Kind::record:
+      throw std::invalid_argument("the derivative of " + describe() +
+                                  " is piecewise polynomial: no time-function term represents it");
   }
   return d;
 }
@@ -139,6 +144,8 @@ bool TimeTerm::is_zero() const {
       return amplitude == 0.0 || (omega == 0.0 && std::sin(phase) == 0.0);
     case Kind::table:
       return amplitude == 0.0 || table->max_abs_value == 0.0;
+    case Kind::record:
+      return amplitude == 0.0 || record->bound[0] == 0.0;
     default:
       return amplitude == 0.0;
   }
@@ -186,6 +193,10 @@ std::string TimeTerm::describe() const {
         << " samples)";
       if (amplitude != 1.0) s << "*" << amplitude;
       break;
+    case Kind::record:
+      s << "record(" << record->source << ", " << record->samples() << " samples)";
+      if (amplitude != 1.0) s << "*" << amplitude;
+      break;
   }
   return s.str();
 }
@@ -202,6 +213,7 @@ TimeFunction TimeFunction::scaled(double c) const {
       case TimeTerm::Kind::harmonic:
       case TimeTerm::Kind::exponential:
       case TimeTerm::Kind::table:
+      case TimeTerm::Kind::record:
         term.amplitude *= c;
         break;
     }
@@ -256,6 +268,9 @@ bool TimeFunction::is_constant() const {
       case TimeTerm::Kind::table:
         if (term.table->max_abs_slope != 0.0) return false;
         break;
+      case TimeTerm::Kind::record:
+        if (term.record->bound[1] != 0.0 || term.record->bound[2] != 0.0) return false;
+        break;
     }
   }
   return true;
@@ -264,6 +279,11 @@ bool TimeFunction::is_constant() const {
 bool TimeFunction::has_table() const {
   return std::any_of(terms_.begin(), terms_.end(),
                      [](const TimeTerm& term) { return term.kind == TimeTerm::Kind::table; });
+}
+
+bool TimeFunction::has_record() const {
+  return std::any_of(terms_.begin(), terms_.end(),
+                     [](const TimeTerm& term) { return term.kind == TimeTerm::Kind::record; });
 }
 
 std::vector<double> TimeFunction::breakpoints() const {
@@ -359,8 +379,10 @@ TimeFunction TimeFunction::antiderivative() const {
         }
         break;
       case TimeTerm::Kind::table:
-        throw std::invalid_argument(
-            term.describe() + " is not integrated (a table is a load, not a right-hand side)");
+      case TimeTerm::Kind::record:
+        throw std::invalid_argument(term.describe() +
+                                    " is not integrated (a table is a load, a record a prescribed "
+                                    "displacement: neither is a prescribed velocity)");
     }
   }
   out.push_back(poly);

@@ -3,21 +3,24 @@
 /// "Time functions"): sums of step, polynomial, harmonic and exponential terms, each with exact
 /// first and second derivatives, and tables read from CSV files ("Time functions from data";
 /// models/core/time_table.hpp), piecewise linear: their first derivative is the segment's slope,
-/// their second is taken as 0, so they serve loads, not position-level right-hand sides.
+/// their second is taken as 0, so they serve loads, not position-level right-hand sides; and
+/// displacement records (models/core/kinematic_record.hpp), twice continuously differentiable,
+/// which serve as a prescribed displacement.
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "models/core/kinematic_record.hpp"
 #include "models/core/time_table.hpp"
 
 namespace condyn {
 
 /// One term of a time function.
 struct TimeTerm {
-  enum class Kind { step, polynomial, harmonic, exponential, table };
+  enum class Kind { step, polynomial, harmonic, exponential, table, record };
   Kind kind = Kind::polynomial;
-  double amplitude = 1.0;            ///< step, harmonic, exponential; table: its `scale`
+  double amplitude = 1.0;  ///< step, harmonic, exponential; table, record: its `scale`
   double start = 0.0;                ///< step: amplitude * H(t - start), H(0) = 1
   std::vector<double> coefficients;  ///< polynomial: sum_k c_k t^k
   double omega = 0.0;                ///< harmonic: amplitude * sin(omega t + phase)
@@ -32,6 +35,8 @@ struct TimeTerm {
   /// table: amplitude * f(t) of the samples (piecewise linear); shared and immutable, so copies
   /// of the term (loads, scaled patterns) cost a pointer.
   std::shared_ptr<const TimeTable> table;
+  /// record: amplitude * the record's displacement (quintic Hermite between samples); shared.
+  std::shared_ptr<const KinematicRecord> record;
 
   /// d^order/dt^order of the term at t, order in {0, 1, 2}. A step contributes to order 0 only
   /// (its derivative is an impulse at `start`, which callers handle as a discontinuity).
@@ -48,7 +53,7 @@ struct TimeTerm {
 
   /// The term whose value is this term's first derivative (smooth kinds only; a step gives an
   /// all-zero polynomial). Throws std::invalid_argument for a table (its slope is piecewise
-  /// constant: no term represents it).
+  /// constant: no term represents it) and a record (its velocity is no term either).
   [[nodiscard]] TimeTerm derivative_term() const;
   /// True when the term is identically zero for t >= 0.
   [[nodiscard]] bool is_zero() const;
@@ -82,6 +87,8 @@ class TimeFunction {
   [[nodiscard]] bool is_constant() const;
   /// True when a term is a table (piecewise linear: no exact second derivative).
   [[nodiscard]] bool has_table() const;
+  /// True when a term is a displacement record (a prescribed displacement, not a load).
+  [[nodiscard]] bool has_record() const;
   /// Times t > 0 where a step switches on: the integrator stops and restarts there. A table's
   /// samples are not breakpoints of a load: its kinks are continuous in value, and the
   /// integrator's error control resolves them (docs/scenes.md, "Tabulated time functions"); a
@@ -98,8 +105,8 @@ class TimeFunction {
   [[nodiscard]] double first_kink_after(double t) const;
   /// The antiderivative F(t) = integral_0^t f, itself a sum of supported terms.
   /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,
-  /// whose derivative jumps: the caller must refuse the constraint), and for a table (refused as
-  /// a constraint's right-hand side), and for an antiderivative's own terms (TimeTerm::integrated:
+  /// whose derivative jumps: the caller must refuse the constraint), and for a table or a record
+  /// (refused as a velocity constraint's right-hand side), and for an antiderivative's own terms (TimeTerm::integrated:
   /// no caller integrates twice).
   [[nodiscard]] TimeFunction antiderivative() const;
   [[nodiscard]] std::string describe() const;

@@ -259,6 +259,7 @@ void add_sample(TimeTable& table, double t, double v, int line_no) {
   }
   table.times.push_back(t);
   table.values.push_back(v);
+  table.lines.push_back(line_no);
   table.max_abs_value = std::max(table.max_abs_value, std::abs(v));
 }
 

@@ -33,6 +33,7 @@ struct TimeTable {
   std::string column;       ///< the values' column: its header name, or "column 2" without a header
   std::string time_column;  ///< the time column's header name; empty without a header
   std::vector<double> times, values;
+  std::vector<int> lines;      ///< the file's 1-based line of each sample (for messages)
   double max_abs_value = 0.0;  ///< max |v_k|
   double max_abs_slope = 0.0;  ///< max |(v_{k+1} − v_k) / (t_{k+1} − t_k)| (may be inf)
 

@@ -121,7 +121,9 @@ ZeroSumVerdict weighted_sum_vanishes(const std::vector<std::pair<double, const T
           break;
         }
         case TimeTerm::Kind::table:
-          // Constraints refuse tables (constraint_rows.cpp): never reached from a scene.
+        case TimeTerm::Kind::record:
+          // Constraints refuse tables (constraint_rows.cpp); a record's samples are data, whose
+          // combination is not decided from terms.
           return {ZeroSumVerdict::Kind::undecided,
                   term.describe() + " is tabulated: not decided from its terms"};
       }

@@ -47,10 +47,13 @@ TimeTerm SceneReader::term(const toml::node& node, const std::string& path) cons
       if (column.empty()) fail(*c, join(path, "column"), "must not be empty");
     }
     term.table = table_file(required(t, path, "file"), join(path, "file"), column);
+  } else if (type == "displacement_record") {
+    return displacement_record(t, path);
   } else {
     fail(*t.get("type"), join(path, "type"),
          "unknown time function '" + type +
-             "' (expected step, polynomial, harmonic, exponential or table)");
+             "' (expected step, polynomial, harmonic, exponential, table or "
+             "displacement_record)");
   }
   return term;
 }

@@ -122,6 +122,8 @@ class SceneReader : public TomlAccess {
   /// (read_time_function.cpp).
   [[nodiscard]] TimeFunction time_function(const toml::node& node, const std::string& path) const;
   [[nodiscard]] TimeTerm term(const toml::node& node, const std::string& path) const;
+  /// `{ type = "displacement_record", … }` at `path` (read_displacement_record.cpp).
+  [[nodiscard]] TimeTerm displacement_record(const toml::table& t, const std::string& path) const;
   /// A table's CSV file named by the string `file_node` (key path `key`), relative to the scene's
   /// folder; a bad file is refused naming the key, the file and its line. At least `min_samples`
   /// rows (models/core/time_table.hpp).

@@ -183,7 +183,9 @@ Motion forced_response(const TimeTerm& term, Complex s1, Complex s2, double t) {
       return term.amplitude * real_part(column.row(0));
     }
     case TimeTerm::Kind::table:
-      // ModalSolution::at() carries tables sample by sample (table_response below).
+    case TimeTerm::Kind::record:
+      // ModalSolution::at() carries tables sample by sample (table_response below); records are
+      // refused before (exact_trajectory).
       throw std::invalid_argument("no closed-form modal response to " + term.describe());
   }
   return {};
