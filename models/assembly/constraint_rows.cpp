@@ -66,8 +66,8 @@ void ModelBuilder::check_record_rhs(const TimeFunction& f, const SourcePoint& wh
       refuse(0, "starts at t = " + fmt(r.times.front()) + ", after t = 0,");
     }
     if (r.times.back() < spec_.solve.t_end && moving(r.samples() - 1)) {
-      refuse(r.samples() - 1, "ends at t = " + fmt(r.times.back()) + ", before t_end = " +
-                                  fmt(spec_.solve.t_end) + ",");
+      refuse(r.samples() - 1, "ends at t = " + fmt(r.times.back()) +
+                                  ", before t_end = " + fmt(spec_.solve.t_end) + ",");
     }
   }
 }

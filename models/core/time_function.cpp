@@ -98,6 +98,10 @@ double TimeTerm::magnitude(int order, double t) const {
       for (std::size_t k = 0; k < sizes.size(); ++k) sizes[k] = std::abs(coefficients[k]);
       return polynomial_derivative(sizes, order, std::abs(t));
     }
+    case Kind::record:
+      // Its samples' roundoff is relative to the record's size: a velocity recorded as 1e-17
+      // where it is 0 (sin π) is zero against a peak of 0.06.
+      return std::abs(amplitude) * record->bound[static_cast<std::size_t>(order)];
     default:
       return std::abs(derivative(order, t));
   }

@@ -22,15 +22,16 @@ struct RecordPart {
 /// `displacement`, `velocity` or `acceleration` of a record: a column of the record's `file`
 /// (a string), or `{ file = "…", column = "…", scale = s }` (file defaults to the record's, column
 /// to the second, scale to 1).
-RecordPart record_part(const SceneReader& r, const toml::table& record,
-                              const toml::node& node, const std::string& path) {
+RecordPart record_part(const SceneReader& r, const toml::table& record, const toml::node& node,
+                       const std::string& path) {
   const toml::node* file_node = record.get("file");
   std::string column;
   double scale = 1.0;
   if (const auto* sub = node.as_table()) {
     r.check_keys(*sub, path, {"file", "column", "scale"});
     if (const auto* f = sub->get("file")) file_node = f;
-    if (const auto* c = sub->get("column")) column = r.string(*c, SceneReader::join(path, "column"));
+    if (const auto* c = sub->get("column"))
+      column = r.string(*c, SceneReader::join(path, "column"));
     if (const auto* s = sub->get("scale")) scale = r.number(*s, SceneReader::join(path, "scale"));
   } else {
     column = r.string(node, path);
@@ -95,9 +96,9 @@ TimeTerm SceneReader::displacement_record(const toml::table& t, const std::strin
            "unknown baseline '" + kind + "' (expected \"linear\" or \"none\")");
     }
     const RecordPart ap = record_part(*this, t, *a, join(path, "acceleration"));
-    term.record = std::make_shared<const KinematicRecord>(record_from_acceleration(
-        ap.table, kind == "linear" ? Baseline::linear : Baseline::none,
-        ap.name + " integrated twice, baseline " + kind));
+    term.record = std::make_shared<const KinematicRecord>(
+        record_from_acceleration(ap.table, kind == "linear" ? Baseline::linear : Baseline::none,
+                                 ap.name + " integrated twice, baseline " + kind));
     return term;
   }
   fail(t, path,

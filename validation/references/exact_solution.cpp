@@ -45,8 +45,7 @@ Trajectory exact_trajectory(const Model& model, const std::vector<double>& times
   for (const auto& c : model.constraints) {
     if (c.position_value.has_record()) {
       // Its pieces are quintics: no closed form is carried here (compare runs a tight reference).
-      throw ExactSolutionUnavailable("constraint '" + c.name +
-                                     "' follows a displacement record (" +
+      throw ExactSolutionUnavailable("constraint '" + c.name + "' follows a displacement record (" +
                                      c.position_value.describe() + "): no modal closed form");
     }
   }
