@@ -48,7 +48,7 @@ struct TimeTerm {
   [[nodiscard]] double value(double t) const { return derivative(0, t, t); }
   /// The size against which derivative(order, t)'s roundoff is judged: |amplitude| ω^order for a
   /// harmonic (whatever the phase: at sin(π) the value is roundoff of the amplitude), the sum of
-  /// the polynomial's terms' sizes, else |derivative(order, t)|.
+  /// the polynomial's terms' sizes, a record's peak (its bound), else |derivative(order, t)|.
   [[nodiscard]] double magnitude(int order, double t) const;
 
   /// The term whose value is this term's first derivative (smooth kinds only; a step gives an
