@@ -73,6 +73,8 @@ class ShearFrame:
         self.record_a = table.get("scale", 1.0) * data[:, 1]
         self.iota = np.zeros(len(self.dofs))
         for name, value in ground["influence"].items():
+            if name not in index:  # a pattern or a file: this second program reads names only
+                raise ValueError(f"{path}: ground_motion.influence: only DOF by DOF (got {name!r})")
             self.iota[index[name]] = value
         self.solve = scene["solve"]
 
