@@ -20,7 +20,7 @@ namespace condyn {
 struct TimeTerm {
   enum class Kind { step, polynomial, harmonic, exponential, table, record };
   Kind kind = Kind::polynomial;
-  double amplitude = 1.0;  ///< step, harmonic, exponential; table, record: its `scale`
+  double amplitude = 1.0;            ///< step, harmonic, exponential; table, record: its `scale`
   double start = 0.0;                ///< step: amplitude * H(t - start), H(0) = 1
   std::vector<double> coefficients;  ///< polynomial: sum_k c_k t^k
   double omega = 0.0;                ///< harmonic: amplitude * sin(omega t + phase)
@@ -106,8 +106,8 @@ class TimeFunction {
   /// The antiderivative F(t) = integral_0^t f, itself a sum of supported terms.
   /// Throws std::invalid_argument when a step starts after t = 0 (its integral is a ramp,
   /// whose derivative jumps: the caller must refuse the constraint), and for a table or a record
-  /// (refused as a velocity constraint's right-hand side), and for an antiderivative's own terms (TimeTerm::integrated:
-  /// no caller integrates twice).
+  /// (refused as a velocity constraint's right-hand side), and for an antiderivative's own terms
+  /// (TimeTerm::integrated: no caller integrates twice).
   [[nodiscard]] TimeFunction antiderivative() const;
   [[nodiscard]] std::string describe() const;
   /// c f(t): every term's amplitude (a polynomial's coefficients, a table's scale) times c; c = 0
