@@ -94,6 +94,32 @@ double row_noise(const Eigen::SparseMatrix<double>& A, double length) {
   return std::sqrt(sum / (kNoiseDraws * static_cast<double>(m)));
 }
 
+/// √|sᵀ K s / sᵀ M s|, the Rayleigh frequency of a shape s; 0 when s moves no mass.
+double rayleigh_frequency(const Eigen::SparseMatrix<double>& M,
+                          const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& s) {
+  const double kinetic = s.dot(M * s), elastic = std::abs(s.dot(K * s));
+  if (!(kinetic > 0.0) || !std::isfinite(elastic)) return 0.0;
+  const double w2 = elastic / kinetic;
+  return std::isfinite(w2) ? std::sqrt(w2) : 0.0;
+}
+
+/// ModelScales::omega_start and acceleration_start: the Rayleigh frequencies of the initial
+/// acceleration a(0) (from `kkt`, [M Aᵀ; A 0] factored, or M alone without constraints:
+/// [a; λ] = [f; γ]) and of v(0), the larger, and max |a_i(0)|; 0 where there is none (a model at
+/// rest in equilibrium, a singular KKT matrix).
+void start_motion(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& K,
+                  const KktLu& kkt, const Eigen::VectorXd& f, const Eigen::VectorXd& gamma,
+                  const Eigen::VectorXd& v0, ModelScales& s) {
+  s.omega_start = rayleigh_frequency(M, K, v0);
+  if (kkt.info() != Eigen::Success) return;
+  Eigen::VectorXd rhs(f.size() + gamma.size());
+  rhs << f, gamma;
+  const Eigen::VectorXd a = kkt.solve(rhs).head(f.size());
+  if (!a.allFinite() || a.size() == 0) return;
+  s.omega_start = std::max(s.omega_start, rayleigh_frequency(M, K, a));
+  s.acceleration_start = a.cwiseAbs().maxCoeff();
+}
+
 }  // namespace
 
 ModelScales model_scales(const Model& model) {
@@ -126,12 +152,14 @@ ModelScales model_scales(const Model& model) {
         s.coefficient = std::max(s.coefficient, std::abs(it.value()));
     if (!(s.coefficient > 0.0)) s.coefficient = 1.0;
   }
+  Eigen::VectorXd gamma = Eigen::VectorXd::Zero(m);
+  if (m > 0) system.acceleration_bias(t, model.u0, model.v0, gamma);
+  // The initial acceleration's matrix (its multipliers give the geometric stiffness below).
+  const KktLu lu(m > 0 ? kkt_matrix(M, A) : M);
   if (m > 0 && system.has_curvature()) {
     // The geometric stiffness of the constraint forces, with each multiplier at least the size
     // the applied forces give it (see the header).
-    Eigen::VectorXd lambda0 = Eigen::VectorXd::Zero(m), gamma(m);
-    system.acceleration_bias(t, model.u0, model.v0, gamma);
-    KktLu lu(kkt_matrix(M, A));
+    Eigen::VectorXd lambda0 = Eigen::VectorXd::Zero(m);
     if (lu.info() == Eigen::Success) {
       Eigen::VectorXd rhs(n + m);
       rhs << f, gamma;
@@ -163,6 +191,7 @@ ModelScales model_scales(const Model& model) {
     if (G.size() > 0) K += G;
     s.row_noise = row_noise(A, row_length(system));
   }
+  start_motion(M, K, lu, f, gamma, model.v0, s);
   std::optional<Eigen::VectorXd> w2;
   if (n <= kDenseScaleLimit) {
     w2 = constrained_eigenvalues(Eigen::MatrixXd(M), Eigen::MatrixXd(K),
@@ -258,8 +287,18 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   a.mu = settings.atol_mu.value_or(usable(std::max(a.velocity / s.coefficient, a.mu_floor)));
   a.time_scale = T;
   a.mass = s.mass;
-  const double fast = s.omega_max > 0.0 ? std::min(1.0 / s.omega_max, t_end) : t_end;
-  a.first_step = std::sqrt(settings.rtol) * fast;
+  // The time scale of the motion the run starts with, else the model's fastest; and from rest,
+  // the step over which the largest initial acceleration moves its DOF by atol, but not below
+  // the fastest time scale's step (see the header).
+  const auto step_at = [&](double omega) {
+    return std::sqrt(settings.rtol) * (omega > 0.0 ? std::min(1.0 / omega, t_end) : t_end);
+  };
+  const double start = s.omega_start > 0.0 ? s.omega_start : s.omega_max;
+  a.first_step = step_at(start);
+  if (s.acceleration_start > 0.0) {
+    const double from_rest = std::sqrt(2.0 * a.displacement / s.acceleration_start);
+    a.first_step = std::min(a.first_step, std::max(from_rest, step_at(s.omega_max)));
+  }
   std::ostringstream r;
   r.precision(3);
   r << "atol displacement " << a.displacement << ", velocity " << a.velocity
@@ -274,7 +313,9 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   }
   r << "; time scale T = " << T << " (lowest " << s.method << " frequency " << s.omega_min
     << ", t_end " << t_end << "), highest frequency " << s.omega_max
-    << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", mass " << s.mass
+    << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", first step " << a.first_step
+    << " (" << (s.omega_start > 0.0 ? "frequency of the initial motion " : "highest frequency ")
+    << start << ", largest initial acceleration " << s.acceleration_start << "), mass " << s.mass
     << ", coefficient " << s.coefficient;
   a.rule = r.str();
   return a;

@@ -25,8 +25,18 @@
 namespace condyn {
 
 struct ModelScales {
-  double omega_min = 0.0;    ///< lowest nonzero |ω| (0: none, e.g. no stiffness nor force)
-  double omega_max = 0.0;    ///< highest |ω| (0: none)
+  double omega_min = 0.0;  ///< lowest nonzero |ω| (0: none, e.g. no stiffness nor force)
+  double omega_max = 0.0;  ///< highest |ω| (0: none)
+  /// The frequency of the motion the run starts with: the larger Rayleigh frequency
+  /// √|sᵀ K_T s / sᵀ M s| of the shapes s = a(0), the constrained acceleration the loads and the
+  /// initial state give ([M Aᵀ; A 0][a; λ] = [f(0); γ(0)]), and s = v(0). A Rayleigh quotient is
+  /// the mean of ω_j² over the modes weighted by their share of s (Σ c_j² ω_j² / Σ c_j²): it
+  /// counts the modes the loads excite, not the stiffest bar's, which a load spread over a
+  /// structure hardly moves. 0 when neither shape has one (a model at rest in equilibrium, a
+  /// singular KKT matrix).
+  double omega_start = 0.0;
+  /// max_i |a_i(0)| of that acceleration (0: none known).
+  double acceleration_start = 0.0;
   double mass = 1.0;         ///< mean of the positive diagonal entries of M
   double coefficient = 1.0;  ///< largest |A_ij| at t = 0 (1 without constraints)
   /// rms of (A Aᵀ)⁻¹ δφ, δφ_i = ±eps ℓ a_i the position rows' roundoff (ℓ the rods' longest
@@ -74,10 +84,18 @@ struct AbsoluteTolerances {
   /// m above (ModelScales::mass): rows whose lightest mass lies far below it get a smaller
   /// multiplier atol (IntegratorOptions::multiplier_mass).
   double mass = 1.0;
-  /// First step of the higher-index schemes: √rtol / ω_max (at most t_end), the step at which
-  /// BDF1's local error h² |y''| / 2 is about rtol |y| on the model's fastest time scale. A step
-  /// far below it makes index3's Newton matrix singular in double precision (its condition grows
-  /// like 1/h²): the oblique pendulum failed to start at h = 1e-10.
+  /// First step of IDA's runs: √rtol / ω_start (ModelScales::omega_start; ω_max when it is 0;
+  /// at most t_end), the step at which BDF1's local error h² |y''| / 2 is about rtol |y| on the
+  /// time scale of the motion the run starts with; and at most √(2 atol / max|a_i(0)|), the step
+  /// over which a DOF starting from rest moves by atol, which BDF1's error test holds it to (a
+  /// step load on a soft oscillator at atol 1e-9 failed the test twice from √rtol / ω = 1e-3 and
+  /// passed at 6e-5; √(2 atol / a) = 4.5e-5), but not below √rtol / ω_max, the rule before: a
+  /// step far below it makes index3's Newton matrix singular in double precision (its condition
+  /// grows like 1/h²; the oblique pendulum failed to start at h = 1e-10, and below it index3
+  /// failed to restart a table drive, IDA_CONV_FAIL at h = 2.7e-11). The error test still
+  /// decides: this only spares the steps that double from a far smaller guess (IDA's own,
+  /// 0.5 / ‖y'(0)‖, or √rtol / ω_max: 6e-7 s and 1.2e-7 s on a braced wall whose first steps
+  /// pass the error test at 4e-6 s; docs/schemes.md).
   double first_step = 0.0;
   std::string rule;  ///< one line for `condyn info`
   /// The model's scales they were derived from (kept for what else needs them: RATTLE's

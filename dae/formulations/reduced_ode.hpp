@@ -47,6 +47,8 @@ class ReducedOde final : public DaeProblem {
   /// multiplier scheme: their accuracy follows from the differential unknowns'. In the test, a
   /// damped one (index 1) made nearly every step fail it (docs/benchmarks.md).
   [[nodiscard]] bool suppress_algebraic_error() const override { return held_ != nullptr; }
+  /// Every unknown differential and in the error test, unless a massless master is held.
+  [[nodiscard]] bool reuses_newton_matrix() const override { return held_ == nullptr; }
   void make_consistent(double t, Eigen::VectorXd& y, Eigen::VectorXd& yp) const override;
   /// IDA's Newton systems condensed to û: (K̂ + cj Ĉ + cj² M̂) dû = r2 + (Ĉ + cj M̂) r1,
   /// dw = cj dû − r1 (dae/linsolve/condensed_newton.hpp without constraints).

@@ -110,8 +110,25 @@ int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /
 }
 
 /// Higher-index problems: the first step, as a fraction of the first output interval (the
-/// BDF start at order 1 ramps up from there within a few steps).
+/// BDF start at order 1 ramps up from there within a few steps), when no guess is given.
 constexpr double kFirstStepFraction = 1e-8;
+
+/// IDA's bound on cj's change before its linear solver is set up again (IDASetDeltaCjLSetup):
+/// a matrix factored at cj serves while cj / cj_setup stays within [(1 − d) / (1 + d),
+/// (1 + d) / (1 − d)]. IDA's default d = 0.25 ([0.6, 1.67]) below kLargeSystem unknowns; 0.5
+/// ([1/3, 3]: the doubling steps of the start and a doubled step later share a matrix) from it,
+/// for the problems that reuse their Newton matrices (DaeProblem::reuses_newton_matrix). A stale
+/// matrix costs steps; a factorization costs about what a step does on small systems and tens of
+/// steps' solves on large ones. Measured in docs/benchmarks.md ("The start of a stiff run"): 0.5
+/// paid on braced walls of 4e4 and 2e5 unknowns, not on a shear frame of 10; 0.7 did not pay.
+constexpr double kDeltaCj = 0.25;
+constexpr double kLargeDeltaCj = 0.5;
+constexpr long kLargeSystem = 10000;
+
+/// The condensed Newton solve's bound on |cj / cj_setup − 1| (make_newton_solver's max_change)
+/// from IDA's d above: 2d / (1 + d), IDA's lower bound (a doubled step halves cj), its upper
+/// one tighter (1 + 2d / (1 + d) instead of (1 + d) / (1 − d)).
+constexpr double condensed_cj_change(double d) { return 2.0 * d / (1.0 + d); }
 
 /// Steps in a row, each after an error-test failure, that engage the weights' floors. The
 /// trapped runs seen (a conical pendulum in steady rotation under GGL and index3) went on like
@@ -226,11 +243,11 @@ class Ida final : public sundials::SundialsStepper {
     data_.report = &report_;
     // The problem's own Newton solve (condensed, no Jacobian formed) when it has one and KLU is
     // asked for; else IDA factors the Jacobian jacobian() fills, KLU or dense. The condensed
-    // matrix is refactored whenever cj changes (cj changes only with the step size or order):
-    // with IDA's way, a stale matrix and scaled solves, index1's λ (out of the error and
-    // convergence tests) drifted away on the chapter truss (1e19 at t = 10).
+    // matrix is refactored when cj leaves the band IDA keeps its own matrices in, or, unless the
+    // problem reuses its Newton matrices (DaeProblem::reuses_newton_matrix), whenever cj changes.
     if (options.condensed_newton && !options.dense_linear_solver) {
       newton_ = problem.newton_system();
+      max_cj_change_ = problem.reuses_newton_matrix() ? condensed_cj_change(delta_cj()) : 0.0;
       // The plan asks for CHOLMOD only where the matrix is symmetric positive definite.
       if (options.cholmod && (!newton_ || !newton_->use_cholmod(options.cholmod_ordering))) {
         throw IntegrationError("CHOLMOD asked for a Newton matrix that is not symmetric");
@@ -253,8 +270,8 @@ class Ida final : public sundials::SundialsStepper {
     if (newton_) {
       void* mem = mem_.get();
       solver_.reset(sundials::make_newton_solver(
-          *newton_, [mem](double& cj) { return IDAGetCurrentCj(mem, &cj) == IDA_SUCCESS; }, 0.0,
-          ctx_.get()));
+          *newton_, [mem](double& cj) { return IDAGetCurrentCj(mem, &cj) == IDA_SUCCESS; },
+          max_cj_change_, ctx_.get()));
     } else if (options.dense_linear_solver) {
       matrix_.reset(SUNDenseMatrix(n_, n_, ctx_.get()));
       if (matrix_) solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()));
@@ -296,6 +313,10 @@ class Ida final : public sundials::SundialsStepper {
       view(id_.get()) = (index.array() > 1.0).select(0.0, view(id_.get()).array());
     }
     check(IDAInit(mem_.get(), residual_trampoline, t0, y_.get(), yp_.get()), "IDAInit");
+    // IDA's own first step, min(1e-3 of the way to the first output, 0.5 / ‖y'(0)‖), is the
+    // step that changes y by half its tolerance: from rest under a load, a velocity change of
+    // atol_v / 2 (6e-7 s on a braced wall whose motion needs steps of 1e-3 s).
+    const bool guess = options.first_step.has_value() || higher_index;
     if (options.output_times.size() > 1) {
       const double interval = options.output_times[1] - options.output_times[0];
       data_.first_step = options.first_step ? std::min(*options.first_step, 0.5 * interval)
@@ -314,7 +335,6 @@ class Ida final : public sundials::SundialsStepper {
       data_.scale.assign(static_cast<std::size_t>(data_.order.maxCoeff()) + 1, 1.0);
       data_.mem = mem_.get();
       check(IDAWFtolerances(mem_.get(), weight_trampoline), "IDAWFtolerances");
-      check(IDASetInitStep(mem_.get(), data_.first_step), "IDASetInitStep");
       check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
     } else {
       view(work_.get()) = data_.atol;  // IDASVtolerances copies it
@@ -328,15 +348,25 @@ class Ida final : public sundials::SundialsStepper {
     if (stale_) {
       check(IDASetLinearSolutionScaling(mem_.get(), SUNFALSE), "IDASetLinearSolutionScaling");
     }
-    // IDA's own first step is at most 1e-3 of the way to the first output; a table's first kink
-    // closer than that caps it (IntegratorOptions::first_kink).
-    const double kink_step = 0.5 * (options.first_kink - t0);
-    if (options.output_times.size() > 1 && kink_step > 0.0 &&
-        kink_step < 1e-3 * (options.output_times[1] - t0)) {
-      data_.first_step = std::min(data_.first_step, kink_step);
+    if (data_.problem->reuses_newton_matrix()) {
+      check(IDASetDeltaCjLSetup(mem_.get(), delta_cj()), "IDASetDeltaCjLSetup");
+    }
+    // A table's first kink caps the first step (IntegratorOptions::first_kink): the guess, or
+    // IDA's own, which is at most 1e-3 of the way to the first output.
+    if (options.output_times.size() > 1) {
+      const double kink_step = 0.5 * (options.first_kink - t0);
+      const double own = guess ? data_.first_step : 1e-3 * (options.output_times[1] - t0);
+      if (kink_step > 0.0 && kink_step < own) {
+        data_.first_step = kink_step;
+      } else if (!guess) {
+        return;  // IDA's own
+      }
       check(IDASetInitStep(mem_.get(), data_.first_step), "IDASetInitStep");
     }
   }
+
+  /// IDA's bound on cj's change before a new factorization, by the size of the system.
+  [[nodiscard]] double delta_cj() const { return n_ >= kLargeSystem ? kLargeDeltaCj : kDeltaCj; }
 
   /// Entries of the matrix the Newton iterations factor: the condensed one, else the Jacobian.
   [[nodiscard]] long jacobian_nonzeros() const {
@@ -412,6 +442,7 @@ class Ida final : public sundials::SundialsStepper {
   ContextPtr ctx_;
   VectorPtr y_, yp_, id_, work_;
   std::unique_ptr<NewtonSystem> newton_;  ///< outlives solver_, which points to it
+  double max_cj_change_ = 0.0;            ///< of newton_'s factorization (make_newton_solver)
   MatrixPtr matrix_;
   std::unique_ptr<StaleCorrection> stale_;  ///< outlives solver_, which points to it
   SolverPtr solver_;

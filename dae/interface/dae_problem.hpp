@@ -54,6 +54,13 @@ class DaeProblem {
   /// even when they are of index 1 (IDASetSuppressAlg), for algebraic variables whose error
   /// estimate amplifies the differential ones' (Baumgarte's λ, see MultiplierDae).
   [[nodiscard]] virtual bool suppress_algebraic_error() const { return false; }
+  /// true: IDA may keep a Newton matrix factored at an earlier cj while cj stays in its band
+  /// (dae/integrators/ida_integrator.cpp), the condensed one included, and widen the band on
+  /// large systems. Only where every unknown is differential and in the error test, which then
+  /// catches what a stale matrix leaves, and nothing read from the unknowns amplifies it: not
+  /// index1's λ, out of the tests (it drifted to 1e19 on the chapter truss), nor penalty's
+  /// reactions w φ(u), the Newton tolerance times the weight.
+  [[nodiscard]] virtual bool reuses_newton_matrix() const { return false; }
   /// The kind of each unknown, for its absolute tolerance (IntegratorOptions::atol_of); empty:
   /// every unknown gets the displacement atol.
   [[nodiscard]] virtual std::vector<UnknownKind> unknown_kinds() const { return {}; }
