@@ -293,9 +293,12 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   const auto step_at = [&](double omega) {
     return std::sqrt(settings.rtol) * (omega > 0.0 ? std::min(1.0 / omega, t_end) : t_end);
   };
-  const double start = s.omega_start > 0.0 ? s.omega_start : s.omega_max;
+  // Linear models only: a mechanism's start (its KKT matrix, its Newton iteration at t = 0) kept
+  // the old guess, under which the IFToMM flyball governor starts under index2.
+  const bool linear = !model.is_nonlinear();
+  const double start = linear && s.omega_start > 0.0 ? s.omega_start : s.omega_max;
   a.first_step = step_at(start);
-  if (s.acceleration_start > 0.0) {
+  if (linear && s.acceleration_start > 0.0) {
     const double from_rest = std::sqrt(2.0 * a.displacement / s.acceleration_start);
     a.first_step = std::min(a.first_step, std::max(from_rest, step_at(s.omega_max)));
   }
@@ -314,7 +317,7 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   r << "; time scale T = " << T << " (lowest " << s.method << " frequency " << s.omega_min
     << ", t_end " << t_end << "), highest frequency " << s.omega_max
     << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", first step " << a.first_step
-    << " (" << (s.omega_start > 0.0 ? "frequency of the initial motion " : "highest frequency ")
+    << " (" << (start != s.omega_max ? "frequency of the initial motion " : "highest frequency ")
     << start << ", largest initial acceleration " << s.acceleration_start << "), mass " << s.mass
     << ", coefficient " << s.coefficient;
   a.rule = r.str();
