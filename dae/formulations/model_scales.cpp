@@ -287,20 +287,20 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   a.mu = settings.atol_mu.value_or(usable(std::max(a.velocity / s.coefficient, a.mu_floor)));
   a.time_scale = T;
   a.mass = s.mass;
-  // The time scale of the motion the run starts with, else the model's fastest; and from rest,
-  // the step over which the largest initial acceleration moves its DOF by atol, but not below
-  // the fastest time scale's step (see the header).
   const auto step_at = [&](double omega) {
     return std::sqrt(settings.rtol) * (omega > 0.0 ? std::min(1.0 / omega, t_end) : t_end);
   };
-  // Linear models only: a mechanism's start (its KKT matrix, its Newton iteration at t = 0) kept
-  // the old guess, under which the IFToMM flyball governor starts under index2.
+  // The higher-index schemes: the fastest time scale's step (see the header).
+  a.first_step = step_at(s.omega_max);
+  // Elimination: the time scale of the motion the run starts with, and from rest the step over
+  // which the largest initial acceleration moves its DOF by atol. Linear models only: a
+  // mechanism's start keeps the fastest time scale.
   const bool linear = !model.is_nonlinear();
   const double start = linear && s.omega_start > 0.0 ? s.omega_start : s.omega_max;
-  a.first_step = step_at(start);
+  a.first_step_from_motion = step_at(start);
   if (linear && s.acceleration_start > 0.0) {
     const double from_rest = std::sqrt(2.0 * a.displacement / s.acceleration_start);
-    a.first_step = std::min(a.first_step, std::max(from_rest, step_at(s.omega_max)));
+    a.first_step_from_motion = std::min(a.first_step_from_motion, from_rest);
   }
   std::ostringstream r;
   r.precision(3);
@@ -316,10 +316,11 @@ AbsoluteTolerances absolute_tolerances(const Model& model, const SolveSpec& sett
   }
   r << "; time scale T = " << T << " (lowest " << s.method << " frequency " << s.omega_min
     << ", t_end " << t_end << "), highest frequency " << s.omega_max
-    << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", first step " << a.first_step
-    << " (" << (start != s.omega_max ? "frequency of the initial motion " : "highest frequency ")
-    << start << ", largest initial acceleration " << s.acceleration_start << "), mass " << s.mass
-    << ", coefficient " << s.coefficient;
+    << (s.method_max.empty() ? "" : " (" + s.method_max + ")") << ", first step "
+    << a.first_step_from_motion << " under elimination ("
+    << (start != s.omega_max ? "frequency of the initial motion " : "highest frequency ") << start
+    << ", largest initial acceleration " << s.acceleration_start << "), " << a.first_step
+    << " under the higher-index schemes, mass " << s.mass << ", coefficient " << s.coefficient;
   a.rule = r.str();
   return a;
 }

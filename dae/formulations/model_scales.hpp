@@ -84,19 +84,25 @@ struct AbsoluteTolerances {
   /// m above (ModelScales::mass): rows whose lightest mass lies far below it get a smaller
   /// multiplier atol (IntegratorOptions::multiplier_mass).
   double mass = 1.0;
-  /// First step of IDA's runs: √rtol / ω_start (ModelScales::omega_start; ω_max when it is 0;
-  /// at most t_end), the step at which BDF1's local error h² |y''| / 2 is about rtol |y| on the
-  /// time scale of the motion the run starts with; and at most √(2 atol / max|a_i(0)|), the step
-  /// over which a DOF starting from rest moves by atol, which BDF1's error test holds it to (a
-  /// step load on a soft oscillator at atol 1e-9 failed the test twice from √rtol / ω = 1e-3 and
-  /// passed at 6e-5; √(2 atol / a) = 4.5e-5), but not below √rtol / ω_max, the rule before: a
-  /// step far below it makes index3's Newton matrix singular in double precision (its condition
-  /// grows like 1/h²; the oblique pendulum failed to start at h = 1e-10, and below it index3
-  /// failed to restart a table drive, IDA_CONV_FAIL at h = 2.7e-11). The error test still
-  /// decides: this only spares the steps that double from a far smaller guess (IDA's own,
-  /// 0.5 / ‖y'(0)‖, or √rtol / ω_max: 6e-7 s and 1.2e-7 s on a braced wall whose first steps
-  /// pass the error test at 4e-6 s; docs/schemes.md).
+  /// First step of the higher-index schemes: √rtol / ω_max (at most t_end), the step at which
+  /// BDF1's local error h² |y''| / 2 is about rtol |y| on the model's fastest time scale. A step
+  /// far below it makes index3's Newton matrix singular in double precision (its condition grows
+  /// like 1/h²): the oblique pendulum failed to start at h = 1e-10, index3 failed to restart a
+  /// table drive at h = 2.7e-11. The guess below did not pay there: GGL on the quickstart took
+  /// 747 steps from it against 449 from this one.
   double first_step = 0.0;
+  /// First step under elimination (linear models): √rtol / ω_start (ModelScales::omega_start;
+  /// ω_max when it is 0), the same rule on the time scale of the motion the run starts with, and
+  /// at most √(2 atol / max|a_i(0)|), the step over which a DOF starting from rest moves by atol,
+  /// which BDF1's error test holds it to (a step load on a soft oscillator at atol 1e-9 failed
+  /// the test twice from √rtol / ω = 1e-3 and passed at 6e-5; √(2 atol / a) = 4.5e-5). No floor:
+  /// elimination's unknowns are all in the error test and its Newton matrix stays well
+  /// conditioned as h → 0; a DOF at 2e16 on a unit spring at rtol 0.5 passes the error test only
+  /// at steps of about 1e-10, which IDA's ten step cuts from a floored 0.05 could not reach. The
+  /// error test still decides: this spares the steps that double from IDA's own guess,
+  /// 0.5 / ‖y'(0)‖ (6e-7 s on a braced wall whose first steps pass the error test at 4e-6 s;
+  /// docs/schemes.md).
+  double first_step_from_motion = 0.0;
   std::string rule;  ///< one line for `condyn info`
   /// The model's scales they were derived from (kept for what else needs them: RATTLE's
   /// stability limit), so that a plan computes them once.

@@ -20,8 +20,10 @@ namespace condyn {
 
 namespace {
 
+/// `scheme`: the one that runs (elimination starts from
+/// AbsoluteTolerances::first_step_from_motion).
 IntegratorSettings settings_from(const Model& model, const SolveSpec& settings,
-                                 const AbsoluteTolerances& atol) {
+                                 const AbsoluteTolerances& atol, Scheme scheme) {
   IntegratorSettings o;
   o.rtol = settings.rtol;
   o.atol = atol.displacement;
@@ -32,7 +34,7 @@ IntegratorSettings settings_from(const Model& model, const SolveSpec& settings,
   o.multiplier_mass = atol.mass;
   o.mu_atol_per_row = !settings.atol_mu;
   o.time_scale = atol.time_scale;
-  o.first_step = atol.first_step;
+  o.first_step = scheme == Scheme::elimination ? atol.first_step_from_motion : atol.first_step;
   o.first_kink = model.first_kink(0.0);
   o.dense_linear_solver = settings.dense_linear_solver;
   o.max_order = settings.max_order;
@@ -54,7 +56,7 @@ IntegratorSettings settings_from(const Model& model, const SolveSpec& settings,
 /// The tolerances and the integrator's settings of `settings` (again after a fallback).
 void plan_tolerances(RunPlan& p) {
   p.tolerances = absolute_tolerances(*p.model, p.settings);
-  p.integrator = settings_from(*p.model, p.settings, p.tolerances);
+  p.integrator = settings_from(*p.model, p.settings, p.tolerances, p.scheme);
 }
 
 /// Elimination's reduction and its ODE; when they are refused, auto falls back to GGL with a
@@ -170,7 +172,7 @@ std::unique_ptr<NewtonSystem> symmetric_newton_system(const RunPlan& p) {
 }
 
 IntegratorSettings integrator_settings(const Model& model, const SolveSpec& settings) {
-  return settings_from(model, settings, absolute_tolerances(model, settings));
+  return settings_from(model, settings, absolute_tolerances(model, settings), settings.scheme);
 }
 
 RunPlan plan(const Model& model, const SolveSpec& settings) {

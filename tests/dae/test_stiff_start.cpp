@@ -53,39 +53,44 @@ TEST_CASE("the first step comes from the modes the loads excite, not the stiffes
     CHECK(a.scales.omega_start == doctest::Approx(1.0).epsilon(kQuotientRoundoff));
     CHECK(a.scales.acceleration_start == doctest::Approx(1.0).epsilon(kQuotientRoundoff));
     // From rest at a = 1: the step over which u1 moves by atol, √(2 atol / a) = 4.5e-5, below
-    // √rtol / ω_start = 1e-3. Before: √rtol / ω_max = 7.1e-8.
-    CHECK(a.first_step == doctest::Approx(std::sqrt(2.0 * atol)).epsilon(kQuotientRoundoff));
+    // √rtol / ω_start = 1e-3. Before: √rtol / ω_max = 7.1e-8, which the higher-index schemes
+    // keep (first_step).
+    CHECK(a.first_step_from_motion ==
+          doctest::Approx(std::sqrt(2.0 * atol)).epsilon(kQuotientRoundoff));
+    CHECK(a.first_step ==
+          doctest::Approx(std::sqrt(rtol) / omega_stiff).epsilon(kQuotientRoundoff));
   }
   SUBCASE("an initial velocity of the soft oscillator, no load: its ω, no acceleration") {
     const auto s = scene("[initial]\nvelocity = { u1 = 1.0 }\n");
     const AbsoluteTolerances a = absolute_tolerances(s.model, s.spec.solve);
     CHECK(a.scales.acceleration_start == 0.0);
-    CHECK(a.first_step == doctest::Approx(std::sqrt(rtol)).epsilon(kQuotientRoundoff));
+    CHECK(a.first_step_from_motion == doctest::Approx(std::sqrt(rtol)).epsilon(kQuotientRoundoff));
   }
   SUBCASE("a load on the stiff one: its ω") {
     const auto s = scene("[[load]]\ndof = \"u2\"\nvalue = { type = \"step\", amplitude = 1.0 }\n");
     const AbsoluteTolerances a = absolute_tolerances(s.model, s.spec.solve);
-    CHECK(a.first_step ==
+    CHECK(a.first_step_from_motion ==
           doctest::Approx(std::sqrt(rtol) / omega_stiff).epsilon(kQuotientRoundoff));
   }
   SUBCASE("at rest, no load: nothing starts the motion, the stiffest frequency as before") {
     const auto s = scene("");
     const AbsoluteTolerances a = absolute_tolerances(s.model, s.spec.solve);
     CHECK(a.scales.omega_start == 0.0);
-    CHECK(a.first_step ==
+    CHECK(a.first_step_from_motion ==
           doctest::Approx(std::sqrt(rtol) / omega_stiff).epsilon(kQuotientRoundoff));
   }
 }
 
-TEST_CASE("IDA takes the first step guessed under elimination and GGL") {
-  // Before, only the higher-index schemes passed it (√rtol / ω_max): elimination started from
-  // IDA's own 0.5 / ‖y'(0)‖ (index1 and Baumgarte still do).
+TEST_CASE("IDA takes the first step guessed under elimination, and GGL its own") {
+  // Before, only the higher-index schemes passed one (√rtol / ω_max, which they keep):
+  // elimination started from IDA's own 0.5 / ‖y'(0)‖ (index1 and Baumgarte still do).
   const auto s = scene(kSoftLoad);
-  const double guess = absolute_tolerances(s.model, s.spec.solve).first_step;
+  const AbsoluteTolerances a = absolute_tolerances(s.model, s.spec.solve);
   RunHooks hooks;
   hooks.record_steps = true;
   for (const Scheme scheme : {Scheme::elimination, Scheme::ggl}) {
     CAPTURE(to_string(scheme));
+    const double guess = scheme == Scheme::elimination ? a.first_step_from_motion : a.first_step;
     const SolveResult r = test::solved(s.model, test::under(s.spec.solve, scheme), hooks);
     REQUIRE(!r.trajectory.steps.empty());
     // The first step is the guess, accepted: no error-test failure before it. IDA's own was
