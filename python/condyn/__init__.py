@@ -58,8 +58,10 @@ class Result:
                  "checks")
 
     def __init__(self, fields, checks=None):
-        self.checks = checks
-        for key in self.__slots__[:-1]:
+        self.checks = checks  # not one of the run's fields: run(checks=True)'s verdict
+        for key in self.__slots__:
+            if key == "checks":
+                continue
             value = fields[key]
             if hasattr(value, "flags"):  # a numpy array: read-only, as documented
                 value.flags.writeable = False

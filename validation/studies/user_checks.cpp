@@ -222,29 +222,29 @@ SceneCheckResult run_scene_checks(const std::string& path, const SceneCheckOptio
   return run_scene_checks(parse_scene_file(path, SceneNeeds{.checks = true}), options);
 }
 
+namespace {
+
+void add_once(std::vector<Quantity>& quantities, Quantity q) {
+  if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) {
+    quantities.push_back(q);
+  }
+}
+
+}  // namespace
+
 void add_check_quantities(SceneSpec& spec) {
-  auto& quantities = spec.output.quantities;
-  const auto add = [&quantities](Quantity q) {
-    if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) {
-      quantities.push_back(q);
-    }
-  };
   // energy and energy_error are the energy quantity's whatever the model: asked for before the
   // build, which refuses it where it has no meaning.
   for (const auto& c : spec.checks) {
     for (const auto column : kEnergyColumns) {
-      if (c.quantity == column) add(Quantity::energy);
+      if (c.quantity == column) add_once(spec.output.quantities, Quantity::energy);
     }
   }
 }
 
 std::vector<Quantity> with_check_quantities(std::vector<Quantity> quantities,
                                             const CheckEvaluator& evaluator) {
-  for (Quantity q : evaluator.quantities()) {
-    if (std::find(quantities.begin(), quantities.end(), q) == quantities.end()) {
-      quantities.push_back(q);
-    }
-  }
+  for (Quantity q : evaluator.quantities()) add_once(quantities, q);
   return quantities;
 }
 
