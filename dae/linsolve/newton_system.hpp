@@ -28,7 +28,7 @@ class NewtonSystem {
   [[nodiscard]] virtual const Eigen::SparseMatrix<double>* symmetric_matrix() const {
     return nullptr;
   }
-  /// Factors with CHOLMOD from the next setup on (dae/linsolve/fixed_pattern_cholmod.hpp), its
+  /// Factors with CHOLMOD from the next setup on (models/core/fixed_pattern_cholmod.hpp), its
   /// analysis under `ordering` (empty: the least fill of every ordering); false, and nothing
   /// changed, when symmetric_matrix() is nullptr.
   virtual bool use_cholmod(const std::string& /*ordering*/) { return false; }

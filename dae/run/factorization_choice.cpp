@@ -99,7 +99,8 @@ FactorizationChoice choose_factorization(const NewtonSystem* newton, Scheme sche
             false,
             best.ordering,
             best.factor_entries,
-            best.factor_bytes};
+            best.factor_bytes,
+            best.flops};
   }
   if (candidates.cholmod_smaller()) {
     return {true,
@@ -107,9 +108,20 @@ FactorizationChoice choose_factorization(const NewtonSystem* newton, Scheme sche
             false,
             best.ordering,
             best.factor_entries,
-            best.factor_bytes};
+            best.factor_bytes,
+            best.flops};
   }
   return {false, "KLU (auto: the smaller factor) on" + s.str()};
+}
+
+std::optional<std::string> factorization_time_warning(const FactorizationChoice& choice) {
+  const double seconds = choice.factor_flops / kFactorFlopRate;
+  if (!choice.cholmod || !(seconds > kSlowFactorSeconds)) return std::nullopt;
+  return "each factorization of the Newton matrix is predicted at " +
+         three_digits(choice.factor_flops) + " flops (CHOLMOD, " + choice.ordering +
+         "), at least " + three_digits(seconds) + " s at " + three_digits(kFactorFlopRate) +
+         " flop/s: every step that refactors (at the start, and wherever the step size " +
+         "changes much) takes at least that long";
 }
 
 }  // namespace condyn

@@ -6,14 +6,15 @@
 ///
 /// The choice of `auto` is made from the pattern: one symbolic analysis per candidate, KLU's
 /// (AMD on the pattern, predicted_factor_entries) and CHOLMOD's under each ordering its build
-/// offers (dae/linsolve/fixed_pattern_cholmod.hpp); CHOLMOD when its least-fill ordering's factor
+/// offers (models/core/fixed_pattern_cholmod.hpp); CHOLMOD when its least-fill ordering's factor
 /// takes less memory than KLU's L and U. The analyses cost no factorization.
 
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "dae/linsolve/fixed_pattern_cholmod.hpp"
 #include "dae/linsolve/newton_system.hpp"
+#include "models/core/fixed_pattern_cholmod.hpp"
 #include "models/core/scheme.hpp"
 #include "models/core/solve_spec.hpp"
 
@@ -47,7 +48,23 @@ struct FactorizationChoice {
   std::string ordering{};
   double factor_entries = 0.0;
   double factor_bytes = 0.0;
+  /// CHOLMOD's count of the flops of one factorization under that ordering.
+  double factor_flops = 0.0;
 };
+
+/// The rate at which factorization_time_warning predicts a factorization's time: above the
+/// rates measured with one OpenBLAS thread on the benchmark machine (docs/benchmarks.md: about
+/// 3e9 flop/s on the 2D braced wall's small supernodes, 2.5e10 on the 3D lattice's of 10⁵ DOFs),
+/// so that the time it predicts is a lower bound.
+inline constexpr double kFactorFlopRate = 5e10;
+/// The predicted time of one factorization above which info warns.
+inline constexpr double kSlowFactorSeconds = 10.0;
+
+/// Said by `info` when the chosen factorization of the Newton matrix is predicted to take more
+/// than kSlowFactorSeconds at kFactorFlopRate (a run refactors every few steps at its start and
+/// wherever the step changes much), with the figures; nothing otherwise.
+[[nodiscard]] std::optional<std::string> factorization_time_warning(
+    const FactorizationChoice& choice);
 
 /// The factorization of a run under `scheme` (resolved) whose condensed Newton system, when it
 /// has one, is `newton` (nullptr: none). Throws SchemeNotApplicable (where: the

@@ -406,6 +406,8 @@ void print_factorization(std::ostream& out, const RunPlan& run_plan) {
     }
   }
   out << wrapped_text("factorization: ", text);
+  if (const auto warning = factorization_time_warning(run_plan.factorization))
+    out << wrapped_text("warning: ", *warning);
 }
 
 }  // namespace

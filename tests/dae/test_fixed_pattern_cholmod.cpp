@@ -1,4 +1,4 @@
-// CHOLMOD on symmetric positive-definite Newton matrices (dae/linsolve/fixed_pattern_cholmod.hpp,
+// CHOLMOD on symmetric positive-definite Newton matrices (models/core/fixed_pattern_cholmod.hpp,
 // dae/run/factorization_choice.hpp): solves against the matrix, the analysis kept across
 // factorizations, the least-fill ordering, a matrix not positive definite, elimination and
 // penalty runs under KLU and CHOLMOD giving the same results, and the key's refusals.
@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "dae/interface/scheme_not_applicable.hpp"
-#include "dae/linsolve/fixed_pattern_cholmod.hpp"
 #include "dae/run/factorization_choice.hpp"
 #include "dae/run/run_plan.hpp"
 #include "dae/run/scheme_memory.hpp"
+#include "models/core/fixed_pattern_cholmod.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"
@@ -268,4 +268,28 @@ TEST_CASE("the memory estimate counts CHOLMOD's predicted factor in place of KLU
   CHECK(chol.lower_bound == chol.bytes);
   CHECK(factor_name(chol) == "CHOLMOD's factor");
   CHECK(factor_name(klu) == "KLU's factors");
+}
+
+TEST_CASE("info's warning of a slow factorization: its figures, and none below the bound") {
+  // The plan of the tied lattice carries the flops of the ordering it chose (CHOLMOD's count).
+  const auto chol = tied_lattice("scheme = \"elimination\"\nlinear_solver = \"cholmod\"\n");
+  const RunPlan chol_plan = plan(chol.model, chol.spec.solve);
+  REQUIRE(chol_plan.factorization.cholmod);
+  CHECK(chol_plan.factorization.factor_flops > 0.0);
+  // Far below kSlowFactorSeconds at kFactorFlopRate: no warning.
+  CHECK(chol_plan.factorization.factor_flops < kSlowFactorSeconds * kFactorFlopRate);
+  CHECK_FALSE(factorization_time_warning(chol_plan.factorization).has_value());
+
+  FactorizationChoice slow = chol_plan.factorization;
+  slow.factor_flops = 1.5e12;  // 30 s at 5e10 flop/s, three times the bound
+  const auto warning = factorization_time_warning(slow);
+  REQUIRE(warning.has_value());
+  CHECK(warning->find("1.5e+12 flops (CHOLMOD, " + slow.ordering + ")") != std::string::npos);
+  CHECK(warning->find("at least 30 s at 5e+10 flop/s") != std::string::npos);
+  // Just below the bound: none; and none when KLU factors (no flop count of its own).
+  slow.factor_flops = 0.99 * kSlowFactorSeconds * kFactorFlopRate;
+  CHECK_FALSE(factorization_time_warning(slow).has_value());
+  slow.factor_flops = 1.5e12;
+  slow.cholmod = false;
+  CHECK_FALSE(factorization_time_warning(slow).has_value());
 }

@@ -508,54 +508,60 @@ stiffness = { file = "three.mtx" }
 }
 
 TEST_CASE("matrix model from files: large matrices are checked without a dense copy") {
-  // 600 DOFs, above the size up to which the dense eigenvalue check runs (kDensePsdCheck = 500).
-  constexpr int n = 600;
-  std::string diag = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) + " " +
-                     std::to_string(n) + " " + std::to_string(n) + "\n";
-  std::string bad_minor = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) +
-                          " " + std::to_string(n) + " " + std::to_string(n + 1) + "\n";
-  std::string negative = diag;
-  for (int i = 1; i <= n; ++i) {
-    diag += std::to_string(i) + " " + std::to_string(i) + " 1.0\n";
-    bad_minor += std::to_string(i) + " " + std::to_string(i) + " 1.0\n";
-    negative += std::to_string(i) + " " + std::to_string(i) + (i == 7 ? " -1.0\n" : " 1.0\n");
-  }
-  bad_minor += "2 1 3.0\n";  // [[1, 3], [3, 1]] has eigenvalue -2
-  Sandbox box;
-  box.write("I.mtx", diag);
-  box.write("neg.mtx", negative);
-  box.write("minor.mtx", bad_minor);
-  const auto scene = [](const std::string& k) {
-    return "[model]\ntype = \"matrix\"\nmass = { file = \"I.mtx\" }\nstiffness = { file = \"" + k +
-           "\" }\n" + kSolve;
-  };
-  CHECK(scene_error(box, scene("I.mtx")).empty());
-  CHECK(has(scene_error(box, scene("neg.mtx")), "diagonal entry (7,7) = -1 < 0"));
-  CHECK(has(scene_error(box, scene("minor.mtx")), "|entry (2,1)| = 3 exceeds"));
-  // Tridiagonal, diagonal 1 and off-diagonal 0.9: every 2 x 2 minor is positive (accepted
-  // before), but the eigenvalues 1 + 1.8 cos(k pi / (n + 1)) go down to about -0.8. The sparse
-  // LDLt's inertia refuses it; the same pattern with 0.5 (eigenvalues >= 1 - cos(pi/601) > 0)
-  // passes, and so does the free-free spring chain (diagonal 1, 2, ..., 2, 1 and -1 beside it:
-  // positive semi-definite with the rigid motion as an exact zero eigenvalue).
-  const auto tridiagonal = [](double end, double middle, double off) {
-    std::string t = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) + " " +
-                    std::to_string(n) + " " + std::to_string(2 * n - 1) + "\n";
+  // 600 DOFs, above the size up to which the dense eigenvalue check runs (kDensePsdCheck = 500),
+  // where Eigen's sparse LDLt decides; 12,000, above kCholmodPsdCheck (10,000), where CHOLMOD's
+  // supernodal Cholesky does.
+  for (const int n : {600, 12000}) {
+    CAPTURE(n);
+    std::string diag = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) +
+                       " " + std::to_string(n) + " " + std::to_string(n) + "\n";
+    std::string bad_minor = "%%MatrixMarket matrix coordinate real symmetric\n" +
+                            std::to_string(n) + " " + std::to_string(n) + " " +
+                            std::to_string(n + 1) + "\n";
+    std::string negative = diag;
     for (int i = 1; i <= n; ++i) {
-      t += std::to_string(i) + " " + std::to_string(i) + " " +
-           std::to_string(i == 1 || i == n ? end : middle) + "\n";
-      if (i < n)
-        t += std::to_string(i + 1) + " " + std::to_string(i) + " " + std::to_string(off) + "\n";
+      diag += std::to_string(i) + " " + std::to_string(i) + " 1.0\n";
+      bad_minor += std::to_string(i) + " " + std::to_string(i) + " 1.0\n";
+      negative += std::to_string(i) + " " + std::to_string(i) + (i == 7 ? " -1.0\n" : " 1.0\n");
     }
-    return t;
-  };
-  box.write("tri09.mtx", tridiagonal(1.0, 1.0, 0.9));
-  box.write("tri05.mtx", tridiagonal(1.0, 1.0, 0.5));
-  box.write("chain.mtx", tridiagonal(1.0, 2.0, -1.0));
-  const std::string refusal = scene_error(box, scene("tri09.mtx"));
-  CHECK(has(refusal, "tri09.mtx is not positive semi-definite (stiffness): a sparse LDLt"));
-  CHECK(has(refusal, "negative pivot"));
-  CHECK(scene_error(box, scene("tri05.mtx")).empty());
-  CHECK(scene_error(box, scene("chain.mtx")).empty());
+    bad_minor += "2 1 3.0\n";  // [[1, 3], [3, 1]] has eigenvalue -2
+    Sandbox box;
+    box.write("I.mtx", diag);
+    box.write("neg.mtx", negative);
+    box.write("minor.mtx", bad_minor);
+    const auto scene = [](const std::string& k) {
+      return "[model]\ntype = \"matrix\"\nmass = { file = \"I.mtx\" }\nstiffness = { file = \"" +
+             k + "\" }\n" + kSolve;
+    };
+    CHECK(scene_error(box, scene("I.mtx")).empty());
+    CHECK(has(scene_error(box, scene("neg.mtx")), "diagonal entry (7,7) = -1 < 0"));
+    CHECK(has(scene_error(box, scene("minor.mtx")), "|entry (2,1)| = 3 exceeds"));
+    // Tridiagonal, diagonal 1 and off-diagonal 0.9: every 2 x 2 minor is positive (accepted
+    // before), but the eigenvalues 1 + 1.8 cos(k pi / (n + 1)) go down to about -0.8. The sparse
+    // factorization refuses it; the same pattern with 0.5 (eigenvalues >= 1 - cos(pi/(n+1)) > 0)
+    // passes, and so does the free-free spring chain (diagonal 1, 2, ..., 2, 1 and -1 beside it:
+    // positive semi-definite with the rigid motion as an exact zero eigenvalue).
+    const auto tridiagonal = [n](double end, double middle, double off) {
+      std::string t = "%%MatrixMarket matrix coordinate real symmetric\n" + std::to_string(n) +
+                      " " + std::to_string(n) + " " + std::to_string(2 * n - 1) + "\n";
+      for (int i = 1; i <= n; ++i) {
+        t += std::to_string(i) + " " + std::to_string(i) + " " +
+             std::to_string(i == 1 || i == n ? end : middle) + "\n";
+        if (i < n)
+          t += std::to_string(i + 1) + " " + std::to_string(i) + " " + std::to_string(off) + "\n";
+      }
+      return t;
+    };
+    box.write("tri09.mtx", tridiagonal(1.0, 1.0, 0.9));
+    box.write("tri05.mtx", tridiagonal(1.0, 1.0, 0.5));
+    box.write("chain.mtx", tridiagonal(1.0, 2.0, -1.0));
+    const std::string refusal = scene_error(box, scene("tri09.mtx"));
+    CHECK(has(refusal, "tri09.mtx is not positive semi-definite (stiffness): a sparse "));
+    CHECK(has(refusal, n < 10000 ? "negative pivot" : "Cholesky factorization of it"));
+    CHECK(has(refusal, "eigenvalue below -1e-08 of its largest diagonal entry"));
+    CHECK(scene_error(box, scene("tri05.mtx")).empty());
+    CHECK(scene_error(box, scene("chain.mtx")).empty());
+  }
 }
 
 TEST_CASE("rayleigh damping: truss models too, and refusals") {

@@ -1,7 +1,7 @@
 // CHOLMOD with its symbolic analysis kept across factorizations
-// (dae/linsolve/fixed_pattern_cholmod.hpp), loaded with dlopen on first use, after OpenBLAS.
+// (models/core/fixed_pattern_cholmod.hpp), loaded with dlopen on first use, after OpenBLAS.
 
-#include "dae/linsolve/fixed_pattern_cholmod.hpp"
+#include "models/core/fixed_pattern_cholmod.hpp"
 
 #include <cholmod.h>
 
@@ -75,19 +75,19 @@ constexpr std::pair<int, const char*> kOrderings[] = {
 /// One cholmod_common, started and finished with its owner: errors are not printed (condyn
 /// reports them), a simplicial factorization is L Lᵀ (so that it, like the supernodal one, finds a
 /// matrix that is not positive definite), one ordering per analysis.
-struct Common {
+struct CholmodCommon {
   const CholmodLibrary& lib = cholmod_library();
   cholmod_common c{};
-  Common() {
+  CholmodCommon() {
     lib.start(&c);
     c.print = 0;
     c.final_ll = 1;
     c.nmethods = 1;
     c.postorder = 1;
   }
-  ~Common() { lib.finish(&c); }
-  Common(const Common&) = delete;
-  Common& operator=(const Common&) = delete;
+  ~CholmodCommon() { lib.finish(&c); }
+  CholmodCommon(const CholmodCommon&) = delete;
+  CholmodCommon& operator=(const CholmodCommon&) = delete;
 };
 
 /// A view of `matrix`'s lower triangle as CHOLMOD reads it (no copy; CHOLMOD only reads it).
@@ -122,7 +122,7 @@ double factor_bytes(const cholmod_factor& l, double entries) {
 }
 
 /// The symbolic analysis of `a` under `ordering`, or nullptr when the build lacks it or it fails.
-cholmod_factor* analyze_with(cholmod_sparse& a, int ordering, Common& common) {
+cholmod_factor* analyze_with(cholmod_sparse& a, int ordering, CholmodCommon& common) {
   common.c.method[0].ordering = ordering;
   cholmod_factor* l = common.lib.analyze(&a, &common.c);
   if (l != nullptr && common.c.status < CHOLMOD_OK) common.lib.free_factor(&l, &common.c);
@@ -133,7 +133,7 @@ cholmod_factor* analyze_with(cholmod_sparse& a, int ordering, Common& common) {
 
 std::vector<CholmodCandidate> cholmod_candidates(const Eigen::SparseMatrix<double>& matrix) {
   cholmod_sparse a = lower_view(matrix);
-  Common common;
+  CholmodCommon common;
   std::vector<CholmodCandidate> out;
   for (const auto& [ordering, name] : kOrderings) {
     cholmod_factor* l = analyze_with(a, ordering, common);
@@ -155,7 +155,7 @@ const CholmodCandidate& least_fill(const std::vector<CholmodCandidate>& candidat
 }
 
 struct FixedPatternCholmod::Impl {
-  Common common;
+  CholmodCommon common;
   cholmod_factor* factor = nullptr;
   /// cholmod_solve2's result and workspace, allocated at the first solve and reused.
   cholmod_dense* x = nullptr;
