@@ -12,30 +12,8 @@ namespace condyn {
 
 namespace {
 
-using hdf5::check;
-using hdf5::Handle;
+using hdf5::put_matrix;
 using hdf5::put_strings;
-
-/// A rows x cols dataset of doubles, row-major (HDF5's order), entry (r, c) = get(r, c); cols = 0
-/// makes a vector of `rows` entries get(r, 0).
-template <class Get>
-void put_matrix(hid_t file, const char* name, hsize_t rows, hsize_t cols, const Get& get) {
-  const hsize_t width = cols == 0 ? 1 : cols;
-  std::vector<double> data(static_cast<std::size_t>(rows * width));
-  for (hsize_t r = 0; r < rows; ++r) {
-    for (hsize_t c = 0; c < width; ++c) data[static_cast<std::size_t>(r * width + c)] = get(r, c);
-  }
-  const hsize_t dims[2] = {rows, cols};
-  const Handle space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr), H5Sclose,
-                     "H5Screate_simple");
-  const Handle set(
-      H5Dcreate2(file, name, H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-      H5Dclose, "H5Dcreate2");
-  if (!data.empty()) {
-    check(H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-          "H5Dwrite");
-  }
-}
 
 /// The [[derived]] columns: `derived` (nt x k) and their names `derived_names`.
 void put_derived(hid_t file, const Model& model, const Trajectory& traj) {
@@ -56,12 +34,7 @@ void put_derived(hid_t file, const Model& model, const Trajectory& traj) {
 
 void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
                 const RunAttributes& run, const Trajectory& whole) {
-  // The file lives in memory (the core driver, no backing store); its image is then written to
-  // `out`, so the caller's checked temporary file and atomic rename apply to it as to a CSV.
-  const Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate");
-  check(H5Pset_fapl_core(access.id(), 1 << 20, 0), "H5Pset_fapl_core");
-  const Handle file(H5Fcreate("condyn-output.h5", H5F_ACC_TRUNC, H5P_DEFAULT, access.id()),
-                    H5Fclose, "H5Fcreate");
+  const hdf5::MemoryFile file;
   const hid_t f = file.id();
   const OutputColumns columns(model, output);
   // A mechanism's rows in its output map's columns (a copy: the caller's trajectory stays).
@@ -138,14 +111,7 @@ void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
   }
   hdf5::put_column_names(f, columns);
   hdf5::put_run_attributes(f, run);
-  check(H5Fflush(f, H5F_SCOPE_GLOBAL), "H5Fflush");
-  const ssize_t size = H5Fget_file_image(f, nullptr, 0);
-  if (size < 0) throw std::runtime_error("HDF5: H5Fget_file_image failed");
-  std::vector<char> image(static_cast<std::size_t>(size));
-  if (H5Fget_file_image(f, image.data(), image.size()) != size) {
-    throw std::runtime_error("HDF5: H5Fget_file_image failed");
-  }
-  out.write(image.data(), static_cast<std::streamsize>(image.size()));
+  file.write_to(out);
 }
 
 }  // namespace condyn

@@ -1,11 +1,15 @@
 #pragma once
-// The HDF5 pieces both writers use (src/output/hdf5_output.cpp whole, src/output/row_writer.cpp row
-// by row): handles closed on scope exit, checked calls, string datasets and root attributes.
+// The HDF5 pieces every writer uses (src/output/hdf5_output.cpp a whole result,
+// src/output/row_writer.cpp row by row, src/output/hdf5_modes.cpp the modes): handles closed on
+// scope exit, checked calls, the in-memory file, numeric and string datasets, root attributes.
 
 #include <hdf5.h>
 
+#include <cstdint>
+#include <ostream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "src/output/hdf5_output.hpp"
@@ -33,6 +37,63 @@ inline void check(herr_t status, const char* call) {
   if (status < 0) throw std::runtime_error(std::string("HDF5: ") + call + " failed");
 }
 
+/// An HDF5 file built in memory (the core driver, no backing store) and then written to a stream
+/// as one image, so that the caller's checked temporary file and atomic rename apply to it as to
+/// a CSV.
+class MemoryFile {
+ public:
+  MemoryFile()
+      : access_(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate"),
+        file_(create(access_.id()), H5Fclose, "H5Fcreate") {}
+  [[nodiscard]] hid_t id() const { return file_.id(); }
+
+  /// Flushes the file and writes its image to `out`.
+  void write_to(std::ostream& out) const {
+    check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush");
+    const ssize_t size = H5Fget_file_image(file_.id(), nullptr, 0);
+    if (size < 0) throw std::runtime_error("HDF5: H5Fget_file_image failed");
+    std::vector<char> image(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file_.id(), image.data(), image.size()) != size) {
+      throw std::runtime_error("HDF5: H5Fget_file_image failed");
+    }
+    out.write(image.data(), static_cast<std::streamsize>(image.size()));
+  }
+
+ private:
+  static hid_t create(hid_t access) {
+    check(H5Pset_fapl_core(access, 1 << 20, 0), "H5Pset_fapl_core");
+    return H5Fcreate("condyn-output.h5", H5F_ACC_TRUNC, H5P_DEFAULT, access);
+  }
+  Handle access_;
+  Handle file_;
+};
+
+/// A rows x cols dataset, row-major (HDF5's order), entry (r, c) = get(r, c); cols = 0 makes a
+/// vector of `rows` entries get(r, 0). Doubles (get returns double) are stored as 64-bit IEEE,
+/// whole numbers (get returns std::int64_t: mode numbers) as 64-bit integers.
+template <class Get>
+void put_matrix(hid_t file, const char* name, hsize_t rows, hsize_t cols, const Get& get) {
+  using Value = std::invoke_result_t<const Get&, hsize_t, hsize_t>;
+  static_assert(std::is_same_v<Value, double> || std::is_same_v<Value, std::int64_t>);
+  constexpr bool whole = std::is_same_v<Value, std::int64_t>;
+  const hsize_t width = cols == 0 ? 1 : cols;
+  std::vector<Value> data(static_cast<std::size_t>(rows * width));
+  for (hsize_t r = 0; r < rows; ++r) {
+    for (hsize_t c = 0; c < width; ++c) data[static_cast<std::size_t>(r * width + c)] = get(r, c);
+  }
+  const hsize_t dims[2] = {rows, cols};
+  const Handle space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr), H5Sclose,
+                     "H5Screate_simple");
+  const Handle set(H5Dcreate2(file, name, whole ? H5T_STD_I64LE : H5T_IEEE_F64LE, space.id(),
+                              H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                   H5Dclose, "H5Dcreate2");
+  if (!data.empty()) {
+    check(H5Dwrite(set.id(), whole ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                   H5P_DEFAULT, data.data()),
+          "H5Dwrite");
+  }
+}
+
 inline void put_strings(hid_t file, const char* name, const std::vector<std::string>& values) {
   std::vector<const char*> pointers;
   pointers.reserve(values.size());
@@ -56,6 +117,14 @@ inline void put_attribute(hid_t file, const char* name, double value) {
   const Handle attr(H5Acreate2(file, name, H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT),
                     H5Aclose, "H5Acreate2");
   check(H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, &value), "H5Awrite");
+}
+
+/// A whole number (a count), as a 64-bit integer.
+inline void put_attribute(hid_t file, const char* name, std::int64_t value) {
+  const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate");
+  const Handle attr(H5Acreate2(file, name, H5T_STD_I64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT),
+                    H5Aclose, "H5Acreate2");
+  check(H5Awrite(attr.id(), H5T_NATIVE_INT64, &value), "H5Awrite");
 }
 
 /// A variable-length UTF-8 string, as the name datasets: h5py reads it as str (a fixed-length
