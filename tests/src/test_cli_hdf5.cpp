@@ -9,61 +9,12 @@
 #include <vector>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/hdf5_read.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace condyn::test;
 
 namespace {
-
-/// A dataset of doubles: its dimensions and values (row-major).
-struct Dataset {
-  std::vector<hsize_t> dims;
-  std::vector<double> values;
-};
-
-Dataset read_doubles(hid_t file, const char* name) {
-  Dataset d;
-  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
-  REQUIRE(set >= 0);
-  const hid_t space = H5Dget_space(set);
-  d.dims.resize(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
-  H5Sget_simple_extent_dims(space, d.dims.data(), nullptr);
-  hsize_t count = 1;
-  for (hsize_t n : d.dims) count *= n;
-  d.values.resize(static_cast<std::size_t>(count));
-  CHECK(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.values.data()) >= 0);
-  H5Sclose(space);
-  H5Dclose(set);
-  return d;
-}
-
-std::vector<std::string> read_strings(hid_t file, const char* name) {
-  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
-  REQUIRE(set >= 0);
-  const hid_t space = H5Dget_space(set);
-  hsize_t n = 0;
-  H5Sget_simple_extent_dims(space, &n, nullptr);
-  std::vector<char*> raw(static_cast<std::size_t>(n));
-  const hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, H5T_VARIABLE);
-  H5Tset_cset(type, H5T_CSET_UTF8);  // as written: names are UTF-8
-  CHECK(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()) >= 0);
-  std::vector<std::string> out(raw.begin(), raw.end());
-  H5Dvlen_reclaim(type, space, H5P_DEFAULT, raw.data());
-  H5Tclose(type);
-  H5Sclose(space);
-  H5Dclose(set);
-  return out;
-}
-
-double read_attribute(hid_t file, const char* name) {
-  double v = 0.0;
-  const hid_t attr = H5Aopen(file, name, H5P_DEFAULT);
-  REQUIRE(attr >= 0);
-  CHECK(H5Aread(attr, H5T_NATIVE_DOUBLE, &v) >= 0);
-  H5Aclose(attr);
-  return v;
-}
 
 /// The CSV's rows as numbers (header dropped).
 std::vector<std::vector<double>> csv_rows(const std::string& text) {

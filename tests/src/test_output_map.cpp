@@ -29,10 +29,14 @@
 #include "src/output/output_columns.hpp"
 #include "src/output/row_writer.hpp"
 #include "tests/cli_sandbox.hpp"
+#include "tests/hdf5_read.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/studies/user_checks.hpp"
 
 using namespace condyn;
+using condyn::test::Dataset;
+using condyn::test::read_doubles;
+using condyn::test::read_strings;
 
 namespace {
 
@@ -181,48 +185,6 @@ Table read_table(const std::string& text) {
   return t;
 }
 
-struct H5Set {
-  std::vector<hsize_t> dims;
-  std::vector<double> values;
-};
-
-H5Set read_h5(hid_t file, const char* name) {
-  H5Set d;
-  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
-  REQUIRE(set >= 0);
-  const hid_t space = H5Dget_space(set);
-  d.dims.resize(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
-  H5Sget_simple_extent_dims(space, d.dims.data(), nullptr);
-  hsize_t count = 1;
-  for (hsize_t n : d.dims) count *= n;
-  d.values.resize(count);
-  if (count > 0) {
-    CHECK(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.values.data()) >= 0);
-  }
-  H5Sclose(space);
-  H5Dclose(set);
-  return d;
-}
-
-std::vector<std::string> read_h5_names(hid_t file, const char* name) {
-  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
-  REQUIRE(set >= 0);
-  const hid_t space = H5Dget_space(set);
-  hsize_t n = 0;
-  H5Sget_simple_extent_dims(space, &n, nullptr);
-  std::vector<char*> raw(n);
-  const hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, H5T_VARIABLE);
-  H5Tset_cset(type, H5T_CSET_UTF8);
-  if (n > 0) CHECK(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()) >= 0);
-  std::vector<std::string> out(raw.begin(), raw.end());
-  if (n > 0) H5Dvlen_reclaim(type, space, H5P_DEFAULT, raw.data());
-  H5Tclose(type);
-  H5Sclose(space);
-  H5Dclose(set);
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("a model's output map gives the CSV its columns, the same whole and streamed") {
@@ -312,23 +274,23 @@ TEST_CASE("a model's output map gives the HDF5 file its datasets and names, whol
     streamed->finish(run);
   }
   const auto nt = static_cast<hsize_t>(p.traj.t.size());
-  std::optional<H5Set> first_displacement;
+  std::optional<Dataset> first_displacement;
   for (const char* name : {"whole.h5", "streamed.h5"}) {
     CAPTURE(name);
     const hid_t file = H5Fopen(box.path(name).c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     REQUIRE(file >= 0);
-    CHECK(read_h5_names(file, "dof_names") == std::vector<std::string>{"bob.angle", "bob.r"});
-    CHECK(read_h5_names(file, "velocity_names") == std::vector<std::string>{"bob.omega"});
-    CHECK(read_h5_names(file, "acceleration_names") == std::vector<std::string>{"bob.alpha"});
-    CHECK(read_h5_names(file, "reaction_names") == std::vector<std::string>{"rod.f"});
-    CHECK(read_h5_names(file, "point_names") == std::vector<std::string>{"bob.P.x", "bob.P.y"});
-    const H5Set u = read_h5(file, "displacement");
+    CHECK(read_strings(file, "dof_names") == std::vector<std::string>{"bob.angle", "bob.r"});
+    CHECK(read_strings(file, "velocity_names") == std::vector<std::string>{"bob.omega"});
+    CHECK(read_strings(file, "acceleration_names") == std::vector<std::string>{"bob.alpha"});
+    CHECK(read_strings(file, "reaction_names") == std::vector<std::string>{"rod.f"});
+    CHECK(read_strings(file, "point_names") == std::vector<std::string>{"bob.P.x", "bob.P.y"});
+    const Dataset u = read_doubles(file, "displacement");
     CHECK(u.dims == std::vector<hsize_t>{nt, 2});
-    CHECK(read_h5(file, "velocity").dims == std::vector<hsize_t>{nt, 1});
-    CHECK(read_h5(file, "reaction").dims == std::vector<hsize_t>{nt, 1});
-    CHECK(read_h5(file, "multiplier").dims ==
+    CHECK(read_doubles(file, "velocity").dims == std::vector<hsize_t>{nt, 1});
+    CHECK(read_doubles(file, "reaction").dims == std::vector<hsize_t>{nt, 1});
+    CHECK(read_doubles(file, "multiplier").dims ==
           std::vector<hsize_t>{nt, static_cast<hsize_t>(p.scene.model.constraint_count())});
-    const H5Set points = read_h5(file, "points");
+    const Dataset points = read_doubles(file, "points");
     REQUIRE(points.dims == std::vector<hsize_t>{nt, 2});
     for (hsize_t k = 0; k < nt; ++k) {
       CHECK(points.values[2 * k] == 1.0 + p.traj.u(2, static_cast<Eigen::Index>(k)));
