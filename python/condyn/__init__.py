@@ -162,8 +162,9 @@ def modes(scene, count=None):
     mass_ratio_cumulative (under [ground_motion], else None), total_mass (the mass along the
     influence vector, or None), shapes (n x count, columns mass-normalized, phi' M phi = 1, over
     dof_names), available (the modes the constrained model has) and solver ("dense" or
-    "lanczos"). Bad input (a count out of range, a model without mass, a nonlinear model)
-    raises SceneError naming the argument or key."""
+    "lanczos"): the doubles `condyn modes --out FILE.h5` writes, under the same names. Bad input
+    (a count out of range, a model without mass, a nonlinear model) raises SceneError naming the
+    argument or key."""
     _refuse_text(scene)
     return _condyn.modes(scene, _integer(scene, "count", count))
 

@@ -63,6 +63,32 @@ def test_modes_agrees_with_the_cli(cli, tmp_path):
     assert np.array_equal(table[:, 1], r["omega"])  # the same doubles, shortest round trip
 
 
+def test_modes_shapes_are_the_cli_hdf5_file_s(cli, tmp_path):
+    """condyn.modes returns the shapes and names that `condyn modes --out FILE.h5` writes, the
+    same doubles, with the same table, solver and total mass."""
+    path = tmp_path / "b.toml"
+    scene = building(4)
+    lines = ['[model]', 'type = "matrix"', 'dofs = ["u1", "u2", "u3", "u4"]',
+             f'mass = {scene["model"]["mass"].tolist()}',
+             f'stiffness = {scene["model"]["stiffness"].tolist()}',
+             '[ground_motion]', 'acceleration = 1.0', 'influence = { "u*" = 1.0 }',
+             '[solve]', 't_end = 1.0', 'output_step = 0.5']
+    path.write_text("\n".join(lines) + "\n")
+    r = condyn.modes(str(path), count=3)
+    subprocess.run([str(cli), "modes", str(path), "--count", "3", "--out", str(tmp_path / "m.h5")],
+                   capture_output=True, text=True, check=True)
+    h5py = pytest.importorskip("h5py")
+    with h5py.File(tmp_path / "m.h5", "r") as f:
+        assert r["shapes"].shape == (4, 3) and f["shapes"].shape == (4, 3)
+        assert np.array_equal(f["shapes"][()], r["shapes"])
+        assert list(f["dof_names"].asstr()[()]) == r["dof_names"] == ["u1", "u2", "u3", "u4"]
+        for key in ("omega", "frequency", "period", "mass_ratio", "mass_ratio_cumulative"):
+            assert np.array_equal(f[key][()], r[key]), key
+        assert list(f["mode"][()]) == [1, 2, 3] and f["mode"].dtype.kind == "i"
+        assert f.attrs["solver"] == r["solver"] and f.attrs["available"] == r["available"] == 4
+        assert f.attrs["total_mass"] == r["total_mass"]
+
+
 @pytest.mark.parametrize("count, says", [
     (0, "count: must be from 1 to the number of modes of the constrained model, 3"),
     (4, "count: must be from 1"),

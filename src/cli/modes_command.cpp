@@ -1,4 +1,5 @@
-// condyn modes: the constrained model's natural modes, lowest first, as CSV (docs/cli.md).
+// condyn modes: the constrained model's natural modes, lowest first, as CSV or as one HDF5 file
+// with the shapes (docs/cli.md).
 
 #include <iostream>
 #include <limits>
@@ -10,6 +11,7 @@
 #include "src/cli/cli_flags.hpp"
 #include "src/cli/commands.hpp"
 #include "src/output/csv_rows.hpp"
+#include "src/output/hdf5_modes.hpp"
 #include "src/output/output_files.hpp"
 #include "src/output/output_format.hpp"
 #include "validation/studies/scene_modes.hpp"
@@ -74,10 +76,18 @@ int modes(const ModesArgs& args) {
   std::optional<OutputPlan::Id> shapes;
   if (!args.shapes.empty()) shapes = plan.add_output(args.shapes, "--shapes");
   plan.check();
-  if (!args.out.empty()) (void)output_format(args.out, "--out", {FileFormat::csv});
+  // HDF5 holds the table and the shapes in one file (src/output/hdf5_modes.hpp).
+  const bool hdf5 =
+      output_format(table_path, "--out", {FileFormat::csv, FileFormat::hdf5}) == FileFormat::hdf5;
   if (shapes) (void)output_format(args.shapes, "--shapes", {FileFormat::csv});
   const SceneModes s = scene_modes(spec, args.count, "--count");
-  plan.write(table, [&s](std::ostream& out) { write_table(out, s); });
+  plan.write(table, [&s, hdf5](std::ostream& out) {
+    if (hdf5) {
+      write_modes_hdf5(out, s);
+    } else {
+      write_table(out, s);
+    }
+  });
   if (shapes) plan.write(*shapes, [&s](std::ostream& out) { write_shapes(out, s); });
   plan.commit_all();
   // What else is said goes to standard error when a CSV is on standard output.
@@ -86,7 +96,10 @@ int modes(const ModesArgs& args) {
       << (s.modes.dense ? "dense eigensolver" : "shift-invert Lanczos") << ")";
   if (s.ground_motion) msg << ", total mass along the influence vector " << s.modes.total_mass;
   msg << "\n";
-  if (!args.out.empty()) msg << "wrote the modes to " << plan.display_name(table) << "\n";
+  if (!args.out.empty()) {
+    msg << "wrote the modes" << (hdf5 ? " and their shapes" : "") << " to "
+        << plan.display_name(table) << "\n";
+  }
   if (shapes) msg << "wrote the mode shapes to " << plan.display_name(*shapes) << "\n";
   return 0;
 }
@@ -95,14 +108,17 @@ int modes(const ModesArgs& args) {
 
 Command add_modes_command(CLI::App& app) {
   auto args = std::make_shared<ModesArgs>();
-  auto* cmd = app.add_subcommand(
-      "modes", "natural modes of the constrained model at t = 0, lowest first (CSV)");
+  auto* cmd = app.add_subcommand("modes",
+                                 "natural modes of the constrained model at t = 0, lowest first "
+                                 "(CSV, or HDF5 with the shapes)");
   cmd->add_option("scene", args->scene, "scene file (TOML)")->required();
   cmd->add_option("--count", args->count,
                   "how many modes (default " + std::to_string(kDefaultModeCount) +
                       ", or all when the model has fewer)")
       ->check(whole_check(1, std::numeric_limits<int>::max()));
-  cmd->add_option("--out", args->out, "write the table to this CSV file (default: standard output)")
+  cmd->add_option("--out", args->out,
+                  "write the table to this CSV file (default: standard output), or the table and "
+                  "the mode shapes to this HDF5 file (.h5, .hdf5, .hdf)")
       ->check(file_name_check());
   cmd->add_option("--shapes", args->shapes,
                   "also write the mode shapes (one row a DOF, one column a mode) to this CSV file")

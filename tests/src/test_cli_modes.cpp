@@ -1,7 +1,8 @@
 // condyn modes end to end: the table's columns and values against the shear building's closed
-// form, the mode shapes file, standard output, and bad input (exit 2, the flag or key named, no
-// file written).
+// form, the mode shapes file, standard output, the HDF5 file (the CSV's table and shapes, the same
+// doubles), and bad input (exit 2, the flag or key named, no file written).
 #include <doctest/doctest.h>
+#include <hdf5.h>
 
 #include <cmath>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/hdf5_read.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/shear_building.hpp"
 
@@ -98,6 +100,70 @@ TEST_CASE("modes gives a rigid motion a zero frequency and an infinite period") 
   REQUIRE(rows.size() == 3);
   CHECK(rows[1] == std::vector<std::string>{"1", "0", "0", "inf"});
   CHECK(std::abs(std::stod(rows[2][1]) - 2.0) <= kTableTolerance * 2.0);
+  // The HDF5 file holds the infinite period as it is.
+  REQUIRE(box.run("modes free.toml --out free.h5").code == 0);
+  const hid_t file = H5Fopen(box.path("free.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  const auto period = condyn::test::read_doubles(file, "period").values;
+  REQUIRE(period.size() == 2);
+  CHECK(std::isinf(period[0]));
+  CHECK(period[0] > 0.0);
+  H5Fclose(file);
+}
+
+TEST_CASE("modes --out FILE.h5 holds the CSV's table and shapes, the same doubles") {
+  const Sandbox box;
+  const ShearBuilding b{.storeys = 4, .mass = 1.0, .stiffness = 40.0, .ground_motion = true};
+  box.write("b.toml", condyn::test::shear_building_scene(b));
+  REQUIRE(box.run("modes b.toml --out m.csv --shapes s.csv").code == 0);
+  const Result r = box.run("modes b.toml --count 3 --out m.h5");
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(contains(r.out, "wrote the modes and their shapes to m.h5"));
+  const auto table = csv(condyn::test::slurp(box.path("m.csv")));
+  const auto shapes = csv(condyn::test::slurp(box.path("s.csv")));
+  const hid_t file = H5Fopen(box.path("m.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  // One dataset per column of the table, three modes of the CSV's four: the CSV's shortest
+  // round-trip numbers read back as the very doubles the HDF5 file holds.
+  CHECK(condyn::test::stored_class(file, "mode") == H5T_INTEGER);
+  const char* columns[] = {"mode",   "omega",      "frequency",
+                           "period", "mass_ratio", "mass_ratio_cumulative"};
+  for (std::size_t c = 0; c < 6; ++c) {
+    CAPTURE(columns[c]);
+    CHECK(table[0][c] == columns[c]);
+    const condyn::test::Dataset d = condyn::test::read_doubles(file, columns[c]);
+    REQUIRE(d.dims == std::vector<hsize_t>{3});
+    for (std::size_t j = 0; j < 3; ++j) CHECK(d.values[j] == std::stod(table[j + 1][c]));
+  }
+  // The shapes: n x K, row i the DOF dof_names[i], as the shapes CSV's rows.
+  const condyn::test::Dataset phi = condyn::test::read_doubles(file, "shapes");
+  REQUIRE(phi.dims == std::vector<hsize_t>{4, 3});
+  const auto names = condyn::test::read_strings(file, "dof_names");
+  REQUIRE(names.size() == 4);
+  for (std::size_t i = 0; i < 4; ++i) {
+    CHECK(names[i] == shapes[i + 1][0]);
+    for (std::size_t j = 0; j < 3; ++j)
+      CHECK(phi.values[3 * i + j] == std::stod(shapes[i + 1][j + 1]));
+  }
+  CHECK(condyn::test::read_string_attribute(file, "solver") == "dense");
+  CHECK(condyn::test::read_attribute(file, "available") == 4.0);
+  // The storeys' mass, 4 x 1, to the roundoff of the effective masses' sum (kTableTolerance).
+  CHECK(std::abs(condyn::test::read_attribute(file, "total_mass") - 4.0) <= kTableTolerance * 4.0);
+  H5Fclose(file);
+
+  // Without [ground_motion]: no mass ratios, no total mass, as the CSV has no such columns.
+  ShearBuilding plain = b;
+  plain.ground_motion = false;
+  box.write("p.toml", condyn::test::shear_building_scene(plain));
+  REQUIRE(box.run("modes p.toml --out p.H5").code == 0);  // the extension in any case
+  const hid_t p = H5Fopen(box.path("p.H5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(p >= 0);
+  CHECK(H5Lexists(p, "omega", H5P_DEFAULT) > 0);
+  CHECK(H5Lexists(p, "mass_ratio", H5P_DEFAULT) == 0);
+  CHECK(H5Lexists(p, "mass_ratio_cumulative", H5P_DEFAULT) == 0);
+  CHECK(H5Aexists(p, "total_mass") == 0);
+  H5Fclose(p);
 }
 
 TEST_CASE("modes refuses bad input with exit 2, naming the flag or key, writing nothing") {
@@ -119,9 +185,14 @@ TEST_CASE("modes refuses bad input with exit 2, naming the flag or key, writing 
        "DOFs, 0 constraints); got 4"},
       {"modes z.toml --out m.csv", "z.toml: model.mass: the model has no mass"},
       {"modes p.toml --out m.csv", "p.toml: model: natural modes need a linear model"},
-      {"modes b.toml --out m.h5", "--out"},
+      {"modes b.toml --out m.txt",
+       "--out m.txt: the extension .txt names no format condyn writes: --out writes CSV (.csv, or "
+       "a name without an extension) or HDF5 (.h5, .hdf5, .hdf)"},
       {"modes b.toml --out m.csv --shapes s.txt", "--shapes"},
+      {"modes b.toml --out m.csv --shapes s.h5", "--shapes s.h5: the extension .h5"},
       {"modes b.toml --out b.toml", "--out"},
+      {"modes b.toml --out missing/m.h5", "--out missing/m.h5: the folder"},
+      {"modes b.toml --out m.h5 --count 4", "--count: must be from 1"},
   };
   for (const Case& c : cases) {
     CAPTURE(c.args);
@@ -133,4 +204,12 @@ TEST_CASE("modes refuses bad input with exit 2, naming the flag or key, writing 
   }
   CHECK(condyn::test::slurp(box.path("b.toml")) ==
         condyn::test::shear_building_scene(ShearBuilding{.storeys = 3}));
+  // A protected file under an HDF5 name: refused before the solve, kept as it was.
+  box.write("old.h5", "kept\n");
+  std::filesystem::permissions(box.path("old.h5"), std::filesystem::perms::owner_read);
+  const Result kept = box.run("modes b.toml --out old.h5");
+  CHECK(kept.code == 2);
+  CHECK(contains(kept.err, "--out old.h5"));
+  CHECK(contains(kept.err, "is read-only"));
+  CHECK(condyn::test::slurp(box.path("old.h5")) == "kept\n");
 }
