@@ -10,7 +10,9 @@ beside RESULT), each figure named STEM_<what>.<format>:
   energy        the energy balance's terms, and its error (if written: docs/energy.md)
   shape         with --nodes (the scene's node map): the deformed shape at the time of the
                 largest nodal displacement (plot_shapes.py)
-  modes         with --nodes, for the CSV of `condyn modes --shapes`: the mode shapes
+  modes         with --nodes, for the CSV of `condyn modes --shapes` or the HDF5 of `condyn modes
+                --out FILE.h5`: the mode shapes (from the HDF5, each titled with its frequency
+                and period)
 Sized for print: 3.5 in wide (one column), 8-9 pt text.
 
 Exit status: 0 drawn; 2 bad input (the message names the file and what is wrong); 3 matplotlib,
@@ -211,6 +213,12 @@ def read_h5(np, path):
     except OSError as e:
         raise BadInput(f"{path}: not an HDF5 file, or a damaged one ({e})") from None
     with f:
+        if "t" not in f and "shapes" in f:
+            raise BadInput(f"{path}: the modes of condyn modes, not a run's result: mode shapes "
+                           "are drawn with --scene SCENE")
+        if "t" not in f:
+            raise BadInput(f"{path}: not a condyn result (no dataset t), nor the modes of "
+                           "condyn modes (no dataset shapes)")
         t = h5_numbers(np, h5py, f, path, "t", (None,))
         if not t.size:
             raise BadInput(f"{path}: no rows")
@@ -437,9 +445,18 @@ def read_result(np, path, dofs_flag, columns_flag=""):
 
 
 def mode_shapes_file(path):
-    """Whether `path` is the CSV of `condyn modes --shapes` (its first column `dof`)."""
+    """Whether `path` holds mode shapes: the CSV of `condyn modes --shapes` (its first column
+    `dof`) or the HDF5 of `condyn modes --out` (a dataset shapes, no t)."""
     if path.lower().endswith((".h5", ".hdf5", ".hdf")):
-        return False
+        try:
+            import h5py
+        except ImportError:
+            raise SystemExit(3)
+        try:
+            with h5py.File(path, "r") as f:
+                return "shapes" in f and "t" not in f
+        except OSError:
+            return False  # read_result names the problem
     try:
         with open(path, encoding="utf-8", errors="replace") as f:
             return f.readline().split(",", 1)[0].strip() == "dof"
@@ -447,18 +464,55 @@ def mode_shapes_file(path):
         return False  # read_result names the problem
 
 
-def plot_mode_shapes(plt, np, path, nodes, out_dir, stem, formats):
-    """STEM_modes.<format> from a mode shapes CSV; the exit status."""
+def read_modes_h5(np, path):
+    """The HDF5 of `condyn modes --out` (docs/cli.md): {dof: row of shapes}, the mode labels
+    (mode_1, ...) and omega per mode; BadInput naming the file and the dataset at fault."""
+    import h5py
+    with h5py.File(path, "r") as f:
+        dofs = h5_names(h5py, f, path, "dof_names")
+        if len(set(dofs)) != len(dofs):
+            raise BadInput(f"{path}: dataset dof_names names a DOF twice")
+        mode = h5_numbers(np, h5py, f, path, "mode", (None,))
+        count = mode.size
+        if count == 0 or (mode != np.arange(1, count + 1)).any():
+            raise BadInput(f"{path}: dataset mode is not the mode numbers 1 to K")
+        omega = h5_numbers(np, h5py, f, path, "omega", (count,))
+        if (omega < 0).any():
+            raise BadInput(f"{path}: dataset omega holds a negative frequency")
+        phi = h5_numbers(np, h5py, f, path, "shapes", (len(dofs), count))
+    return ({d: phi[k] for k, d in enumerate(dofs)}, [f"mode_{j}" for j in range(1, count + 1)],
+            omega)
+
+
+def read_mode_shapes(np, path):
+    """Mode shapes from the CSV of `condyn modes --shapes` (no frequencies: omega None) or the
+    HDF5 of `condyn modes --out`: (shapes, modes, omega). BadInput names the file and problem."""
+    if path.lower().endswith((".h5", ".hdf5", ".hdf")):
+        return read_modes_h5(np, path)
     try:
         with open(path, encoding="utf-8") as f:
             lines = f.read().splitlines()
         table, modes = shapes.read_shapes(np, path, lines[0].strip().split(","), lines)
     except (OSError, UnicodeDecodeError, ValueError) as e:
-        print(f"error: {e}" if isinstance(e, ValueError) and str(e).startswith(path)
-              else f"error: {path}: cannot be read as mode shapes ({e})", file=sys.stderr)
+        raise BadInput(str(e) if isinstance(e, ValueError) and str(e).startswith(path)
+                       else f"{path}: cannot be read as mode shapes ({e})") from None
+    return table, modes, None
+
+
+def plot_mode_shapes(plt, np, path, nodes, out_dir, stem, formats):
+    """STEM_modes.<format> from a mode shapes CSV or modes HDF5; the exit status."""
+    try:
+        table, modes, omega = read_mode_shapes(np, path)
+    except BadInput as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except Exception as e:  # noqa: BLE001 -- any other malformed input: named, never a traceback
+        print(f"error: {path}: cannot be read as mode shapes ({type(e).__name__}: {e})",
+              file=sys.stderr)
         return 2
     style.paper_style(plt)
-    fig, notes = shapes.draw_modes(plt, np, style, nodes, table, modes, style.literal(stem))
+    fig, notes = shapes.draw_modes(plt, np, style, nodes, table, modes, style.literal(stem),
+                                   omega)
     for line in notes:
         print(f"note: {stem}: {line}")
     for ext in formats:

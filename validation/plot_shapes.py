@@ -3,9 +3,10 @@
 The scene's node map (a truss's nodes and members, a matrix model's `[model] coordinates`) comes
 from condyn as JSON: node ids, positions, the DOF moving each node along x, y, z ("" for none) and
 the node pairs drawn as lines. plot_result.py calls read_nodes, then draw_deformed for a run's
-result or draw_modes for the CSV of `condyn modes --shapes`.
+result or draw_modes for the CSV of `condyn modes --shapes` or the HDF5 of `condyn modes --out`.
 """
 import json
+import math
 
 # The largest drawn displacement, as a fraction of the model's extent: visible, and small
 # enough that the shape reads as a deformation of the grey undeformed model.
@@ -124,17 +125,29 @@ def read_shapes(np, path, header, lines):
     return shapes, modes
 
 
-def draw_modes(plt, np, style, nodes, shapes, modes, title_stem):
-    """Up to MAX_MODES mode shapes side by side, each scaled to SHAPE_FRACTION of the extent:
-    (figure, notes)."""
+def mode_title(label, omega):
+    """A mode panel's title: `mode 3`, and with its ω (rad/s) its frequency and period."""
+    name = label.replace("_", " ")
+    if omega is None:
+        return name
+    if omega == 0.0:  # a rigid motion: its period is infinite (condyn modes writes inf)
+        return f"{name}\nf = 0 Hz\nT = ∞"
+    return f"{name}\nf = {omega / (2 * math.pi):.4g} Hz\nT = {2 * math.pi / omega:.4g} s"
+
+
+def draw_modes(plt, np, style, nodes, shapes, modes, title_stem, omega=None):
+    """Up to MAX_MODES mode shapes side by side, each scaled to SHAPE_FRACTION of the extent and
+    titled with its frequency and period when `omega` (per mode, rad/s) is given: (figure,
+    notes)."""
     count = min(len(modes), MAX_MODES)
     columns = {dof: values for dof, values in shapes.items()}
     u, missing = nodes.history(np, columns)
-    fig, axes = plt.subplots(1, count, figsize=(style.PAGE_WIDTH, 3.2), squeeze=False)
+    fig, axes = plt.subplots(1, count, figsize=(style.PAGE_WIDTH, 3.4), squeeze=False)
     for j, ax in enumerate(axes[0]):
         peak = float(np.linalg.norm(u[j], axis=1).max())
         draw_on(ax, np, nodes, u[j], scale_for(np, nodes, peak) if peak > 0 else 0.0)
-        ax.set_title(modes[j].replace("_", " "), fontsize=8)
+        ax.set_title(mode_title(modes[j], None if omega is None else float(omega[j])),
+                     fontsize=8)
         if j:
             ax.set_ylabel("")
     style.title(fig, f"{title_stem}: mode shapes, each drawn with its largest nodal "
@@ -142,6 +155,10 @@ def draw_modes(plt, np, style, nodes, shapes, modes, title_stem):
     legend = style.legend_below(fig, axes[0][0].get_lines()[-2:], ncol=2)
     style.fit(fig, legend)
     notes = [missing_note(missing, "the shapes file")] if missing else []
+    if omega is None:
+        notes.append("the shapes CSV holds no frequencies: the HDF5 of condyn modes --out "
+                     "FILE.h5 holds them with the shapes, and each panel then gives its mode's "
+                     "frequency and period")
     if len(modes) > count:
         notes.append(f"modes {count + 1} to {len(modes)} not drawn (at most {MAX_MODES})")
     return fig, notes

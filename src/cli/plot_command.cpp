@@ -204,7 +204,8 @@ Command add_plot_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "plot",
       "figures of one run's CSV or HDF5: displacements, derived columns, drift, energy, and with "
-      "--scene the deformed shape (or the mode shapes of condyn modes --shapes) (docs/plots.md)");
+      "--scene the deformed shape (or the mode shapes of condyn modes --shapes, or of condyn "
+      "modes --out FILE.h5 with each mode's frequency and period) (docs/plots.md)");
   cmd->add_option("result", args->result, "the CSV or HDF5 file that condyn run wrote")->required();
   cmd->add_option("--dofs", args->dofs,
                   "DOFs to draw, names or globs, comma-separated (default: the four with the "
@@ -217,7 +218,7 @@ Command add_plot_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene,
                   "the scene of the result: its nodes (a truss's, a matrix model's [model] "
                   "coordinates) for the deformed shape, or the mode shapes of condyn modes "
-                  "--shapes")
+                  "--shapes or --out FILE.h5")
       ->check(non_empty_check());
   cmd->add_option("--out-dir", args->out_dir, "folder for the figures (default: beside RESULT)")
       ->check(non_empty_check());
