@@ -32,14 +32,6 @@ struct RunArgs {
   std::optional<double> max_wall_time;
 };
 
-/// The message for a failed run (dae/run/solve_result.hpp) and where the rows computed before the
-/// failure went (`partial_note`, from RunOutputs::write_partial).
-std::string failure_message(const SolveResult& result, double t_end,
-                            const std::string& partial_note) {
-  return describe_failure(result, t_end) +
-         (partial_note.empty() ? std::string() : "\n  " + partial_note);
-}
-
 /// One progress line on standard error for a long run (the loop calls this only after the first
 /// couple of seconds, so short runs print nothing).
 void print_progress(const Progress& p) {
@@ -174,24 +166,14 @@ int run(const RunArgs& args) {
   // (or, had it finished, its whole result); main then ends the process by the signal.
   keep_rows_on_signal(true);
   const SolveResult result = execute(run_plan, hooks);
-  const Trajectory& traj = result.trajectory;
-  const char* treatment = treatment_name(model, result.scheme, spec.solve);
-  const RunAttributes attributes{to_string(result.scheme), spec.solve.rtol, spec.solve.atol,
-                                 treatment != nullptr ? treatment : ""};
+  // Nothing computed is lost: a failed run's rows go to the partial file (NAME.partial.EXT).
+  const std::string partial = outputs.keep(model, run_attributes(model, spec.solve, result.scheme),
+                                           result.trajectory, result.ok());
   if (!result.ok()) {
-    // Nothing computed is lost: the rows before the failure go to FILE.partial.csv.
-    const std::string partial =
-        streamed ? outputs.finish_stream_partial(attributes, traj)
-                 : (traj.t.empty() ? "" : outputs.write_partial(model, attributes, traj));
     const bool stopped = result.failure->kind == FailureKind::interrupted;
     std::cerr << "error: " << args.scene << (stopped ? ": run stopped: " : ": integration failed: ")
               << failure_message(result, spec.solve.t_end, partial) << "\n";
     return 1;
-  }
-  if (streamed) {
-    outputs.finish_stream(attributes, traj);
-  } else {
-    outputs.write(model, attributes, traj);
   }
   print_run_report(msg, args, outputs, model, report, spec.solve, result, last, said_before);
   return 0;

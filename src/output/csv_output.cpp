@@ -114,6 +114,12 @@ std::string rows_phrase(long rows, double t_last) {
 
 }  // namespace
 
+std::string failure_message(const SolveResult& result, double t_end,
+                            const std::string& partial_note) {
+  return describe_failure(result, t_end) +
+         (partial_note.empty() ? std::string() : "\n  " + partial_note);
+}
+
 void write_steps_csv(std::ostream& out, const Trajectory& traj) {
   out << "t,drift_position,drift_velocity\n";
   std::string line;
@@ -130,15 +136,15 @@ void write_steps_csv(std::ostream& out, const Trajectory& traj) {
 
 RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
                        const OutputSpec& output, const std::string& steps_out,
-                       const std::vector<std::string>& inputs)
+                       const std::vector<std::string>& inputs, const std::string& out_source)
     : output_(output) {
   const std::string& output_file = output.file;
-  plan_.add_input(scene);
+  if (!scene.empty()) plan_.add_input(scene);
   for (const auto& in : inputs) plan_.add_input(in);
   std::string path, source;
   if (!out_flag.empty()) {
     path = out_flag;
-    source = "--out";
+    source = out_source;
   } else if (!output_file.empty()) {
     const std::filesystem::path file(output_file);
     path = file.is_absolute() ? output_file
@@ -184,6 +190,18 @@ void RunOutputs::write_result(OutputPlan::Id id, const Model& model, const RunAt
       write_rows(out, model, output_, traj);
     }
   });
+}
+
+std::string RunOutputs::keep(const Model& model, const RunAttributes& run, const Trajectory& traj,
+                             bool finished) {
+  if (rows_) {  // streamed: the rows are in the result's temporary file
+    if (!finished) return finish_stream_partial(run, traj);
+    finish_stream(run, traj);
+  } else {
+    if (!finished) return traj.t.empty() ? "" : write_partial(model, run, traj);
+    write(model, run, traj);
+  }
+  return "";
 }
 
 void RunOutputs::write(const Model& model, const RunAttributes& run, const Trajectory& traj) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dae/run/solve_result.hpp"
 #include "dae/run/trajectory.hpp"
 #include "models/core/model.hpp"
 #include "models/scene/scene_spec.hpp"
@@ -18,6 +19,11 @@
 #include "src/output/row_writer.hpp"
 
 namespace condyn {
+
+/// A failed run's message: describe_failure's, then, on a line of its own, where its rows went
+/// (`partial_note`, from RunOutputs::keep; none when empty).
+[[nodiscard]] std::string failure_message(const SolveResult& result, double t_end,
+                                          const std::string& partial_note);
 
 /// The per-step drift log (run --steps-out): columns t, drift_position, drift_velocity, one row per
 /// internal step of the integrator.
@@ -33,8 +39,11 @@ void write_steps_csv(std::ostream& out, const Trajectory& traj);
 /// there and no partial file. Throws OutputError (bad paths).
 class RunOutputs {
  public:
+  /// `scene`: the scene file ("" for a scene that is no file, a Python dict: then `out_flag` must
+  /// name the result); `out_source`: what messages call `out_flag` ("out" for condyn.run).
   RunOutputs(const std::string& scene, const std::string& out_flag, const OutputSpec& output,
-             const std::string& steps_out, const std::vector<std::string>& inputs = {});
+             const std::string& steps_out, const std::vector<std::string>& inputs = {},
+             const std::string& out_source = "--out");
 
   /// Where every line but the data goes: standard error when an output is standard output.
   [[nodiscard]] std::ostream& messages() const;
@@ -42,6 +51,14 @@ class RunOutputs {
   [[nodiscard]] std::string csv_name() const;
   [[nodiscard]] bool has_steps() const { return steps_.has_value(); }
   [[nodiscard]] std::string steps_name() const;
+
+  /// What `condyn run` keeps of a run, its rows given to stream_rows (when it was called) or all
+  /// in `traj`: a finished run's result and drift log, committed (finish_stream or write); a
+  /// failed run's rows in the partial files (finish_stream_partial or write_partial, none for a
+  /// run without rows). Returns the sentence saying where a failed run's rows went ("" for a
+  /// finished run, or a failed one without rows).
+  [[nodiscard]] std::string keep(const Model& model, const RunAttributes& run,
+                                 const Trajectory& traj, bool finished);
 
   /// A finished run: the result (HDF5 for a name ending in .h5, .hdf5 or .hdf) and the drift log,
   /// committed together.

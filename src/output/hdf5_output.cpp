@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include "dae/run/scheme_choice.hpp"
 #include "src/output/hdf5_parts.hpp"
 
 #include <optional>
@@ -31,6 +32,11 @@ void put_derived(hid_t file, const Model& model, const Trajectory& traj) {
 }
 
 }  // namespace
+
+RunAttributes run_attributes(const Model& model, const SolveSpec& settings, Scheme resolved) {
+  const char* treatment = treatment_name(model, resolved, settings);
+  return {to_string(resolved), settings.rtol, settings.atol, treatment != nullptr ? treatment : ""};
+}
 
 void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,
                 const RunAttributes& run, const Trajectory& whole) {

@@ -24,6 +24,11 @@ struct RunAttributes {
   std::string constraints;
 };
 
+/// The attributes of a run of `model` under `settings`, `resolved` the scheme that ran (the
+/// plan's, SolveResult::scheme).
+[[nodiscard]] RunAttributes run_attributes(const Model& model, const SolveSpec& settings,
+                                           Scheme resolved);
+
 /// Writes the HDF5 file of `traj` to `out`. Throws std::runtime_error when the HDF5 library
 /// fails (the message names the call).
 void write_hdf5(std::ostream& out, const Model& model, const OutputSpec& output,

@@ -30,6 +30,8 @@ namespace {
 std::atomic<TempNode*> g_temps{nullptr};
 /// keep_rows_on_signal: the first SIGINT, SIGTERM or SIGHUP stops the run instead.
 std::atomic<bool> g_keep_rows{false};
+/// use_signal_handlers: false in a host that keeps its own handlers.
+bool g_use_handlers = true;
 
 extern "C" void remove_temps_and_reraise(int sig) {
   if (sig != SIGPIPE && g_keep_rows.load() && stop_requested() == 0) {
@@ -47,7 +49,7 @@ extern "C" void remove_temps_and_reraise(int sig) {
 
 void install_signal_handlers() {
   static bool installed = false;
-  if (installed) return;
+  if (installed || !g_use_handlers) return;
   installed = true;
   for (int sig : {SIGTERM, SIGINT, SIGHUP, SIGPIPE}) {
     struct sigaction old {};
@@ -89,6 +91,8 @@ void keep_rows_on_signal(bool on) {
   if (on) install_signal_handlers();
   g_keep_rows.store(on);
 }
+
+void use_signal_handlers(bool on) { g_use_handlers = on; }
 
 int stopped_by_signal() { return stop_requested(); }
 

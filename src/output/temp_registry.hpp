@@ -16,6 +16,12 @@ struct TempNode;
 /// The file is gone or in place: a signal no longer removes it. Sets `node` to nullptr.
 void release_temp(TempNode*& node);
 
+/// Whether register_temp and keep_rows_on_signal install the handlers above (default true: the
+/// command's own process). A host with handlers of its own (the Python module: Ctrl-C raises
+/// KeyboardInterrupt) turns them off before any output; its temporary files are then removed by
+/// their OutputPlan (on every return and exception), not on a fatal signal.
+void use_signal_handlers(bool on);
+
 /// While `on` (a run integrating, whose rows are worth keeping): the first SIGINT, SIGTERM or
 /// SIGHUP does not end the process but asks the run to stop (request_stop,
 /// dae/interface/interrupt.hpp), which then ends as a failed run and keeps its rows in the partial
