@@ -23,6 +23,8 @@
 #include "python/modes_result.hpp"
 #include "python/run_result.hpp"
 #include "python/scene_from_python.hpp"
+#include "src/output/csv_output.hpp"
+#include "src/output/temp_registry.hpp"
 #include "validation/studies/compare.hpp"
 #include "validation/studies/scene_modes.hpp"
 #include "validation/studies/user_checks.hpp"
@@ -128,12 +130,21 @@ py::dict check_dict(SceneCheckResult result, const std::vector<CheckSpec>& specs
 /// (result dict, failure message or None, failure kind or None, check dict or None): the Python
 /// side raises IntegrationError with the partial result and the kind. With `checks`, the scene's
 /// [[check]] tables are evaluated on this run's rows (the quantities they read computed too), as
-/// condyn.check would evaluate them on a run of its own.
+/// condyn.check would evaluate them on a run of its own. With `out` (a file name, not blank), the
+/// result is written there as `condyn run --out` writes it, a failed run's rows to the partial
+/// file, the failure message saying where they went.
 py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
               std::optional<double> rtol, std::optional<double> atol, std::optional<double> step,
-              bool checks) {
+              bool checks, const std::optional<std::string>& out) {
   std::string set_aside;
   SceneSpec spec = run_spec(scene, scheme, rtol, atol, step, set_aside);
+  // The output is checked before any work, as the command checks it, with the scene's own
+  // [output] (before the checks add the quantities they read). A dict scene is no input file.
+  std::optional<RunOutputs> outputs;
+  if (out) {
+    outputs.emplace(py::isinstance<py::dict>(scene) ? std::string() : spec.file, *out, spec.output,
+                    "", spec.input_files, "out");
+  }
   checks = checks && !spec.checks.empty();
   if (checks) add_check_quantities(spec);
   const std::vector<CheckSpec> specs = spec.checks;
@@ -168,9 +179,15 @@ py::tuple run(const py::handle& scene, const std::optional<std::string>& scheme,
           ? py::object(check_dict(
                 check_verdict(spec.file, spec.solve, result, *evaluator, report.warnings), specs))
           : py::object(py::none());
-  const py::object failure = result.ok()
-                                 ? py::object(py::none())
-                                 : python::system_text(describe_failure(result, spec.solve.t_end));
+  // Written with the GIL held: the HDF5 library and the temporary files' registry serve one
+  // thread at a time. The whole result is in hand (nothing was streamed), as the Result needs it.
+  const std::string partial =
+      outputs ? outputs->keep(*model, run_attributes(*model, spec.solve, result.scheme),
+                              result.trajectory, result.ok())
+              : std::string();
+  const py::object failure =
+      result.ok() ? py::object(py::none())
+                  : python::system_text(failure_message(result, spec.solve.t_end, partial));
   const py::object kind = result.ok()
                               ? py::object(py::none())
                               : py::object(py::str(failure_kind_name(result.failure->kind)));
@@ -303,6 +320,8 @@ PYBIND11_MODULE(_condyn, m) {
   // Messages quote file names as the system gave them: bytes that are not UTF-8 come back as
   // Python's surrogateescape, the str that names the same file.
   static py::exception<SceneError> scene_error(m, "SceneError", PyExc_ValueError);
+  // run(..., out=...): a name condyn run --out would refuse, refused before any work.
+  static py::exception<OutputError> output_error(m, "OutputError", PyExc_ValueError);
   // By value: pybind11 takes a plain function pointer void (*)(std::exception_ptr).
   py::register_exception_translator(
       [](std::exception_ptr p) {  // NOLINT(performance-unnecessary-value-param)
@@ -310,8 +329,13 @@ PYBIND11_MODULE(_condyn, m) {
           if (p) std::rethrow_exception(p);
         } catch (const SceneError& e) {
           PyErr_SetObject(scene_error.ptr(), python::system_text(e.what()).ptr());
+        } catch (const OutputError& e) {
+          PyErr_SetObject(output_error.ptr(), python::system_text(e.what()).ptr());
         }
       });
+  // Python keeps its own signal handlers (Ctrl-C: KeyboardInterrupt): an output's temporary file
+  // is removed by its owner on every return and exception instead (src/output/temp_registry.hpp).
+  use_signal_handlers(false);
   // Ctrl-C during a run: Python's handler runs (with the GIL, from the running thread; only the
   // main thread's handlers run) and its exception, KeyboardInterrupt, stays set for without_gil.
   set_interrupt_poll([] {
@@ -319,7 +343,8 @@ PYBIND11_MODULE(_condyn, m) {
     return PyErr_CheckSignals() != 0;
   });
   m.def("run", &run, py::arg("scene"), py::arg("scheme") = py::none(), py::arg("rtol") = py::none(),
-        py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("checks") = false);
+        py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("checks") = false,
+        py::arg("out") = py::none());
   m.def("compare", &compare, py::arg("scene"), py::arg("tolerances") = py::none(),
         py::arg("schemes") = py::none(), py::arg("repeats") = py::none(),
         py::arg("drift_rtol") = py::none(), py::arg("max_steps") = 0,

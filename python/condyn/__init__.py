@@ -12,14 +12,15 @@ import numbers
 import os
 import warnings
 
-from ._condyn import SceneError, scheme_names
+from ._condyn import OutputError, SceneError, scheme_names
 from . import _condyn
 from .sweep_file import SweepError
 
 SceneError.__module__ = __name__  # shown as condyn.SceneError, where users catch it
+OutputError.__module__ = __name__
 
-__all__ = ["run", "compare", "check", "modes", "sweep", "Result", "SceneError", "SweepError",
-           "IntegrationError", "scheme_names"]
+__all__ = ["run", "compare", "check", "modes", "sweep", "Result", "SceneError", "OutputError",
+           "SweepError", "IntegrationError", "scheme_names"]
 
 
 class Result:
@@ -97,21 +98,26 @@ class IntegrationError(RuntimeError):
         return (type(self), (str(self), self.result, self.kind))
 
 
-def run(scene, scheme=None, rtol=None, atol=None, step=None, checks=False):
+def run(scene, scheme=None, rtol=None, atol=None, step=None, checks=False, out=None):
     """Runs `scene` (a path to a scene file, or a dict with the TOML's structure) and returns a
     Result. `scheme`, `rtol`, `atol` and `step` (the fixed step of the Newmark family: newmark,
     hht, generalized_alpha) override the scene's [solve] keys. With `checks`, the scene's
     [[check]] tables are evaluated on this run's rows (Result.checks: the dict condyn.check
     returns, without a second run; the quantities the checks read are computed too; None for a
-    scene without [[check]]; on a failed run, on IntegrationError's result). Bad input raises
-    SceneError (a ValueError) with the CLI's "FILE:LINE: key.path: problem" message ("<dict>"
-    and no line for a dict); a failed integration raises IntegrationError. The GIL is released
-    while the model is built and integrated."""
+    scene without [[check]]; on a failed run, on IntegrationError's result). With `out` (a str,
+    bytes or os.PathLike), the result is also written there, the file `condyn run --out OUT`
+    writes (CSV, or HDF5 for .h5, .hdf5, .hdf; a failed run's rows in OUT's partial file, named
+    in IntegrationError's message); a name the command refuses raises OutputError (a
+    ValueError) naming it, before any work. Bad input raises SceneError (a ValueError) with the
+    CLI's "FILE:LINE: key.path: problem" message ("<dict>" and no line for a dict); a failed
+    integration raises IntegrationError. The GIL is released while the model is built and
+    integrated (not while `out` is written)."""
     _refuse_text(scene)
     fields, failure, kind, verdict = _condyn.run(scene, _text(scene, "scheme", scheme),
                                                  _number(scene, "rtol", rtol),
                                                  _number(scene, "atol", atol),
-                                                 _number(scene, "step", step), bool(checks))
+                                                 _number(scene, "step", step), bool(checks),
+                                                 _out(out))
     result = Result(fields, verdict)
     if failure is not None:
         raise IntegrationError(f"{_name(scene)}: integration failed: {failure}", result, kind)
@@ -203,6 +209,18 @@ def _name(scene):
         return os.fsdecode(scene)
     except TypeError:  # not a path at all: run() refuses it by its type
         return str(scene)
+
+
+def _out(out):
+    """run()'s `out` as the file system's bytes (None: not given); a blank name raises
+    OutputError, as the command refuses `--out ""`."""
+    if out is None:
+        return None
+    path = os.fsencode(out)  # TypeError for what is no path
+    if not path.strip():
+        raise OutputError(f"out {os.fsdecode(path)!r}: an empty name: name a file (or - for "
+                          "standard output)")
+    return path
 
 
 def _number(scene, argument, value):

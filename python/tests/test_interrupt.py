@@ -58,3 +58,12 @@ def test_a_run_after_an_interrupt_is_whole():
     interrupted_after(lambda: condyn.run(scene()))
     s = long_chain("ggl")
     assert condyn.run(s).t[-1] == s["solve"]["t_end"]
+
+
+def test_ctrl_c_stops_a_run_writing_a_file_and_leaves_none(tmp_path):
+    # The module keeps Python's signal handlers (the command's own would remove the temporary
+    # file and end the interpreter): KeyboardInterrupt, and the temporary file removed by its
+    # owner as the exception passes. The file named is not written: the rows are lost with the
+    # Result, as in a run without `out`.
+    assert interrupted_after(lambda: condyn.run(scene(), out=tmp_path / "r.h5")) < BOUND
+    assert os.listdir(tmp_path) == []
