@@ -103,7 +103,9 @@ def read_sweep(path):
     except ValueError as e:  # SceneError: "FILE:LINE: key: problem"
         _fail(path, "scene", f"the scene is refused: {e}")
     scene = _read_toml(scene_file, "the scene")
-    scene.pop("output", {}).pop("file", None)  # a sweep keeps what [keep] says, no run's file
+    # A sweep keeps what [keep] says, no run's file; the rest of [output] stays: it decides what
+    # the run computes (energy, accelerations, points) and what a kept result holds.
+    scene.get("output", {}).pop("file", None)
     from .sweep_records import records_axes  # it builds on this file's Axis and SweepError
     axes = _read_axes(path, table.get("axis", [])) + _read_shorthands(path, table)
     keep = table.get("keep", {})

@@ -22,9 +22,10 @@ NOT_RUN = ("interrupted",)     # stopped from outside: no row, the run is done a
 def run_one(scene, files, peaks, checks=False, keep_result=False):
     """Runs `scene` (a dict; its `file` keys name entries of `files`, name -> bytes) and returns
     {status, steps, wall_s, peaks: {column: (peak, time)}, message}, with `checks` (the scene's
-    [[check]] verdicts, verdict_of) when asked and the run succeeded, and `result` (the
-    whole result as HDF5 bytes, sweep_result.py) when `keep_result` and the run has rows. Never
-    raises for a run's failure: the failure is the row's status."""
+    [[check]] verdicts, verdict_of) when asked and the run succeeded, and `result` (the bytes
+    of the HDF5 file `condyn run --out RESULT.h5` writes, or of its partial file for a failed
+    run) when `keep_result` and the run wrote one. Never raises for a run's failure: the
+    failure is the row's status."""
     with tempfile.TemporaryDirectory(prefix="condyn-sweep-") as folder:
         local = {}
         for i, name in enumerate(sorted(files)):
@@ -32,20 +33,25 @@ def run_one(scene, files, peaks, checks=False, keep_result=False):
             with open(local[name], "wb") as f:
                 f.write(files[name])
         scene = map_files(scene, local.__getitem__)
-        row, result = _run(scene, peaks, checks)
+        # Named apart from the scene's files (which start with their index): the result, or the
+        # partial file beside it where a failed run keeps its rows (docs/cli.md).
+        out = os.path.join(folder, "result.h5") if keep_result else None
+        row, result = _run(scene, peaks, checks, out)
         if checks and row["status"] == "ok":
             row["checks"] = verdict_of(result.checks)
-        if keep_result and result is not None and len(result.t) > 0:
-            from .sweep_result import result_bytes
-            row["result"] = result_bytes(result, os.path.join(folder, "result.h5"))
+        for written in ([out, os.path.join(folder, "result.partial.h5")] if out else []):
+            if os.path.exists(written):
+                with open(written, "rb") as f:
+                    row["result"] = f.read()
     return row
 
 
-def _run(scene, peaks, checks):
+def _run(scene, peaks, checks, out=None):
     """(the run's row, its Result or None); with `checks`, the Result's checks are evaluated on
-    its own rows (condyn.run(checks=True): one run, not a second one for condyn.check)."""
+    its own rows (condyn.run(checks=True): one run, not a second one for condyn.check); with
+    `out`, the result is written there (condyn.run(out=...))."""
     try:
-        result = condyn.run(scene, checks=checks)
+        result = condyn.run(scene, checks=checks, out=out)
     except condyn.IntegrationError as e:
         return _row(e.kind or "unknown", e.result, {}, str(e)), e.result
     except condyn.SceneError as e:

@@ -86,15 +86,3 @@ def test_bad_derived_tables_raise_scene_error_naming_the_entry(terms, message):
     with pytest.raises(condyn.SceneError) as e:
         condyn.run(scene)
     assert message in str(e.value)
-
-
-def test_a_kept_sweep_result_holds_the_derived_columns_as_condyn_run_writes_them(cli, tmp_path):
-    h5py = pytest.importorskip("h5py")
-    from condyn.sweep_result import write_result
-
-    write_result(condyn.run(str(FRAME)), str(tmp_path / "kept.h5"))
-    subprocess.run([str(cli), "run", str(FRAME), "--out", str(tmp_path / "run.h5")], check=True,
-                   capture_output=True)
-    with h5py.File(tmp_path / "kept.h5", "r") as kept, h5py.File(tmp_path / "run.h5", "r") as run:
-        assert list(kept["derived_names"].asstr()[()]) == list(run["derived_names"].asstr()[()])
-        np.testing.assert_array_equal(kept["derived"][()], run["derived"][()])

@@ -311,9 +311,7 @@ def test_an_axis_that_changes_the_number_of_checks_is_refused(study):
 
 def test_kept_results_are_the_files_condyn_run_writes_brought_back_by_key(study, scheduler, cli):
     h5py = pytest.importorskip("h5py")
-    quantities = '["displacement", "velocity", "reaction", "drift"]'
-    scene = SCENE.replace('["displacement", "reaction", "drift"]', quantities)
-    (study.parent / "frame.toml").write_text(scene)
+    scene = SCENE  # its [output] quantities, and only those, are in the file
     study.write_text(SWEEP.replace("[keep]", "[keep]\nresults = true"))
     summary = condyn.sweep(study, scheduler=scheduler, progress=False)
     runs = expand(read_sweep(study))
@@ -327,7 +325,7 @@ def test_kept_results_are_the_files_condyn_run_writes_brought_back_by_key(study,
                        check=True, capture_output=True)
         with h5py.File(folder / f"{run.key}.h5", "r") as kept, h5py.File(out, "r") as ran:
             assert dict(kept.attrs) == dict(ran.attrs)
-            assert set(ran) <= set(kept), (set(ran), set(kept))
+            assert set(ran) == set(kept), (set(ran), set(kept))
             for name in ran:
                 data = ran[name].asstr()[()] if ran[name].dtype.kind == "O" else ran[name][()]
                 got = kept[name].asstr()[()] if kept[name].dtype.kind == "O" else kept[name][()]
@@ -347,6 +345,27 @@ def test_a_failed_run_keeps_the_rows_before_its_failure(study, scheduler):
         with h5py.File(study.parent / "study" / "runs" / f"{run.key}.h5", "r") as f:
             np.testing.assert_array_equal(f["t"][()], e.value.result.t)
             np.testing.assert_array_equal(f["displacement"][()], e.value.result.u)
+
+
+def test_the_scenes_output_decides_what_a_run_computes_but_writes_no_file(study, scheduler):
+    # [output] stays but for its file: the energy balance it asks for is computed, so its columns
+    # have peaks, and the kept result holds it, as condyn run's file would.
+    h5py = pytest.importorskip("h5py")
+    quantities = '"drift", "energy"]\nfile = "frame.csv"'
+    (study.parent / "frame.toml").write_text(SCENE.replace('"drift"]', quantities))
+    study.write_text(SWEEP.replace('peaks = ["u2", "reaction_u1"]',
+                                   'peaks = ["energy_error"]\nresults = true'))
+    summary = condyn.sweep(study, scheduler=scheduler, progress=False)
+    assert summary["ok"] == 6
+    header, rows = read_table(summary["table"])
+    for run, row in zip(expand(read_sweep(study)), rows):
+        r = condyn.run(scene_of(study, run))  # the same run here: bit for bit
+        error = r.energy_balance[:, r.energy_columns.index("energy_error")]
+        i = int(np.argmax(np.abs(error)))
+        assert float(dict(zip(header, row))["peak_energy_error"]) == abs(error[i])
+        with h5py.File(study.parent / "study" / "runs" / f"{run.key}.h5", "r") as f:
+            np.testing.assert_array_equal(f["energy"][()], r.energy_balance)
+    assert not (study.parent / "frame.csv").exists()
 
 
 def test_keep_results_must_be_a_boolean(study):
