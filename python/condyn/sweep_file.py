@@ -62,7 +62,7 @@ class Sweep:
     axes: list       # of Axis
     peaks: list      # the kept columns (names of the run's CSV columns)
     ida: tuple = None  # [ida]: (the kept column, the limit state or None, axis labels), sweep_ida.py
-    keep_result: bool = False  # [keep] results: each run's whole result as DIR/runs/KEY.h5
+    keep_result: bool = False  # [keep] results: each run's HDF5 file as DIR/runs/KEY.h5
 
     @property
     def checks(self):

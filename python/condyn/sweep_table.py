@@ -60,7 +60,7 @@ class ResultsTable:
 
     def append(self, run, values, row, peaks, checks=0):
         """Writes the row of `run` (its cells of the axes, and the worker's row) and flushes it
-        to disk; a run's whole result (the worker's HDF5 bytes) goes to runs/KEY.h5 first."""
+        to disk; a run's HDF5 file (the worker's bytes) goes to runs/KEY.h5 first."""
         cells = [run] + [cell(v) for v in values]
         cells += [row["status"], cell(row["steps"]), cell(row["wall_s"])]
         for p in peaks:

@@ -1,7 +1,7 @@
 """One run of a sweep, on a Dask worker (docs/sweep.md): the scene and its data files arrive with
 the task (no shared file system), are written into a temporary folder and run through condyn.run;
 what returns is the run's row: its status, steps, wall time, the peaks of the kept columns, and
-when asked the scene's [[check]] verdicts and the whole result as HDF5 bytes.
+when asked the scene's [[check]] verdicts and the bytes of its HDF5 file (condyn run --out).
 """
 
 import os

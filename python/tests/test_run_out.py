@@ -90,8 +90,9 @@ def test_a_failed_run_keeps_its_rows_in_the_partial_file_as_the_command(cli, tmp
     assert ran.returncode == 1
     # The message says where the rows went, in the command's words.
     partial = str(tmp_path / "py.partial.h5")
-    assert f"the 3 output rows up to t = 0.002 are in {partial} (the run did not reach t_end; {tmp_path / 'py.h5'} was not " \
-           "written)" in str(e.value)
+    assert str(e.value).endswith(f"partial result: the 3 output rows up to t = 0.002 are in "
+                                 f"{partial} (the run did not reach t_end; {tmp_path / 'py.h5'} "
+                                 "was not written)")
     assert str(e.value).split("integration failed: ")[1] == \
         ran.stderr.split("integration failed: ")[1].strip().replace("cli.", "py.")
     assert (tmp_path / "py.h5").read_bytes() == b"earlier"
