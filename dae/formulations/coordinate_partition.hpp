@@ -24,13 +24,19 @@ struct CoordinatePartition {
 /// or a coupled group is too large for the dense pivoting block.
 [[nodiscard]] CoordinatePartition choose_partition(const Eigen::SparseMatrix<double>& A);
 
-/// The conditioning of the dependent block: min |R_ii| / max |R_ii| of the QR factor of D A_d
-/// (D: exact row scales, models/core/row_scales.hpp, so a row's units do not count). At most
-/// 1; 0 when A_d is singular (the product of the |R_ii| is |det D A_d|), and at least its
-/// reciprocal condition number (every |R_ii| lies between σ_min and σ_max). Sparse QR: no dense
-/// block.
-[[nodiscard]] double pivot_ratio(const Eigen::SparseMatrix<double>& A,
-                                 const CoordinatePartition& partition);
+/// How well the independent coordinates determine the configuration at A: 1 / ‖B‖₁, where
+/// B = [I; −A_d⁻¹ A_i] (rows in the partition's order) is the basis of A's null space that is the
+/// identity on the independent coordinates: the velocities u' = B q_i' a motion of the independent
+/// ones imposes. At most 1 (dependent coordinates that do not move with the independent ones); it
+/// falls to 0 where the independent coordinates stop determining the configuration (A_d turns
+/// singular: a crank's tip coordinate at its extreme), like the distance to that position, and 0
+/// when A_d is singular. B depends on A only through its null space: neither the rows' units nor
+/// a constant small pivot of A_d (short links beside unit vectors) enter it, where they mask the
+/// approach to a singular A_d in A_d's own conditioning. ‖A_d⁻¹ A_i‖₁ is estimated by Hager's
+/// method (Higham 1988): a few solves with A_d and A_dᵀ (sparse LU), no dense block; the estimate
+/// is a lower bound, exact when one coordinate is independent.
+[[nodiscard]] double partition_quality(const Eigen::SparseMatrix<double>& A,
+                                       const CoordinatePartition& partition);
 
 /// "ux2, uy3" for the DOFs given (at most `limit` named, then "and N more").
 [[nodiscard]] std::string dof_list(const std::vector<std::string>& names,

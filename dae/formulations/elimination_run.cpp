@@ -70,8 +70,7 @@ std::string partition_note(const Model& model, const PartitionedOde& ode,
   for (std::size_t k = 0; k < log.size() && k < kListed; ++k) {
     s << (k == 0 ? ": " : ", ") << "t = " << log[k].t << " ("
       << dof_list(names, log[k].now_independent) << " independent, "
-      << dof_list(names, log[k].now_dependent) << " dependent; pivot ratio " << log[k].pivot_ratio
-      << ")";
+      << dof_list(names, log[k].now_dependent) << " dependent; quality " << log[k].quality << ")";
   }
   if (log.size() > kListed) s << " and " << log.size() - kListed << " more";
   return s.str();

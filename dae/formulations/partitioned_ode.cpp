@@ -102,7 +102,7 @@ void PartitionedOde::adopt(CoordinatePartition p, double /*t*/) const {
   ad_ = a_ * partition_.select_dependent;
   ad_.makeCompressed();
   if (m_ > 0) lu_.analyzePattern(ad_);
-  reference_ratio_ = pivot_ratio(a_, partition_);
+  reference_quality_ = partition_quality(a_, partition_);
 }
 
 void PartitionedOde::constraints_at(double t) const {
@@ -225,8 +225,8 @@ Eigen::VectorXd PartitionedOde::initial_state() const {
 bool PartitionedOde::wants_restart(double t, ConstRef y) const {
   if (m_ == 0 || ni_ == 0) return false;
   (void)full(t, y);
-  const double ratio = pivot_ratio(a_, partition_);
-  if (ratio >= kRepartitionFraction * reference_ratio_) return false;
+  const double quality = partition_quality(a_, partition_);
+  if (quality >= kRepartitionFraction * reference_quality_) return false;
   std::optional<CoordinatePartition> next;
   try {
     next = choose_partition(a_);
@@ -235,12 +235,12 @@ bool PartitionedOde::wants_restart(double t, ConstRef y) const {
     // partition has a regular dependent block.
   }
   if (!next || next->dependent == partition_.dependent) {
-    // No better partition here: keep this one, judged from now on against its ratio here.
-    reference_ratio_ = ratio;
+    // No other partition here: keep this one, judged from now on against its quality here.
+    reference_quality_ = quality;
     return false;
   }
   log_.push_back({t, minus(next->independent, partition_.independent),
-                  minus(next->dependent, partition_.dependent), ratio});
+                  minus(next->dependent, partition_.dependent), quality});
   pending_ = std::move(next);
   return true;
 }

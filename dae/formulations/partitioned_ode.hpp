@@ -20,10 +20,10 @@
 ///
 /// Every constraint row holds to the Newton tolerance at every evaluation, by construction: no
 /// drift accumulates. The dependent block can grow singular along a motion (a crank through the
-/// position where its dependent coordinate turns): after each accepted step its pivot ratio
-/// (pivot_ratio) is compared with the ratio the partition had when chosen, and below
-/// kRepartitionFraction of it a new partition is chosen at that state and the integration
-/// restarts there (wants_restart, settle), each one logged.
+/// position where its dependent coordinate turns): after each accepted step the partition's
+/// quality (partition_quality: 1/‖B‖₁, B = [I; −A_d⁻¹ A_i]) is compared with the quality it had
+/// when chosen, and below kRepartitionFraction of it a new partition is chosen at that state and
+/// the integration restarts there (wants_restart, settle), each one logged.
 ///
 /// A model whose constraints fix every coordinate (a fully driven mechanism: n − m = 0) has an
 /// empty state: the loop steps through time without an integrator (integrate_ode), and full()
@@ -52,7 +52,7 @@ class PartitionedOde final : public OdeProblem {
   struct Repartition {
     double t = 0.0;
     std::vector<int> now_independent, now_dependent;  ///< DOFs that changed roles
-    double pivot_ratio = 0.0;                         ///< of the old partition's block there
+    double quality = 0.0;                             ///< of the old partition there
   };
 
   /// The partition is chosen at (t0, model.u0). Throws SchemeNotApplicable (see above).
@@ -109,10 +109,10 @@ class PartitionedOde final : public OdeProblem {
   /// Newton iterations and evaluations so far (the summary's note).
   [[nodiscard]] long newton_iterations() const { return iterations_; }
 
-  /// Re-partition when the dependent block's pivot ratio falls below this fraction of the ratio
-  /// it had when chosen: a tenth, so that a partition is kept while its block's conditioning
-  /// stays within one digit of the best the pivoting found, and ratios that merely vary along
-  /// the motion do not restart the integrator.
+  /// Re-partition when the partition's quality falls below this fraction of the quality it had
+  /// when chosen: a tenth, so that a partition is kept while the dependent coordinates move at
+  /// most ten times as far per unit of the independent ones as they did then, and qualities that
+  /// merely vary along the motion do not restart the integrator.
   static constexpr double kRepartitionFraction = 0.1;
   /// The Newton iteration's cap: from a warm start within a step of the solution it converges
   /// quadratically in two or three; more means the step went too far (CVODE then cuts it).
@@ -134,7 +134,7 @@ class PartitionedOde final : public OdeProblem {
   bool factor_dependent(double t) const;
   /// u'' and λ at (t, u_, v_) from the KKT system.
   void accelerations(double t) const;
-  /// Uses `p` from here on (its LU pattern analysed, its pivot ratio at A(t, u_) the reference).
+  /// Uses `p` from here on (its LU pattern analysed, its quality at A(t, u_) the reference).
   void adopt(CoordinatePartition p, double t) const;
 
   const Model& model_;
@@ -144,7 +144,7 @@ class PartitionedOde final : public OdeProblem {
   double tolerance_ = 0.0;
   std::optional<bool> matrix_free_;  ///< set_matrix_free; unset: by size
   mutable CoordinatePartition partition_;
-  mutable double reference_ratio_ = 1.0;
+  mutable double reference_quality_ = 1.0;
   mutable std::optional<CoordinatePartition> pending_;
   mutable std::vector<Repartition> log_;
   mutable long iterations_ = 0;
