@@ -279,8 +279,8 @@ void print_partition(std::ostream& out, const Model& model) {
   const CoordinatePartition& p = ode.partition();
   out << "elimination: coordinate partitioning, " << p.independent.size()
       << (p.independent.size() == 1 ? " independent coordinate (" : " independent coordinates (")
-      << "chosen by column pivoting on A(0, u0); re-partitioned where the dependent block grows "
-         "ill-conditioned), "
+      << "chosen by column pivoting on A(0, u0); re-partitioned where they stop determining the "
+         "configuration well), "
       << p.dependent.size() << " dependent, solved by Newton at every evaluation\n"
       << wrapped_list("  independent: ", names_of(model, p.independent))
       << wrapped_list("  dependent: ", names_of(model, p.dependent));
