@@ -105,6 +105,23 @@ def test_a_failed_run_keeps_its_rows_in_the_partial_file_as_the_command(cli, tmp
     assert hdf5_content(tmp_path / "py.h5")[0]["t"][1] == (5,)  # t_end 2 every 0.5 s
 
 
+def test_a_failed_run_to_standard_output_asks_for_out_in_python_words(cli, tmp_path, capfd):
+    # A stream gets complete results only; the message names the argument Python takes, where
+    # the command's names its option.
+    scene = tmp_path / "budget.toml"
+    text = QUICKSTART.read_text()
+    for old, new in BUDGET.items():
+        text = text.replace(old, new)
+    scene.write_text(text)
+    with pytest.raises(condyn.IntegrationError) as e:
+        condyn.run(scene, out="-")
+    assert str(e.value).endswith("gets complete results only; give out=FILE to keep them)")
+    ran = run_cli(cli, scene, "--out", "-")
+    assert ran.returncode == 1
+    assert "gets complete results only; give --out FILE to keep them)" in ran.stderr
+    assert capfd.readouterr().out == ""  # nothing of the failed run on standard output
+
+
 def test_a_scene_the_builder_refuses_leaves_no_file(tmp_path, quickstart_dict):
     # The output is checked first (its temporary file created), the model built after: the
     # builder's refusal (a third constraint incompatible with `base`) removes the temporary file.

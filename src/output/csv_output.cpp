@@ -137,7 +137,8 @@ void write_steps_csv(std::ostream& out, const Trajectory& traj) {
 RunOutputs::RunOutputs(const std::string& scene, const std::string& out_flag,
                        const OutputSpec& output, const std::string& steps_out,
                        const std::vector<std::string>& inputs, const std::string& out_source)
-    : output_(output) {
+    : output_(output),
+      ask_for_file_(out_source + (out_source.rfind("--", 0) == 0 ? " FILE" : "=FILE")) {
   const std::string& output_file = output.file;
   if (!scene.empty()) plan_.add_input(scene);
   for (const auto& in : inputs) plan_.add_input(in);
@@ -295,7 +296,8 @@ std::string RunOutputs::write_partial(const Model& model, const RunAttributes& r
   if (!partial_) {
     s << (one ? " was" : " were") << " not written (" << csv_name()
       << " is not a file: a stream, such as standard output, a device or a pipe, gets complete "
-         "results only; give --out FILE to keep them)";
+         "results only; give "
+      << ask_for_file_ << " to keep them)";
     return s.str() + commit_partial(std::nullopt, partial);
   }
   try {

@@ -100,6 +100,8 @@ class RunOutputs {
                     const Trajectory& traj);
 
   OutputSpec output_;
+  /// How a message asks for a result file: "--out FILE" (the CLI) or "out=FILE" (condyn.run).
+  std::string ask_for_file_;
   OutputPlan plan_;
   FileFormat format_ = FileFormat::csv;  ///< the result's (and its partial file's)
   std::unique_ptr<RowWriter> rows_;      ///< a streamed run's result file
