@@ -62,6 +62,14 @@ double newton_tolerance(const Model& model, const Trajectory& run, double atol =
   return std::max(1e-3 * atol, 16 * std::numeric_limits<double>::epsilon() * scale);
 }
 
+/// GGL at rtol 1e-12, atol 1e-14: the reference the partitioned runs are measured against.
+SolveSpec tight_ggl(const SolveSpec& solve) {
+  SolveSpec tight = test::under(solve, Scheme::ggl);
+  tight.rtol = 1e-12;
+  tight.atol = 1e-14;
+  return tight;
+}
+
 }  // namespace
 
 TEST_CASE("elimination by coordinate partitioning agrees with GGL on nonlinear scenes") {
@@ -74,9 +82,7 @@ TEST_CASE("elimination by coordinate partitioning agrees with GGL on nonlinear s
     const test::BuiltScene built = scene(name, 2.0, kRtol);
     const Model& model = built.model;
     REQUIRE_FALSE(scheme_refusal(model, Scheme::elimination).has_value());
-    SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
-    tight.rtol = 1e-12;
-    tight.atol = 1e-14;
+    SolveSpec tight = tight_ggl(built.spec.solve);
     const Trajectory ref = test::solved(model, tight).trajectory;
     const SolveResult result =
         test::solved(model, test::under(built.spec.solve, Scheme::elimination));
@@ -106,9 +112,7 @@ TEST_CASE("coordinate partitioning re-partitions where the first dependent block
   // singular along the motion. Shown on GGL's reference run, then passed by elimination.
   const test::BuiltScene built = scene("four_bar.toml", 2.0, kRtol);
   const Model& model = built.model;
-  SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
-  tight.rtol = 1e-12;
-  tight.atol = 1e-14;
+  SolveSpec tight = tight_ggl(built.spec.solve);
   tight.output_step = 1e-3;  // fine enough to sample the block's conditioning near its zero
   const Trajectory ref = test::solved(model, tight).trajectory;
   const PartitionedOde first(model, 0.0);
@@ -218,9 +222,7 @@ TEST_CASE("coordinate partitioning passes the turning crank of Andrews' mechanis
   // at rtol 1e-10 against GGL at rtol 1e-12, within the first case's bounds (2e4 rtol).
   const test::BuiltScene built = scene("iftomm/A03_andrews.toml", 0.012, kRtol);
   const Model& model = built.model;
-  SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
-  tight.rtol = 1e-12;
-  tight.atol = 1e-14;
+  SolveSpec tight = tight_ggl(built.spec.solve);
   const Trajectory ref = test::solved(model, tight).trajectory;
   const SolveResult result =
       test::solved(model, test::under(built.spec.solve, Scheme::elimination));
@@ -377,9 +379,7 @@ TEST_CASE("coordinate partitioning of a fully driven mechanism: kinematics and K
       test::solved(model, test::under(built.spec.solve, Scheme::elimination));
   CHECK(result.summary.unknowns == 0);
   CHECK(result.summary.notes_text().find("0 independent of") != std::string::npos);
-  SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
-  tight.rtol = 1e-12;
-  tight.atol = 1e-14;
+  SolveSpec tight = tight_ggl(built.spec.solve);
   const Trajectory ref = test::solved(model, tight).trajectory;
   const TrajectoryError err = relative_error(result.trajectory, ref);
   MESSAGE("fully driven slider-crank: err u " << err.displacement << ", v " << err.velocity
