@@ -17,8 +17,8 @@ sed -i \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/kkt_newton\.hpp\b#\1dae/formulations/kkt_newton.hpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/largest_frequency\.cpp\b#\1dae/formulations/largest_frequency.cpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/largest_frequency\.hpp\b#\1dae/formulations/largest_frequency.hpp#g' \
-  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/master_slave\.cpp\b#\1dae/formulations/master_slave.cpp#g' \
-  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/master_slave\.hpp\b#\1dae/formulations/master_slave.hpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/master_slave\.cpp\b#\1models/core/master_slave.cpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/master_slave\.hpp\b#\1models/core/master_slave.hpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/model_scales\.cpp\b#\1dae/formulations/model_scales.cpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/model_scales\.hpp\b#\1dae/formulations/model_scales.hpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/multiplier_dae\.cpp\b#\1dae/formulations/multiplier_dae.cpp#g' \
@@ -244,4 +244,8 @@ sed -i \
   -e 's#\(^\|[^A-Za-z0-9_/]\)validation/stress_families\.cpp\b#\1validation/studies/stress_families.cpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)validation/user_checks\.cpp\b#\1validation/studies/user_checks.cpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)validation/user_checks\.hpp\b#\1validation/studies/user_checks.hpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/formulations/master_slave\.cpp\b#\1models/core/master_slave.cpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/formulations/master_slave\.hpp\b#\1models/core/master_slave.hpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/formulations/pencil_modes\.cpp\b#\1models/core/pencil_modes.cpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/formulations/pencil_modes\.hpp\b#\1models/core/pencil_modes.hpp#g' \
   "$@"

@@ -9,7 +9,7 @@
 ///   matrices (deg(s): the nonzeros of column s of M, C or K, the largest); multipliers add the
 ///   group's nonzeros of A instead. The group is eliminated when the first is at most the second;
 /// - everything else keeps a multiplier: nonlinear rows, nonholonomic rows, and groups too large
-///   for the transform's dense block per group (dae/formulations/master_slave.hpp) or for its
+///   for the transform's dense block per group (models/core/master_slave.hpp) or for its
 ///   dense work (rows² × DOFs beyond 1e8: the joint rows of a long chain of bodies).
 ///
 /// Groups are decided on their own, so the cost of the choice follows the groups, not m x n.
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "dae/formulations/master_slave.hpp"
+#include "models/core/master_slave.hpp"
 #include "models/core/model.hpp"
 
 namespace condyn {

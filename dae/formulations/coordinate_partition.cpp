@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dae/formulations/master_slave.hpp"
+#include "models/core/master_slave.hpp"
 
 namespace condyn {
 

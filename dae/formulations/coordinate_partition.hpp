@@ -20,7 +20,7 @@ struct CoordinatePartition {
 
 /// The partition a column-pivoted QR of A (m x n, full row rank at the state it was evaluated
 /// at) picks: its pivots are the dependent coordinates (pivoted_slaves,
-/// dae/formulations/master_slave.hpp). Throws std::invalid_argument when A is rank deficient
+/// models/core/master_slave.hpp). Throws std::invalid_argument when A is rank deficient
 /// or a coupled group is too large for the dense pivoting block.
 [[nodiscard]] CoordinatePartition choose_partition(const Eigen::SparseMatrix<double>& A);
 

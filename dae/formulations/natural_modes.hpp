@@ -3,7 +3,7 @@
 /// lowest eigenpairs of K φ = ω² M φ on the motions the constraints allow, A φ = 0. The
 /// constraints are eliminated as elimination's reduced system does (dae/formulations/
 /// reduced_system.hpp: u = T û, K̂ = TᵀKT, M̂ = TᵀMT; the right-hand sides g(t) move no mode), the
-/// pencil (K̂, M̂) is solved by dae/formulations/pencil_modes.hpp, and the shapes are expanded to
+/// pencil (K̂, M̂) is solved by models/core/pencil_modes.hpp, and the shapes are expanded to
 /// every DOF, φ = T φ̂.
 ///
 /// Under [ground_motion] with influence vector r, mode j's participation is Γ_j = φ_jᵀ M r
@@ -16,8 +16,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "dae/formulations/pencil_modes.hpp"
 #include "models/core/model.hpp"
+#include "models/core/pencil_modes.hpp"
 
 namespace condyn {
 

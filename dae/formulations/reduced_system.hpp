@@ -2,7 +2,7 @@
 /// The chapter's elimination path (§5.5, §5.6). Every constraint is linear with constant
 /// coefficients and integrable, so all of them are written at position level, A u = g(t), and
 /// eliminated by the master-slave transformation u = T û + G g(t)
-/// (dae/formulations/master_slave.hpp), of which direct elimination of single-freedom constraints
+/// (models/core/master_slave.hpp), of which direct elimination of single-freedom constraints
 /// is the special case where every slave is the DOF its constraint names (T selects the remaining
 /// DOFs, G injects g). The reduced system
 ///
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "dae/formulations/master_slave.hpp"
+#include "models/core/master_slave.hpp"
 #include "models/core/model.hpp"
 
 namespace condyn {

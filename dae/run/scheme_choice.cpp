@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "dae/formulations/eliminated_system.hpp"
-#include "dae/formulations/master_slave.hpp"
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/formulations/penalty_ode.hpp"
 #include "dae/formulations/projected_ode.hpp"
 #include "dae/integrators/stabilized_newmark_newton.hpp"
 #include "models/core/massless_dofs.hpp"
+#include "models/core/master_slave.hpp"
 
 namespace condyn {
 

@@ -1,4 +1,4 @@
-// The natural modes (dae/formulations/pencil_modes.hpp, natural_modes.hpp): the dense path and
+// The natural modes (models/core/pencil_modes.hpp, natural_modes.hpp): the dense path and
 // shift-invert Lanczos against the closed form of a uniform shear building (tests/
 // shear_building.hpp) and against an independent dense solution on the constraints' null space;
 // massless DOFs condensed; participating mass ratios; the refusals.
@@ -10,9 +10,9 @@
 #include <string>
 
 #include "dae/formulations/natural_modes.hpp"
-#include "dae/formulations/pencil_modes.hpp"
 #include "models/assembly/build_model.hpp"
 #include "models/core/null_space.hpp"
+#include "models/core/pencil_modes.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/shear_building.hpp"

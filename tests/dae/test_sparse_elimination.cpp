@@ -1,5 +1,5 @@
 // The elimination path at real size (issue 12): the master-slave transform built group by group
-// (dae/formulations/master_slave.hpp), sparse T and G, sparse reduced loads, and a 20,000-DOF
+// (models/core/master_slave.hpp), sparse T and G, sparse reduced loads, and a 20,000-DOF
 // lattice that runs under elimination as under index1.
 
 #include <doctest/doctest.h>

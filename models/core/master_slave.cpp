@@ -1,6 +1,6 @@
-// The master-slave transformation, group by group (dae/formulations/master_slave.hpp).
+// The master-slave transformation, group by group (models/core/master_slave.hpp).
 
-#include "dae/formulations/master_slave.hpp"
+#include "models/core/master_slave.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -17,7 +17,7 @@ namespace {
 // would carry cond * eps relative error from roundoff alone.
 constexpr double kMaxSlaveCondition = 1e12;
 // Column-pivoting rank threshold on the row-normalised A (same meaning as in build_model).
-constexpr double kRankTolerance = 1e-10;
+constexpr double kSlaveRankTolerance = 1e-10;
 
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
@@ -97,7 +97,7 @@ std::vector<int> pivot_slaves(const RowMajor& a, const std::vector<ConstraintGro
       if (norm > 0.0) scaled.row(i) /= norm;
     }
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled.rows(), scaled.cols());
-    qr.setThreshold(kRankTolerance);
+    qr.setThreshold(kSlaveRankTolerance);
     qr.compute(scaled);
     const auto r = static_cast<int>(qr.rank());
     rank += r;

@@ -2,7 +2,7 @@
 // (pencil_modes.hpp). Spectra, as for the largest frequency (largest_frequency.cpp): restarts,
 // convergence tests and Ritz extraction are what a kept library does better than a few lines here.
 
-#include "dae/formulations/pencil_modes.hpp"
+#include "models/core/pencil_modes.hpp"
 
 #include <Spectra/SymGEigsShiftSolver.h>
 #include <Eigen/SparseCholesky>
