@@ -6,17 +6,24 @@
 // those modes: the exact modal reference uses it as is) and each mode i gets the ratio z_i:
 // with N an orthonormal basis of null(A) and Ψ the NᵀMN-orthonormal modes of (NᵀKN, NᵀMN),
 // φ = NΨ and C = (Mφ) diag(2 z_i ω_i) (Mφ)ᵀ, so that φᵀCφ = diag(2 z_i ω_i). Dense (the modes
-// are): refused above the dense limit, where Rayleigh damping is the sparse choice.
+// are): refused above the dense limit, where Rayleigh damping is the sparse choice. Rayleigh
+// damping by modes needs only two frequencies, found as `condyn modes` finds them: sparse beyond
+// its dense limit.
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/core/master_slave.hpp"
 #include "models/core/null_space.hpp"
+#include "models/core/pencil_modes.hpp"
 #include "models/core/rayleigh.hpp"
 
 namespace condyn {
@@ -109,9 +116,53 @@ void ModelBuilder::apply_modal_damping() {
   }
 }
 
+/// ω of the `picked` modes (1 the lowest) of the constrained model, found as `condyn modes` finds
+/// them (dae/formulations/natural_modes.hpp), so that they number and agree alike: u = T û
+/// (master_slave.hpp), the pencil (TᵀKT, TᵀMT) with its massless DOFs condensed, dense up to
+/// kDenseModeDofs and by shift-invert Lanczos beyond (pencil_modes.hpp), which stays sparse.
+/// Fails at the key for what prevents them: too few modes, a rigid motion, no modes.
+std::array<double, 2> ModelBuilder::rayleigh_mode_frequencies() const {
+  const auto& picked = spec_.model.rayleigh_modes;
+  const SourcePoint& where = spec_.model.rayleigh_where;
+  const auto advice = std::string("; give their frequencies instead, rayleigh = { frequencies = ") +
+                      "[f_i, f_j], ratios = [...] }";
+  MasterSlave transform;
+  try {
+    transform = master_slave_transform(model_.A);
+  } catch (const CoupledGroupTooLarge& e) {
+    fail(where, std::string("Rayleigh damping by modes eliminates the constraints, and ") +
+                    e.what() + advice);
+  }
+  const Eigen::SparseMatrix<double>& T = transform.T;
+  const Eigen::SparseMatrix<double> Tt = T.transpose();
+  const Eigen::SparseMatrix<double> K = Tt * *model_.K * T, M = Tt * model_.M * T;
+  const int available = mode_count(M), highest = std::max(picked[0], picked[1]);
+  if (highest > available) {
+    fail(where, "mode " + std::to_string(highest) + ": the constrained model has " +
+                    std::to_string(available) + " modes");
+  }
+  PencilModes modes;
+  try {
+    modes = lowest_modes(K, M, highest);
+  } catch (const ModesUnavailable& e) {
+    fail(where, std::string("Rayleigh damping by modes: ") + e.what() + advice);
+  } catch (const std::invalid_argument& e) {  // beyond both the dense and the Lanczos limits
+    fail(where, std::string("Rayleigh damping by modes: ") + e.what() + advice);
+  }
+  std::array<double, 2> omega{};
+  for (std::size_t k = 0; k < 2; ++k) {
+    omega[k] = std::sqrt(modes.omega2[picked[k] - 1]);
+    if (!(omega[k] > 0.0)) {
+      fail(where,
+           "mode " + std::to_string(picked[k]) +
+               " has zero frequency (a rigid motion): Rayleigh damping cannot set its ratio");
+    }
+  }
+  return omega;
+}
+
 /// damping = { rayleigh = { modes = [i, j], ratios = [z1, z2] } }: C = a0 M + a1 K with ratio z1
-/// at ω_i and z2 at ω_j, the frequencies of modes i and j of the constrained model (dense, as
-/// modal damping; beyond the dense limit `condyn modes` gives them, for `frequencies`). Beside a
+/// at ω_i and z2 at ω_j, the frequencies of modes i and j of the constrained model. Beside a
 /// truss's member dampers, as Rayleigh damping by frequencies.
 void ModelBuilder::apply_rayleigh_modes() {
   const auto& picked = spec_.model.rayleigh_modes;
@@ -122,34 +173,7 @@ void ModelBuilder::apply_rayleigh_modes() {
          "Rayleigh damping by modes needs a linear model, whose modes are constant: this one has "
          "large displacements, rigid members or is a built-in nonlinear model");
   }
-  const int n = model_.dofs();
-  if (static_cast<double>(n) * n > kMaxDenseEntries) {
-    fail(where, "Rayleigh damping by modes finds them densely (n x n): " + std::to_string(n) +
-                    " DOFs is beyond the dense limit (" +
-                    std::to_string(static_cast<long>(std::sqrt(kMaxDenseEntries))) +
-                    "); give their frequencies instead, rayleigh = { frequencies = [f_i, f_j], "
-                    "ratios = [...] }, from `condyn modes` (sparse)");
-  }
-  DenseModes modes;
-  if (const auto problem = dense_modes(model_, modes)) {
-    fail(where, "Rayleigh damping by modes " + *problem +
-                    "; give their frequencies instead (`condyn modes` condenses massless DOFs)");
-  }
-  const auto count = static_cast<int>(modes.omega2.size());
-  double omega[2];
-  for (std::size_t k = 0; k < 2; ++k) {
-    const int mode = picked[k];
-    if (mode > count) {
-      fail(where, "mode " + std::to_string(mode) + ": the constrained model has " +
-                      std::to_string(count) + " modes");
-    }
-    omega[k] = std::sqrt(std::max(modes.omega2[mode - 1], 0.0));
-    if (!(omega[k] > 0.0)) {
-      fail(where,
-           "mode " + std::to_string(mode) +
-               " has zero frequency (a rigid motion): Rayleigh damping cannot set its ratio");
-    }
-  }
+  const std::array<double, 2> omega = rayleigh_mode_frequencies();
   const auto [z1, z2] = spec_.model.rayleigh_mode_ratios;
   const auto [a0, a1] = rayleigh_coefficients(omega[0], omega[1], z1, z2, 1.0);
   std::ostringstream rule;

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Sparse>
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -115,6 +116,8 @@ class ModelBuilder {
   void rayleigh_on_members(double a0, double a1);
   void apply_modal_damping();   // modal_damping.cpp
   void apply_rayleigh_modes();  // modal_damping.cpp
+  /// ω of the two modes damping.rayleigh.modes names, sparse beyond the dense limit.
+  [[nodiscard]] std::array<double, 2> rayleigh_mode_frequencies() const;  // modal_damping.cpp
 
   // nonlinear_systems.cpp
   void build_benchmark();
