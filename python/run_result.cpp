@@ -82,10 +82,9 @@ py::array_t<double> derived_rows(const Model& model, const Trajectory& traj) {
     const Eigen::Ref<const Eigen::VectorXd> a =
         traj.acceleration.cols() > r ? Eigen::Ref<const Eigen::VectorXd>(traj.acceleration.col(r))
                                      : Eigen::Ref<const Eigen::VectorXd>(none);
-    for (py::ssize_t c = 0; c < k; ++c) {
-      w(i, c) = derived_value(model.derived[static_cast<std::size_t>(c)],
-                              {traj.u.col(r), traj.v.col(r), a, traj.reaction.col(r)});
-    }
+    const Eigen::VectorXd values = model.derived_values(
+        traj.t[static_cast<std::size_t>(i)], traj.u.col(r), traj.v.col(r), a, traj.reaction.col(r));
+    for (py::ssize_t c = 0; c < k; ++c) w(i, c) = values[static_cast<Eigen::Index>(c)];
   }
   return out;
 }

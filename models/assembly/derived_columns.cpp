@@ -1,9 +1,11 @@
 // [[derived]] columns resolved against the built model (models/core/derived_column.hpp): each
 // term's column found by its name as the CSV writes it, a term on an earlier derived column
-// expanded into that column's terms; names that are no column, or a column of another kind, and
-// derived names that are already a column are refused here, before any run.
+// expanded into that column's terms; names that are no column, or a column of another kind, an
+// absolute acceleration without [ground_motion], and derived names that are already a column are
+// refused here, before any run.
 
 #include <cmath>
+#include <string_view>
 
 #include "models/assembly/model_builder.hpp"
 #include "models/core/result_columns.hpp"
@@ -47,12 +49,9 @@ std::string not_a_term(const ResultColumn& c) {
     case Quantity::displacement:
     case Quantity::velocity:
     case Quantity::acceleration:
+    case Quantity::absolute_acceleration:  // build_derived refuses it without a moving ground
     case Quantity::reaction:
       return "";
-    case Quantity::absolute_acceleration:
-      return ": a term names a displacement, velocity, acceleration or reaction column; the "
-             "absolute acceleration adds r a_g(t), which no coefficient gives (name the relative "
-             "acceleration acc_ instead)";
     default:
       return ": a term names a displacement, velocity, acceleration or reaction column";
   }
@@ -91,6 +90,14 @@ void ModelBuilder::build_derived() {
       }
       if (const std::string why = not_a_term(*found); !why.empty()) {
         fail(key, who + ": '" + term.column + "' is " + kind_of(*found) + why);
+      }
+      // As [output] quantities and [[check]] refuse absolute_acceleration without a moving
+      // ground: there is no r a_g(t) to add, and no acc_abs_ column.
+      if (found->quantity == Quantity::absolute_acceleration && !model_.ground) {
+        fail(key, who + ": '" + term.column +
+                      "' needs [ground_motion]: without a moving ground the absolute "
+                      "acceleration is the acceleration (name acc_" +
+                      term.column.substr(std::string_view("acc_abs_").size()) + ")");
       }
       column.terms.push_back({found->quantity, found->index, term.coefficient});
     }

@@ -21,6 +21,9 @@ double derived_value(const DerivedColumn& column, const DerivedInputs& row) {
       case Quantity::acceleration:
         x = &row.acceleration;
         break;
+      case Quantity::absolute_acceleration:
+        x = &row.absolute_acceleration;
+        break;
       case Quantity::reaction:
         x = &row.reaction;
         break;
@@ -34,6 +37,14 @@ double derived_value(const DerivedColumn& column, const DerivedInputs& row) {
     sum += term.coefficient * (*x)[term.index];
   }
   return sum;
+}
+
+bool reads_absolute_acceleration(const std::vector<DerivedColumn>& derived) {
+  return std::any_of(derived.begin(), derived.end(), [](const DerivedColumn& column) {
+    return std::any_of(column.terms.begin(), column.terms.end(), [](const DerivedTerm& term) {
+      return term.quantity == Quantity::absolute_acceleration;
+    });
+  });
 }
 
 std::vector<Quantity> with_derived_quantities(std::vector<Quantity> quantities,

@@ -31,9 +31,26 @@ int Model::dof_at(std::string_view dof) const {
   throw std::out_of_range("no DOF named '" + std::string(dof) + "'");
 }
 
-Eigen::VectorXd Model::absolute_acceleration(double t, const Eigen::VectorXd& a) const {
+Eigen::VectorXd Model::absolute_acceleration(double t,
+                                             const Eigen::Ref<const Eigen::VectorXd>& a) const {
   if (!ground) return a;
   return a + ground->r * ground->acceleration.derivative(0, t);
+}
+
+Eigen::VectorXd Model::derived_values(double t, const Eigen::Ref<const Eigen::VectorXd>& u,
+                                      const Eigen::Ref<const Eigen::VectorXd>& v,
+                                      const Eigen::Ref<const Eigen::VectorXd>& a,
+                                      const Eigen::Ref<const Eigen::VectorXd>& reaction) const {
+  // The absolute acceleration only when a term reads it (an O(n) vector a row), and only from
+  // a row that has accelerations: without them derived_value says what the row lacks.
+  const Eigen::VectorXd absolute = reads_absolute_acceleration(derived) && a.size() > 0
+                                       ? absolute_acceleration(t, a)
+                                       : Eigen::VectorXd();
+  Eigen::VectorXd out(static_cast<Eigen::Index>(derived.size()));
+  for (std::size_t k = 0; k < derived.size(); ++k) {
+    out[static_cast<Eigen::Index>(k)] = derived_value(derived[k], {u, v, a, absolute, reaction});
+  }
+  return out;
 }
 
 void add_load_energy(const std::vector<Load>& loads, double t, double steps,

@@ -87,8 +87,10 @@ void append_csv_row(std::string& line, const OutputSpec& output, const OutputCol
     }
   }
   for (Eigen::Index k = 0; k < row.points.size(); ++k) value(row.points[k]);
-  for (const auto& derived : columns.model().derived) {
-    value(derived_value(derived, {row.u, row.v, row.acceleration, row.reaction}));
+  if (!columns.model().derived.empty()) {
+    const Eigen::VectorXd derived =
+        columns.model().derived_values(row.t, row.u, row.v, row.acceleration, row.reaction);
+    for (const double d : derived) value(d);
   }
   if (columns.near_singular()) line += row.near_singular ? ",1" : ",0";
 }

@@ -19,12 +19,18 @@ using hdf5::put_strings;
 /// The [[derived]] columns: `derived` (nt x k) and their names `derived_names`.
 void put_derived(hid_t file, const Model& model, const Trajectory& traj) {
   const Eigen::VectorXd none;
-  put_matrix(file, "derived", traj.t.size(), model.derived.size(), [&](hsize_t r, hsize_t c) {
-    const auto k = static_cast<Eigen::Index>(r);
+  // k x nt, a row's values computed together (its absolute acceleration once).
+  Eigen::MatrixXd values(static_cast<Eigen::Index>(model.derived.size()),
+                         static_cast<Eigen::Index>(traj.t.size()));
+  for (Eigen::Index k = 0; k < values.cols(); ++k) {
     const Eigen::Ref<const Eigen::VectorXd> a =
         traj.acceleration.cols() > k ? Eigen::Ref<const Eigen::VectorXd>(traj.acceleration.col(k))
                                      : Eigen::Ref<const Eigen::VectorXd>(none);
-    return derived_value(model.derived[c], {traj.u.col(k), traj.v.col(k), a, traj.reaction.col(k)});
+    values.col(k) = model.derived_values(traj.t[static_cast<std::size_t>(k)], traj.u.col(k),
+                                         traj.v.col(k), a, traj.reaction.col(k));
+  }
+  put_matrix(file, "derived", traj.t.size(), model.derived.size(), [&](hsize_t r, hsize_t c) {
+    return values(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(r));
   });
   std::vector<std::string> names;
   for (const auto& d : model.derived) names.push_back(d.name);

@@ -251,9 +251,9 @@ class Hdf5RowWriter final : public RowWriter {
     }
     if (points_) points_->append([&](hsize_t c) { return r.points[static_cast<Eigen::Index>(c)]; });
     if (derived_) {
-      derived_->append([&](hsize_t c) {
-        return derived_value(model_.derived[c], {r.u, r.v, r.acceleration, r.reaction});
-      });
+      const Eigen::VectorXd derived =
+          model_.derived_values(r.t, r.u, r.v, r.acceleration, r.reaction);
+      derived_->append([&](hsize_t c) { return derived[static_cast<Eigen::Index>(c)]; });
     }
     if (near_singular_)
       near_singular_->append([&](hsize_t) { return r.near_singular ? 1.0 : 0.0; });

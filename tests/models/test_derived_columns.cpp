@@ -73,9 +73,10 @@ TEST_CASE("derived columns: a row's value is the sum of its terms, and a missing
                               {Quantity::reaction, 0, 3.0}}};
   const Eigen::Vector2d u(1.0, 10.0), v(7.0, 8.0), a(4.0, 6.0), reaction(-2.0, 5.0);
   // 2·10 − 7 + 0.5·6 + 3·(−2) = 10, every product and sum exact in binary.
-  CHECK(derived_value(column, {u, v, a, reaction}) == 10.0);
-  const Eigen::VectorXd none;
-  CHECK_THROWS_AS((void)derived_value(column, {u, v, none, reaction}), std::logic_error);
+  const Eigen::VectorXd none;  // no absolute acceleration: no term reads it
+  CHECK(derived_value(column, {u, v, a, none, reaction}) == 10.0);
+  CHECK_THROWS_AS((void)derived_value(column, {u, v, none, none, reaction}), std::logic_error);
+  CHECK_FALSE(reads_absolute_acceleration({column}));
   // What a run must compute for it: acceleration and reaction beside [output]'s displacement.
   const auto q = with_derived_quantities({Quantity::displacement}, {column});
   CHECK(q == std::vector<Quantity>{Quantity::displacement, Quantity::velocity,
@@ -167,19 +168,57 @@ TEST_CASE("derived columns: terms the model has no such column for refused when 
   }
 }
 
-TEST_CASE("derived columns: absolute accelerations are not terms, with the reason") {
-  const std::string text = test::kTwoMassChainModel + R"([ground_motion]
-acceleration = 1.0
-influence = { u1 = 1.0, u2 = 1.0 }
-[solve]
-t_end = 1.0
-output_step = 0.5
+TEST_CASE("derived columns: absolute accelerations are terms under [ground_motion] only") {
+  // a_g = 0.75 everywhere, r = (1, 2): acc_abs = acc + r a_g, every value exact in binary.
+  const std::string ground = R"([ground_motion]
+acceleration = 0.75
+influence = { u1 = 1.0, u2 = 2.0 }
+)";
+  const std::string derived = R"([[derived]]
+name = "d"
+terms = { acc_abs_u2 = 3.0, u1 = 1.0 }
 [[derived]]
+name = "e"
+terms = { d = 2.0, acc_u2 = -6.0 }
+)";
+  const Model model = build_model(parse_scene_text(
+      test::kTwoMassChainModel + ground + "[solve]\nt_end = 1.0\noutput_step = 0.5\n" + derived,
+      "d.toml"));
+  REQUIRE(model.derived.size() == 2);
+  const auto& d = model.derived[0];
+  REQUIRE(d.terms.size() == 2);
+  CHECK(d.terms[0].quantity == Quantity::absolute_acceleration);
+  CHECK(d.terms[0].index == 1);
+  CHECK(d.terms[0].coefficient == 3.0);
+  // The terms table's order (acc_u2, d), d's terms times 2 in its place.
+  const auto& e = model.derived[1];
+  REQUIRE(e.terms.size() == 3);
+  CHECK(e.terms[0].quantity == Quantity::acceleration);
+  CHECK(e.terms[1].quantity == Quantity::absolute_acceleration);
+  CHECK(e.terms[1].coefficient == 6.0);
+  CHECK(reads_absolute_acceleration(model.derived));
+  CHECK(with_derived_quantities({Quantity::displacement}, model.derived) ==
+        std::vector<Quantity>{Quantity::displacement, Quantity::absolute_acceleration,
+                              Quantity::acceleration});
+  // A row: d = 3 (a2 + 2 · 0.75) + u1 = 3 (0.5 + 1.5) + 4 = 10; e = 2 d − 6 a2 = 20 − 3 = 17.
+  const Eigen::Vector2d u(4.0, 1.0), v(0.0, 0.0), a(0.25, 0.5), reaction(0.0, 0.0);
+  const Eigen::VectorXd values = model.derived_values(0.3, u, v, a, reaction);
+  REQUIRE(values.size() == 2);
+  CHECK(values[0] == 10.0);
+  CHECK(values[1] == 17.0);
+  // They are the acc_abs_ columns' own values, a + r a_g(t) (Model::absolute_acceleration).
+  CHECK(values[0] == 3.0 * model.absolute_acceleration(0.3, a)[1] + u[0]);
+  // A row without accelerations lacks what d reads: a bug of the caller, not a silent value.
+  const Eigen::VectorXd none;
+  CHECK_THROWS_AS((void)model.derived_values(0.3, u, v, none, reaction), std::logic_error);
+
+  // Without [ground_motion]: no acc_abs_ column, and no r a_g(t) to add.
+  const std::string refusal = test::build_error(scene(R"([[derived]]
 name = "d"
 terms = { acc_abs_u2 = 1.0 }
-)";
-  const std::string e = test::build_error(text);
-  test::check_refusal(e, "derived[1].terms.acc_abs_u2");
-  CHECK(e.find("an absolute acceleration column") != std::string::npos);
-  CHECK(e.find("name the relative acceleration acc_ instead") != std::string::npos);
+)"));
+  test::check_refusal(refusal, "bad.toml:14: derived[1].terms.acc_abs_u2");
+  CHECK(refusal.find(
+            "derived column 'd': 'acc_abs_u2' needs [ground_motion]: without a moving ground "
+            "the absolute acceleration is the acceleration (name acc_u2)") != std::string::npos);
 }

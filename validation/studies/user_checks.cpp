@@ -80,8 +80,7 @@ double CheckEvaluator::value(const TrajectoryRow& row, const CheckColumn& c) con
   const auto at = [&](const Eigen::VectorXd& x) { return c.index < x.size() ? x[c.index] : kNaN; };
   if (c.point >= 0) return at(row.points);
   if (c.derived >= 0) {
-    return derived_value(model_->derived[static_cast<std::size_t>(c.derived)],
-                         {row.u, row.v, row.acceleration, row.reaction});
+    return model_->derived_values(row.t, row.u, row.v, row.acceleration, row.reaction)[c.derived];
   }
   switch (c.quantity) {
     case Quantity::displacement:
