@@ -86,3 +86,68 @@ def test_bad_derived_tables_raise_scene_error_naming_the_entry(terms, message):
     with pytest.raises(condyn.SceneError) as e:
         condyn.run(scene)
     assert message in str(e.value)
+
+
+def shaken_frame(tmp_path):
+    """models/scenes/shear_frame_el_centro.toml over 1 s, its record by absolute path, with a base
+    shear of the inertia forces −m (u'' + r a_g) of its ten DOFs of 1e5 kg and the roof's
+    absolute acceleration as [[derived]] columns on acc_abs_ terms."""
+    text = (ROOT / "models" / "scenes" / "shear_frame_el_centro.toml").read_text()
+    record = ROOT / "models" / "scenes" / "data" / "el_centro_1940_ns.csv"
+    text = text.replace('file = "data/el_centro_1940_ns.csv"', f'file = "{record}"')
+    text = text.replace("t_end = 31.16", "t_end = 1.0")
+    text = text.replace('quantities = ["displacement", "reaction", "drift"]',
+                        'quantities = ["displacement", "absolute_acceleration"]')
+    text = text.replace('dofs = ["ul*"]', "")
+    dofs = [f"{side}{k}" for k in range(1, 6) for side in ("ul", "ur")]
+    shear = ", ".join(f"acc_abs_{d} = -1e5" for d in dofs)
+    text += (f'[[derived]]\nname = "base_shear"\nterms = {{ {shear} }}\n'
+             '[[derived]]\nname = "roof_abs"\nterms = { acc_abs_ul5 = 0.5, acc_abs_ur5 = 0.5 }\n')
+    path = tmp_path / "shaken.toml"
+    path.write_text(text)
+    return path, dofs
+
+
+def test_derived_columns_on_absolute_accelerations(cli, tmp_path):
+    path, dofs = shaken_frame(tmp_path)
+    out = tmp_path / "shaken.csv"
+    subprocess.run([str(cli), "run", str(path), "--out", str(out)], check=True,
+                   capture_output=True)
+    with open(out) as f:
+        header = f.readline().strip().split(",")
+    table = np.loadtxt(out, delimiter=",", skiprows=1)
+    col = {name: table[:, i] for i, name in enumerate(header)}
+    r = condyn.run(str(path))
+    assert r.derived_names == ["base_shear", "roof_abs"]
+    for j, name in enumerate(r.derived_names):
+        np.testing.assert_array_equal(r.derived[:, j], col[name])  # the same doubles
+    # From the result's own a_abs (u'' + r a_g(t)): roundoff of a sum of ten products,
+    # 11 eps of the sum of their magnitudes at the row.
+    terms = -1e5 * r.a_abs[:, [r.dof(d) for d in dofs]]
+    assert np.abs(terms).max() > 1e5  # the record shakes the frame: not a comparison of zeros
+    bound = 11 * EPS * np.abs(terms).sum(axis=1)
+    assert (np.abs(r.derived[:, 0] - terms.sum(axis=1)) <= bound).all()
+    # A sweep keeps the column's peak, and a check bounds it.
+    columns = result_columns(r)
+    np.testing.assert_array_equal(columns["roof_abs"], r.derived[:, 1])
+    with open(path, "rb") as f:
+        scene = tomllib.load(f)
+    record = scene["ground_motion"]["acceleration"]["file"]  # a worker gets the files' bytes
+    with open(record, "rb") as f:
+        row = run_one(scene, {record: f.read()}, ["base_shear"])
+    assert row["status"] == "ok", row["message"]
+    k = int(np.argmax(np.abs(r.derived[:, 0])))
+    assert row["peaks"]["base_shear"] == (abs(r.derived[k, 0]), r.t[k])
+    scene["check"] = [{"quantity": "roof_abs", "max_abs": 0.01}]  # the roof moves by m/s²
+    result = condyn.check(scene)
+    assert not result["passed"]
+    assert result["checks"][0]["text"].startswith("max |roof_abs| = ")
+
+
+def test_an_absolute_acceleration_term_needs_ground_motion():
+    scene = frame()
+    scene["derived"][0]["terms"] = {"acc_abs_u1": 1.0}
+    with pytest.raises(condyn.SceneError) as e:
+        condyn.run(scene)
+    assert ("derived[1].terms.acc_abs_u1: derived column 'drift1': 'acc_abs_u1' needs "
+            "[ground_motion]") in str(e.value)
