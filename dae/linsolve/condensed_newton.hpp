@@ -24,10 +24,10 @@
 #include <memory>
 
 #include "dae/linsolve/block_jacobian.hpp"
-#include "models/core/fixed_pattern_cholmod.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "dae/linsolve/kkt.hpp"
 #include "dae/linsolve/newton_system.hpp"
+#include "models/core/fixed_pattern_cholmod.hpp"
 #include "models/core/scheme.hpp"
 
 namespace condyn {
