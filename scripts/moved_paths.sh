@@ -248,4 +248,6 @@ sed -i \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/formulations/master_slave\.hpp\b#\1models/core/master_slave.hpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/formulations/pencil_modes\.cpp\b#\1models/core/pencil_modes.cpp#g' \
   -e 's#\(^\|[^A-Za-z0-9_/]\)dae/formulations/pencil_modes\.hpp\b#\1models/core/pencil_modes.hpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/linsolve/fixed_pattern_cholmod\.cpp\b#\1models/core/fixed_pattern_cholmod.cpp#g' \
+  -e 's#\(^\|[^A-Za-z0-9_/]\)dae/linsolve/fixed_pattern_cholmod\.hpp\b#\1models/core/fixed_pattern_cholmod.hpp#g' \
   "$@"
