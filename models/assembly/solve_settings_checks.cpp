@@ -8,6 +8,7 @@
 
 #include "models/assembly/model_builder.hpp"
 #include "models/core/linear_system.hpp"
+#include "models/core/master_slave.hpp"
 #include "models/core/nearest_names.hpp"
 
 namespace condyn {
@@ -190,14 +191,13 @@ void ModelBuilder::check_slaves() const {
   }
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(a_s);
   const double smax = svd.singularValues()(0), smin = svd.singularValues()(m - 1);
-  constexpr double kMaxSlaveCondition = 1e12;
   if (!(smin > smax / kMaxSlaveCondition)) {
-    fail({"solve.slaves", line},
-         "the slaves " + names +
-             " do not determine the constraints (condition number of their "
-             "columns of the constraint matrix " +
-             (smin > 0.0 ? fmt(smax / smin) : std::string("infinite")) +
-             ", limit 1e12): choose slaves that the constraints fix independently");
+    fail({"solve.slaves", line}, "the slaves " + names +
+                                     " do not determine the constraints (condition number of their "
+                                     "columns of the constraint matrix " +
+                                     (smin > 0.0 ? fmt(smax / smin) : std::string("infinite")) +
+                                     ", limit " + fmt(kMaxSlaveCondition) +
+                                     "): choose slaves that the constraints fix independently");
   }
 }
 

@@ -13,9 +13,6 @@ namespace condyn {
 
 namespace {
 
-// A named slave block whose condition number exceeds this is refused: the slave displacements
-// would carry cond * eps relative error from roundoff alone.
-constexpr double kMaxSlaveCondition = 1e12;
 // Column-pivoting rank threshold on the row-normalised A (same meaning as in build_model).
 constexpr double kSlaveRankTolerance = 1e-10;
 

@@ -15,6 +15,11 @@
 
 namespace condyn {
 
+/// Named slaves whose block of the constraint matrix has a condition number above this are
+/// refused (by the scene check of `solve.slaves` and by the transformation itself): the slave
+/// displacements would carry cond * eps relative error from roundoff alone.
+inline constexpr double kMaxSlaveCondition = 1e12;
+
 /// u = T û + G g. Slaves are chosen by column pivoting on each group's row-normalised block
 /// unless the caller names them.
 struct MasterSlave {
