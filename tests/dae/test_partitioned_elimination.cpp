@@ -239,7 +239,7 @@ TEST_CASE("coordinate partitioning passes the turning crank of Andrews' mechanis
   CHECK(row_drift(model, result.trajectory) <= newton_tolerance(model, result.trajectory));
 }
 
-TEST_CASE("a partition's quality is 1/‖B‖₁, B = [I; −A_d⁻¹ A_i], against a dense solve") {
+TEST_CASE("a partition's quality is 1/‖B‖₁, B = [I, −A_d⁻¹ A_i] stacked, against a dense solve") {
   // On A03 (1 independent coordinate: Hager's estimate is exact) and the double pendulum (2),
   // at the output rows of a GGL run: A03's to 0.0095 s, past body1.uy's extreme at 0.0091, where
   // the first partition's quality falls below a tenth of its start. The dense X = A_d⁻¹ A_i by
