@@ -68,11 +68,10 @@ def _run_all(todo, spec, table, workers, scheduler, progress):
         pending = as_completed([tasks.submit(run) for run in todo], loop=client.loop)
         meter = _Progress(progress, len(todo))
         for future in pending:
-            run, again = tasks.done(future)
+            run, row, again = tasks.outcome(future)
             if again is not None:
                 pending.add(again)
                 continue
-            row = _row_of(distributed, future)
             if row["status"] == sweep_worker.NO_COLUMN:
                 tasks.cancel()
                 raise SweepError(f"{spec.file}: keep.peaks: {row['message']}")
@@ -103,14 +102,27 @@ class _Tasks:
         self.futures[future] = (run, attempt)
         return future
 
-    def done(self, future):
-        """(the run of `future`, its new future when it was cancelled and is submitted again)."""
+    def outcome(self, future):
+        """(the run of `future`, its row, None), or (the run, None, its new future) when the task
+        was cancelled and is submitted again. Cancelled means by the scheduler (every worker
+        holding its data died), or its result lost with its worker: a task that finished on a
+        worker killed before the client gathered its result raises CancelledError from
+        result() though as_completed yielded it finished (the client's gather fails, and the
+        scheduler forgets the key)."""
+        import distributed
+        from concurrent.futures import CancelledError  # what distributed's futures raise
         run, attempt = self.futures.pop(future)
-        if not _cancelled(future) or attempt >= self.RESUBMIT:
-            return run, None
+        try:
+            return run, future.result(), None
+        except CancelledError:
+            if attempt >= self.RESUBMIT:
+                return run, _lost("the scheduler cancelled the task, or lost its result, at "
+                                  "each try"), None
+        except distributed.KilledWorker as e:
+            return run, _lost(str(e)), None
         for path in run.files.values():
             self.contents.pop(path, None)
-        return run, self.submit(run, attempt + 1)
+        return run, None, self.submit(run, attempt + 1)
 
     def cancel(self):
         for f in self.futures:
@@ -123,31 +135,10 @@ class _Tasks:
         return self.contents[path]
 
 
-def _cancelled(future):
-    """Whether the scheduler cancelled `future` (done). Its status may still read otherwise when
-    as_completed yields it: with a worker killed mid-sweep a task's result raised CancelledError
-    out of the sweep (one test run in several under load), so the result is asked too."""
-    if future.status == "cancelled":
-        return True
-    from concurrent.futures import CancelledError  # what distributed's futures raise
-    try:
-        future.exception()
-    except CancelledError:
-        return True
-    return False
-
-
-def _row_of(distributed, future):
-    """The worker's row, or the row of a run whose task could not end (its worker died at each
-    try, or the scheduler cancelled it again and again)."""
-    if _cancelled(future):
-        return {"status": WORKER_LOST, "steps": None, "wall_s": None, "peaks": {},
-                "message": "the scheduler cancelled the task at each try"}
-    try:
-        return future.result()
-    except distributed.KilledWorker as e:
-        return {"status": WORKER_LOST, "steps": None, "wall_s": None, "peaks": {},
-                "message": str(e)}
+def _lost(message):
+    """The row of a run whose task could not end: its worker died at each try, or the scheduler
+    cancelled it again and again."""
+    return {"status": WORKER_LOST, "steps": None, "wall_s": None, "peaks": {}, "message": message}
 
 
 def _import_distributed():

@@ -452,12 +452,36 @@ def test_a_task_the_scheduler_cancels_is_submitted_again_with_its_files(study, s
         future = tasks.submit(run)
         for attempt in range(1, _Tasks.RESUBMIT + 1):
             future.cancel()
-            done, again = tasks.done(future)
-            assert done is run and again.key == f"condyn-run-{run.key}-{attempt}"
+            done, row, again = tasks.outcome(future)
+            assert done is run and row is None
+            assert again.key == f"condyn-run-{run.key}-{attempt}"
             future = again
         assert future.result()["status"] == "ok"
         future.cancel()
-        assert tasks.done(future) == (run, None)  # no more tries: the run's row says why
+        done, row, again = tasks.outcome(future)  # no more tries: the run's row says why
+        assert done is run and again is None and row["status"] == "worker_lost"
+
+
+def test_a_result_lost_with_its_worker_is_submitted_again(study, scheduler):
+    # A task that finished on a worker killed before the sweep gathered its result: as_completed
+    # yields it finished, and its result() raises CancelledError (seen in CI with a worker killed
+    # mid-sweep). The sweep submits the run again rather than stopping.
+    from concurrent.futures import CancelledError
+    from condyn.sweep_run import _Tasks
+
+    class LostResult:
+        def result(self):
+            raise CancelledError("condyn-run-lost")
+
+    spec = read_sweep(study)
+    run = expand(spec)[0]
+    with distributed.Client(scheduler, set_as_default=False) as client:
+        tasks = _Tasks(client, spec)
+        lost = LostResult()
+        tasks.futures[lost] = (run, 0)
+        done, row, again = tasks.outcome(lost)
+        assert done is run and row is None and again.key == f"condyn-run-{run.key}-1"
+        assert tasks.outcome(again)[1]["status"] == "ok"
 
 
 # --- [records] and [scale] -----------------------------------------------------------------------
