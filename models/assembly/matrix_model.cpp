@@ -2,15 +2,13 @@
 // positive semi-definite; and Rayleigh damping C = a0 M + a1 K for any linear model.
 
 #include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <string_view>
 #include <unordered_set>
 
 #include "models/assembly/model_builder.hpp"
-#include "models/core/fixed_pattern_cholmod.hpp"
-#include "models/core/load_library.hpp"
+#include "models/core/symmetric_factor.hpp"
 
 namespace condyn {
 
@@ -25,10 +23,6 @@ constexpr Eigen::Index kDensePsdCheck = 500;
 // million DOFs, and still refuses an eigenvalue below −1e-8 of the diagonal, where the 2 x 2
 // minors alone let an indefinite tridiagonal matrix pass.
 constexpr double kSparsePsdShift = 1e-8;
-// Above this size the factorization is CHOLMOD's supernodal Cholesky (over OpenBLAS, loaded on
-// first use): Eigen's simplicial LDLᵀ has no dense kernels, and on a 3D mesh its fill makes it
-// take minutes at 10⁵ DOFs. Below, Eigen's is fast enough and needs no library loaded.
-constexpr Eigen::Index kCholmodPsdCheck = 10000;
 
 }  // namespace
 
@@ -100,41 +94,6 @@ Eigen::SparseMatrix<double> ModelBuilder::file_psd(const FileMatrix& m,
   return a;
 }
 
-namespace {
-
-/// Whether `shifted` (symmetric, both triangles) is positive definite, and how that was found:
-/// CHOLMOD's supernodal Cholesky above kCholmodPsdCheck DOFs, Eigen's simplicial LDLᵀ below it
-/// (and where CHOLMOD cannot be loaded), which counts the negative pivots.
-struct DefiniteTest {
-  bool definite = false;
-  std::string finding;  // what the failed factorization found, for the refusal
-};
-
-DefiniteTest definite_test(const Eigen::SparseMatrix<double>& shifted) {
-  if (shifted.rows() > kCholmodPsdCheck) {
-    try {
-      FixedPatternCholmod cholesky;
-      if (cholesky.factor(shifted)) return {true, {}};
-      return {false, "a sparse Cholesky factorization of it, shifted by " + fmt(kSparsePsdShift) +
-                         " of its diagonal, meets a pivot that is not positive"};
-    } catch (const LibraryUnavailable&) {
-      // Eigen's factorization below gives the same answer, slower on 3D meshes.
-    }
-  }
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(shifted);
-  const Eigen::VectorXd pivots = ldlt.vectorD();
-  Eigen::Index negative = 0;
-  for (Eigen::Index i = 0; i < pivots.size(); ++i) negative += pivots[i] < 0.0 ? 1 : 0;
-  if (ldlt.info() == Eigen::Success && negative == 0) return {true, {}};
-  return {false,
-          "a sparse LDLt of it, shifted by " + fmt(kSparsePsdShift) + " of its diagonal, has " +
-              (ldlt.info() == Eigen::Success
-                   ? std::to_string(negative) + " negative pivot" + (negative == 1 ? "" : "s")
-                   : std::string("a zero pivot"))};
-}
-
-}  // namespace
-
 /// A + δ D positive definite (kSparsePsdShift; zero diagonal entries, whose rows are zero after
 /// the minor check, get δ max(D)): by Sylvester's law of inertia, a pivot that is not positive
 /// is an eigenvalue of A + δ D that is not, below −δ max(D) in A.
@@ -147,10 +106,12 @@ void ModelBuilder::check_sparse_inertia(const FileMatrix& m, const std::string& 
   for (Eigen::Index i = 0; i < d.size(); ++i)
     shifted.coeffRef(i, i) += kSparsePsdShift * (d[i] > 0.0 ? d[i] : top);
   shifted.makeCompressed();
-  const DefiniteTest test = definite_test(shifted);
-  if (test.definite) return;
+  const SymmetricFactor factor(shifted);
+  if (factor.positive_definite()) return;
   fail({m.where.path, m.where.line}, m.file + " is not positive semi-definite (" + key +
-                                         "): " + test.finding + ": it has an eigenvalue below -" +
+                                         "): " + factor.method() + " of it, shifted by " +
+                                         fmt(kSparsePsdShift) + " of its diagonal, " +
+                                         factor.finding() + ": it has an eigenvalue below -" +
                                          fmt(kSparsePsdShift) + " of its largest diagonal entry");
 }
 

@@ -34,6 +34,7 @@ struct CholmodLibrary {
   decltype(&cholmod_solve2) solve2 = nullptr;
   decltype(&cholmod_free_factor) free_factor = nullptr;
   decltype(&cholmod_free_dense) free_dense = nullptr;
+  decltype(&cholmod_rcond) rcond = nullptr;
 };
 
 /// Loads OpenBLAS, then CHOLMOD, once per process; they stay loaded. A failed load throws
@@ -63,6 +64,7 @@ const CholmodLibrary& cholmod_library() {
     cholmod.resolve("cholmod_solve2", l.solve2);
     cholmod.resolve("cholmod_free_factor", l.free_factor);
     cholmod.resolve("cholmod_free_dense", l.free_dense);
+    cholmod.resolve("cholmod_rcond", l.rcond);
     return l;
   }();
   return lib;
@@ -224,6 +226,15 @@ bool FixedPatternCholmod::factor(const Eigen::SparseMatrix<double>& matrix) {
                              std::to_string(k.common.c.status) + ")");
   }
   return true;
+}
+
+double FixedPatternCholmod::pivot_ratio() const {
+  Impl& k = *impl_;
+  if (k.factor == nullptr || k.factor->minor < k.n) {
+    throw std::logic_error("FixedPatternCholmod: pivot ratio before a factorization");
+  }
+  // (min diag(L) / max diag(L))² for L Lᵀ: the LDLᵀ pivots' ratio.
+  return k.common.lib.rcond(k.factor, &k.common.c);
 }
 
 void FixedPatternCholmod::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) {

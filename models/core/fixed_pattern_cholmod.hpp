@@ -58,6 +58,10 @@ class FixedPatternCholmod {
   /// or of another size than the first, std::runtime_error when CHOLMOD fails otherwise
   /// (out of memory).
   bool factor(const Eigen::SparseMatrix<double>& matrix);
+  /// The smallest pivot of the last factorization over the largest: (min lᵢᵢ / max lᵢᵢ)², the
+  /// ratio of the pivots dᵢ of A = L D Lᵀ (CHOLMOD's cholmod_rcond; a rough reciprocal condition
+  /// number, 0 when a pivot is zero). Throws std::logic_error before a factorization.
+  [[nodiscard]] double pivot_ratio() const;
   /// x ← (last matrix factored)⁻¹ x, in place. Throws std::logic_error before a factorization.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x);
   /// The ordering named at construction, or the one the analysis chose (empty before the first

@@ -72,23 +72,34 @@ TEST_CASE("modes: a uniform shear building against its closed form, dense and La
     for (int j = 1; j <= n; ++j)
       check_omega(modes.omega[j - 1], test::shear_building_omega(b, j), 4 * 800.0 / 2.0, 0.0);
   }
-  // 500 storeys by Lanczos (the automatic choice above kDenseModeDofs), its lowest 12.
-  const int n = 500;
-  const ShearBuilding b{.storeys = n, .mass = 3.0, .stiffness = 1.2e4};
-  Eigen::SparseMatrix<double> K, M;
-  shear_pencil(n, b.mass, b.stiffness, K, M);
-  const PencilModes modes = lowest_modes(K, M, 12);
-  CHECK_FALSE(modes.dense);
-  for (int j = 1; j <= 12; ++j) {
-    check_omega(std::sqrt(modes.omega2[j - 1]), test::shear_building_omega(b, j),
-                4 * b.stiffness / b.mass, kLanczosTolerance);
-  }
-  // Each shape solves the pencil: ‖Kφ − ω²Mφ‖ small against ‖Kφ‖ + ω²‖Mφ‖.
-  for (int j = 0; j < 12; ++j) {
-    const Eigen::VectorXd phi = modes.shapes.col(j);
-    const Eigen::VectorXd r = K * phi - modes.omega2[j] * (M * phi);
-    CHECK(r.norm() <= kLanczosTolerance * ((K * phi).norm() + modes.omega2[j] * (M * phi).norm()));
-    CHECK(phi.dot(M * phi) == doctest::Approx(1.0).epsilon(kDenseRoundoff * n));
+  // 500 storeys by Lanczos (the automatic choice above kDenseModeDofs), its lowest 12; 12,000
+  // storeys, where the shift-invert factorization is CHOLMOD's (above kCholmodAbove).
+  for (const int n : {500, 12000}) {
+    CAPTURE(n);
+    const ShearBuilding b{.storeys = n, .mass = 3.0, .stiffness = 1.2e4};
+    Eigen::SparseMatrix<double> K, M;
+    shear_pencil(n, b.mass, b.stiffness, K, M);
+    const PencilModes modes = lowest_modes(K, M, 12);
+    CHECK_FALSE(modes.dense);
+    for (int j = 1; j <= 12; ++j) {
+      check_omega(std::sqrt(modes.omega2[j - 1]), test::shear_building_omega(b, j),
+                  4 * b.stiffness / b.mass, kLanczosTolerance);
+    }
+    // Each shape solves the pencil: ‖Kφ − ω²Mφ‖ small against ‖Kφ‖ + ω²‖Mφ‖, plus the roundoff
+    // of forming the residual, 64 eps (‖|K||φ|‖ + ω²‖|M||φ|‖): for the lowest modes of 12,000
+    // storeys (ω²_1 / ω²_max ≈ 4e-9) that roundoff, not Lanczos, is the larger (observed
+    // 1.3e-12 against 2.4e-13 for the first term).
+    const Eigen::SparseMatrix<double> abs_k = K.cwiseAbs(), abs_m = M.cwiseAbs();
+    for (int j = 0; j < 12; ++j) {
+      const Eigen::VectorXd phi = modes.shapes.col(j);
+      const Eigen::VectorXd r = K * phi - modes.omega2[j] * (M * phi);
+      const Eigen::VectorXd abs_phi = phi.cwiseAbs();
+      CHECK(r.norm() <=
+            kLanczosTolerance * ((K * phi).norm() + modes.omega2[j] * (M * phi).norm()) +
+                kDenseRoundoff *
+                    ((abs_k * abs_phi).norm() + modes.omega2[j] * (abs_m * abs_phi).norm()));
+      CHECK(phi.dot(M * phi) == doctest::Approx(1.0).epsilon(kDenseRoundoff * n));
+    }
   }
 }
 
@@ -97,20 +108,24 @@ TEST_CASE("modes: a free chain's rigid motion by Lanczos, through the negative s
   // K + sM instead of K. ω_j = 2 sqrt(k/m) sin((j − 1) π / (2n)) (the shear building's argument
   // with φ_i = cos((i − ½) θ), free at both ends); ω_1 = 0, the rigid translation. Observed:
   // ω²_1 clamped to 0, 3.4e-12 relative on the others, the rigid shape to 3e-15.
-  const int n = 500;
+  // 500 masses, and 12,000 where the factorization is CHOLMOD's (its Cholesky of the singular K
+  // meets a pivot at roundoff or not positive: either way the shift is taken).
   const double m = 2.0, k = 5.0e3, pi = 3.14159265358979323846;
-  Eigen::SparseMatrix<double> K, M;
-  shear_pencil(n, m, k, K, M);
-  K.coeffRef(0, 0) = k;  // the first mass's spring to the ground removed
-  const PencilModes modes = lowest_modes(K, M, 6);
-  CHECK_FALSE(modes.dense);
-  for (int j = 1; j <= 6; ++j) {
-    const double exact = 2.0 * std::sqrt(k / m) * std::sin((j - 1) * pi / (2.0 * n));
-    check_omega(std::sqrt(modes.omega2[j - 1]), exact, 4 * k / m, kLanczosTolerance);
+  for (const int n : {500, 12000}) {
+    CAPTURE(n);
+    Eigen::SparseMatrix<double> K, M;
+    shear_pencil(n, m, k, K, M);
+    K.coeffRef(0, 0) = k;  // the first mass's spring to the ground removed
+    const PencilModes modes = lowest_modes(K, M, 6);
+    CHECK_FALSE(modes.dense);
+    for (int j = 1; j <= 6; ++j) {
+      const double exact = 2.0 * std::sqrt(k / m) * std::sin((j - 1) * pi / (2.0 * n));
+      check_omega(std::sqrt(modes.omega2[j - 1]), exact, 4 * k / m, kLanczosTolerance);
+    }
+    // The rigid mode: every mass moves alike, 1/sqrt(n m) each for φᵀMφ = 1.
+    const Eigen::VectorXd rigid = modes.shapes.col(0);
+    CHECK((rigid.array() - 1.0 / std::sqrt(n * m)).abs().maxCoeff() <= kLanczosTolerance);
   }
-  // The rigid mode: every mass moves alike, 1/sqrt(n m) each for φᵀMφ = 1.
-  const Eigen::VectorXd rigid = modes.shapes.col(0);
-  CHECK((rigid.array() - 1.0 / std::sqrt(n * m)).abs().maxCoeff() <= kLanczosTolerance);
 }
 
 TEST_CASE("modes: massless DOFs are condensed exactly, on both paths") {

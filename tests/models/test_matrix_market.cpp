@@ -509,7 +509,7 @@ stiffness = { file = "three.mtx" }
 
 TEST_CASE("matrix model from files: large matrices are checked without a dense copy") {
   // 600 DOFs, above the size up to which the dense eigenvalue check runs (kDensePsdCheck = 500),
-  // where Eigen's sparse LDLt decides; 12,000, above kCholmodPsdCheck (10,000), where CHOLMOD's
+  // where Eigen's sparse LDLt decides; 12,000, above kCholmodAbove (10,000), where CHOLMOD's
   // supernodal Cholesky does.
   for (const int n : {600, 12000}) {
     CAPTURE(n);
