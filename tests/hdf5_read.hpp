@@ -1,12 +1,14 @@
 #pragma once
 // condyn's HDF5 files read back through the C API, for the tests that compare them with the CSV
-// (tests/src/test_cli_hdf5.cpp, test_cli_modes.cpp, test_output_map.cpp).
+// (tests/src/test_cli_hdf5.cpp, test_cli_modes.cpp, test_output_map.cpp, test_cli_derived*.cpp).
 
 #include <doctest/doctest.h>
 #include <hdf5.h>
 
 #include <string>
 #include <vector>
+
+#include "tests/csv_table.hpp"
 
 namespace condyn::test {
 
@@ -87,6 +89,25 @@ inline std::string read_string_attribute(hid_t file, const char* name) {
   H5Tclose(type);
   H5Aclose(attr);
   return out;
+}
+
+/// The result file `path`'s `derived` dataset holds the columns `names`, in that order, each value
+/// exactly the CSV's (written from the same doubles).
+inline void check_derived_as_csv(const std::string& path, const CsvTable& csv,
+                                 const std::vector<std::string>& names) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  CHECK(read_strings(file, "derived_names") == names);
+  const Dataset d = read_doubles(file, "derived");
+  H5Fclose(file);
+  const std::size_t rows = csv.columns.at("t").size();
+  REQUIRE(d.dims == std::vector<hsize_t>{rows, names.size()});
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < rows; ++k) {
+    for (std::size_t j = 0; j < names.size(); ++j)
+      differ += d.values[k * names.size() + j] == csv.columns.at(names[j])[k] ? 0 : 1;
+  }
+  CHECK(differ == 0);
 }
 
 }  // namespace condyn::test

@@ -40,15 +40,20 @@ Eigen::VectorXd Model::absolute_acceleration(double t,
 Eigen::VectorXd Model::derived_values(double t, const Eigen::Ref<const Eigen::VectorXd>& u,
                                       const Eigen::Ref<const Eigen::VectorXd>& v,
                                       const Eigen::Ref<const Eigen::VectorXd>& a,
-                                      const Eigen::Ref<const Eigen::VectorXd>& reaction) const {
-  // The absolute acceleration only when a term reads it (an O(n) vector a row), and only from
-  // a row that has accelerations: without them derived_value says what the row lacks.
-  const Eigen::VectorXd absolute = reads_absolute_acceleration(derived) && a.size() > 0
-                                       ? absolute_acceleration(t, a)
-                                       : Eigen::VectorXd();
+                                      const Eigen::Ref<const Eigen::VectorXd>& reaction,
+                                      const Eigen::Ref<const Eigen::VectorXd>& absolute) const {
+  // The absolute acceleration only when a term reads it and the caller has none (an O(n) vector
+  // a row), and only from a row that has accelerations: without them derived_value says what
+  // the row lacks.
+  const Eigen::VectorXd computed =
+      absolute.size() == 0 && reads_absolute_acceleration(derived) && a.size() > 0
+          ? absolute_acceleration(t, a)
+          : Eigen::VectorXd();
+  const Eigen::Ref<const Eigen::VectorXd> a_abs =
+      absolute.size() > 0 ? absolute : Eigen::Ref<const Eigen::VectorXd>(computed);
   Eigen::VectorXd out(static_cast<Eigen::Index>(derived.size()));
   for (std::size_t k = 0; k < derived.size(); ++k) {
-    out[static_cast<Eigen::Index>(k)] = derived_value(derived[k], {u, v, a, absolute, reaction});
+    out[static_cast<Eigen::Index>(k)] = derived_value(derived[k], {u, v, a, a_abs, reaction});
   }
   return out;
 }

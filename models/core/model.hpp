@@ -145,13 +145,21 @@ struct Model {
       double t, const Eigen::Ref<const Eigen::VectorXd>& a) const;
   /// The [[derived]] columns' values at one output row (one per column of `derived`, in order)
   /// from the row's time and vectors (a mechanism's in its output map's columns; `a` empty when
-  /// the run computed no accelerations). A column's acc_abs_ terms read absolute_acceleration(t,
-  /// a), computed once for the row, so they equal the acc_abs_ columns. Throws std::logic_error
-  /// when a term reads a vector the row lacks (derived_value).
+  /// the run computed no accelerations). A column's acc_abs_ terms read `absolute`, the row's
+  /// absolute_acceleration(t, a) when the caller has it (the acc_abs_ columns' values), or, when it
+  /// is empty, absolute_acceleration(t, a) computed here once for the row. Throws
+  /// std::logic_error when a term reads a vector the row lacks (derived_value).
   [[nodiscard]] Eigen::VectorXd derived_values(
       double t, const Eigen::Ref<const Eigen::VectorXd>& u,
       const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
-      const Eigen::Ref<const Eigen::VectorXd>& reaction) const;
+      const Eigen::Ref<const Eigen::VectorXd>& reaction,
+      const Eigen::Ref<const Eigen::VectorXd>& absolute) const;
+  [[nodiscard]] Eigen::VectorXd derived_values(
+      double t, const Eigen::Ref<const Eigen::VectorXd>& u,
+      const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& a,
+      const Eigen::Ref<const Eigen::VectorXd>& reaction) const {
+    return derived_values(t, u, v, a, reaction, Eigen::VectorXd());
+  }
   /// Applied loads f(t) (n). Steps are on when start <= step_reference.
   [[nodiscard]] Eigen::VectorXd applied_forces(double t, double step_reference) const;
   [[nodiscard]] Eigen::VectorXd applied_forces(double t) const { return applied_forces(t, t); }

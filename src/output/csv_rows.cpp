@@ -88,8 +88,8 @@ void append_csv_row(std::string& line, const OutputSpec& output, const OutputCol
   }
   for (Eigen::Index k = 0; k < row.points.size(); ++k) value(row.points[k]);
   if (!columns.model().derived.empty()) {
-    const Eigen::VectorXd derived =
-        columns.model().derived_values(row.t, row.u, row.v, row.acceleration, row.reaction);
+    const Eigen::VectorXd derived = columns.model().derived_values(
+        row.t, row.u, row.v, row.acceleration, row.reaction, row.absolute_acceleration);
     for (const double d : derived) value(d);
   }
   if (columns.near_singular()) line += row.near_singular ? ",1" : ",0";

@@ -235,10 +235,10 @@ class Hdf5RowWriter final : public RowWriter {
     if (u_) dofs(Quantity::displacement, *u_, r.u);
     if (v_) dofs(Quantity::velocity, *v_, r.v);
     if (a_) dofs(Quantity::acceleration, *a_, r.acceleration);
-    if (a_abs_) {
-      dofs(Quantity::absolute_acceleration, *a_abs_,
-           model_.absolute_acceleration(r.t, r.acceleration));
-    }
+    // Computed once for the row: its columns and the derived columns' acc_abs_ terms.
+    const Eigen::VectorXd absolute =
+        a_abs_ ? model_.absolute_acceleration(r.t, r.acceleration) : Eigen::VectorXd();
+    if (a_abs_) dofs(Quantity::absolute_acceleration, *a_abs_, absolute);
     if (reaction_) dofs(Quantity::reaction, *reaction_, r.reaction);
     if (multiplier_) {
       multiplier_->append([&](hsize_t c) { return r.multiplier[static_cast<Eigen::Index>(c)]; });
@@ -252,7 +252,7 @@ class Hdf5RowWriter final : public RowWriter {
     if (points_) points_->append([&](hsize_t c) { return r.points[static_cast<Eigen::Index>(c)]; });
     if (derived_) {
       const Eigen::VectorXd derived =
-          model_.derived_values(r.t, r.u, r.v, r.acceleration, r.reaction);
+          model_.derived_values(r.t, r.u, r.v, r.acceleration, r.reaction, absolute);
       derived_->append([&](hsize_t c) { return derived[static_cast<Eigen::Index>(c)]; });
     }
     if (near_singular_)
