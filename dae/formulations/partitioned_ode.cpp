@@ -86,8 +86,9 @@ PartitionedOde::PartitionedOde(const Model& model, double t0)
         "elimination by coordinate partitioning: the dependent block of the constraint "
         "Jacobian is singular at the start");
   }
-  accelerations(t0);
-  if (kkt_.info() != Eigen::Success) {
+  try {
+    accelerations(t0);
+  } catch (const RecoverableError&) {
     throw SchemeNotApplicable(
         "elimination by coordinate partitioning: the system [M Aᵀ; A 0] is singular at the "
         "start (a massless DOF that no constraint fixes); the multiplier schemes treat such "
@@ -174,11 +175,10 @@ void PartitionedOde::accelerations(double t) const {
     system_->acceleration_bias(t, u_, v_, gamma_);
     rhs.tail(m_) = scale.cwiseProduct(gamma_);
   }
-  kkt_.compute(kkt_matrix(mass, scaled));
-  if (kkt_.info() != Eigen::Success) {
+  if (!kkt_lu_.factor(kkt_matrix(mass, scaled))) {
     throw RecoverableError("coordinate partitioning: [M Aᵀ; A 0] is singular");
   }
-  const Eigen::VectorXd x = kkt_.solve(rhs);
+  const Eigen::VectorXd x = kkt_lu_.solve(rhs);
   a_acc_ = x.head(n_);
   lambda_ = m_ > 0 ? Eigen::VectorXd(scale.cwiseProduct(x.tail(m_))) : Eigen::VectorXd();
 }

@@ -4,6 +4,7 @@
 
 #include <klu.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <new>
@@ -205,6 +206,37 @@ Eigen::VectorXd FixedPatternKlu::solve(const Eigen::VectorXd& rhs) const {
   Eigen::VectorXd x = rhs;
   solve_in_place(x);
   return x;
+}
+
+bool KluByPattern::factor(const Eigen::SparseMatrix<double>& matrix) {
+  Eigen::SparseMatrix<double> compressed;
+  if (!matrix.isCompressed()) {
+    compressed = matrix;
+    compressed.makeCompressed();
+  }
+  const Eigen::SparseMatrix<double>& a = matrix.isCompressed() ? matrix : compressed;
+  const auto* outer = a.outerIndexPtr();
+  const auto* inner = a.innerIndexPtr();
+  const auto n = static_cast<std::size_t>(a.cols());
+  const auto nnz = static_cast<std::size_t>(a.nonZeros());
+  const bool same = klu_ && outer_.size() == n + 1 && inner_.size() == nnz &&
+                    std::equal(outer_.begin(), outer_.end(), outer) &&
+                    std::equal(inner_.begin(), inner_.end(), inner);
+  if (!same) {
+    klu_ = std::make_unique<FixedPatternKlu>();
+    outer_.assign(outer, outer + n + 1);
+    inner_.assign(inner, inner + nnz);
+    ++analyses_;
+  } else {
+    klu_->restart();  // pivots afresh: the analysis alone is kept
+  }
+  factored_ = klu_->factor(a);
+  return factored_;
+}
+
+Eigen::VectorXd KluByPattern::solve(const Eigen::VectorXd& rhs) const {
+  if (!factored_) throw std::logic_error("KluByPattern: solve without a factorization");
+  return klu_->solve(rhs);
 }
 
 }  // namespace condyn

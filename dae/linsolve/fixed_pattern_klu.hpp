@@ -12,6 +12,7 @@
 
 #include <Eigen/Sparse>
 #include <memory>
+#include <vector>
 
 #include "models/core/memory_estimate.hpp"
 
@@ -89,6 +90,29 @@ class FixedPatternKlu {
   long pivoting_ = 0;
   long refactored_ = 0;
   bool band_ordered_ = false;
+};
+
+/// KLU's symbolic analysis (BTF, AMD) kept while the pattern of the matrices stays, and done
+/// afresh when it changes (a mechanism's KKT matrix keeps its pattern; another model's would not);
+/// every factorization searches its pivots afresh, so the factors are those of a fresh KLU on
+/// the matrix. For small matrices whose values vary widely between factorizations, up to
+/// singularity (coordinate partitioning's KKT matrix at a mechanism's singular position: there,
+/// pivots reused from earlier values changed A02's results and lost its passage, where fresh ones
+/// keep them bit for bit). Keeps a copy of the pattern, compared at each factorization (O(nnz)).
+class KluByPattern {
+ public:
+  /// Factors `matrix` (square); false when it is singular.
+  bool factor(const Eigen::SparseMatrix<double>& matrix);
+  /// x with (last matrix factored) x = rhs. Throws std::logic_error before a successful factor().
+  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  /// Analyses made: one per pattern met.
+  [[nodiscard]] long analyses() const { return analyses_; }
+
+ private:
+  std::unique_ptr<FixedPatternKlu> klu_;
+  std::vector<int> outer_, inner_;
+  bool factored_ = false;
+  long analyses_ = 0;
 };
 
 }  // namespace condyn
