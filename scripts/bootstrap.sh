@@ -158,12 +158,33 @@ lint_failed() {
   echo "bootstrap: clang-tidy found problems (full log: $1)" >&2
   exit 1
 }
-run-clang-tidy -quiet -p build-lint -j "$jobs" -extra-arg=-Wno-unknown-warning-option \
-  -checks='-*,clang-analyzer-*,misc-unused-using-decls' $lint_sources \
-  >build/clang-tidy-analyzer.log 2>&1 || lint_failed build/clang-tidy-analyzer.log
-run-clang-tidy -quiet -p build -j "$jobs" -extra-arg=-Wno-unknown-warning-option \
-  -checks='-clang-analyzer-*,-bugprone-suspicious-include' $batches \
-  >build/clang-tidy.log 2>&1 || lint_failed build/clang-tidy.log
+# A verdict depends only on its input, so each pass lints only the files whose input (the
+# preprocessed text, flags, checks, clang-tidy's version) scripts/lint-record.txt does not hold as
+# clean, and the record is written anew when both passes are (scripts/lint_cache.py).
+# CONDYN_LINT_ALL=1 lints every file whatever the record.
+record=scripts/lint-record.txt
+every=()
+[ "${CONDYN_LINT_ALL:-0}" = 1 ] && every=(--all)
+tidy() {  # $1 build folder, $2 checks, $3 log, then the files
+  local db=$1 checks=$2 log=$3 pending
+  shift 3
+  local args=(-quiet -p "$db" -extra-arg=-Wno-unknown-warning-option "-checks=$checks")
+  pending=$(python3 scripts/lint_cache.py pending --db "$db" --tidy-args "${args[*]}" \
+    --record "$record" --keys "$log.keys" "${every[@]}" "$@") || exit 1
+  local count
+  count=$(echo "$pending" | grep -c . || true)
+  echo "bootstrap: clang-tidy -checks=$checks on $count of $# files," \
+    "$(($# - count)) clean at the same input by $record"
+  [ -z "$pending" ] || run-clang-tidy "${args[@]}" -j "$jobs" $pending >"$log" 2>&1 ||
+    lint_failed "$log"
+}
+tidy build-lint '-*,clang-analyzer-*,misc-unused-using-decls' build/clang-tidy-analyzer.log \
+  $lint_sources
+tidy build '-clang-analyzer-*,-bugprone-suspicious-include' build/clang-tidy.log $batches
+python3 scripts/lint_cache.py record --record "$record" build/clang-tidy-analyzer.log.keys \
+  build/clang-tidy.log.keys
+[ -z "$(git status --porcelain -- "$record" 2>/dev/null)" ] ||
+  echo "bootstrap: $record now holds this tree's clean lint: commit it with the change"
 stage "lint: clang-format and clang-tidy clean; waiting for build-asan/"
 wait_for "$asan_build" "the build of build-asan/" build-asan/build.log
 tail -n 1 build-asan/build.log
