@@ -2,7 +2,7 @@
 """clang-tidy's verdicts, kept by the exact input they were reached on.
 
 The test command's lint runs clang-tidy over every library file: the analyzer file by file and
-the other checks over the unity batches, about 1,500 s of CPU, most of the command's 20 minutes.
+the other checks over the unity batches, half the command's CPU (docs/benchmarks.md).
 A verdict depends only on clang-tidy, its checks and arguments, .clang-tidy, the file's compile
 flags and the text the compiler sees. So a file's key is the SHA-256 of all of them: the
 preprocessed text (clang++ -E -C: every header included, system headers too; the comments kept,
