@@ -24,87 +24,16 @@
 #include "models/core/load_library.hpp"
 #include "models/core/number_cell.hpp"
 #include "models/core/result_columns.hpp"
+#include "src/reports/wrapped_lines.hpp"
 
 namespace condyn {
 
 namespace {
 
-// Lines of the report stay within this width (a terminal, a log viewer, a diff).
-constexpr std::size_t kWidth = 100;
-// Long lists (hundreds of masters) are shown in full up to this many lines, then counted.
-constexpr std::size_t kMaxListLines = 8;
-
 /// Up to this many constraints the table lists each; beyond, the first kShortenedConstraints
 /// and a count per class (10⁴ ties of a 10⁶-DOF lattice are not read row by row).
 constexpr std::size_t kMaxListedConstraints = 60;
 constexpr std::size_t kShortenedConstraints = 40;
-
-/// "label: text" with the words of text wrapped at kWidth columns, continuation lines indented
-/// by the label's width. Text of several lines is printed as it is.
-std::string wrapped_text(const std::string& label, const std::string& text) {
-  if (text.find('\n') != std::string::npos) return label + text + "\n";
-  const std::string indent(label.size(), ' ');
-  std::string out = label, word;
-  std::size_t width = label.size();
-  std::istringstream words(text);
-  bool first = true;
-  while (words >> word) {
-    if (!first && width + 1 + word.size() > kWidth) {
-      out += "\n" + indent;
-      width = indent.size();
-      first = true;
-    }
-    out += (first ? "" : " ") + word;
-    width += (first ? 0 : 1) + word.size();
-    first = false;
-  }
-  return out + "\n";
-}
-
-/// "label: a, b, c" wrapped at kWidth columns, continuation lines indented by the label's width;
-/// beyond kMaxListLines lines the rest is counted ("... and 290 more (598 in all)").
-std::string wrapped_list(const std::string& label, const std::vector<std::string>& names) {
-  if (names.empty()) return label + "none\n";
-  const std::string indent(label.size(), ' ');
-  std::vector<std::vector<std::string>> lines(1);
-  std::size_t width = label.size();
-  for (std::size_t k = 0; k < names.size(); ++k) {
-    const std::string item = names[k] + (k + 1 < names.size() ? "," : "");
-    if (!lines.back().empty() && width + 1 + item.size() > kWidth) {
-      lines.emplace_back();
-      width = indent.size();
-    }
-    width += (lines.back().empty() ? 0 : 1) + item.size();
-    lines.back().push_back(item);
-  }
-  std::string suffix;
-  if (lines.size() > kMaxListLines) {
-    lines.resize(kMaxListLines);
-    auto& last = lines.back();
-    std::size_t shown = 0;
-    for (const auto& l : lines) shown += l.size();
-    const auto line_width = [&last, &indent] {
-      std::size_t w = indent.size();
-      for (const auto& item : last) w += item.size() + 1;
-      return w;
-    };
-    do {
-      suffix = "... and " + std::to_string(names.size() - shown) + " more (" +
-               std::to_string(names.size()) + " in all)";
-      if (line_width() + suffix.size() <= kWidth || last.size() <= 1) break;
-      last.pop_back();
-      --shown;
-    } while (true);
-  }
-  std::string out;
-  for (std::size_t l = 0; l < lines.size(); ++l) {
-    std::string line = l == 0 ? label : indent;
-    for (std::size_t k = 0; k < lines[l].size(); ++k) line += (k ? " " : "") + lines[l][k];
-    if (l + 1 == lines.size() && !suffix.empty()) line += " " + suffix;
-    out += line + "\n";
-  }
-  return out;
-}
 
 /// The loads and their time functions (the first kMaxListedLoads; a table as
 /// table(FILE:COLUMN, N samples)*scale), and the ground motion's acceleration.
