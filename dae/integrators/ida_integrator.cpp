@@ -1,5 +1,6 @@
 #include "dae/integrators/ida_integrator.hpp"
 
+#include "dae/integrators/ida_failure_kind.hpp"
 #include "dae/integrators/klu_linear_solver.hpp"
 #include "dae/integrators/newton_linear_solver.hpp"
 #include "dae/integrators/no_unknowns.hpp"
@@ -7,6 +8,7 @@
 #include "dae/integrators/step_driver.hpp"
 #include "dae/integrators/sundials_raii.hpp"
 #include "dae/integrators/sundials_stepper.hpp"
+#include "dae/integrators/trap_watch.hpp"
 #include "dae/integrators/vector_ops.hpp"
 
 #include <ida/ida.h>
@@ -57,16 +59,8 @@ struct CallbackData {
   /// h/T in its weight.
   Eigen::VectorXi order;
   std::vector<double> scale;  ///< (h/T)^order for each order, recomputed at each call
-  /// Floors under |y_i| in the weights (DaeProblem::error_scale_floors): off until a run of
-  /// kTrappedSteps steps in a row, each after an error-test failure (a trapped run),
-  /// then on for the rest of the run and refilled at each call.
-  struct FloorWatch {
-    long steps = -1, fails = 0;  ///< IDA's step and error-test failure counts at the last call
-    int run = 0;                 ///< steps in a row, each after a failure
-    bool engaged = false;
-    bool applied = false;  ///< engaged, and the problem has floors
-    double since = 0.0;    ///< the time they were engaged
-  } watch;
+  /// Floors under |y_i| in the weights, engaged by a trapped run (dae/integrators/trap_watch.hpp).
+  TrapWatch watch;
   Eigen::VectorXd floor;
   /// The dense solver's staging matrix with the problem's pattern (empty for KLU, whose matrix
   /// takes the values directly: a copy of the Newton matrix less, issue 12).
@@ -130,31 +124,12 @@ constexpr long kLargeSystem = 10000;
 /// one tighter (1 + 2d / (1 + d) instead of (1 + d) / (1 − d)).
 constexpr double condensed_cj_change(double d) { return 2.0 * d / (1.0 + d); }
 
-/// Steps in a row, each after an error-test failure, that engage the weights' floors. The
-/// trapped runs seen (a conical pendulum in steady rotation under GGL and index3) went on like
-/// that for 10⁵ steps, at order 1, or at order 3 with atol 1e-13; the scenes of models/ and
-/// validation/ never reach 25 under GGL or index3 at rtol 1e-4 to 1e-10 (atol rtol/100)
-/// (docs/schemes.md, "Error weights on rows").
-constexpr int kTrappedSteps = 25;
-
-/// Called by the weight function after each step (IDA evaluates the weights once per step):
-/// engages the floors when the last kTrappedSteps steps were each after a failure.
+/// Called by the weight function after each step (IDA evaluates the weights once per step).
 void watch_for_trap(CallbackData& data, double t) {
   long steps = 0, fails = 0;
   IDAGetNumSteps(data.mem, &steps);
   IDAGetNumErrTestFails(data.mem, &fails);
-  auto& w = data.watch;
-  if (steps == w.steps + 1) {
-    w.run = fails > w.fails ? w.run + 1 : 0;
-  } else if (steps < w.steps) {
-    w.run = 0;  // IDAReInit at a restart reset the counters
-  }
-  w.steps = steps;
-  w.fails = fails;
-  if (w.run >= kTrappedSteps) {
-    w.engaged = true;
-    w.since = t;
-  }
+  data.watch.observe(steps, fails, t);
 }
 
 /// Error weights (h/T)^(k_i − 1) / (rtol |y_i| + atol_i), k_i the component's index (DaeProblem),
@@ -200,40 +175,8 @@ int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
   return 0;
 }
 
-/// What an IDA return flag says happened (by its code, never its text).
-FailureKind failure_kind(int flag) {
-  switch (flag) {
-    case IDA_TOO_MUCH_WORK:
-      return FailureKind::steps_per_output;
-    case IDA_TOO_MUCH_ACC:
-      return FailureKind::tolerance_too_tight;
-    case IDA_ERR_FAIL:
-      return FailureKind::error_test;
-    case IDA_CONV_FAIL:
-    case IDA_NLS_FAIL:
-    case IDA_NLS_SETUP_FAIL:
-    case IDA_NO_RECOVERY:
-    case IDA_LINESEARCH_FAIL:
-      return FailureKind::convergence;
-    case IDA_LINIT_FAIL:
-    case IDA_LSETUP_FAIL:
-    case IDA_LSOLVE_FAIL:
-      return FailureKind::linear_solver;
-    case IDA_REP_RES_ERR:  // the residual stayed non-finite however small the step
-      return FailureKind::residual_non_finite;
-    case IDA_ILL_INPUT:
-    case IDA_BAD_EWT:
-    case IDA_BAD_T:
-    case IDA_BAD_K:
-    case IDA_BAD_DKY:
-      return FailureKind::bad_input;
-    default:
-      return FailureKind::unknown;
-  }
-}
-
 const sundials::Api kIdaApi{"IDASolve", IDAGetReturnFlagName, IDAGetCurrentTime, IDAGetLastStep,
-                            IDAGetDky,  IDAGetLastOrder,      failure_kind};
+                            IDAGetDky,  IDAGetLastOrder,      ida_failure_kind};
 
 class Ida final : public sundials::SundialsStepper {
  public:
