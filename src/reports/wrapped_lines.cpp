@@ -6,8 +6,6 @@
 
 namespace condyn {
 
-/// "label: text" with the words of text wrapped at kReportWidth columns, continuation lines
-/// indented by the label's width. Text of several lines is printed as it is.
 std::string wrapped_text(const std::string& label, const std::string& text) {
   if (text.find('\n') != std::string::npos) return label + text + "\n";
   const std::string indent(label.size(), ' ');
@@ -28,8 +26,6 @@ std::string wrapped_text(const std::string& label, const std::string& text) {
   return out + "\n";
 }
 
-/// "label: a, b, c" wrapped at kReportWidth columns, continuation lines indented by the label's
-/// width; beyond kMaxListLines lines the rest is counted ("... and 290 more (598 in all)").
 std::string wrapped_list(const std::string& label, const std::vector<std::string>& names) {
   if (names.empty()) return label + "none\n";
   const std::string indent(label.size(), ' ');
