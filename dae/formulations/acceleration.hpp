@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dae/interface/held_massless.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/model.hpp"
 

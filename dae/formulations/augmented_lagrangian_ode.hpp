@@ -31,6 +31,7 @@
 #include <string>
 
 #include "dae/interface/ode_problem.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/model.hpp"
 

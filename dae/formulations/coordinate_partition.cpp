@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/master_slave.hpp"
 
 namespace condyn {

@@ -20,6 +20,7 @@
 
 #include "dae/formulations/constraint_treatment.hpp"
 #include "dae/linsolve/fixed_product.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/model.hpp"
 #include "models/core/time_function.hpp"

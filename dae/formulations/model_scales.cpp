@@ -10,6 +10,7 @@
 
 #include "dae/formulations/largest_frequency.hpp"
 #include "dae/linsolve/kkt.hpp"
+#include "models/core/eigen_decompositions.hpp"
 
 namespace condyn {
 

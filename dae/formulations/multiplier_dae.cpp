@@ -4,6 +4,7 @@
 
 #include "dae/linsolve/kkt.hpp"
 #include "dae/linsolve/velocity_jump.hpp"
+#include "models/core/eigen_decompositions.hpp"
 
 #include <algorithm>
 #include <sstream>

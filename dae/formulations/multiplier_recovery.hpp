@@ -6,6 +6,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/model.hpp"
 
 namespace condyn {

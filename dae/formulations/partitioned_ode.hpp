@@ -43,6 +43,7 @@
 #include "dae/interface/ode_problem.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "dae/linsolve/kkt.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/model.hpp"
 
 namespace condyn {

@@ -1,6 +1,7 @@
 #include "dae/formulations/penalty_ode.hpp"
 
 #include "dae/linsolve/condensed_newton.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/row_scales.hpp"
 
 #include <algorithm>

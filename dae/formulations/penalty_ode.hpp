@@ -17,6 +17,7 @@
 #include "dae/interface/dae_problem.hpp"
 #include "dae/interface/held_massless.hpp"
 #include "dae/linsolve/block_jacobian.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/model.hpp"
 #include "models/core/solve_spec.hpp"

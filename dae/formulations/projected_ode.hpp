@@ -41,6 +41,7 @@
 #include "dae/interface/ode_problem.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "dae/linsolve/kkt.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanical_system.hpp"
 
 namespace condyn {

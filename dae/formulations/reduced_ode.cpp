@@ -2,6 +2,7 @@
 
 #include "dae/interface/scheme_not_applicable.hpp"
 #include "dae/linsolve/condensed_newton.hpp"
+#include "models/core/eigen_decompositions.hpp"
 
 #include <algorithm>
 #include <limits>

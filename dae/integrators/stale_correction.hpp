@@ -28,6 +28,8 @@
 #include <utility>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 
 class StaleCorrection {

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "dae/linsolve/kkt.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/massless_dofs.hpp"
 #include "models/core/model.hpp"
 

@@ -6,6 +6,7 @@
 #include <Eigen/Sparse>
 #include <memory>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanical_system.hpp"
 
 namespace condyn {

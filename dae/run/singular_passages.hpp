@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "dae/interface/singular_passage.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanical_system.hpp"
 
 namespace condyn {

@@ -9,6 +9,7 @@
 
 #include "models/assembly/initial_projection.hpp"
 #include "models/assembly/model_builder.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/linear_system.hpp"
 
 namespace condyn {

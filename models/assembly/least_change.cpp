@@ -5,6 +5,8 @@
 #include <Eigen/SparseCholesky>
 #include <stdexcept>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 
 namespace {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/massless_dofs.hpp"
 #include "models/core/row_scales.hpp"
 

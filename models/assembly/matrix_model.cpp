@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/symmetric_factor.hpp"
 
 namespace condyn {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/master_slave.hpp"
 #include "models/core/null_space.hpp"
 #include "models/core/pencil_modes.hpp"

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/systems/row_subset_outputs.hpp"
 #include "models/systems/row_subset_system.hpp"
 

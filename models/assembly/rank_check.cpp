@@ -9,6 +9,7 @@
 
 #include "models/assembly/model_builder.hpp"
 #include "models/core/constraint_groups.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/sparse_qr.hpp"
 #include "models/core/zero_sum.hpp"
 

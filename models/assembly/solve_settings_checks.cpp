@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "models/assembly/model_builder.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/linear_system.hpp"
 #include "models/core/master_slave.hpp"
 #include "models/core/nearest_names.hpp"

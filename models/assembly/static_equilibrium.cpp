@@ -10,6 +10,8 @@
 #include <random>
 #include <sstream>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 
 namespace {

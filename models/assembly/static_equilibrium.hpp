@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 
 /// Thrown when K is singular on the motions A allows (a mechanism): no unique static equilibrium.

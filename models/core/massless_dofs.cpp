@@ -6,6 +6,8 @@
 #include <Eigen/SparseLU>
 #include <cstddef>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 namespace {
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "models/core/constraint_groups.hpp"
+#include "models/core/eigen_decompositions.hpp"
 
 namespace condyn {
 

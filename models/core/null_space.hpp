@@ -6,6 +6,8 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 
 [[nodiscard]] inline Eigen::MatrixXd null_space_basis(const Eigen::SparseMatrix<double>& A,

@@ -12,6 +12,7 @@
 #include <numeric>
 #include <string>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/massless_dofs.hpp"
 #include "models/core/symmetric_factor.hpp"
 
@@ -87,7 +88,8 @@ PencilModes dense_modes(const Eigen::SparseMatrix<double>& K, const Eigen::Spars
   Eigen::MatrixXd Kc = Kd(r, r);
   Eigen::LLT<Eigen::MatrixXd> hold;
   if (!h.empty()) {
-    hold.compute(Kd(h, h));
+    const Eigen::MatrixXd Khh = Kd(h, h);  // a MatrixXd: the instance compiled once
+    hold.compute(Khh);
     if (hold.info() != Eigen::Success) {
       throw ModesUnavailable(ModesUnavailable::Why::stiffness,
                              "massless DOFs that no stiffness holds: K on the " +

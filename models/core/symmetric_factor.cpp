@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/fixed_pattern_cholmod.hpp"
 #include "models/core/load_library.hpp"
 

@@ -10,6 +10,8 @@
 #include <memory>
 #include <string>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 
 class FixedPatternCholmod;

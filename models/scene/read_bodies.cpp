@@ -9,6 +9,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_readers.hpp"
 
 namespace condyn {

@@ -10,6 +10,7 @@
 
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"

@@ -10,6 +10,7 @@
 
 #include "dae/linsolve/kkt.hpp"
 #include "dae/run/solve.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"

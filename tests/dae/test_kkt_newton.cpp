@@ -9,6 +9,7 @@
 #include "dae/formulations/kkt_newton.hpp"
 #include "dae/formulations/projected_ode.hpp"
 #include "dae/linsolve/kkt.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 

@@ -13,6 +13,7 @@
 #include "dae/integrators/klu_linear_solver.hpp"
 #include "dae/integrators/sundials_raii.hpp"
 #include "dae/linsolve/block_jacobian.hpp"
+#include "models/core/eigen_decompositions.hpp"
 
 using namespace condyn;
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dae/formulations/largest_frequency.hpp"
+#include "models/core/eigen_decompositions.hpp"
 
 using namespace condyn;
 

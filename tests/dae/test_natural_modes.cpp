@@ -11,6 +11,7 @@
 
 #include "dae/formulations/natural_modes.hpp"
 #include "models/assembly/build_model.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/null_space.hpp"
 #include "models/core/pencil_modes.hpp"
 #include "models/scene/scene_parser.hpp"

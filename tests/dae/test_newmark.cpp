@@ -16,6 +16,7 @@
 #include "dae/interface/scheme_not_applicable.hpp"
 #include "dae/run/energy_balance.hpp"
 #include "dae/run/run_plan.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/newmark_parameters.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"

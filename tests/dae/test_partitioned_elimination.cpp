@@ -21,6 +21,7 @@
 #include "dae/run/scheme_choice.hpp"
 #include "dae/run/solve.hpp"
 #include "models/core/constraint_drift.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/references/accuracy.hpp"

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"

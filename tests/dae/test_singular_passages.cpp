@@ -11,6 +11,7 @@
 #include <string>
 
 #include "dae/run/singular_passages.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 

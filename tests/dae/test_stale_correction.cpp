@@ -7,6 +7,7 @@
 
 #include "dae/integrators/stale_correction.hpp"
 #include "dae/run/solve.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/lattice_scene.hpp"
 #include "tests/solve_helpers.hpp"

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/systems/benchmarks.hpp"
 #include "tests/compare.hpp"
 #include "tests/system_check.hpp"

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/mechanism.hpp"
 #include "models/systems/multibody_system.hpp"
 #include "tests/system_check.hpp"

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/solve_helpers.hpp"
 

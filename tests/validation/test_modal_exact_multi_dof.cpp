@@ -10,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "tests/modal_fixtures.hpp"
 
 using namespace condyn::test::modal;

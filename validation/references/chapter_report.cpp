@@ -7,6 +7,7 @@
 
 #include "dae/formulations/reduced_system.hpp"
 #include "models/assembly/build_model.hpp"
+#include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "validation/references/embedded_scenes.hpp"
 

@@ -3,6 +3,7 @@
 #include "dae/formulations/multiplier_recovery.hpp"
 #include "dae/interface/interrupt.hpp"
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/null_space.hpp"
 
 namespace condyn {

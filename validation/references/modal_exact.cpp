@@ -9,6 +9,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <utility>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "validation/references/static_condensation.hpp"
 
 namespace condyn {
@@ -297,8 +298,8 @@ Eigen::VectorXd modal_damping(Eigen::MatrixXd& phi, const Eigen::VectorXd& k, do
     while (end < n && k(end) - k(end - 1) <= kRepeatedStiffnessTolerance * k_scale) ++end;
     const Eigen::Index count = end - begin;
     if (count > 1) {
-      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> block(
-          modal_c.block(begin, begin, count, count));
+      const Eigen::MatrixXd repeated = modal_c.block(begin, begin, count, count);
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> block(repeated);
       phi.middleCols(begin, count) = (phi.middleCols(begin, count) * block.eigenvectors()).eval();
     }
     begin = end;

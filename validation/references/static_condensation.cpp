@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include "models/core/eigen_decompositions.hpp"
+
 namespace condyn {
 namespace {
 
