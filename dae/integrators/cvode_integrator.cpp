@@ -37,7 +37,7 @@ struct CvodeDeleter {
 using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
 /// What the C callbacks need; exceptions go to `report`, never through CVODE's C frames.
-struct CallbackData {
+struct CvodeCallbackData {
   OdeProblem* problem = nullptr;
   sundials::CallbackReport* report = nullptr;
   /// Calls of the projection, never reset: CVODE's own count (CVodeGetNumProjEvals) restarts
@@ -55,13 +55,14 @@ struct CallbackData {
 constexpr double kProjectionSettled = 0.1;
 
 /// kProjectionSettled (rtol |y_i| + atol_i) at y, into data.settled.
-const Eigen::VectorXd& settled_at(CallbackData& data, const Eigen::Ref<const Eigen::VectorXd>& y) {
+const Eigen::VectorXd& settled_at(CvodeCallbackData& data,
+                                  const Eigen::Ref<const Eigen::VectorXd>& y) {
   data.settled = kProjectionSettled * (data.rtol * y.array().abs() + data.atol.array()).matrix();
   return data.settled;
 }
 
 int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user) {
-  auto* data = static_cast<CallbackData*>(user);
+  auto* data = static_cast<CvodeCallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
     auto out = view(ydot);
     data->problem->rhs(t, view(y), out);
@@ -71,7 +72,7 @@ int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user) {
 
 int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N_Vector err,
                           void* user) {
-  auto* data = static_cast<CallbackData*>(user);
+  auto* data = static_cast<CvodeCallbackData*>(user);
   ++data->projections;
   return sundials::guarded(*data->report, [&] {
     auto c = view(corr);
@@ -89,7 +90,7 @@ int projection_trampoline(double t, N_Vector y, N_Vector corr, double /*eps*/, N
 /// z = P⁻¹ r for GMRES (OdeProblem::precondition); CVODE's γ, the Newton matrix's I − γJ.
 int precondition_trampoline(double /*t*/, N_Vector /*y*/, N_Vector /*fy*/, N_Vector r, N_Vector z,
                             double gamma, double /*delta*/, int /*lr*/, void* user) {
-  auto* data = static_cast<CallbackData*>(user);
+  auto* data = static_cast<CvodeCallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
     auto out = view(z);
     data->problem->precondition(gamma, view(r), out);
@@ -304,7 +305,7 @@ class Cvode final : public sundials::SundialsStepper {
   }
 
   sunindextype n_;
-  CallbackData data_;
+  CvodeCallbackData data_;
   Eigen::VectorXd correction_;  ///< an interpolated state's projection
   // Declared in creation order: destroyed in reverse (CVODE memory first, context last).
   ContextPtr ctx_;

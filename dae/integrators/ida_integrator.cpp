@@ -42,7 +42,7 @@ using IdaPtr = std::unique_ptr<void, IdaDeleter>;
 
 /// What the C callbacks need; exceptions thrown by the problem go to `report`, never through IDA's
 /// C frames.
-struct CallbackData {
+struct IdaCallbackData {
   DaeProblem* problem = nullptr;
   double rtol = 0.0;
   Eigen::VectorXd atol;     ///< per component (IntegratorOptions::atol_vector)
@@ -72,7 +72,7 @@ struct CallbackData {
 };
 
 int residual_trampoline(double t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
-  auto* data = static_cast<CallbackData*>(user);
+  auto* data = static_cast<IdaCallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
     auto rv = view(r);
     data->problem->residual(t, view(y), view(yp), rv);
@@ -83,7 +83,7 @@ int residual_trampoline(double t, N_Vector y, N_Vector yp, N_Vector r, void* use
 
 int jacobian_trampoline(double t, double cj, N_Vector y, N_Vector yp, N_Vector /*r*/, SUNMatrix J,
                         void* user, N_Vector /*t1*/, N_Vector /*t2*/, N_Vector /*t3*/) {
-  auto* data = static_cast<CallbackData*>(user);
+  auto* data = static_cast<IdaCallbackData*>(user);
   return sundials::guarded(*data->report, [&] {
     if (double* values = sundials::pattern_matrix_values(J)) {
       // The KLU solver's matrix: the values in the problem's fixed pattern, zeroed by IDA.
@@ -125,7 +125,7 @@ constexpr long kLargeSystem = 10000;
 constexpr double condensed_cj_change(double d) { return 2.0 * d / (1.0 + d); }
 
 /// Called by the weight function after each step (IDA evaluates the weights once per step).
-void watch_for_trap(CallbackData& data, double t) {
+void watch_for_trap(IdaCallbackData& data, double t) {
   long steps = 0, fails = 0;
   IDAGetNumSteps(data.mem, &steps);
   IDAGetNumErrTestFails(data.mem, &fails);
@@ -138,7 +138,7 @@ void watch_for_trap(CallbackData& data, double t) {
 /// dae/formulations/model_scales.hpp, an index-2 correction δλ ≤ atol_λ T/h moves v by h a δλ / m ≤
 /// atol / T).
 int weight_trampoline(N_Vector y, N_Vector ewt, void* user) {
-  auto* data = static_cast<CallbackData*>(user);
+  auto* data = static_cast<IdaCallbackData*>(user);
   double h = 0.0;
   if (data->mem != nullptr) IDAGetCurrentStep(data->mem, &h);
   h = std::abs(h);
@@ -384,7 +384,7 @@ class Ida final : public sundials::SundialsStepper {
   }
 
   sunindextype n_;
-  CallbackData data_;
+  IdaCallbackData data_;
   // Declared in creation order: destroyed in reverse (IDA memory first, context last).
   ContextPtr ctx_;
   VectorPtr y_, yp_, id_, work_;

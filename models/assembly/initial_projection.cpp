@@ -15,9 +15,6 @@ namespace condyn {
 namespace {
 
 constexpr int kMaxIterations = 50;
-// A row counts as met when its residual is below this relative size (as build_model's initial
-// consistency check: hand-written decimals, a few hundred ulps of the terms).
-constexpr double kConsistencyTolerance = 1e-10;
 // Diagnosis of inconsistent given values: rows that involve no given value are weighted this much
 // more, so that the least-squares residual lands on the rows that do (and names them).
 constexpr double kHardRowWeight = 1e6;

@@ -21,6 +21,11 @@
 
 namespace condyn {
 
+/// A constraint row counts as met at the initial state when its residual is below this relative
+/// size: a scene writes initial values by hand in decimal, so a few hundred ulps of the terms'
+/// size is the right scale. Shared by build_model's consistency check and the projection.
+inline constexpr double kConsistencyTolerance = 1e-10;
+
 /// Thrown by project_initial_state when the given values leave constraints violated.
 class InconsistentGivenValues : public std::runtime_error {
  public:

@@ -14,14 +14,6 @@
 
 namespace condyn {
 
-namespace {
-
-// Initial conditions must satisfy the constraints to this relative accuracy: a scene writes them
-// by hand in decimal, so a few hundred ulps of the terms' size is the right scale.
-constexpr double kConsistencyTolerance = 1e-10;
-
-}  // namespace
-
 void ModelBuilder::build_initial() {
   const int n = model_.dofs();
   model_.u0 = base_u0_.size() == n ? base_u0_ : Eigen::VectorXd::Zero(n);

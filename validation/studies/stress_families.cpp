@@ -22,7 +22,7 @@ namespace condyn {
 
 namespace {
 
-std::string num(double v) {
+std::string full_precision(double v) {
   std::ostringstream s;
   s << std::setprecision(17) << v;
   return s.str();
@@ -37,7 +37,7 @@ std::string chain_scene(const std::string& name, const double (&k)[4], const dou
     << "\"x4\"]\nmass = [\n";
   for (int i = 0; i < 4; ++i) {
     s << "  [";
-    for (int j = 0; j < 4; ++j) s << (j ? ", " : "") << (i == j ? num(m[i]) : "0.0");
+    for (int j = 0; j < 4; ++j) s << (j ? ", " : "") << (i == j ? full_precision(m[i]) : "0.0");
     s << "],\n";
   }
   // K: ground spring k[0] on x1, k[i] between x_i and x_{i+1}.
@@ -52,7 +52,7 @@ std::string chain_scene(const std::string& name, const double (&k)[4], const dou
   s << "]\nstiffness = [\n";
   for (auto& row : K) {
     s << "  [";
-    for (int j = 0; j < 4; ++j) s << (j ? ", " : "") << num(row[j]);
+    for (int j = 0; j < 4; ++j) s << (j ? ", " : "") << full_precision(row[j]);
     s << "],\n";
   }
   s << "]\n[[load]]\ndof = \"x3\"\nvalue = { type = \"step\", amplitude = 1.0 }\n"
@@ -60,8 +60,8 @@ std::string chain_scene(const std::string& name, const double (&k)[4], const dou
     << "value = { type = \"harmonic\", amplitude = 0.1, omega = 1.0 }\n"
     << "[[constraint]]\nname = \"tie\"\nterms = { x4 = 1.0, x2 = -1.0 }\n"
     << "[initial]\nvelocity = { x1 = 0.1 }\n"
-    << "[solve]\nt_end = " << num(t_end) << "\noutput_step = " << num(t_end / 50)
-    << "\nrtol = 1e-8\natol = 1e-10\n";
+    << "[solve]\nt_end = " << full_precision(t_end)
+    << "\noutput_step = " << full_precision(t_end / 50) << "\nrtol = 1e-8\natol = 1e-10\n";
   return s.str();
 }
 
@@ -94,11 +94,12 @@ std::string four_bar_scene(double eps) {
   const double cx = px - h * (dy - by) / d, cy = py + h * (dx - bx) / d;
   std::ostringstream s;
   s << "name = \"four-bar near its change point, eps = " << eps << "\"\n[model]\n"
-    << "type = \"truss2d\"\nnodes = [[0.0, 0.0], [0.0, 1.0], [" << num(cx) << ", " << num(cy)
-    << "], [4.0, 0.0]]\nmasses = [0.0, 1.0, 1.0, 0.0]\nsupports = [1, 4]\n"
+    << "type = \"truss2d\"\nnodes = [[0.0, 0.0], [0.0, 1.0], [" << full_precision(cx) << ", "
+    << full_precision(cy) << "], [4.0, 0.0]]\nmasses = [0.0, 1.0, 1.0, 0.0]\nsupports = [1, 4]\n"
     << "members = [{ nodes = [1, 2], rigid = true }, { nodes = [2, 3], rigid = true }, "
     << "{ nodes = [3, 4], rigid = true }]\n"
-    << "[initial]\nvelocity = { ux2 = " << num(-2 * std::numbers::pi) << " }\nproject = true\n"
+    << "[initial]\nvelocity = { ux2 = " << full_precision(-2 * std::numbers::pi)
+    << " }\nproject = true\n"
     << "[solve]\nt_end = 1.0\noutput_step = 0.01\nrtol = 1e-8\natol = 1e-10\n";
   return s.str();
 }
@@ -113,8 +114,8 @@ std::string redundant_scene(double theta) {
     << "[[load]]\ndof = \"y\"\nvalue = { type = \"step\", amplitude = 1.0 }\n"
     << "[[load]]\ndof = \"z\"\nvalue = { type = \"step\", amplitude = 1.0 }\n"
     << "[[constraint]]\nname = \"first\"\nterms = { x = 1.0 }\n"
-    << "[[constraint]]\nname = \"second\"\nterms = { x = " << num(std::cos(theta))
-    << ", y = " << num(std::sin(theta)) << " }\n"
+    << "[[constraint]]\nname = \"second\"\nterms = { x = " << full_precision(std::cos(theta))
+    << ", y = " << full_precision(std::sin(theta)) << " }\n"
     << "[solve]\nt_end = 10.0\noutput_step = 0.1\nrtol = 1e-8\natol = 1e-10\n";
   return s.str();
 }
@@ -129,7 +130,8 @@ std::string long_scene(double periods) {
     << "stiffness = [[1.0, 0.0], [0.0, 1.0]]\n"
     << "[[constraint]]\nname = \"tie\"\nterms = { x2 = 1.0, x1 = -1.0 }\n"
     << "[initial]\ndisplacement = { x1 = 1.0, x2 = 1.0 }\n"
-    << "[solve]\nt_end = " << num(t_end) << "\noutput_step = " << num(t_end / 100)
+    << "[solve]\nt_end = " << full_precision(t_end)
+    << "\noutput_step = " << full_precision(t_end / 100)
     << "\nrtol = 1e-5\natol = 1e-7\n[output]\nquantities = [\"displacement\", \"drift\", "
     << "\"energy\"]\n";
   return s.str();
@@ -244,7 +246,7 @@ void add_penalty_weight_cases(CaseList& list) {
   for (int i = 0; i < truss.dofs(); ++i) kmax = std::max(kmax, truss.K->coeff(i, i));
   for (double f : {1e2, 1e4, 1e6, 1e8, 1e10, 1e12}) {
     list.add("penalty_weight", "w = " + scientific(f, 0) + " max K_ii", f,
-             chapter_truss("", solve + "penalty = { weight = " + num(f * kmax) + " }\n"),
+             chapter_truss("", solve + "penalty = { weight = " + full_precision(f * kmax) + " }\n"),
              {Scheme::penalty});
   }
 }
@@ -255,7 +257,7 @@ void add_baumgarte_cases(CaseList& list) {
   for (double f : {1.0, 1e1, 1e2, 1e3, 1e4, 1e6, 1e8, 1e10, 1e12}) {
     // The pendulum of period 2: its constraint is nonlinear, so there is drift to correct; its
     // frequency scale is 2π / period = π rad/s.
-    const std::string g = num(f * std::numbers::pi);
+    const std::string g = full_precision(f * std::numbers::pi);
     list.add("baumgarte_gains", "gains = " + scientific(f, 0) + " omega", f,
              "name = \"pendulum of period 2, Baumgarte gains " + scientific(f, 0) +
                  " x pi\"\n[model]\ntype = \"pendulum\"\n[solve]\nt_end = 2.0\n"
@@ -293,7 +295,7 @@ void add_high_frequency_cases(CaseList& list) {
   for (double f : {1.0, 10.0, 100.0, 1000.0}) {
     std::ostringstream loads;
     loads << "[[load]]\ndof = \"ux3\"\nvalue = { type = \"harmonic\", amplitude = 1.0, "
-          << "omega = " << num(f * omega) << " }\n[[load]]\ndof = \"uy3\"\n"
+          << "omega = " << full_precision(f * omega) << " }\n[[load]]\ndof = \"uy3\"\n"
           << "value = { type = \"step\", amplitude = 0.5, start = 1.0 }\n";
     list.add("high_frequency", "omega = " + scientific(f, 0) + " omega_max", f,
              chapter_truss(loads.str(),
