@@ -1,9 +1,9 @@
 // Elimination of nonlinear models by coordinate partitioning
-// (dae/formulations/partitioned_ode.hpp): the pendulum and the four-bar against GGL, the
-// constraints held to the Newton tolerance by construction, re-partitions where the first
-// partition's dependent block turns singular (the four-bar, Andrews' mechanism), the partition's
-// quality against a dense solve, the reactions from the full equations, a failure at a singular
-// position of the mechanism as data, and the refusal of nonholonomic rows.
+// (dae/formulations/partitioned_ode.hpp): the partition's quality against a dense solve, the
+// reactions from the full equations, a failure at a singular position of the mechanism as data,
+// the refusal of nonholonomic rows, GMRES on a long chain and against the dense Jacobian, a fully
+// driven mechanism. The long runs against GGL (the pendulum, the four-bar, its re-partitions,
+// Andrews' mechanism) are validation-tier cases: test_partitioned_elimination_validation.cpp.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -23,129 +23,12 @@
 #include "models/core/constraint_drift.hpp"
 #include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
+#include "tests/nonlinear_runs.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/references/accuracy.hpp"
 
 using namespace condyn;
-
-namespace {
-
-test::BuiltScene scene(const std::string& name, double t_end, double rtol) {
-  SceneSpec spec = parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name);
-  spec.solve.t_end = t_end;
-  spec.solve.output_step = t_end / 50;
-  spec.solve.rtol = rtol;
-  spec.solve.atol = rtol * 1e-2;
-  return test::built(spec);
-}
-
-/// The run's largest position drift over its output rows, each row's |φ_i| over its largest
-/// coefficient at t = 0 (a length: ConstraintDrift::relative_position).
-double row_drift(const Model& model, const Trajectory& run) {
-  ConstraintDrift drift(model);
-  double worst = 0.0;
-  for (std::size_t k = 0; k < run.t.size(); ++k) {
-    (void)drift(run.t[k], run.u.col(static_cast<Eigen::Index>(k)),
-                run.v.col(static_cast<Eigen::Index>(k)));
-    worst = std::max(worst, drift.relative_position());
-  }
-  return worst;
-}
-
-constexpr double kRtol = 1e-10;
-
-/// The Newton tolerance of a run at `atol` (default rtol/100, as scene() sets it): 1e-3 atol
-/// (elimination_run.cpp's kNewtonMargin), floored at 16 ulps of the coordinates' size
-/// (partitioned_ode.cpp's kRoundoffUlps; the largest of the run's |u| and the system's coordinate
-/// scale).
-double newton_tolerance(const Model& model, const Trajectory& run, double atol = kRtol * 1e-2) {
-  const double scale = std::max(run.u.cwiseAbs().maxCoeff(), model.system->coordinate_scale());
-  return std::max(1e-3 * atol, 16 * std::numeric_limits<double>::epsilon() * scale);
-}
-
-/// GGL at rtol 1e-12, atol 1e-14: the reference the partitioned runs are measured against.
-SolveSpec tight_ggl(const SolveSpec& solve) {
-  SolveSpec tight = test::under(solve, Scheme::ggl);
-  tight.rtol = 1e-12;
-  tight.atol = 1e-14;
-  return tight;
-}
-
-}  // namespace
-
-TEST_CASE("elimination by coordinate partitioning agrees with GGL on nonlinear scenes") {
-  // Over 2 s (the double pendulum is chaotic) at rtol 1e-10 (atol 1e-12) against GGL at rtol 1e-12
-  // (atol 1e-14), the bounds of the other schemes on these scenes
-  // (tests/validation/test_nonlinear_validation.cpp): 2e4 × rtol in u, v and the reactions (O(1)
-  // lengths, speeds and forces), 1e4 × rtol in energy. Observed: see the MESSAGE lines (-s).
-  for (const char* name : {"pendulum.toml", "four_bar.toml", "double_pendulum.toml"}) {
-    CAPTURE(std::string(name));
-    const test::BuiltScene built = scene(name, 2.0, kRtol);
-    const Model& model = built.model;
-    REQUIRE_FALSE(scheme_refusal(model, Scheme::elimination).has_value());
-    SolveSpec tight = tight_ggl(built.spec.solve);
-    const Trajectory ref = test::solved(model, tight).trajectory;
-    const SolveResult result =
-        test::solved(model, test::under(built.spec.solve, Scheme::elimination));
-    CHECK(result.scheme == Scheme::elimination);
-    const Trajectory& run = result.trajectory;
-    const TrajectoryError err = relative_error(run, ref);
-    const double energy = relative_energy_error(run);
-    const double drift = row_drift(model, run);
-    MESSAGE(std::string(name) << ": err u " << err.displacement << ", v " << err.velocity
-                              << ", reaction " << err.reaction << ", energy " << energy
-                              << ", drift " << drift << "; " << result.summary.notes_text());
-    CHECK(err.displacement < 2e4 * kRtol);
-    CHECK(err.velocity < 2e4 * kRtol);
-    CHECK(err.reaction < 2e4 * kRtol);
-    CHECK(energy >= 0.0);
-    CHECK(energy < 1e4 * kRtol);
-    // Every row holds to the Newton tolerance at every state the run reports, by construction
-    // (GGL's drift, for scale, is held at its own Newton tolerance near rtol).
-    CHECK(drift <= newton_tolerance(model, run));
-    CHECK(result.summary.notes_text().find("coordinate partitioning: ") != std::string::npos);
-  }
-}
-
-TEST_CASE("coordinate partitioning re-partitions where the first dependent block turns singular") {
-  // The crank of four_bar.toml turns fully (Grashof), so each of its tip's coordinates reaches an
-  // extreme, where it can no longer be solved for: the first partition's dependent block turns
-  // singular along the motion. Shown on GGL's reference run, then passed by elimination.
-  const test::BuiltScene built = scene("four_bar.toml", 2.0, kRtol);
-  const Model& model = built.model;
-  SolveSpec tight = tight_ggl(built.spec.solve);
-  tight.output_step = 1e-3;  // fine enough to sample the block's conditioning near its zero
-  const Trajectory ref = test::solved(model, tight).trajectory;
-  const PartitionedOde first(model, 0.0);
-  auto system = model.evaluator();
-  double smallest = 1.0;
-  for (std::size_t k = 0; k < ref.t.size(); ++k) {
-    const auto& A = system->constraint_jacobian(ref.t[k], ref.u.col(static_cast<Eigen::Index>(k)));
-    smallest = std::min(smallest, partition_quality(A, first.partition()));
-  }
-  // The partition's quality at t = 0 is of order 1; at the output closest to the singular
-  // position it is below 1e-2 (at 1 ms sampling, a crank at 6 rad/s passes within 0.006 rad of
-  // it); observed in the MESSAGE.
-  MESSAGE("first partition's smallest quality along the reference: " << smallest);
-  CHECK(smallest < 1e-2);
-
-  const SolveResult result =
-      test::solved(model, test::under(built.spec.solve, Scheme::elimination));
-  const std::string notes = result.summary.notes_text();
-  CAPTURE(notes);
-  CHECK(notes.find(" re-partition") != std::string::npos);
-  CHECK(notes.find("no re-partition") == std::string::npos);
-  // Through the passages the run stays with GGL's (bounds as above: 2e4 × rtol).
-  SolveSpec tight_rows = tight;
-  tight_rows.output_step = built.spec.solve.output_step;
-  const Trajectory ref_rows = test::solved(model, tight_rows).trajectory;
-  const TrajectoryError err = relative_error(result.trajectory, ref_rows);
-  MESSAGE("err u " << err.displacement << ", v " << err.velocity << ", reaction " << err.reaction);
-  CHECK(err.displacement < 2e4 * kRtol);
-  CHECK(err.velocity < 2e4 * kRtol);
-  CHECK(err.reaction < 2e4 * kRtol);
-  CHECK(row_drift(model, result.trajectory) <= newton_tolerance(model, result.trajectory));
-}
+using namespace condyn::test::nonlinear;
 
 TEST_CASE("coordinate partitioning: the reactions are the full equations' λ") {
   // The pendulum's unit mass on its horizontal rod of length 1, moving at 2 m/s across it: M u''
@@ -211,33 +94,6 @@ TEST_CASE(
   CHECK(result.failure->t_reached < 1.01);
   REQUIRE_FALSE(result.trajectory.t.empty());
   CHECK(result.trajectory.t.back() <= result.failure->t_reached);
-}
-
-TEST_CASE("coordinate partitioning passes the turning crank of Andrews' mechanism (IFToMM A03)") {
-  // body1 turns 2.5 times in the benchmark's 0.03 s. The first partition makes body1.uy (the sine
-  // of its angle) independent, and it reaches its extreme at t = 0.0091: there the run failed
-  // (CV_CONV_FAILURE, the Newton iteration finding no dependent coordinates past uy = 1) while
-  // the dependent block's pivot ratio decided, which a constant small pivot of the block kept
-  // within 13 % of its start up to the failure. The partition's quality falls like the cosine
-  // of the angle: the run re-partitions onto body1.ux before the extreme. Over 0.012 s, past it,
-  // at rtol 1e-10 against GGL at rtol 1e-12, within the first case's bounds (2e4 rtol).
-  const test::BuiltScene built = scene("iftomm/A03_andrews.toml", 0.012, kRtol);
-  const Model& model = built.model;
-  SolveSpec tight = tight_ggl(built.spec.solve);
-  const Trajectory ref = test::solved(model, tight).trajectory;
-  const SolveResult result =
-      test::solved(model, test::under(built.spec.solve, Scheme::elimination));
-  const std::string notes = result.summary.notes_text();
-  CAPTURE(notes);
-  CHECK(notes.find("independent of 28 coordinates at the start (body1.uy)") != std::string::npos);
-  CHECK(notes.find("(body1.ux independent, body1.uy dependent") != std::string::npos);
-  const TrajectoryError err = relative_error(result.trajectory, ref);
-  MESSAGE("A03: err u " << err.displacement << ", v " << err.velocity << ", reaction "
-                        << err.reaction << "; " << notes);
-  CHECK(err.displacement < 2e4 * kRtol);
-  CHECK(err.velocity < 2e4 * kRtol);
-  CHECK(err.reaction < 2e4 * kRtol);
-  CHECK(row_drift(model, result.trajectory) <= newton_tolerance(model, result.trajectory));
 }
 
 TEST_CASE("a partition's quality is 1/‖B‖₁, B = [I, −A_d⁻¹ A_i] stacked, against a dense solve") {

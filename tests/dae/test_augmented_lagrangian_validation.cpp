@@ -12,21 +12,14 @@
 #include "dae/run/scheme_choice.hpp"
 #include "dae/run/solve.hpp"
 #include "models/scene/scene_parser.hpp"
+#include "tests/nonlinear_runs.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/references/accuracy.hpp"
 
 using namespace condyn;
+using namespace condyn::test::nonlinear;
 
 namespace {
-
-test::BuiltScene scene(const std::string& name, double t_end, double rtol) {
-  SceneSpec spec = parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name);
-  spec.solve.t_end = t_end;
-  spec.solve.output_step = t_end / 50;
-  spec.solve.rtol = rtol;
-  spec.solve.atol = rtol * 1e-2;
-  return test::built(spec);
-}
 
 /// The N-four-bar of validation/references/iftomm/write_A02_scene.py (IFToMM A02) with N windows:
 /// N+1 upright cranks of 1 m on the ground pivots (i, 0), N horizontal couplers at y = 1, B0
@@ -90,18 +83,16 @@ Branch branch_at(int n, double t) {
 
 TEST_CASE("penalty on nonlinear scenes is the augmented Lagrangian and agrees with GGL") {
   // Over 2 s at rtol 1e-10 (atol 1e-12) against GGL at rtol 1e-12 (atol 1e-14), the bounds of
-  // the other schemes on these scenes (tests/dae/test_partitioned_elimination.cpp): 2e4 × rtol in
-  // u, v and the reactions (O(1) lengths, speeds and forces). Observed: see the MESSAGE lines.
-  constexpr double kRtol = 1e-10;
+  // the other schemes on these scenes (tests/dae/test_partitioned_elimination_validation.cpp): 2e4
+  // × rtol in u, v and the reactions (O(1) lengths, speeds and forces). Observed: see the MESSAGE
+  // lines.
   for (const char* name : {"pendulum.toml", "four_bar.toml"}) {
     CAPTURE(std::string(name));
     const test::BuiltScene built = scene(name, 2.0, kRtol);
     const Model& model = built.model;
     REQUIRE(model.is_nonlinear());
     REQUIRE_FALSE(scheme_refusal(model, Scheme::penalty).has_value());
-    SolveSpec tight = test::under(built.spec.solve, Scheme::ggl);
-    tight.rtol = 1e-12;
-    tight.atol = 1e-14;
+    const SolveSpec tight = tight_ggl(built.spec.solve);
     const Trajectory ref = test::solved(model, tight).trajectory;
     const SolveResult result = test::solved(model, test::under(built.spec.solve, Scheme::penalty));
     CHECK(result.scheme == Scheme::penalty);
