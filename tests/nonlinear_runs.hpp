@@ -40,6 +40,7 @@ inline double row_drift(const Model& model, const Trajectory& run) {
   return worst;
 }
 
+/// The rtol of the runs measured against tight_ggl (atol rtol/100, as scene() sets it).
 constexpr double kRtol = 1e-10;
 
 /// The Newton tolerance of a run at `atol` (default rtol/100, as scene() sets it): 1e-3 atol
