@@ -18,6 +18,11 @@ struct BuiltScene {
   BuildReport report;
 };
 
+/// A scene condyn ships (`path` below models/scenes/), read as a user's file is.
+inline SceneSpec shipped_scene(const std::string& path) {
+  return parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + path);
+}
+
 inline BuiltScene built(SceneSpec spec) {
   BuildReport report;
   Model model = build_model(spec, report);

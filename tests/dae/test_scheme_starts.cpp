@@ -1,5 +1,5 @@
-// Issue 10, items 3, 4 and 7: index3 starts from any configuration, index1 on mechanisms at tight
-// tolerances, Baumgarte gains from the model's own time scales.
+// Issue 10, items 3 and 7: index3 starts from any configuration, Baumgarte gains from the model's
+// own time scales (item 4, index1 at a tight tolerance, is in test_scheme_starts_validation.cpp).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -41,7 +41,7 @@ std::string pendulum(const std::vector<double>& mass_at, const std::string& solv
 }
 
 test::BuiltScene scene_file(const std::string& name, double t_end, double rtol) {
-  SceneSpec spec = parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name);
+  SceneSpec spec = test::shipped_scene(name);
   spec.solve.t_end = t_end;
   spec.solve.rtol = rtol;
   return test::built(spec);
@@ -83,25 +83,6 @@ TEST_CASE("index3 starts a pendulum released from rest at any angle, length and 
       CHECK(relative_error(run.trajectory, ref.trajectory).displacement < 1e4 * 1e-8);
     }
   }
-}
-
-TEST_CASE("index1 on a mechanism at a tight tolerance: steps of the order of GGL's") {
-  // The slider-crank at rtol 1e-10 took 316,635 steps under index1 (40,595 Newton and 39,213
-  // error-test failures) against GGL's 9,870: λ was in the local error test. λ is an index-1
-  // function of (u, v) whose error estimate carries the drift index1 lets grow; out of the test
-  // (as under Baumgarte) index1 takes 4,643 steps and is more accurate. The bound: index1 within
-  // a factor 2 of GGL's steps (it has fewer unknowns and no μ; observed 0.63).
-  const test::BuiltScene scene = scene_file("slider_crank.toml", 5.0, 1e-10);
-  const SolveResult r1 = test::solved(scene.model, test::under(scene.spec.solve, Scheme::index1));
-  const SolveResult rg = test::solved(scene.model, test::under(scene.spec.solve, Scheme::ggl));
-  const SolveSummary &s1 = r1.summary, &sg = rg.summary;
-  const Trajectory &a = r1.trajectory, &b = rg.trajectory;
-  MESSAGE("index1 " << s1.steps << " steps, ggl " << sg.steps);
-  CHECK(s1.steps < 2 * sg.steps);
-  // index1 drifts (nothing holds φ): its u error against GGL is the drift's, observed 6.6e-6
-  // (max-norm, lengths of order 1; 3.3e-6 in the last run); before, 1.9e-4. 1e-4 = 1e6 × rtol is
-  // not a multiple of rtol by principle: it separates the two (the drift of an unheld φ).
-  CHECK(relative_error(a, b).displacement < 1e-4);
 }
 
 TEST_CASE("Baumgarte's default gains come from the model, not from output_step") {

@@ -15,9 +15,9 @@
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/run/solve.hpp"
 #include "models/scene/scene_parser.hpp"
+#include "tests/si_shear_frame.hpp"
 #include "tests/solve_helpers.hpp"
 #include "validation/references/accuracy.hpp"
-#include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
 
@@ -26,91 +26,7 @@ namespace {
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-/// The frame with masses and stiffnesses multiplied by `scale` (1: kg and N/m; 1e-3: t and kN/m,
-/// the same model in other units: displacements unchanged, forces times 1e-3).
-std::string shear_frame(double scale, const std::string& extra_solve = "") {
-  // DOFs: base, floors 1-4, the top floor's two halves (tied by the rigid-floor MFC).
-  const double m[7] = {1e4, 2e4, 1.5e4, 1.2e4, 8e3, 2.5e3, 2.5e3};
-  struct Spring {
-    int i, j;
-    double k;
-  };
-  const Spring springs[6] = {{0, 1, 1e7}, {1, 2, 8e6}, {2, 3, 5e6},
-                             {3, 4, 3e6}, {4, 5, 5e5}, {4, 6, 5e5}};
-  double K[7][7] = {};
-  for (const Spring& s : springs) {
-    K[s.i][s.i] += s.k;
-    K[s.j][s.j] += s.k;
-    K[s.i][s.j] -= s.k;
-    K[s.j][s.i] -= s.k;
-  }
-  std::ostringstream t;
-  t.precision(17);
-  t << "[model]\ntype = \"matrix\"\ndofs = [\"ub\", \"u1\", \"u2\", \"u3\", \"u4\", \"u5a\", "
-       "\"u5b\"]\nmass = [";
-  for (int i = 0; i < 7; ++i) {
-    t << (i ? ", " : "") << "[";
-    for (int j = 0; j < 7; ++j) t << (j ? ", " : "") << (i == j ? m[i] * scale : 0.0);
-    t << "]";
-  }
-  t << "]\nstiffness = [";
-  for (int i = 0; i < 7; ++i) {
-    t << (i ? ", " : "") << "[";
-    for (int j = 0; j < 7; ++j) t << (j ? ", " : "") << K[i][j] * scale;
-    t << "]";
-  }
-  // Base motion 0.02 sin(8 t) m, so v_b(0) = 0.16 m/s.
-  t << "]\n[[constraint]]\nname = \"base\"\nterms = { ub = 1.0 }\n"
-       "value = { type = \"harmonic\", amplitude = 0.02, omega = 8.0 }\n"
-       "[[constraint]]\nname = \"floor\"\nterms = { u5a = 1.0, u5b = -1.0 }\n"
-       "[initial]\nvelocity = { ub = 0.16 }\n"
-       "[solve]\nt_end = 2.0\noutput_step = 0.05\n"
-    << extra_solve;
-  return t.str();
-}
-
-test::BuiltScene frame(double scale, double rtol, const std::string& extra_solve = "") {
-  SceneSpec spec = parse_scene_text(shear_frame(scale, extra_solve), "shear frame");
-  spec.solve.rtol = rtol;
-  return test::built(spec);
-}
-
 }  // namespace
-
-TEST_CASE("SI shear frame: every scheme starts and agrees with the exact solution") {
-  // rtol 1e-4 … 1e-10. First with the default atol (1e-10 m), where index1 failed at t = 0: every
-  // scheme must reach t_end. Then with atol = 1e-2 rtol (m: the base amplitude is 2e-2 m, so the
-  // displacements' atol does not cap the accuracy), against the closed-form modal solution
-  // (validation/references/exact_solution.hpp), relative to the largest displacement: 200 × rtol
-  // bounds the global error of a BDF run over 2 s and ~8 periods of the base motion (observed up to
-  // 101 × rtol, by index3 at rtol 1e-10; the others up to 36 × rtol). Penalty is left out: its
-  // error is |f_con|/w by design.
-  for (const double rtol : {1e-4, 1e-6, 1e-8, 1e-10}) {
-    CAPTURE(rtol);
-    const test::BuiltScene scene = frame(1.0, rtol);
-    const Model& model = scene.model;
-    SolveSpec tight = scene.spec.solve;
-    tight.atol = rtol * 1e-2;
-    const Trajectory exact = exact_trajectory(model, scene.spec.solve.output_times());
-    // penalty too must start (its accuracy is w's, not rtol's)
-    CHECK(solve(model, test::under(scene.spec.solve, Scheme::penalty)).ok());
-    for (const Scheme scheme : {Scheme::elimination, Scheme::index1, Scheme::baumgarte, Scheme::ggl,
-                                Scheme::index2, Scheme::index3, Scheme::projection}) {
-      CAPTURE(std::string(to_string(scheme)));
-      const SolveResult loose = solve(model, test::under(scene.spec.solve, scheme));
-      REQUIRE(loose.ok());
-      const SolveResult tight_run = solve(model, test::under(tight, scheme));
-      REQUIRE(tight_run.ok());
-      const SolveSummary &summary = loose.summary, &tight_summary = tight_run.summary;
-      const Trajectory& run = tight_run.trajectory;
-      const TrajectoryError err = relative_error(run, exact);
-      MESSAGE(std::string(to_string(scheme))
-              << " rtol " << rtol << ": " << summary.steps << " steps (default atol), "
-              << tight_summary.steps << " (atol 1e-2 rtol), err u " << err.displacement);
-      CHECK(err.displacement < 200.0 * rtol);
-    }
-  }
-}
 
 TEST_CASE("the same frame in other units: the same motion, forces scaled, about the same steps") {
   // Masses and stiffnesses × 1e-3 (t and kN/m instead of kg and N/m): displacements are the same,
@@ -119,7 +35,8 @@ TEST_CASE("the same frame in other units: the same motion, forces scaled, about 
   // steering a step decision; with one scalar atol the SI frame did not start at all).
   for (const Scheme scheme : {Scheme::index1, Scheme::ggl, Scheme::index3}) {
     CAPTURE(std::string(to_string(scheme)));
-    const test::BuiltScene si = frame(1.0, 1e-8), kn = frame(1e-3, 1e-8);
+    const test::BuiltScene si = test::si_shear_frame_built(1.0, 1e-8),
+                           kn = test::si_shear_frame_built(1e-3, 1e-8);
     const SolveResult r_si = test::solved(si.model, test::under(si.spec.solve, scheme));
     const SolveResult r_kn = test::solved(kn.model, test::under(kn.spec.solve, scheme));
     const SolveSummary &s_si = r_si.summary, &s_kn = r_kn.summary;
@@ -139,7 +56,7 @@ TEST_CASE("the same frame in other units: the same motion, forces scaled, about 
 }
 
 TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solve] keys") {
-  const test::BuiltScene scene = frame(1.0, 1e-6);
+  const test::BuiltScene scene = test::si_shear_frame_built(1.0, 1e-6);
   const Model& model = scene.model;
   const AbsoluteTolerances a = absolute_tolerances(model, scene.spec.solve);
   const ModelScales s = model_scales(model);
@@ -157,8 +74,8 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
   CHECK(s.mass ==
         doctest::Approx((1e4 + 2e4 + 1.5e4 + 1.2e4 + 8e3 + 2.5e3 + 2.5e3) / 7).epsilon(8 * kEps));
 
-  const test::BuiltScene set =
-      frame(1.0, 1e-6, "atol_velocity = 1e-7\natol_multiplier = 1e-3\natol_mu = 2e-9\n");
+  const test::BuiltScene set = test::si_shear_frame_built(
+      1.0, 1e-6, "atol_velocity = 1e-7\natol_multiplier = 1e-3\natol_mu = 2e-9\n");
   const IntegratorSettings o = integrator_settings(set.model, set.spec.solve);
   CHECK(o.atol_of(UnknownKind::displacement) == 1e-10);
   CHECK(o.atol_of(UnknownKind::velocity) == 1e-7);
@@ -205,7 +122,8 @@ TEST_CASE("absolute tolerances per kind: defaults from the model's scales, [solv
     for (const char* bad : {"0.0", "-1e-6", "nan", "inf", "\"small\""}) {
       CAPTURE(std::string(bad));
       try {
-        (void)parse_scene_text(shear_frame(1.0, std::string(key) + " = " + bad + "\n"), "bad");
+        (void)parse_scene_text(test::si_shear_frame(1.0, std::string(key) + " = " + bad + "\n"),
+                               "bad");
         FAIL("accepted");
       } catch (const std::exception& e) {
         CHECK(std::string(e.what()).find(std::string("solve.") + key) != std::string::npos);

@@ -29,9 +29,7 @@ namespace {
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-test::BuiltScene scene(const std::string& name) {
-  return test::built(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name));
-}
+test::BuiltScene scene(const std::string& name) { return test::built(test::shipped_scene(name)); }
 
 /// A generic state: u0 plus a perturbation, nonzero velocities, accelerations and multipliers.
 struct State {
@@ -173,27 +171,6 @@ TEST_CASE("initial projection: the four-bar's crank speed becomes a consistent s
   const std::string error = build_error(text);
   CHECK(error.find("initial velocities violate constraint 'rigid_2_3'") != std::string::npos);
   CHECK(error.find("project = true") != std::string::npos);
-}
-
-TEST_CASE("nonlinear scenes: energy is conserved by the schemes that hold the constraints") {
-  const test::BuiltScene built = scene("pendulum.toml");
-  const Model& model = built.model;
-  SolveSpec settings = built.spec.solve;
-  settings.rtol = 1e-10;
-  settings.atol = 1e-12;
-  for (Scheme scheme : {Scheme::ggl, Scheme::index3, Scheme::projection}) {
-    CAPTURE(std::string(to_string(scheme)));
-    const SolveResult result = test::solved(model, test::under(settings, scheme));
-    const Trajectory& traj = result.trajectory;
-    const SolveSummary& summary = result.summary;
-    REQUIRE(traj.energy.size() == static_cast<Eigen::Index>(traj.t.size()));
-    // 10 s (about 5 swings) at rtol 1e-10: the energy error stays at the integration error, 1e4 ×
-    // rtol over this run (observed up to 6.8e-8), 1e5 × under index3, the least accurate per
-    // tolerance (observed 2.6e-6; 4.7e-6 before). The rod length (1 m) is held at the Newton
-    // tolerance, a fraction of rtol per step: 100 × rtol (observed up to 2.3e-10).
-    CHECK(relative_energy_error(traj) < (scheme == Scheme::index3 ? 1e5 : 1e4) * 1e-10);
-    CHECK(summary.max_drift_position < 100 * 1e-10);
-  }
 }
 
 TEST_CASE("nonlinear scene errors name the key and the problem") {

@@ -25,9 +25,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // The acceptance level: agreement to 1e-6 relative at rtol = 1e-10.
 constexpr double kAcceptance = 1e-6;
 
-test::BuiltScene scene(const std::string& name) {
-  return test::built(parse_scene_file(std::string(CONDYN_SOURCE_DIR) + "/models/scenes/" + name));
-}
+test::BuiltScene scene(const std::string& name) { return test::built(test::shipped_scene(name)); }
 
 }  // namespace
 
