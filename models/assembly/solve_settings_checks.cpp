@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "models/assembly/model_builder.hpp"
-#include "models/core/eigen_decompositions.hpp"
 #include "models/core/linear_system.hpp"
 #include "models/core/master_slave.hpp"
 #include "models/core/nearest_names.hpp"
+#include "models/core/singular_values.hpp"
 
 namespace condyn {
 
@@ -190,8 +190,8 @@ void ModelBuilder::check_slaves() const {
       a_s(it.row(), k) = it.value();
     names += (k ? ", " : "") + slaves[static_cast<std::size_t>(k)];
   }
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(a_s);
-  const double smax = svd.singularValues()(0), smin = svd.singularValues()(m - 1);
+  const Eigen::VectorXd sv = singular_values(a_s);
+  const double smax = sv(0), smin = sv(m - 1);
   if (!(smin > smax / kMaxSlaveCondition)) {
     fail({"solve.slaves", line}, "the slaves " + names +
                                      " do not determine the constraints (condition number of their "

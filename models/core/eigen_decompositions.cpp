@@ -1,8 +1,6 @@
 // The definitions of the instances eigen_decompositions.hpp declares (its comment says why).
 #include "models/core/eigen_decompositions.hpp"
 
-template class Eigen::BDCSVD<Eigen::MatrixXd>;
-template class Eigen::JacobiSVD<Eigen::MatrixXd>;
 template class Eigen::ColPivHouseholderQR<Eigen::MatrixXd>;
 template class Eigen::HouseholderQR<Eigen::MatrixXd>;
 template class Eigen::FullPivLU<Eigen::MatrixXd>;

@@ -4,7 +4,7 @@
 ///
 /// A class template's members are compiled wherever they are used, and these are among the most
 /// expensive in the build: under the sanitized build's flags one translation unit that uses
-/// BDCSVD spends over a minute on it, SelfAdjointEigenSolver or SparseLU half a minute
+/// SelfAdjointEigenSolver or SparseLU spends half a minute on it
 /// (docs/benchmarks.md, "The test command"). An explicit instantiation declaration (`extern
 /// template`) tells each user the members exist elsewhere; the .cpp defines them. Results are
 /// unchanged: the same code, compiled with the same flags, in one place.
@@ -13,22 +13,19 @@
 /// (scripts/check_eigen_instances.cmake checks it at every build). The members declared here are
 /// the ones computed from a MatrixXd or a SparseMatrix<double> (an lvalue of that type, not an
 /// expression: a decomposition computed from an expression compiles its own copy, correct but
-/// slow).
+/// slow). Singular values come from LAPACK (models/core/singular_values.hpp), not from Eigen's
+/// SVDs.
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
 
 namespace condyn::eigen_instances {
-using Dense = Eigen::MatrixXd;
-using Sparse = Eigen::SparseMatrix<double>;
-using LdltBase = Eigen::SimplicialCholeskyBase<Eigen::SimplicialLDLT<Sparse>>;
+using LdltBase = Eigen::SimplicialCholeskyBase<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>;
 }  // namespace condyn::eigen_instances
 
 // Classes whose work is done by members that are not templates (compute, computeInPlace,
 // factorize, analyzePattern): the class's declaration covers them.
-extern template class Eigen::BDCSVD<Eigen::MatrixXd>;
-extern template class Eigen::JacobiSVD<Eigen::MatrixXd>;
 extern template class Eigen::ColPivHouseholderQR<Eigen::MatrixXd>;
 extern template class Eigen::HouseholderQR<Eigen::MatrixXd>;
 extern template class Eigen::FullPivLU<Eigen::MatrixXd>;

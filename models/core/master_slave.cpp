@@ -9,6 +9,7 @@
 
 #include "models/core/constraint_groups.hpp"
 #include "models/core/eigen_decompositions.hpp"
+#include "models/core/singular_values.hpp"
 
 namespace condyn {
 
@@ -137,8 +138,7 @@ double solve_group(const RowMajor& a, const ConstraintGroup& g, const DofPlaces&
   }
   const Eigen::MatrixXd normalised = inverse_norm.asDiagonal() * block(a, g.rows, slaves_in, local);
   const Eigen::MatrixXd a_r = inverse_norm.asDiagonal() * block(a, g.rows, masters_in, local);
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(normalised);
-  const auto& sv = svd.singularValues();
+  const Eigen::VectorXd sv = singular_values(normalised);
   const double smin = sv(sv.size() - 1);
   const double condition = smin > 0.0 ? sv(0) / smin : INFINITY;
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(normalised);

@@ -22,6 +22,7 @@
 #include "dae/run/solve.hpp"
 #include "models/core/constraint_drift.hpp"
 #include "models/core/eigen_decompositions.hpp"
+#include "models/core/singular_values.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/nonlinear_runs.hpp"
 #include "tests/solve_helpers.hpp"
@@ -128,8 +129,7 @@ TEST_CASE("a partition's quality is 1/‖B‖₁, B = [I, −A_d⁻¹ A_i] stack
         ai.col(static_cast<Eigen::Index>(j)) = A.col(p.independent[j]);
       const Eigen::MatrixXd X = ad.partialPivLu().solve(ai);
       const double dense = 1.0 / (1.0 + X.cwiseAbs().colwise().sum().maxCoeff());
-      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(ad);
-      const Eigen::VectorXd& sv = svd.singularValues();
+      const Eigen::VectorXd sv = singular_values(ad);
       const double roundoff =
           64 * std::numeric_limits<double>::epsilon() * sv(0) / sv(sv.size() - 1);
       const double quality = partition_quality(

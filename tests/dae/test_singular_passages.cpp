@@ -3,7 +3,7 @@
 // branch, and the N-four-bar's change of branch under index2 reported where projection stays.
 #include <doctest/doctest.h>
 
-#include <Eigen/SVD>
+#include <Eigen/Dense>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -11,7 +11,7 @@
 #include <string>
 
 #include "dae/run/singular_passages.hpp"
-#include "models/core/eigen_decompositions.hpp"
+#include "models/core/singular_values.hpp"
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
@@ -54,7 +54,7 @@ double dense_conditioning(condyn::MechanicalSystem& system, const Eigen::VectorX
     A.col(j) /= std::sqrt(mass[j] > 0.0 ? mass[j] : lightest);
   }
   for (Eigen::Index i = 0; i < A.rows(); ++i) A.row(i).normalize();
-  return Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues().minCoeff();
+  return condyn::singular_values(A).minCoeff();
 }
 
 /// The largest distance over the rows between the displacements of nodes i and j: 0 while the

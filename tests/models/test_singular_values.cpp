@@ -1,0 +1,71 @@
+// Singular values by LAPACK's dgesdd (models/core/singular_values.hpp): against matrices built from
+// known singular values, U diag(σ) Vᵀ with U and V orthogonal (Householder reflections, so the
+// construction itself needs no SVD).
+#include <doctest/doctest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "models/core/singular_values.hpp"
+
+using namespace condyn;
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// The Householder reflection I − 2 w wᵀ / wᵀw of w = (1, 2, ..., n) + shift: orthogonal.
+Eigen::MatrixXd reflection(Eigen::Index n, double shift) {
+  const Eigen::VectorXd w =
+      Eigen::VectorXd::LinSpaced(n, 1.0, static_cast<double>(n)).array() + shift;
+  return Eigen::MatrixXd::Identity(n, n) - 2.0 * w * w.transpose() / w.squaredNorm();
+}
+
+/// An m x n matrix whose singular values are `sigma` (min(m, n) of them).
+Eigen::MatrixXd with_singular_values(Eigen::Index m, Eigen::Index n, const Eigen::VectorXd& sigma) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(m, n);
+  d.diagonal() = sigma;
+  return reflection(m, 0.5) * d * reflection(n, -0.25);
+}
+
+}  // namespace
+
+TEST_CASE("singular_values: known values of square and rectangular matrices, largest first") {
+  const std::pair<Eigen::Index, Eigen::Index> shapes[] = {{1, 1}, {4, 4}, {6, 3}, {3, 7}, {40, 40}};
+  for (const auto& shape : shapes) {
+    const Eigen::Index m = shape.first, n = shape.second;
+    CAPTURE(m);
+    CAPTURE(n);
+    const Eigen::Index k = std::min(m, n);
+    // Spread over twelve decades: the small ones are what a condition number needs.
+    Eigen::VectorXd sigma(k);
+    for (Eigen::Index i = 0; i < k; ++i)
+      sigma[i] = std::pow(10.0, -12.0 * i / std::max<Eigen::Index>(1, k - 1));
+    const Eigen::VectorXd s = singular_values(with_singular_values(m, n, sigma));
+    REQUIRE(s.size() == k);
+    // A backward-stable SVD errs by a few eps times the largest value (here 1), absolutely; the
+    // construction's own roundoff is of the same size: 100 eps.
+    for (Eigen::Index i = 0; i < k; ++i) {
+      CAPTURE(i);
+      CHECK(std::abs(s[i] - sigma[i]) <= 100 * kEps);
+      if (i > 0) CHECK(s[i] <= s[i - 1]);
+    }
+  }
+}
+
+TEST_CASE("singular_values: a rank-deficient block, an empty one, and a value not finite") {
+  // Two equal rows: the smallest value is 0 to roundoff of the largest.
+  Eigen::MatrixXd a(3, 3);
+  a << 1.0, 2.0, 3.0, 1.0, 2.0, 3.0, 0.0, 1.0, -1.0;
+  const Eigen::VectorXd s = singular_values(a);
+  CHECK(s[2] <= 10 * kEps * s[0]);
+  // ‖a‖_F² is the sum of the squares of the values.
+  CHECK(s.squaredNorm() == doctest::Approx(a.squaredNorm()).epsilon(10 * kEps));
+  CHECK(singular_values(Eigen::MatrixXd(0, 3)).size() == 0);
+  a(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS((void)singular_values(a), std::runtime_error);
+}
