@@ -13,6 +13,7 @@ import figure_style
 import plot_result
 from layout import problems
 
+plot_result.pyplot()  # the figure functions' shared style, which main imports after reading input
 CONDYN = os.environ.get("CONDYN_BINARY", "build/condyn")
 T = np.linspace(0.0, 1.0, 5)
 
