@@ -4,7 +4,6 @@
 template class Eigen::ColPivHouseholderQR<Eigen::MatrixXd>;
 template class Eigen::HouseholderQR<Eigen::MatrixXd>;
 template class Eigen::FullPivLU<Eigen::MatrixXd>;
-template class Eigen::PartialPivLU<Eigen::MatrixXd>;
 template class Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>;
 template class Eigen::SparseLU<Eigen::SparseMatrix<double>>;
 template class Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>;

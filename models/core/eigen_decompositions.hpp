@@ -29,7 +29,6 @@ using LdltBase = Eigen::SimplicialCholeskyBase<Eigen::SimplicialLDLT<Eigen::Spar
 extern template class Eigen::ColPivHouseholderQR<Eigen::MatrixXd>;
 extern template class Eigen::HouseholderQR<Eigen::MatrixXd>;
 extern template class Eigen::FullPivLU<Eigen::MatrixXd>;
-extern template class Eigen::PartialPivLU<Eigen::MatrixXd>;
 extern template class Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>;
 extern template class Eigen::SparseLU<Eigen::SparseMatrix<double>>;
 // Classes whose work is done by a member template: that member, computed from the plain type.

@@ -204,7 +204,7 @@ atol = 1e-10
   kkt.topLeftCorner(n, n) = Eigen::MatrixXd(model.M);
   kkt.topRightCorner(n, m) = Eigen::MatrixXd(model.A).transpose();
   kkt.bottomLeftCorner(m, n) = Eigen::MatrixXd(model.A);
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(kkt);
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
   for (Scheme scheme : {Scheme::ggl, Scheme::index3}) {
     const std::string name = to_string(scheme);
     CAPTURE(name);

@@ -80,7 +80,7 @@ Condensed condense(const Model& full) {
     return B;
   };
   const Eigen::MatrixXd Khh = block(K, c.h, c.h), Krh = block(K, c.r, c.h);
-  Eigen::MatrixXd Kt = block(K, c.r, c.r) - Krh * Khh.lu().solve(Krh.transpose());
+  Eigen::MatrixXd Kt = block(K, c.r, c.r) - Krh * Khh.fullPivLu().solve(Krh.transpose());
   // Symmetric to roundoff; the scene must be exactly so, and entries of roundoff size are zeros.
   Kt = (0.5 * (Kt + Kt.transpose())).eval();
   const double tiny = 1e-13 * Kt.cwiseAbs().maxCoeff();
@@ -89,9 +89,9 @@ Condensed condense(const Model& full) {
   Eigen::VectorXd eh = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(c.h.size()));
   for (std::size_t k = 0; k < c.h.size(); ++k)
     if (c.h[k] == uy7) eh[static_cast<Eigen::Index>(k)] = -20.0;  // the load's amplitude
-  const Eigen::VectorXd carried = -Krh * Khh.lu().solve(eh);
-  c.recover = -Khh.lu().solve(Krh.transpose());
-  c.recover_f = Khh.lu().solve(eh);
+  const Eigen::VectorXd carried = -Krh * Khh.fullPivLu().solve(eh);
+  c.recover = -Khh.fullPivLu().solve(Krh.transpose());
+  c.recover_f = Khh.fullPivLu().solve(eh);
 
   const Eigen::VectorXd gravity = full.applied_forces(0.0);  // before the step
   std::ostringstream s;
