@@ -1,14 +1,16 @@
-// Singular values by LAPACK's dgesdd from OpenBLAS, loaded on first use
-// (models/core/singular_values.hpp says why).
+// Singular values: small blocks by a symmetric eigenvalue problem, larger ones by LAPACK's dgesdd
+// from OpenBLAS, loaded on first use (models/core/singular_values.hpp says why).
 
 #include "models/core/singular_values.hpp"
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "models/core/eigen_decompositions.hpp"
 #include "models/core/load_library.hpp"
 
 #ifndef CONDYN_OPENBLAS_SONAME
@@ -42,17 +44,23 @@ Dgesdd dgesdd() {
   return f;
 }
 
-}  // namespace
-
-Eigen::VectorXd singular_values(Eigen::MatrixXd a) {
-  const int m = static_cast<int>(a.rows()), n = static_cast<int>(a.cols());
-  const int k = std::min(m, n);
-  Eigen::VectorXd s(k);
-  if (k == 0) return s;
+void require_finite(const Eigen::MatrixXd& a) {
   if (!a.allFinite()) {
     throw std::runtime_error("singular values of a matrix that holds a value that is not finite");
   }
-  const Dgesdd f = dgesdd();
+}
+
+/// dgesdd's values of `a` (overwritten), or nothing when OpenBLAS cannot be loaded.
+std::optional<Eigen::VectorXd> lapack_singular_values(Eigen::MatrixXd& a) {
+  Dgesdd f = nullptr;
+  try {
+    f = dgesdd();
+  } catch (const LibraryUnavailable&) {
+    return std::nullopt;
+  }
+  const int m = static_cast<int>(a.rows()), n = static_cast<int>(a.cols());
+  const int k = std::min(m, n);
+  Eigen::VectorXd s(k);
   const char jobz = 'N';  // the values only: U and Vᵀ are not referenced
   const int lda = std::max(1, m), one = 1;
   double unused = 0.0;  // U and Vᵀ's place
@@ -73,6 +81,33 @@ Eigen::VectorXd singular_values(Eigen::MatrixXd a) {
                              (info > 0 ? ": the divide and conquer did not converge)" : ")"));
   }
   return s;
+}
+
+}  // namespace
+
+Eigen::VectorXd symmetric_singular_values(const Eigen::MatrixXd& a) {
+  const Eigen::Index m = a.rows(), n = a.cols(), k = std::min(m, n);
+  if (k == 0) return Eigen::VectorXd(0);
+  require_finite(a);
+  // [0 A; Aᵀ 0] has the eigenvalues ±σ_i and |m − n| zeros: the k largest are the σ_i, in
+  // ascending order (an exact zero σ may come out as −eps σ_max: clamped).
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(m + n, m + n);
+  w.topRightCorner(m, n) = a;
+  w.bottomLeftCorner(n, m) = a.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(w, Eigen::EigenvaluesOnly);
+  const Eigen::VectorXd& lambda = eig.eigenvalues();
+  Eigen::VectorXd s(k);
+  for (Eigen::Index i = 0; i < k; ++i) s[i] = std::max(0.0, lambda[m + n - 1 - i]);
+  return s;
+}
+
+Eigen::VectorXd singular_values(Eigen::MatrixXd a) {
+  if (std::min(a.rows(), a.cols()) <= kSymmetricSingularValuesMax) {
+    return symmetric_singular_values(a);
+  }
+  require_finite(a);
+  if (auto s = lapack_singular_values(a)) return *s;
+  return symmetric_singular_values(a);  // without OpenBLAS: the same values, more slowly
 }
 
 }  // namespace condyn

@@ -1,6 +1,7 @@
-// Singular values by LAPACK's dgesdd (models/core/singular_values.hpp): against matrices built from
-// known singular values, U diag(σ) Vᵀ with U and V orthogonal (Householder reflections, so the
-// construction itself needs no SVD).
+// Singular values (models/core/singular_values.hpp), by the symmetric eigenvalue path (small
+// blocks) and by LAPACK's dgesdd (large ones): against matrices built from known singular values, U
+// diag(σ) Vᵀ with U and V orthogonal (Householder reflections, so the construction itself needs no
+// SVD).
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
@@ -35,7 +36,8 @@ Eigen::MatrixXd with_singular_values(Eigen::Index m, Eigen::Index n, const Eigen
 }  // namespace
 
 TEST_CASE("singular_values: known values of square and rectangular matrices, largest first") {
-  const std::pair<Eigen::Index, Eigen::Index> shapes[] = {{1, 1}, {4, 4}, {6, 3}, {3, 7}, {40, 40}};
+  const std::pair<Eigen::Index, Eigen::Index> shapes[] = {
+      {1, 1}, {4, 4}, {6, 3}, {3, 7}, {40, 40}, {150, 150}, {160, 120}, {101, 130}};
   for (const auto& shape : shapes) {
     const Eigen::Index m = shape.first, n = shape.second;
     CAPTURE(m);
@@ -57,15 +59,36 @@ TEST_CASE("singular_values: known values of square and rectangular matrices, lar
   }
 }
 
+TEST_CASE("singular_values: the symmetric path and LAPACK's agree on a block LAPACK takes") {
+  Eigen::VectorXd sigma(120);
+  for (Eigen::Index i = 0; i < sigma.size(); ++i) sigma[i] = std::pow(10.0, -0.1 * i);
+  const Eigen::MatrixXd a = with_singular_values(150, 120, sigma);
+  REQUIRE(std::min(a.rows(), a.cols()) > kSymmetricSingularValuesMax);
+  const Eigen::VectorXd lapack = singular_values(a), symmetric = symmetric_singular_values(a);
+  REQUIRE(lapack.size() == 120);
+  REQUIRE(symmetric.size() == 120);
+  // Both backward stable: each within a few eps of σ_max = 1 of the exact values.
+  CHECK((lapack - symmetric).cwiseAbs().maxCoeff() <= 100 * kEps);
+}
+
 TEST_CASE("singular_values: a rank-deficient block, an empty one, and a value not finite") {
   // Two equal rows: the smallest value is 0 to roundoff of the largest.
-  Eigen::MatrixXd a(3, 3);
-  a << 1.0, 2.0, 3.0, 1.0, 2.0, 3.0, 0.0, 1.0, -1.0;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(3, 3);
+  a.row(0) << 1.0, 2.0, 3.0;
+  a.row(1) = a.row(0);
+  a.row(2) << 0.0, 1.0, -1.0;
   const Eigen::VectorXd s = singular_values(a);
   CHECK(s[2] <= 10 * kEps * s[0]);
   // ‖a‖_F² is the sum of the squares of the values.
   CHECK(s.squaredNorm() == doctest::Approx(a.squaredNorm()).epsilon(10 * kEps));
   CHECK(singular_values(Eigen::MatrixXd(0, 3)).size() == 0);
+  // Two equal columns of a block LAPACK takes.
+  Eigen::MatrixXd wide = Eigen::MatrixXd::Zero(110, 110);
+  wide.diagonal().setOnes();
+  wide.col(7) = wide.col(3);
+  CHECK(singular_values(wide)[109] <= 10 * kEps);
   a(1, 1) = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS((void)singular_values(a), std::runtime_error);
+  wide(5, 5) = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS((void)singular_values(wide), std::runtime_error);
 }
