@@ -86,18 +86,28 @@ std::optional<Eigen::VectorXd> lapack_singular_values(Eigen::MatrixXd& a) {
 }  // namespace
 
 Eigen::VectorXd symmetric_singular_values(const Eigen::MatrixXd& a) {
-  const Eigen::Index m = a.rows(), n = a.cols(), k = std::min(m, n);
+  const Eigen::Index k = std::min(a.rows(), a.cols());
   if (k == 0) return Eigen::VectorXd(0);
   require_finite(a);
-  // [0 A; Aᵀ 0] has the eigenvalues ±σ_i and |m − n| zeros: the k largest are the σ_i, in
-  // ascending order (an exact zero σ may come out as −eps σ_max: clamped).
-  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(m + n, m + n);
-  w.topRightCorner(m, n) = a;
-  w.bottomLeftCorner(n, m) = a.transpose();
+  // A rectangular block first to its k x k triangle R (Householder QR of A or Aᵀ, backward
+  // stable: σ(R) = σ(A)), so that the work and memory below grow with k, not with the long side.
+  Eigen::MatrixXd r;
+  if (a.rows() == a.cols()) {
+    r = a;
+  } else {
+    const Eigen::MatrixXd tall = a.rows() > a.cols() ? a : Eigen::MatrixXd(a.transpose());
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(tall);
+    r = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  }
+  // [0 R; Rᵀ 0] has the eigenvalues ±σ_i: the k largest are the σ_i, in ascending order (an
+  // exact zero σ may come out as −eps σ_max: clamped).
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(2 * k, 2 * k);
+  w.topRightCorner(k, k) = r;
+  w.bottomLeftCorner(k, k) = r.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(w, Eigen::EigenvaluesOnly);
   const Eigen::VectorXd& lambda = eig.eigenvalues();
   Eigen::VectorXd s(k);
-  for (Eigen::Index i = 0; i < k; ++i) s[i] = std::max(0.0, lambda[m + n - 1 - i]);
+  for (Eigen::Index i = 0; i < k; ++i) s[i] = std::max(0.0, lambda[2 * k - 1 - i]);
   return s;
 }
 

@@ -71,6 +71,25 @@ TEST_CASE("singular_values: the symmetric path and LAPACK's agree on a block LAP
   CHECK((lapack - symmetric).cwiseAbs().maxCoeff() <= 100 * kEps);
 }
 
+TEST_CASE("singular_values: a block 3 x 100,000 takes the work of its three values") {
+  // Its long side reduced by QR first: [0 A; Aᵀ 0] would be 100,003 x 100,003 (80 GB dense).
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(3, 100000);
+  a(0, 5) = 3.0;
+  a(1, 70000) = 2.0;
+  a(2, 99999) = 0.5;
+  a(2, 5) = 1e-3;  // couples rows 0 and 2: σ from the 2 x 2 block [[3, 0], [1e-3, 0.5]]
+  const Eigen::VectorXd s = symmetric_singular_values(a);
+  REQUIRE(s.size() == 3);
+  // Of [[3, 0], [1e-3, 0.5]]: σ₁² + σ₂² = the sum of squares S, σ₁ σ₂ = |det| = 1.5.
+  const double sum = 9.0 + 1e-6 + 0.25, det = 1.5;
+  const double big = std::sqrt(0.5 * (sum + std::sqrt(sum * sum - 4.0 * det * det)));
+  const Eigen::Vector2d exact(big, det / big);
+  CHECK(std::abs(s[0] - exact[0]) <= 100 * kEps * exact[0]);
+  CHECK(std::abs(s[1] - 2.0) <= 100 * kEps * exact[0]);
+  CHECK(std::abs(s[2] - exact[1]) <= 100 * kEps * exact[0]);
+  CHECK((singular_values(a.transpose()) - s).cwiseAbs().maxCoeff() <= 100 * kEps * exact[0]);
+}
+
 TEST_CASE("singular_values: a rank-deficient block, an empty one, and a value not finite") {
   // Two equal rows: the smallest value is 0 to roundoff of the largest.
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(3, 3);
