@@ -1,5 +1,6 @@
 #include "models/scene/toml_access.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <sstream>
@@ -79,24 +80,64 @@ void check_key_depth(const std::string& text, const std::string& file) {
 
 namespace {
 
-/// The number token that starts at (line, column) of `text` (both 1-based; toml++ counts columns
-/// in code points, so a name with é earlier on the line moves the byte offset), or "".
-std::string number_token(const std::vector<std::size_t>& line_starts, const std::string& text,
-                         const toml::source_position& at) {
-  if (at.line < 1 || at.line > line_starts.size() || at.column < 1) return {};
-  std::size_t i = line_starts[at.line - 1];
-  for (std::size_t c = 1; c < at.column && i < text.size() && text[i] != '\n'; ++c) {
-    ++i;  // past the code point's lead byte and its continuation bytes
-    while (i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0U) == 0x80U) ++i;
+/// The scene's text by toml++'s source positions (1-based lines and columns; columns count code
+/// points, so a name with é earlier on the line moves the byte offset). A column is found in O(1)
+/// on a line of ASCII and, on other lines, by walking on from the last column asked for there:
+/// a matrix written on one line (a 400 x 400 stiffness, 160,000 numbers) is read in one pass where
+/// walking from the line's start for each number took minutes.
+class SourceColumns {
+ public:
+  explicit SourceColumns(const std::string& text) : text_(text) {
+    line_starts_.push_back(0);
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      if (text[i] == '\n') line_starts_.push_back(i + 1);
+      if ((static_cast<unsigned char>(text[i]) & 0x80U) != 0U) {
+        if (wide_lines_.empty() || wide_lines_.back() != line_starts_.size() - 1)
+          wide_lines_.push_back(line_starts_.size() - 1);
+      }
+    }
   }
-  std::size_t end = i;
-  while (end < text.size() &&
-         (std::isalnum(static_cast<unsigned char>(text[end])) != 0 || text[end] == '.' ||
-          text[end] == '+' || text[end] == '-' || text[end] == '_')) {
-    ++end;
+
+  /// The number token that starts at `at`, or "".
+  [[nodiscard]] std::string number_token(const toml::source_position& at) {
+    if (at.line < 1 || at.line > line_starts_.size() || at.column < 1) return {};
+    const std::size_t line = at.line - 1;
+    std::size_t i = line_starts_[line] + (at.column - 1);
+    if (std::binary_search(wide_lines_.begin(), wide_lines_.end(), line))
+      i = wide_offset(line, at.column);
+    std::size_t end = i;
+    while (end < text_.size() &&
+           (std::isalnum(static_cast<unsigned char>(text_[end])) != 0 || text_[end] == '.' ||
+            text_[end] == '+' || text_[end] == '-' || text_[end] == '_')) {
+      ++end;
+    }
+    return i < end ? text_.substr(i, end - i) : std::string();
   }
-  return i < end ? text.substr(i, end - i) : std::string();
-}
+
+ private:
+  /// The byte offset of `column` on a line holding multi-byte code points: on from the last
+  /// column found on that line when it lies before, else from the line's start.
+  std::size_t wide_offset(std::size_t line, std::size_t column) {
+    if (cursor_line_ != line || cursor_column_ > column) {
+      cursor_line_ = line;
+      cursor_column_ = 1;
+      cursor_ = line_starts_[line];
+    }
+    while (cursor_column_ < column && cursor_ < text_.size() && text_[cursor_] != '\n') {
+      ++cursor_;  // past the code point's lead byte and its continuation bytes
+      while (cursor_ < text_.size() &&
+             (static_cast<unsigned char>(text_[cursor_]) & 0xC0U) == 0x80U)
+        ++cursor_;
+      ++cursor_column_;
+    }
+    return cursor_;
+  }
+
+  const std::string& text_;
+  std::vector<std::size_t> line_starts_;
+  std::vector<std::size_t> wide_lines_;  ///< ascending: the lines with a byte of 0x80 or more
+  std::size_t cursor_line_ = 0, cursor_column_ = 1, cursor_ = 0;
+};
 
 /// Whether a float literal's mantissa (before its exponent) has a nonzero digit.
 bool nonzero_mantissa(const std::string& token) {
@@ -108,18 +149,17 @@ bool nonzero_mantissa(const std::string& token) {
 }
 
 void check_underflow(const TomlAccess& access, const toml::node& node, const std::string& path,
-                     const std::vector<std::size_t>& line_starts, const std::string& text) {
+                     SourceColumns& columns) {
   if (const auto* t = node.as_table()) {
     for (const auto& [key, value] : *t) {
-      check_underflow(access, value, TomlAccess::join(path, std::string(key.str())), line_starts,
-                      text);
+      check_underflow(access, value, TomlAccess::join(path, std::string(key.str())), columns);
     }
   } else if (const auto* a = node.as_array()) {
     for (std::size_t i = 0; i < a->size(); ++i) {
-      check_underflow(access, *a->get(i), TomlAccess::index(path, i), line_starts, text);
+      check_underflow(access, *a->get(i), TomlAccess::index(path, i), columns);
     }
   } else if (const auto* f = node.as_floating_point(); f != nullptr && f->get() == 0.0) {
-    const std::string token = number_token(line_starts, text, node.source().begin);
+    const std::string token = columns.number_token(node.source().begin);
     if (nonzero_mantissa(token)) {
       access.fail(node, path,
                   token +
@@ -132,11 +172,8 @@ void check_underflow(const TomlAccess& access, const toml::node& node, const std
 }  // namespace
 
 void check_number_range(const toml::table& root, const std::string& text, const std::string& file) {
-  std::vector<std::size_t> line_starts{0};
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '\n') line_starts.push_back(i + 1);
-  }
-  check_underflow(TomlAccess(file), root, "", line_starts, text);
+  SourceColumns columns(text);
+  check_underflow(TomlAccess(file), root, "", columns);
 }
 
 SourcePoint TomlAccess::at(const toml::node& node, const std::string& path) const {

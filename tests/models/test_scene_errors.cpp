@@ -116,6 +116,14 @@ TEST_CASE("values out of range") {
       replace(kBase, "value = 1.0",
               "value = { type = \"polynomial\", coefficients = [\"ééé\", 12,1e-999] }"),
       "load[1].value.coefficients[3]: 1e-999 is nonzero");
+  // On such a line each column is found on from the last one asked for: zeros before the value,
+  // and keys visited in their order (a, then z) where the text has z first.
+  check_build_error(
+      replace(kBase, "value = 1.0",
+              "value = { type = \"polynomial\", coefficients = [\"é\", 0.0, -0.0, 3e-999] }"),
+      "load[1].value.coefficients[4]: 3e-999 is nonzero");
+  check_build_error(replace(kBase, "EA = 10.0", "EA = 10.0, note = \"é\", z = 2e-999, a = 0.0"),
+                    "model.members[1].z: 2e-999 is nonzero");
   // Zero written any way is zero.
   for (const char* zero : {"0.0", "-0.0", "0e-400", "0.000e5", "+0.0"}) {
     CAPTURE(zero);
