@@ -1,13 +1,13 @@
 // Elimination of nonlinear models by coordinate partitioning
 // (dae/formulations/partitioned_ode.hpp): the partition's quality against a dense solve, the
 // reactions from the full equations, a failure at a singular position of the mechanism as data,
-// the refusal of nonholonomic rows, GMRES on a long chain and against the dense Jacobian, a fully
-// driven mechanism. The long runs against GGL (the pendulum, the four-bar, its re-partitions,
-// Andrews' mechanism) are validation-tier cases: test_partitioned_elimination_validation.cpp.
+// the refusal of nonholonomic rows, GMRES on a long chain, a fully driven mechanism. The long
+// runs against GGL (the pendulum, the four-bar, its re-partitions, Andrews' mechanism) and GMRES
+// against the dense Jacobian are validation-tier cases:
+// test_partitioned_elimination_validation.cpp.
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -17,7 +17,6 @@
 
 #include "dae/formulations/coordinate_partition.hpp"
 #include "dae/formulations/partitioned_ode.hpp"
-#include "dae/integrators/cvode_integrator.hpp"
 #include "dae/run/scheme_choice.hpp"
 #include "dae/run/solve.hpp"
 #include "models/core/constraint_drift.hpp"
@@ -198,29 +197,6 @@ TEST_CASE("coordinate partitioning of a long chain: GMRES on products, no dense 
   CHECK(err.reaction < 2e4 * kChainRtol);
   CHECK(row_drift(built.model, result.trajectory) <=
         newton_tolerance(built.model, result.trajectory, spec.solve.atol));
-}
-
-TEST_CASE("coordinate partitioning: GMRES and the dense Jacobian agree on a small mechanism") {
-  // The four-bar (2 unknowns) integrated both ways, forced: the same ODE, so the runs differ by
-  // the error control's choices only, each within rtol-scaled global error of the solution:
-  // bounded by the first case's 2e4 rtol.
-  const test::BuiltScene built = scene("four_bar.toml", 1.0, kRtol);
-  std::array<Eigen::VectorXd, 2> end;
-  for (const bool free : {false, true}) {
-    PartitionedOde ode(built.model, 0.0);
-    ode.set_newton_tolerance(1e-3 * built.spec.solve.atol);
-    ode.set_matrix_free(free);
-    IntegratorOptions o;
-    o.output_times = {0.0, 0.5, 1.0};
-    o.rtol = built.spec.solve.rtol;
-    o.atol = built.spec.solve.atol;
-    SolveSummary s;
-    const RawTrajectory raw = integrate_ode(ode, ode.initial_state(), o, s);
-    CHECK(s.jacobian_nonzeros == (free ? 0 : 4));
-    end.at(free ? 1 : 0) = ode.full(1.0, raw.y.back()).u;
-  }
-  CHECK((end[1] - end[0]).lpNorm<Eigen::Infinity>() <
-        2e4 * kRtol * end[0].lpNorm<Eigen::Infinity>());
 }
 
 TEST_CASE("coordinate partitioning of a fully driven mechanism: kinematics and KKT reactions") {
