@@ -96,12 +96,13 @@ void run_projection(const Model& model, const ObservedRun& run);
 /// The Newmark family (newmark, hht, generalized_alpha) with the fixed step `step`, or with
 /// error-controlled steps at the run's rtol and atol when `step` is 0
 /// (dae/integrators/newmark_stepper.hpp), its constraints at index 3 or stabilized
-/// (`constraints`). `row_multipliers`: λ at the output rows from acceleration level
-/// (dae/formulations/row_multipliers.hpp), as the multiplier schemes report theirs; otherwise
-/// (and within the energy balance's integrals) the step's own λ.
+/// (`constraints`). `mixed`: as for the multiplier schemes, the rows to eliminate (null or none
+/// eliminated: a multiplier per row). `row_multipliers`: λ at the output rows from acceleration
+/// level (dae/formulations/row_multipliers.hpp), as the multiplier schemes report theirs;
+/// otherwise (and within the energy balance's integrals) the step's own λ.
 void run_newmark(const Model& model, const AlphaParameters& parameters,
-                 NewmarkConstraints constraints, double step, bool row_multipliers,
-                 const ObservedRun& run);
+                 NewmarkConstraints constraints, double step, const ConstraintTreatment* mixed,
+                 bool row_multipliers, const ObservedRun& run);
 
 /// RATTLE with the fixed step `step` (dae/integrators/rattle_stepper.hpp). `row_multipliers`: λ
 /// at the output rows from acceleration level (dae/formulations/row_multipliers.hpp), as the

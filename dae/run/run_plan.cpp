@@ -257,7 +257,7 @@ void run_scheme(const RunPlan& plan, const IntegratorOptions& options, const Obs
     case Scheme::generalized_alpha:
       return run_newmark(model, alpha_parameters(plan.scheme, plan.settings.newmark_family),
                          plan.settings.newmark_family.constraints, plan.settings.step.value_or(0.0),
-                         options.row_multipliers, run);
+                         plan.treatment.get(), options.row_multipliers, run);
     case Scheme::rattle:
       return run_rattle(model, plan.settings.step.value_or(0.0), options.row_multipliers, run);
   }

@@ -335,24 +335,37 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
         condensed ? ode.newton_system()->nonzeros() : ode.jacobian_pattern().nonZeros();
     return size;
   }
+  const MechanicalSystem* system = model.system.get();
+  if (uses_mixed_treatment(model, scheme, settings)) {
+    if (!mixed_) {
+      const ConstraintTreatment& treated = *treatment();
+      mixed_ = treated.eliminated.empty()
+                   ? nullptr
+                   : std::make_shared<const EliminatedSystem>(model, treated);
+    }
+    if (*mixed_) system = mixed_->get();
+    size.reduced = *mixed_ != nullptr;
+  }
   if (fixed_step(scheme)) {
     // The state [u; v; λ]; the Newton matrix [M + C + K (+ curvature) Aᵀ; A 0] (its linear part's
     // pattern at the start: dae/integrators/newmark_newton.hpp), RATTLE's [M Aᵀ; A 0]
-    // (dae/integrators/rattle_step.hpp).
-    const auto system = model.system->clone();
-    const Eigen::VectorXd& u = model.u0;
-    Eigen::SparseMatrix<double> S = system->mass(0.0, u);
-    for (const auto* B :
-         {&system->stiffness(0.0, u, model.v0), &system->damping(0.0, u, model.v0)}) {
+    // (dae/integrators/rattle_step.hpp); over the reduced system under the mixed treatment.
+    const auto evaluated = system->clone();
+    const auto* eliminated =
+        size.reduced ? dynamic_cast<const EliminatedSystem*>(mixed_->get()) : nullptr;
+    const Eigen::VectorXd u = eliminated ? eliminated->restrict(model.u0) : model.u0;
+    const Eigen::VectorXd v = eliminated ? eliminated->restrict(model.v0) : model.v0;
+    Eigen::SparseMatrix<double> S = evaluated->mass(0.0, u);
+    for (const auto* B : {&evaluated->stiffness(0.0, u, v), &evaluated->damping(0.0, u, v)}) {
       if (newmark_family(scheme) && B->rows() == S.rows() && B->cols() == S.cols()) S += *B;
     }
-    size.unknowns = 2 * model.dofs() + model.constraint_count();
-    size.jacobian_nonzeros = S.nonZeros() + 2 * system->constraint_jacobian(0.0, u).nonZeros();
+    size.unknowns = 2 * evaluated->dofs() + evaluated->constraints();
+    size.jacobian_nonzeros = S.nonZeros() + 2 * evaluated->constraint_jacobian(0.0, u).nonZeros();
     if (newmark_family(scheme) &&
         settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
       // [u; v; λ; μ] and the stabilized matrix (dae/integrators/stabilized_newmark_newton.hpp).
       const StabilizedSize stabilized =
-          stabilized_size(*system, !model.is_nonlinear(), 0.0, u, model.v0);
+          stabilized_size(*evaluated, !model.is_nonlinear(), 0.0, u, v);
       size.unknowns += stabilized.mu;
       if (stabilized.mu > 0) size.jacobian_nonzeros = stabilized.nonzeros;
     }
@@ -361,10 +374,10 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
   if (scheme == Scheme::penalty && model.is_nonlinear()) {
     // The augmented Lagrangian (dae/formulations/augmented_lagrangian_ode.hpp): [u; v] under
     // Adams' functional iteration, no Newton matrix; what it factors is M + AᵀαA.
-    const auto system = model.system->clone();
-    const Eigen::SparseMatrix<double> A = system->constraint_jacobian(0.0, model.u0);
+    const auto evaluated = model.system->clone();
+    const Eigen::SparseMatrix<double> A = evaluated->constraint_jacobian(0.0, model.u0);
     const Eigen::SparseMatrix<double> S =
-        system->mass(0.0, model.u0) + Eigen::SparseMatrix<double>(A.transpose() * A);
+        evaluated->mass(0.0, model.u0) + Eigen::SparseMatrix<double>(A.transpose() * A);
     size.unknowns = 2 * model.dofs();
     size.jacobian_nonzeros = S.nonZeros();
     return size;
@@ -376,17 +389,6 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
     size.jacobian_nonzeros =
         condensed ? ode.newton_system()->nonzeros() : ode.jacobian_pattern().nonZeros();
     return size;
-  }
-  const MechanicalSystem* system = model.system.get();
-  if (uses_mixed_treatment(model, scheme, settings)) {
-    if (!mixed_) {
-      const ConstraintTreatment& treated = *treatment();
-      mixed_ = treated.eliminated.empty()
-                   ? nullptr
-                   : std::make_shared<const EliminatedSystem>(model, treated);
-    }
-    if (*mixed_) system = mixed_->get();
-    size.reduced = *mixed_ != nullptr;
   }
   if (scheme == Scheme::projection) {
     const ProjectedOde ode(*system, model.u0, !model.nonlinear, &model);

@@ -47,8 +47,8 @@ std::optional<Scheme> scheme_from_string(std::string_view s) {
 
 std::string treatment_refusal(Scheme s) {
   return std::string(
-             "applies to the multiplier schemes (index1, baumgarte, ggl, index2, index3) "
-             "and to auto, not to ") +
+             "applies to the multiplier schemes (index1, baumgarte, ggl, index2, index3), "
+             "the Newmark family (newmark, hht, generalized_alpha) and auto, not to ") +
          to_string(s);
 }
 

@@ -46,13 +46,14 @@ inline constexpr Scheme kFixedStepSchemes[] = {Scheme::newmark, Scheme::hht,
 
 [[nodiscard]] const char* to_string(Scheme s);
 /// The schemes with a multiplier per kept row, which the mixed treatment applies to
-/// ([solve] constraints, dae/formulations/constraint_treatment.hpp), and auto.
+/// ([solve] constraints, dae/formulations/constraint_treatment.hpp): the multiplier schemes, the
+/// Newmark family, and auto.
 [[nodiscard]] constexpr bool mixes(Scheme s) {
   return s == Scheme::automatic || s == Scheme::index1 || s == Scheme::baumgarte ||
-         s == Scheme::ggl || s == Scheme::index2 || s == Scheme::index3;
+         s == Scheme::ggl || s == Scheme::index2 || s == Scheme::index3 || newmark_family(s);
 }
 /// Why [solve] constraints (--constraints) does not go with the scheme s, which does not mix:
-/// "applies to the multiplier schemes (index1, ...) and to auto, not to s".
+/// "applies to the multiplier schemes (index1, ...), the Newmark family (...) and auto, not to s".
 [[nodiscard]] std::string treatment_refusal(Scheme s);
 /// The scheme named s ("auto" included), or nothing.
 [[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view s);

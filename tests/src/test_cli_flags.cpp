@@ -96,8 +96,8 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       {"info s.toml --constraints ''", "--constraints", "is empty"},
       // A treatment of the multiplier schemes: under another it was silently ignored.
       {"run s.toml --scheme elimination --constraints mixed --out r.csv", "--constraints",
-       "applies to the multiplier schemes (index1, baumgarte, ggl, index2, index3) and to auto, "
-       "not to elimination"},
+       "applies to the multiplier schemes (index1, baumgarte, ggl, index2, index3), the Newmark "
+       "family (newmark, hht, generalized_alpha) and auto, not to elimination"},
       {"run s.toml --scheme penalty --constraints multipliers --out r.csv", "--constraints",
        "not to penalty"},
       {"info s.toml --scheme projection --constraints mixed", "--constraints", "not to projection"},
