@@ -102,10 +102,11 @@ def test_every_string_hdf5_writes_is_variable_length_utf8(cli, tmp_path):
 
 @pytest.mark.parametrize("scheme, constraints, expected", [
     ("ggl", "mixed", "mixed"), ("ggl", "multipliers", "multipliers"),
-    ("index1", None, "multipliers"), ("elimination", None, None)])
+    ("index1", None, "multipliers"), ("elimination", None, None),
+    ("generalized_alpha", "mixed", "mixed"), ("hht", None, "multipliers")])
 def test_the_constraint_treatment_is_recorded(cli, tmp_path, scheme, constraints, expected):
     # The HDF5 root attribute `constraints` and summary["constraints"]: how a multiplier scheme
-    # treated the rows ([solve] constraints); absent (None) for the other schemes.
+    # or the Newmark family treated the rows ([solve] constraints); absent (None) for the others.
     h5py = pytest.importorskip("h5py")
     out = tmp_path / "q.h5"
     flags = ["--constraints", constraints] if constraints else []
