@@ -51,6 +51,12 @@ struct NewmarkStepRules {
   /// The smallest step, relative to the time: a few thousand ulps, the loop's collapsed step.
   static constexpr double kMinStepRelative = 1e-12;
   static constexpr double kNewtonFraction = 1e-3;  ///< newmark_newton_fraction
+  /// A linear model's factors serve steps whose β' (∝ 1/h²) is within this factor of theirs
+  /// (StepNewton::set_stale_ratio): h within about ±20 %, where Newton's iterations on them
+  /// contract by |1 − β'_factored/β'| ≤ 0.5 on the stiffest modes.
+  static constexpr double kStaleRatio = 1.5;
+  /// Iterations on stale factors before the step factors its own matrix.
+  static constexpr int kStaleIterations = 6;
 };
 
 /// The step after one of size h whose error norm was `error` (≥ 0): h · 0.9 (1/error)^(1/3),

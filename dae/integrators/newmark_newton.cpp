@@ -81,7 +81,7 @@ void NewmarkNewton::apply(double /*t*/, const Eigen::VectorXd& d, const StepCoef
 }
 
 bool NewmarkNewton::factor(double t, const StepState& x, const StepCoefficients& c) {
-  if (linear_ && factored_ && c == factored_for_) return true;
+  if (keeps_factors(linear_, c)) return true;
   const Sparse S = momentum_block(t, x, c);
   Sparse matrix;
   if (m_ > 0) {
@@ -93,9 +93,7 @@ bool NewmarkNewton::factor(double t, const StepState& x, const StepCoefficients&
   }
   nonzeros_ = matrix.nonZeros();
   ++factorizations_;
-  factored_ = klu_.factor(matrix);
-  factored_for_ = c;
-  return factored_;
+  return record_factors(klu_.factor(matrix), c);
 }
 
 }  // namespace condyn

@@ -20,7 +20,8 @@
 ///
 /// whose matrix tends to [M Aᵀ; A 0] as h → 0: a condition bounded in h. One sparse matrix of a
 /// fixed pattern, factored by KLU (its pivots reused across refactorizations); for a linear
-/// model (constant M, C, K, A) it depends on the step alone and is factored once per step size.
+/// model (constant M, C, K, A) it depends on the step alone and is factored once per step size
+/// (under error control also kept for nearby steps: StepNewton::set_stale_ratio).
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -65,8 +66,6 @@ class NewmarkNewton final : public StepNewton {
   int n_, m_;
   Eigen::VectorXd velocity_rows_;  ///< 1 on velocity-level rows, 0 on position rows
   FixedPatternKlu klu_;
-  bool factored_ = false;
-  StepCoefficients factored_for_;
   long factorizations_ = 0, residuals_ = 0, nonzeros_ = 0;
   Eigen::VectorXd f_, phi_, psi_;
 };

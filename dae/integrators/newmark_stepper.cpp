@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "dae/integrators/newmark_error_control.hpp"
 #include "dae/integrators/stabilized_newmark_newton.hpp"
 
 namespace condyn {
@@ -25,6 +26,7 @@ NewmarkStepper::NewmarkStepper(const MechanicalSystem& system, bool linear,
       t_(t0),
       t_prev_(t0) {
   system_->begin_segment(t0);
+  if (!(settings.step > 0.0)) newton_->set_stale_ratio(NewmarkStepRules::kStaleRatio);
   x_.u = u0;
   x_.v = v0;
   consistent_accelerations();
@@ -99,23 +101,26 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
                                                                       StepState& x) {
   Eigen::VectorXd d;
   newton_->begin_step(x);
+  int exact = 0;  // iterations on the factors of this step's own matrix
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
     newton_->residual(t_next, x, c, d);
     if (!d.allFinite())
       return StepFailure{FailureKind::residual_non_finite, "the residual is not finite"};
     if (!newton_->factor(t_next, x, c))
       return StepFailure{FailureKind::linear_solver, "singular Newton matrix"};
+    const bool stale = newton_->stale();
     d = -d;
     newton_->solve_in_place(d);
     ++newton_iterations_;
     newton_->apply(t_next, d, c, x);
     const auto du = d.head(n_);
-    // A linear model's first Newton step solves its equations up to the roundoff of the
-    // factored matrix, eps times its condition times the step (2.5e7 |u| eps on a spring of 1e12
-    // with h ω = 1e4); the second, on the residual it leaves, refines that to the residual's own
-    // roundoff at the cost of a solve (the factorization is kept). A first step already within
-    // the tolerance below needs no refinement.
-    if (linear_ && k == 1) return std::nullopt;
+    // A linear model's first Newton step on its own matrix solves its equations up to the
+    // roundoff of the factored matrix, eps times its condition times the step (2.5e7 |u| eps on a
+    // spring of 1e12 with h ω = 1e4); the second, on the residual it leaves, refines that to the
+    // residual's own roundoff at the cost of a solve (the factorization is kept). A first step
+    // already within the tolerance below needs no refinement. On stale factors (error control,
+    // StepNewton::set_stale_ratio) the iterations converge linearly to the tolerance below.
+    if (!stale && linear_ && ++exact == 2) return std::nullopt;
     const double weighted =
         (du.array().abs() / (settings_.rtol * x.u.array().abs() + settings_.atol)).maxCoeff();
     if (!(weighted > settings_.newton_fraction)) {
@@ -123,6 +128,8 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
         return StepFailure{FailureKind::non_finite, "Newton's update is not finite"};
       return std::nullopt;
     }
+    // Stale factors that have not converged in a few iterations: this step's own from here on.
+    if (stale && k + 1 >= NewmarkStepRules::kStaleIterations) newton_->drop_factors();
   }
   return StepFailure{FailureKind::convergence, "Newton's iterations did not converge in " +
                                                    std::to_string(settings_.max_newton_iterations)};

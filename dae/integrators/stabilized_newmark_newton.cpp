@@ -141,13 +141,11 @@ Sparse StabilizedNewmarkNewton::matrix(double t, const StepState& x, const StepC
 }
 
 bool StabilizedNewmarkNewton::factor(double t, const StepState& x, const StepCoefficients& c) {
-  if (linear_ && factored_ && c == factored_for_) return true;
+  if (keeps_factors(linear_, c)) return true;
   const Sparse K = matrix(t, x, c);
   nonzeros_ = K.nonZeros();
   ++factorizations_;
-  factored_ = klu_.factor(K);
-  factored_for_ = c;
-  return factored_;
+  return record_factors(klu_.factor(K), c);
 }
 
 StabilizedSize stabilized_size(MechanicalSystem& system, bool linear, double t0,

@@ -78,8 +78,6 @@ class StabilizedNewmarkNewton final : public StepNewton {
   Eigen::SparseMatrix<double> pick_;  ///< P, m_p x m: the position rows
   Eigen::VectorXd w_;                 ///< the current iterate's Newmark displacement
   FixedPatternKlu klu_;
-  bool factored_ = false;
-  StepCoefficients factored_for_;
   long factorizations_ = 0, nonzeros_ = 0;
   Eigen::VectorXd psi_;
 };

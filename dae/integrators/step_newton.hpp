@@ -49,6 +49,37 @@ class StepNewton {
   [[nodiscard]] virtual long factorizations() const = 0;
   [[nodiscard]] virtual long residuals() const = 0;
   [[nodiscard]] virtual long nonzeros() const = 0;
+
+  /// A linear model's matrix depends on the step alone. With a ratio r > 1 its factors also serve
+  /// a step whose β' lies within a factor r of the factored one's (error-controlled steps change
+  /// h at most steps, each change a factorization); Newton's iterations then converge on the
+  /// stale factors (NewmarkStepper::solve_step). 1 (the default): equal coefficients only.
+  void set_stale_ratio(double ratio) { stale_ratio_ = ratio; }
+  /// Whether the last factor() kept factors made for other coefficients.
+  [[nodiscard]] bool stale() const { return stale_; }
+  /// The next factor() factors afresh.
+  void drop_factors() { factored_ = false; }
+
+ protected:
+  /// Whether the factors held serve `c` (a linear model's, by the rule above); sets stale().
+  [[nodiscard]] bool keeps_factors(bool linear, const StepCoefficients& c) {
+    if (!linear || !factored_) return false;
+    const double r = c.beta_prime / factored_for_.beta_prime;
+    stale_ = !(c == factored_for_);
+    return !stale_ || (r <= stale_ratio_ && r * stale_ratio_ >= 1.0);
+  }
+  /// Records a factorization made for `c` (`ok`: not singular); returns `ok`.
+  bool record_factors(bool ok, const StepCoefficients& c) {
+    factored_ = ok;
+    factored_for_ = c;
+    stale_ = false;
+    return ok;
+  }
+
+ private:
+  bool factored_ = false, stale_ = false;
+  StepCoefficients factored_for_;
+  double stale_ratio_ = 1.0;
 };
 
 }  // namespace condyn

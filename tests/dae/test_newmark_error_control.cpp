@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "dae/integrators/newmark_error_control.hpp"
+#include "dae/integrators/newmark_newton.hpp"
 #include "models/core/time_table.hpp"
 #include "models/scene/scene_parser.hpp"
 #include "tests/cli_sandbox.hpp"
@@ -205,4 +206,33 @@ max_steps_per_output = 3000
   CHECK(advice.find("newmark_constraints = \"stabilized\"") != std::string::npos);
   CHECK(advice.find("controlled by the method's error estimate") != std::string::npos);
   CHECK(advice.find("fixed [solve] step") == std::string::npos);
+}
+
+TEST_CASE("newmark error control: a linear model's factors serve steps near theirs") {
+  // NewmarkNewton keeps a linear model's factors for equal coefficients always, and under error
+  // control (a stale ratio of 1.5) for a β' within 1.5 of theirs; a step farther off, or after
+  // drop_factors (stale factors that did not converge), factors its own matrix.
+  const auto built =
+      test::built(parse_scene_text(oscillator("t_end = 1.0\noutput_step = 0.1\n"), "o.toml"));
+  const auto system = built.model.system->clone();
+  NewmarkNewton newton(*system, true);
+  const StepState x{built.model.u0, built.model.v0, Eigen::VectorXd::Zero(1), Eigen::VectorXd(),
+                    Eigen::VectorXd()};
+  const StepCoefficients at_h{400.0, 20.0}, near{560.0, 24.0}, far{1000.0, 30.0};
+  REQUIRE(newton.factor(0.0, x, at_h));
+  REQUIRE(newton.factor(0.0, x, near));  // without a stale ratio: its own factors
+  CHECK(newton.factorizations() == 2);
+  CHECK_FALSE(newton.stale());
+  newton.set_stale_ratio(NewmarkStepRules::kStaleRatio);
+  REQUIRE(newton.factor(0.0, x, at_h));  // 560 / 400 = 1.4: the factors of `near` serve
+  CHECK(newton.factorizations() == 2);
+  CHECK(newton.stale());
+  REQUIRE(newton.factor(0.0, x, far));  // 1000 / 560: beyond
+  CHECK(newton.factorizations() == 3);
+  CHECK_FALSE(newton.stale());
+  REQUIRE(newton.factor(0.0, x, far));
+  CHECK(newton.factorizations() == 3);
+  newton.drop_factors();
+  REQUIRE(newton.factor(0.0, x, far));
+  CHECK(newton.factorizations() == 4);
 }
