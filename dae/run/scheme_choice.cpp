@@ -225,6 +225,33 @@ SchemeChoice cheaper_of_elimination_and_ggl(SchemeDecisions& decisions, const So
                            figures.str() + ")"};
 }
 
+/// The size of a fixed-step scheme's system (the Newmark family, RATTLE): the state [u; v; λ]; the
+/// Newton matrix [M + C + K (+ curvature) Aᵀ; A 0] (its linear part's pattern at the start:
+/// dae/integrators/newmark_newton.hpp), RATTLE's [M Aᵀ; A 0] (dae/integrators/rattle_step.hpp);
+/// over `system`, the reduced one (`eliminated`, else null) under the mixed treatment. `size`
+/// carries what is already known (dense, reduced).
+SystemSize fixed_step_size(const Model& model, const MechanicalSystem& system,
+                           const EliminatedSystem* eliminated, Scheme scheme,
+                           const SolveSpec& settings, SystemSize size) {
+  const auto evaluated = system.clone();
+  const Eigen::VectorXd u = eliminated ? eliminated->restrict(model.u0) : model.u0;
+  const Eigen::VectorXd v = eliminated ? eliminated->restrict(model.v0) : model.v0;
+  Eigen::SparseMatrix<double> S = evaluated->mass(0.0, u);
+  for (const auto* B : {&evaluated->stiffness(0.0, u, v), &evaluated->damping(0.0, u, v)}) {
+    if (newmark_family(scheme) && B->rows() == S.rows() && B->cols() == S.cols()) S += *B;
+  }
+  size.unknowns = 2 * evaluated->dofs() + evaluated->constraints();
+  size.jacobian_nonzeros = S.nonZeros() + 2 * evaluated->constraint_jacobian(0.0, u).nonZeros();
+  if (newmark_family(scheme) &&
+      settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
+    // [u; v; λ; μ] and the stabilized matrix (dae/integrators/stabilized_newmark_newton.hpp).
+    const StabilizedSize stabilized = stabilized_size(*evaluated, !model.is_nonlinear(), 0.0, u, v);
+    size.unknowns += stabilized.mu;
+    if (stabilized.mu > 0) size.jacobian_nonzeros = stabilized.nonzeros;
+  }
+  return size;
+}
+
 }  // namespace
 
 SchemeChoice choose_scheme(const Model& model, const SolveSpec& settings) {
@@ -347,29 +374,9 @@ SystemSize SchemeDecisions::size_as(Scheme scheme, const SolveSpec& settings) {
     size.reduced = *mixed_ != nullptr;
   }
   if (fixed_step(scheme)) {
-    // The state [u; v; λ]; the Newton matrix [M + C + K (+ curvature) Aᵀ; A 0] (its linear part's
-    // pattern at the start: dae/integrators/newmark_newton.hpp), RATTLE's [M Aᵀ; A 0]
-    // (dae/integrators/rattle_step.hpp); over the reduced system under the mixed treatment.
-    const auto evaluated = system->clone();
     const auto* eliminated =
         size.reduced ? dynamic_cast<const EliminatedSystem*>(mixed_->get()) : nullptr;
-    const Eigen::VectorXd u = eliminated ? eliminated->restrict(model.u0) : model.u0;
-    const Eigen::VectorXd v = eliminated ? eliminated->restrict(model.v0) : model.v0;
-    Eigen::SparseMatrix<double> S = evaluated->mass(0.0, u);
-    for (const auto* B : {&evaluated->stiffness(0.0, u, v), &evaluated->damping(0.0, u, v)}) {
-      if (newmark_family(scheme) && B->rows() == S.rows() && B->cols() == S.cols()) S += *B;
-    }
-    size.unknowns = 2 * evaluated->dofs() + evaluated->constraints();
-    size.jacobian_nonzeros = S.nonZeros() + 2 * evaluated->constraint_jacobian(0.0, u).nonZeros();
-    if (newmark_family(scheme) &&
-        settings.newmark_family.constraints == NewmarkConstraints::stabilized) {
-      // [u; v; λ; μ] and the stabilized matrix (dae/integrators/stabilized_newmark_newton.hpp).
-      const StabilizedSize stabilized =
-          stabilized_size(*evaluated, !model.is_nonlinear(), 0.0, u, v);
-      size.unknowns += stabilized.mu;
-      if (stabilized.mu > 0) size.jacobian_nonzeros = stabilized.nonzeros;
-    }
-    return size;
+    return fixed_step_size(model, *system, eliminated, scheme, settings, size);
   }
   if (scheme == Scheme::penalty && model.is_nonlinear()) {
     // The augmented Lagrangian (dae/formulations/augmented_lagrangian_ode.hpp): [u; v] under
