@@ -164,8 +164,8 @@ lint_failed() {
   echo "bootstrap: clang-tidy found problems (full log: $1)" >&2
   exit 1
 }
-# A verdict depends only on its input, so each pass lints only the files whose input (the
-# preprocessed text, flags, checks, clang-tidy's version) scripts/lint-record.txt does not hold as
+# A verdict depends only on its input, so each pass lints only the files whose input (flags, every
+# file the compiler reads, checks, clang-tidy's version) scripts/lint-record.txt does not hold as
 # clean, and the record is written anew when both passes are (scripts/lint_cache.py).
 # CONDYN_LINT_ALL=1 lints every file whatever the record.
 record=scripts/lint-record.txt
