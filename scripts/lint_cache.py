@@ -87,13 +87,14 @@ def dependencies(files, entries):
                                "-format=make", f"-j={os.cpu_count() or 2}"],
                               capture_output=True, text=True, check=False)
     found = {}
-    # Make rules: "target: dep dep \" continued over lines; the first dependency is the file.
+    # Make rules: "target: dep dep \" continued over lines; the first dependency is the file, as
+    # the database names it (absolute); any other path relative to its entry's directory.
     for rule in done.stdout.replace("\\\n", " ").split("\n"):
-        if ":" not in rule:
+        names = rule.split(":", 1)[1].split() if ":" in rule else []
+        if not names or os.path.normpath(names[0]) not in entries:
             continue
-        inputs = [os.path.normpath(d) for d in rule.split(":", 1)[1].split()]
-        if inputs:
-            found[inputs[0]] = inputs
+        file = os.path.normpath(names[0])
+        found[file] = [os.path.normpath(os.path.join(entries[file][0], d)) for d in names]
     return found
 
 
