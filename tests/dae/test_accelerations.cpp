@@ -14,6 +14,8 @@
 
 using namespace condyn;
 
+namespace test_accelerations {
+
 namespace {
 
 /// m = 2, k = 8, u0 = 1: u'' = −4 u.
@@ -159,3 +161,5 @@ TEST_CASE("accelerations of massless DOFs in constraints come from the constrain
     }
   }
 }
+
+}  // namespace test_accelerations

@@ -17,6 +17,9 @@
 #include "validation/references/accuracy.hpp"
 
 using namespace condyn;
+
+namespace test_augmented_lagrangian_validation {
+
 using namespace condyn::test::nonlinear;
 
 namespace {
@@ -157,3 +160,5 @@ TEST_CASE("penalty passes the N-four-bar's singular positions on the parallelogr
     CHECK(worst < kTolerance);
   }
 }
+
+}  // namespace test_augmented_lagrangian_validation

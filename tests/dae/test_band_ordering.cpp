@@ -14,6 +14,8 @@
 
 using namespace condyn;
 
+namespace test_band_ordering {
+
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
@@ -228,3 +230,5 @@ TEST_CASE("FixedPatternKlu keeps the band ordering where its factor is no larger
     CHECK(solves(a, klu) < 1e-10);
   }
 }
+
+}  // namespace test_band_ordering

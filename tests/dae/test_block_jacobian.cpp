@@ -10,6 +10,8 @@
 
 using namespace condyn;
 
+namespace test_block_jacobian {
+
 TEST_CASE(
     "BlockJacobian: the union of the blocks' patterns and the diagonal, values added in place") {
   using Sparse = Eigen::SparseMatrix<double>;
@@ -74,3 +76,5 @@ TEST_CASE(
   too_tall.declare(2, 0, S);  // rows 2..3
   CHECK_THROWS_AS(too_tall.finish(), std::logic_error);
 }
+
+}  // namespace test_block_jacobian

@@ -17,6 +17,8 @@
 
 using namespace condyn;
 
+namespace test_condensed_newton {
+
 TEST_CASE("the condensed Newton solve equals the full Jacobian's, index1 and GGL") {
   for (const char* scene : {"chapter_5_5_1", "chapter_5_5_3", "chapter_5_6_1", "chapter_5_6_2"}) {
     const auto built = test::built(
@@ -122,3 +124,5 @@ TEST_CASE("KLU with kept pivots: refactorizations, and a new pivot order when th
   singular.coeffRef(1, 0) = 0.0;
   CHECK_FALSE(klu.factor(singular));
 }
+
+}  // namespace test_condensed_newton

@@ -17,6 +17,8 @@
 
 using namespace condyn;
 
+namespace test_dense_constraint_rows {
+
 namespace {
 
 /// A 50 x 25 lattice (2,500 DOFs, its left column supported) with one row: the average of the
@@ -96,3 +98,5 @@ TEST_CASE("penalty refuses a row whose spring would be a dense block and the oth
   const auto narrow = test::built(parse_scene_text(averaged_lattice(1000), "narrow.toml"));
   CHECK_FALSE(scheme_refusal(narrow.model, Scheme::penalty).has_value());
 }
+
+}  // namespace test_dense_constraint_rows

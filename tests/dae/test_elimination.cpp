@@ -16,6 +16,8 @@
 
 using namespace condyn;
 
+namespace test_elimination {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -470,3 +472,5 @@ slaves = ["b"]
   automatic.solve.slaves_lines.clear();
   CHECK(test::solved(build_model(automatic), automatic.solve).ok());
 }
+
+}  // namespace test_elimination

@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_elimination_convergence {
+
 TEST_CASE("elimination error shrinks in proportion to rtol") {
   for (const char* scene : {"chapter_5_5_1", "chapter_5_6_2"}) {
     CAPTURE(scene);
@@ -41,3 +43,5 @@ TEST_CASE("elimination error shrinks in proportion to rtol") {
     CHECK(slope <= 1.3);
   }
 }
+
+}  // namespace test_elimination_convergence

@@ -21,6 +21,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_energy_balance {
+
 using namespace condyn::test::energy;
 
 TEST_CASE("the work of a load step switched on between output times, against the closed form") {
@@ -233,3 +236,5 @@ gravity = [-5.886, -7.848]
     }
   }
 }
+
+}  // namespace test_energy_balance

@@ -13,6 +13,9 @@
 #include "tests/energy_runs.hpp"
 
 using namespace condyn;
+
+namespace test_energy_balance_validation {
+
 using namespace condyn::test::energy;
 
 TEST_CASE("a damped, loaded chain on a moving support: the balance closes under every scheme") {
@@ -94,3 +97,5 @@ damping = { rayleigh = [0.05, 0.002] }
     CHECK(loose > 30.0 * error);
   }
 }
+
+}  // namespace test_energy_balance_validation

@@ -21,6 +21,8 @@
 
 using namespace condyn;
 
+namespace test_failure_kinds {
+
 namespace {
 
 bool contains(const std::string& s, const std::string& part) {
@@ -546,3 +548,5 @@ TEST_CASE("the Newmark family's advice follows its step and its damping") {
   CHECK(contains(undamped, "newmark_constraints = \"stabilized\""));
   CHECK(contains(undamped, "use hht or generalized_alpha"));
 }
+
+}  // namespace test_failure_kinds

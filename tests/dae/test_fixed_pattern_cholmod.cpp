@@ -23,6 +23,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_fixed_pattern_cholmod {
+
 using condyn::test::grid_matrix;
 using condyn::test::kSolveRoundoff;
 using condyn::test::relative_residual;
@@ -254,3 +257,5 @@ TEST_CASE("info's warning of a slow factorization: its figures, and none below t
   slow.cholmod = false;
   CHECK_FALSE(factorization_time_warning(slow).has_value());
 }
+
+}  // namespace test_fixed_pattern_cholmod

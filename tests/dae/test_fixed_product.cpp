@@ -8,6 +8,9 @@
 #include "dae/linsolve/fixed_product.hpp"
 
 using namespace condyn;
+
+namespace test_fixed_product {
+
 using Sparse = Eigen::SparseMatrix<double>;
 
 namespace {
@@ -47,3 +50,5 @@ TEST_CASE("fixed product: L X R as Eigen computes it, values refilled for new va
   const Sparse zero = x * 0.0;
   CHECK(product(zero).nonZeros() == stored);
 }
+
+}  // namespace test_fixed_product

@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_held_massless {
+
 namespace {
 
 /// A chain ground-u1-u2-u3-u4 of springs 200, 100 (u1-u2: the row of u1 is 300 with its ground
@@ -269,3 +271,5 @@ output_step = 0.5
                         "nor a constraint"),
       SceneError);
 }
+
+}  // namespace test_held_massless

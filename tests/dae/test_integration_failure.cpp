@@ -11,6 +11,8 @@
 
 using namespace condyn;
 
+namespace test_integration_failure {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -95,3 +97,5 @@ TEST_CASE("failure suggestions name what to try") {
                                "the solution became non-finite (NaN or inf) at t = 3");
   CHECK(failure_suggestion(Scheme::index1, failure_of(blown)).find("blew up") != std::string::npos);
 }
+
+}  // namespace test_integration_failure

@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_kkt_newton {
+
 TEST_CASE("the sparse saddle-point solve is the Newton matrix I - gamma J of the projected ODE") {
   // The chapter's truss with damping and an MFC (validation scene 5.6.1) and Rayleigh damping.
   std::string text = R"(
@@ -165,3 +167,5 @@ TEST_CASE("nonlinear models: the saddle-point solve is I - gamma J at the state 
     }
   }
 }
+
+}  // namespace test_kkt_newton

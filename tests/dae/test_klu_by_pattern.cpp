@@ -11,6 +11,9 @@
 #include "tests/grid_matrix.hpp"
 
 using namespace condyn;
+
+namespace test_klu_by_pattern {
+
 using condyn::test::grid_matrix;
 using condyn::test::kSolveRoundoff;
 using condyn::test::relative_residual;
@@ -45,3 +48,5 @@ TEST_CASE("KluByPattern: one analysis while the pattern stays, a new one when it
   CHECK_FALSE(lu.factor(singular));
   CHECK_THROWS_AS((void)lu.solve(b), std::logic_error);
 }
+
+}  // namespace test_klu_by_pattern

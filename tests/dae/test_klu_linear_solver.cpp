@@ -17,6 +17,8 @@
 
 using namespace condyn;
 
+namespace test_klu_linear_solver {
+
 namespace {
 
 /// The values of `dense` on `pattern`, written into the matrix as IDA and the Jacobian callback
@@ -111,3 +113,5 @@ TEST_CASE("make_klu_solver: solves with the values IDA's matrix holds, refactore
       condyn::sundials::make_pattern_matrix(diagonal.pattern(), ctx.get()));
   CHECK(SUNLinSolSetup(solver.get(), other.get()) == SUNLS_ILL_INPUT);
 }
+
+}  // namespace test_klu_linear_solver

@@ -14,6 +14,8 @@
 
 using namespace condyn;
 
+namespace test_klu_streamed_solve {
+
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
@@ -135,3 +137,5 @@ TEST_CASE("KluStreamedSolve: a diagonal matrix (singletons only) and the size th
   REQUIRE(small.factor(a));
   CHECK_FALSE(small.streamed());
 }
+
+}  // namespace test_klu_streamed_solve

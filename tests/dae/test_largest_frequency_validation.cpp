@@ -13,6 +13,8 @@
 
 using namespace condyn;
 
+namespace test_largest_frequency_validation {
+
 TEST_CASE("Lanczos finds the largest eigenvalue of K x = w^2 M x to its tolerance") {
   for (const int n : {50, 600}) {
     CAPTURE(n);
@@ -28,3 +30,5 @@ TEST_CASE("Lanczos finds the largest eigenvalue of K x = w^2 M x to its toleranc
     CHECK(std::abs(*lanczos - exact) <= kLargestFrequencyTolerance * exact);
   }
 }
+
+}  // namespace test_largest_frequency_validation

@@ -10,6 +10,8 @@
 
 using namespace condyn;
 
+namespace test_max_order {
+
 TEST_CASE("max_order caps the BDF order of every scheme's integrator, and the run says so") {
   for (const char* scheme : {"elimination", "index1", "projection"}) {
     CAPTURE(scheme);
@@ -42,3 +44,5 @@ TEST_CASE("max_order outside 1..5 is refused naming the key") {
         doctest::Contains("solve.max_order"), SceneError);
   }
 }
+
+}  // namespace test_max_order

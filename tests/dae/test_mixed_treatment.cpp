@@ -19,6 +19,9 @@
 #include "tests/system_check.hpp"
 
 using namespace condyn;
+
+namespace test_mixed_treatment {
+
 using Reason = ConstraintTreatment::Reason;
 
 namespace {
@@ -285,3 +288,5 @@ TEST_CASE("the Newmark family mixed: the chain's steps as with a multiplier per 
     }
   }
 }
+
+}  // namespace test_mixed_treatment

@@ -23,6 +23,8 @@
 
 using namespace condyn;
 
+namespace test_multiplier_dae {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -447,3 +449,5 @@ TEST_CASE("penalty: the constraint error shrinks like 1/w") {
     previous = err;
   }
 }
+
+}  // namespace test_multiplier_dae

@@ -20,6 +20,9 @@
 #include "validation/studies/scene_modes.hpp"
 
 using namespace condyn;
+
+namespace test_natural_modes {
+
 using condyn::test::ShearBuilding;
 
 namespace {
@@ -254,3 +257,5 @@ TEST_CASE("modes: refusals name what is wrong") {
   CHECK_THROWS_AS((void)lowest_modes(negative, M, 2, ModeSolver::dense), ModesUnavailable);
   CHECK_THROWS_AS((void)lowest_modes(negative, M, 2, ModeSolver::sparse), ModesUnavailable);
 }
+
+}  // namespace test_natural_modes

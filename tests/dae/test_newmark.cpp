@@ -24,6 +24,8 @@
 
 using namespace condyn;
 
+namespace test_newmark {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -522,3 +524,5 @@ TEST_CASE("newmark family: which parameter sets damp the highest frequencies") {
   CHECK(damps_high_frequencies(newmark_parameters(0.3025, 0.6)));
   CHECK_FALSE(damps_high_frequencies(newmark_parameters(0.3, 0.5)));
 }
+
+}  // namespace test_newmark

@@ -21,6 +21,8 @@
 
 using namespace condyn;
 
+namespace test_newmark_convergence {
+
 namespace {
 
 /// models/scenes/pendulum.toml over 1 s (past the bottom of its first swing), outputs every 0.1 s.
@@ -201,3 +203,5 @@ TEST_CASE("newmark family with error-controlled steps: the error follows rtol to
     CHECK(slope <= kMaxSlope);
   }
 }
+
+}  // namespace test_newmark_convergence

@@ -21,6 +21,8 @@
 
 using namespace condyn;
 
+namespace test_newmark_error_control {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -236,3 +238,5 @@ TEST_CASE("newmark error control: a linear model's factors serve steps near thei
   REQUIRE(newton.factor(0.0, x, far));
   CHECK(newton.factorizations() == 4);
 }
+
+}  // namespace test_newmark_error_control

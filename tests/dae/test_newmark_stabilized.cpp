@@ -23,6 +23,8 @@
 
 using namespace condyn;
 
+namespace test_newmark_stabilized {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -187,3 +189,5 @@ TEST_CASE("info's size of the stabilized form is the run's") {
     CHECK(size.unknowns > 2 * scene.model.dofs() + scene.model.constraint_count());
   }
 }
+
+}  // namespace test_newmark_stabilized

@@ -28,6 +28,9 @@
 #include "validation/references/accuracy.hpp"
 
 using namespace condyn;
+
+namespace test_partitioned_elimination {
+
 using namespace condyn::test::nonlinear;
 
 TEST_CASE("coordinate partitioning: the reactions are the full equations' λ") {
@@ -227,3 +230,5 @@ TEST_CASE("coordinate partitioning of a fully driven mechanism: kinematics and K
   CHECK(row_drift(model, result.trajectory) <=
         newton_tolerance(model, result.trajectory, built.spec.solve.atol));
 }
+
+}  // namespace test_partitioned_elimination

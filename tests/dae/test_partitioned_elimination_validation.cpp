@@ -26,6 +26,9 @@
 #include "validation/references/accuracy.hpp"
 
 using namespace condyn;
+
+namespace test_partitioned_elimination_validation {
+
 using namespace condyn::test::nonlinear;
 
 TEST_CASE("elimination by coordinate partitioning agrees with GGL on nonlinear scenes") {
@@ -151,3 +154,5 @@ TEST_CASE("coordinate partitioning: GMRES and the dense Jacobian agree on a smal
   CHECK((end[1] - end[0]).lpNorm<Eigen::Infinity>() <
         2e4 * kRtol * end[0].lpNorm<Eigen::Infinity>());
 }
+
+}  // namespace test_partitioned_elimination_validation

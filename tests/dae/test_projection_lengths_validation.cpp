@@ -18,6 +18,8 @@
 
 using namespace condyn;
 
+namespace test_projection_lengths_validation {
+
 namespace {
 
 /// A pendulum of length `length` released horizontally from rest, over two of its periods, at
@@ -61,3 +63,5 @@ TEST_CASE("projection: pendulums of length 1 to 1e6 reach t_end on the manifold"
     CHECK(off <= 2e-4 * length);
   }
 }
+
+}  // namespace test_projection_lengths_validation

@@ -18,6 +18,8 @@
 
 using namespace condyn;
 
+namespace test_rattle {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -198,3 +200,5 @@ stiffness = [[2.0, -1.0], [-1.0, 1.0]]
                        doctest::Contains("solve.step: the rattle scheme runs with a fixed step"),
                        std::invalid_argument);
 }
+
+}  // namespace test_rattle

@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_rattle_convergence {
+
 namespace {
 
 /// models/scenes/pendulum.toml over 1 s (past the bottom of its first swing), outputs every 0.1 s.
@@ -54,3 +56,5 @@ TEST_CASE("rattle on the pendulum: order 2 in displacement and velocity") {
   CHECK(order_v >= kMinOrder);
   CHECK(order_v <= kMaxOrder);
 }
+
+}  // namespace test_rattle_convergence

@@ -12,6 +12,8 @@
 
 using namespace condyn;
 
+namespace test_rattle_validation {
+
 TEST_CASE("rattle on A01 over 10^4 periods: bounded energy error, constraints held") {
   // h = 0.05 (h sqrt(g/L) = 0.16), 473,560 steps. Over the first and the last 1000 periods the
   // largest energy errors agree within a factor 1.5 (a drift would grow them with time); the
@@ -38,3 +40,5 @@ TEST_CASE("rattle on A01 over 10^4 periods: bounded energy error, constraints he
   constexpr double kNewtonTolerance = 1.01e-6;
   CHECK(r.summary.max_drift_position <= kNewtonTolerance);
 }
+
+}  // namespace test_rattle_validation

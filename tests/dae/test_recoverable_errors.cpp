@@ -11,6 +11,8 @@
 
 using namespace condyn;
 
+namespace test_recoverable_errors {
+
 namespace {
 
 /// y' = −y, whose right-hand side refuses the trial states of its first `refusals` calls after
@@ -72,3 +74,5 @@ TEST_CASE("trial states refused again and again: a failure quoting the equations
   }
   CHECK(thrown);
 }
+
+}  // namespace test_recoverable_errors

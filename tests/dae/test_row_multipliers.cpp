@@ -17,6 +17,8 @@
 
 using namespace condyn;
 
+namespace test_row_multipliers {
+
 namespace {
 
 /// a (held at 0 by `row`) -- k = 1 -- b -- k = 1e6 -- c, masses (1, `mass_b`, 1), a unit load
@@ -226,3 +228,5 @@ atol = 1e-10
     }
   }
 }
+
+}  // namespace test_row_multipliers

@@ -16,6 +16,8 @@
 
 using namespace condyn;
 
+namespace test_row_roundoff_validation {
+
 namespace {
 
 bool contains(const std::string& s, const std::string& part) {
@@ -115,3 +117,5 @@ TEST_CASE("the pendulum runs hundreds of periods at rtol 1e-10 and 1e-11 under G
     CHECK(error <= 10.0 * c.rtol * (c.t_end / kPeriod));
   }
 }
+
+}  // namespace test_row_roundoff_validation

@@ -15,6 +15,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_run_plan {
+
 using test::driven_pendulum_scene;
 using test::kTwoMassesScene;
 
@@ -173,3 +176,5 @@ TEST_CASE(
         p.gains.rule + "; " + p.notes[1].text + "; " + run.summary.notes[2].text);
   CHECK(run.summary.brief().find("; " + run.summary.notes_text()) != std::string::npos);
 }
+
+}  // namespace test_run_plan

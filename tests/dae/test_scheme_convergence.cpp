@@ -19,6 +19,8 @@
 
 using namespace condyn;
 
+namespace test_scheme_convergence {
+
 namespace {
 
 struct Errors {
@@ -90,3 +92,5 @@ TEST_CASE("penalty: error shrinks in proportion to 1/w") {
   CHECK(order <= -0.9);
   CHECK(order >= -1.1);
 }
+
+}  // namespace test_scheme_convergence

@@ -14,6 +14,8 @@
 
 using namespace condyn;
 
+namespace test_scheme_memory {
+
 namespace {
 
 /// A tie across the lattice's top corner, so that the rows are not all single-freedom.
@@ -103,3 +105,5 @@ TEST_CASE("the run's memory check names the scheme and refuses only below its lo
   CHECK(warning->rfind("integrating under scheme ggl needs about ", 0) == 0);
   CHECK_FALSE(memory_warning(e, "scheme ggl", e.bytes).has_value());
 }
+
+}  // namespace test_scheme_memory

@@ -16,6 +16,8 @@
 
 using namespace condyn;
 
+namespace test_scheme_starts {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -148,3 +150,5 @@ TEST_CASE("GGL starts the stiff flyball governor (IFToMM A05) at its scene's ato
   const SolveResult r = solve(scene.model, test::under(scene.spec.solve, Scheme::ggl));
   CHECK(r.ok());
 }
+
+}  // namespace test_scheme_starts

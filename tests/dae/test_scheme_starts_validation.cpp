@@ -8,6 +8,8 @@
 
 using namespace condyn;
 
+namespace test_scheme_starts_validation {
+
 TEST_CASE("index1 on a mechanism at a tight tolerance: steps of the order of GGL's") {
   // The slider-crank at rtol 1e-10 took 316,635 steps under index1 (40,595 Newton and 39,213
   // error-test failures) against GGL's 9,870: λ was in the local error test. λ is an index-1
@@ -29,3 +31,5 @@ TEST_CASE("index1 on a mechanism at a tight tolerance: steps of the order of GGL
   // not a multiple of rtol by principle: it separates the two (the drift of an unheld φ).
   CHECK(relative_error(a, b).displacement < 1e-4);
 }
+
+}  // namespace test_scheme_starts_validation

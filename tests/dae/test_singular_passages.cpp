@@ -15,6 +15,8 @@
 #include "tests/scene_text.hpp"
 #include "tests/solve_helpers.hpp"
 
+namespace test_singular_passages {
+
 namespace {
 
 using condyn::Scheme;
@@ -240,3 +242,5 @@ TEST_CASE("a long chain, ill-conditioned by its length alone, passes no singular
   CHECK(result.summary.singular_passages.empty());
   CHECK(condyn::singular_passage_warnings(result.summary.singular_passages).empty());
 }
+
+}  // namespace test_singular_passages

@@ -19,6 +19,8 @@
 
 using namespace condyn;
 
+namespace test_solve_result {
+
 TEST_CASE("a failed run is data: kind, time reached, suggestion and the rows before it") {
   // The pulled pendulum cannot go past t = 1 (tests/scene_text.hpp): GGL fails midway.
   const SceneSpec spec = parse_scene_text(test::kPulledPendulumScene, "pulled.toml");
@@ -147,3 +149,5 @@ TEST_CASE("the budget of steps between two outputs: given, default, or the run's
   s.max_steps_per_output = 7;  // given: as given
   CHECK(s.steps_per_output_budget() == 7);
 }
+
+}  // namespace test_solve_result

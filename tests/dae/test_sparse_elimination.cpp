@@ -20,6 +20,8 @@
 
 using namespace condyn;
 
+namespace test_sparse_elimination {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -172,3 +174,5 @@ TEST_CASE("auto picks elimination or GGL by the size of the Newton matrix each f
   CHECK(choose_scheme(chain.model, test::under(chain.spec.solve, Scheme::elimination)).scheme ==
         Scheme::elimination);
 }
+
+}  // namespace test_sparse_elimination

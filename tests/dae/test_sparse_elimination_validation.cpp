@@ -12,6 +12,8 @@
 
 using namespace condyn;
 
+namespace test_sparse_elimination_validation {
+
 namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 }  // namespace
@@ -35,3 +37,5 @@ TEST_CASE("a 20,000-DOF tied lattice runs under elimination and agrees with inde
   // The ties hold exactly under elimination (u_slave = T û: the same value).
   CHECK(elim.summary.max_drift_position <= 4 * kEps * scale);
 }
+
+}  // namespace test_sparse_elimination_validation

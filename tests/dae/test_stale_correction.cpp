@@ -9,6 +9,8 @@
 
 using namespace condyn;
 
+namespace test_stale_correction {
+
 namespace {
 
 /// Six unknowns (0..3 differential, 4..5 algebraic) and six equations, 4 and 5 algebraic. The
@@ -156,3 +158,5 @@ TEST_CASE("stale correction: dependent or empty algebraic rows fall back to IDA'
     CHECK(correction.projects());
   }
 }
+
+}  // namespace test_stale_correction

@@ -12,6 +12,8 @@
 
 using namespace condyn;
 
+namespace test_stale_correction_validation {
+
 TEST_CASE("GGL with a stale Newton matrix keeps a linear model's constraints to roundoff") {
   // A 40 x 5 truss lattice (EA 1e4, unit masses) under a step load of −1 on every free node's uy,
   // tied top to bottom in columns 10, 20 and 30, as the benchmark lattice (bench/lattice.py):
@@ -41,3 +43,5 @@ TEST_CASE("GGL with a stale Newton matrix keeps a linear model's constraints to 
   CHECK(r.summary.max_drift_position <= 1e-14 * scale);
   CHECK(r.summary.max_drift_velocity <= 1e-14 * scale);
 }
+
+}  // namespace test_stale_correction_validation

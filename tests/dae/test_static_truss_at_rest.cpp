@@ -9,6 +9,8 @@
 
 using namespace condyn;
 
+namespace test_static_truss_at_rest {
+
 namespace {
 
 // The run's tolerances. At the static equilibrium the accelerations are roundoff (a few ulps of
@@ -57,3 +59,5 @@ TEST_CASE("static start: a truss settled by static = true stays at rest under ev
     CHECK(fall.trajectory.v.lpNorm<Eigen::Infinity>() > 1e-2);
   }
 }
+
+}  // namespace test_static_truss_at_rest

@@ -16,6 +16,8 @@
 
 using namespace condyn;
 
+namespace test_stiff_start {
+
 namespace {
 
 /// Roundoff of a Rayleigh quotient of an exact shape (a few products and one KKT solve of
@@ -127,3 +129,5 @@ TEST_CASE("the condensed Newton matrix serves while cj stays in IDA's band") {
   CHECK(condensed.summary.jacobian_evals <=
         static_cast<long>(kSetupRatio * static_cast<double>(full.summary.jacobian_evals)));
 }
+
+}  // namespace test_stiff_start

@@ -20,6 +20,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_time_grid {
+
 using namespace condyn::test::load_steps;
 
 TEST_CASE("time grid: an output one ulp from a load step is the load step") {
@@ -121,3 +124,5 @@ TEST_CASE("output times: a multiple of output_step is t_end only within the time
     (void)times(t_end, t_end / std::round(steps(rng)));  // dividing it, to roundoff
   }
 }
+
+}  // namespace test_time_grid

@@ -13,6 +13,9 @@
 #include "tests/load_step_runs.hpp"
 
 using namespace condyn;
+
+namespace test_time_grid_validation {
+
 using namespace condyn::test::load_steps;
 
 TEST_CASE("random k·dt load steps, and steps one ulp off an output, run under every scheme") {
@@ -36,3 +39,5 @@ TEST_CASE("random k·dt load steps, and steps one ulp off an output, run under e
   check_every_scheme(scene({literal(below), literal(above)}, "0.1", "1.0"), {above, below}, 0.1,
                      1.0);
 }
+
+}  // namespace test_time_grid_validation

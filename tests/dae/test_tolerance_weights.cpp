@@ -21,6 +21,8 @@
 
 using namespace condyn;
 
+namespace test_tolerance_weights {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -227,3 +229,5 @@ TEST_CASE("derived velocity and μ atols stay above u's roundoff over a step, wh
   const double top_speed = std::sqrt(2.0 * 9.81 * 1.0);
   CHECK(run_2000.velocity > 16.0 * std::numeric_limits<double>::epsilon() * top_speed);
 }
+
+}  // namespace test_tolerance_weights

@@ -13,6 +13,8 @@
 
 using namespace condyn;
 
+namespace test_tolerance_weights_validation {
+
 TEST_CASE("SI shear frame: every scheme starts and agrees with the exact solution") {
   // rtol 1e-4 … 1e-10. First with the default atol (1e-10 m), where index1 failed at t = 0: every
   // scheme must reach t_end. Then with atol = 1e-2 rtol (m: the base amplitude is 2e-2 m, so the
@@ -47,3 +49,5 @@ TEST_CASE("SI shear frame: every scheme starts and agrees with the exact solutio
     }
   }
 }
+
+}  // namespace test_tolerance_weights_validation

@@ -9,6 +9,8 @@
 
 using namespace condyn;
 
+namespace test_trap_watch {
+
 TEST_CASE("a trapped run engages after kTrappedSteps failing steps in a row, and only then") {
   TrapWatch w;
   long steps = 0, fails = 0;
@@ -47,3 +49,5 @@ TEST_CASE("IDA's return flags map to the failure kinds a run reports") {
   CHECK(ida_failure_kind(IDA_ILL_INPUT) == FailureKind::bad_input);
   CHECK(ida_failure_kind(-12345) == FailureKind::unknown);
 }
+
+}  // namespace test_trap_watch

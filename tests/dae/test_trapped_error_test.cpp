@@ -22,6 +22,8 @@
 
 using namespace condyn;
 
+namespace test_trapped_error_test {
+
 namespace {
 
 constexpr double kG = 9.81;
@@ -162,3 +164,5 @@ TEST_CASE("error_scale_floors: each DOF's share of its rows' reach") {
     CHECK(floor.isConstant(-1.0));  // untouched
   }
 }
+
+}  // namespace test_trapped_error_test

@@ -14,6 +14,8 @@
 
 #include "dae/integrators/vector_ops.hpp"
 
+namespace test_vector_ops {
+
 namespace {
 
 struct Vectors {
@@ -186,3 +188,5 @@ TEST_CASE("weighted norms do not overflow where their squares would") {
   NV_Ith_S(x, 0) = INFINITY;  // an infinite entry stays infinite
   CHECK(std::isinf(N_VWrmsNorm(x, w)));
 }
+
+}  // namespace test_vector_ops

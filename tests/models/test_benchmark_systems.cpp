@@ -13,6 +13,9 @@
 #include "tests/system_check.hpp"
 
 using namespace condyn;
+
+namespace test_benchmark_systems {
+
 using Eigen::VectorXd;
 
 namespace {
@@ -369,3 +372,5 @@ TEST_CASE("benchmark pendulum: gravity, derivatives, exact reference and energy"
   MESSAGE("pendulum dE/dt ", rate.rate, " against power terms ", rate.power);
   CHECK(std::abs(rate.rate) <= 1e-9 * rate.power);
 }
+
+}  // namespace test_benchmark_systems

@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_classification {
+
 namespace {
 
 /// How often the system was cloned and evaluated, over all its clones.
@@ -163,3 +165,5 @@ TEST_CASE("classification costs one clone and a fixed number of evaluations, wha
   CHECK(sleigh_counts->clones == 1);
   CHECK(sleigh_counts->jacobians == 4 + 2);
 }
+
+}  // namespace test_classification

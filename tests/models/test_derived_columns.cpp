@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_derived_columns {
+
 namespace {
 
 /// The two-mass chain (u1, u2) held at u1 = 0 by `wall`, with the [[derived]] tables given.
@@ -222,3 +224,5 @@ terms = { acc_abs_u2 = 1.0 }
             "derived column 'd': 'acc_abs_u2' needs [ground_motion]: without a moving ground "
             "the absolute acceleration is the acceleration (name acc_u2)") != std::string::npos);
 }
+
+}  // namespace test_derived_columns

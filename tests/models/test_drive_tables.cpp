@@ -20,6 +20,8 @@
 
 using namespace condyn;
 
+namespace test_drive_tables {
+
 TEST_CASE("a table drive: the run stops at its kinks and follows its exact kinematics") {
   const test::Sandbox box;
   box.write("drive.csv", test::kCrankDriveTable);
@@ -75,3 +77,5 @@ TEST_CASE("a table's slope as a segment sees it: one-sided at the sample that en
   CHECK(table.slope(1.0, 0.9) == near(2.0 / 3.0));
   CHECK(table.slope(1.1, 1.0) == 0.0);
 }
+
+}  // namespace test_drive_tables

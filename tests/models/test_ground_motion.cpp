@@ -12,6 +12,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_ground_motion {
+
 using condyn::test::replace;
 using condyn::test::Sandbox;
 
@@ -218,3 +221,5 @@ TEST_CASE("a record that starts after t = 0 on a nonzero value is warned about, 
   box.write("rec.csv", kRecord);
   CHECK(warnings(kTruss).empty());
 }
+
+}  // namespace test_ground_motion

@@ -17,6 +17,9 @@
 #include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
+
+namespace test_ground_motion_validation {
+
 using condyn::test::Sandbox;
 
 namespace {
@@ -210,3 +213,5 @@ acceleration = { type = "table", file = "record.csv", column = "acc", scale = 9.
   CHECK(top_peak > 0.01);
   CHECK(top_error <= kRelativeTolerance * top_peak);
 }
+
+}  // namespace test_ground_motion_validation

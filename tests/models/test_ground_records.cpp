@@ -17,6 +17,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_ground_records {
+
 using condyn::test::replace;
 using condyn::test::Sandbox;
 
@@ -167,3 +170,5 @@ TEST_CASE("units: only SI is a unit system the scene can name") {
   CAPTURE(error);
   CHECK(has(error, "scene.toml:1: units: 'imperial' is not a unit system condyn knows"));
 }
+
+}  // namespace test_ground_records

@@ -14,6 +14,9 @@
 #include "validation/studies/scene_modes.hpp"
 
 using namespace condyn;
+
+namespace test_influence_vector {
+
 using condyn::test::replace;
 using condyn::test::Sandbox;
 
@@ -153,3 +156,5 @@ TEST_CASE("influence: refusals name the key, the file and what is wrong") {
   CHECK(has(with_file("%%MatrixMarket matrix coordinate real general\n6 1 1\n1 1 0.0\n"),
             "ground_motion.influence.file: v.mtx is zero: no DOF moves with the ground"));
 }
+
+}  // namespace test_influence_vector

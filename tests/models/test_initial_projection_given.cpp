@@ -17,6 +17,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_initial_projection_given {
+
 using condyn::test::build_error;
 
 using condyn::test::replace;
@@ -208,3 +211,5 @@ TEST_CASE("given values that put a rod's ends together name the keys and the rod
                  "but with displacement ux2 = -1, uy2 = 0 kept no initial state satisfies "
                  "constraint 'rigid_1_2'") != std::string::npos);
 }
+
+}  // namespace test_initial_projection_given

@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_line_reader {
+
 namespace {
 
 /// Every line the reader serves, and the number it gives each.
@@ -77,3 +79,5 @@ TEST_CASE("line reader: Matrix Market and tables name the same line of the same 
     }
   }
 }
+
+}  // namespace test_line_reader

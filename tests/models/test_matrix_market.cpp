@@ -20,6 +20,8 @@
 
 using namespace condyn;
 
+namespace test_matrix_market {
+
 using condyn::test::Sandbox;
 
 namespace {
@@ -730,3 +732,5 @@ TEST_CASE("matrix model from files runs exactly as the same model written inline
     CHECK(a.trajectory.u.col(a.trajectory.u.cols() - 1).cwiseAbs().minCoeff() > 0.1);
   }
 }
+
+}  // namespace test_matrix_market

@@ -19,6 +19,9 @@
 #include "tests/system_check.hpp"
 
 using namespace condyn;
+
+namespace test_member_dampers {
+
 using condyn::test::replace;
 
 namespace {
@@ -273,3 +276,5 @@ supports = [1]
   CHECK(error_of("{ nodes = [1, 2], rigid = true, length = 1.0 }", linear).empty());
   CHECK(error_of("{ nodes = [1, 2], EA = 1.0, c = 0.0 }", linear).empty());
 }
+
+}  // namespace test_member_dampers

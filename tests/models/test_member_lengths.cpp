@@ -20,6 +20,8 @@
 
 using namespace condyn;
 
+namespace test_member_lengths {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -154,3 +156,5 @@ TEST_CASE("member lengths: a residual that overflows is named, never printed as 
   CHECK(message.find("nan") == std::string::npos);
   CHECK(message.find("inf;") == std::string::npos);
 }
+
+}  // namespace test_member_lengths

@@ -16,6 +16,8 @@
 
 using namespace condyn;
 
+namespace test_modal_damping {
+
 namespace {
 
 /// A chain ground-a-b-c (springs 400, 200, 100; masses 1, 2, 1), c tied to b by the row
@@ -118,3 +120,5 @@ TEST_CASE("modal damping: refusals name the key") {
   refused(test::replace(chain("{ modal = 0.05 }"), "mass = [[1.0", "mass = [[0.0"),
           "modal damping needs mass on every motion the constraints allow");
 }
+
+}  // namespace test_modal_damping

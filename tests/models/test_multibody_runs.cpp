@@ -18,6 +18,8 @@
 
 using namespace condyn;
 
+namespace test_multibody_runs {
+
 namespace {
 
 constexpr double kGravity = 9.81;
@@ -215,3 +217,5 @@ TEST_CASE("multibody: the multiplier formulations' Jacobians agree with central 
                        1e-6);
   }
 }
+
+}  // namespace test_multibody_runs

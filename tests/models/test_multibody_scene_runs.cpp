@@ -14,6 +14,8 @@
 
 using namespace condyn;
 
+namespace test_multibody_scene_runs {
+
 namespace {
 
 /// The global error of a run at the scene's rtol: up to 1e3 rtol relative to the size (1 for
@@ -83,3 +85,5 @@ TEST_CASE("the four-bars run under every scheme, the spatial one included") {
     }
   }
 }
+
+}  // namespace test_multibody_scene_runs

@@ -17,6 +17,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_multibody_start {
+
 using condyn::test::build_error;
 using condyn::test::check_build_error;
 using condyn::test::replace;
@@ -204,3 +207,5 @@ TEST_CASE("the example scenes build, the slider-crank's projection keeps the cra
   CHECK(report.initial_projection.find("slider.vx: 0 -> -0.6283185307") != std::string::npos);
   CHECK(report.initial_projection.find("rod.omega:") == std::string::npos);
 }
+
+}  // namespace test_multibody_start

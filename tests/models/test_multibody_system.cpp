@@ -18,6 +18,8 @@
 
 using namespace condyn;
 
+namespace test_multibody_system {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -588,3 +590,5 @@ TEST_CASE("multibody outputs: angular acceleration from R'' = α × R + ω × (�
     }
   }
 }
+
+}  // namespace test_multibody_system

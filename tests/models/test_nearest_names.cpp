@@ -13,6 +13,8 @@
 #include "tests/scene_text.hpp"
 #include "validation/studies/user_checks.hpp"
 
+namespace test_nearest_names {
+
 using condyn::name_distance;
 using condyn::nearest_names;
 
@@ -130,3 +132,5 @@ TEST_CASE("a scene's unknown DOF and unknown key: the nearest name, when one is 
   CHECK(error(base + "[output]\nzzz = 1\n").find("unknown key (expected one of: ") !=
         std::string::npos);
 }
+
+}  // namespace test_nearest_names

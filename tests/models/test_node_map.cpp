@@ -13,6 +13,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_node_map {
+
 using condyn::test::replace;
 using condyn::test::Sandbox;
 
@@ -172,3 +175,5 @@ TEST_CASE("node map: a bad coordinates file or key is refused with the scene's k
   CHECK(has(error(replace(kMatrix, "\"matrix\"", "\"matrix\"\ncoordinates_ = 1")),
             "model.coordinates_: unknown key"));
 }
+
+}  // namespace test_node_map

@@ -23,6 +23,8 @@
 
 using namespace condyn;
 
+namespace test_nonlinear_drop {
+
 namespace {
 
 std::string redundant_scene() {
@@ -336,3 +338,5 @@ TEST_CASE("a mechanism's joints are listed with the rows kept after redundant = 
   }
   CHECK(dropped_listed == model.dropped_constraints.size());
 }
+
+}  // namespace test_nonlinear_drop

@@ -22,6 +22,9 @@
 #include "tests/system_check.hpp"
 
 using namespace condyn;
+
+namespace test_nonlinear_models {
+
 using condyn::test::build_error;
 
 namespace {
@@ -229,3 +232,5 @@ output_step = 1.0
   CHECK_FALSE(pushed.reference);
   CHECK(pushed.description.find("no reference") != std::string::npos);
 }
+
+}  // namespace test_nonlinear_models

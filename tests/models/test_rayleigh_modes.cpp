@@ -19,6 +19,9 @@
 #include "tests/shear_building.hpp"
 
 using namespace condyn;
+
+namespace test_rayleigh_modes {
+
 using condyn::test::ShearBuilding;
 
 namespace {
@@ -184,3 +187,5 @@ TEST_CASE("Rayleigh damping by modes: refusals name the key") {
   CHECK(refusal(pendulum).find("Rayleigh damping by modes needs a linear model") !=
         std::string::npos);
 }
+
+}  // namespace test_rayleigh_modes

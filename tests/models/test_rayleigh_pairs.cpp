@@ -11,6 +11,8 @@
 
 using namespace condyn;
 
+namespace test_rayleigh_pairs {
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -101,3 +103,5 @@ TEST_CASE("Rayleigh damping from pairs: frequencies an ulp apart keep their rati
                              "m.toml"),
       doctest::Contains("need a negative"), SceneError);
 }
+
+}  // namespace test_rayleigh_pairs

@@ -13,6 +13,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_read_mechanism {
+
 using condyn::test::check_parse_error;
 using condyn::test::parse_error;
 using condyn::test::replace;
@@ -455,3 +458,5 @@ output_step = 0.1
   check_parse_error(replace(kPlanar, "[[body]]\nname = \"crank\"", "[[bodyy]]\nname = \"crank\""),
                     "bodyy: unknown key");
 }
+
+}  // namespace test_read_mechanism

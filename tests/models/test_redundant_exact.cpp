@@ -12,6 +12,8 @@
 
 using namespace condyn;
 
+namespace test_redundant_exact {
+
 namespace {
 
 // Two masses on a line, node 2 held vertically twice: by 'roll' and by 'twin'.
@@ -170,3 +172,5 @@ TEST_CASE("weighted_sum_vanishes: the canonical form of each kind of term") {
   CHECK(weighted_sum_vanishes({{1.0, &l}}, 0.25).kind == K::zero);
   CHECK(weighted_sum_vanishes({{1.0, &one}}, 1.0).detail == "1");
 }
+
+}  // namespace test_redundant_exact

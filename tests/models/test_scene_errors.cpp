@@ -14,6 +14,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_scene_errors {
+
 using condyn::test::build_error;
 using condyn::test::check_build_error;
 
@@ -845,3 +848,5 @@ TEST_CASE("a dependent set of many constraints is named by its first 12 and coun
   const std::string named = msg.substr(0, msg.find(" and 3 more"));
   CHECK(std::count(named.begin(), named.end(), '\'') == 24);
 }
+
+}  // namespace test_scene_errors

@@ -12,6 +12,8 @@
 
 using namespace condyn;
 
+namespace test_scene_names {
+
 namespace {
 
 /// A matrix scene with the given DOF list and constraint table (TOML text).
@@ -140,3 +142,5 @@ TEST_CASE("Model::find_dof and dof_at look a DOF up by its name, in names sorted
   const auto built = build_model(parse_scene_text(scene("[\"p\", \"q\"]", ""), "n.toml"));
   CHECK(built.dof_at("q") == 1);
 }
+
+}  // namespace test_scene_names

@@ -10,6 +10,8 @@
 
 using namespace condyn;
 
+namespace test_shared_sparse {
+
 TEST_CASE("SharedSparse: readers share one matrix, edit() copies a shared one first") {
   SharedSparse a;
   a.edit().resize(2, 2);
@@ -41,3 +43,5 @@ TEST_CASE("a linear model's system evaluates the model's own K, not a copy") {
   CHECK(f[0] == -(3.0 * 1.0 - 1.0 * 2.0));
   CHECK(f[1] == 1.0 - (-1.0 * 1.0 + 1.0 * 2.0));
 }
+
+}  // namespace test_shared_sparse

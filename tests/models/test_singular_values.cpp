@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_singular_values {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -111,3 +113,5 @@ TEST_CASE("singular_values: a rank-deficient block, an empty one, and a value no
   wide(5, 5) = std::numeric_limits<double>::infinity();
   CHECK_THROWS_AS((void)singular_values(wide), std::runtime_error);
 }
+
+}  // namespace test_singular_values

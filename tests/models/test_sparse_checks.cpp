@@ -15,6 +15,9 @@
 #include "tests/scene_errors.hpp"
 
 using namespace condyn;
+
+namespace test_sparse_checks {
+
 using condyn::test::lattice;
 
 namespace {
@@ -247,3 +250,5 @@ TEST_CASE("a DOF nothing acts on is refused before the checks that grow with the
   CHECK(block("1.0").find("is not positive semi-definite") != std::string::npos);
   CHECK(block("0.0").find("DOF 'u7' has neither mass nor stiffness") != std::string::npos);
 }
+
+}  // namespace test_sparse_checks

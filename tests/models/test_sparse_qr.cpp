@@ -11,6 +11,8 @@
 
 using namespace condyn;
 
+namespace test_sparse_qr {
+
 namespace {
 
 /// Columns c0, c1, c2 = 2 c0 - 3 c1, c3 of a 6 x 4 matrix: rank 3, and c2 (or another column of
@@ -63,3 +65,5 @@ TEST_CASE("SuiteSparseQR: least squares in a basis of full column rank") {
   const Eigen::VectorXd x = ls.solve(b);
   CHECK((basis.transpose() * (basis * x - b)).norm() < 1e-13);
 }
+
+}  // namespace test_sparse_qr

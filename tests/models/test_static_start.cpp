@@ -16,6 +16,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_static_start {
+
 using condyn::test::build_error;
 
 namespace {
@@ -207,3 +210,5 @@ TEST_CASE("static start: penalty is refused, its springs would start unloaded") 
   const auto plain = test::built(parse_scene_text(given, "given.toml"));
   CHECK_FALSE(scheme_refusal(plain.model, Scheme::penalty).has_value());
 }
+
+}  // namespace test_static_start

@@ -16,6 +16,8 @@
 
 using namespace condyn;
 
+namespace test_static_start_validation {
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -41,3 +43,5 @@ TEST_CASE("static start: a 10,000-DOF lattice under gravity solves sparse to a s
   CHECK(r.lpNorm<Eigen::Infinity>() <= kResidualTolerance * f.lpNorm<Eigen::Infinity>());
   CHECK(m.u0.lpNorm<Eigen::Infinity>() > 0.0);  // the lattice sags: the test can fail
 }
+
+}  // namespace test_static_start_validation

@@ -20,6 +20,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_support_motion {
+
 using condyn::test::Sandbox;
 
 namespace {
@@ -313,3 +316,5 @@ TEST_CASE("support motion: refusals name the key, and the CSV file and line") {
                                                      "terms = { s = 1.0 }\nlevel = \"velocity\"");
   CHECK(has(error_in(box, velocity), "it is the right-hand side of a position-level constraint"));
 }
+
+}  // namespace test_support_motion

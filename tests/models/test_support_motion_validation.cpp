@@ -20,6 +20,9 @@
 #include "validation/references/exact_solution.hpp"
 
 using namespace condyn;
+
+namespace test_support_motion_validation {
+
 using condyn::test::Sandbox;
 
 namespace {
@@ -209,3 +212,5 @@ TEST_CASE("support motion validation: an acceleration record with a drift, linea
     CHECK(e.u <= kAmplification * support_error + kGlobalError * e.u_peak);
   }
 }
+
+}  // namespace test_support_motion_validation

@@ -13,6 +13,9 @@
 #include "tests/grid_matrix.hpp"
 
 using namespace condyn;
+
+namespace test_symmetric_factor {
+
 using condyn::test::grid_matrix;
 using condyn::test::kSolveRoundoff;
 using condyn::test::relative_residual;
@@ -82,3 +85,5 @@ TEST_CASE("SymmetricFactor: an indefinite matrix is named, and neither solved no
     CHECK_THROWS_AS((void)factor.solve(Eigen::VectorXd::Ones(side * side)), std::logic_error);
   }
 }
+
+}  // namespace test_symmetric_factor

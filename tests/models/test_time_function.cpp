@@ -7,6 +7,8 @@
 
 #include "models/core/time_function.hpp"
 
+namespace test_time_function {
+
 using condyn::TimeFunction;
 using condyn::TimeTerm;
 
@@ -168,3 +170,5 @@ TEST_CASE("time functions: describe signs, refuse derivative orders above 2") {
   CHECK_THROWS_AS((void)TimeFunction({harmonic(1.0, 2.0, 0.0)}).derivative(3, 0.0),
                   std::invalid_argument);
 }
+
+}  // namespace test_time_function

@@ -22,6 +22,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_time_table {
+
 using condyn::test::Sandbox;
 
 namespace {
@@ -349,3 +352,5 @@ output_step = 0.25
     CHECK((r.trajectory.u - step.trajectory.u).cwiseAbs().maxCoeff() <= 1e-6 * scale);
   }
 }
+
+}  // namespace test_time_table

@@ -17,6 +17,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli {
+
 namespace fs = std::filesystem;
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -410,3 +412,5 @@ TEST_CASE("stress: unknown families are usage errors, named") {
   CHECK(r.err.find("unknown stress family 'bogus'") != std::string::npos);
   CHECK(r.err.find("expected stiffness, mass_ratio") != std::string::npos);
 }
+
+}  // namespace test_cli

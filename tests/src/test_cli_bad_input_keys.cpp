@@ -7,6 +7,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_bad_input_keys {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -248,3 +250,5 @@ TEST_CASE("a member's rest length or damper out of range: exit 2 naming the key"
   check_refused(run_scene(replace(kScene, "EA = 10.0 }", "EA = 10.0, length = 1.5 }")),
                 "bad.toml:5: model.members[1].length: a bar's rest length needs geometry");
 }
+
+}  // namespace test_cli_bad_input_keys

@@ -9,6 +9,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_budget {
+
 using namespace condyn::test;
 
 namespace {
@@ -193,3 +195,5 @@ output_step = 0.1
     CHECK(contains(csv, "\n0.3,"));
   }
 }
+
+}  // namespace test_cli_budget

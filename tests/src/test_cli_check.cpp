@@ -8,6 +8,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_check {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 using condyn::test::slurp;
@@ -353,3 +355,5 @@ TEST_CASE("cli check: a run killed by a time limit keeps the verdicts already pr
   CAPTURE(out);
   CHECK(out.find("PASS check[1] x (value)") != std::string::npos);
 }
+
+}  // namespace test_cli_check

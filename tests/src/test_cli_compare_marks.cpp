@@ -6,6 +6,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_compare_marks {
+
 using namespace condyn::test;
 
 TEST_CASE("compare: runs far beyond their target are marked, and --fail-above fails them") {
@@ -45,3 +47,5 @@ TEST_CASE("compare: runs far beyond their target are marked, and --fail-above fa
   CHECK(slurp(box.path("out/runs.csv")).find(",1\n") == std::string::npos);
   CHECK(box.run(sweep + " --fail-above 0.5").code == 2);  // a factor below 1 is refused
 }
+
+}  // namespace test_cli_compare_marks

@@ -15,6 +15,8 @@
 #include "tests/hdf5_read.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_derived {
+
 using condyn::test::check_derived_as_csv;
 using condyn::test::CsvTable;
 using condyn::test::read_csv_table;
@@ -225,3 +227,5 @@ TEST_CASE("cli derived: info lists each derived column's formula, expanded as it
   CHECK(r.out.find("  storey_shear2 = -1.5e+07 u1 + 1.5e+07 u2\n") != std::string::npos);
   CHECK(r.out.find("  inertia2 = -20000 acc_u2\n") != std::string::npos);
 }
+
+}  // namespace test_cli_derived

@@ -18,6 +18,8 @@
 #include "tests/hdf5_read.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_derived_absolute {
+
 using condyn::test::check_derived_as_csv;
 using condyn::test::CsvTable;
 using condyn::test::read_csv_table;
@@ -195,3 +197,5 @@ TEST_CASE("cli derived absolute: an acc_abs_ term without [ground_motion] is ref
     CHECK((refused.out + refused.err).find(message) != std::string::npos);
   }
 }
+
+}  // namespace test_cli_derived_absolute

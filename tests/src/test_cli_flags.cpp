@@ -10,6 +10,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_flags {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -212,3 +214,5 @@ TEST_CASE("--scheme that takes no [solve] constraints sets the scene's aside, an
   box.write("both.toml", kScene + "scheme = \"elimination\"\nconstraints = \"mixed\"\n");
   CHECK(box.run("run both.toml --out r.csv").code == 2);
 }
+
+}  // namespace test_cli_flags

@@ -11,6 +11,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_ground_motion {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 using condyn::test::slurp;
@@ -123,3 +125,5 @@ TEST_CASE("cli ground motion: absolute accelerations are the relative ones plus 
   CHECK(b.err.find("b.toml:10: output.quantities: 'absolute_acceleration' needs [ground_motion]") !=
         std::string::npos);
 }
+
+}  // namespace test_cli_ground_motion

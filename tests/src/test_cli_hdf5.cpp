@@ -12,6 +12,8 @@
 #include "tests/hdf5_read.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_hdf5 {
+
 using namespace condyn::test;
 
 namespace {
@@ -149,3 +151,5 @@ TEST_CASE("the energy balance: seven CSV columns, the same numbers in HDF5 with 
                                  "energy_dissipated", "work_loads", "work_constraints"});
   H5Fclose(file);
 }
+
+}  // namespace test_cli_hdf5

@@ -10,6 +10,8 @@
 #include "tests/scene_text.hpp"
 #include "tests/shear_building.hpp"
 
+namespace test_cli_influence {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 using condyn::test::ShearBuilding;
@@ -95,3 +97,5 @@ TEST_CASE("influence: a bad influence file or pattern exits 2, naming the key an
   CHECK(!std::filesystem::exists(box.path("m.csv")));
   CHECK(!std::filesystem::exists(box.path("p.csv")));
 }
+
+}  // namespace test_cli_influence

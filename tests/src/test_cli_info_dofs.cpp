@@ -11,6 +11,8 @@
 #include "tests/lattice_scene.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_info_dofs {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -138,3 +140,5 @@ TEST_CASE("info: above 60 constraints, the first 40 rows and a count per class")
   CHECK(all.out.find("tie70 ") != std::string::npos);
   CHECK(all.out.find("more (73 in all") == std::string::npos);
 }
+
+}  // namespace test_cli_info_dofs

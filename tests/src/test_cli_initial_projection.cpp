@@ -8,6 +8,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_initial_projection {
+
 namespace {
 
 std::string four_bar_text() {
@@ -30,3 +32,5 @@ TEST_CASE("run and info print, per DOF, what the projection moved") {
     CHECK(r.out.find("ux1:") == std::string::npos);           // support, did not move
   }
 }
+
+}  // namespace test_cli_initial_projection

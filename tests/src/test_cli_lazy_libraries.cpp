@@ -18,6 +18,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/lattice_scene.hpp"
 
+namespace test_cli_lazy_libraries {
+
 using condyn::test::lattice;
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -204,3 +206,5 @@ TEST_CASE("a CHOLMOD or OpenBLAS that cannot be loaded: cholmod refused naming t
     CHECK(std::filesystem::exists(box.path("a.csv")));
   }
 }
+
+}  // namespace test_cli_lazy_libraries

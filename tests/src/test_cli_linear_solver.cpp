@@ -10,6 +10,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/lattice_scene.hpp"
 
+namespace test_cli_linear_solver {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -80,3 +82,5 @@ TEST_CASE("linear_solver refusals exit 2 naming the key and write nothing") {
   }
   CHECK_FALSE(std::filesystem::exists(box.path("r.csv")));
 }
+
+}  // namespace test_cli_linear_solver

@@ -8,6 +8,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_matrix_market {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 using condyn::test::slurp;
@@ -74,3 +76,5 @@ TEST_CASE("cli matrix market: a bad file is refused with exit 2, naming scene, k
     CHECK_FALSE(std::filesystem::exists(box.path("r.csv")));
   }
 }
+
+}  // namespace test_cli_matrix_market

@@ -15,6 +15,8 @@
 #include "tests/scene_text.hpp"
 #include "tests/shear_building.hpp"
 
+namespace test_cli_modes {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 using condyn::test::ShearBuilding;
@@ -213,3 +215,5 @@ TEST_CASE("modes refuses bad input with exit 2, naming the flag or key, writing 
   CHECK(contains(kept.err, "is read-only"));
   CHECK(condyn::test::slurp(box.path("old.h5")) == "kept\n");
 }
+
+}  // namespace test_cli_modes

@@ -12,6 +12,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_multibody {
+
 namespace {
 
 std::string scene_text(const std::string& name) {
@@ -131,3 +133,5 @@ TEST_CASE("a dropped redundant joint row: the reactions of the kept rows carry t
   CHECK(std::abs(held - weight) <= 1e-6 * weight);
   CHECK(std::abs(row.at("O1.fx") + row.at("O2.fx") + row.at("O3.fx")) <= 1e-6 * weight);
 }
+
+}  // namespace test_cli_multibody

@@ -9,6 +9,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_newmark {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -134,3 +136,5 @@ TEST_CASE("info, check and compare take --step as run does, and refuse a bad one
   CHECK(bad_cmp.code == 2);
   CHECK(contains(bad_cmp.err, "solve.step"));
 }
+
+}  // namespace test_cli_newmark

@@ -12,6 +12,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_newmark_stabilized {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -139,3 +141,5 @@ TEST_CASE("a bad newmark_constraints exits 2 naming the key") {
   CHECK(r.code == 2);
   CHECK(contains(r.err, "b.toml:15: solve.newmark_constraints: expected 'index3'"));
 }
+
+}  // namespace test_cli_newmark_stabilized

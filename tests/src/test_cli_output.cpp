@@ -17,6 +17,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_output {
+
 namespace fs = std::filesystem;
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -517,3 +519,5 @@ TEST_CASE("links and permissions: what replacing an output keeps") {
   CHECK(slurp(box.path("other.csv")) == "old\n");
   CHECK(hidden_files(box.path(".")).empty());
 }
+
+}  // namespace test_cli_output

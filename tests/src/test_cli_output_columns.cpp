@@ -15,6 +15,9 @@
 #include "tests/scene_text.hpp"
 
 using namespace condyn;
+
+namespace test_cli_output_columns {
+
 using condyn::test::replace;
 
 namespace {
@@ -163,3 +166,5 @@ TEST_CASE("CSV numbers read back as the same doubles (shortest round-trip form)"
   }
   CHECK(times.back() == 1.0);
 }
+
+}  // namespace test_cli_output_columns

@@ -12,6 +12,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_output_names {
+
 namespace fs = std::filesystem;
 using condyn::test::Result;
 using condyn::test::Sandbox;
@@ -193,3 +195,5 @@ TEST_CASE("a finished run removes the partial files an earlier failure left unde
   REQUIRE(box.run("run s.toml --out out.csv").code == 0);
   CHECK(slurp(box.path("other.partial.csv")) == "kept\n");
 }
+
+}  // namespace test_cli_output_names

@@ -10,6 +10,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_plot {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -184,3 +186,5 @@ TEST_CASE("condyn plot draws names as written, many DOFs without a legend, and r
   CHECK(zero.out.find("note: z: drift exactly 0 at every output time") != std::string::npos);
   CHECK(zero.err.find("z.csv: nothing to draw (the notes above say why)") != std::string::npos);
 }
+
+}  // namespace test_cli_plot

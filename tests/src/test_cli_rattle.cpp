@@ -8,6 +8,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_rattle {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -100,3 +102,5 @@ TEST_CASE("rattle's stability warning is printed once by a run that ends") {
   CHECK(contains(r.err, "warning: short.toml: rattle's step 0.0015"));
   CHECK(contains(all, "rattle: symplectic, fixed step 0.0015"));  // the other notes stay
 }
+
+}  // namespace test_cli_rattle

@@ -10,6 +10,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_readme_example {
+
 using condyn::test::Sandbox;
 using condyn::test::slurp;
 
@@ -104,3 +106,5 @@ TEST_CASE("README: the first scene is models/scenes/quickstart.toml, its output 
     }
   }
 }
+
+}  // namespace test_cli_readme_example

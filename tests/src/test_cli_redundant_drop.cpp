@@ -10,6 +10,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_redundant_drop {
+
 namespace {
 
 std::string scene_text() {
@@ -54,3 +56,5 @@ TEST_CASE("without drop the redundant bar is refused with exit 2, the dependent 
   CHECK(has(run.err, "redundant = \"drop\""));
   CHECK_FALSE(std::filesystem::exists(box.path("r.csv")));
 }
+
+}  // namespace test_cli_redundant_drop

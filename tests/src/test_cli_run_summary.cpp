@@ -8,6 +8,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_run_summary {
+
 using namespace condyn::test;
 
 namespace {
@@ -136,3 +138,5 @@ TEST_CASE("run and check: a drift beyond 100 (rtol max|u| + atol) is warned of, 
       contains(xml, "<testsuites name=\"condyn check\" tests=\"3\" failures=\"1\" errors=\"0\">"));
   CHECK(box.run("check g.toml").code == 0);
 }
+
+}  // namespace test_cli_run_summary

@@ -11,6 +11,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_singular {
+
 namespace {
 
 std::string scene_text(const std::string& name) {
@@ -122,3 +124,5 @@ TEST_CASE("the result flags the rows inside a passage in a last column near_sing
   REQUIRE(box.run("run linear.toml --out linear.csv").code == 0);
   CHECK(flags_of(condyn::test::slurp(box.path("linear.csv"))).last_column == "drift_velocity");
 }
+
+}  // namespace test_cli_singular

@@ -11,6 +11,9 @@
 #include "tests/solve_helpers.hpp"
 
 using namespace condyn;
+
+namespace test_cli_streaming {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 using condyn::test::slurp;
@@ -60,3 +63,5 @@ TEST_CASE("a streamed run hands out every row in order and holds no DOFs x times
     }
   }
 }
+
+}  // namespace test_cli_streaming

@@ -10,6 +10,8 @@
 
 #include "tests/cli_sandbox.hpp"
 
+namespace test_cli_support_motion {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 using condyn::test::slurp;
@@ -157,3 +159,5 @@ TEST_CASE("cli support motion: bad records exit 2 naming the key, the file and t
   CHECK(r.code == 2);
   CHECK(r.err.find("a displacement record needs either") != std::string::npos);
 }
+
+}  // namespace test_cli_support_motion

@@ -10,6 +10,8 @@
 #include "tests/cli_sandbox.hpp"
 #include "tests/scene_text.hpp"
 
+namespace test_cli_sweep {
+
 using condyn::test::Result;
 using condyn::test::Sandbox;
 
@@ -78,3 +80,5 @@ TEST_CASE("condyn sweep says it needs the Python module where condyn is built wi
 }
 
 #endif
+
+}  // namespace test_cli_sweep

@@ -8,6 +8,8 @@
 
 #include "src/output/escaped_streams.hpp"
 
+namespace test_escaped_streams {
+
 using condyn::EscapingStreambuf;
 
 namespace {
@@ -66,3 +68,5 @@ TEST_CASE("a sink that fails fails the stream") {
   escaped_only << "\x1b" << std::flush;
   CHECK_FALSE(escaped_only.good());
 }
+
+}  // namespace test_escaped_streams

@@ -15,6 +15,9 @@
 #include "tests/hdf5_read.hpp"
 
 using namespace condyn;
+
+namespace test_hdf5_modes {
+
 using condyn::test::read_doubles;
 
 TEST_CASE("the modes HDF5 file holds the modes it is given, a rigid motion's infinite period too") {
@@ -52,3 +55,5 @@ TEST_CASE("the modes HDF5 file holds the modes it is given, a rigid motion's inf
   CHECK(H5Aexists(file, "total_mass") == 0);
   H5Fclose(file);
 }
+
+}  // namespace test_hdf5_modes

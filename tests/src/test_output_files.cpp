@@ -8,6 +8,8 @@
 #include "src/output/output_files.hpp"
 #include "tests/cli_sandbox.hpp"
 
+namespace test_output_files {
+
 namespace fs = std::filesystem;
 using condyn::OutputError;
 using condyn::OutputPlan;
@@ -50,3 +52,5 @@ TEST_CASE("OutputPlan: outputs added after a check are checked against the earli
   CHECK_THROWS_AS(second.check(), OutputError);
   CHECK(slurp(box.path("scene.toml")) == "x = 1\n");
 }
+
+}  // namespace test_output_files

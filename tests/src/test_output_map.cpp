@@ -34,6 +34,9 @@
 #include "validation/studies/user_checks.hpp"
 
 using namespace condyn;
+
+namespace test_output_map {
+
 using condyn::test::Dataset;
 using condyn::test::read_doubles;
 using condyn::test::read_strings;
@@ -383,3 +386,5 @@ TEST_CASE("[output] points is refused for a model without named points") {
                                          "mechanism"),
                        SceneError);
 }
+
+}  // namespace test_output_map

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+namespace test_user_docs {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -71,3 +73,5 @@ TEST_CASE("every relative link of the Markdown pages names a file of the reposit
   }
   CHECK(links > 50);  // the pages link to one another throughout
 }
+
+}  // namespace test_user_docs

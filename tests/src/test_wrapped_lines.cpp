@@ -10,6 +10,8 @@
 
 using namespace condyn;
 
+namespace test_wrapped_lines {
+
 namespace {
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -61,3 +63,5 @@ TEST_CASE("wrapped_list counts what it does not show after kMaxListLines lines")
   CHECK(lines.back().size() >= suffix.size());
   CHECK(lines.back().substr(lines.back().size() - suffix.size()) == suffix);
 }
+
+}  // namespace test_wrapped_lines

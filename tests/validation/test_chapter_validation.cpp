@@ -20,6 +20,8 @@
 
 using namespace condyn;
 
+namespace test_chapter_validation {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -161,3 +163,5 @@ TEST_CASE("published benchmarks: a requirement beyond reach is reported as a fai
   CHECK_FALSE(run_published_benchmarks(out, {beyond}));
   CHECK(out.str().find("FAIL") != std::string::npos);
 }
+
+}  // namespace test_chapter_validation

@@ -23,6 +23,8 @@
 
 using namespace condyn;
 
+namespace test_compare {
+
 namespace {
 
 CompareOptions small_options() {
@@ -572,3 +574,5 @@ TEST_CASE("text tables: columns as wide as their widest cell, a gap between any 
         "  ≥1     y\n"
         "  only: a message that spans the columns after it\n");
 }
+
+}  // namespace test_compare

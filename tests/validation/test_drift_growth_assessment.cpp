@@ -11,6 +11,8 @@
 
 using namespace condyn;
 
+namespace test_drift_growth_assessment {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -105,3 +107,5 @@ TEST_CASE("a velocity chattering about zero is not counted as oscillating") {
   last = reversals(Eigen::VectorXd::Constant(1, -0.5));  // a real reversal
   CHECK(last == 1);
 }
+
+}  // namespace test_drift_growth_assessment

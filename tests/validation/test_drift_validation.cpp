@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_drift_validation {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -169,3 +171,5 @@ TEST_CASE("projection: outputs between steps are on the constraints, as the step
   // rtol 1e-4 over two periods: global error a few hundred times the local tolerance at most.
   CHECK((proj.u - ref.u).cwiseAbs().maxCoeff() <= 1e-2);
 }
+
+}  // namespace test_drift_validation

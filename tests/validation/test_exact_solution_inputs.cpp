@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_exact_solution_inputs {
+
 namespace {
 
 const std::string kChain = R"(
@@ -117,3 +119,5 @@ output_step = 1.0
     }
   }
 }
+
+}  // namespace test_exact_solution_inputs

@@ -12,6 +12,8 @@
 
 #include "tests/modal_fixtures.hpp"
 
+namespace test_exp_divided_difference {
+
 using namespace condyn::test::modal;
 
 TEST_CASE("exp_divided_difference matches the explicit formula for distinct points") {
@@ -93,3 +95,5 @@ TEST_CASE("exp_divided_difference at t = 0 is the identity column") {
   CHECK(three.d2 == Complex(1.0));
   CHECK_THROWS_AS((void)exp_divided_difference({}, 1.0), std::invalid_argument);
 }
+
+}  // namespace test_exp_divided_difference

@@ -17,6 +17,8 @@
 
 using namespace condyn;
 
+namespace test_handwritten_validation {
+
 namespace {
 
 /// Machine epsilon: roundoff bounds below are multiples of it times a stated scale.
@@ -130,3 +132,5 @@ quantities = ["displacement", "reaction"]
   CHECK(worst_x <= 0.3 * kAcceptance);
   CHECK(worst_r <= 20.0 * kAcceptance);
 }
+
+}  // namespace test_handwritten_validation

@@ -17,6 +17,8 @@
 
 using namespace condyn;
 
+namespace test_massless_truss_validation {
+
 namespace {
 
 /// A Warren-type bridge: bottom chord nodes 1-5 (mass 1 each, y = 0), top chord nodes 6-8
@@ -173,3 +175,5 @@ TEST_CASE("a truss with massless nodes agrees with the truss condensed by hand, 
     CHECK(dr <= 1e-6 * exact.reaction.cwiseAbs().maxCoeff());
   }
 }
+
+}  // namespace test_massless_truss_validation

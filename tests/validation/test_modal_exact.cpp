@@ -11,6 +11,8 @@
 
 #include "tests/modal_fixtures.hpp"
 
+namespace test_modal_exact {
+
 using namespace condyn::test::modal;
 
 TEST_CASE("undamped single DOF step response and free vibration") {
@@ -226,3 +228,5 @@ TEST_CASE("damped harmonic forcing settles to the steady-state amplitude and pha
     CHECK(relative_error(s.q(0), x, amplitude * std::abs(receptance)) < kClosedFormTolerance);
   }
 }
+
+}  // namespace test_modal_exact

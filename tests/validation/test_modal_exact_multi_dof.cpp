@@ -13,6 +13,8 @@
 #include "models/core/eigen_decompositions.hpp"
 #include "tests/modal_fixtures.hpp"
 
+namespace test_modal_exact_multi_dof {
+
 using namespace condyn::test::modal;
 
 TEST_CASE("3-DOF system: frequencies, equation of motion, delayed step") {
@@ -183,3 +185,5 @@ TEST_CASE("invalid systems are refused") {
     CHECK_THROWS_AS((void)sol.at(-1.0), std::invalid_argument);
   }
 }
+
+}  // namespace test_modal_exact_multi_dof

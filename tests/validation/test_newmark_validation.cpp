@@ -23,6 +23,8 @@
 
 using namespace condyn;
 
+namespace test_newmark_validation {
+
 namespace {
 
 test::BuiltScene scene_file(const std::string& path) {
@@ -157,3 +159,5 @@ TEST_CASE("newmark error control on the El Centro shear frame: stale factors, th
   CHECK(r.summary.jacobian_evals * 10 < r.summary.steps);
   CHECK(err.displacement < 20.0 * std::pow(settings.rtol, 2.0 / 3.0));
 }
+
+}  // namespace test_newmark_validation

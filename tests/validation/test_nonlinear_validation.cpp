@@ -13,6 +13,8 @@
 
 using namespace condyn;
 
+namespace test_nonlinear_validation {
+
 namespace {
 
 test::BuiltScene scene(const std::string& name, double t_end, double rtol) {
@@ -137,3 +139,5 @@ TEST_CASE("nonlinear scenes: energy is conserved by the schemes that hold the co
     CHECK(summary.max_drift_position < 100 * 1e-10);
   }
 }
+
+}  // namespace test_nonlinear_validation

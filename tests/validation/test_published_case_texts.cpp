@@ -9,6 +9,8 @@
 
 #include "validation/references/benchmark_suite.hpp"
 
+namespace test_published_case_texts {
+
 TEST_CASE("published-benchmark requirement texts carry no stale figures or internal references") {
   const std::regex stale(R"(observed|issue\s*[0-9]|shared/|item\s*[0-9])", std::regex::icase);
   REQUIRE_FALSE(condyn::published_cases().empty());
@@ -19,3 +21,5 @@ TEST_CASE("published-benchmark requirement texts carry no stale figures or inter
     CHECK_FALSE(std::regex_search(c.reason, stale));
   }
 }
+
+}  // namespace test_published_case_texts

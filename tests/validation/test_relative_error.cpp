@@ -8,6 +8,8 @@
 
 using namespace condyn;
 
+namespace test_relative_error {
+
 namespace {
 
 /// One DOF over t = 0 … 2 in 21 rows: u = u(t), v = v(t), no reactions.
@@ -61,3 +63,5 @@ TEST_CASE("relative error: absolute where the reference is identically zero") {
   CHECK(err.displacement == doctest::Approx(2e-9));
   CHECK(err.velocity == doctest::Approx(3e-9));
 }
+
+}  // namespace test_relative_error

@@ -13,6 +13,8 @@
 
 using namespace condyn;
 
+namespace test_shear_frame_validation {
+
 TEST_CASE("shear frame under El Centro: every scheme agrees with the exact solution") {
   auto scene = test::built(parse_scene_file(std::string(CONDYN_SOURCE_DIR) +
                                             "/models/scenes/shear_frame_el_centro.toml"));
@@ -37,3 +39,5 @@ TEST_CASE("shear frame under El Centro: every scheme agrees with the exact solut
   CHECK(peak.u > 1e-3);
   CHECK(peak.reaction > 1e3);
 }
+
+}  // namespace test_shear_frame_validation

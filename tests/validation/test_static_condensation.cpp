@@ -9,6 +9,8 @@
 
 #include "tests/modal_fixtures.hpp"
 
+namespace test_static_condensation {
+
 using namespace condyn::test::modal;
 
 namespace {
@@ -82,3 +84,5 @@ TEST_CASE("static condensation refuses what is not static, saying why") {
   regular.M(1, 1) = 1.0;
   CHECK_FALSE(condense_massless(regular).has_value());
 }
+
+}  // namespace test_static_condensation

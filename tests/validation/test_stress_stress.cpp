@@ -16,6 +16,8 @@
 
 using namespace condyn;
 
+namespace test_stress_stress {
+
 namespace {
 
 const StressResult& suite() {
@@ -165,3 +167,5 @@ TEST_CASE("stress: the output folder and the map") {
   CHECK(fs::file_size(dir / "stress_map.png") > 1000);
   fs::remove_all(dir);
 }
+
+}  // namespace test_stress_stress

@@ -15,6 +15,8 @@
 
 using namespace condyn;
 
+namespace test_truss_frame_validation {
+
 namespace {
 
 /// Storeys 3.5 m high, bays 6 m wide; columns EA 2e9 N, beams EA 1e9 N, braces EA 5e8 N (node
@@ -79,3 +81,5 @@ TEST_CASE("truss frame under El Centro: the Newmark family converges at order 2 
   test::check_order_two("truss frame", scene.model, scene.spec.solve,
                         exact_trajectory(scene.model, scene.spec.solve.output_times()), 0.002);
 }
+
+}  // namespace test_truss_frame_validation

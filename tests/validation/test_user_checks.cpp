@@ -13,6 +13,8 @@
 
 using namespace condyn;
 
+namespace test_user_checks {
+
 namespace {
 
 /// A unit oscillator (m = k = 1) released from u = 1: u(t) = cos t exactly, v(t) = −sin t.
@@ -200,3 +202,5 @@ TEST_CASE("checks: a time 1e-10 before t_end is its own row, not t_end's") {
   CHECK(r.outcomes[1].computed - r.outcomes[0].computed ==
         doctest::Approx(std::sin(2.0) * 1e-10).epsilon(0.05));
 }
+
+}  // namespace test_user_checks
