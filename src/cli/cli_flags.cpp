@@ -205,6 +205,16 @@ Scheme parse_scheme_flag(const std::string& flag, const std::string& s) {
   throw CLI::ValidationError(flag, "unknown scheme '" + s + "' (expected " + scheme_names() + ")");
 }
 
+std::vector<Scheme> parse_scheme_list(const std::string& flag, const std::string& s) {
+  std::vector<Scheme> out;
+  for (const auto& name : split_list(flag, s)) {
+    const Scheme scheme = parse_scheme_flag(flag, name);
+    if (scheme == Scheme::automatic) throw CLI::ValidationError(flag, "name schemes, not 'auto'");
+    out.push_back(scheme);
+  }
+  return out;
+}
+
 std::vector<std::string> split_list(const std::string& flag, const std::string& s) {
   std::vector<std::string> out;
   std::string item;

@@ -37,6 +37,9 @@ namespace condyn {
 
 /// A scheme named by `flag`; throws CLI::ValidationError naming the flag and the schemes.
 [[nodiscard]] Scheme parse_scheme_flag(const std::string& flag, const std::string& s);
+/// Schemes listed by `flag` ("ggl,index3", split_list's rules), each a scheme by name ('auto'
+/// refused: a study names what it runs); throws CLI::ValidationError naming the flag.
+[[nodiscard]] std::vector<Scheme> parse_scheme_list(const std::string& flag, const std::string& s);
 /// --constraints: "mixed" or "multipliers"; throws CLI::ValidationError otherwise.
 /// --constraints: refused under a scheme without multipliers (elimination, penalty, projection).
 [[nodiscard]] SolveSpec::Treatment parse_treatment_flag(const std::string& s, Scheme scheme);

@@ -42,16 +42,7 @@ void apply_lists(CompareOptions& options, const std::string& tolerances,
       options.tolerances.push_back(rtol);
     }
   }
-  if (!schemes.empty()) {
-    options.schemes.clear();
-    for (const auto& s : split_list("--schemes", schemes)) {
-      const Scheme scheme = parse_scheme_flag("--schemes", s);
-      if (scheme == Scheme::automatic) {
-        throw CLI::ValidationError("--schemes", "name schemes, not 'auto'");
-      }
-      options.schemes.push_back(scheme);
-    }
-  }
+  if (!schemes.empty()) options.schemes = parse_scheme_list("--schemes", schemes);
   try {
     options.validate();
   } catch (const std::invalid_argument& e) {

@@ -1,7 +1,11 @@
 // condyn stress: generated stiff and extreme scenes under every scheme (docs/validation.md).
 
+#include <algorithm>
 #include <iostream>
+#include <iterator>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "src/cli/cli_flags.hpp"
 #include "src/cli/commands.hpp"
@@ -15,30 +19,59 @@ namespace condyn {
 namespace {
 
 struct StressArgs {
-  std::string dir, families;
+  std::string dir, families, schemes;
   bool no_plots = false;
 };
 
-int stress(std::string dir, const std::string& families, bool no_plots) {
-  StressOptions options;
-  if (!families.empty()) {  // not given: every family (given as '', refused by its check)
-    for (const auto& f : split_list("--families", families)) options.families.push_back(f);
+/// --schemes: among the schemes stress runs (kSchemes; the fixed-step family is not one).
+std::vector<Scheme> stress_schemes(const std::string& schemes) {
+  std::vector<Scheme> out = parse_scheme_list("--schemes", schemes);
+  for (Scheme s : out) {
+    if (std::find(std::begin(kSchemes), std::end(kSchemes), s) == std::end(kSchemes)) {
+      std::string names;
+      for (Scheme k : kSchemes) names += std::string(names.empty() ? "" : ", ") + to_string(k);
+      throw CLI::ValidationError("--schemes", "stress does not run '" + std::string(to_string(s)) +
+                                                  "' (it runs " + names + ")");
+    }
   }
+  return out;
+}
+
+/// True when some case runs under one of `schemes` (a case lists its own, or runs every scheme).
+bool any_runs(const std::vector<StressCase>& cases, const std::vector<Scheme>& schemes) {
+  return std::any_of(cases.begin(), cases.end(), [&](const StressCase& c) {
+    return c.schemes.empty() ||
+           std::find_first_of(c.schemes.begin(), c.schemes.end(), schemes.begin(), schemes.end()) !=
+               c.schemes.end();
+  });
+}
+
+int stress(const StressArgs& args) {
+  StressOptions options;
+  if (!args.families.empty()) {  // not given: every family (given as '', refused by its check)
+    for (const auto& f : split_list("--families", args.families)) options.families.push_back(f);
+  }
+  if (!args.schemes.empty()) options.schemes = stress_schemes(args.schemes);
+  std::vector<StressCase> cases;
   try {
-    (void)stress_cases(options.families);  // unknown family names are usage errors
+    cases = stress_cases(options.families);  // unknown family names are usage errors
   } catch (const std::invalid_argument& e) {
     throw CLI::ValidationError("--families", e.what());
   }
-  if (dir.empty()) dir = "condyn-out/stress";
+  if (!options.schemes.empty() && !any_runs(cases, options.schemes)) {
+    throw CLI::ValidationError(
+        "--schemes", "no case of the families asked for runs under '" + args.schemes + "'");
+  }
+  const std::string dir = args.dir.empty() ? "condyn-out/stress" : args.dir;
   OutputPlan plan;  // the folder and its files, checked before the runs
-  plan_stress_files(plan, dir, stress_cases(options.families));
+  plan_stress_files(plan, dir, cases);
   plan.check();
   options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const StressResult result = run_stress(options);
   print_stress_report(std::cout, result);
   write_stress_files(plan, dir, result);
   std::cout << "\nwrote stress.csv, stress.json, summary.txt and scenes/*.toml to " << dir << "\n";
-  if (!no_plots) std::cout << run_plot_script("plot_stress.py", dir) << "\n";
+  if (!args.no_plots) std::cout << run_plot_script("plot_stress.py", dir) << "\n";
   return 0;
 }
 
@@ -55,8 +88,11 @@ Command add_stress_command(CLI::App& app) {
                   "penalty_weight, baumgarte_gains, long_horizon, redundancy, dead_point, "
                   "high_frequency")
       ->check(non_empty_check());
+  cmd->add_option("--schemes", args->schemes,
+                  "comma-separated schemes (default: every scheme each case lists)")
+      ->check(non_empty_check());
   cmd->add_flag("--no-plots", args->no_plots, "do not call the plotting script");
-  return {cmd, [args] { return stress(args->dir, args->families, args->no_plots); }};
+  return {cmd, [args] { return stress(*args); }};
 }
 
 }  // namespace condyn

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/cli_sandbox.hpp"
@@ -411,6 +412,41 @@ TEST_CASE("stress: unknown families are usage errors, named") {
   CHECK(r.code == 2);
   CHECK(r.err.find("unknown stress family 'bogus'") != std::string::npos);
   CHECK(r.err.find("expected stiffness, mass_ratio") != std::string::npos);
+}
+
+TEST_CASE("stress --schemes: runs only under the schemes named, and refuses what it cannot run") {
+  const Sandbox box;
+  const Result r = box.run("stress --families redundancy --schemes penalty,ggl --no-plots");
+  REQUIRE(r.code == 0);
+  const std::string csv = slurp(box.path("condyn-out/stress/stress.csv"));
+  // redundancy's six cases run every scheme: here ggl and penalty each, in scheme order.
+  std::istringstream rows(csv);
+  std::string row;
+  std::getline(rows, row);  // header
+  int ggl = 0, penalty = 0, other = 0;
+  while (std::getline(rows, row)) {
+    if (row.find(",ggl,") != std::string::npos)
+      ++ggl;
+    else if (row.find(",penalty,") != std::string::npos)
+      ++penalty;
+    else
+      ++other;
+  }
+  CHECK(ggl == 6);
+  CHECK(penalty == 6);
+  CHECK(other == 0);
+  for (const auto& [flags, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--schemes newmark", "stress does not run 'newmark' (it runs elimination, index1"},
+           {"--schemes auto", "name schemes, not 'auto'"},
+           {"--schemes ggl,bogus", "unknown scheme 'bogus'"},
+           {"--families penalty_weight --schemes ggl",
+            "no case of the families asked for runs under 'ggl'"}}) {
+    CAPTURE(flags);
+    const Result bad = box.run("stress --no-plots --out-dir refused " + flags);
+    CHECK(bad.code == 2);
+    CHECK(bad.err.find("--schemes: " + message) != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(box.path("refused")));
+  }
 }
 
 }  // namespace test_cli

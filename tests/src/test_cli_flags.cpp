@@ -90,6 +90,7 @@ TEST_CASE("number flags take whole decimal numbers in their range, with a short 
       {"compare --out-dir ''", "--out-dir", "is empty"},
       {"stress --families ''", "--families", "is empty"},
       {"stress --families stiffness,", "--families", "an empty item"},
+      {"stress --schemes ggl,", "--schemes", "an empty item"},
       {"plot r.csv --dofs ''", "--dofs", "is empty"},
       {"check s.toml --junit ''", "--junit", "is empty"},
       {"run s.toml --scheme '' --out r.csv", "--scheme", "is empty"},

@@ -161,7 +161,11 @@ StressResult run_stress(const StressOptions& options) {
     const std::vector<Scheme> schemes =
         c.schemes.empty() ? std::vector<Scheme>(std::begin(kSchemes), std::end(kSchemes))
                           : c.schemes;
-    for (Scheme s : schemes) tasks.push_back({i, s, tasks.size()});
+    for (Scheme s : schemes) {
+      const auto& asked = options.schemes;
+      if (asked.empty() || std::find(asked.begin(), asked.end(), s) != asked.end())
+        tasks.push_back({i, s, tasks.size()});
+    }
   }
   // The longest runs first, so that two workers finish together.
   std::stable_sort(tasks.begin(), tasks.end(), [&](const Task& a, const Task& b) {
@@ -181,7 +185,12 @@ StressResult run_stress(const StressOptions& options) {
     worker();
     for (auto& t : pool) t.join();
   };
-  parallel(out.cases.size(), [&](std::size_t i) { refs[i] = make_reference(specs[i]); });
+  // A reference for each case that runs (--schemes can leave a case without runs).
+  std::vector<bool> runs(out.cases.size(), false);
+  for (const Task& t : tasks) runs[t.case_index] = true;
+  parallel(out.cases.size(), [&](std::size_t i) {
+    if (runs[i]) refs[i] = make_reference(specs[i]);
+  });
   parallel(tasks.size(), [&](std::size_t k) {
     const Task& t = tasks[k];
     records[t.slot] =

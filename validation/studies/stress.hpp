@@ -69,7 +69,9 @@ struct StressRecord {
 
 struct StressOptions {
   std::vector<std::string> families;  ///< empty: all
-  int threads = 2;                    ///< runs at once (each builds its own model)
+  /// Runs only under these (empty: every scheme a case lists); a case left with none is not run.
+  std::vector<Scheme> schemes;
+  int threads = 2;  ///< runs at once (each builds its own model)
   std::function<void(const std::string&)> progress;
 };
 
