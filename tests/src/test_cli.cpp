@@ -435,16 +435,17 @@ TEST_CASE("stress --schemes: runs only under the schemes named, and refuses what
   CHECK(ggl == 6);
   CHECK(penalty == 6);
   CHECK(other == 0);
-  for (const auto& [flags, message] : std::vector<std::pair<std::string, std::string>>{
+  for (const auto& refusal : std::vector<std::pair<std::string, std::string>>{
            {"--schemes newmark", "stress does not run 'newmark' (it runs elimination, index1"},
            {"--schemes auto", "name schemes, not 'auto'"},
            {"--schemes ggl,bogus", "unknown scheme 'bogus'"},
            {"--families penalty_weight --schemes ggl",
             "no case of the families asked for runs under 'ggl'"}}) {
+    const std::string& flags = refusal.first;  // (clang 14: no structured binding in CAPTURE)
     CAPTURE(flags);
     const Result bad = box.run("stress --no-plots --out-dir refused " + flags);
     CHECK(bad.code == 2);
-    CHECK(bad.err.find("--schemes: " + message) != std::string::npos);
+    CHECK(bad.err.find("--schemes: " + refusal.second) != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(box.path("refused")));
   }
 }
