@@ -67,7 +67,7 @@ stage() { echo "bootstrap: $(date -u +%H:%M:%S) (${SECONDS} s, CPU $(cpu_seconds
 # builds the test executables too (the unit and e2e tiers only in its sanitized tree, below), with
 # warnings as errors. Both as a unity build: the library files are compiled in batches, which
 # parse Eigen's and SUNDIALS' headers and instantiate their templates once per batch. Test files
-# stay one by one, at -O1 with their common headers precompiled (CMakeLists.txt).
+# too, in batches, at -O1 with their common headers precompiled (CMakeLists.txt).
 if [ "$mode" = main ]; then
   stage "build/: configure and build"
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCONDYN_WERROR=OFF -DCONDYN_TESTS=OFF \
