@@ -419,7 +419,7 @@ TEST_CASE("stress --schemes: runs only under the schemes named, and refuses what
   const Result r = box.run("stress --families redundancy --schemes penalty,ggl --no-plots");
   REQUIRE(r.code == 0);
   const std::string csv = slurp(box.path("condyn-out/stress/stress.csv"));
-  // redundancy's six cases run every scheme: here ggl and penalty each, in scheme order.
+  // redundancy's six cases run every scheme: here ggl and penalty, six rows each, no other.
   std::istringstream rows(csv);
   std::string row;
   std::getline(rows, row);  // header
