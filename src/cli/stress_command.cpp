@@ -37,15 +37,6 @@ std::vector<Scheme> stress_schemes(const std::string& schemes) {
   return out;
 }
 
-/// True when some case runs under one of `schemes` (a case lists its own, or runs every scheme).
-bool any_runs(const std::vector<StressCase>& cases, const std::vector<Scheme>& schemes) {
-  return std::any_of(cases.begin(), cases.end(), [&](const StressCase& c) {
-    return c.schemes.empty() ||
-           std::find_first_of(c.schemes.begin(), c.schemes.end(), schemes.begin(), schemes.end()) !=
-               c.schemes.end();
-  });
-}
-
 int stress(const StressArgs& args) {
   StressOptions options;
   if (!args.families.empty()) {  // not given: every family (given as '', refused by its check)
@@ -58,7 +49,9 @@ int stress(const StressArgs& args) {
   } catch (const std::invalid_argument& e) {
     throw CLI::ValidationError("--families", e.what());
   }
-  if (!options.schemes.empty() && !any_runs(cases, options.schemes)) {
+  if (!options.schemes.empty() &&
+      std::none_of(cases.begin(), cases.end(),
+                   [&](const StressCase& c) { return !stress_runs(c, options.schemes).empty(); })) {
     throw CLI::ValidationError(
         "--schemes", "no case of the families asked for runs under '" + args.schemes + "'");
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -51,6 +52,20 @@ const StressRecord& record(const std::string& family, const std::string& label, 
 }
 
 }  // namespace
+
+TEST_CASE("stress: the schemes a case runs under, with and without --schemes") {
+  StressCase every;  // lists none: every scheme stress runs
+  StressCase two;
+  two.schemes = {Scheme::projection, Scheme::ggl};
+  const std::vector<Scheme> all(std::begin(kSchemes), std::end(kSchemes));
+  CHECK(stress_runs(every, {}) == all);
+  CHECK(stress_runs(two, {}) == two.schemes);
+  // Only those asked for, in the case's order (kSchemes' when it lists none).
+  CHECK(stress_runs(every, {Scheme::projection, Scheme::index1}) ==
+        std::vector<Scheme>{Scheme::index1, Scheme::projection});
+  CHECK(stress_runs(two, {Scheme::ggl, Scheme::index1}) == std::vector<Scheme>{Scheme::ggl});
+  CHECK(stress_runs(two, {Scheme::index1}).empty());
+}
 
 TEST_CASE("stress: every run ends in a verdict with its reason, never a non-finite result") {
   const auto& result = suite();

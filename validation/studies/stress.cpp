@@ -9,7 +9,6 @@
 #include <exception>
 #include <functional>
 #include <iomanip>
-#include <iterator>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -143,6 +142,19 @@ StressRecord run_one(const StressCase& c, const SceneSpec& spec, const Reference
 
 }  // namespace
 
+std::vector<Scheme> stress_runs(const StressCase& c, const std::vector<Scheme>& asked) {
+  std::vector<Scheme> out;
+  const auto add = [&](Scheme s) {
+    if (asked.empty() || std::find(asked.begin(), asked.end(), s) != asked.end()) out.push_back(s);
+  };
+  if (c.schemes.empty()) {
+    for (Scheme s : kSchemes) add(s);
+  } else {
+    for (Scheme s : c.schemes) add(s);
+  }
+  return out;
+}
+
 StressResult run_stress(const StressOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   StressResult out;
@@ -158,14 +170,7 @@ StressResult run_stress(const StressOptions& options) {
   for (std::size_t i = 0; i < out.cases.size(); ++i) {
     const auto& c = out.cases[i];
     specs.push_back(parse_scene_text(c.scene_text, c.id));
-    const std::vector<Scheme> schemes =
-        c.schemes.empty() ? std::vector<Scheme>(std::begin(kSchemes), std::end(kSchemes))
-                          : c.schemes;
-    for (Scheme s : schemes) {
-      const auto& asked = options.schemes;
-      if (asked.empty() || std::find(asked.begin(), asked.end(), s) != asked.end())
-        tasks.push_back({i, s, tasks.size()});
-    }
+    for (Scheme s : stress_runs(c, options.schemes)) tasks.push_back({i, s, tasks.size()});
   }
   // The longest runs first, so that two workers finish together.
   std::stable_sort(tasks.begin(), tasks.end(), [&](const Task& a, const Task& b) {

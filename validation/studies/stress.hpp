@@ -81,6 +81,11 @@ struct StressResult {
   double wall_seconds = 0.0;
 };
 
+/// The schemes `c` runs under when only `asked` are wanted (empty: all): the case's own list, or
+/// every scheme of kSchemes when it lists none, less those not asked for. Empty: it does not run.
+[[nodiscard]] std::vector<Scheme> stress_runs(const StressCase& c,
+                                              const std::vector<Scheme>& asked);
+
 /// Runs every case under its schemes. Nothing is thrown for a failing run: it is a record.
 [[nodiscard]] StressResult run_stress(const StressOptions& options);
 
