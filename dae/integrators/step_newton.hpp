@@ -66,7 +66,7 @@ class StepNewton {
     if (!linear || !factored_) return false;
     const double r = c.beta_prime / factored_for_.beta_prime;
     stale_ = !(c == factored_for_);
-    return !stale_ || (r <= stale_ratio_ && r * stale_ratio_ >= 1.0);
+    return !stale_ || (stale_ratio_ > 1.0 && r <= stale_ratio_ && r * stale_ratio_ >= 1.0);
   }
   /// Records a factorization made for `c` (`ok`: not singular); returns `ok`.
   bool record_factors(bool ok, const StepCoefficients& c) {

@@ -225,18 +225,21 @@ TEST_CASE("newmark error control: a linear model's factors serve steps near thei
   REQUIRE(newton.factor(0.0, x, near));  // without a stale ratio: its own factors
   CHECK(newton.factorizations() == 2);
   CHECK_FALSE(newton.stale());
-  newton.set_stale_ratio(NewmarkStepRules::kStaleRatio);
-  REQUIRE(newton.factor(0.0, x, at_h));  // 560 / 400 = 1.4: the factors of `near` serve
-  CHECK(newton.factorizations() == 2);
-  CHECK(newton.stale());
-  REQUIRE(newton.factor(0.0, x, far));  // 1000 / 560: beyond
+  REQUIRE(newton.factor(0.0, x, {560.0, 30.0}));  // β' as `near`'s, γ' not: its own factors too
   CHECK(newton.factorizations() == 3);
   CHECK_FALSE(newton.stale());
-  REQUIRE(newton.factor(0.0, x, far));
+  newton.set_stale_ratio(NewmarkStepRules::kStaleRatio);
+  REQUIRE(newton.factor(0.0, x, at_h));  // 560 / 400 = 1.4: the factors held serve
   CHECK(newton.factorizations() == 3);
-  newton.drop_factors();
+  CHECK(newton.stale());
+  REQUIRE(newton.factor(0.0, x, far));  // 1000 / 560: beyond
+  CHECK(newton.factorizations() == 4);
+  CHECK_FALSE(newton.stale());
   REQUIRE(newton.factor(0.0, x, far));
   CHECK(newton.factorizations() == 4);
+  newton.drop_factors();
+  REQUIRE(newton.factor(0.0, x, far));
+  CHECK(newton.factorizations() == 5);
 }
 
 }  // namespace test_newmark_error_control
