@@ -6,6 +6,7 @@
 #include <cholmod.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <iterator>
 #include <new>
 #include <stdexcept>
@@ -37,6 +38,22 @@ struct CholmodLibrary {
   decltype(&cholmod_rcond) rcond = nullptr;
 };
 
+/// CHOLMOD 3's supernodal factorization clears and fills each supernode's block in OpenMP loops
+/// of a fixed four threads (its CHOLMOD_OMP_NUM_THREADS), whatever the cores and OMP_NUM_THREADS.
+/// On two cores they made a factorization of a 2D mesh's matrix three times slower than the
+/// calling thread alone, and spun a second core (docs/benchmarks.md, "The start of a stiff run").
+/// Its dense work is OpenBLAS's, on OpenBLAS's own threads. So OpenMP's parallel regions run on
+/// the calling thread (max-active-levels 0, a setting of the whole process, which condyn's code
+/// does not otherwise use), unless the user set OMP_MAX_ACTIVE_LEVELS or OMP_THREAD_LIMIT.
+void serialize_openmp(const LoadedLibrary& cholmod) {
+  if (std::getenv("OMP_MAX_ACTIVE_LEVELS") != nullptr || std::getenv("OMP_THREAD_LIMIT") != nullptr)
+    return;
+  void (*set_max_active_levels)(int) = nullptr;  // libgomp's, when CHOLMOD was built with OpenMP
+  if (cholmod.resolve_if_present("omp_set_max_active_levels", set_max_active_levels)) {
+    set_max_active_levels(0);
+  }
+}
+
 /// Loads OpenBLAS, then CHOLMOD, once per process; they stay loaded. A failed load throws
 /// LibraryUnavailable and is tried again at the next call.
 ///
@@ -65,6 +82,7 @@ const CholmodLibrary& cholmod_library() {
     cholmod.resolve("cholmod_free_factor", l.free_factor);
     cholmod.resolve("cholmod_free_dense", l.free_dense);
     cholmod.resolve("cholmod_rcond", l.rcond);
+    serialize_openmp(cholmod);
     return l;
   }();
   return lib;

@@ -24,9 +24,13 @@ LoadedLibrary::LoadedLibrary(LibraryUse use, Scope scope) : use_(std::move(use))
   if (handle_ == nullptr) throw unavailable(use_, "dlopen failed");
 }
 
-void* LoadedLibrary::address(const char* symbol) const {
+void* LoadedLibrary::find(const char* symbol) const {
   dlerror();  // clear a message left by an earlier call
-  void* p = dlsym(handle_, symbol);
+  return dlsym(handle_, symbol);
+}
+
+void* LoadedLibrary::address(const char* symbol) const {
+  void* p = find(symbol);
   if (p == nullptr) throw unavailable(use_, std::string("no symbol ") + symbol);
   return p;
 }

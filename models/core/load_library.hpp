@@ -44,9 +44,18 @@ class LoadedLibrary {
     // NOLINTNEXTLINE(cppcoreguidelines-pro-type-reinterpret-cast): dlsym returns void*
     f = reinterpret_cast<F>(address(symbol));
   }
+  /// Sets `f` to the function `symbol` of the library or of a library it depends on, or to
+  /// nullptr when none has it; returns whether one does.
+  template <class F>
+  bool resolve_if_present(const char* symbol, F& f) const {
+    // NOLINTNEXTLINE(cppcoreguidelines-pro-type-reinterpret-cast): dlsym returns void*
+    f = reinterpret_cast<F>(find(symbol));
+    return f != nullptr;
+  }
 
  private:
   [[nodiscard]] void* address(const char* symbol) const;
+  [[nodiscard]] void* find(const char* symbol) const;  ///< nullptr when absent
   LibraryUse use_;
   void* handle_ = nullptr;
 };

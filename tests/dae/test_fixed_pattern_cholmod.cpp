@@ -3,11 +3,13 @@
 // factorizations, the least-fill ordering, a matrix not positive definite, elimination and
 // penalty runs under KLU and CHOLMOD giving the same results, and the key's refusals.
 
+#include <dlfcn.h>
 #include <doctest/doctest.h>
 
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 #include <vector>
@@ -51,6 +53,28 @@ TEST_CASE("CHOLMOD solves symmetric positive-definite systems and keeps its anal
   CHECK(chol.ordering() == ordering);
   Eigen::VectorXd wrong(3);
   CHECK_THROWS_AS(chol.solve_in_place(wrong), std::invalid_argument);
+}
+
+TEST_CASE("CHOLMOD's OpenMP loops run on the calling thread once condyn has opened it") {
+  FixedPatternCholmod chol;
+  REQUIRE(chol.factor(grid_matrix(10, 10, 1.0)));
+  if (std::getenv("OMP_MAX_ACTIVE_LEVELS") != nullptr ||
+      std::getenv("OMP_THREAD_LIMIT") != nullptr) {
+    MESSAGE("OMP_MAX_ACTIVE_LEVELS or OMP_THREAD_LIMIT is set: the user's setting is kept");
+    return;
+  }
+  // libgomp, in the process only as CHOLMOD's dependency (RTLD_NOLOAD: no new load).
+  void* gomp = dlopen("libgomp.so.1", RTLD_NOW | RTLD_NOLOAD);
+  if (gomp == nullptr) {
+    MESSAGE("this CHOLMOD was built without OpenMP: nothing to serialize");
+    return;
+  }
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-reinterpret-cast): dlsym returns void*
+  auto levels = reinterpret_cast<int (*)()>(dlsym(gomp, "omp_get_max_active_levels"));
+  const bool found = levels != nullptr;
+  REQUIRE(found);
+  CHECK(levels() == 0);
+  dlclose(gomp);
 }
 
 TEST_CASE("CHOLMOD refuses a matrix that is not positive definite, then factors one that is") {
