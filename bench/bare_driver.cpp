@@ -29,145 +29,23 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bare_common.hpp"
+
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-/// A compressed sparse column matrix, rows sorted within each column.
-struct Csc {
-  long rows = 0, cols = 0;
-  std::vector<long> ptr;  // cols + 1
-  std::vector<long> idx;
-  std::vector<double> val;
-};
-
-/// Reads a Matrix Market file: `coordinate real general|symmetric` or `array real general`.
-Csc read_mtx(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  std::string line;
-  std::getline(in, line);
-  std::string banner, object, format, field, symmetry;
-  std::istringstream(line) >> banner >> object >> format >> field >> symmetry;
-  if (banner != "%%MatrixMarket" || object != "matrix" || field != "real")
-    throw std::runtime_error(path + ": line 1: expected '%%MatrixMarket matrix ... real ...'");
-  const bool symmetric = symmetry == "symmetric";
-  if (!symmetric && symmetry != "general")
-    throw std::runtime_error(path + ": line 1: symmetry must be general or symmetric");
-  while (std::getline(in, line) && (line.empty() || line[0] == '%')) {
-  }
-  std::istringstream size(line);
-  long rows = 0, cols = 0, entries = 0;
-  size >> rows >> cols;
-  std::vector<long> ri, ci;
-  std::vector<double> vi;
-  if (format == "coordinate") {
-    size >> entries;
-    if (!size || rows <= 0 || cols <= 0 || entries < 0)
-      throw std::runtime_error(path + ": bad size line '" + line + "'");
-    ri.reserve(static_cast<std::size_t>(symmetric ? 2 * entries : entries));
-    ci.reserve(ri.capacity());
-    vi.reserve(ri.capacity());
-    for (long e = 0; e < entries; ++e) {
-      long r = 0, c = 0;
-      double v = 0.0;
-      if (!(in >> r >> c >> v) || r < 1 || r > rows || c < 1 || c > cols)
-        throw std::runtime_error(path + ": bad or missing entry " + std::to_string(e + 1));
-      ri.push_back(r - 1);
-      ci.push_back(c - 1);
-      vi.push_back(v);
-      if (symmetric && r != c) {
-        ri.push_back(c - 1);
-        ci.push_back(r - 1);
-        vi.push_back(v);
-      }
-    }
-  } else if (format == "array") {
-    if (!size || rows <= 0 || cols <= 0 || symmetric)
-      throw std::runtime_error(path + ": bad size line '" + line + "'");
-    for (long c = 0; c < cols; ++c)
-      for (long r = 0; r < rows; ++r) {
-        double v = 0.0;
-        if (!(in >> v)) throw std::runtime_error(path + ": missing array entry");
-        if (v != 0.0) {
-          ri.push_back(r);
-          ci.push_back(c);
-          vi.push_back(v);
-        }
-      }
-  } else {
-    throw std::runtime_error(path + ": format must be coordinate or array");
-  }
-  // Counting sort by column, then by row within each column; duplicates are summed.
-  Csc m;
-  m.rows = rows;
-  m.cols = cols;
-  m.ptr.assign(static_cast<std::size_t>(cols + 1), 0);
-  for (long c : ci) ++m.ptr[static_cast<std::size_t>(c + 1)];
-  for (long c = 0; c < cols; ++c) m.ptr[c + 1] += m.ptr[c];
-  std::vector<long> next(m.ptr.begin(), m.ptr.end() - 1);
-  std::vector<long> idx(ri.size());
-  std::vector<double> val(ri.size());
-  for (std::size_t e = 0; e < ri.size(); ++e) {
-    const long at = next[static_cast<std::size_t>(ci[e])]++;
-    idx[static_cast<std::size_t>(at)] = ri[e];
-    val[static_cast<std::size_t>(at)] = vi[e];
-  }
-  std::vector<std::pair<long, double>> col;
-  m.ptr.assign(static_cast<std::size_t>(cols + 1), 0);
-  for (long c = 0; c < cols; ++c) {
-    col.clear();
-    const long begin = c == 0 ? 0 : next[static_cast<std::size_t>(c - 1)];
-    for (long k = begin; k < next[static_cast<std::size_t>(c)]; ++k)
-      col.emplace_back(idx[static_cast<std::size_t>(k)], val[static_cast<std::size_t>(k)]);
-    std::sort(col.begin(), col.end());
-    for (std::size_t k = 0; k < col.size(); ++k) {
-      if (k > 0 && col[k].first == col[k - 1].first) {
-        m.val.back() += col[k].second;
-      } else {
-        m.idx.push_back(col[k].first);
-        m.val.push_back(col[k].second);
-      }
-    }
-    m.ptr[static_cast<std::size_t>(c + 1)] = static_cast<long>(m.idx.size());
-  }
-  return m;
-}
-
-Csc transpose(const Csc& a) {
-  Csc t;
-  t.rows = a.cols;
-  t.cols = a.rows;
-  t.ptr.assign(static_cast<std::size_t>(t.cols + 1), 0);
-  for (long i : a.idx) ++t.ptr[static_cast<std::size_t>(i + 1)];
-  for (long c = 0; c < t.cols; ++c) t.ptr[c + 1] += t.ptr[c];
-  t.idx.resize(a.idx.size());
-  t.val.resize(a.val.size());
-  std::vector<long> next(t.ptr.begin(), t.ptr.end() - 1);
-  for (long c = 0; c < a.cols; ++c)  // columns in order: rows of the transpose come out sorted
-    for (long k = a.ptr[c]; k < a.ptr[c + 1]; ++k) {
-      const long at = next[static_cast<std::size_t>(a.idx[k])]++;
-      t.idx[static_cast<std::size_t>(at)] = c;
-      t.val[static_cast<std::size_t>(at)] = a.val[static_cast<std::size_t>(k)];
-    }
-  return t;
-}
-
-/// out += scale * a * x
-void gaxpy(const Csc& a, const double* x, double scale, double* out) {
-  for (long c = 0; c < a.cols; ++c) {
-    const double xc = scale * x[c];
-    if (xc == 0.0) continue;
-    for (long k = a.ptr[c]; k < a.ptr[c + 1]; ++k) out[a.idx[k]] += a.val[k] * xc;
-  }
-}
+using bare::check;
+using bare::Clock;
+using bare::cpu_seconds;
+using bare::Csc;
+using bare::gaxpy;
+using bare::read_mtx;
+using bare::seconds_since;
+using bare::transpose;
 
 struct Problem {
   Csc M, K, A, At;
@@ -226,24 +104,6 @@ int jacobian(double, double cj, N_Vector, N_Vector, N_Vector, SUNMatrix J, void*
   }
   ptr[2 * n + p.m] = at;
   return 0;
-}
-
-void check(int flag, const char* what) {
-  if (flag < 0)
-    throw std::runtime_error(std::string(what) + " failed with flag " + std::to_string(flag));
-}
-
-/// CPU seconds (user + system) of this process so far: on a shared machine the figure that wall
-/// time inflates and this does not.
-double cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 /// Median of `solves` solves of the factored matrix, in seconds (b = 1 before each).
@@ -318,34 +178,14 @@ int main(int argc, char** argv) {
   }
   const std::string dir = argv[1];
   double t_end = 1.0, output_step = 0.01, rtol = 1e-6, atol = 1e-8;
-  long klu_solves = 0;
-  for (int i = 2; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (i + 1 >= argc) {
-      std::cerr << "error: " << flag << " needs a value\n";
-      return 2;
-    }
-    char* end = nullptr;
-    const double v = std::strtod(argv[++i], &end);
-    if (*end != '\0' || !(v > 0.0) || !std::isfinite(v)) {
-      std::cerr << "error: " << flag << ": expected a positive number, got '" << argv[i] << "'\n";
-      return 2;
-    }
-    if (flag == "--t-end")
-      t_end = v;
-    else if (flag == "--output-step")
-      output_step = v;
-    else if (flag == "--rtol")
-      rtol = v;
-    else if (flag == "--atol")
-      atol = v;
-    else if (flag == "--klu-index-width")
-      klu_solves = std::lround(v);
-    else {
-      std::cerr << "error: unknown flag " << flag << "\n";
-      return 2;
-    }
-  }
+  double klu_solves = 0.0;
+  if (!bare::parse_number_flags(argc, argv, 2,
+                                {{"--t-end", {&t_end}},
+                                 {"--output-step", {&output_step}},
+                                 {"--rtol", {&rtol}},
+                                 {"--atol", {&atol}},
+                                 {"--klu-index-width", {&klu_solves}}}))
+    return 2;
   try {
     Problem p;
     p.M = read_mtx(dir + "/M.mtx");
@@ -363,8 +203,8 @@ int main(int argc, char** argv) {
     const long n = p.n, m = p.m, size = 2 * n + m;
     const long nnz = n + static_cast<long>(p.K.idx.size()) + n + static_cast<long>(p.M.idx.size()) +
                      2 * static_cast<long>(p.A.idx.size());
-    if (klu_solves > 0) {
-      compare_klu_index_width(p, nnz, klu_solves);
+    if (klu_solves > 0.0) {
+      compare_klu_index_width(p, nnz, std::lround(klu_solves));
       return 0;
     }
 

@@ -88,14 +88,16 @@ def first_error(text):
     return lines[-1].strip() if lines else "no output"
 
 
-def run_bare(bare, folder, info, timeout):
+def run_bare(bare, folder, info, timeout, extra=(), prefix="bare: "):
+    """A bare driver's run (condyn_bare_driver; condyn_bare_cholmod_driver with its prefix
+    "bare_cholmod: " and extra ["--weight", W]): its key=value line as a row."""
     cmd = [bare, folder, "--t-end", repr(info["t_end"]), "--output-step", repr(info["output_step"]),
-           "--rtol", repr(info["rtol"]), "--atol", repr(info["atol"])]
+           "--rtol", repr(info["rtol"]), "--atol", repr(info["atol"])] + list(extra)
     code, out, tv = timed(cmd, timeout)
-    line = next((ln for ln in out.splitlines() if ln.startswith("bare: ")), None)
+    line = next((ln for ln in out.splitlines() if ln.startswith(prefix)), None)
     if code != 0 or line is None or tv is None:
         return {"status": "failed: " + first_error(out)}
-    kv = dict(item.split("=", 1) for item in line[len("bare: "):].split())
+    kv = dict(item.split("=", 1) for item in line[len(prefix):].split())
     row = {"status": "ok", "steps": int(kv["steps"]), "jacobian_evals": int(kv["jacobian_evals"]),
            "residual_evals": int(kv["residual_evals"]), "solver_s": float(kv["solver_s"]),
            "solver_cpu_s": float(kv["solver_cpu_s"]), "u_last": float(kv["u_last"])}
