@@ -31,6 +31,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bare_common.hpp"
@@ -42,7 +43,6 @@ using bare::Clock;
 using bare::cpu_seconds;
 using bare::Csc;
 using bare::gaxpy;
-using bare::read_mtx;
 using bare::seconds_since;
 using bare::transpose;
 
@@ -263,16 +263,12 @@ int main(int argc, char** argv) {
   }
   try {
     Problem p;
-    p.M = read_mtx(dir + "/M.mtx");
-    const Csc K = read_mtx(dir + "/K.mtx");
-    const Csc A = read_mtx(dir + "/A.mtx");
-    const Csc f = read_mtx(dir + "/f.mtx");
+    bare::MatrixFiles files = bare::read_matrix_files(dir);
+    p.M = std::move(files.M);
+    p.f = std::move(files.f);
     p.n = p.M.rows;
-    if (p.M.cols != p.n || K.rows != p.n || K.cols != p.n || A.cols != p.n || f.rows != p.n ||
-        f.cols != 1)
-      throw std::runtime_error("sizes of M, K, A, f do not agree");
-    p.f.assign(static_cast<std::size_t>(p.n), 0.0);
-    for (long k = 0; k < f.ptr[1]; ++k) p.f[static_cast<std::size_t>(f.idx[k])] = f.val[k];
+    const Csc& K = files.K;
+    const Csc& A = files.A;
     p.Kw = add(K, penalty_stiffness(A, weight));
     p.max_cj_change = max_cj_change;
     const long n = p.n, size = 2 * n;
@@ -299,23 +295,15 @@ int main(int argc, char** argv) {
     LS->ops->gettype = ls_type;
     LS->ops->solve = ls_solve;
     LS->ops->free = ls_free;
-    p.ida = IDACreate(ctx);
-    if (!p.ida) throw std::runtime_error("IDACreate failed");
-    check(IDAInit(p.ida, residual, 0.0, y, yp), "IDAInit");
-    check(IDASStolerances(p.ida, rtol, atol), "IDASStolerances");
-    check(IDASetUserData(p.ida, &p), "IDASetUserData");
-    check(IDASetMaxNumSteps(p.ida, 100000), "IDASetMaxNumSteps");
-    check(IDASetLinearSolver(p.ida, LS, nullptr), "IDASetLinearSolver");
     // y(0) = 0; y'(0) = [0; M⁻¹ f], consistent: M factored by CHOLMOD once.
     {
-      Csc m = p.M;
-      cholmod_sparse mv{};
-      std::vector<int> mp(m.ptr.begin(), m.ptr.end()), mi(m.idx.begin(), m.idx.end());
+      cholmod_sparse mv{};  // a view of M, its indices as CHOLMOD's int
+      std::vector<int> mp(p.M.ptr.begin(), p.M.ptr.end()), mi(p.M.idx.begin(), p.M.idx.end());
       mv.nrow = mv.ncol = static_cast<std::size_t>(n);
-      mv.nzmax = m.idx.size();
+      mv.nzmax = p.M.idx.size();
       mv.p = mp.data();
       mv.i = mi.data();
-      mv.x = m.val.data();
+      mv.x = p.M.val.data();
       mv.stype = 1;  // its upper triangle (M is symmetric)
       mv.itype = CHOLMOD_INT;
       mv.xtype = CHOLMOD_REAL;
@@ -331,8 +319,14 @@ int main(int argc, char** argv) {
       std::copy_n(static_cast<const double*>(a0->x), n, N_VGetArrayPointer(yp) + n);
       cholmod_free_dense(&a0, &p.common);
       cholmod_free_factor(&lm, &p.common);
-      check(IDAReInit(p.ida, 0.0, y, yp), "IDAReInit");
     }
+    p.ida = IDACreate(ctx);
+    if (!p.ida) throw std::runtime_error("IDACreate failed");
+    check(IDAInit(p.ida, residual, 0.0, y, yp), "IDAInit");
+    check(IDASStolerances(p.ida, rtol, atol), "IDASStolerances");
+    check(IDASetUserData(p.ida, &p), "IDASetUserData");
+    check(IDASetMaxNumSteps(p.ida, 100000), "IDASetMaxNumSteps");
+    check(IDASetLinearSolver(p.ida, LS, nullptr), "IDASetLinearSolver");
     const long outputs = std::lround(t_end / output_step);
     double tret = 0.0;
     for (long k = 1; k <= outputs; ++k) {

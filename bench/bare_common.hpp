@@ -167,6 +167,25 @@ inline double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/// What bench/lattice.py and bench/mesh_lattice.py write into a folder: M, K, A and the load
+/// pattern f (dense), their sizes checked against each other.
+struct MatrixFiles {
+  Csc M, K, A;
+  std::vector<double> f;
+};
+
+inline MatrixFiles read_matrix_files(const std::string& dir) {
+  MatrixFiles out{read_mtx(dir + "/M.mtx"), read_mtx(dir + "/K.mtx"), read_mtx(dir + "/A.mtx"), {}};
+  const Csc f = read_mtx(dir + "/f.mtx");
+  const long n = out.M.rows;
+  if (out.M.cols != n || out.K.rows != n || out.K.cols != n || out.A.cols != n || f.rows != n ||
+      f.cols != 1)
+    throw std::runtime_error("sizes of M, K, A, f do not agree");
+  out.f.assign(static_cast<std::size_t>(n), 0.0);
+  for (long k = 0; k < f.ptr[1]; ++k) out.f[static_cast<std::size_t>(f.idx[k])] = f.val[k];
+  return out;
+}
+
 /// A driver's flag `--name NUMBER`: where its value goes, and whether 0 is allowed (else it must
 /// be positive); finite either way.
 struct NumberFlag {

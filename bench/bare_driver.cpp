@@ -32,6 +32,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bare_common.hpp"
@@ -43,7 +44,6 @@ using bare::Clock;
 using bare::cpu_seconds;
 using bare::Csc;
 using bare::gaxpy;
-using bare::read_mtx;
 using bare::seconds_since;
 using bare::transpose;
 
@@ -188,17 +188,13 @@ int main(int argc, char** argv) {
     return 2;
   try {
     Problem p;
-    p.M = read_mtx(dir + "/M.mtx");
-    p.K = read_mtx(dir + "/K.mtx");
-    p.A = read_mtx(dir + "/A.mtx");
-    const Csc f = read_mtx(dir + "/f.mtx");
+    bare::MatrixFiles files = bare::read_matrix_files(dir);
+    p.M = std::move(files.M);
+    p.K = std::move(files.K);
+    p.A = std::move(files.A);
+    p.f = std::move(files.f);
     p.n = p.M.rows;
     p.m = p.A.rows;
-    if (p.M.cols != p.n || p.K.rows != p.n || p.K.cols != p.n || p.A.cols != p.n || f.rows != p.n ||
-        f.cols != 1)
-      throw std::runtime_error("sizes of M, K, A, f do not agree");
-    p.f.assign(static_cast<std::size_t>(p.n), 0.0);
-    for (long k = 0; k < f.ptr[1]; ++k) p.f[static_cast<std::size_t>(f.idx[k])] = f.val[k];
     p.At = transpose(p.A);
     const long n = p.n, m = p.m, size = 2 * n + m;
     const long nnz = n + static_cast<long>(p.K.idx.size()) + n + static_cast<long>(p.M.idx.size()) +
