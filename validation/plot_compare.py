@@ -21,12 +21,13 @@ Exit status: 0 done (some plots may be skipped), 1 a plot raised an error (the o
 written), 2 bad usage or a file compare would not have written (named with the problem; the
 figures that do not need it are still drawn), 3 matplotlib not importable.
 """
-import csv
-import glob
-import json
 import math
 import os
 import sys
+
+import baumgarte_figure
+from compare_files import (SCHEME_ORDER, BadData, column, load_meta, num, per_scheme_files,
+                           read_csv, runs_by_scheme)
 
 try:  # the shared style imports matplotlib: without it, main exits 3
     import figure_style as style
@@ -34,20 +35,15 @@ except ImportError:
     style = None
 
 # Fixed, so that a scheme keeps its colour across figures and across runs of the script.
-SCHEME_COLOURS = {
-    "elimination": "#000000", "index1": "#1f77b4", "baumgarte": "#ff7f0e", "ggl": "#2ca02c",
-    "index2": "#d62728", "index3": "#9467bd", "penalty": "#8c564b", "projection": "#e377c2",
-}
+SCHEME_COLOURS = dict(zip(SCHEME_ORDER, ("#000000", "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                                         "#9467bd", "#8c564b", "#e377c2")))
 SCHEME_MARKERS = dict(zip(SCHEME_COLOURS, "osD^v<>P"))
 # Dashes too, so that curves which coincide (index1 and baumgarte on a linear scene) both show.
 SCHEME_DASHES = dict(zip(SCHEME_COLOURS, ["-", "-", "--", "-", "-.", "-", ":", "--"]))
 EXTRA_COLOURS = ["#7f7f7f", "#bcbd22", "#17becf"]
 _extra = {}
-ERROR_COLUMNS = ("error_u", "error_v", "error_reaction")
 # Drift of an exactly satisfied constraint is 0, which a log axis cannot show.
 FLOOR = 1e-18
-# The cell labels of the Baumgarte study [pt]; smaller where a label would overflow its cell.
-CELL_FONT = 6
 # PNG for screens, PDF (vector) for papers.
 FORMATS = ("png", "pdf")
 # A relative error from here up leaves no correct digit: such a run followed another solution (a
@@ -66,12 +62,6 @@ CLIP_ABOVE_OK = 1e3
 # The drift figure's time axis starts this fraction of t_end in (four decades of time): the
 # first internal steps (1e-13 s) would take most of a log axis.
 EARLIEST = 1e-4
-# Columns of compare's CSV files that hold text; every other cell is a number or empty.
-TEXT_COLUMNS = {"scheme", "status", "message"}
-
-
-class BadData(Exception):
-    """A file of the folder that compare would not have written: named with the problem."""
 
 
 def note(msg):
@@ -89,101 +79,10 @@ def line_style(scheme):
     return dict(color=colour(scheme), ls=SCHEME_DASHES.get(scheme, "-"))
 
 
-def scheme_key(scheme):
-    order = list(SCHEME_COLOURS)
-    return (order.index(scheme) if scheme in order else len(order), scheme)
-
-
-def num(value):
-    """Float of a CSV or JSON field; None for empty, null, unparsable or non-finite."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        return None
-    return x if math.isfinite(x) else None
-
-
 def fmt_tol(x):
     """1e-06 or 0.0001 -> 1e-6, 1e-4: the form tolerances are written in."""
     mantissa, exponent = f"{x:.2e}".split("e")
     return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
-
-
-def read_csv(path):
-    """Rows as dicts, or None when the file is absent or has no data rows; BadData for a file
-    compare would not have written (not UTF-8 text, torn rows, a word where a number goes)."""
-    if not os.path.isfile(path):
-        return None
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.reader(f)
-            header = next(reader, None)
-            rows = [(reader.line_num, cells) for cells in reader if cells]
-    except UnicodeDecodeError as e:
-        raise BadData(f"{path}: not UTF-8 text (byte 0x{e.object[e.start]:02x}): not written by "
-                      "condyn compare") from None
-    except (csv.Error, OSError) as e:
-        raise BadData(f"{path}: {e}") from None
-    if not header:
-        return None
-    for line, cells in rows:
-        if len(cells) != len(header):
-            raise BadData(f"{path}:{line}: {len(cells)} cells for the header's {len(header)} "
-                          "columns")
-        for name, cell in zip(header, cells):
-            if name not in TEXT_COLUMNS and cell.strip():
-                try:
-                    float(cell)
-                except ValueError:
-                    raise BadData(f"{path}:{line}: column {name}: '{cell[:40]}' is not a "
-                                  "number") from None
-    return [dict(zip(header, cells)) for _, cells in rows] or None
-
-
-def column(np, rows, name):
-    """One CSV column as floats, NaN where a value is missing, so plots show gaps."""
-    return np.array([np.nan if num(r.get(name)) is None else num(r.get(name)) for r in rows])
-
-
-def per_scheme_files(d, prefix):
-    paths = glob.glob(os.path.join(d, f"{prefix}_*.csv"))
-    named = {os.path.basename(p)[len(prefix) + 1:-4]: p for p in paths}
-    named.pop("reference", None)  # history_reference.csv: the reference's, not a scheme's
-    return [(s, named[s]) for s in sorted(named, key=scheme_key)]
-
-
-# What runs.json holds (validation/compare-output.md), by key: a key of another type is left
-# out with a note, as if absent.
-META_TYPES = {"scene": str, "reference": dict, "tolerances": list, "drift_rtol": (int, float),
-              "mark_factor": (int, float), "histories": dict, "drift_growth": dict, "runs": list, "skipped": list}
-
-
-def load_meta(d):
-    """runs.json as a dict, and the problems found in it (each key of the wrong type dropped)."""
-    path = os.path.join(d, "runs.json")
-    if not os.path.isfile(path):
-        return {}, []
-    try:
-        with open(path, encoding="utf-8") as f:
-            meta = json.load(f)
-    except (OSError, ValueError) as e:  # UnicodeDecodeError is a ValueError
-        return {}, [f"{path}: unreadable ({e}); titles lack the scene name"]
-    if not isinstance(meta, dict):
-        return {}, [f"{path}: not a JSON object"]
-    problems = []
-    for key, kind in META_TYPES.items():
-        if key in meta and not isinstance(meta[key], kind):
-            problems.append(f"{path}: '{key}' is a {type(meta[key]).__name__}, not a "
-                            f"{getattr(kind, '__name__', 'number')}: left out")
-            del meta[key]
-    for key in ("histories", "drift_growth"):
-        if key in meta and not all(isinstance(v, dict) for v in meta[key].values()):
-            problems.append(f"{path}: '{key}' holds entries that are not objects: left out")
-            del meta[key]
-    if "runs" in meta and not all(isinstance(r, dict) for r in meta["runs"]):
-        problems.append(f"{path}: 'runs' holds entries that are not objects: left out")
-        del meta["runs"]
-    return meta, problems
 
 
 def save(plt, fig, d, name):
@@ -197,14 +96,6 @@ def short_reference(meta):
     """The reference in a few words (the description's first clause)."""
     ref = meta.get("reference") or {}
     return (ref.get("description") or "an unknown reference").split(" (")[0]
-
-
-def runs_by_scheme(d, meta):
-    runs = read_csv(os.path.join(d, "runs.csv")) or meta.get("runs") or []
-    by_scheme = {}
-    for r in runs:
-        by_scheme.setdefault(str(r.get("scheme") or "?"), []).append(r)
-    return {s: by_scheme[s] for s in sorted(by_scheme, key=scheme_key)}
 
 
 def cost_points(rows, cost, col, digits):
@@ -479,93 +370,13 @@ def upper_envelope(np, t, y):
     return (edges[:-1] + edges[1:]) / 2, peak
 
 
-def heat_map(plt, np, fig, ax, grid, labels, norm, cmap, bar_label, axes_values, default):
-    cmap = plt.get_cmap(cmap).copy()
-    cmap.set_bad("lightgray")  # failed or absent grid points
-    cmap.set_under("white")  # exactly zero drift: below any log scale
-    image = ax.imshow(np.ma.masked_invalid(grid), origin="lower", aspect="auto", cmap=cmap,
-                      norm=norm)
-    fig.colorbar(image, ax=ax, label=bar_label)
-    if grid.size <= 100:  # cell labels stay legible only on small grids
-        for (i, j), v in np.ndenumerate(grid):
-            dark = np.isfinite(v) and np.dot(image.to_rgba(v)[:3], (0.299, 0.587, 0.114)) < 0.5
-            ax.text(j, i, labels[i][j], ha="center", va="center", fontsize=CELL_FONT,
-                    color="white" if dark else "black", gid="cell")
-    if default is not None:  # a frame around the cell keeps its value legible
-        from matplotlib.patches import Rectangle
-        for colour_, width in (("black", 2.2), ("white", 1.0)):
-            ax.add_patch(Rectangle((default[0] - 0.46, default[1] - 0.46), 0.92, 0.92,
-                                   fill=False, ec=colour_, lw=width))
-    alphas, betas = axes_values
-    tick = lambda x: f"{x:.2g}" if x < 100 else f"{x:.0f}"  # noqa: E731
-    ax.set_xticks(range(len(alphas)), [tick(a) for a in alphas], fontsize=8)
-    ax.set_yticks(range(len(betas)), [tick(b) for b in betas], fontsize=8)
-    ax.set_xlabel("α [1/s]")
-    ax.set_ylabel("β [1/s]")
-
-
 def plot_baumgarte(plt, np, d, scene):
-    """Error, drift and steps over the (alpha, beta) grid, each on a log colour scale."""
-    from matplotlib.colors import LogNorm
     rows = read_csv(os.path.join(d, "baumgarte_study.csv")) or []
-    rows = [r for r in rows if num(r.get("alpha")) is not None and num(r.get("beta")) is not None]
-    if not rows:
-        return note("baumgarte_study skipped: baumgarte_study.csv absent or without grid points")
-    alphas = sorted({num(r["alpha"]) for r in rows})
-    betas = sorted({num(r["beta"]) for r in rows})
-    shape = (len(betas), len(alphas))
-    grids = {k: np.full(shape, np.nan) for k in ("error_u", "max_drift_position", "steps")}
-    texts = {k: [[""] * len(alphas) for _ in betas] for k in grids}
-    default = None
-    for r in rows:
-        i, j = betas.index(num(r["beta"])), alphas.index(num(r["alpha"]))
-        if num(r.get("default")) == 1:
-            default = (j, i)
-        for k in grids:
-            if r.get("status") != "ok":
-                texts[k][i][j] = "×"  # grey and crossed: a word overflowed the cell
-                continue
-            v = num(r.get(k))
-            texts[k][i][j] = "–" if v is None else (f"{v:.0f}" if k == "steps" else
-                                                      f"{v:.0e}".replace("e-0", "e-") if v else "0")
-            if v is not None:
-                grids[k][i, j] = v
-    panels = [(k, title, bar) for k, title, bar in (
-        ("error_u", "displacement error", "relative max-norm error"),
-        ("max_drift_position", "max position drift", "max |Φ| (units of the rows)"),
-        ("steps", "integrator steps", "steps")) if np.isfinite(grids[k]).any()]
-    if not panels:
-        return note("baumgarte_study skipped: no successful grid point")
-    fig, axes = plt.subplots(1, len(panels), figsize=(style.PAGE_WIDTH, 2.9), squeeze=False)
-    for ax, (k, title, bar) in zip(axes[0], panels):
-        grid = grids[k]
-        positive = grid[np.isfinite(grid) & (grid > 0)]
-        if not positive.size:
-            ax.set_axis_off()
-            ax.set_title(f"{title}: all zero")
-            continue
-        lo, hi = positive.min(), positive.max()
-        grid = np.where(grid <= 0, lo / 10, grid)  # exact zeros: white, below the scale
-        heat_map(plt, np, fig, ax, grid, texts[k], LogNorm(lo / 2, hi * 2) if lo == hi else
-                 LogNorm(lo, hi), "viridis", bar, (alphas, betas), default)
-        ax.set_title(title)
-    style.title(fig, f"{scene}\nBaumgarte gains (e'' + 2α e' + β² e = 0 on the constraint "
-                     "error); framed: default; grey ×: failed")
-    style.fit(fig)
-    shrink_to_cells(fig)
+    fig, why = baumgarte_figure.draw(plt, np, style, rows, scene)
+    if fig is None:
+        return note(f"baumgarte_study skipped: {why}")
     save(plt, fig, d, "baumgarte_study")
 
-
-def shrink_to_cells(fig):
-    """Cell labels in a smaller font where they would overflow their cell (a wide number of
-    steps in a narrow panel)."""
-    renderer = fig.canvas.get_renderer()
-    for text in fig.findobj(lambda a: getattr(a, "get_gid", lambda: None)() == "cell"):
-        x, y = text.get_position()
-        cell = text.axes.transData.transform([(x - 0.5, y - 0.5), (x + 0.5, y + 0.5)])
-        room = abs(cell[1][0] - cell[0][0]) * 0.9
-        while text.get_fontsize() > 4 and text.get_window_extent(renderer).width > room:
-            text.set_fontsize(text.get_fontsize() - 0.5)
 
 
 def main(argv):

@@ -14,26 +14,16 @@ Exit status: 0 done, 1 the plot raised an error, 2 bad usage, no stress.csv, or 
 stress would not have written (named with the problem), 3 matplotlib not importable.
 """
 import csv
-import math
 import os
 import sys
 
-SCHEMES = ["elimination", "index1", "baumgarte", "ggl", "index2", "index3", "penalty",
-           "projection"]
+from compare_files import SCHEME_ORDER as SCHEMES, num
 VERDICTS = {  # colour, legend text
     "holds": ("#4daf4a", "holds (error within the case's limit)"),
     "inaccurate": ("#ff9f1c", "inaccurate (finished, error beyond the limit)"),
     "failed": ("#e41a1c", "failed (the integrator gave up)"),
     "refused": ("#bdbdbd", "refused (scene or scheme said no)"),
 }
-
-
-def num(value):
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        return None
-    return x if math.isfinite(x) else None
 
 
 class BadData(Exception):

@@ -11,6 +11,7 @@ import pytest
 
 import figure_style
 import plot_result
+import result_file
 from layout import problems
 
 plot_result.pyplot()  # the figure functions' shared style, which main imports after reading input
@@ -165,7 +166,7 @@ def test_drift_and_energy_figures_inside_their_column_width():
                "energy_dissipated": 0 * t, "work_loads": 0 * t, "work_constraints": 0 * t,
                "energy": 1e-6 * t, "energy_error": 1e-6 * t}
     drift, _ = plot_result.draw_drift(plt, np, t, columns, "pendulum_run")
-    energy = plot_result.draw_energy(plt, t, columns, plot_result.energy_columns(columns),
+    energy = plot_result.draw_energy(plt, t, columns, result_file.energy_columns(columns),
                                      "pendulum_run")
     for fig in (drift, energy):
         assert fig.get_figwidth() == pytest.approx(figure_style.COLUMN_WIDTH)
@@ -180,7 +181,7 @@ def test_derived_columns_told_from_dofs_and_drawn_by_default(tmp_path):
     rows = np.c_[t, np.sin(t), 2 * np.sin(t), -np.sin(t), -2 * np.sin(t), np.sin(t), 1e5 * t]
     header = "t,u1,u2,reaction_u1,reaction_u2,drift2,base_shear"
     np.savetxt(tmp_path / "r.csv", rows, delimiter=",", header=header, comments="")
-    columns, dofs, _, others = plot_result.read_csv(np, tmp_path / "r.csv")
+    columns, dofs, _, others = result_file.read_csv(np, tmp_path / "r.csv")
     assert dofs == ["u1", "u2"] and others == ["drift2", "base_shear"]
     r = plot("r.csv", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
@@ -194,7 +195,7 @@ def test_derived_columns_told_from_dofs_and_drawn_by_default(tmp_path):
     assert "--columns: 'nothing*' matches no column of u.csv (columns: u1, u2)" in r.stderr
     h5(tmp_path / "d.h5", t=t, displacement=np.c_[np.sin(t)], dof_names=np.array([b"u1"]),
        derived=np.c_[np.cos(t), t], derived_names=np.array([b"drift1", b"base_shear"]))
-    columns, dofs, _, derived = plot_result.read_h5(np, str(tmp_path / "d.h5"))
+    columns, dofs, _, derived = result_file.read_h5(np, str(tmp_path / "d.h5"))
     assert dofs == ["u1"] and derived == ["drift1", "base_shear"]
     np.testing.assert_array_equal(columns["base_shear"], t)
 
