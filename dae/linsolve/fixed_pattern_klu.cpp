@@ -96,9 +96,9 @@ bool FixedPatternKlu::factor(int n, const int* outer, const int* inner, const do
   return copy_for_streamed_solve();
 }
 
-double predicted_factor_entries(const Eigen::SparseMatrix<double>& matrix) {
+KluFactorPrediction predicted_klu_factor(const Eigen::SparseMatrix<double>& matrix) {
   if (!matrix.isCompressed() || matrix.rows() != matrix.cols()) {
-    throw std::invalid_argument("predicted_factor_entries: a square compressed matrix is expected");
+    throw std::invalid_argument("predicted_klu_factor: a square compressed matrix is expected");
   }
   klu_common common{};
   klu_defaults(&common);
@@ -111,9 +111,10 @@ double predicted_factor_entries(const Eigen::SparseMatrix<double>& matrix) {
     throw std::runtime_error("KLU's analysis failed (status " + std::to_string(common.status) +
                              ")");
   }
-  const double entries = symbolic->lnz + symbolic->unz + symbolic->nzoff;
+  const KluFactorPrediction prediction{symbolic->lnz + symbolic->unz + symbolic->nzoff,
+                                       std::max(symbolic->est_flops, 0.0)};
   klu_free_symbolic(&symbolic, &common);
-  return entries;
+  return prediction;
 }
 
 bool FixedPatternKlu::streamed() const { return impl_->streamed.has_value(); }
@@ -122,7 +123,13 @@ bool FixedPatternKlu::copy_for_streamed_solve() {
   Impl& k = *impl_;
   k.streamed.reset();
   if (k.numeric == nullptr || k.common.status != KLU_OK) return false;
-  if (k.numeric->lnz + k.numeric->unz >= settings_.streamed_solve_from) {
+  const double entries = static_cast<double>(k.numeric->lnz) + k.numeric->unz;
+  const auto from = static_cast<double>(settings_.streamed_solve_from);
+  // KLU's count of this factorization's flops (the pivots it chose determine it), taken for
+  // large factors alone: it reads the whole factor.
+  if (entries >= from && klu_flops(k.symbolic, k.numeric, &k.common) != 0 &&
+      keeps_streamed_copy(entries, k.common.flops, from,
+                          settings_.streamed_solve_most_flops_per_entry)) {
     try {
       k.streamed.emplace();
       k.streamed->build(*k.symbolic, *k.numeric);

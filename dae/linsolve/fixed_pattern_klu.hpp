@@ -33,12 +33,16 @@ namespace condyn {
 /// triangular solves read them, and solves read the copy (dae/linsolve/klu_streamed_solve.hpp):
 /// KLU's own layout makes each solve stream the whole factor from memory twice once it is larger
 /// than the cache. The copy doubles the factor's memory, so factors that fit in a cache (2.4 MB at
-/// 200,000 entries) keep klu_solve, where the copy gains nothing (docs/benchmarks.md).
+/// 200,000 entries) keep klu_solve, where the copy gains nothing, and so do factors whose
+/// pivoting factorization cost more than `streamed_solve_most_flops_per_entry` flops an entry
+/// (KLU's count, klu_flops): there the factorizations outweigh the solves (keeps_streamed_copy,
+/// models/core/memory_estimate.hpp; docs/benchmarks.md).
 struct KluSettings {
   int ordering = 0;
   bool confirm_with_condest = false;
   int band_ordering_from = 50'000;
   long streamed_solve_from = kStreamedSolveFromEntries;
+  double streamed_solve_most_flops_per_entry = kStreamedSolveMostFlopsPerEntry;
 };
 /// SUNDIALS' SUNLinSol_KLU's: COLAMD, and a small rcond confirmed by condest before pivoting
 /// afresh.
@@ -47,9 +51,14 @@ inline constexpr KluSettings kSundialsKluSettings{1, true};
 /// The entries of the KLU factors L and U (with those off BTF's diagonal blocks) of a matrix of
 /// this pattern as KLU's symbolic analysis under AMD predicts them, from the factor of the pattern
 /// of A + Aᵀ: exact for a symmetric pattern when the pivots stay on the diagonal, an upper bound
-/// when they do so on an unsymmetric one. Costs an analysis (AMD) and no factorization. Throws
-/// std::runtime_error when the analysis fails; std::invalid_argument for a matrix not square.
-[[nodiscard]] double predicted_factor_entries(const Eigen::SparseMatrix<double>& matrix);
+/// when they do so on an unsymmetric one; and the flops of that factorization (AMD's count).
+/// Costs an analysis (AMD) and no factorization. Throws std::runtime_error when the analysis
+/// fails; std::invalid_argument for a matrix not square.
+struct KluFactorPrediction {
+  double entries = 0;
+  double flops = 0;
+};
+[[nodiscard]] KluFactorPrediction predicted_klu_factor(const Eigen::SparseMatrix<double>& matrix);
 
 class FixedPatternKlu {
  public:

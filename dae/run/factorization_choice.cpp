@@ -44,7 +44,7 @@ FactorizationCandidates analyse_factorizations(const Eigen::SparseMatrix<double>
   FactorizationCandidates c;
   c.unknowns = static_cast<int>(matrix.rows());
   c.nonzeros = matrix.nonZeros();
-  c.klu_entries = predicted_factor_entries(matrix);
+  c.klu_entries = predicted_klu_factor(matrix).entries;
   c.klu_bytes = c.klu_entries * kKluBytesPerEntry;
   c.cholmod = cholmod_candidates(matrix);
   return c;

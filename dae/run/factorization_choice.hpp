@@ -5,7 +5,7 @@
 /// saddle points of the multiplier schemes, the integrators' unsymmetric Jacobians over [u; v]).
 ///
 /// The choice of `auto` is made from the pattern: one symbolic analysis per candidate, KLU's
-/// (AMD on the pattern, predicted_factor_entries) and CHOLMOD's under each ordering its build
+/// (AMD on the pattern, predicted_klu_factor) and CHOLMOD's under each ordering its build
 /// offers (models/core/fixed_pattern_cholmod.hpp); CHOLMOD when its least-fill ordering's factor
 /// takes less memory than KLU's L and U. The analyses cost no factorization.
 

@@ -18,13 +18,14 @@ MemoryEstimate SchemeMemory::operator()(const SystemSize& size,
     Eigen::SparseMatrix<double> S = model_.M + *model_.K;
     if (model_.has_damping()) S += model_.C;
     condensed_factor_ =
-        predicted_factor_entries(model_.constraint_count() > 0 ? kkt_matrix(S, model_.A) : S);
+        predicted_klu_factor(model_.constraint_count() > 0 ? kkt_matrix(S, model_.A) : S);
   }
   IntegratedSizes sizes;
   sizes.unknowns = size.unknowns;
   sizes.newton_nonzeros = static_cast<double>(size.jacobian_nonzeros);
-  sizes.factor_entries =
-      size.condensed ? *condensed_factor_ : sizes.newton_nonzeros + *condensed_factor_;
+  sizes.factor_entries = size.condensed ? condensed_factor_->entries
+                                        : sizes.newton_nonzeros + condensed_factor_->entries;
+  sizes.factor_flops = condensed_factor_->flops;
   if (factorization.cholmod) {
     sizes.factor_entries = factorization.factor_entries;
     sizes.cholmod_factor_bytes = factorization.factor_bytes;

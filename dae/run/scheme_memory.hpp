@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "dae/run/run_plan.hpp"
 #include "dae/run/scheme_choice.hpp"
 #include "models/core/memory_estimate.hpp"
@@ -16,7 +17,7 @@ namespace condyn {
 
 /// Estimates for many schemes of one model (`info`'s table): the analysis is made once.
 ///
-/// The factor's entries: KLU's analysis under AMD (predicted_factor_entries) of the condensed
+/// The factor's entries: KLU's analysis under AMD (predicted_klu_factor) of the condensed
 /// matrix [M + C + K, Aᵀ; A, 0] of the model, F_c. A condensed Newton matrix (the projection's
 /// saddle point, [solve] newton = "condensed") factors to F_c. The integrator's Jacobian over
 /// [u; v; ...] (J nonzeros) factors to J + F_c: its rows u' − v pair each position with its
@@ -25,7 +26,9 @@ namespace condyn {
 /// the analysis would count about twice (the benchmark lattice at 10⁴ DOFs: 822,704 predicted
 /// for index1's Jacobian against 457,260 factored; J + F_c = 459,049). Elimination, the mixed
 /// treatment and penalty factor a matrix of the same structure over fewer or as many DOFs: the
-/// model's F_c bounds theirs. The analysis costs a fraction of one factorization.
+/// model's F_c bounds theirs. The analysis costs a fraction of one factorization. Its flops,
+/// which the Jacobian's factorization shares (the positions' columns cost a few each), decide
+/// whether the factors' streamed copy is counted (keeps_streamed_copy).
 class SchemeMemory {
  public:
   explicit SchemeMemory(const Model& model) : model_(model) {}
@@ -36,7 +39,7 @@ class SchemeMemory {
 
  private:
   const Model& model_;
-  std::optional<double> condensed_factor_;  ///< F_c, analysed at the first call
+  std::optional<KluFactorPrediction> condensed_factor_;  ///< F_c, analysed at the first call
 };
 
 /// The scheme a run of `plan` integrates and its estimate, sized with `decisions` (those the plan

@@ -28,10 +28,10 @@ std::string count(double v) {
   return s.str();
 }
 
-/// Bytes of a factor of `entries` entries, with the streamed copy when it is large enough.
-double factor_bytes(double entries) {
-  const double copies = entries >= static_cast<double>(kStreamedSolveFromEntries) ? 2.0 : 1.0;
-  return copies * kBytesPerNonzero * entries;
+/// Bytes of a factor of `entries` entries that costs `flops`, with the streamed copy when the
+/// Newton solvers keep one.
+double factor_bytes(double entries, double flops) {
+  return (keeps_streamed_copy(entries, flops) ? 2.0 : 1.0) * kBytesPerNonzero * entries;
 }
 
 }  // namespace
@@ -54,8 +54,9 @@ MemoryEstimate integration_memory_estimate(const ModelSizes& m, const Integrated
     e.bytes = e.lower_bound = rest + newton + s.cholmod_factor_bytes;
     return e;
   }
-  e.bytes = rest + newton + factor_bytes(std::max(s.factor_entries, s.newton_nonzeros));
-  e.lower_bound = rest + newton + factor_bytes(s.newton_nonzeros);
+  e.bytes =
+      rest + newton + factor_bytes(std::max(s.factor_entries, s.newton_nonzeros), s.factor_flops);
+  e.lower_bound = rest + newton + factor_bytes(s.newton_nonzeros, s.factor_flops);
   return e;
 }
 

@@ -28,6 +28,8 @@ struct IntegratedSizes {
   double unknowns = 0;
   double newton_nonzeros = 0;
   double factor_entries = 0;
+  /// The flops of factoring it as the same analysis predicts them; 0 when not known.
+  double factor_flops = 0;
   /// When CHOLMOD factors the Newton matrix: its factor's bytes (values and indices) as its
   /// symbolic analysis predicts them, counted in place of KLU's L and U, and factor_entries the
   /// entries of L; 0 under KLU.
@@ -45,8 +47,8 @@ struct IntegratedSizes {
 ///     nonzeros);
 ///   the Newton matrix: 12 B per nonzero in the integrator's matrix and 4 B in its pattern, 12 B
 ///     more when condensed;
-///   its KLU factors: 12 B per entry, twice from kStreamedSolveFromEntries entries on (the copy
-///     the solves stream, dae/linsolve/klu_streamed_solve.hpp); or CHOLMOD's factor, as its
+///   its KLU factors: 12 B per entry, twice when keeps_streamed_copy (the copy the solves stream,
+///     dae/linsolve/klu_streamed_solve.hpp); or CHOLMOD's factor, as its
 ///     analysis predicts it (cholmod_factor_bytes, in the lower bound too: the analysis is exact);
 ///   the integrator's vectors: kIntegratorVectors of `unknowns` doubles.
 /// `lower_bound` takes the factors as no larger than the Newton matrix (L and U hold at least its
@@ -71,6 +73,21 @@ struct MemoryEstimate {
 /// the triangular solves read them (KluSettings::streamed_solve_from,
 /// dae/linsolve/fixed_pattern_klu.hpp).
 constexpr long kStreamedSolveFromEntries = 200'000;
+/// ... and the most flops their factorization may cost per entry for the copy to be kept
+/// (KluSettings::streamed_solve_most_flops_per_entry). Beyond, the factorizations outweigh the
+/// solves that would read the copy: a strip's banded factor costs about 8 to 12 flops an entry,
+/// a mesh's nested-dissection fill 170 to 250 (2D) and 1,000 to 1,600 (3D), where the copy
+/// saved none and 8 % of the time and took the peak from 1.1 to 1.7 and from 1.0 to 1.8 times
+/// the bare driver's (docs/benchmarks.md).
+constexpr double kStreamedSolveMostFlopsPerEntry = 64.0;
+
+/// Whether a factor of `entries` entries whose factorization costs `flops` (0: not known) gets
+/// the streamed copy, under these thresholds.
+[[nodiscard]] constexpr bool keeps_streamed_copy(
+    double entries, double flops, double from = static_cast<double>(kStreamedSolveFromEntries),
+    double most_flops_per_entry = kStreamedSolveMostFlopsPerEntry) {
+  return entries >= from && flops <= most_flops_per_entry * entries;
+}
 
 /// The memory a run can have, in bytes: MemAvailable of /proc/meminfo plus what this process holds
 /// already (RssAnon of /proc/self/status), since the estimates count the model it has read and

@@ -6,6 +6,7 @@
 
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -136,6 +137,25 @@ TEST_CASE("KluStreamedSolve: a diagonal matrix (singletons only) and the size th
   FixedPatternKlu small(streamed_from(1'000'000));
   REQUIRE(small.factor(a));
   CHECK_FALSE(small.streamed());
+}
+
+TEST_CASE("KluStreamedSolve: no copy where the factorization outweighs the solves") {
+  // One dense block of 200: about (2/3) 200³ flops over 200² entries, some 130 an entry, beyond
+  // kStreamedSolveMostFlopsPerEntry (a mesh's fill; a banded strip's costs about 10).
+  const Sparse a = block_triangular({200}, 13, 14, 1.0);
+  FixedPatternKlu by_default(streamed_from(0));
+  REQUIRE(by_default.factor(a));
+  CHECK_FALSE(by_default.streamed());
+  KluSettings any_flops = streamed_from(0);
+  any_flops.streamed_solve_most_flops_per_entry = std::numeric_limits<double>::infinity();
+  FixedPatternKlu forced(any_flops);
+  REQUIRE(forced.factor(a));
+  CHECK(forced.streamed());
+  check_same_solutions(a, forced, by_default);
+  // The decision stays with the pivots: a refactorization keeps it.
+  const Sparse b = block_triangular({200}, 13, 15, 1.0);
+  REQUIRE(by_default.factor(b));
+  CHECK_FALSE(by_default.streamed());
 }
 
 }  // namespace test_klu_streamed_solve

@@ -85,6 +85,28 @@ TEST_CASE("the memory estimate is per scheme, from the sizes each integrates") {
   CHECK(run->estimate.bytes == by.at(Scheme::penalty).estimate.bytes);
 }
 
+TEST_CASE("the streamed copy of KLU's factors is counted where the solvers keep it") {
+  IntegratedSizes sizes;
+  sizes.unknowns = 1e5;
+  sizes.newton_nonzeros = 1e6;
+  sizes.factor_entries = 4e6;                        // above kStreamedSolveFromEntries
+  sizes.factor_flops = 10.0 * sizes.factor_entries;  // a banded strip's factor: the copy is kept
+  const MemoryEstimate banded = integration_memory_estimate(ModelSizes{}, sizes);
+  sizes.factor_flops = 200.0 * sizes.factor_entries;  // a 2D mesh's fill: no copy
+  const MemoryEstimate mesh = integration_memory_estimate(ModelSizes{}, sizes);
+  // The copy costs the factor again, 12 B an entry (whole numbers of bytes, exact in double); the
+  // lower bound, which takes the factor as the Newton matrix's nonzeros, likewise.
+  CHECK(banded.bytes - mesh.bytes == 12.0 * sizes.factor_entries);
+  CHECK(banded.lower_bound - mesh.lower_bound == 12.0 * sizes.newton_nonzeros);
+  // The rule at its edges: from kStreamedSolveFromEntries entries, up to
+  // kStreamedSolveMostFlopsPerEntry flops an entry; an unknown count (0) keeps the copy.
+  constexpr auto from = static_cast<double>(kStreamedSolveFromEntries);
+  CHECK(keeps_streamed_copy(from, kStreamedSolveMostFlopsPerEntry * from));
+  CHECK(keeps_streamed_copy(from, 0.0));
+  CHECK_FALSE(keeps_streamed_copy(from - 1.0, 0.0));
+  CHECK_FALSE(keeps_streamed_copy(from, kStreamedSolveMostFlopsPerEntry * from + 1.0));
+}
+
 TEST_CASE("the run's memory check names the scheme and refuses only below its lower bound") {
   const SceneSpec spec = parse_scene_text(test::lattice(20, 20, kTie, ""), "lattice.toml");
   const Model model = build_model(spec);
