@@ -45,25 +45,40 @@ CondensedNewton::CondensedNewton(Scheme scheme, LinearMatrices&& matrices, const
   }
   blocks.finish();
   matrix_ = blocks.pattern().matrix();
+  diagonals_ = {K_.diagonal(), C_.diagonal(), M_.diagonal()};
+  largest_a_ = m_ > 0 ? A_.coeffs().cwiseAbs().maxCoeff() : 0.0;
   rhs_.resize(n_ + m_ + p_);
   r1_.resize(n_);
   work_.resize(n_);
 }
 
+CondensedNewton::Scales CondensedNewton::scales(double cj) const {
+  if (largest_a_ == 0.0) return {};
+  const auto& [k, c, m] = diagonals_;
+  const double d = (k + cj * c + cj * cj * m).cwiseAbs().maxCoeff();
+  if (!(d > 0.0)) return {};
+  const double lambda = d / largest_a_;
+  if (scheme_ == Scheme::index1) return {lambda, 1.0, lambda, 1.0};
+  const double e = (c + cj * m).cwiseAbs().maxCoeff();
+  return {lambda, e > 0.0 ? d / (e * largest_a_) : 1.0, d / (cj * largest_a_), lambda};
+}
+
 bool CondensedNewton::setup(double cj) {
   cj_ = cj;
+  scale_ = scales(cj);
+  const Scales& s = scale_;
   JacobianMap J = map_of(matrix_);
   std::fill_n(J.valuePtr(), J.nonZeros(), 0.0);
   BlockJacobian::add(J, 0, 0, K_);
   BlockJacobian::add(J, 0, 0, C_, cj);
   BlockJacobian::add(J, 0, 0, M_, cj * cj);
-  BlockJacobian::add(J, 0, n_, At_);
-  BlockJacobian::add(J, n_, 0, A_, scheme_ == Scheme::index1 ? 1.0 : cj);
+  BlockJacobian::add(J, 0, n_, At_, s.lambda);
+  BlockJacobian::add(J, n_, 0, A_, s.row2 * (scheme_ == Scheme::index1 ? 1.0 : cj));
   if (p_ > 0) {
-    BlockJacobian::add(J, 0, n_ + m_, CApT_);
-    BlockJacobian::add(J, 0, n_ + m_, MApT_, cj);
-    BlockJacobian::add(J, n_, n_ + m_, AApT_);
-    BlockJacobian::add(J, n_ + m_, 0, Ap_);
+    BlockJacobian::add(J, 0, n_ + m_, CApT_, s.mu);
+    BlockJacobian::add(J, 0, n_ + m_, MApT_, s.mu * cj);
+    BlockJacobian::add(J, n_, n_ + m_, AApT_, s.row2 * s.mu);
+    BlockJacobian::add(J, n_ + m_, 0, Ap_, s.row3);
   }
   return cholmod_ ? cholmod_->factor(matrix_) : klu_.factor(matrix_);
 }
@@ -87,12 +102,12 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
     auto mid = rhs_.segment(n, m);
     mid.noalias() = A_ * r1_;
     if (scheme_ == Scheme::index1) {
-      mid = (b.segment(2 * n, m) + cj * mid) / (cj * cj);
+      mid = scale_.row2 * (b.segment(2 * n, m) + cj * mid) / (cj * cj);
     } else {
-      mid += b.segment(2 * n, m);
+      mid = scale_.row2 * (mid + b.segment(2 * n, m));
     }
   }
-  if (p > 0) rhs_.tail(p) = b.segment(2 * n + m, p);
+  if (p > 0) rhs_.tail(p) = scale_.row3 * b.segment(2 * n + m, p);
   if (cholmod_) {
     cholmod_->solve_in_place(rhs_);
   } else {
@@ -102,11 +117,12 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   auto dv = b.segment(n, n);
   dv = cj * du - r1_;
   if (p > 0) {
+    rhs_.tail(p) *= scale_.mu;  // dμ
     work_.noalias() = ApT_ * rhs_.tail(p);
     dv += work_;
   }
   b.segment(0, n) = du;
-  if (m > 0) b.segment(2 * n, m) = rhs_.segment(n, m);
+  if (m > 0) b.segment(2 * n, m) = scale_.lambda * rhs_.segment(n, m);
   if (p > 0) b.segment(2 * n + m, p) = rhs_.tail(p);
 }
 

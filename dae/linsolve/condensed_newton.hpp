@@ -12,6 +12,10 @@
 ///     [cj A  0   A A_pᵀ         ] [dλ] = [r3 + A r1         ]
 ///     [A_p   0   0              ] [dμ]   [r4                ]
 ///
+/// KLU factors these with dλ (and dμ) scaled and their rows multiplied so that the multipliers'
+/// pivots are of the order of S's (scales()): unscaled, they lay some cj² max M_ii below them,
+/// and KLU's rcond test rejected most refactorizations (each then pivoted afresh).
+///
 /// n + m (+ p) unknowns for KLU instead of 2n + m (+ p), and IDA never forms its Jacobian. The
 /// pattern is the union of the blocks' patterns, fixed, analysed once; each setup fills its values
 /// in place (dae/linsolve/block_jacobian.hpp) and refactors with the pivots kept
@@ -21,6 +25,7 @@
 
 #include <Eigen/Sparse>
 
+#include <array>
 #include <memory>
 
 #include "dae/linsolve/block_jacobian.hpp"
@@ -48,17 +53,36 @@ class CondensedNewton final : public NewtonSystem {
     return m_ == 0 && p_ == 0 ? &matrix_ : nullptr;
   }
   bool use_cholmod(const std::string& ordering) override;
+  /// KLU's factorizations that chose their pivots: the first, and those whose refactorization
+  /// with the kept pivots looked ill-conditioned (dae/linsolve/fixed_pattern_klu.hpp).
+  [[nodiscard]] long pivoting_factorizations() const { return klu_.pivoting_factorizations(); }
 
  private:
   using Sparse = Eigen::SparseMatrix<double>;
+
+  struct Scales;
+  /// index1: dλ = s dλ̃ and its rows times s, s = max |S_ii| / max |A_ij| ([S, s Aᵀ; s A, 0]).
+  /// GGL: λ likewise, its rows [cj A, 0, A A_pᵀ] times s / cj, A_p's rows times s, and dμ = s / e
+  /// dμ̃ with e = max |(C + cj M)_ii| (the μ column (C + cj M) A_pᵀ). All 1 without constraints.
+  [[nodiscard]] Scales scales(double cj) const;
 
   Scheme scheme_;
   Sparse M_, C_, K_, A_, At_, Ap_, ApT_, CApT_, MApT_, AApT_;
   int n_, m_, p_;
   double cj_ = 0.0;
   Sparse matrix_;  ///< the condensed matrix on its fixed pattern, values for cj_
+  std::array<Eigen::VectorXd, 3> diagonals_;  ///< of K, C and M
+  double largest_a_ = 0.0;                    ///< max |A_ij|
+  struct Scales {
+    double lambda = 1.0, mu = 1.0;  ///< dλ = lambda dλ̃, dμ = mu dμ̃
+    double row2 = 1.0, row3 = 1.0;  ///< the factors of the constraint rows
+  };
+  Scales scale_;  ///< scales(cj_)
   Eigen::VectorXd rhs_, r1_, work_;
-  FixedPatternKlu klu_;
+  /// COLAMD: a column ordering leaves KLU free to pivot off the multipliers' zero diagonal block,
+  /// where AMD's ordering of A + Aᵀ counts on diagonal pivots (a 2D mesh of 10⁴ DOFs under
+  /// index1: 3.3e8 flops a factorization against 8.3e8; docs/benchmarks.md).
+  FixedPatternKlu klu_{KluSettings{.ordering = 1}};
   std::unique_ptr<FixedPatternCholmod> cholmod_;  ///< set by use_cholmod(): factors instead of KLU
 };
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "dae/formulations/multiplier_dae.hpp"
+#include "dae/linsolve/condensed_newton.hpp"
 #include "dae/linsolve/fixed_pattern_klu.hpp"
 #include "models/core/eigen_decompositions.hpp"
 #include "models/scene/scene_parser.hpp"
@@ -18,6 +19,24 @@
 using namespace condyn;
 
 namespace test_condensed_newton {
+
+namespace {
+
+/// A state (y, y') to linearise at and a right-hand side b, smooth and nonzero in every entry.
+struct Probe {
+  Eigen::VectorXd y, yp, b;
+};
+Probe probe(int n) {
+  Probe p{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  for (int i = 0; i < n; ++i) {
+    p.y[i] = 0.1 * std::sin(1.3 * i + 0.4);
+    p.yp[i] = 0.2 * std::cos(0.9 * i);
+    p.b[i] = std::cos(0.7 * i) - 0.3;
+  }
+  return p;
+}
+
+}  // namespace
 
 TEST_CASE("the condensed Newton solve equals the full Jacobian's, index1 and GGL") {
   for (const char* scene : {"chapter_5_5_1", "chapter_5_5_3", "chapter_5_6_1", "chapter_5_6_2"}) {
@@ -29,13 +48,7 @@ TEST_CASE("the condensed Newton solve equals the full Jacobian's, index1 and GGL
       const MultiplierDae dae(*built.model.system, scheme, 0.0, 0.0, true);
       const auto newton = dae.newton_system();
       REQUIRE(newton != nullptr);
-      const int N = dae.size();
-      Eigen::VectorXd y(N), yp(N), b(N);
-      for (int i = 0; i < N; ++i) {
-        y[i] = 0.1 * std::sin(1.3 * i + 0.4);
-        yp[i] = 0.2 * std::cos(0.9 * i);
-        b[i] = std::cos(0.7 * i) - 0.3;
-      }
+      const auto [y, yp, b] = probe(dae.size());
       for (const double cj : {1e2, 1e5}) {
         CAPTURE(cj);
         Eigen::SparseMatrix<double> J = dae.jacobian_pattern().matrix();
@@ -52,6 +65,36 @@ TEST_CASE("the condensed Newton solve equals the full Jacobian's, index1 and GGL
         CHECK((x - expected).norm() <= 1e-6 * (1.0 + expected.norm()));
       }
     }
+  }
+}
+
+TEST_CASE("the condensed saddle point keeps its pivots as cj moves: multipliers scaled to S") {
+  // The 20 x 20 lattice (unit masses and EA, its left column held) with two ties. Unscaled, the
+  // multipliers' pivots of [S, Aᵀ; A, 0] came out about 1/cj² against S's cj² (S = K + cj C +
+  // cj² M): with these unit masses, from cj about 1e5 on KLU's rcond test rejected the
+  // refactorizations and each setup pivoted afresh (6 of the 8 here).
+  const std::string ties =
+      "[[constraint]]\nname = \"tie1\"\nterms = { uy400 = 1.0, uy20 = -1.0 }\n"
+      "[[constraint]]\nname = \"tie2\"\nterms = { ux390 = 1.0, ux10 = -1.0 }\n";
+  const auto built = test::built(parse_scene_text(test::lattice(20, 20, ties, ""), "l.toml"));
+  for (const Scheme scheme : {Scheme::index1, Scheme::ggl}) {
+    CAPTURE(to_string(scheme));
+    const MultiplierDae dae(*built.model.system, scheme, 0.0, 0.0, true);
+    const auto newton = dae.newton_system();
+    const auto* condensed = dynamic_cast<const CondensedNewton*>(newton.get());
+    REQUIRE(condensed != nullptr);
+    const auto [y, yp, b] = probe(dae.size());
+    // cj as IDA moves it: up from a start and down again, by factors up to 3.
+    for (const double cj : {1e4, 3e4, 4e4, 1.2e5, 3e5, 1e6, 5e5, 2e5}) {
+      CAPTURE(cj);
+      Eigen::SparseMatrix<double> J = dae.jacobian_pattern().matrix();
+      dae.jacobian(0.5, y, yp, cj, J);
+      REQUIRE(newton->setup(cj));
+      Eigen::VectorXd x = b;
+      newton->solve(x);
+      CHECK((J * x - b).norm() <= 1e-10 * (1.0 + J.norm() * x.norm()));
+    }
+    CHECK(condensed->pivoting_factorizations() == 1);
   }
 }
 
