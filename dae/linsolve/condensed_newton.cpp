@@ -4,6 +4,7 @@
 #include "dae/linsolve/condensed_newton.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace condyn {
@@ -12,7 +13,8 @@ CondensedNewton::CondensedNewton(Scheme scheme, LinearMatrices&& matrices, const
     : scheme_(scheme),
       n_(static_cast<int>(matrices.M.rows())),
       m_(static_cast<int>(matrices.A.rows())),
-      p_(scheme == Scheme::ggl ? static_cast<int>(select_p.rows()) : 0) {
+      p_(scheme == Scheme::ggl ? static_cast<int>(select_p.rows()) : 0),
+      klu_(KluSettings{.ordering = m_ + p_ > 0 ? 1 : 0}) {
   // Taken over by swaps: Eigen 3.4's sparse matrices have no move constructor.
   M_.swap(matrices.M);
   C_.swap(matrices.C);
@@ -21,6 +23,7 @@ CondensedNewton::CondensedNewton(Scheme scheme, LinearMatrices&& matrices, const
   if (scheme != Scheme::index1 && scheme != Scheme::ggl) {
     throw std::invalid_argument("CondensedNewton: index1 or ggl only");
   }
+  if (K_.size() == 0) K_.resize(n_, n_);
   if (C_.size() == 0) C_.resize(n_, n_);
   if (m_ == 0) A_.resize(0, n_);
   for (Sparse* x : {&M_, &C_, &K_, &A_}) x->makeCompressed();
@@ -46,11 +49,20 @@ CondensedNewton::CondensedNewton(Scheme scheme, LinearMatrices&& matrices, const
   blocks.finish();
   matrix_ = blocks.pattern().matrix();
   diagonals_ = {K_.diagonal(), C_.diagonal(), M_.diagonal()};
-  largest_a_ = m_ > 0 ? A_.coeffs().cwiseAbs().maxCoeff() : 0.0;
+  largest_a_ = A_.nonZeros() > 0 ? A_.coeffs().cwiseAbs().maxCoeff() : 0.0;
   rhs_.resize(n_ + m_ + p_);
   r1_.resize(n_);
   work_.resize(n_);
 }
+
+namespace {
+
+/// The power of two nearest below a positive finite x; 1 for any other.
+double power_of_two_below(double x) {
+  return x > 0.0 && std::isfinite(x) ? std::ldexp(1.0, std::ilogb(x)) : 1.0;
+}
+
+}  // namespace
 
 CondensedNewton::Scales CondensedNewton::scales(double cj) const {
   if (largest_a_ == 0.0) return {};
@@ -58,9 +70,9 @@ CondensedNewton::Scales CondensedNewton::scales(double cj) const {
   const double d = (k + cj * c + cj * cj * m).cwiseAbs().maxCoeff();
   if (!(d > 0.0)) return {};
   const double lambda = d / largest_a_;
-  if (scheme_ == Scheme::index1) return {lambda, 1.0, lambda, 1.0};
-  const double e = (c + cj * m).cwiseAbs().maxCoeff();
-  return {lambda, e > 0.0 ? d / (e * largest_a_) : 1.0, d / (cj * largest_a_), lambda};
+  if (scheme_ == Scheme::index1) return {power_of_two_below(lambda), 1.0};
+  const double e = std::max((c + cj * m).cwiseAbs().maxCoeff(), d / cj);
+  return {power_of_two_below(lambda), power_of_two_below(lambda / e)};
 }
 
 bool CondensedNewton::setup(double cj) {
@@ -73,12 +85,12 @@ bool CondensedNewton::setup(double cj) {
   BlockJacobian::add(J, 0, 0, C_, cj);
   BlockJacobian::add(J, 0, 0, M_, cj * cj);
   BlockJacobian::add(J, 0, n_, At_, s.lambda);
-  BlockJacobian::add(J, n_, 0, A_, s.row2 * (scheme_ == Scheme::index1 ? 1.0 : cj));
+  BlockJacobian::add(J, n_, 0, A_, scheme_ == Scheme::index1 ? 1.0 : cj);
   if (p_ > 0) {
     BlockJacobian::add(J, 0, n_ + m_, CApT_, s.mu);
     BlockJacobian::add(J, 0, n_ + m_, MApT_, s.mu * cj);
-    BlockJacobian::add(J, n_, n_ + m_, AApT_, s.row2 * s.mu);
-    BlockJacobian::add(J, n_ + m_, 0, Ap_, s.row3);
+    BlockJacobian::add(J, n_, n_ + m_, AApT_, s.mu);
+    BlockJacobian::add(J, n_ + m_, 0, Ap_);
   }
   return cholmod_ ? cholmod_->factor(matrix_) : klu_.factor(matrix_);
 }
@@ -102,12 +114,12 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
     auto mid = rhs_.segment(n, m);
     mid.noalias() = A_ * r1_;
     if (scheme_ == Scheme::index1) {
-      mid = scale_.row2 * (b.segment(2 * n, m) + cj * mid) / (cj * cj);
+      mid = (b.segment(2 * n, m) + cj * mid) / (cj * cj);
     } else {
-      mid = scale_.row2 * (mid + b.segment(2 * n, m));
+      mid += b.segment(2 * n, m);
     }
   }
-  if (p > 0) rhs_.tail(p) = scale_.row3 * b.segment(2 * n + m, p);
+  if (p > 0) rhs_.tail(p) = b.segment(2 * n + m, p);
   if (cholmod_) {
     cholmod_->solve_in_place(rhs_);
   } else {

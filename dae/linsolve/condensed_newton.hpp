@@ -12,9 +12,9 @@
 ///     [cj A  0   A A_pᵀ         ] [dλ] = [r3 + A r1         ]
 ///     [A_p   0   0              ] [dμ]   [r4                ]
 ///
-/// KLU factors these with dλ (and dμ) scaled and their rows multiplied so that the multipliers'
-/// pivots are of the order of S's (scales()): unscaled, they lay some cj² max M_ii below them,
-/// and KLU's rcond test rejected most refactorizations (each then pivoted afresh).
+/// KLU factors these with dλ (and dμ) scaled so that the multipliers' pivots are of the order
+/// of S's (scales()): unscaled, they lay some cj² max M_ii below them, and KLU's rcond test
+/// rejected most refactorizations (each then pivoted afresh).
 ///
 /// n + m (+ p) unknowns for KLU instead of 2n + m (+ p), and IDA never forms its Jacobian. The
 /// pattern is the union of the blocks' patterns, fixed, analysed once; each setup fills its values
@@ -61,9 +61,11 @@ class CondensedNewton final : public NewtonSystem {
   using Sparse = Eigen::SparseMatrix<double>;
 
   struct Scales;
-  /// index1: dλ = s dλ̃ and its rows times s, s = max |S_ii| / max |A_ij| ([S, s Aᵀ; s A, 0]).
-  /// GGL: λ likewise, its rows [cj A, 0, A A_pᵀ] times s / cj, A_p's rows times s, and dμ = s / e
-  /// dμ̃ with e = max |(C + cj M)_ii| (the μ column (C + cj M) A_pᵀ). All 1 without constraints.
+  /// dλ = s dλ̃, s = max |S_ii| / max |A_ij|; GGL's dμ = s / e dμ̃, e = max(max |(C + cj M)_ii|,
+  /// max |S_ii| / cj) (the μ column holds (C + cj M) A_pᵀ beside S and A A_pᵀ in the λ rows);
+  /// each the power of two nearest below, so that scaling rounds nothing. The constraint rows
+  /// are left as they are: KLU scales every row by its largest entry. All 1 without
+  /// constraints.
   [[nodiscard]] Scales scales(double cj) const;
 
   Scheme scheme_;
@@ -75,14 +77,15 @@ class CondensedNewton final : public NewtonSystem {
   double largest_a_ = 0.0;                    ///< max |A_ij|
   struct Scales {
     double lambda = 1.0, mu = 1.0;  ///< dλ = lambda dλ̃, dμ = mu dμ̃
-    double row2 = 1.0, row3 = 1.0;  ///< the factors of the constraint rows
   };
   Scales scale_;  ///< scales(cj_)
   Eigen::VectorXd rhs_, r1_, work_;
-  /// COLAMD: a column ordering leaves KLU free to pivot off the multipliers' zero diagonal block,
-  /// where AMD's ordering of A + Aᵀ counts on diagonal pivots (a 2D mesh of 10⁴ DOFs under
-  /// index1: 3.3e8 flops a factorization against 8.3e8; docs/benchmarks.md).
-  FixedPatternKlu klu_{KluSettings{.ordering = 1}};
+  /// With constraints COLAMD: a column ordering leaves KLU free to pivot off the multipliers'
+  /// zero diagonal block, where AMD's ordering of A + Aᵀ counts on diagonal pivots (a 2D mesh of
+  /// 10⁴ DOFs under index1: 3.3e8 flops a factorization against 8.3e8; docs/benchmarks.md).
+  /// Without (elimination's and penalty's symmetric S), AMD: COLAMD orders for SᵀS and doubles
+  /// a mesh's factor.
+  FixedPatternKlu klu_;
   std::unique_ptr<FixedPatternCholmod> cholmod_;  ///< set by use_cholmod(): factors instead of KLU
 };
 

@@ -47,12 +47,15 @@ struct IntegratedSizes {
 ///     nonzeros);
 ///   the Newton matrix: 12 B per nonzero in the integrator's matrix and 4 B in its pattern, 12 B
 ///     more when condensed;
-///   its KLU factors: 12 B per entry, twice when keeps_streamed_copy (the copy the solves stream,
-///     dae/linsolve/klu_streamed_solve.hpp); or CHOLMOD's factor, as its
-///     analysis predicts it (cholmod_factor_bytes, in the lower bound too: the analysis is exact);
+///   its KLU factors: 12 B per entry, twice when keeps_streamed_copy holds for the analysis's
+///     counts (the copy the solves stream, dae/linsolve/klu_streamed_solve.hpp; the run decides
+///     from its own factor's, under its own ordering: the two can differ near the threshold, but
+///     a strip's 8 to 12 flops an entry and a mesh's 170 and more stay apart); or CHOLMOD's factor,
+///     as its analysis predicts it (cholmod_factor_bytes, in the lower bound too: the analysis is
+///     exact);
 ///   the integrator's vectors: kIntegratorVectors of `unknowns` doubles.
 /// `lower_bound` takes the factors as no larger than the Newton matrix (L and U hold at least its
-/// nonzeros), which no run goes below.
+/// nonzeros) and held once, which no run goes below.
 struct MemoryEstimate {
   double bytes = 0;
   double lower_bound = 0;

@@ -98,6 +98,17 @@ TEST_CASE("the condensed saddle point keeps its pivots as cj moves: multipliers 
   }
 }
 
+TEST_CASE("a condensed system whose constraint rows store no entry is singular, not a crash") {
+  // Two DOFs with unit mass and stiffness and one row of A that stores nothing: no scale can be
+  // taken from A, and [S, 0; 0, 0] is singular, which setup reports.
+  LinearMatrices matrices;
+  matrices.M = Eigen::MatrixXd::Identity(2, 2).sparseView();
+  matrices.K = matrices.M;
+  matrices.A.resize(1, 2);
+  CondensedNewton newton(Scheme::index1, std::move(matrices), Eigen::SparseMatrix<double>(0, 1));
+  CHECK_FALSE(newton.setup(10.0));
+}
+
 TEST_CASE("[solve] newton = \"condensed\" runs agree with the full Jacobian's, damping included") {
   // A 20 x 20 tied lattice with Rayleigh damping: index1, GGL and elimination, each solved with
   // the full Jacobian (default) and condensed; the same solution to the tolerance's size.
