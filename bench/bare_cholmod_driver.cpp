@@ -185,16 +185,8 @@ bool factor(Problem& p, double cj) {
 
 int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void* user) {
   const auto& p = *static_cast<Problem*>(user);
-  const double* y = N_VGetArrayPointer(yy);
-  const double* d = N_VGetArrayPointer(yp);
-  double* r = N_VGetArrayPointer(rr);
-  const long n = p.n;
-  const double s = t >= 0.0 ? 1.0 : 0.0;  // the step load, on from t = 0
-  for (long i = 0; i < n; ++i) r[i] = d[i] - y[n + i];
-  double* r2 = r + n;
-  for (long i = 0; i < n; ++i) r2[i] = -s * p.f[static_cast<std::size_t>(i)];
-  gaxpy(p.M, d + n, 1.0, r2);
-  gaxpy(p.Kw, y, 1.0, r2);
+  bare::second_order_residual(p.M, p.Kw, p.f, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp),
+                              N_VGetArrayPointer(rr));
   return 0;
 }
 

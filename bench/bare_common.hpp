@@ -149,6 +149,19 @@ inline void gaxpy(const Csc& a, const double* x, double scale, double* out) {
   }
 }
 
+/// The first 2n rows of both drivers' residual F(t, y, y') for M u'' + K u = s(t) f over
+/// y = [u; v] (n = M.rows): r₁ = u' − v, r₂ = M v' + K u − s f, s the step load, on from t = 0.
+inline void second_order_residual(const Csc& M, const Csc& K, const std::vector<double>& f,
+                                  double t, const double* y, const double* d, double* r) {
+  const long n = M.rows;
+  const double s = t >= 0.0 ? 1.0 : 0.0;
+  for (long i = 0; i < n; ++i) r[i] = d[i] - y[n + i];
+  double* r2 = r + n;
+  for (long i = 0; i < n; ++i) r2[i] = -s * f[static_cast<std::size_t>(i)];
+  gaxpy(M, d + n, 1.0, r2);
+  gaxpy(K, y, 1.0, r2);
+}
+
 inline void check(int flag, const char* what) {
   if (flag < 0)
     throw std::runtime_error(std::string(what) + " failed with flag " + std::to_string(flag));

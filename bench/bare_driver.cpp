@@ -60,12 +60,8 @@ int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void* user) {
   const double* d = N_VGetArrayPointer(yp);
   double* r = N_VGetArrayPointer(rr);
   const long n = p.n;
-  const double s = t >= 0.0 ? 1.0 : 0.0;  // the step load, on from t = 0
-  for (long i = 0; i < n; ++i) r[i] = d[i] - y[n + i];
+  bare::second_order_residual(p.M, p.K, p.f, t, y, d, r);
   double* r2 = r + n;
-  for (long i = 0; i < n; ++i) r2[i] = -s * p.f[static_cast<std::size_t>(i)];
-  gaxpy(p.M, d + n, 1.0, r2);
-  gaxpy(p.K, y, 1.0, r2);
   gaxpy(p.At, y + 2 * n, 1.0, r2);
   double* r3 = r + 2 * n;
   std::fill(r3, r3 + p.m, 0.0);
