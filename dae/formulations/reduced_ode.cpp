@@ -9,8 +9,25 @@
 #include <memory>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 namespace condyn {
+
+namespace {
+
+/// Whether Ĉ = a₀ M̂ + a₁ K̂ to roundoff: Tᵀ(a₀ M + a₁ K)T and a₀ TᵀMT + a₁ TᵀKT differ only in
+/// the order of their sums, each term at most a₀ max|M̂| + a₁ max|K̂| (times the entries of a row,
+/// bounded generously by 1e3 ε).
+bool is_rayleigh(const ReducedSystem& r, const RayleighCoefficients& c) {
+  const auto largest = [](const Eigen::SparseMatrix<double>& a) {
+    return a.nonZeros() > 0 ? a.coeffs().cwiseAbs().maxCoeff() : 0.0;
+  };
+  const Eigen::SparseMatrix<double> gap = r.C - (c.a0 * r.M + c.a1 * r.K);
+  const double scale = c.a0 * largest(r.M) + c.a1 * largest(r.K);
+  return largest(gap) <= 1e3 * std::numeric_limits<double>::epsilon() * scale;
+}
+
+}  // namespace
 
 ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
     : model_(model), reduced_(reduced), nm_(static_cast<int>(reduced.M.rows())) {
@@ -43,6 +60,17 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
     }
     mass_ = std::move(mass);
   }
+  const bool damped = model.has_damping();
+  const double entries = static_cast<double>(reduced.M.nonZeros() + reduced.K.nonZeros() +
+                                             (damped ? reduced.C.nonZeros() : 0));
+  if (entries >= kLanedProductFewestEntries) {
+    if (damped && model.rayleigh && is_rayleigh(reduced, *model.rayleigh)) {
+      rayleigh_ = model.rayleigh;
+    }
+    std::vector<const Eigen::SparseMatrix<double>*> matrices{&reduced.M, &reduced.K};
+    if (damped && !rayleigh_) matrices.push_back(&reduced.C);
+    products_ = std::make_shared<const SymmetricProducts>(matrices);
+  }
   jacobian_ = BlockJacobian(size());
   jacobian_.declare_identity(0, 0, nm_);
   jacobian_.declare_identity(0, nm_, nm_);
@@ -55,6 +83,20 @@ ReducedOde::ReducedOde(const Model& model, const ReducedSystem& reduced)
 void ReducedOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   const auto x = y.head(nm_), w = y.tail(nm_);
   r.head(nm_) = yp.head(nm_) - w;
+  if (products_) {
+    const double* wp = w.data();
+    std::vector<ProductInput> inputs{{yp.tail(nm_).data()}, {x.data()}};
+    if (rayleigh_) {
+      inputs[0].v1 = inputs[1].v1 = wp;
+      inputs[0].c1 = rayleigh_->a0;
+      inputs[1].c1 = rayleigh_->a1;
+    } else if (model_.has_damping()) {
+      inputs.push_back({wp});
+    }
+    products_->apply(inputs, r.tail(nm_).data());
+    r.tail(nm_) -= reduced_.forces(model_, t, segment_start_.value_or(t));
+    return;
+  }
   r.tail(nm_) = reduced_.M * yp.tail(nm_) + reduced_.K * x -
                 reduced_.forces(model_, t, segment_start_.value_or(t));
   if (model_.has_damping()) r.tail(nm_) += reduced_.C * w;

@@ -53,6 +53,10 @@ CondensedNewton::CondensedNewton(Scheme scheme, LinearMatrices&& matrices, const
   rhs_.resize(n_ + m_ + p_);
   r1_.resize(n_);
   work_.resize(n_);
+  if (static_cast<double>(M_.nonZeros() + C_.nonZeros()) >= kLanedProductFewestEntries) {
+    products_ = std::make_unique<SymmetricProducts>(
+        std::vector<const Eigen::SparseMatrix<double>*>{&M_, &C_});
+  }
 }
 
 namespace {
@@ -106,9 +110,13 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   const Eigen::Index n = n_, m = m_, p = p_;
   r1_ = b.segment(0, n);
   auto top = rhs_.head(n);
-  top.noalias() = M_ * r1_;
-  top *= cj;
-  top.noalias() += C_ * r1_;  // (C + cj M) r1
+  if (products_) {
+    products_->apply({{r1_.data(), cj}, {r1_.data()}}, top.data());
+  } else {
+    top.noalias() = M_ * r1_;
+    top *= cj;
+    top.noalias() += C_ * r1_;  // (C + cj M) r1
+  }
   top += b.segment(n, n);
   if (m > 0) {
     auto mid = rhs_.segment(n, m);

@@ -34,6 +34,7 @@
 #include "dae/linsolve/newton_system.hpp"
 #include "models/core/fixed_pattern_cholmod.hpp"
 #include "models/core/scheme.hpp"
+#include "models/core/symmetric_products.hpp"
 
 namespace condyn {
 
@@ -87,6 +88,9 @@ class CondensedNewton final : public NewtonSystem {
   /// a mesh's factor.
   FixedPatternKlu klu_;
   std::unique_ptr<FixedPatternCholmod> cholmod_;  ///< set by use_cholmod(): factors instead of KLU
+  /// (C + cj M) r₁ in one pass on two lanes on large models (models/core/symmetric_products.hpp);
+  /// null on small ones.
+  std::unique_ptr<SymmetricProducts> products_;
 };
 
 }  // namespace condyn

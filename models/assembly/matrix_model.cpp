@@ -184,6 +184,7 @@ void ModelBuilder::apply_rayleigh() {
   if (nonlinear_truss_) return rayleigh_on_members(a0, a1);
   // M and K are positive semi-definite, a0 and a1 >= 0: so is C. A truss's member dampers are
   // already in C.
+  if (model_.C.nonZeros() == 0) model_.rayleigh = RayleighCoefficients{a0, a1};
   model_.C = (a0 * model_.M + a1 * *model_.K + model_.C).pruned();
   model_.C.makeCompressed();
 }

@@ -189,6 +189,7 @@ void ModelBuilder::apply_rayleigh_modes() {
                     "that z(ω) = a0/(2ω) + a1 ω/2 cannot have there)");
   }
   // M and K positive semi-definite, a0 and a1 >= 0: so is C; a truss's member dampers kept.
+  if (model_.C.nonZeros() == 0) model_.rayleigh = RayleighCoefficients{a0, a1};
   model_.C = (a0 * model_.M + a1 * *model_.K + model_.C).pruned();
   model_.C.makeCompressed();
   report_.damping = rule.str();

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "models/core/load_library.hpp"
+#include "models/core/supernodal_solve.hpp"
 
 #ifndef CONDYN_CHOLMOD_SONAME
 #error "CONDYN_CHOLMOD_SONAME (CHOLMOD's shared library, e.g. libcholmod.so.3) is set by CMake"
@@ -182,6 +183,10 @@ struct FixedPatternCholmod::Impl {
   cholmod_dense* y = nullptr;
   cholmod_dense* e = nullptr;
   std::size_t n = 0;
+  /// condyn's two-lane solve on a large supernodal factor (models/core/supernodal_solve.hpp),
+  /// made at the first factorization that needs it.
+  std::unique_ptr<SupernodalSolve> own_solve;
+  bool own_solve_declined = false;  ///< its split left too much to one thread: CHOLMOD solves
 
   Impl() = default;
   ~Impl() {
@@ -194,14 +199,22 @@ struct FixedPatternCholmod::Impl {
   Impl& operator=(const Impl&) = delete;
 };
 
-FixedPatternCholmod::FixedPatternCholmod(std::string ordering)
-    : impl_(std::make_unique<Impl>()), ordering_(std::move(ordering)) {
+FixedPatternCholmod::FixedPatternCholmod(std::string ordering, double own_solve_fewest_entries,
+                                         double own_solve_most_shared)
+    : impl_(std::make_unique<Impl>()),
+      ordering_(std::move(ordering)),
+      own_solve_fewest_entries_(own_solve_fewest_entries),
+      own_solve_most_shared_(own_solve_most_shared) {
   const auto named = [this](const auto& o) { return ordering_ == o.second; };
   if (!ordering_.empty() && std::none_of(std::begin(kOrderings), std::end(kOrderings), named)) {
     throw std::invalid_argument("FixedPatternCholmod: no ordering '" + ordering_ + "'");
   }
 }
 FixedPatternCholmod::~FixedPatternCholmod() = default;
+
+int FixedPatternCholmod::solve_lanes() const {
+  return impl_->own_solve ? impl_->own_solve->lanes() : 0;
+}
 
 bool FixedPatternCholmod::supernodal() const {
   return impl_->factor != nullptr && impl_->factor->is_super != 0;
@@ -243,6 +256,20 @@ bool FixedPatternCholmod::factor(const Eigen::SparseMatrix<double>& matrix) {
     throw std::runtime_error("CHOLMOD factorization failed (status " +
                              std::to_string(k.common.c.status) + ")");
   }
+  const cholmod_factor& l = *k.factor;
+  if (l.is_super != 0 && static_cast<double>(l.xsize) >= own_solve_fewest_entries_ &&
+      !k.own_solve_declined) {
+    if (!k.own_solve) {
+      auto own = std::make_unique<SupernodalSolve>(
+          SupernodalFactorView{static_cast<int>(l.n), static_cast<int>(l.nsuper),
+                               static_cast<const int*>(l.super), static_cast<const int*>(l.pi),
+                               static_cast<const int*>(l.px), static_cast<const int*>(l.s),
+                               static_cast<const double*>(l.x), static_cast<const int*>(l.Perm)});
+      k.own_solve_declined = own->shared_share() > own_solve_most_shared_;
+      if (!k.own_solve_declined) k.own_solve = std::move(own);
+    }
+    if (k.own_solve) k.own_solve->set_values(static_cast<const double*>(l.x));
+  }
   return true;
 }
 
@@ -262,6 +289,10 @@ void FixedPatternCholmod::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) {
   }
   if (static_cast<std::size_t>(x.size()) != k.n) {
     throw std::invalid_argument("FixedPatternCholmod: right-hand side of wrong size");
+  }
+  if (k.own_solve) {
+    k.own_solve->solve_in_place(x.data());
+    return;
   }
   cholmod_dense b{};
   b.nrow = b.nzmax = b.d = k.n;

@@ -39,14 +39,29 @@ struct CholmodCandidate {
 /// The candidate with the fewest entries in L (the first of equals); `candidates` not empty.
 [[nodiscard]] const CholmodCandidate& least_fill(const std::vector<CholmodCandidate>& candidates);
 
+/// Supernodal factors with at least this many values (L's blocks, CHOLMOD's xsize) are solved
+/// by condyn's two-lane sweeps (models/core/supernodal_solve.hpp), smaller ones and simplicial
+/// ones by CHOLMOD's own solve: below it a solve takes well under a millisecond and the
+/// hand-over to a second thread costs more than it saves (docs/benchmarks.md).
+inline constexpr double kOwnSolveFewestEntries = 1e6;
+/// ... unless the supernodes above the two lanes' subtrees, which one thread sweeps alone, hold
+/// more than this share of the factor: on a 3D mesh the top separators' dense blocks (a fifth of
+/// the factor at 10⁵ DOFs) are where OpenBLAS's blocked, threaded kernels in CHOLMOD's solve win
+/// (docs/benchmarks.md).
+inline constexpr double kOwnSolveMostShared = 0.1;
+
 class FixedPatternCholmod {
  public:
   /// The symbolic analysis under `ordering` alone (`amd`, `metis` or `nesdis`: the least fill
   /// that cholmod_candidates found, so that a run does not analyse the pattern twice under every
   /// ordering), or, when it is empty, under each ordering of the build, keeping the least fill.
   /// Loads CHOLMOD when no earlier call has. Throws LibraryUnavailable when it cannot be loaded,
-  /// std::invalid_argument for an ordering not among the three.
-  explicit FixedPatternCholmod(std::string ordering = {});
+  /// std::invalid_argument for an ordering not among the three. Solves use condyn's two-lane
+  /// sweeps on supernodal factors of at least `own_solve_fewest_entries` values whose shared
+  /// supernodes hold at most `own_solve_most_shared` of them.
+  explicit FixedPatternCholmod(std::string ordering = {},
+                               double own_solve_fewest_entries = kOwnSolveFewestEntries,
+                               double own_solve_most_shared = kOwnSolveMostShared);
   ~FixedPatternCholmod();
   FixedPatternCholmod(const FixedPatternCholmod&) = delete;
   FixedPatternCholmod& operator=(const FixedPatternCholmod&) = delete;
@@ -73,12 +88,16 @@ class FixedPatternCholmod {
   [[nodiscard]] long factorizations() const { return factorizations_; }
   /// Whether the factor is supernodal (false before the first factor()).
   [[nodiscard]] bool supernodal() const;
+  /// The lanes of condyn's own solve (1 or 2), or 0 when CHOLMOD's solve serves (a simplicial or
+  /// small factor, or before the first factor()).
+  [[nodiscard]] int solve_lanes() const;
 
  private:
   struct Impl;
   void analyze(const Eigen::SparseMatrix<double>& matrix);
   std::unique_ptr<Impl> impl_;
   std::string ordering_;
+  double own_solve_fewest_entries_, own_solve_most_shared_;
   int analyses_ = 0;
   long factorizations_ = 0;
 };

@@ -20,6 +20,7 @@
 #include "models/core/derived_column.hpp"
 #include "models/core/mechanical_system.hpp"
 #include "models/core/output_map.hpp"
+#include "models/core/rayleigh.hpp"
 #include "models/core/shared_sparse.hpp"
 #include "models/core/source_point.hpp"
 #include "models/core/time_function.hpp"
@@ -103,6 +104,10 @@ struct Model {
   /// only where the constraints hold exactly (not under penalty).
   bool static_start = false;
   Eigen::SparseMatrix<double> A;  ///< m x n, row i = constraints[i].coefficients
+  /// Set when C is Rayleigh damping a0 M + a1 K and nothing else (no damping matrix or member
+  /// dampers beside it): a residual may then form C v from the products with M and K it makes
+  /// anyway (dae/formulations/reduced_ode.cpp checks that C still is that).
+  std::optional<RayleighCoefficients> rayleigh;
   Eigen::VectorXd u0, v0;
   /// The system every formulation integrates, decided once by the builder: a LinearSystem (owning
   /// copies of M, C, K, A and the loads) for linear models, else the model's own, whose M, f or

@@ -158,13 +158,16 @@ def _client(distributed, workers, scheduler, progress):
     """A client of the scheduler at `scheduler`, or of a local cluster of `workers` processes
     (default: one per core), one thread each (a run holds its core); closed on leaving."""
     if scheduler is None:
+        count = workers or os.cpu_count() or 1
+        # Several workers share the cores already: each run keeps to its thread (condyn's second
+        # lane, CONDYN_NUM_THREADS, would only compete with the next worker's run).
+        env = {"CONDYN_NUM_THREADS": "1"} if count > 1 else {}
         # The workers start with Ctrl-C ignored: it stops the sweep, which closes them (they
         # would otherwise each print a KeyboardInterrupt's traceback as they die).
         with _sigint_ignored():
-            cluster = distributed.LocalCluster(n_workers=workers or os.cpu_count() or 1,
-                                               threads_per_worker=1, processes=True,
-                                               dashboard_address=None,
-                                               silence_logs=logging.CRITICAL)
+            cluster = distributed.LocalCluster(n_workers=count, threads_per_worker=1,
+                                               processes=True, dashboard_address=None,
+                                               silence_logs=logging.CRITICAL, env=env)
         with cluster, distributed.Client(cluster, set_as_default=False) as client:
             yield client
         return
