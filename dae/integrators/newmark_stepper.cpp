@@ -99,19 +99,21 @@ void NewmarkStepper::accept(double t_next, double h, StepState x, Eigen::VectorX
 std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_next,
                                                                       const StepCoefficients& c,
                                                                       StepState& x) {
-  Eigen::VectorXd d;
+  Eigen::VectorXd r, d, trial;
   newton_->begin_step(x);
+  newton_->residual(t_next, x, c, r);
+  const double predictor_residual = r.norm();
   int exact = 0;  // iterations on the factors of this step's own matrix
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
-    newton_->residual(t_next, x, c, d);
-    if (!d.allFinite())
+    if (!r.allFinite())
       return StepFailure{FailureKind::residual_non_finite, "the residual is not finite"};
     if (!newton_->factor(t_next, x, c))
       return StepFailure{FailureKind::linear_solver, "singular Newton matrix"};
     const bool stale = newton_->stale();
-    d = -d;
+    d = -r;
     newton_->solve_in_place(d);
     ++newton_iterations_;
+    const StepState start = x;
     newton_->apply(t_next, d, c, x);
     const auto du = d.head(n_);
     // A linear model's first Newton step on its own matrix solves its equations up to the
@@ -128,6 +130,46 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
         return StepFailure{FailureKind::non_finite, "Newton's update is not finite"};
       return std::nullopt;
     }
+    // Backtracking: a correction whose full length raises the scaled residual's norm is halved
+    // until it lowers it. Near a singular configuration (the N-four-bar's cranks on the ground
+    // line, IFToMM A02) the constraints' quadratic terms outweigh the linear ones that Newton's
+    // correction follows: full corrections overshoot and the iteration diverges, halved ones
+    // reach the root next to the predictor, on the motion's branch (docs/schemes.md). Away from
+    // such configurations the full correction lowers the residual and is taken as before (its
+    // residual is the next iteration's). A linear model's residual is linear in the correction:
+    // nothing to search.
+    newton_->residual(t_next, x, c, trial);
+    if (linear_) {
+      r.swap(trial);
+      continue;
+    }
+    // Sufficient decrease (Armijo's test): the residual's norm falls by at least a share of the
+    // correction's length (a full Newton correction away from a root's roundoff lowers it by far
+    // more; near a singular root by about half).
+    double length = 1.0;
+    const auto lowered = [&] {
+      return trial.norm() <= (1.0 - NewmarkStepRules::kSufficientDecrease * length) * r.norm();
+    };
+    for (int halvings = 0; halvings < NewmarkStepRules::kMaxHalvings && !lowered(); ++halvings) {
+      length *= 0.5;
+      d *= 0.5;
+      x = start;
+      newton_->return_to(t_next, x);
+      newton_->apply(t_next, d, c, x);
+      newton_->residual(t_next, x, c, trial);
+    }
+    if (!lowered()) {
+      // Not even a short step along Newton's correction lowers the residual: it is at its
+      // roundoff, and the correction is that roundoff amplified by a nearly singular matrix
+      // (at A02's passages, corrections twice the tolerance on residuals of 2e-14). Converged,
+      // if the iterations have lowered the residual well below the predictor's.
+      x = start;
+      newton_->return_to(t_next, x);
+      if (r.norm() <= NewmarkStepRules::kRoundoffResidual * predictor_residual) return std::nullopt;
+      return StepFailure{FailureKind::convergence,
+                         "the residual does not decrease along Newton's correction"};
+    }
+    r.swap(trial);
     // Stale factors that have not converged in a few iterations: this step's own from here on.
     if (stale && k + 1 >= NewmarkStepRules::kStaleIterations) newton_->drop_factors();
   }

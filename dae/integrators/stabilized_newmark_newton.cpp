@@ -88,6 +88,10 @@ Eigen::VectorXd StabilizedNewmarkNewton::newmark_displacement(double t, const St
   return x.u - system_.constraint_jacobian(t, x.u).transpose() * (pick_.transpose() * x.mu);
 }
 
+void StabilizedNewmarkNewton::return_to(double t, const StepState& x) {
+  w_ = newmark_displacement(t, x);
+}
+
 void StabilizedNewmarkNewton::apply(double t, const Eigen::VectorXd& d, const StepCoefficients& c,
                                     StepState& x) {
   x.u += d.head(n_);

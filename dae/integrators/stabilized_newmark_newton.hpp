@@ -56,6 +56,8 @@ class StabilizedNewmarkNewton final : public StepNewton {
   void solve_in_place(Eigen::VectorXd& rhs) const override { klu_.solve_in_place(rhs); }
   /// u += Δu, λ += β' Δλ̃, μ += Δμ; then w = u − A_p(u)ᵀ μ exactly, and v, ü moved with w.
   void apply(double t, const Eigen::VectorXd& d, const StepCoefficients& c, StepState& x) override;
+  /// w back to x's: u − A_pᵀ μ.
+  void return_to(double t, const StepState& x) override;
   [[nodiscard]] int mu_size() const override { return mp_; }
 
   [[nodiscard]] long factorizations() const override { return factorizations_; }

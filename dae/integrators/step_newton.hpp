@@ -43,6 +43,9 @@ class StepNewton {
   /// x ← x + the increment d that solve_in_place returned (its first n entries are Δu).
   virtual void apply(double t, const Eigen::VectorXd& d, const StepCoefficients& c,
                      StepState& x) = 0;
+  /// Newton's iterate goes back to `x`, an earlier iterate of this step (a shortened correction
+  /// follows): state kept between apply() calls is set to x's.
+  virtual void return_to(double /*t*/, const StepState& /*x*/) {}
 
   /// The size of μ (0 at index 3).
   [[nodiscard]] virtual int mu_size() const { return 0; }
