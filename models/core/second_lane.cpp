@@ -4,6 +4,9 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <utility>
+
+#include <unistd.h>
 
 namespace condyn {
 
@@ -29,12 +32,18 @@ SecondLane& SecondLane::shared() {
 
 SecondLane& default_lane() { return SecondLane::shared(); }
 
-SecondLane::SecondLane(int lanes) {
+SecondLane::SecondLane(int lanes) : owner_(getpid()) {
   if (lanes >= 2) worker_ = std::thread([this] { work(); });
 }
 
 SecondLane::~SecondLane() {
   if (!worker_.joinable()) return;
+  if (getpid() != owner_) {
+    // A forked child's copy: no worker to stop or join, and neither join nor detach applies to a
+    // thread of another process; the handle is left, unowned.
+    new std::thread(std::move(worker_));  // NOLINT(cppcoreguidelines-owning-memory)
+    return;
+  }
   stop_.store(true, std::memory_order_release);
   posted_.fetch_add(1, std::memory_order_release);
   posted_.notify_one();
@@ -60,7 +69,9 @@ void SecondLane::work() {
 void SecondLane::run(const std::function<void()>& on_caller,
                      const std::function<void()>& on_worker) {
   std::unique_lock<std::mutex> hold(busy_, std::try_to_lock);
-  if (!worker_.joinable() || !hold.owns_lock()) {
+  // In a child forked after the worker started (Python's multiprocessing, a shell-out) the worker
+  // did not follow: its tasks run here (a copy of a held lock fails try_lock likewise).
+  if (!worker_.joinable() || !hold.owns_lock() || getpid() != owner_) {
     on_caller();
     on_worker();
     return;

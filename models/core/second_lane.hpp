@@ -42,6 +42,7 @@ class SecondLane {
   void work();
   std::thread worker_;
   std::mutex busy_;
+  long owner_;  ///< the process that started the worker (a forked child runs tasks itself)
   const std::function<void()>* task_ = nullptr;
   std::exception_ptr worker_error_;
   /// Tasks posted so far; the worker has finished the k-th when done_ == k.

@@ -14,6 +14,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "models/core/eigen_decompositions.hpp"
 #include "models/core/fixed_pattern_cholmod.hpp"
 #include "models/core/second_lane.hpp"
@@ -229,6 +232,30 @@ TEST_CASE("the second lane runs both tasks and passes on an exception from eithe
     lane.run([&] { ++after; }, [&] { ++after; });
     CHECK(after == 2);
   }
+}
+
+TEST_CASE("a process forked after the second lane started runs its task pairs itself") {
+  // Python's multiprocessing forks: the worker thread stays in the parent, and a child that
+  // waited for it would hang. The child's run must finish; the parent's lane must still work.
+  SecondLane lane(2);
+  int before = 0;
+  lane.run([&] { ++before; }, [&] { ++before; });
+  REQUIRE(before == 2);
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    alarm(10);  // a hang ends the child with SIGALRM, which the parent sees
+    int count = 0;
+    lane.run([&] { ++count; }, [&] { ++count; });
+    _exit(count == 2 ? 0 : 1);
+  }
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  int after = 0;
+  lane.run([&] { ++after; }, [&] { ++after; });
+  CHECK(after == 2);
 }
 
 }  // namespace test_supernodal_solve
