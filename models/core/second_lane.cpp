@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <new>
 #include <utility>
 
 #include <unistd.h>
@@ -41,7 +42,11 @@ SecondLane::~SecondLane() {
   if (getpid() != owner_) {
     // A forked child's copy: no worker to stop or join, and neither join nor detach applies to a
     // thread of another process; the handle is left, unowned.
-    new std::thread(std::move(worker_));  // NOLINT(cppcoreguidelines-owning-memory)
+    try {
+      new std::thread(std::move(worker_));  // NOLINT(cppcoreguidelines-owning-memory)
+    } catch (const std::bad_alloc&) {
+      worker_.detach();  // no memory even for the handle: let it go
+    }
     return;
   }
   stop_.store(true, std::memory_order_release);
