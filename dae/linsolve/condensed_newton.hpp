@@ -44,6 +44,12 @@ class CondensedNewton final : public NewtonSystem {
   /// rows. C may be empty (no damping). The matrices are taken over (left empty).
   CondensedNewton(Scheme scheme, LinearMatrices&& matrices,
                   const Eigen::SparseMatrix<double>& select_p);
+  ~CondensedNewton() override = default;
+  /// Not copied or moved: products_ reads M_ and C_ where they are.
+  CondensedNewton(const CondensedNewton&) = delete;
+  CondensedNewton& operator=(const CondensedNewton&) = delete;
+  CondensedNewton(CondensedNewton&&) = delete;
+  CondensedNewton& operator=(CondensedNewton&&) = delete;
 
   bool setup(double cj) override;
   void solve(Eigen::Ref<Eigen::VectorXd> b) override;
