@@ -5,8 +5,10 @@
 #include "models/core/eigen_decompositions.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -84,16 +86,17 @@ void ReducedOde::residual(double t, ConstRef y, ConstRef yp, Ref r) const {
   const auto x = y.head(nm_), w = y.tail(nm_);
   r.head(nm_) = yp.head(nm_) - w;
   if (products_) {
-    const double* wp = w.data();
-    std::vector<ProductInput> inputs{{yp.tail(nm_).data()}, {x.data()}};
+    // On the stack: the residual is IDA's most frequent call.
+    std::array<ProductInput, 3> inputs{ProductInput{yp.tail(nm_).data()}, ProductInput{x.data()},
+                                       ProductInput{w.data()}};
+    std::size_t count = model_.has_damping() ? 3 : 2;
     if (rayleigh_) {
-      inputs[0].v1 = inputs[1].v1 = wp;
+      inputs[0].v1 = inputs[1].v1 = w.data();
       inputs[0].c1 = rayleigh_->a0;
       inputs[1].c1 = rayleigh_->a1;
-    } else if (model_.has_damping()) {
-      inputs.push_back({wp});
+      count = 2;
     }
-    products_->apply(inputs, r.tail(nm_).data());
+    products_->apply(std::span(inputs).first(count), r.tail(nm_).data());
     r.tail(nm_) -= reduced_.forces(model_, t, segment_start_.value_or(t));
     return;
   }

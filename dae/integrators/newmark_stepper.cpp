@@ -113,7 +113,9 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
     d = -r;
     newton_->solve_in_place(d);
     ++newton_iterations_;
-    const StepState start = x;
+    // The iterate before the correction, for backtracking (nonlinear models only, below).
+    StepState start;
+    if (!linear_) start = x;
     newton_->apply(t_next, d, c, x);
     const auto du = d.head(n_);
     // A linear model's first Newton step on its own matrix solves its equations up to the

@@ -4,6 +4,7 @@
 #include "dae/linsolve/condensed_newton.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -111,7 +112,9 @@ void CondensedNewton::solve(Eigen::Ref<Eigen::VectorXd> b) {
   r1_ = b.segment(0, n);
   auto top = rhs_.head(n);
   if (products_) {
-    products_->apply({{r1_.data(), cj}, {r1_.data()}}, top.data());
+    const std::array<ProductInput, 2> inputs{ProductInput{r1_.data(), cj},
+                                             ProductInput{r1_.data()}};
+    products_->apply(inputs, top.data());
   } else {
     top.noalias() = M_ * r1_;
     top *= cj;

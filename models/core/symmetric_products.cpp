@@ -55,7 +55,7 @@ SymmetricProducts::~SymmetricProducts() = default;
 
 int SymmetricProducts::copies() const { return static_cast<int>(copies_.size()); }
 
-void SymmetricProducts::rows(const std::vector<ProductInput>& inputs, Eigen::Index first,
+void SymmetricProducts::rows(std::span<const ProductInput> inputs, Eigen::Index first,
                              Eigen::Index end, double* y) const {
   const std::size_t terms = by_rows_.size();
   for (Eigen::Index i = first; i < end; ++i) {
@@ -79,7 +79,7 @@ void SymmetricProducts::rows(const std::vector<ProductInput>& inputs, Eigen::Ind
   }
 }
 
-void SymmetricProducts::apply(const std::vector<ProductInput>& inputs, double* y) const {
+void SymmetricProducts::apply(std::span<const ProductInput> inputs, double* y) const {
   if (inputs.size() != by_rows_.size()) {
     throw std::invalid_argument("SymmetricProducts: one input per matrix");
   }

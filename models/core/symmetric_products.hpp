@@ -12,6 +12,7 @@
 
 #include <Eigen/Sparse>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace condyn {
@@ -43,14 +44,14 @@ class SymmetricProducts {
   SymmetricProducts& operator=(const SymmetricProducts&) = delete;
 
   /// y = Σₖ Aₖ uₖ with uₖ from inputs[k] (one input per matrix, in order); y of the size.
-  void apply(const std::vector<ProductInput>& inputs, double* y) const;
+  void apply(std::span<const ProductInput> inputs, double* y) const;
   /// Rows of lane 0 (the rest are lane 1's).
   [[nodiscard]] Eigen::Index split_row() const { return split_; }
   /// How many matrices are read through a copy by rows (not exactly symmetric).
   [[nodiscard]] int copies() const;
 
  private:
-  void rows(const std::vector<ProductInput>& inputs, Eigen::Index first, Eigen::Index end,
+  void rows(std::span<const ProductInput> inputs, Eigen::Index first, Eigen::Index end,
             double* y) const;
   struct ByRows {
     const int* outer;

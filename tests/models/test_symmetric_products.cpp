@@ -19,6 +19,7 @@ using namespace condyn;
 namespace test_symmetric_products {
 
 using condyn::test::grid_matrix;
+using Inputs = std::vector<ProductInput>;
 
 Eigen::VectorXd wave(Eigen::Index n, double phase) {
   Eigen::VectorXd v(n);
@@ -54,10 +55,10 @@ TEST_CASE("products by rows agree with Eigen's, symmetric in place and others th
   CHECK(products.split_row() < n);
   const Eigen::VectorXd u = wave(n, 0.1), v = wave(n, 0.7), w = wave(n, 1.3);
   Eigen::VectorXd y(n);
-  products.apply({{u.data(), 1.0}, {v.data(), -0.5, w.data(), 2.0}}, y.data());
+  products.apply(Inputs{{u.data(), 1.0}, {v.data(), -0.5, w.data(), 2.0}}, y.data());
   const Eigen::VectorXd expected = m * u + k * (-0.5 * v + 2.0 * w);
   CHECK((y - expected).lpNorm<Eigen::Infinity>() <= kRowRoundoff);
-  CHECK_THROWS_AS(products.apply({{u.data()}}, y.data()), std::invalid_argument);
+  CHECK_THROWS_AS(products.apply(Inputs{{u.data()}}, y.data()), std::invalid_argument);
   const Eigen::SparseMatrix<double> small = grid_matrix(3, 3, 1.0);
   CHECK_THROWS_AS(SymmetricProducts({&m, &small}), std::invalid_argument);
 }
@@ -69,8 +70,9 @@ TEST_CASE("one lane or two give the same products bit for bit") {
   Eigen::VectorXd one(n), two(n);
   SecondLane single(1), pair(2);
   const SymmetricProducts by_one({&m, &c}, single), by_two({&m, &c}, pair);
-  by_one.apply({{u.data(), 3.0}, {u.data(), 1.0, v.data(), 0.5}}, one.data());
-  by_two.apply({{u.data(), 3.0}, {u.data(), 1.0, v.data(), 0.5}}, two.data());
+  const Inputs inputs{{u.data(), 3.0}, {u.data(), 1.0, v.data(), 0.5}};
+  by_one.apply(inputs, one.data());
+  by_two.apply(inputs, two.data());
   CHECK(one == two);
   CHECK((one - (3.0 * (m * u) + c * (u + 0.5 * v))).lpNorm<Eigen::Infinity>() <= kRowRoundoff);
 }
