@@ -63,9 +63,6 @@ struct NewmarkStepRules {
   /// Armijo's sufficient decrease: a correction of length θ (1, ½, ¼ …) must lower the residual's
   /// norm to at most (1 − 0.1 θ) of it.
   static constexpr double kSufficientDecrease = 0.1;
-  /// A residual that no shortened correction lowers counts as converged once it is at most this
-  /// fraction of the step's first (the predictor's): its roundoff (A02: 2e-14 after 5e-7).
-  static constexpr double kRoundoffResidual = 1e-6;
 };
 
 /// The step after one of size h whose error norm was `error` (≥ 0): h · 0.9 (1/error)^(1/3),

@@ -71,6 +71,15 @@ Sparse NewmarkNewton::constraint_block(double t, const StepState& x, const StepC
   return B;
 }
 
+Eigen::VectorXd NewmarkNewton::row_sensitivities(double t, const StepState& x,
+                                                 const StepCoefficients& c,
+                                                 const Eigen::VectorXd& tol) {
+  Eigen::VectorXd out(n_ + m_);
+  out.head(n_) = absolute_row_sums(momentum_block(t, x, c), tol);
+  if (m_ > 0) out.tail(m_) = absolute_row_sums(constraint_block(t, x, c), tol);
+  return out;
+}
+
 void NewmarkNewton::apply(double /*t*/, const Eigen::VectorXd& d, const StepCoefficients& c,
                           StepState& x) {
   const auto du = d.head(n_);

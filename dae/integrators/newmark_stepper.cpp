@@ -2,7 +2,9 @@
 
 #include "dae/linsolve/velocity_jump.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -102,7 +104,6 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
   Eigen::VectorXd r, d, trial;
   newton_->begin_step(x);
   newton_->residual(t_next, x, c, r);
-  const double predictor_residual = r.norm();
   int exact = 0;  // iterations on the factors of this step's own matrix
   for (int k = 0; k < settings_.max_newton_iterations; ++k) {
     if (!r.allFinite())
@@ -164,10 +165,10 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
       // Not even a short step along Newton's correction lowers the residual: it is at its
       // roundoff, and the correction is that roundoff amplified by a nearly singular matrix
       // (at A02's passages, corrections twice the tolerance on residuals of 2e-14). Converged,
-      // if the iterations have lowered the residual well below the predictor's.
+      // if what is left of the residual is within the tolerance (backward_error).
       x = start;
       newton_->return_to(t_next, x);
-      if (r.norm() <= NewmarkStepRules::kRoundoffResidual * predictor_residual) return std::nullopt;
+      if (backward_error(t_next, x, c, r) <= settings_.newton_fraction) return std::nullopt;
       return StepFailure{FailureKind::convergence,
                          "the residual does not decrease along Newton's correction"};
     }
@@ -175,8 +176,26 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
     // Stale factors that have not converged in a few iterations: this step's own from here on.
     if (stale && k + 1 >= NewmarkStepRules::kStaleIterations) newton_->drop_factors();
   }
+  // Iterations that crawl (a step that lands on a singular configuration: Newton's iterations
+  // converge linearly to a root where the matrix is singular, A02 at h = 1e-4) end converged
+  // when the residual left is within the tolerance.
+  if (!linear_ && backward_error(t_next, x, c, r) <= settings_.newton_fraction) return std::nullopt;
   return StepFailure{FailureKind::convergence, "Newton's iterations did not converge in " +
                                                    std::to_string(settings_.max_newton_iterations)};
+}
+
+double NewmarkStepper::backward_error(double t, const StepState& x, const StepCoefficients& c,
+                                      const Eigen::VectorXd& r) const {
+  const Eigen::VectorXd tol = Eigen::VectorXd::Constant(
+      x.u.size(), settings_.rtol * x.u.lpNorm<Eigen::Infinity>() + settings_.atol);
+  const Eigen::VectorXd reach = newton_->row_sensitivities(t, x, c, tol);
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    if (r[i] == 0.0) continue;
+    if (!(reach[i] > 0.0)) return std::numeric_limits<double>::infinity();
+    worst = std::max(worst, std::abs(r[i]) / reach[i]);
+  }
+  return worst;
 }
 
 Eigen::VectorXd NewmarkStepper::pack(const StepState& x, bool derivative) const {

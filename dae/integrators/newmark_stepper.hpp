@@ -109,6 +109,16 @@ class NewmarkStepper : public Stepper {
   /// Newton's iterations for the state at t_next from the predictor `x`; the failure when they
   /// do not converge.
   std::optional<StepFailure> solve_step(double t_next, const StepCoefficients& c, StepState& x);
+  /// The backward error of the iterate x whose scaled residual is r, row by row against the
+  /// tolerance of the largest displacement: the largest |r_i| / (Σ_j |∂r_i/∂u_j| τ),
+  /// τ = rtol ‖u‖∞ + atol. At most the Newton fraction: every equation holds to within what a
+  /// change of u by that fraction of τ makes of it (a coordinate passing zero, as A02's at its
+  /// passages, is judged by the mechanism's size, not by atol alone). Near a singular configuration
+  /// Newton's corrections amplify the residual's last digits by the inverse of a nearly singular
+  /// matrix along the direction in which the root is not determined, and never pass the correction
+  /// test; this one they pass (IFToMM A02 at steps from 1e-3 to 1e-4, docs/schemes.md).
+  [[nodiscard]] double backward_error(double t, const StepState& x, const StepCoefficients& c,
+                                      const Eigen::VectorXd& r) const;
   [[nodiscard]] Eigen::VectorXd pack(const StepState& x, bool derivative) const;
 
   std::unique_ptr<MechanicalSystem> system_;

@@ -7,6 +7,9 @@
 /// formulas, Δv = γ' Δw and Δü = β' Δw, w the step's Newmark displacement.
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
 
 namespace condyn {
 
@@ -23,6 +26,19 @@ struct StepState {
   /// u = w + A_pᵀ μ of the positions that lets the velocity constraints hold too.
   Eigen::VectorXd mu;
 };
+
+/// |J| tol over J's first tol.size() columns (every row of J): the row sensitivities of
+/// StepNewton::row_sensitivities from a matrix.
+[[nodiscard]] inline Eigen::VectorXd absolute_row_sums(const Eigen::SparseMatrix<double>& J,
+                                                       const Eigen::VectorXd& tol) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(J.rows());
+  for (Eigen::Index j = 0; j < std::min<Eigen::Index>(tol.size(), J.outerSize()); ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J, j); it; ++it) {
+      out[it.row()] += std::abs(it.value()) * tol[j];
+    }
+  }
+  return out;
+}
 
 class StepNewton {
  public:
@@ -46,6 +62,13 @@ class StepNewton {
   /// Newton's iterate goes back to `x`, an earlier iterate of this step (a shortened correction
   /// follows): state kept between apply() calls is set to x's.
   virtual void return_to(double /*t*/, const StepState& /*x*/) {}
+
+  /// How much each scaled residual row can change when every Δu_j moves by tol_j:
+  /// Σ_j |∂row/∂u_j| tol_j over the Δu columns of the scaled matrix at (t, x) (the denominator of
+  /// NewmarkStepper::solve_step's backward error).
+  [[nodiscard]] virtual Eigen::VectorXd row_sensitivities(double t, const StepState& x,
+                                                          const StepCoefficients& c,
+                                                          const Eigen::VectorXd& tol) = 0;
 
   /// The size of μ (0 at index 3).
   [[nodiscard]] virtual int mu_size() const { return 0; }

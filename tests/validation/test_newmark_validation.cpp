@@ -166,10 +166,11 @@ TEST_CASE("the generalized-α family passes A02's singular positions on the para
   // IFToMM A02 as specified (N = 40, 20 s): the cranks lie on the ground line 20 times, where the
   // constraint Jacobian loses rank 40. Newton's full corrections there overshoot (the rows'
   // quadratic terms outweigh the linear ones) and did not converge (t = 0.722 at h = 1e-3); the
-  // backtracking of NewmarkStepper::solve_step and its roundoff test carry every passage. Each
-  // crank must turn with φ(t) of the closed form and each coupler stay horizontal. A second-order
-  // method's phase error at these steps: observed 1.1e-2 (generalized_alpha, h = 0.005) and
-  // 2.9e-3 (hht, h = 0.002) at B0 against the IFToMM reference; leaving the branch is O(1).
+  // backtracking of NewmarkStepper::solve_step and its backward-error test carry every passage.
+  // Each crank must turn with φ(t) of the closed form and each coupler stay horizontal. A
+  // second-order method's phase error at these steps: observed 1.1e-2 (generalized_alpha, h =
+  // 0.005) and 2.9e-3 (hht, h = 0.002) at B0 against the IFToMM reference; leaving the branch is
+  // O(1).
   constexpr int kWindows = 40;
   constexpr double kTolerance = 0.05;
   SceneSpec spec = parse_scene_text(test::n_four_bar(kWindows), "A02");
@@ -191,6 +192,38 @@ TEST_CASE("the generalized-α family passes A02's singular positions on the para
                                              << " singular passages, largest error " << worst);
     CHECK(passages >= 19);
     CHECK(worst < kTolerance);
+  }
+}
+
+TEST_CASE("generalized-α passes the N-four-bar's singular positions at any step, at order 2") {
+  // A smaller step lands closer to the singular configuration, where the root is singular too:
+  // Newton's iterations crawl and its corrections, the residual's last digits amplified by the
+  // nearly singular matrix, never pass the correction test. Before the backward-error test of
+  // NewmarkStepper::solve_step, A02 failed at its first passage (the scene's rtol 1e-10: from
+  // h = 3.9e-4 down, t = 0.7203; this test's h = 9.8e-5 at t = 0.72, verified with the test
+  // removed); now each halving of h divides the error by about 4 (observed 4.0 here, A02 over
+  // its first two passages) against the closed form.
+  constexpr int kWindows = 40;
+  SceneSpec spec = parse_scene_text(test::n_four_bar(kWindows), "A02");
+  spec.solve.t_end = 1.5;
+  spec.solve.output_step = 0.05;
+  const test::BuiltScene built = test::built(spec);
+  std::vector<double> errors;
+  for (const double h : {0.025 / 64, 0.025 / 128, 0.025 / 256}) {
+    SolveSpec run = test::under(built.spec.solve, Scheme::generalized_alpha);
+    run.step = h;
+    const SolveResult result = solve(built.model, run);
+    REQUIRE_MESSAGE(result.ok(), "h = " << h << ": " << describe_failure(result, run.t_end));
+    const auto [worst, passages] = test::n_four_bar_error(built.model, result.trajectory, kWindows);
+    MESSAGE("h = " << h << ": " << passages << " singular passages, largest error " << worst);
+    CHECK(passages >= 2);
+    errors.push_back(worst);
+  }
+  for (std::size_t k = 1; k < errors.size(); ++k) {
+    const double ratio = errors[k - 1] / errors[k];
+    CAPTURE(ratio);
+    CHECK(ratio > 3.0);
+    CHECK(ratio < 5.0);
   }
 }
 
