@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "tests/cli_sandbox.hpp"
+#include "tests/n_four_bar.hpp"
 #include "tests/scene_text.hpp"
 
 namespace test_cli {
@@ -348,6 +349,33 @@ TEST_CASE("info on a nonlinear scene: classes, and a requested scheme that does 
                                "/models/scenes/slider_crank.toml' --scheme auto");
   CHECK(crank.out.find("; its constant linear rows eliminated where that stays sparse") !=
         std::string::npos);
+}
+
+TEST_CASE(
+    "compare on A02, whose singular positions fail every BDF reference, takes generalized-α's") {
+  // IFToMM A02 (N = 40) over its first passage (t = 0.72): GGL, projection and index1 at rtol
+  // 1e-10 fail there; the reference is generalized_alpha at 1/64 of the refined output interval
+  // (0.05 / 4 / 64 = 1.95e-4), with its own error from a run at twice the step (observed
+  // 2.3e-8 in u: the runs scored are far from it).
+  const Sandbox box;
+  std::string scene = condyn::test::n_four_bar(40);
+  scene.replace(scene.find("t_end = 5.0"), 11, "t_end = 1.0");
+  box.write("a02.toml", scene);
+  const Result r = box.run(
+      "compare a02.toml --tolerances 1e-8 --schemes generalized_alpha --repeats 1 --no-plots "
+      "--out-dir out");
+  CAPTURE(r.out);
+  CAPTURE(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out.find("reference: generalized_alpha at the fixed step 1.95e-04 (its own relative "
+                   "errors about u ") != std::string::npos);
+  CHECK(r.out.find("failed: ggl: IDASolve failed") != std::string::npos);
+  CHECK(r.out.find("; projection: CVode failed") != std::string::npos);
+  const auto row = r.out.find("\ngeneralized_alpha  1e-08  ");
+  REQUIRE(row != std::string::npos);
+  const double error_u = std::stod(r.out.substr(row + 26, 8));
+  CHECK(error_u > 0.0);
+  CHECK(error_u < 1e-5);  // observed 2.9e-7
 }
 
 TEST_CASE("compare without a reference says which runs failed, at what rtol, and what to try") {
