@@ -72,11 +72,10 @@ Sparse NewmarkNewton::constraint_block(double t, const StepState& x, const StepC
 }
 
 Eigen::VectorXd NewmarkNewton::row_sensitivities(double t, const StepState& x,
-                                                 const StepCoefficients& c,
-                                                 const Eigen::VectorXd& tol) {
+                                                 const StepCoefficients& c) {
   Eigen::VectorXd out(n_ + m_);
-  out.head(n_) = absolute_row_sums(momentum_block(t, x, c), tol);
-  if (m_ > 0) out.tail(m_) = absolute_row_sums(constraint_block(t, x, c), tol);
+  out.head(n_) = absolute_row_sums(momentum_block(t, x, c), n_);
+  if (m_ > 0) out.tail(m_) = absolute_row_sums(constraint_block(t, x, c), n_);
   return out;
 }
 

@@ -46,10 +46,10 @@ class NewmarkNewton final : public StepNewton {
   [[nodiscard]] bool factor(double t, const StepState& x, const StepCoefficients& c) override;
   /// rhs ← (scaled matrix)⁻¹ rhs.
   void solve_in_place(Eigen::VectorXd& rhs) const override { klu_.solve_in_place(rhs); }
-  /// |momentum block| tol on the first n rows, |constraint block| tol on the last m.
+  /// The momentum block's absolute row sums on the first n rows, the constraint block's on the
+  /// last m.
   [[nodiscard]] Eigen::VectorXd row_sensitivities(double t, const StepState& x,
-                                                  const StepCoefficients& c,
-                                                  const Eigen::VectorXd& tol) override;
+                                                  const StepCoefficients& c) override;
   /// u += Δu, v += γ' Δu, ü += β' Δu, λ += β' Δλ̃.
   void apply(double t, const Eigen::VectorXd& d, const StepCoefficients& c, StepState& x) override;
 

@@ -186,9 +186,8 @@ std::optional<NewmarkStepper::StepFailure> NewmarkStepper::solve_step(double t_n
 
 double NewmarkStepper::backward_error(double t, const StepState& x, const StepCoefficients& c,
                                       const Eigen::VectorXd& r) const {
-  const Eigen::VectorXd tol = Eigen::VectorXd::Constant(
-      x.u.size(), settings_.rtol * x.u.lpNorm<Eigen::Infinity>() + settings_.atol);
-  const Eigen::VectorXd reach = newton_->row_sensitivities(t, x, c, tol);
+  const double tau = settings_.rtol * x.u.lpNorm<Eigen::Infinity>() + settings_.atol;
+  const Eigen::VectorXd reach = tau * newton_->row_sensitivities(t, x, c);
   double worst = 0.0;
   for (Eigen::Index i = 0; i < r.size(); ++i) {
     if (r[i] == 0.0) continue;

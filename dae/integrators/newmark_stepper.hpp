@@ -116,7 +116,7 @@ class NewmarkStepper : public Stepper {
   /// passages, is judged by the mechanism's size, not by atol alone). Near a singular configuration
   /// Newton's corrections amplify the residual's last digits by the inverse of a nearly singular
   /// matrix along the direction in which the root is not determined, and never pass the correction
-  /// test; this one they pass (IFToMM A02 at steps from 1e-3 to 1e-4, docs/schemes.md).
+  /// test; this one they pass (IFToMM A02 at steps from 2e-3 to 5e-5, docs/validation.md).
   [[nodiscard]] double backward_error(double t, const StepState& x, const StepCoefficients& c,
                                       const Eigen::VectorXd& r) const;
   [[nodiscard]] Eigen::VectorXd pack(const StepState& x, bool derivative) const;

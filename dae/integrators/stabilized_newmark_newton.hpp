@@ -54,11 +54,10 @@ class StabilizedNewmarkNewton final : public StepNewton {
                 Eigen::VectorXd& out) override;
   [[nodiscard]] bool factor(double t, const StepState& x, const StepCoefficients& c) override;
   void solve_in_place(Eigen::VectorXd& rhs) const override { klu_.solve_in_place(rhs); }
-  /// |matrix| tol over its Δu columns.
+  /// The matrix's absolute row sums over its Δu columns.
   [[nodiscard]] Eigen::VectorXd row_sensitivities(double t, const StepState& x,
-                                                  const StepCoefficients& c,
-                                                  const Eigen::VectorXd& tol) override {
-    return absolute_row_sums(matrix(t, x, c), tol);
+                                                  const StepCoefficients& c) override {
+    return absolute_row_sums(matrix(t, x, c), n_);
   }
   /// u += Δu, λ += β' Δλ̃, μ += Δμ; then w = u − A_p(u)ᵀ μ exactly, and v, ü moved with w.
   void apply(double t, const Eigen::VectorXd& d, const StepCoefficients& c, StepState& x) override;

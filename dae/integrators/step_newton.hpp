@@ -27,14 +27,14 @@ struct StepState {
   Eigen::VectorXd mu;
 };
 
-/// |J| tol over J's first tol.size() columns (every row of J): the row sensitivities of
+/// Σ_j |J_ij| over J's first `columns` columns, for every row i of J: the row sensitivities of
 /// StepNewton::row_sensitivities from a matrix.
 [[nodiscard]] inline Eigen::VectorXd absolute_row_sums(const Eigen::SparseMatrix<double>& J,
-                                                       const Eigen::VectorXd& tol) {
+                                                       Eigen::Index columns) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(J.rows());
-  for (Eigen::Index j = 0; j < std::min<Eigen::Index>(tol.size(), J.outerSize()); ++j) {
+  for (Eigen::Index j = 0; j < std::min(columns, J.outerSize()); ++j) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(J, j); it; ++it) {
-      out[it.row()] += std::abs(it.value()) * tol[j];
+      out[it.row()] += std::abs(it.value());
     }
   }
   return out;
@@ -63,12 +63,11 @@ class StepNewton {
   /// follows): state kept between apply() calls is set to x's.
   virtual void return_to(double /*t*/, const StepState& /*x*/) {}
 
-  /// How much each scaled residual row can change when every Δu_j moves by tol_j:
-  /// Σ_j |∂row/∂u_j| tol_j over the Δu columns of the scaled matrix at (t, x) (the denominator of
+  /// How much each scaled residual row can change when every Δu_j moves by 1: Σ_j |∂row/∂u_j|
+  /// over the Δu columns of the scaled matrix at (t, x) (the denominator of
   /// NewmarkStepper::solve_step's backward error).
   [[nodiscard]] virtual Eigen::VectorXd row_sensitivities(double t, const StepState& x,
-                                                          const StepCoefficients& c,
-                                                          const Eigen::VectorXd& tol) = 0;
+                                                          const StepCoefficients& c) = 0;
 
   /// The size of μ (0 at index 3).
   [[nodiscard]] virtual int mu_size() const { return 0; }

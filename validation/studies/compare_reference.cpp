@@ -36,6 +36,15 @@ RunHooks progress_hooks(const CompareOptions& options, const std::string& what) 
 
 namespace {
 
+/// The settings of a reference run: the scene's with `scheme` at `rtol` (atol rtol/100) and
+/// without a budget ([solve] max_steps, max_wall_time; first_run says why).
+SolveSpec unbounded(const SolveSpec& settings, Scheme scheme, double rtol) {
+  SolveSpec s = settings_of(settings, scheme, rtol, rtol * 1e-2);
+  s.max_steps = 0;
+  s.max_wall_time = 0.0;
+  return s;
+}
+
 /// A reference run: its scheme, its trajectory and how it was run ("at rtol 1.0e-12", or the
 /// Newmark family's fixed step and its error estimate).
 struct ReferenceRun {
@@ -66,10 +75,8 @@ std::optional<ReferenceRun> newmark_reference(const Model& model, const SolveSpe
   try {
     for (const double step : {h, 2.0 * h}) {
       // rtol and atol: the Newton iterations' tolerances under a fixed step
-      SolveSpec fixed = settings_of(settings, scheme, rtol, rtol * 1e-2);
+      SolveSpec fixed = unbounded(settings, scheme, rtol);
       fixed.step = step;
-      fixed.max_steps = 0;
-      fixed.max_wall_time = 0.0;
       runs.push_back(succeeded(solve(model, fixed,
                                      progress_hooks(options, what + " " + to_string(scheme) +
                                                                  " step " + scientific(step, 2))))
@@ -107,12 +114,9 @@ std::optional<ReferenceRun> first_run(const Model& model, const SolveSpec& setti
     // coordinate partitioning at the reference's tolerance re-solves the constraints at every
     // evaluation of a dense-Jacobian ODE, far dearer on large mechanisms.
     if (scheme == Scheme::elimination && model.is_nonlinear()) continue;
-    SolveSpec unbounded = settings_of(settings, scheme, rtol, rtol * 1e-2);
-    unbounded.max_steps = 0;
-    unbounded.max_wall_time = 0.0;
     try {
       const SolveResult run = solve(
-          model, unbounded,
+          model, unbounded(settings, scheme, rtol),
           progress_hooks(options, what + " " + to_string(scheme) + " rtol " + scientific(rtol, 1)));
       return ReferenceRun{scheme, succeeded(run).trajectory, "at rtol " + scientific(rtol, 1)};
     } catch (const std::exception& why) {
