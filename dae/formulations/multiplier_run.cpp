@@ -1,5 +1,6 @@
 #include <algorithm>
 
+#include "dae/formulations/generalized_alpha_bridge.hpp"
 #include "dae/formulations/multiplier_dae.hpp"
 #include "dae/formulations/row_multipliers.hpp"
 #include "dae/formulations/scheme_run.hpp"
@@ -36,7 +37,13 @@ void run_multipliers(const Model& model, Scheme scheme, const BaumgarteGains& ga
   };
   if (scheme == Scheme::ggl) observe.on_finish = [&](SolveSummary& s) { s.max_abs_mu = max_mu; };
   const Eigen::VectorXd y0 = dae.pack(treated.initial(model.u0), treated.initial(model.v0));
-  run([&](const IntegratorOptions& o, SolveSummary& s) { return integrate(dae, y0, o, s); },
+  run(
+      [&](const IntegratorOptions& o, SolveSummary& s) {
+        if (!model.nonlinear || !o.bridge_singular) return integrate(dae, y0, o, s);
+        // A's rank can change along the motion: singular configurations are bridged.
+        const PassageBridge bridge = generalized_alpha_bridge(system, false, o);
+        return integrate(dae, y0, o, s, &bridge);
+      },
       observe);
 }
 

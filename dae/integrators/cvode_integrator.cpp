@@ -268,6 +268,11 @@ class Cvode final : public sundials::SundialsStepper {
     check(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
     rebase();
   }
+  /// restart(t) from the state y instead of its own (the end of a passage's bridge).
+  void restart_from(double t, const Eigen::VectorXd& y) {
+    view(y_.get()) = y;
+    restart(t);
+  }
   [[nodiscard]] bool wants_restart(double t) override {
     return data_.problem->wants_restart(t, view(y_.get()));
   }
@@ -321,7 +326,8 @@ class Cvode final : public sundials::SundialsStepper {
 }  // namespace
 
 RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
-                            const IntegratorOptions& options, SolveSummary& summary) {
+                            const IntegratorOptions& options, SolveSummary& summary,
+                            const PassageBridge* bridge) {
   options.validate();
   if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
   const WallTimer timer(summary);
@@ -341,7 +347,8 @@ RawTrajectory integrate_ode(OdeProblem& problem, const Eigen::VectorXd& y0,
   problem.rhs(t0, y_start, yp0);
   summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
   summary.jacobian_nonzeros = cvode.jacobian_nonzeros();
-  RawTrajectory out = drive(cvode, y_start, yp0, options, summary);
+  RawTrajectory out =
+      drive_bridged(cvode, bridge, problem.size(), t0, y_start, yp0, options, summary);
   summary.set_reached(options.output_times.back());
   return out;
 }

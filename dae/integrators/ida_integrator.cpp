@@ -351,6 +351,11 @@ class Ida final : public sundials::SundialsStepper {
     data_.problem->make_consistent(t, yb, ypb);
     reinit(t, yb, ypb);
   }
+  /// restart(t) from the state y instead of its own (the end of a passage's bridge).
+  void restart_from(double t, const Eigen::VectorXd& y) {
+    view(y_.get()) = y;
+    restart(t);
+  }
 
  private:
   [[nodiscard]] sundials::Counters read_counters() const override {
@@ -399,7 +404,8 @@ class Ida final : public sundials::SundialsStepper {
 }  // namespace
 
 RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
-                        const IntegratorOptions& options, SolveSummary& summary) {
+                        const IntegratorOptions& options, SolveSummary& summary,
+                        const PassageBridge* bridge) {
   options.validate();
   if (y0.size() != problem.size()) throw std::invalid_argument("integrator: y0 has the wrong size");
   const WallTimer timer(summary);
@@ -419,7 +425,7 @@ RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
   ida.init(t0, y_init, yp0, options);
   summary.unknowns = problem.size();  // before the loop: a failed run's summary has them too
   summary.jacobian_nonzeros = ida.jacobian_nonzeros();
-  RawTrajectory out = drive(ida, y_init, yp0, options, summary);
+  RawTrajectory out = drive_bridged(ida, bridge, problem.size(), t0, y_init, yp0, options, summary);
   summary.set_reached(options.output_times.back());
   return out;
 }

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "dae/integrators/passage_bridge.hpp"
 #include "dae/integrators/step_driver.hpp"
 #include "dae/interface/dae_problem.hpp"
 #include "dae/interface/solve_summary.hpp"
@@ -14,8 +15,10 @@ namespace condyn {
 /// The differential part of y0 must be consistent; algebraic components and y'(0) come from
 /// problem.make_consistent. Fills the counters and the wall
 /// time of `summary`. Throws IntegrationError on solver failure, std::invalid_argument on bad
-/// options.
+/// options. With a `bridge` (its restart_at set here), singular configurations are crossed by
+/// its steps (dae/integrators/passage_bridge.hpp).
 [[nodiscard]] RawTrajectory integrate(DaeProblem& problem, const Eigen::VectorXd& y0,
-                                      const IntegratorOptions& options, SolveSummary& summary);
+                                      const IntegratorOptions& options, SolveSummary& summary,
+                                      const PassageBridge* bridge = nullptr);
 
 }  // namespace condyn

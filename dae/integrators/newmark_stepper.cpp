@@ -61,7 +61,7 @@ double NewmarkStepper::fixed_step(double tout) {
   if (const auto failure = attempt(t_next, h, x, a)) {
     std::ostringstream s;
     s << failure->what << " at t = " << t_next << " (fixed step " << settings_.step
-      << "; a smaller [solve] step may converge)";
+      << settings_.step_advice << ")";
     throw IntegrationError(failure->kind, s.str());
   }
   accept(t_next, h, std::move(x), std::move(a));

@@ -61,6 +61,9 @@ struct NewmarkSettings {
   /// Error-controlled steps: the first step stays below half of the time from t0 to this one
   /// (IntegratorSettings::first_kink, the first sample of a tabulated load).
   double first_kink = std::numeric_limits<double>::infinity();
+  /// What a failed fixed step's message advises after its step size (a bridge, whose step the
+  /// user does not set, advises nothing).
+  std::string step_advice = "; a smaller [solve] step may converge";
 };
 
 /// ü and λ at (t, u, v) from the constraints at acceleration level, [M Aᵀ; A 0][ü; λ] = [f; γ]

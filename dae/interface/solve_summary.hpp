@@ -44,6 +44,9 @@ struct IntegratorSettings {
   double first_kink = std::numeric_limits<double>::infinity();
   bool dense_linear_solver = false;  ///< SUNDIALS dense LU instead of KLU (tiny systems only)
   int max_order = 5;                 ///< the highest BDF order the integrator may use (1 to 5)
+  /// Singular configurations of a nonlinear model bridged by generalized-α steps
+  /// (dae/integrators/passage_bridge.hpp; [solve] bridge_singular).
+  bool bridge_singular = true;
   /// The problem's own condensed Newton solve (DaeProblem::newton_system), when it has one and
   /// KLU is used ([solve] newton = "condensed").
   bool condensed_newton = false;

@@ -38,6 +38,7 @@ IntegratorSettings settings_from(const Model& model, const SolveSpec& settings,
   o.first_kink = model.first_kink(0.0);
   o.dense_linear_solver = settings.dense_linear_solver;
   o.max_order = settings.max_order;
+  o.bridge_singular = settings.bridge_singular;
   o.condensed_newton = settings.condensed_newton;
   o.output_times = settings.output_times();
   o.breakpoints = model.breakpoints(settings.t_end);

@@ -76,6 +76,10 @@ struct SolveSpec {
   /// [solve] max_order: the highest BDF order (1 to 5, default 5). BDF2 damps the stiff modes a
   /// step does not resolve (its amplification tends to 0 as h ω grows), BDF3 to 5 much less.
   int max_order = 5;
+  /// [solve] bridge_singular (default true): the BDF multiplier schemes and projection cross a
+  /// nonlinear model's singular configurations by a bridge of generalized-α steps
+  /// (dae/integrators/passage_bridge.hpp); false: by their own steps, as the scheme alone does.
+  bool bridge_singular = true;
   /// [solve] newton = "full" (default) or "condensed": for linear models under index1, GGL and
   /// elimination, IDA's Newton systems condensed to [u; λ (; μ)]
   /// (dae/linsolve/condensed_newton.hpp) instead of the full Jacobian factored by KLU. Faster, but

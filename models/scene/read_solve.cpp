@@ -50,6 +50,11 @@ void read_budgets(const TomlAccess& r, const toml::table& t, const std::string& 
     }
     solve.max_order = static_cast<int>(v);
   }
+  if (const auto* n = t.get("bridge_singular")) {
+    const auto* b = n->as_boolean();
+    if (b == nullptr) r.fail(*n, "solve.bridge_singular", "expected true or false");
+    solve.bridge_singular = b->get();
+  }
   if (const auto* n = t.get("max_wall_time"))
     solve.max_wall_time = r.positive(*n, "solve.max_wall_time");
 }
@@ -192,6 +197,7 @@ void SceneReader::read_solve(const toml::node& node, SolveSpec& solve) const {
               "max_wall_time",
               "constraints",
               "max_order",
+              "bridge_singular",
               "max_steps_per_output",
               "step",
               "newmark",

@@ -308,11 +308,18 @@ def test_times_are_a_read_only_view():
 
 
 def test_singular_passages_and_rows():
-    """The parallelogram four-bar under index1: both collinear passages (t = 1 and 3) in the
-    summary, the change of branch at t = 3 among the warnings, and exactly those two rows marked
-    (docs/schemes.md, "Singular configurations")."""
-    r = condyn.run(str(ROOT / "models" / "scenes" / "parallelogram_four_bar.toml"),
-                   scheme="index1")
+    """The parallelogram four-bar under index1 by its own steps (bridge_singular = false): both
+    collinear passages (t = 1 and 3) in the summary, the change of branch at t = 3 among the
+    warnings, and exactly those two rows marked (docs/schemes.md, "Singular configurations").
+    Bridged (the default), no change of branch."""
+    path = ROOT / "models" / "scenes" / "parallelogram_four_bar.toml"
+    bridged = condyn.run(str(path), scheme="index1")
+    assert [p["left_branch"] for p in bridged.summary["singular_passages"]] == [False, False]
+    assert "bridged 2 near-singular configurations" in bridged.summary["notes"]
+    with open(path, "rb") as f:
+        scene = tomllib.load(f)
+    scene["solve"]["bridge_singular"] = False
+    r = condyn.run(scene, scheme="index1")
     passages = r.summary["singular_passages"]
     assert [round(p["t_closest"]) for p in passages] == [1, 3]
     assert [p["left_branch"] for p in passages] == [False, True]

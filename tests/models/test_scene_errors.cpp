@@ -761,6 +761,12 @@ TEST_CASE("redundant constraints are dropped with a report when the scene asks")
             .find("incompatible") != std::string::npos);
   CHECK(build_error(replace(kBase, "t_end = 1.0", "t_end = 1.0\nredundant = \"maybe\""))
             .find("solve.redundant: expected 'refuse' or 'drop'") != std::string::npos);
+  // Of the same kind: a switch given as anything but a boolean.
+  for (const char* given : {"1", "\"yes\"", "{ on = true }"}) {
+    CHECK(build_error(
+              replace(kBase, "t_end = 1.0", std::string("t_end = 1.0\nbridge_singular = ") + given))
+              .find("solve.bridge_singular: expected true or false") != std::string::npos);
+  }
   // A velocity row and the position row it integrates to: the velocity row goes, in either
   // order (dropping the position row left index1 drifting 0.6 from it, unmeasured).
   const std::string vel =

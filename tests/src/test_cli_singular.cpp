@@ -20,12 +20,19 @@ std::string scene_text(const std::string& name) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// The N-four-bar run to t = 1.5, past its first horizontal crossings.
+/// A scene whose schemes take their own steps through singular configurations: no bridge.
+std::string unbridged(std::string text) {
+  const std::string solve = "[solve]\n";
+  text.replace(text.find(solve), solve.size(), solve + "bridge_singular = false\n");
+  return text;
+}
+
+/// The N-four-bar run to t = 1.5, past its first horizontal crossings, without bridges.
 std::string short_n_four_bar() {
   std::string text = scene_text("n_four_bar.toml");
   const std::string end = "t_end = 10.0";
   text.replace(text.find(end), end.size(), "t_end = 1.5");
-  return text;
+  return unbridged(text);
 }
 
 bool has(const std::string& text, const std::string& part) {
@@ -62,7 +69,13 @@ TEST_CASE("run names the parallelogram's passages near its collinear configurati
   CHECK(has(r.out, "row t = 1)"));
   CHECK(has(r.out, "row t = 3)"));
   CHECK_FALSE(has(r.err, "left its branch"));
-  // index1 takes the crossed branch at t = 3 (tests/dae/test_singular_passages.cpp).
+  // Bridged (the default), index1 holds the branch; by its own steps it takes the crossed one
+  // at t = 3 (tests/dae/test_singular_passages.cpp).
+  const auto bridged = box.run("run p.toml --scheme index1 --out b.csv");
+  REQUIRE(bridged.code == 0);
+  CHECK(has(bridged.out, "bridged 2 near-singular configurations with generalized-α steps"));
+  CHECK_FALSE(has(bridged.err, "left its branch"));
+  box.write("p.toml", unbridged(scene_text("parallelogram_four_bar.toml")));
   const auto left = box.run("run p.toml --scheme index1 --out q.csv");
   REQUIRE(left.code == 0);
   CHECK(has(left.err,
