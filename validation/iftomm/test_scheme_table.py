@@ -59,6 +59,27 @@ def test_scheme_stays_within_tolerance_of_the_reference(work_dir, key, t_end, sc
         f"reference, beyond {TOLERANCE:.0e} (1000 rtol)")
 
 
+# A02 through its first two singular passages (0.70 to 0.75 s and 1.2 to 1.3 s in the reference),
+# which the BDF schemes cross on bridges of generalized-alpha steps (docs/schemes.md, "The
+# bridge"): the bridges' error is a second-order method's at 1/16 of the BDF steps before each
+# passage, not a multiple of rtol. The bound: the benchmark's high precision, 1e-3 m (its
+# specification), shared among its 20 passages, for these two (the other branch is metres
+# away). Observed over these 1.5 s (2026-12-01): 2.8e-8 (index1) to 1.1e-6 m (index3); over the
+# full 20 s 1.9e-5 (index2) to 5.8e-4 m (index3), docs/validation.md.
+PASSAGE_T_END = 1.5
+PASSAGE_BOUND = 2 * 1e-3 / 20
+
+
+@pytest.mark.parametrize("scheme", ["index1", "baumgarte", "ggl", "index2", "index3",
+                                    "projection"])
+def test_bdf_schemes_cross_the_singular_passages_on_their_branch(work_dir, scheme):
+    run = ir.run_scheme(CONDYN, ir.benchmark("A02"), scheme, work_dir, PASSAGE_T_END,
+                        ["--max-steps", "200000"])
+    assert run.status == "finished", f"A02 under {scheme}: {run.status}: {run.message}"
+    assert run.t_reached == pytest.approx(PASSAGE_T_END)
+    assert run.error <= PASSAGE_BOUND, f"A02 under {scheme}: B0 {run.error:.3e} m off"
+
+
 def test_andrews_under_coordinate_partitioning_meets_the_published_solution(work_dir):
     """A03 under elimination (coordinate partitioning) over its whole 0.03 s: body1 turns 2.5
     times and each coordinate of its unit vector, independent in turn, reaches its extreme; the
