@@ -64,4 +64,30 @@ TEST_CASE("relative error: absolute where the reference is identically zero") {
   CHECK(err.velocity == doctest::Approx(3e-9));
 }
 
+TEST_CASE("relative error: reactions near a singular configuration are not scored") {
+  // Reactions 2 throughout but at rows 9 and 10, inside a passage: the reference reads 500 there,
+  // the run -300 at 10 and 2.001 at 12 (a flagged row in the run only). The undetermined rows
+  // neither set the scale nor count: 0.001 / 2 from row 12 alone; unflagged, 800 / 500.
+  const auto rest = [](double, int) { return 0.3; };
+  Trajectory reference = one_dof(rest, rest);
+  Trajectory run = one_dof(rest, rest);
+  reference.reaction.setConstant(2.0);
+  run.reaction.setConstant(2.0);
+  reference.reaction(0, 9) = 500.0;
+  reference.reaction(0, 10) = 500.0;
+  run.reaction(0, 10) = -300.0;
+  run.reaction(0, 11) = 7.0;
+  run.reaction(0, 12) = 2.001;
+  CHECK(relative_error(run, reference).reaction == doctest::Approx(800.0 / 500.0));
+  reference.near_singular.assign(reference.t.size(), false);
+  reference.near_singular[9] = reference.near_singular[10] = true;
+  run.near_singular.assign(run.t.size(), false);
+  run.near_singular[11] = true;
+  CHECK(error_scales(reference).reaction == 2.0);
+  CHECK(relative_error(run, reference).reaction == doctest::Approx(0.001 / 2.0).epsilon(1e-9));
+  // Every row flagged: nothing scored.
+  run.near_singular.assign(run.t.size(), true);
+  CHECK(relative_error(run, reference).reaction == 0.0);
+}
+
 }  // namespace test_relative_error

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace condyn {
 
@@ -20,12 +22,40 @@ double relative_max(const Eigen::MatrixXd& a, const Eigen::MatrixXd& ref, double
 
 double max_abs(const Eigen::MatrixXd& x) { return x.size() > 0 ? x.cwiseAbs().maxCoeff() : 0.0; }
 
+/// Whether row k of a trajectory with `flags` (Trajectory::near_singular) lies near a singular
+/// configuration.
+bool flagged(const std::vector<bool>& flags, std::size_t k) { return k < flags.size() && flags[k]; }
+
+/// The output rows whose reactions are scored: those outside passages near a singular
+/// configuration in every one of `flags`, where the multipliers are not determined by the state
+/// (docs/schemes.md, "Singular configurations").
+std::vector<Eigen::Index> determined_rows(std::size_t nt,
+                                          std::initializer_list<const std::vector<bool>*> flags) {
+  std::vector<Eigen::Index> rows;
+  for (std::size_t k = 0; k < nt; ++k) {
+    if (std::none_of(flags.begin(), flags.end(), [k](const auto* f) { return flagged(*f, k); })) {
+      rows.push_back(static_cast<Eigen::Index>(k));
+    }
+  }
+  return rows;
+}
+
+/// The reactions of `rows` (all of them when none is flagged).
+Eigen::MatrixXd reactions_at(const Eigen::MatrixXd& reaction,
+                             const std::vector<Eigen::Index>& rows) {
+  if (reaction.size() == 0 || reaction.cols() == static_cast<Eigen::Index>(rows.size())) {
+    return reaction;
+  }
+  return reaction(Eigen::all, rows);
+}
+
 }  // namespace
 
 ErrorScales error_scales(const Trajectory& trajectory) {
   ErrorScales s;
   s.displacement = max_abs(trajectory.u);
-  s.reaction = max_abs(trajectory.reaction);
+  s.reaction = max_abs(reactions_at(
+      trajectory.reaction, determined_rows(trajectory.t.size(), {&trajectory.near_singular})));
   const double span = trajectory.t.empty() ? 0.0 : trajectory.t.back() - trajectory.t.front();
   const double velocity_floor = span > 0.0 ? s.displacement / span : 0.0;
   s.velocity =
@@ -48,9 +78,11 @@ TrajectoryError relative_error(const Trajectory& run, const Trajectory& referenc
       throw std::invalid_argument("relative_error: output times differ");
     }
   }
+  const auto rows = determined_rows(run.t.size(), {&run.near_singular, &reference.near_singular});
   return {relative_max(run.u, reference.u, scales.displacement),
           relative_max(run.v, reference.v, scales.velocity),
-          relative_max(run.reaction, reference.reaction, scales.reaction)};
+          relative_max(reactions_at(run.reaction, rows), reactions_at(reference.reaction, rows),
+                       scales.reaction)};
 }
 
 double relative_energy_error(const Trajectory& run, double energy_scale) {

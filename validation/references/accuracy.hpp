@@ -26,7 +26,8 @@ struct ErrorScales {
   double energy = 0.0;
 };
 
-/// The scales of `trajectory`: max |u|, max |f_con|, max |u'| but at least max |u| / (t_last −
+/// The scales of `trajectory`: max |u|, max |f_con| (over the rows not flagged near_singular, whose
+/// reactions the state does not determine), max |u'| but at least max |u| / (t_last −
 /// t_first) (so that a structure at rest is not judged by the roundoff of its velocities: any
 /// motion of angular frequency ω over a span D ≥ 2π/ω has max |u'| ≈ ω max |u| > max |u| / D), and
 /// the energy scale.
@@ -36,7 +37,8 @@ struct ErrorScales {
 /// error_scales(reference).
 [[nodiscard]] TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference);
 /// The same relative to `scales`: max-norm differences over every DOF and output time divided by
-/// the scale (absolute where the scale is 0: a quantity that is zero throughout).
+/// the scale (absolute where the scale is 0: a quantity that is zero throughout); reactions over
+/// the output times that neither trajectory flags near_singular (0 when both flag every one).
 [[nodiscard]] TrajectoryError relative_error(const Trajectory& run, const Trajectory& reference,
                                              const ErrorScales& scales);
 /// max_t |E(t) − E(0)| of `run` over max(energy_scale, its own energy_error_scale): −1 without

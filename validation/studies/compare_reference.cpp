@@ -206,6 +206,9 @@ Trajectory rows_at(const Trajectory& dense, const std::vector<double>& times) {
   out.energy = pick_vector(dense.energy);
   out.kinetic = pick_vector(dense.kinetic);
   out.energy_scale = dense.energy_scale;
+  if (!dense.near_singular.empty()) {
+    for (const Eigen::Index c : cols) out.near_singular.push_back(dense.near_singular[c]);
+  }
   return out;
 }
 
