@@ -103,6 +103,11 @@ struct IntegratorOptions : IntegratorSettings {
   std::function<void(const Progress&)> on_progress;
   /// Called after every internal step with the step's exact t and y (not interpolated).
   std::function<void(double t, const Eigen::VectorXd& y)> on_step;
+  /// Where the run watches for singular configurations (dae/run/singular_passages.hpp): the
+  /// constraint rows' conditioning at (t, y), y in the problem's layout, as the run's monitor
+  /// computes it. A bridge (dae/integrators/passage_bridge.hpp) asks it at the states on_step
+  /// then sees, so each is computed once. Unset otherwise.
+  std::function<double(double t, const Eigen::VectorXd& y)> conditioning;
   /// Keep a per-step drift log (Trajectory::steps) for drift plots; off by default.
   bool record_steps = false;
   /// Compute accelerations at the output rows (Trajectory::acceleration, TrajectoryRow::

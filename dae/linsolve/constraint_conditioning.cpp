@@ -67,6 +67,16 @@ Eigen::VectorXd ConstraintConditioning::solve(const Eigen::VectorXd& x) const {
 }
 
 double ConstraintConditioning::operator()(double t, const Eigen::VectorXd& u) {
+  if (rows_ != nullptr && t == last_t_ && u.size() == last_u_.size() && u == last_u_) {
+    return last_sigma_;
+  }
+  last_t_ = t;
+  last_u_ = u;
+  last_sigma_ = sigma_min(t, u);
+  return last_sigma_;
+}
+
+double ConstraintConditioning::sigma_min(double t, const Eigen::VectorXd& u) {
   rows_ = &system_->constraint_jacobian(t, u);  // valid until this clone's next call
   weigh(t, u);
   factored_ = factor_gram();

@@ -22,7 +22,9 @@ namespace condyn {
 class ConstraintConditioning {
  public:
   explicit ConstraintConditioning(const MechanicalSystem& system);
-  /// σ_min at (t, u) (0 when Â Âᵀ is singular to its factorization).
+  /// σ_min at (t, u) (0 when Â Âᵀ is singular to its factorization). A call at the last call's
+  /// exact (t, u) returns its value without computing it again: a run's monitor and its bridge
+  /// (dae/integrators/passage_bridge.hpp) ask at every step's state.
   double operator()(double t, const Eigen::VectorXd& u);
   /// After operator(): the share of the kinetic energy of velocity v in the directions the rows
   /// at that configuration forbid, ‖P p‖² / ‖p‖² with p = W⁻¹ v and P the projection on the row
@@ -32,6 +34,8 @@ class ConstraintConditioning {
  private:
   /// Up to this many rows the Gram matrix is dense (m² doubles, 32 KB at 64).
   static constexpr Eigen::Index kDenseRows = 64;
+  /// operator() without the reuse.
+  double sigma_min(double t, const Eigen::VectorXd& u);
   void weigh(double t, const Eigen::VectorXd& u);
   bool factor_gram();
   [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& x) const;
@@ -47,6 +51,9 @@ class ConstraintConditioning {
   bool analysed_ = false, factored_ = false;
   Eigen::Index gram_nonzeros_ = 0;
   Eigen::VectorXd start_;  ///< the last left singular vector estimate
+  double last_t_ = 0.0;    ///< the last call's time, state and value
+  Eigen::VectorXd last_u_;
+  double last_sigma_ = 0.0;
 };
 
 }  // namespace condyn

@@ -130,7 +130,12 @@ SolveResult run_observed(const Model& model, const IntegratorOptions& options,
   // Passages near a singular configuration, at every step, for models whose A depends on the
   // state (a linear model's rank is checked once, when it is built).
   std::optional<SingularPassageMonitor> passages;
-  if (model.nonlinear && model.constraint_count() > 0) passages.emplace(*model.system);
+  if (model.nonlinear && model.constraint_count() > 0) {
+    passages.emplace(*model.system);
+    observed.conditioning = [&](double t, const Eigen::VectorXd& y) {
+      return passages->conditioning(t, observe.full_state(t, y).first);
+    };
+  }
   if (observe.drift_at_every_step || options.record_steps || observe.on_state || passages) {
     observed.on_step = [&](double t, const Eigen::VectorXd& y) {
       if (observe.on_state) observe.on_state(y);

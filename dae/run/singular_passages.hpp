@@ -27,6 +27,10 @@ class SingularPassageMonitor {
   explicit SingularPassageMonitor(const MechanicalSystem& system) : conditioning_(system) {}
   /// At every internal step: the step's exact time and state.
   void step(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v);
+  /// The rows' conditioning at (t, u), the one step() judges by (computed once per state).
+  [[nodiscard]] double conditioning(double t, const Eigen::VectorXd& u) {
+    return conditioning_(t, u);
+  }
   /// The passages so far (the one the run is inside, if any, marked left_open).
   [[nodiscard]] std::vector<SingularPassage> passages() const;
   /// Whether time t, up to the last step seen, lies inside a passage so far: for t at or before
